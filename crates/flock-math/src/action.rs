@@ -1,0 +1,242 @@
+//! Action functions cut off by a bump, φ(z) = ρ_h(z / R) · g(z), and their potentials: φ_α and φ_β
+//! of TAC 2006 (eq. 16 and 56).
+
+use crate::{Bump, CumulativeIntegral, Potential, UnevenSigmoid, sigma1};
+
+/// An action function φ(z) = ρ_h(z / R) (s σ₁(z − z₀) + o) and its potential ψ(z) = ∫_{z*}^z φ(s) ds.
+///
+/// Two instances carry the theory of TAC 2006:
+/// - [`BumpedAction::alpha`]: φ_α(z) = ρ_h(z / r_α) φ(z − d_α) (eq. 16), ψ_α(z) = ∫_{d_α}^z φ_α
+///   (eq. 17), the attractive/repulsive pair potential between α-agents in σ-norm coordinates;
+/// - [`BumpedAction::beta`]: φ_β(z) = ρ_h(z / d_β)(σ₁(z − d_β) − 1) (eq. 56), ψ_β(z) = ∫_{d_β}^z φ_β ≥ 0,
+///   the repulsive potential between an α-agent and a β-agent.
+///
+/// ψ is exact: on the flat part [0, h R) of the bump the integral has a closed form; across the
+/// cosine part [h R, R] it is integrated by Gauss–Legendre quadrature from a table of exact knots
+/// (no interpolation); beyond R, φ = 0 and ψ is constant.
+///
+/// # Example
+/// ```
+/// use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid};
+/// let sigma = SigmaNorm::new(0.1);
+/// let (d_alpha, r_alpha) = (sigma.of_length(7.0), sigma.of_length(8.4));
+/// let phi_alpha = BumpedAction::alpha(UnevenSigmoid::new(5.0, 5.0), Bump::tac(0.2), d_alpha, r_alpha);
+/// assert!(phi_alpha.action(d_alpha).abs() < 1e-12); // equilibrium at the lattice distance
+/// assert_eq!(phi_alpha.potential(d_alpha), 0.0);
+/// assert!(phi_alpha.action(0.5 * d_alpha) < 0.0); // repulsive below d_α
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct BumpedAction {
+    scale: f64,
+    shift: f64,
+    offset: f64,
+    bump: Bump,
+    range: f64,
+    zero: f64,
+    table: CumulativeIntegral,
+    /// ∫_0^{z*} φ, so that ψ(z) = ∫_0^z φ − this.
+    anchor: f64,
+}
+
+impl BumpedAction {
+    /// φ_α(z) = ρ_h(z / r_α) φ(z − d_α) with the uneven sigmoid φ (TAC 2006 eq. 16), ψ_α(d_α) = 0.
+    /// `d_alpha = ‖d‖_σ` and `r_alpha = ‖r‖_σ` with 0 < d_α < r_α.
+    #[must_use]
+    pub fn alpha(sigmoid: UnevenSigmoid, bump: Bump, d_alpha: f64, r_alpha: f64) -> Self {
+        let (a, b) = (sigmoid.a(), sigmoid.b());
+        Self::new(0.5 * (a + b), d_alpha - sigmoid.c(), 0.5 * (a - b), bump, r_alpha, d_alpha)
+    }
+
+    /// φ_β(z) = ρ_h(z / d_β)(σ₁(z − d_β) − 1) (TAC 2006 eq. 56), ψ_β(d_β) = 0, with
+    /// `d_beta = ‖d′‖_σ > 0`; the papers use h = 0.9 here.
+    #[must_use]
+    pub fn beta(bump: Bump, d_beta: f64) -> Self {
+        Self::new(1.0, d_beta, -1.0, bump, d_beta, d_beta)
+    }
+
+    fn new(scale: f64, shift: f64, offset: f64, bump: Bump, range: f64, zero: f64) -> Self {
+        let flat_end = bump.h() * range;
+        let profile = |z: f64| scale * sigma1(z - shift) + offset;
+        let action = |z: f64| bump.value(z / range) * profile(z);
+        let table = CumulativeIntegral::new(action, flat_end, range);
+        let mut this = Self { scale, shift, offset, bump, range, zero, table, anchor: 0.0 };
+        this.anchor = this.integral_from_origin(zero);
+        this
+    }
+
+    /// The cut-off R: φ(z) = 0 for z ≥ R (r_α for φ_α, d_β for φ_β).
+    #[inline]
+    #[must_use]
+    pub const fn range(&self) -> f64 {
+        self.range
+    }
+
+    /// The zero z* of ψ (d_α for φ_α, d_β for φ_β).
+    #[inline]
+    #[must_use]
+    pub const fn zero(&self) -> f64 {
+        self.zero
+    }
+
+    /// The bump ρ_h that cuts φ off.
+    #[inline]
+    #[must_use]
+    pub const fn bump(&self) -> Bump {
+        self.bump
+    }
+
+    /// (φ(z), ρ_h(z / R)): the action and the bump at once, sharing the cosine. For α-agents the
+    /// second value is the smooth adjacency a_ij = ρ_h(‖q_j − q_i‖_σ / r_α) (TAC 2006 eq. 11).
+    #[inline]
+    #[must_use]
+    pub fn action_and_bump(&self, z: f64) -> (f64, f64) {
+        let rho = self.bump.value(z / self.range);
+        (rho * self.profile(z), rho)
+    }
+
+    /// The uncut profile g(z) = s σ₁(z − z₀) + o.
+    #[inline]
+    fn profile(&self, z: f64) -> f64 {
+        self.scale * sigma1(z - self.shift) + self.offset
+    }
+
+    /// A closed-form antiderivative of the profile: s √(1 + (z − z₀)²) + o z.
+    #[inline]
+    fn profile_integral(&self, z: f64) -> f64 {
+        let x = z - self.shift;
+        self.scale * (1.0 + x * x).sqrt() + self.offset * z
+    }
+
+    /// ∫_0^z φ (φ = 0 for z < 0, where ρ_h vanishes).
+    fn integral_from_origin(&self, z: f64) -> f64 {
+        let flat_end = self.bump.h() * self.range;
+        if z <= 0.0 {
+            return 0.0;
+        }
+        let flat = self.profile_integral(z.min(flat_end)) - self.profile_integral(0.0);
+        if z <= flat_end {
+            flat
+        } else {
+            flat + self.table.integral_to(|s| self.action(s), z)
+        }
+    }
+}
+
+impl Potential for BumpedAction {
+    #[inline]
+    fn action(&self, z: f64) -> f64 {
+        self.action_and_bump(z).0
+    }
+
+    fn potential(&self, z: f64) -> f64 {
+        self.integral_from_origin(z) - self.anchor
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{GaussLegendre, SigmaNorm};
+    use approx::assert_relative_eq;
+
+    fn papers_alpha() -> BumpedAction {
+        let sigma = SigmaNorm::new(0.1);
+        BumpedAction::alpha(
+            UnevenSigmoid::new(5.0, 5.0),
+            Bump::tac(0.2),
+            sigma.of_length(7.0),
+            sigma.of_length(8.4),
+        )
+    }
+
+    fn papers_beta() -> BumpedAction {
+        BumpedAction::beta(Bump::tac(0.9), SigmaNorm::new(0.1).of_length(0.6 * 7.0))
+    }
+
+    /// Adaptive Simpson quadrature: an independent check of the tabulated potential.
+    fn adaptive_simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+        fn step(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, tol: f64, depth: u32) -> f64 {
+            let m = 0.5 * (a + b);
+            let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
+            let (flm, frm) = (f(lm), f(rm));
+            let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+            let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+            if depth == 0 || (left + right - whole).abs() <= 15.0 * tol {
+                left + right + (left + right - whole) / 15.0
+            } else {
+                step(f, a, m, fa, flm, fm, left, 0.5 * tol, depth - 1)
+                    + step(f, m, b, fm, frm, fb, right, 0.5 * tol, depth - 1)
+            }
+        }
+        let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
+        let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
+        step(f, a, b, fa, fm, fb, whole, tol, 40)
+    }
+
+    #[test]
+    fn psi_alpha_matches_adaptive_quadrature() {
+        let phi = papers_alpha();
+        let f = |s: f64| phi.action(s);
+        for i in 0..=50 {
+            let z = f64::from(i) * 0.45;
+            let reference = adaptive_simpson(&f, phi.zero(), z, 1e-12);
+            assert_relative_eq!(phi.potential(z), reference, epsilon = 1e-9);
+        }
+    }
+
+    #[test]
+    fn psi_alpha_is_zero_at_d_alpha_and_nonnegative() {
+        let phi = papers_alpha();
+        assert_eq!(phi.potential(phi.zero()), 0.0);
+        for i in 0..=400 {
+            let z = f64::from(i) * 0.06;
+            assert!(phi.potential(z) >= -1e-12, "ψ_α({z}) = {}", phi.potential(z));
+        }
+        // constant beyond r_α, where φ_α vanishes
+        assert_eq!(phi.action(phi.range() + 0.1), 0.0);
+        assert_eq!(phi.potential(phi.range()), phi.potential(phi.range() + 5.0));
+    }
+
+    #[test]
+    fn phi_is_the_derivative_of_psi() {
+        for phi in [papers_alpha(), papers_beta()] {
+            for i in 1..200 {
+                let z = f64::from(i) / 200.0 * 1.1 * phi.range();
+                let step = 1e-6;
+                let fd = (phi.potential(z + step) - phi.potential(z - step)) / (2.0 * step);
+                assert_relative_eq!(phi.action(z), fd, epsilon = 1e-7);
+            }
+        }
+    }
+
+    #[test]
+    fn phi_alpha_known_values() {
+        let phi = papers_alpha();
+        let (d_alpha, r_alpha) = (phi.zero(), phi.range());
+        // flat part: φ_α(z) = 5 σ₁(z − d_α) (a = b, c = 0)
+        let z: f64 = 2.0;
+        assert_relative_eq!(phi.action(z), 5.0 * sigma1(z - d_alpha), epsilon = 1e-15);
+        // midpoint of the cosine part: ρ_h = ½
+        let z = 0.6 * r_alpha;
+        assert_relative_eq!(phi.action(z), 2.5 * sigma1(z - d_alpha), epsilon = 1e-14);
+        assert_relative_eq!(phi.action_and_bump(z).1, 0.5, epsilon = 1e-14);
+        assert_eq!(phi.action(r_alpha), 0.0);
+    }
+
+    #[test]
+    fn phi_beta_is_repulsive_and_psi_beta_nonnegative() {
+        let phi = papers_beta();
+        let d_beta = phi.zero();
+        assert_eq!(phi.action(d_beta), 0.0);
+        assert_eq!(phi.potential(d_beta), 0.0);
+        assert_eq!(phi.potential(2.0 * d_beta), 0.0);
+        for i in 0..100 {
+            let z = f64::from(i) / 100.0 * d_beta;
+            assert!(phi.action(z) < 0.0);
+            assert!(phi.potential(z) > 0.0);
+        }
+        // ψ_β(0) = ∫_0^{d_β} (1 − σ₁(s − d_β)) ρ_h(s/d_β) ds, checked with a plain Gauss rule
+        let reference = -GaussLegendre::new(20).integrate(|s| phi.action(s), 0.0, d_beta, 400);
+        assert_relative_eq!(phi.potential(0.0), reference, epsilon = 1e-10);
+    }
+}
