@@ -44,7 +44,14 @@ impl BumpedAction {
     #[must_use]
     pub fn alpha(sigmoid: UnevenSigmoid, bump: Bump, d_alpha: f64, r_alpha: f64) -> Self {
         let (a, b) = (sigmoid.a(), sigmoid.b());
-        Self::new(0.5 * (a + b), d_alpha - sigmoid.c(), 0.5 * (a - b), bump, r_alpha, d_alpha)
+        Self::new(
+            0.5 * (a + b),
+            d_alpha - sigmoid.c(),
+            0.5 * (a - b),
+            bump,
+            r_alpha,
+            d_alpha,
+        )
     }
 
     /// φ_β(z) = ρ_h(z / d_β)(σ₁(z − d_β) − 1) (TAC 2006 eq. 56), ψ_β(d_β) = 0, with
@@ -59,7 +66,16 @@ impl BumpedAction {
         let profile = |z: f64| scale * sigma1(z - shift) + offset;
         let action = |z: f64| bump.value(z / range) * profile(z);
         let table = CumulativeIntegral::new(action, flat_end, range);
-        let mut this = Self { scale, shift, offset, bump, range, zero, table, anchor: 0.0 };
+        let mut this = Self {
+            scale,
+            shift,
+            offset,
+            bump,
+            range,
+            zero,
+            table,
+            anchor: 0.0,
+        };
         this.anchor = this.integral_from_origin(zero);
         this
     }
@@ -154,23 +170,16 @@ mod tests {
     }
 
     /// Adaptive Simpson quadrature: an independent check of the tabulated potential.
-    fn adaptive_simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
-        fn step(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, tol: f64, depth: u32) -> f64 {
-            let m = 0.5 * (a + b);
-            let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
-            let (flm, frm) = (f(lm), f(rm));
-            let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
-            let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-            if depth == 0 || (left + right - whole).abs() <= 15.0 * tol {
-                left + right + (left + right - whole) / 15.0
-            } else {
-                step(f, a, m, fa, flm, fm, left, 0.5 * tol, depth - 1)
-                    + step(f, m, b, fm, frm, fb, right, 0.5 * tol, depth - 1)
-            }
+    fn adaptive_simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64, depth: u32) -> f64 {
+        let simpson = |a: f64, b: f64| (b - a) / 6.0 * (f(a) + 4.0 * f(0.5 * (a + b)) + f(b));
+        let m = 0.5 * (a + b);
+        let (whole, halves) = (simpson(a, b), simpson(a, m) + simpson(m, b));
+        if depth == 0 || (halves - whole).abs() <= 15.0 * tol {
+            halves + (halves - whole) / 15.0
+        } else {
+            adaptive_simpson(f, a, m, 0.5 * tol, depth - 1)
+                + adaptive_simpson(f, m, b, 0.5 * tol, depth - 1)
         }
-        let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
-        let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-        step(f, a, b, fa, fm, fb, whole, tol, 40)
     }
 
     #[test]
@@ -179,7 +188,7 @@ mod tests {
         let f = |s: f64| phi.action(s);
         for i in 0..=50 {
             let z = f64::from(i) * 0.45;
-            let reference = adaptive_simpson(&f, phi.zero(), z, 1e-12);
+            let reference = adaptive_simpson(&f, phi.zero(), z, 1e-12, 40);
             assert_relative_eq!(phi.potential(z), reference, epsilon = 1e-9);
         }
     }
@@ -190,7 +199,11 @@ mod tests {
         assert_eq!(phi.potential(phi.zero()), 0.0);
         for i in 0..=400 {
             let z = f64::from(i) * 0.06;
-            assert!(phi.potential(z) >= -1e-12, "ψ_α({z}) = {}", phi.potential(z));
+            assert!(
+                phi.potential(z) >= -1e-12,
+                "ψ_α({z}) = {}",
+                phi.potential(z)
+            );
         }
         // constant beyond r_α, where φ_α vanishes
         assert_eq!(phi.action(phi.range() + 0.1), 0.0);

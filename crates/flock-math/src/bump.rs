@@ -113,7 +113,11 @@ mod tests {
             let h = bump.h();
             let tiny = 1e-9;
             for knot in [h, 1.0] {
-                assert_relative_eq!(bump.value(knot - tiny), bump.value(knot + tiny), epsilon = 1e-6);
+                assert_relative_eq!(
+                    bump.value(knot - tiny),
+                    bump.value(knot + tiny),
+                    epsilon = 1e-6
+                );
                 assert_relative_eq!(
                     bump.derivative(knot - tiny),
                     bump.derivative(knot + tiny),
@@ -126,7 +130,11 @@ mod tests {
 
     #[test]
     fn derivative_matches_finite_differences() {
-        for bump in [Bump::tac(0.2), Bump::influence_map(0.1, 2), Bump::influence_map(0.5, 4)] {
+        for bump in [
+            Bump::tac(0.2),
+            Bump::influence_map(0.1, 2),
+            Bump::influence_map(0.5, 4),
+        ] {
             for i in 1..40 {
                 let z = f64::from(i) / 40.0 * 1.1;
                 let step = 1e-6;

@@ -96,7 +96,13 @@ impl CumulativeIntegral {
             total += rule.integrate(&f, a, a + spacing, 2);
             knots.push(total);
         }
-        Self { lo, hi, spacing, knots, rule }
+        Self {
+            lo,
+            hi,
+            spacing,
+            knots,
+            rule,
+        }
     }
 
     /// ∫_lo^x f for x clamped to [lo, hi]; `f` must be the integrand given to [`Self::new`].
@@ -155,9 +161,17 @@ mod tests {
         let table = CumulativeIntegral::new(f64::cos, 0.5, 4.0);
         for i in 0..=70 {
             let x = 0.5 + f64::from(i) * 0.05;
-            assert_relative_eq!(table.integral_to(f64::cos, x), x.sin() - 0.5f64.sin(), epsilon = 1e-14);
+            assert_relative_eq!(
+                table.integral_to(f64::cos, x),
+                x.sin() - 0.5f64.sin(),
+                epsilon = 1e-14
+            );
         }
-        assert_relative_eq!(table.integral_to(f64::cos, 9.0), 4f64.sin() - 0.5f64.sin(), epsilon = 1e-14);
+        assert_relative_eq!(
+            table.integral_to(f64::cos, 9.0),
+            4f64.sin() - 0.5f64.sin(),
+            epsilon = 1e-14
+        );
         assert_eq!(table.integral_to(f64::cos, 0.0), 0.0);
     }
 

@@ -128,8 +128,16 @@ mod tests {
     fn sigma_norm_of_papers_distances() {
         let sigma = SigmaNorm::new(0.1);
         // d = 7, r = 8.4 (TAC 2006 simulations): d_α = 10(√5.9 − 1), r_α = 10(√8.056 − 1)
-        assert_relative_eq!(sigma.of_length(7.0), 10.0 * (5.9f64.sqrt() - 1.0), epsilon = 1e-12);
-        assert_relative_eq!(sigma.of_length(8.4), 10.0 * (8.056f64.sqrt() - 1.0), epsilon = 1e-12);
+        assert_relative_eq!(
+            sigma.of_length(7.0),
+            10.0 * (5.9f64.sqrt() - 1.0),
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            sigma.of_length(8.4),
+            10.0 * (8.056f64.sqrt() - 1.0),
+            epsilon = 1e-12
+        );
         assert_eq!(sigma.of_length(0.0), 0.0);
         // small lengths: ‖z‖_σ ≈ ‖z‖²/2 without cancellation
         assert_relative_eq!(sigma.of_length(1e-9), 0.5e-18, max_relative = 1e-12);

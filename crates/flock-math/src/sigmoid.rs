@@ -89,7 +89,11 @@ mod tests {
         let phi = UnevenSigmoid::new(1.0, 4.0);
         assert_relative_eq!(phi.c(), 0.75);
         let z: f64 = 1.25;
-        assert_relative_eq!(phi.action(z), 0.5 * (5.0 * 2.0 / 5f64.sqrt() - 3.0), epsilon = 1e-15);
+        assert_relative_eq!(
+            phi.action(z),
+            0.5 * (5.0 * 2.0 / 5f64.sqrt() - 3.0),
+            epsilon = 1e-15
+        );
         assert_relative_eq!(
             phi.potential(z),
             2.5 * (5f64.sqrt() - 1.25) - 1.5 * z,
