@@ -72,6 +72,15 @@ impl SigmaNorm {
         z * self.gradient_scale(z.length_squared())
     }
 
+    /// (‖z‖_σ, 1/√(1 + εd²)) for ‖z‖² = `d2`: the norm and the gradient factor sharing one square
+    /// root, for the inner loop of the α-interaction.
+    #[inline]
+    #[must_use]
+    pub fn norm_and_gradient_scale(&self, d2: f64) -> (f64, f64) {
+        let root = (1.0 + self.epsilon * d2).sqrt();
+        (d2 / (root + 1.0), 1.0 / root)
+    }
+
     /// The factor 1/√(1 + εd²) = 1/(1 + ε‖z‖_σ) with σ_ε(z) = z · factor, for ‖z‖² = `d2`.
     #[inline]
     #[must_use]
@@ -112,6 +121,9 @@ mod tests {
         }
         let s = sigma.norm(z);
         assert_relative_eq!(g.coord(0), z.coord(0) / (1.0 + 0.1 * s), epsilon = 1e-15);
+        let (norm, scale) = sigma.norm_and_gradient_scale(z.length_squared());
+        assert_eq!(norm, s);
+        assert_eq!(scale, sigma.gradient_scale(z.length_squared()));
     }
 
     #[test]

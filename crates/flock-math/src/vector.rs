@@ -132,6 +132,15 @@ macro_rules! impl_vector {
 impl_vector!(DVec2, 2);
 impl_vector!(DVec3, 3);
 
+/// The arithmetic mean of vectors, summed in index order (deterministic); zero for none.
+#[must_use]
+pub fn mean<V: Vector>(vectors: &[V]) -> V {
+    if vectors.is_empty() {
+        return V::ZERO;
+    }
+    vectors.iter().fold(V::ZERO, |acc, &v| acc + v) / vectors.len() as f64
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -149,6 +158,8 @@ mod tests {
         assert!(!V::from_fn(|_| f64::NAN).is_finite());
         assert_eq!(v.min(-v), -v);
         assert_eq!(v.max(-v), v);
+        assert_eq!(mean(&[v, -v, v * 4.0]), v * (4.0 / 3.0));
+        assert_eq!(mean::<V>(&[]), V::ZERO);
     }
 
     #[test]

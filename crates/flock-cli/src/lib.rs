@@ -1,0 +1,19 @@
+//! The `flock` command line as a library: scenarios, their validation, runs and their outputs.
+//!
+//! - [`Scenario`]: a RON scenario file, [`Scenario::load`] parses and validates it.
+//! - [`run_scenario`]: runs it in its dimension and hands records to a [`Recorder`].
+//! - [`RunDirectory`]: the recorder behind `flock run --out DIR`.
+
+pub mod error;
+pub mod initial;
+pub mod output;
+pub mod run;
+pub mod scenario;
+pub mod summary;
+mod validate;
+
+pub use error::ScenarioError;
+pub use output::{METRICS_HEADER, RunDirectory};
+pub use run::{Record, Recorder, RunSummary, run, run_scenario};
+pub use scenario::Scenario;
+pub use summary::Report;

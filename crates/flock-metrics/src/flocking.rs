@@ -1,0 +1,233 @@
+//! The flocking metrics of TAC 2006, Section VIII.
+
+use flock_graph::{Components, ProximityNet, nearest_pair_distance};
+use flock_math::{Vector, mean};
+
+/// What the metrics compare against.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetricParams {
+    /// The lattice scale d of the deviation energy.
+    pub d: f64,
+    /// Two agents closer than this collide; must be below the net's range so that every colliding
+    /// pair is an edge of the net.
+    pub collision_distance: f64,
+}
+
+/// One evaluation of every metric.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlockMetrics {
+    /// Relative connectivity C = rank(L)/(n − 1) ∈ [0, 1].
+    pub connectivity: f64,
+    /// C* = |giant component| / n.
+    pub giant_component: f64,
+    /// The number of connected components (flocks) of the net.
+    pub components: usize,
+    /// Cohesion radius R = max_i ‖q_i − q_c‖.
+    pub cohesion_radius: f64,
+    /// Normalised deviation energy Ẽ = E / d².
+    pub deviation_energy: f64,
+    /// Normalised velocity mismatch K̃ = K / n.
+    pub velocity_mismatch: f64,
+    /// The smallest distance between two agents (∞ for fewer than two agents).
+    pub min_distance: f64,
+    /// The number of pairs closer than the collision distance.
+    pub collisions: usize,
+}
+
+impl FlockMetrics {
+    /// Every metric of the state (q, p) with its net.
+    #[must_use]
+    pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
+        let components = Components::of(net.graph());
+        Self {
+            connectivity: relative_connectivity(&components),
+            giant_component: components.giant_share(),
+            components: components.count(),
+            cohesion_radius: cohesion_radius(q),
+            deviation_energy: deviation_energy(net, params.d),
+            velocity_mismatch: velocity_mismatch(p),
+            min_distance: min_distance(q, net),
+            collisions: collisions(net, params.collision_distance),
+        }
+    }
+}
+
+/// C(t) = rank(L(q)) / (n − 1) = (n − #components) / (n − 1) for an undirected net (TAC 2006
+/// eq. 80): rank(L) = n − #components, so no dense rank is needed. 1 for a single agent.
+#[must_use]
+pub fn relative_connectivity(components: &Components) -> f64 {
+    let n = components.labels().len();
+    if n <= 1 {
+        return 1.0;
+    }
+    (n - components.count()) as f64 / (n - 1) as f64
+}
+
+/// R(t) = max_i ‖q_i − q_c‖ (TAC 2006 eq. 81).
+#[must_use]
+pub fn cohesion_radius<V: Vector>(q: &[V]) -> f64 {
+    let centre = mean(q);
+    q.iter().map(|&qi| (qi - centre).length()).fold(0.0, f64::max)
+}
+
+/// Ẽ = E(q) / d² with E(q) = (1/(|E| + 1)) Σ_i Σ_{j∈N_i} (‖q_j − q_i‖ − d)² (TAC 2006 eq. 7 and 82),
+/// where E is the set of ordered pairs (i, j), j ∈ N_i, so |E| = Σ_i |N_i| and E is close to the mean
+/// squared edge-length error.
+#[must_use]
+pub fn deviation_energy(net: &ProximityNet, d: f64) -> f64 {
+    let sum: f64 = net.distances().iter().map(|&l| (l - d) * (l - d)).sum();
+    sum / (net.distances().len() as f64 + 1.0) / (d * d)
+}
+
+/// K̃ = K / n with K = ½ Σ ‖p_i − p_c‖² (TAC 2006 eq. 83); 0 for no agent.
+#[must_use]
+pub fn velocity_mismatch<V: Vector>(p: &[V]) -> f64 {
+    if p.is_empty() {
+        return 0.0;
+    }
+    let p_c = mean(p);
+    0.5 * p.iter().map(|&pi| (pi - p_c).length_squared()).sum::<f64>() / p.len() as f64
+}
+
+/// The velocity mismatch with each agent compared to the mean velocity of its own component:
+/// (1/n) Σ_k ½ Σ_{i∈F_k} ‖p_i − p_c^k‖². It vanishes when every flock moves rigidly (translation),
+/// the outcome of regular fragmentation under Algorithm 1 (TAC 2006 Fig. 12).
+#[must_use]
+pub fn component_velocity_mismatch<V: Vector>(p: &[V], components: &Components) -> f64 {
+    if p.is_empty() {
+        return 0.0;
+    }
+    let mut sums = vec![V::ZERO; components.count()];
+    for (&label, &pi) in components.labels().iter().zip(p) {
+        sums[label as usize] += pi;
+    }
+    let means: Vec<V> = sums.iter().zip(components.sizes()).map(|(&s, &size)| s / size as f64).collect();
+    let k: f64 = components
+        .labels()
+        .iter()
+        .zip(p)
+        .map(|(&label, &pi)| (pi - means[label as usize]).length_squared())
+        .sum();
+    0.5 * k / p.len() as f64
+}
+
+/// The smallest distance between two agents: the shortest edge of the net when it has one (every
+/// closer pair is an edge), otherwise an exact search; ∞ for fewer than two agents.
+#[must_use]
+pub fn min_distance<V: Vector>(q: &[V], net: &ProximityNet) -> f64 {
+    let shortest = net.distances().iter().copied().fold(f64::INFINITY, f64::min);
+    if shortest.is_finite() {
+        shortest
+    } else {
+        nearest_pair_distance(q).unwrap_or(f64::INFINITY)
+    }
+}
+
+/// The number of unordered pairs closer than `collision_distance`, which must not exceed the net's
+/// range (every such pair is then an edge).
+#[must_use]
+pub fn collisions(net: &ProximityNet, collision_distance: f64) -> usize {
+    debug_assert!(collision_distance <= net.range(), "collision distance beyond the net's range");
+    net.distances().iter().filter(|&&l| l < collision_distance).count() / 2
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use flock_graph::Graph;
+    use glam::{DVec2, DVec3};
+
+    /// A triangular α-lattice patch in the plane (spacing d), lifted to V.
+    fn triangular_lattice<V: Vector>(rows: usize, cols: usize, d: f64) -> Vec<V> {
+        let mut points = Vec::new();
+        for r in 0..rows {
+            for c in 0..cols {
+                let x = d * (c as f64 + 0.5 * (r % 2) as f64);
+                let y = d * r as f64 * 3f64.sqrt() / 2.0;
+                points.push(V::from_fn(|k| [x, y, 0.0][k]));
+            }
+        }
+        points
+    }
+
+    fn lattice_metrics<V: Vector>() {
+        let d = 7.0;
+        let q: Vec<V> = triangular_lattice(5, 6, d);
+        let p = vec![V::from_fn(|k| k as f64 + 1.0); q.len()];
+        let net = ProximityNet::brute_force(&q, 1.2 * d);
+        let m = FlockMetrics::measure(&q, &p, &net, &MetricParams { d, collision_distance: 0.5 * d });
+        assert_eq!(m.connectivity, 1.0);
+        assert_eq!(m.giant_component, 1.0);
+        assert_eq!(m.components, 1);
+        assert_relative_eq!(m.deviation_energy, 0.0, epsilon = 1e-28);
+        assert_eq!(m.velocity_mismatch, 0.0);
+        assert_relative_eq!(m.min_distance, d, epsilon = 1e-12);
+        assert_eq!(m.collisions, 0);
+    }
+
+    #[test]
+    fn alpha_lattice_is_a_perfect_flock_2d() {
+        lattice_metrics::<DVec2>();
+    }
+
+    #[test]
+    fn alpha_lattice_is_a_perfect_flock_3d() {
+        lattice_metrics::<DVec3>();
+    }
+
+    #[test]
+    fn connectivity_of_the_papers_examples() {
+        // TAC slides: populations 1,1,1,1,96 → C = 95/99, C* = 0.96; 5 × 20 → C = 95/99, C* = 0.2
+        let chain = |sizes: &[usize]| {
+            let mut edges = Vec::new();
+            let mut start = 0;
+            for &s in sizes {
+                edges.extend((start..start + s - 1).map(|i| (i, i + 1)));
+                start += s;
+            }
+            Components::of(&Graph::from_edges(start, &edges).expect("valid edges"))
+        };
+        let skewed = chain(&[1, 1, 1, 1, 96]);
+        assert_relative_eq!(relative_connectivity(&skewed), 95.0 / 99.0);
+        assert_relative_eq!(skewed.giant_share(), 0.96);
+        let even = chain(&[20; 5]);
+        assert_relative_eq!(relative_connectivity(&even), 95.0 / 99.0);
+        assert_relative_eq!(even.giant_share(), 0.2);
+    }
+
+    #[test]
+    fn deviation_energy_of_a_stretched_pair() {
+        // two agents 8 apart with d = 7: E = (1/(2 + 1)) · 2 · 1² = 2/3, Ẽ = 2/(3 · 49)
+        let q = [DVec2::ZERO, DVec2::new(8.0, 0.0)];
+        let net = ProximityNet::brute_force(&q, 8.4);
+        assert_relative_eq!(deviation_energy(&net, 7.0), 2.0 / 147.0, epsilon = 1e-15);
+        assert_eq!(collisions(&net, 8.1), 1);
+        assert_eq!(collisions(&net, 8.0), 0);
+    }
+
+    #[test]
+    fn velocity_mismatch_has_its_half() {
+        // p = ±v: K = ½ (‖v‖² + ‖v‖²) = ‖v‖², K̃ = ‖v‖²/2
+        let p = [DVec3::new(1.0, 2.0, 2.0), DVec3::new(-1.0, -2.0, -2.0)];
+        assert_relative_eq!(velocity_mismatch(&p), 4.5);
+    }
+
+    #[test]
+    fn rigid_components_have_no_component_mismatch() {
+        let graph = Graph::from_edges(4, &[(0, 1), (2, 3)]).expect("valid edges");
+        let components = Components::of(&graph);
+        let p = [DVec2::X, DVec2::X, DVec2::Y, DVec2::Y];
+        assert_eq!(component_velocity_mismatch(&p, &components), 0.0);
+        assert!(velocity_mismatch(&p) > 0.1);
+    }
+
+    #[test]
+    fn cohesion_radius_and_min_distance_without_edges() {
+        let q = [DVec2::new(-10.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(0.0, 30.0)];
+        let net = ProximityNet::brute_force(&q, 8.4);
+        assert_relative_eq!(cohesion_radius(&q), 20.0);
+        assert_relative_eq!(min_distance(&q, &net), 20.0);
+        assert_eq!(min_distance::<DVec2>(&[], &ProximityNet::new()), f64::INFINITY);
+    }
+}

@@ -1,0 +1,75 @@
+//! Algorithms 1 and 2 of Olfati-Saber, *Flocking for multi-agent dynamic systems: algorithms and
+//! theory*, IEEE TAC 51(3), 2006.
+
+use flock_graph::ProximityNet;
+use flock_math::{Vector, mean};
+
+use crate::protocol::per_agent;
+use crate::{AlphaInteraction, NavigationalFeedback, Protocol, Swarm};
+
+/// Algorithm 1 (eq. 24): u_i = u_i^α, the α-interaction alone. Total momentum is preserved
+/// (Σ_i u_i = 0) and, in the frame of the centre of mass, H = V(q) + ½ Σ ‖p_i − p_c‖² is
+/// non-increasing (Theorem 1). It rarely yields flocking: the typical outcome is regular
+/// fragmentation (Fig. 12).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Algorithm1 {
+    /// The α-interaction.
+    pub alpha: AlphaInteraction,
+}
+
+impl<V: Vector> Protocol<V> for Algorithm1 {
+    fn interaction_range(&self) -> f64 {
+        self.alpha.params().r
+    }
+
+    fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
+        let (q, p) = (&swarm.positions, &swarm.velocities);
+        per_agent(inputs, |i| self.alpha.input(i, q, p, net));
+    }
+
+    /// H = c₁^α V(q) + ½ Σ ‖p_i − p_c‖² (Theorem 1, moving frame).
+    fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        let p_c = mean(&swarm.velocities);
+        self.alpha.c1() * self.alpha.potential(&swarm.positions, net)
+            + kinetic(&swarm.velocities, p_c)
+    }
+}
+
+/// Algorithm 2 (eq. 25–26): u_i = u_i^α + f_i^γ with f_i^γ = −c₁(q_i − q_r) − c₂(p_i − p_r): the
+/// α-interaction plus navigational feedback to a γ-agent. It yields flocking (Theorem 3, Fig. 10–11).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Algorithm2<V> {
+    /// The α-interaction.
+    pub alpha: AlphaInteraction,
+    /// The navigational feedback to the γ-agent.
+    pub navigation: NavigationalFeedback<V>,
+}
+
+impl<V: Vector> Protocol<V> for Algorithm2<V> {
+    fn interaction_range(&self) -> f64 {
+        self.alpha.params().r
+    }
+
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
+        let (q, p) = (&swarm.positions, &swarm.velocities);
+        let reference = self.navigation.gamma.state(t);
+        per_agent(inputs, |i| {
+            self.alpha.input(i, q, p, net) + self.navigation.input(q[i], p[i], reference)
+        });
+    }
+
+    /// H = c₁^α V(q) + (c₁/2) Σ ‖q_i − q_r‖² + ½ Σ ‖p_i − p_r‖², the energy of the frame moving with
+    /// the γ-agent; Ḣ = −c₂^α pᵀL̂p − c₂ Σ ‖p_i − p_r‖² ≤ 0 when p_r is constant (Theorem 3).
+    fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        let (q_r, p_r) = self.navigation.gamma.state(t);
+        let tether: f64 = swarm.positions.iter().map(|&q| (q - q_r).length_squared()).sum();
+        self.alpha.c1() * self.alpha.potential(&swarm.positions, net)
+            + 0.5 * self.navigation.c1 * tether
+            + kinetic(&swarm.velocities, p_r)
+    }
+}
+
+/// ½ Σ ‖p_i − p_ref‖².
+fn kinetic<V: Vector>(velocities: &[V], reference: V) -> f64 {
+    0.5 * velocities.iter().map(|&p| (p - reference).length_squared()).sum::<f64>()
+}

@@ -1,0 +1,36 @@
+//! The [`Protocol`] trait: every flocking algorithm computes all agents' inputs from a read-only state.
+
+use flock_graph::ProximityNet;
+use flock_math::Vector;
+
+use crate::Swarm;
+
+/// A distributed flocking protocol: u_i as a function of the state of agent i and of its neighbours
+/// in the proximity net, plus the energy function its stability theorem uses.
+pub trait Protocol<V: Vector>: Sync {
+    /// The interaction range r that defines N_i = { j : ‖q_j − q_i‖ < r }.
+    #[must_use]
+    fn interaction_range(&self) -> f64;
+
+    /// Writes u_i for every agent into `inputs` (length n), from the state at time `t` and its net
+    /// (built with [`Protocol::interaction_range`]). Bit-identical whatever the thread count.
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]);
+
+    /// The energy (Hamiltonian) of the closed-loop system whose non-increase the theory proves.
+    #[must_use]
+    fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64;
+}
+
+/// Fills `out[i] = f(i)` for every agent, in parallel with the `parallel` feature. Each entry is
+/// computed alone, so the result does not depend on how the work is split.
+pub(crate) fn per_agent<V: Vector>(out: &mut [V], f: impl Fn(usize) -> V + Sync) {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        out.par_iter_mut().enumerate().for_each(|(i, u)| *u = f(i));
+    }
+    #[cfg(not(feature = "parallel"))]
+    for (i, u) in out.iter_mut().enumerate() {
+        *u = f(i);
+    }
+}
