@@ -41,7 +41,10 @@ impl ScenarioError {
     /// The file at `path` could not be read.
     #[must_use]
     pub fn io(path: &Path, error: &std::io::Error) -> Self {
-        Self::Io { path: path.display().to_string(), message: error.to_string() }
+        Self::Io {
+            path: path.display().to_string(),
+            message: error.to_string(),
+        }
     }
 
     /// A RON error at its position.
@@ -57,8 +60,18 @@ impl ScenarioError {
 
     /// `field = value` is invalid because `why`; `fix` says what to write instead.
     #[must_use]
-    pub fn invalid(field: impl Into<String>, value: impl fmt::Debug, why: impl Into<String>, fix: impl Into<String>) -> Self {
-        Self::Invalid { field: field.into(), value: format!("{value:?}"), why: why.into(), fix: fix.into() }
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl fmt::Debug,
+        why: impl Into<String>,
+        fix: impl Into<String>,
+    ) -> Self {
+        Self::Invalid {
+            field: field.into(),
+            value: format!("{value:?}"),
+            why: why.into(),
+            fix: fix.into(),
+        }
     }
 }
 
@@ -66,8 +79,18 @@ impl fmt::Display for ScenarioError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Io { path, message } => write!(f, "cannot read scenario {path}: {message}"),
-            Self::Syntax { origin, line, col, message } => write!(f, "{origin}:{line}:{col}: {message}"),
-            Self::Invalid { field, value, why, fix } => write!(f, "`{field}` = {value}: {why}; {fix}"),
+            Self::Syntax {
+                origin,
+                line,
+                col,
+                message,
+            } => write!(f, "{origin}:{line}:{col}: {message}"),
+            Self::Invalid {
+                field,
+                value,
+                why,
+                fix,
+            } => write!(f, "`{field}` = {value}: {why}; {fix}"),
         }
     }
 }

@@ -34,18 +34,22 @@ fn sample<V: Vector>(cloud: &Cloud, n: usize, rng: &mut Pcg64) -> Vec<V> {
         Cloud::Ball { centre, radius } => {
             let centre: V = to_vector(centre);
             (0..n)
-                .map(|_| loop {
-                    // rejection from the cube [−1, 1]^m: uniform in the unit ball
-                    let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
-                    if x.length_squared() <= 1.0 {
-                        break centre + x * *radius;
+                .map(|_| {
+                    loop {
+                        // rejection from the cube [−1, 1]^m: uniform in the unit ball
+                        let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
+                        if x.length_squared() <= 1.0 {
+                            break centre + x * *radius;
+                        }
                     }
                 })
                 .collect()
         }
         Cloud::Gaussian { mean, std } => {
             let mean: V = to_vector(mean);
-            (0..n).map(|_| mean + V::from_fn(|_| standard_normal(rng)) * *std).collect()
+            (0..n)
+                .map(|_| mean + V::from_fn(|_| standard_normal(rng)) * *std)
+                .collect()
         }
         Cloud::Explicit(rows) => rows.iter().map(|row| to_vector(row)).collect(),
     }

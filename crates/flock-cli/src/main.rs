@@ -54,7 +54,12 @@ fn main() -> ExitCode {
                 ExitCode::from(INVALID)
             }
         },
-        Command::Run { scenario, out, force, threads } => {
+        Command::Run {
+            scenario,
+            out,
+            force,
+            threads,
+        } => {
             let loaded = match Scenario::load(&scenario) {
                 Ok(s) => s,
                 Err(e) => {
@@ -63,7 +68,9 @@ fn main() -> ExitCode {
                 }
             };
             if let Some(threads) = threads
-                && let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(threads).build_global()
+                && let Err(e) = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build_global()
             {
                 eprintln!("error: cannot start {threads} threads: {e}");
                 return ExitCode::FAILURE;
@@ -87,7 +94,13 @@ fn execute(scenario: &Scenario, out: &std::path::Path, force: bool) -> std::io::
     match run_scenario(scenario, &mut dir) {
         Ok(summary) => {
             let target = dir.finish()?;
-            println!("{}", Report { name: &scenario.name, summary: &summary });
+            println!(
+                "{}",
+                Report {
+                    name: &scenario.name,
+                    summary: &summary
+                }
+            );
             println!("  outputs               {}", target.display());
             Ok(())
         }

@@ -12,8 +12,7 @@ use crate::run::{Record, Recorder};
 use crate::scenario::Scenario;
 
 /// The header of `metrics.csv`.
-pub const METRICS_HEADER: &str =
-    "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy";
+pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy";
 
 /// An output directory being written.
 #[derive(Debug)]
@@ -56,7 +55,14 @@ impl RunDirectory {
         writeln!(metrics, "{METRICS_HEADER}")?;
         let mut trajectory = BufWriter::new(File::create(partial.join("trajectory.csv"))?);
         writeln!(trajectory, "t,{}", state_header(scenario.dim))?;
-        Ok(Self { target: target.to_owned(), partial, metrics, trajectory, dim: scenario.dim, last_state: Vec::new() })
+        Ok(Self {
+            target: target.to_owned(),
+            partial,
+            metrics,
+            trajectory,
+            dim: scenario.dim,
+            last_state: Vec::new(),
+        })
     }
 
     /// Writes `final.csv` and moves the directory into place.

@@ -75,7 +75,10 @@ impl Recorder for () {
 ///
 /// # Errors
 /// The recorder's first error.
-pub fn run_scenario<R: Recorder>(scenario: &Scenario, recorder: &mut R) -> Result<RunSummary, R::Error> {
+pub fn run_scenario<R: Recorder>(
+    scenario: &Scenario,
+    recorder: &mut R,
+) -> Result<RunSummary, R::Error> {
     match scenario.dim {
         2 => run::<glam::DVec2, R>(scenario, recorder),
         _ => run::<glam::DVec3, R>(scenario, recorder),
@@ -86,14 +89,28 @@ pub fn run_scenario<R: Recorder>(scenario: &Scenario, recorder: &mut R) -> Resul
 ///
 /// # Errors
 /// The recorder's first error.
-pub fn run<V: Vector, R: Recorder>(scenario: &Scenario, recorder: &mut R) -> Result<RunSummary, R::Error> {
+pub fn run<V: Vector, R: Recorder>(
+    scenario: &Scenario,
+    recorder: &mut R,
+) -> Result<RunSummary, R::Error> {
     let a = &scenario.alpha;
-    let params = AlphaParams { d: a.d, r: scenario.range(), epsilon: a.epsilon, a: a.a, b: a.b, h: a.h };
+    let params = AlphaParams {
+        d: a.d,
+        r: scenario.range(),
+        epsilon: a.epsilon,
+        a: a.a,
+        b: a.b,
+        h: a.h,
+    };
     let alpha = AlphaInteraction::new(params, a.c1, a.c2);
     match &scenario.algorithm {
         Algorithm::Algorithm1 => drive::<V, _, _>(scenario, Algorithm1 { alpha }, recorder),
         Algorithm::Algorithm2 { gamma, c1, c2 } => {
-            let navigation = NavigationalFeedback { gamma: gamma_agent::<V>(gamma), c1: *c1, c2: *c2 };
+            let navigation = NavigationalFeedback {
+                gamma: gamma_agent::<V>(gamma),
+                c1: *c1,
+                c2: *c2,
+            };
             drive(scenario, Algorithm2 { alpha, navigation }, recorder)
         }
     }
@@ -101,13 +118,17 @@ pub fn run<V: Vector, R: Recorder>(scenario: &Scenario, recorder: &mut R) -> Res
 
 fn gamma_agent<V: Vector>(gamma: &Gamma) -> GammaAgent<V> {
     match gamma {
-        Gamma::Static { position } => GammaAgent::Static { position: to_vector(position) },
-        Gamma::ConstantVelocity { position, velocity } => {
-            GammaAgent::ConstantVelocity { position: to_vector(position), velocity: to_vector(velocity) }
-        }
-        Gamma::Path { waypoints, speed } => {
-            GammaAgent::Path(Path::new(waypoints.iter().map(|w| to_vector(w)).collect(), *speed))
-        }
+        Gamma::Static { position } => GammaAgent::Static {
+            position: to_vector(position),
+        },
+        Gamma::ConstantVelocity { position, velocity } => GammaAgent::ConstantVelocity {
+            position: to_vector(position),
+            velocity: to_vector(velocity),
+        },
+        Gamma::Path { waypoints, speed } => GammaAgent::Path(Path::new(
+            waypoints.iter().map(|w| to_vector(w)).collect(),
+            *speed,
+        )),
     }
 }
 
@@ -120,22 +141,45 @@ fn drive<V: Vector, P: Protocol<V>, R: Recorder>(
         IntegratorKind::SymplecticEuler => Integrator::SymplecticEuler,
         IntegratorKind::Rk4 => Integrator::Rk4,
     };
-    let metric_params = MetricParams { d: scenario.alpha.d, collision_distance: scenario.collision_distance() };
-    let mut sim = Simulation::new(protocol, integrator, initial_swarm::<V>(scenario), scenario.step);
+    let metric_params = MetricParams {
+        d: scenario.alpha.d,
+        collision_distance: scenario.collision_distance(),
+    };
+    let mut sim = Simulation::new(
+        protocol,
+        integrator,
+        initial_swarm::<V>(scenario),
+        scenario.step,
+    );
     let measure = |sim: &Simulation<V, P>| {
         let swarm = sim.swarm();
-        let metrics = FlockMetrics::measure(&swarm.positions, &swarm.velocities, sim.net(), &metric_params);
+        let metrics = FlockMetrics::measure(
+            &swarm.positions,
+            &swarm.velocities,
+            sim.net(),
+            &metric_params,
+        );
         (metrics, sim.energy())
     };
     let (metrics, initial_energy) = measure(&sim);
-    recorder.record(&Record { t: 0.0, metrics, energy: initial_energy, swarm: sim.swarm() })?;
+    recorder.record(&Record {
+        t: 0.0,
+        metrics,
+        energy: initial_energy,
+        swarm: sim.swarm(),
+    })?;
     let total = scenario.steps();
     let start = Instant::now();
     while sim.steps() < total {
         sim.step();
         if sim.steps() % scenario.record_every == 0 || sim.steps() == total {
             let (metrics, energy) = measure(&sim);
-            recorder.record(&Record { t: sim.time(), metrics, energy, swarm: sim.swarm() })?;
+            recorder.record(&Record {
+                t: sim.time(),
+                metrics,
+                energy,
+                swarm: sim.swarm(),
+            })?;
         }
     }
     let elapsed = start.elapsed();
@@ -147,7 +191,10 @@ fn drive<V: Vector, P: Protocol<V>, R: Recorder>(
         steps: sim.steps(),
         t: sim.time(),
         metrics,
-        component_velocity_mismatch: component_velocity_mismatch(&sim.swarm().velocities, &components),
+        component_velocity_mismatch: component_velocity_mismatch(
+            &sim.swarm().velocities,
+            &components,
+        ),
         initial_energy,
         final_energy,
         elapsed,

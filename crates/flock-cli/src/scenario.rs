@@ -118,7 +118,16 @@ pub struct Alpha {
 
 impl Default for Alpha {
     fn default() -> Self {
-        Self { d: 7.0, r: None, epsilon: 0.1, a: 5.0, b: 5.0, h: 0.2, c1: 1.0, c2: 1.0 }
+        Self {
+            d: 7.0,
+            r: None,
+            epsilon: 0.1,
+            a: 5.0,
+            b: 5.0,
+            h: 0.2,
+            c1: 1.0,
+            c2: 1.0,
+        }
     }
 }
 
@@ -190,8 +199,7 @@ impl Scenario {
     /// When the file cannot be read, is not valid RON for a scenario (the error gives the line and
     /// column), or fails [`Scenario::validate`].
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| ScenarioError::io(path, &e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::io(path, &e))?;
         Self::parse(&text, &path.display().to_string())
     }
 
@@ -201,7 +209,9 @@ impl Scenario {
     /// As [`Scenario::load`].
     pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
         let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
-        let scenario: Self = options.from_str(text).map_err(|e| ScenarioError::syntax(origin, &e))?;
+        let scenario: Self = options
+            .from_str(text)
+            .map_err(|e| ScenarioError::syntax(origin, &e))?;
         scenario.validate()?;
         Ok(scenario.resolved())
     }
@@ -232,7 +242,11 @@ impl Scenario {
     pub fn steps(&self) -> u64 {
         let ratio = self.duration / self.step;
         let nearest = ratio.round();
-        if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) { nearest as u64 } else { ratio.ceil() as u64 }
+        if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) {
+            nearest as u64
+        } else {
+            ratio.ceil() as u64
+        }
     }
 
     /// The scenario as RON text with every default filled in.

@@ -18,15 +18,35 @@ impl fmt::Display for Report<'_> {
         let s = self.summary;
         let m = &s.metrics;
         let rate = (s.agents as f64 * s.steps as f64) / s.elapsed.as_secs_f64().max(1e-9);
-        writeln!(f, "flock run: {} ({}D, n = {}, {} steps to t = {})", self.name, s.dim, s.agents, s.steps, s.t)?;
-        writeln!(f, "  connectivity C        {:.4}   ({} component(s))", m.connectivity, m.components)?;
+        writeln!(
+            f,
+            "flock run: {} ({}D, n = {}, {} steps to t = {})",
+            self.name, s.dim, s.agents, s.steps, s.t
+        )?;
+        writeln!(
+            f,
+            "  connectivity C        {:.4}   ({} component(s))",
+            m.connectivity, m.components
+        )?;
         writeln!(f, "  giant component C*    {:.4}", m.giant_component)?;
         writeln!(f, "  cohesion radius R     {:.4}", m.cohesion_radius)?;
         writeln!(f, "  deviation energy Ẽ    {:.3e}", m.deviation_energy)?;
-        writeln!(f, "  velocity mismatch K̃   {:.3e}   (within components {:.3e})", m.velocity_mismatch, s.component_velocity_mismatch)?;
+        writeln!(
+            f,
+            "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
+            m.velocity_mismatch, s.component_velocity_mismatch
+        )?;
         writeln!(f, "  min distance          {:.4}", m.min_distance)?;
         writeln!(f, "  colliding pairs       {}", m.collisions)?;
-        writeln!(f, "  energy H              {:.6e} -> {:.6e}", s.initial_energy, s.final_energy)?;
-        write!(f, "  wall time             {:.3} s ({rate:.3e} agent-steps/s)", s.elapsed.as_secs_f64())
+        writeln!(
+            f,
+            "  energy H              {:.6e} -> {:.6e}",
+            s.initial_energy, s.final_energy
+        )?;
+        write!(
+            f,
+            "  wall time             {:.3} s ({rate:.3e} agent-steps/s)",
+            s.elapsed.as_secs_f64()
+        )
     }
 }

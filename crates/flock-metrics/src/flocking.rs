@@ -67,7 +67,9 @@ pub fn relative_connectivity(components: &Components) -> f64 {
 #[must_use]
 pub fn cohesion_radius<V: Vector>(q: &[V]) -> f64 {
     let centre = mean(q);
-    q.iter().map(|&qi| (qi - centre).length()).fold(0.0, f64::max)
+    q.iter()
+        .map(|&qi| (qi - centre).length())
+        .fold(0.0, f64::max)
 }
 
 /// Ẽ = E(q) / d² with E(q) = (1/(|E| + 1)) Σ_i Σ_{j∈N_i} (‖q_j − q_i‖ − d)² (TAC 2006 eq. 7 and 82),
@@ -101,7 +103,11 @@ pub fn component_velocity_mismatch<V: Vector>(p: &[V], components: &Components) 
     for (&label, &pi) in components.labels().iter().zip(p) {
         sums[label as usize] += pi;
     }
-    let means: Vec<V> = sums.iter().zip(components.sizes()).map(|(&s, &size)| s / size as f64).collect();
+    let means: Vec<V> = sums
+        .iter()
+        .zip(components.sizes())
+        .map(|(&s, &size)| s / size as f64)
+        .collect();
     let k: f64 = components
         .labels()
         .iter()
@@ -115,7 +121,11 @@ pub fn component_velocity_mismatch<V: Vector>(p: &[V], components: &Components) 
 /// closer pair is an edge), otherwise an exact search; ∞ for fewer than two agents.
 #[must_use]
 pub fn min_distance<V: Vector>(q: &[V], net: &ProximityNet) -> f64 {
-    let shortest = net.distances().iter().copied().fold(f64::INFINITY, f64::min);
+    let shortest = net
+        .distances()
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
     if shortest.is_finite() {
         shortest
     } else {
@@ -127,8 +137,15 @@ pub fn min_distance<V: Vector>(q: &[V], net: &ProximityNet) -> f64 {
 /// range (every such pair is then an edge).
 #[must_use]
 pub fn collisions(net: &ProximityNet, collision_distance: f64) -> usize {
-    debug_assert!(collision_distance <= net.range(), "collision distance beyond the net's range");
-    net.distances().iter().filter(|&&l| l < collision_distance).count() / 2
+    debug_assert!(
+        collision_distance <= net.range(),
+        "collision distance beyond the net's range"
+    );
+    net.distances()
+        .iter()
+        .filter(|&&l| l < collision_distance)
+        .count()
+        / 2
 }
 
 #[cfg(test)]
@@ -156,7 +173,15 @@ mod tests {
         let q: Vec<V> = triangular_lattice(5, 6, d);
         let p = vec![V::from_fn(|k| k as f64 + 1.0); q.len()];
         let net = ProximityNet::brute_force(&q, 1.2 * d);
-        let m = FlockMetrics::measure(&q, &p, &net, &MetricParams { d, collision_distance: 0.5 * d });
+        let m = FlockMetrics::measure(
+            &q,
+            &p,
+            &net,
+            &MetricParams {
+                d,
+                collision_distance: 0.5 * d,
+            },
+        );
         assert_eq!(m.connectivity, 1.0);
         assert_eq!(m.giant_component, 1.0);
         assert_eq!(m.components, 1);
@@ -224,10 +249,17 @@ mod tests {
 
     #[test]
     fn cohesion_radius_and_min_distance_without_edges() {
-        let q = [DVec2::new(-10.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(0.0, 30.0)];
+        let q = [
+            DVec2::new(-10.0, 0.0),
+            DVec2::new(10.0, 0.0),
+            DVec2::new(0.0, 30.0),
+        ];
         let net = ProximityNet::brute_force(&q, 8.4);
         assert_relative_eq!(cohesion_radius(&q), 20.0);
         assert_relative_eq!(min_distance(&q, &net), 20.0);
-        assert_eq!(min_distance::<DVec2>(&[], &ProximityNet::new()), f64::INFINITY);
+        assert_eq!(
+            min_distance::<DVec2>(&[], &ProximityNet::new()),
+            f64::INFINITY
+        );
     }
 }

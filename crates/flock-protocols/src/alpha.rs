@@ -23,7 +23,14 @@ pub struct AlphaParams {
 
 impl Default for AlphaParams {
     fn default() -> Self {
-        Self { d: 7.0, r: 8.4, epsilon: 0.1, a: 5.0, b: 5.0, h: 0.2 }
+        Self {
+            d: 7.0,
+            r: 8.4,
+            epsilon: 0.1,
+            a: 5.0,
+            b: 5.0,
+            h: 0.2,
+        }
     }
 }
 
@@ -50,7 +57,13 @@ impl AlphaInteraction {
             sigma.of_length(params.d),
             sigma.of_length(params.r),
         );
-        Self { params, sigma, action, c1, c2 }
+        Self {
+            params,
+            sigma,
+            action,
+            c1,
+            c2,
+        }
     }
 
     /// The parameters.

@@ -63,7 +63,11 @@ impl<V: Vector> Path<V> {
             length += (pair[1] - pair[0]).length();
             arc.push(length);
         }
-        Self { waypoints, arc, speed }
+        Self {
+            waypoints,
+            arc,
+            speed,
+        }
     }
 
     /// (q_r(t), p_r(t)): position on the polyline at arc length `speed · t`, velocity along the
@@ -79,7 +83,10 @@ impl<V: Vector> Path<V> {
         }
         let (from, to) = (self.waypoints[k - 1], self.waypoints[k]);
         let direction = (to - from).normalize_or_zero();
-        (from + direction * (s - self.arc[k - 1]), direction * self.speed)
+        (
+            from + direction * (s - self.arc[k - 1]),
+            direction * self.speed,
+        )
     }
 }
 
@@ -111,7 +118,10 @@ mod tests {
 
     #[test]
     fn path_is_travelled_at_constant_speed() {
-        let path = Path::new(vec![DVec2::ZERO, DVec2::new(3.0, 0.0), DVec2::new(3.0, 4.0)], 2.0);
+        let path = Path::new(
+            vec![DVec2::ZERO, DVec2::new(3.0, 0.0), DVec2::new(3.0, 4.0)],
+            2.0,
+        );
         assert_eq!(path.state(0.0), (DVec2::ZERO, DVec2::new(2.0, 0.0)));
         let (q, p) = path.state(1.0);
         assert_relative_eq!(q, DVec2::new(2.0, 0.0));
@@ -124,9 +134,19 @@ mod tests {
 
     #[test]
     fn constant_velocity_gamma_agent_moves_uniformly() {
-        let gamma = GammaAgent::ConstantVelocity { position: DVec2::new(1.0, 1.0), velocity: DVec2::new(0.5, 0.0) };
-        assert_eq!(gamma.state(4.0), (DVec2::new(3.0, 1.0), DVec2::new(0.5, 0.0)));
-        let feedback = NavigationalFeedback { gamma, c1: 2.0, c2: 3.0 };
+        let gamma = GammaAgent::ConstantVelocity {
+            position: DVec2::new(1.0, 1.0),
+            velocity: DVec2::new(0.5, 0.0),
+        };
+        assert_eq!(
+            gamma.state(4.0),
+            (DVec2::new(3.0, 1.0), DVec2::new(0.5, 0.0))
+        );
+        let feedback = NavigationalFeedback {
+            gamma,
+            c1: 2.0,
+            c2: 3.0,
+        };
         let u = feedback.input(DVec2::new(4.0, 1.0), DVec2::ZERO, feedback.gamma.state(4.0));
         assert_relative_eq!(u, DVec2::new(-2.0 + 1.5, 0.0));
     }

@@ -57,7 +57,17 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             sum_q: vec![V::ZERO; n],
             sum_p: vec![V::ZERO; n],
         });
-        Self { protocol, integrator, step, steps: 0, swarm, search, net, inputs: vec![V::ZERO; n], rk }
+        Self {
+            protocol,
+            integrator,
+            step,
+            steps: 0,
+            swarm,
+            search,
+            net,
+            inputs: vec![V::ZERO; n],
+            rk,
+        }
     }
 
     /// The protocol.
@@ -103,14 +113,26 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             Integrator::Rk4 => self.runge_kutta(),
         }
         self.steps += 1;
-        self.search.build(&self.swarm.positions, self.protocol.interaction_range(), &mut self.net);
+        self.search.build(
+            &self.swarm.positions,
+            self.protocol.interaction_range(),
+            &mut self.net,
+        );
     }
 
     fn symplectic_euler(&mut self) {
         let (t, h) = (self.time(), self.step);
-        self.protocol.controls(t, &self.swarm, &self.net, &mut self.inputs);
-        let Swarm { positions, velocities } = &mut self.swarm;
-        for ((q, p), &u) in positions.iter_mut().zip(velocities.iter_mut()).zip(&self.inputs) {
+        self.protocol
+            .controls(t, &self.swarm, &self.net, &mut self.inputs);
+        let Swarm {
+            positions,
+            velocities,
+        } = &mut self.swarm;
+        for ((q, p), &u) in positions
+            .iter_mut()
+            .zip(velocities.iter_mut())
+            .zip(&self.inputs)
+        {
             *p += u * h;
             *q += *p * h;
         }
@@ -137,14 +159,17 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 rk.sum_q[i] += rk.stage.velocities[i] * weight;
                 rk.sum_p[i] += self.inputs[i] * weight;
             }
-            let Some(&offset) = NEXT_OFFSETS.get(stage) else { break };
+            let Some(&offset) = NEXT_OFFSETS.get(stage) else {
+                break;
+            };
             for i in 0..y.len() {
                 let (p_s, u_s) = (rk.stage.velocities[i], self.inputs[i]);
                 rk.stage.positions[i] = y.positions[i] + p_s * (offset * h);
                 rk.stage.velocities[i] = y.velocities[i] + u_s * (offset * h);
             }
             self.search.build(&rk.stage.positions, range, &mut rk.net);
-            self.protocol.controls(t + offset * h, &rk.stage, &rk.net, &mut self.inputs);
+            self.protocol
+                .controls(t + offset * h, &rk.stage, &rk.net, &mut self.inputs);
         }
         for i in 0..y.len() {
             y.positions[i] += rk.sum_q[i] * (h / 6.0);

@@ -62,7 +62,11 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
     /// the γ-agent; Ḣ = −c₂^α pᵀL̂p − c₂ Σ ‖p_i − p_r‖² ≤ 0 when p_r is constant (Theorem 3).
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         let (q_r, p_r) = self.navigation.gamma.state(t);
-        let tether: f64 = swarm.positions.iter().map(|&q| (q - q_r).length_squared()).sum();
+        let tether: f64 = swarm
+            .positions
+            .iter()
+            .map(|&q| (q - q_r).length_squared())
+            .sum();
         self.alpha.c1() * self.alpha.potential(&swarm.positions, net)
             + 0.5 * self.navigation.c1 * tether
             + kinetic(&swarm.velocities, p_r)
@@ -71,5 +75,8 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
 
 /// ½ Σ ‖p_i − p_ref‖².
 fn kinetic<V: Vector>(velocities: &[V], reference: V) -> f64 {
-    0.5 * velocities.iter().map(|&p| (p - reference).length_squared()).sum::<f64>()
+    0.5 * velocities
+        .iter()
+        .map(|&p| (p - reference).length_squared())
+        .sum::<f64>()
 }

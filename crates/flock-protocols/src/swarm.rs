@@ -18,8 +18,15 @@ impl<V: Vector> Swarm<V> {
     /// When the two lengths differ.
     #[must_use]
     pub fn new(positions: Vec<V>, velocities: Vec<V>) -> Self {
-        assert_eq!(positions.len(), velocities.len(), "one velocity per position");
-        Self { positions, velocities }
+        assert_eq!(
+            positions.len(),
+            velocities.len(),
+            "one velocity per position"
+        );
+        Self {
+            positions,
+            velocities,
+        }
     }
 
     /// The number of agents n.

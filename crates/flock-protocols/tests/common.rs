@@ -1,0 +1,37 @@
+//! Shared fixtures: seeded random swarms and exact α-lattices.
+
+use flock_math::Vector;
+use flock_protocols::{AlphaInteraction, AlphaParams, Swarm};
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64;
+
+/// n agents uniform in [−half, half]^m with velocities uniform in [−speed, speed]^m.
+pub fn random_swarm<V: Vector>(n: usize, half: f64, speed: f64, seed: u64) -> Swarm<V> {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let mut draw = |scale: f64| V::from_fn(|_| scale * (2.0 * rng.random::<f64>() - 1.0));
+    let positions = (0..n).map(|_| draw(half)).collect();
+    let velocities = (0..n).map(|_| draw(speed)).collect();
+    Swarm::new(positions, velocities)
+}
+
+/// The papers' α-interaction (d = 7, r = 8.4, ε = 0.1, a = b = 5, h = 0.2) with unit gains.
+pub fn papers_alpha() -> AlphaInteraction {
+    AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0)
+}
+
+/// A planar point lifted to V (z = 0 in 3D).
+pub fn planar<V: Vector>(x: f64, y: f64) -> V {
+    V::from_fn(|k| [x, y, 0.0][k])
+}
+
+/// A patch of the triangular lattice of spacing d: an α-lattice in the plane for r < √3 d.
+pub fn triangular_lattice<V: Vector>(rows: usize, cols: usize, d: f64) -> Vec<V> {
+    let mut points = Vec::new();
+    for r in 0..rows {
+        for c in 0..cols {
+            let x = d * (c as f64 + 0.5 * (r % 2) as f64);
+            points.push(planar(x, d * r as f64 * 3f64.sqrt() / 2.0));
+        }
+    }
+    points
+}
