@@ -1,0 +1,495 @@
+//! Bad scenarios get an error naming the field (from the library and from the `flock` binary),
+//! and `flock run` writes its outputs whole or not at all.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output};
+
+use flock_cli::{METRICS_HEADER, Scenario, ScenarioError};
+
+use crate::common::TempDir;
+
+/// A valid 2D scenario of 5 agents and 10 steps; each error test breaks one field of it.
+const TINY_2D: &str = r#"Scenario(
+    name: "tiny",
+    dim: 2,
+    agents: 5,
+    seed: 1,
+    algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.02, c2: 0.4),
+    alpha: (d: 7.0, epsilon: 0.1, a: 5.0, b: 5.0, h: 0.2),
+    initial: (
+        positions: Box(min: [-10.0, -10.0], max: [10.0, 10.0]),
+        velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0]),
+    ),
+    step: 0.01,
+    duration: 0.1,
+)
+"#;
+
+/// [`TINY_2D`] in 3D.
+fn tiny_3d() -> String {
+    let text = edit(TINY_2D, "dim: 2", "dim: 3");
+    let text = edit(&text, "position: [0.0, 0.0]", "position: [0.0, 0.0, 0.0]");
+    let text = edit(
+        &text,
+        "min: [-10.0, -10.0], max: [10.0, 10.0]",
+        "min: [-10.0, -10.0, -10.0], max: [10.0, 10.0, 10.0]",
+    );
+    edit(
+        &text,
+        "min: [-1.0, -1.0], max: [1.0, 1.0]",
+        "min: [-1.0, -1.0, -1.0], max: [1.0, 1.0, 1.0]",
+    )
+}
+
+/// `text` with its one occurrence of `from` replaced by `to`.
+fn edit(text: &str, from: &str, to: &str) -> String {
+    assert_eq!(
+        text.matches(from).count(),
+        1,
+        "`{from}` must occur once in\n{text}"
+    );
+    text.replacen(from, to, 1)
+}
+
+/// Parses `text`, which must fail; returns the error and its message.
+fn parse_error(text: &str) -> (ScenarioError, String) {
+    match Scenario::parse(text, "test.ron") {
+        Ok(s) => panic!("accepted an invalid scenario: {s:?}\n{text}"),
+        Err(e) => {
+            let message = e.to_string();
+            (e, message)
+        }
+    }
+}
+
+/// Parses `text`, which must fail validation on `field`; returns the message, which names it.
+fn invalid_field(text: &str, field: &str) -> String {
+    let (error, message) = parse_error(text);
+    match &error {
+        ScenarioError::Invalid {
+            field: f, why, fix, ..
+        } => {
+            assert_eq!(f, field, "{message}");
+            assert!(!why.is_empty() && !fix.is_empty(), "{message}");
+        }
+        other => panic!("expected an invalid `{field}`, got {other:?}"),
+    }
+    assert!(
+        message.contains(&format!("`{field}`")),
+        "the message must name `{field}`: {message}"
+    );
+    message
+}
+
+#[test]
+fn the_base_scenarios_are_valid() {
+    let two = Scenario::parse(TINY_2D, "test.ron").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((two.dim, two.agents, two.steps()), (2, 5, 10));
+    let three = Scenario::parse(&tiny_3d(), "test.ron").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((three.dim, three.agents, three.steps()), (3, 5, 10));
+}
+
+#[test]
+fn unknown_field_is_named_with_its_line_and_column() {
+    let text = edit(
+        TINY_2D,
+        "    agents: 5,\n",
+        "    agents: 5,\n    speed: 3.0,\n",
+    );
+    let (error, message) = parse_error(&text);
+    assert!(
+        matches!(error, ScenarioError::Syntax { line: 5, .. }),
+        "{error:?}"
+    );
+    assert!(message.contains("speed"), "{message}");
+    assert!(message.starts_with("test.ron:5:"), "{message}");
+}
+
+#[test]
+fn unknown_nested_field_is_named() {
+    let text = edit(TINY_2D, "h: 0.2)", "h: 0.2, k: 1.0)");
+    let (error, message) = parse_error(&text);
+    assert!(
+        matches!(error, ScenarioError::Syntax { line: 7, .. }),
+        "{error:?}"
+    );
+    assert!(message.contains('k'), "{message}");
+}
+
+#[test]
+fn missing_required_field_is_named() {
+    let text = edit(TINY_2D, "    duration: 0.1,\n", "");
+    let (error, message) = parse_error(&text);
+    assert!(matches!(error, ScenarioError::Syntax { .. }), "{error:?}");
+    assert!(message.contains("duration"), "{message}");
+    assert!(message.to_lowercase().contains("missing"), "{message}");
+    assert!(message.starts_with("test.ron:"), "{message}");
+}
+
+#[test]
+fn range_not_above_lattice_distance_names_alpha_r() {
+    let alpha = "alpha: (d: 7.0, epsilon: 0.1, a: 5.0, b: 5.0, h: 0.2)";
+    let message = invalid_field(&edit(TINY_2D, alpha, "alpha: (d: 9.0, r: 8.4)"), "alpha.r");
+    assert!(
+        message.contains("8.4") && message.contains('9'),
+        "{message}"
+    );
+    invalid_field(&edit(TINY_2D, alpha, "alpha: (d: 7.0, r: 7.0)"), "alpha.r");
+}
+
+#[test]
+fn non_positive_epsilon_names_alpha_epsilon() {
+    for bad in ["0.0", "-0.1"] {
+        invalid_field(
+            &edit(TINY_2D, "epsilon: 0.1", &format!("epsilon: {bad}")),
+            "alpha.epsilon",
+        );
+    }
+}
+
+#[test]
+fn bump_parameter_outside_the_unit_interval_names_alpha_h() {
+    for bad in ["1.0", "0.0", "1.5", "-0.2"] {
+        invalid_field(&edit(TINY_2D, "h: 0.2", &format!("h: {bad}")), "alpha.h");
+    }
+}
+
+#[test]
+fn attraction_above_repulsion_names_alpha_a() {
+    let message = invalid_field(
+        &edit(TINY_2D, "a: 5.0, b: 5.0", "a: 6.0, b: 5.0"),
+        "alpha.a",
+    );
+    assert!(message.contains("alpha.b"), "{message}");
+}
+
+#[test]
+fn no_agents_names_agents() {
+    invalid_field(&edit(TINY_2D, "agents: 5", "agents: 0"), "agents");
+}
+
+#[test]
+fn non_positive_step_names_step() {
+    for bad in ["-0.01", "0.0"] {
+        invalid_field(
+            &edit(TINY_2D, "step: 0.01", &format!("step: {bad}")),
+            "step",
+        );
+    }
+}
+
+#[test]
+fn step_longer_than_duration_names_step() {
+    invalid_field(&edit(TINY_2D, "step: 0.01", "step: 0.5"), "step");
+}
+
+#[test]
+fn nan_names_its_field() {
+    let message = invalid_field(&edit(TINY_2D, "step: 0.01", "step: NaN"), "step");
+    assert!(message.contains("finite"), "{message}");
+    invalid_field(&edit(TINY_2D, "duration: 0.1", "duration: NaN"), "duration");
+    invalid_field(&edit(TINY_2D, "d: 7.0", "d: NaN"), "alpha.d");
+}
+
+#[test]
+fn unsupported_dimension_names_dim() {
+    for bad in ["4", "1", "0"] {
+        invalid_field(&edit(TINY_2D, "dim: 2", &format!("dim: {bad}")), "dim");
+    }
+}
+
+#[test]
+fn vectors_of_the_wrong_dimension_are_named() {
+    let message = invalid_field(
+        &edit(TINY_2D, "position: [0.0, 0.0]", "position: [0.0, 0.0, 0.0]"),
+        "algorithm.gamma.position",
+    );
+    assert!(message.contains("dim = 2"), "{message}");
+    invalid_field(
+        &edit(TINY_2D, "max: [10.0, 10.0]", "max: [10.0]"),
+        "initial.positions.max",
+    );
+}
+
+#[test]
+fn box_with_min_above_max_names_it() {
+    invalid_field(
+        &edit(TINY_2D, "max: [1.0, 1.0]", "max: [1.0, -2.0]"),
+        "initial.velocities.max",
+    );
+}
+
+#[test]
+fn explicit_positions_of_the_wrong_count_name_initial_positions() {
+    let cloud = "Box(min: [-10.0, -10.0], max: [10.0, 10.0])";
+    let message = invalid_field(
+        &edit(TINY_2D, cloud, "Explicit([[0.0, 0.0], [7.0, 0.0]])"),
+        "initial.positions",
+    );
+    assert!(message.contains("agents = 5"), "{message}");
+}
+
+#[test]
+fn explicit_position_of_the_wrong_dimension_is_named_with_its_index() {
+    let cloud = "Box(min: [-10.0, -10.0], max: [10.0, 10.0])";
+    let rows = "Explicit([[0.0, 0.0], [7.0, 0.0], [14.0, 0.0], [21.0, 0.0, 0.0], [28.0, 0.0]])";
+    let message = invalid_field(&edit(TINY_2D, cloud, rows), "initial.positions[3]");
+    assert!(message.contains("3 components"), "{message}");
+    // The same rows with the right dimension are accepted.
+    let good = edit(
+        TINY_2D,
+        cloud,
+        &rows.replace("[21.0, 0.0, 0.0]", "[21.0, 0.0]"),
+    );
+    assert!(Scenario::parse(&good, "test.ron").is_ok());
+}
+
+// ---- The `flock` binary ----------------------------------------------------------------------
+
+fn flock(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_flock"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("the flock binary runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Writes `text` to `dir/name` and returns the path as a string.
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    fs::write(&path, text).expect("write a scenario file");
+    path.to_str().expect("a UTF-8 temporary path").to_owned()
+}
+
+/// The files of a directory by name, with their contents.
+fn contents(dir: &Path) -> BTreeMap<String, String> {
+    fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| {
+            let path = entry.expect("a directory entry").path();
+            let name = path
+                .file_name()
+                .expect("a name")
+                .to_string_lossy()
+                .into_owned();
+            (name, fs::read_to_string(&path).expect("a text file"))
+        })
+        .collect()
+}
+
+fn partial(out: &Path) -> std::path::PathBuf {
+    let mut name = out.as_os_str().to_owned();
+    name.push(".partial");
+    name.into()
+}
+
+#[test]
+fn validate_accepts_a_valid_scenario_and_prints_it_resolved() {
+    let tmp = TempDir::new("validate_good");
+    let file = write(tmp.path(), "tiny.ron", TINY_2D);
+    let output = flock(tmp.path(), &["validate", &file]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert!(stdout.contains("valid"), "{stdout}");
+    assert!(
+        stdout.contains("r: 8.4"),
+        "the range is written out: {stdout}"
+    );
+}
+
+#[test]
+fn validate_rejects_a_bad_scenario_with_exit_code_2() {
+    let tmp = TempDir::new("validate_bad");
+    let file = write(tmp.path(), "bad.ron", &edit(TINY_2D, "h: 0.2", "h: 1.0"));
+    let output = flock(tmp.path(), &["validate", &file]);
+    assert_eq!(output.status.code(), Some(2));
+    let err = stderr(&output);
+    assert!(err.contains("alpha.h"), "{err}");
+    assert!(
+        output.stdout.is_empty(),
+        "nothing on stdout for an invalid scenario"
+    );
+}
+
+#[test]
+fn validate_names_an_unreadable_file_with_exit_code_2() {
+    let tmp = TempDir::new("validate_missing");
+    let missing = tmp.path().join("no-such-scenario.ron");
+    let output = flock(tmp.path(), &["validate", missing.to_str().expect("UTF-8")]);
+    assert_eq!(output.status.code(), Some(2));
+    let err = stderr(&output);
+    assert!(err.contains("no-such-scenario.ron"), "{err}");
+}
+
+#[test]
+fn run_of_a_bad_scenario_exits_2_and_writes_nothing() {
+    let tmp = TempDir::new("run_bad");
+    let file = write(
+        tmp.path(),
+        "bad.ron",
+        &edit(TINY_2D, "agents: 5", "agents: 0"),
+    );
+    let out = tmp.path().join("out");
+    let output = flock(
+        tmp.path(),
+        &["run", &file, "--out", out.to_str().expect("UTF-8")],
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let err = stderr(&output);
+    assert!(err.contains("agents"), "{err}");
+    assert!(!out.exists(), "no output directory for an invalid scenario");
+    assert!(
+        !partial(&out).exists(),
+        "no partial output for an invalid scenario"
+    );
+    assert!(!tmp.path().join("out").join("bad").exists());
+}
+
+/// Runs `text` with `flock run --out tmp/out` and checks the four outputs; returns them.
+fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> {
+    let file = write(tmp.path(), "tiny.ron", text);
+    let out = tmp.path().join("out");
+    let output = flock(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            out.to_str().expect("UTF-8"),
+            "--threads",
+            "2",
+        ],
+    );
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert!(
+        !partial(&out).exists(),
+        "the partial directory was moved into place"
+    );
+    let files = contents(&out);
+    let names: Vec<&str> = files.keys().map(String::as_str).collect();
+    assert_eq!(
+        names,
+        ["final.csv", "metrics.csv", "scenario.ron", "trajectory.csv"]
+    );
+
+    let state_header = if dim == 2 {
+        "id,x,y,vx,vy"
+    } else {
+        "id,x,y,z,vx,vy,vz"
+    };
+    let columns = 1 + 2 * dim;
+
+    // metrics.csv: t = 0 and the 10th (last) step.
+    let metrics: Vec<&str> = files["metrics.csv"].lines().collect();
+    assert_eq!(metrics[0], METRICS_HEADER);
+    assert_eq!(
+        metrics[0],
+        "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy"
+    );
+    assert_eq!(metrics.len(), 3, "{metrics:?}");
+    for row in &metrics[1..] {
+        let values: Vec<f64> = row
+            .split(',')
+            .map(|x| x.parse().expect("a number"))
+            .collect();
+        assert_eq!(values.len(), 9, "{row}");
+        assert!(values.iter().all(|x| x.is_finite()), "{row}");
+    }
+    assert!(metrics[1].starts_with("0,"), "{}", metrics[1]);
+    let t_end: f64 = metrics[2]
+        .split(',')
+        .next()
+        .expect("t")
+        .parse()
+        .expect("a number");
+    approx::assert_relative_eq!(t_end, 0.1, max_relative = 1e-12);
+
+    // trajectory.csv: 5 agents at each of the 2 recorded instants.
+    let trajectory: Vec<&str> = files["trajectory.csv"].lines().collect();
+    assert_eq!(trajectory[0], format!("t,{state_header}"));
+    assert_eq!(trajectory.len(), 1 + 2 * 5);
+    assert!(
+        trajectory[1..]
+            .iter()
+            .all(|row| row.split(',').count() == 1 + columns)
+    );
+
+    // final.csv: the last instant of the trajectory, without t.
+    let last: Vec<&str> = files["final.csv"].lines().collect();
+    assert_eq!(last[0], state_header);
+    assert_eq!(last.len(), 1 + 5);
+    for (i, (row, traj)) in last[1..].iter().zip(&trajectory[6..]).enumerate() {
+        assert!(row.starts_with(&format!("{i},")), "{row}");
+        assert_eq!(row.split(',').count(), columns, "{row}");
+        assert_eq!(traj.split_once(',').expect("t,").1, *row);
+    }
+
+    // scenario.ron: loads, with the defaults written out.
+    let written = Scenario::load(&out.join("scenario.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(written.alpha.r, Some(1.2 * written.alpha.d));
+    assert!(
+        files["scenario.ron"].contains("r: 8.4"),
+        "{}",
+        files["scenario.ron"]
+    );
+    assert_eq!(written, Scenario::parse(text, "tiny.ron").expect("valid"));
+    files
+}
+
+#[test]
+fn run_writes_the_four_outputs_in_2d() {
+    let tmp = TempDir::new("run_2d");
+    check_run(&tmp, TINY_2D, 2);
+}
+
+#[test]
+fn run_writes_the_four_outputs_in_3d() {
+    let tmp = TempDir::new("run_3d");
+    check_run(&tmp, &tiny_3d(), 3);
+}
+
+#[test]
+fn run_refuses_an_existing_output_without_force() {
+    let tmp = TempDir::new("run_force");
+    let first = check_run(&tmp, TINY_2D, 2);
+    let out = tmp.path().join("out");
+    let out_arg = out.to_str().expect("UTF-8");
+    // Another seed: a replaced output would differ from the first.
+    let other = write(
+        tmp.path(),
+        "other.ron",
+        &edit(TINY_2D, "seed: 1", "seed: 2"),
+    );
+
+    let refused = flock(tmp.path(), &["run", &other, "--out", out_arg]);
+    assert!(!refused.status.success());
+    assert_eq!(refused.status.code(), Some(1));
+    let err = stderr(&refused);
+    assert!(err.contains("--force"), "{err}");
+    assert_eq!(contents(&out), first, "the first output is left intact");
+    assert!(!partial(&out).exists());
+
+    let forced = flock(tmp.path(), &["run", &other, "--out", out_arg, "--force"]);
+    assert_eq!(forced.status.code(), Some(0), "{}", stderr(&forced));
+    let second = contents(&out);
+    assert_eq!(
+        second.keys().collect::<Vec<_>>(),
+        first.keys().collect::<Vec<_>>()
+    );
+    assert_ne!(
+        second["final.csv"], first["final.csv"],
+        "--force replaced the output"
+    );
+    assert!(
+        second["scenario.ron"].contains("seed: 2"),
+        "{}",
+        second["scenario.ron"]
+    );
+    assert!(!partial(&out).exists());
+}

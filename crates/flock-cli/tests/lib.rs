@@ -1,0 +1,8 @@
+//! Integration tests of `flock-cli`, one binary (see STYLE.md): scenario files, the papers' runs,
+//! snapshots and determinism of short runs, and the errors of bad scenarios and of the `flock` binary.
+
+mod common;
+mod errors;
+mod fixtures;
+mod papers;
+mod snapshots;
