@@ -1,0 +1,59 @@
+//! The one switch between rayon and serial loops: per-index work whose results do not depend on
+//! how it is split, so the output is identical with or without the `parallel` feature.
+
+/// Minimum number of elements per rayon task in [`fill_indexed`] (small arrays stay on one thread).
+const FILL_MIN_LEN: usize = 1024;
+
+/// Calls `f(k, &mut items[k])` for every `k`, on the rayon pool with the `parallel` feature, in
+/// tasks of at least `min_len` items (a scheduling hint only).
+pub(crate) fn for_each_indexed_mut<T: Send>(
+    items: &mut [T],
+    min_len: usize,
+    f: impl Fn(usize, &mut T) + Sync,
+) {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        items
+            .par_iter_mut()
+            .with_min_len(min_len)
+            .enumerate()
+            .for_each(|(k, item)| f(k, item));
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let _ = min_len;
+        for (k, item) in items.iter_mut().enumerate() {
+            f(k, item);
+        }
+    }
+}
+
+/// `out[k] = f(k)` for every `k`, on the rayon pool with the `parallel` feature.
+pub(crate) fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
+    for_each_indexed_mut(out, FILL_MIN_LEN, |k, o| *o = f(k));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fills_every_index_in_place() {
+        let mut out = vec![0_usize; 5000];
+        fill_indexed(&mut out, |k| 3 * k + 1);
+        assert!(out.iter().enumerate().all(|(k, &v)| v == 3 * k + 1));
+    }
+
+    #[test]
+    fn visits_every_item_once() {
+        let mut items = vec![vec![0_u32]; 37];
+        for_each_indexed_mut(&mut items, 1, |k, item| item.push(k as u32));
+        assert!(
+            items
+                .iter()
+                .enumerate()
+                .all(|(k, item)| item == &[0, k as u32])
+        );
+    }
+}

@@ -1,0 +1,618 @@
+//! Fixed-radius neighbour search on a uniform cell grid: [`NeighbourSearch`] rebuilds a
+//! [`ProximityNet`] every step in expected O(n), and [`nearest_pair_distance`] finds the closest
+//! pair of agents.
+//!
+//! The agents are bucketed by a counting sort into cubic cells of side at least the range r, so
+//! every neighbour of an agent lies in its own cell or one of the 3^m − 1 adjacent ones. The cell
+//! side is padded by a few ulps of the range and of the largest coordinate, so rounding at cell
+//! boundaries cannot hide a pair that the predicate accepts, even far from the origin. When the
+//! agents are spread thin the cell is enlarged until there are at most 4n cells: memory stays O(n)
+//! whatever the configuration.
+//!
+//! The lists are built agent by agent in cell order (so that consecutive agents scan the same
+//! memory), each sorted by neighbour index, into per-block buffers; they are then gathered in agent
+//! order into the net. The net is canonical: equal to [`ProximityNet::brute_force`] edge for edge
+//! and bit for bit. With the `parallel` feature the blocks are filled on the rayon pool; since the
+//! blocks only partition the work, the net is identical with or without it, for any pool size.
+
+use core::ops::Range;
+
+use flock_math::Vector;
+
+use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
+use crate::parallel::for_each_indexed_mut;
+
+/// Agents per block of work (any value gives the same net): a unit of rayon work with the
+/// `parallel` feature, a single block without it.
+const BLOCK_LEN: usize = if cfg!(feature = "parallel") {
+    1024
+} else {
+    usize::MAX
+};
+
+/// Cells allowed per agent: the grid has at most `CELLS_PER_AGENT · n` cells.
+const CELLS_PER_AGENT: usize = 4;
+
+/// Slot (and cell) of an agent with a non-finite coordinate: it is in no cell.
+const NO_SLOT: usize = usize::MAX;
+
+/// Reusable fixed-radius neighbour search. Its buffers (and those of the nets it fills) are kept
+/// between calls, so a warm search allocates nothing while the number of agents does not grow.
+///
+/// # Example
+/// ```
+/// use flock_graph::{NeighbourSearch, ProximityNet};
+/// use glam::DVec3;
+///
+/// let q: Vec<DVec3> = (0..10).map(|k| DVec3::new(k as f64, 0.0, 0.0)).collect();
+/// let mut search = NeighbourSearch::new();
+/// let mut net = ProximityNet::new();
+/// search.build(&q, 1.5, &mut net);
+/// assert_eq!(net.graph().neighbours(4), &[3, 5]);
+/// assert_eq!(net, ProximityNet::brute_force(&q, 1.5));
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct NeighbourSearch {
+    grid: CellGrid,
+    /// Neighbour lists of blocks of [`BLOCK_LEN`] slots (agents in cell order).
+    blocks: Vec<Block>,
+}
+
+impl NeighbourSearch {
+    /// A search with empty buffers.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Rebuilds `net`, reusing its allocations, as the proximity net of `positions` with range `r`:
+    /// N_i = { j ≠ i : ‖q_j − q_i‖ < r }.
+    ///
+    /// The result is identical to [`ProximityNet::brute_force`]`(positions, r)`: same neighbour
+    /// order (ascending), bit-identical distances. A range that is not positive (or NaN) gives no
+    /// edges; an infinite range joins every pair of finite agents. Agents with a NaN or infinite
+    /// coordinate have no neighbours (and do not panic).
+    ///
+    /// # Panics
+    /// When `positions.len()` exceeds `u32::MAX`.
+    pub fn build<V: Vector>(&mut self, positions: &[V], r: f64, net: &mut ProximityNet) {
+        self.build_in_blocks(positions, r, net, BLOCK_LEN);
+    }
+
+    /// [`NeighbourSearch::build`] with blocks of `block_len` slots.
+    fn build_in_blocks<V: Vector>(
+        &mut self,
+        positions: &[V],
+        r: f64,
+        net: &mut ProximityNet,
+        block_len: usize,
+    ) {
+        let n = positions.len();
+        let r2 = range_squared(r);
+        let (offsets, neighbours, distances) = net.clear_for_rebuild(n, r);
+        if n < 2 || r2 == 0.0 {
+            offsets.resize(n + 1, 0);
+            return;
+        }
+        self.grid.rebuild(positions, r);
+        let grid = &self.grid;
+        let slots = grid.order.len();
+        let count = slots.div_ceil(block_len);
+        if self.blocks.len() < count {
+            self.blocks.resize_with(count, Block::default);
+        }
+        for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
+            let start = b * block_len;
+            block.fill::<V>(grid, r2, start..start + (slots - start).min(block_len));
+        });
+        // Gather in agent order.
+        for &slot in &grid.slot_of {
+            if slot != NO_SLOT {
+                let block = &self.blocks[slot / block_len];
+                let edges = block.edges(slot % block_len);
+                neighbours.extend_from_slice(&block.neighbours[edges.clone()]);
+                distances.extend_from_slice(&block.distances[edges]);
+            }
+            offsets.push(neighbours.len());
+        }
+    }
+
+    /// The exact minimum distance over all pairs of finite agents, `None` when there are fewer
+    /// than two: [`nearest_pair_distance`] reusing this search's buffers.
+    #[must_use]
+    pub fn nearest_pair_distance<V: Vector>(&mut self, positions: &[V]) -> Option<f64> {
+        // An upper bound on the minimum: the closest of the pairs of consecutive finite agents.
+        let mut finite = positions.iter().copied().filter(|q| q.is_finite());
+        let mut previous = finite.next()?;
+        let mut upper: Option<f64> = None;
+        for q in finite {
+            let d2 = squared_distance(previous, q);
+            upper = Some(upper.map_or(d2, |u| u.min(d2)));
+            previous = q;
+        }
+        let upper = upper?;
+        if upper == 0.0 {
+            return Some(0.0);
+        }
+        // Grow the search radius from the mean spacing until a pair is found; the pass with the
+        // threshold `upper` finds every pair closer than the bound, so the answer is exact.
+        let bounds = Bounds::of(positions);
+        let mut threshold = bounds.mean_spacing().powi(2).min(upper);
+        if threshold.is_nan() || threshold <= 0.0 {
+            threshold = upper;
+        }
+        loop {
+            self.grid.rebuild(positions, threshold.sqrt());
+            if let Some(d2) = self.grid.min_squared_distance::<V>(threshold) {
+                return Some(d2.sqrt());
+            }
+            if threshold >= upper {
+                return Some(upper.sqrt());
+            }
+            threshold = (4.0 * threshold).min(upper);
+        }
+    }
+}
+
+/// The exact minimum distance min_{i≠j} ‖q_j − q_i‖ over all pairs of finite agents (agents with
+/// a NaN or infinite coordinate are ignored), `None` when there are fewer than two.
+///
+/// Grid search with a growing radius: expected O(n) for agents spread with a bounded density
+/// (degenerate clusters may cost more, never a wrong answer). The value is bit-identical to the
+/// minimum of `(q_j − q_i).length()` over all pairs. Used for the minimum-distance metric when the
+/// proximity net has no edges.
+///
+/// # Example
+/// ```
+/// use flock_graph::nearest_pair_distance;
+/// use glam::DVec2;
+///
+/// let q = [DVec2::new(0.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(10.0, 3.0)];
+/// assert_eq!(nearest_pair_distance(&q), Some(3.0));
+/// assert_eq!(nearest_pair_distance(&q[..1]), None);
+/// ```
+#[must_use]
+pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
+    NeighbourSearch::new().nearest_pair_distance(positions)
+}
+
+/// The sorted neighbour lists of a block of consecutive slots.
+#[derive(Clone, Debug, Default)]
+struct Block {
+    /// End of each slot's list in `neighbours` and `distances`.
+    ends: Vec<usize>,
+    neighbours: Vec<u32>,
+    distances: Vec<f64>,
+    /// Candidates `(j, ‖q_j − q_i‖²)` of one agent, before sorting.
+    scratch: Vec<(u32, f64)>,
+}
+
+impl Block {
+    /// Refills the block with the lists (predicate `d² < r2`) of the agents in `slots`.
+    fn fill<V: Vector>(&mut self, grid: &CellGrid, r2: f64, slots: Range<usize>) {
+        self.ends.clear();
+        self.neighbours.clear();
+        self.distances.clear();
+        for slot in slots {
+            let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
+            self.scratch.clear();
+            grid.for_each_candidate(grid.slot_cell[slot], |j, qj: V| {
+                let d2 = squared_distance(qi, qj);
+                if j != i && in_range(d2, r2) {
+                    self.scratch.push((node_index(j), d2));
+                }
+            });
+            self.scratch.sort_unstable_by_key(|&(j, _)| j);
+            for &(j, d2) in &self.scratch {
+                self.neighbours.push(j);
+                self.distances.push(d2.sqrt());
+            }
+            self.ends.push(self.neighbours.len());
+        }
+    }
+
+    /// The range of the `k`-th slot's list in the block.
+    #[inline]
+    fn edges(&self, k: usize) -> Range<usize> {
+        (if k == 0 { 0 } else { self.ends[k - 1] })..self.ends[k]
+    }
+}
+
+/// Axis-aligned bounds of the finite agents.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    /// Largest coordinate magnitude.
+    max_abs: f64,
+    /// Number of finite agents.
+    finite: usize,
+}
+
+impl Bounds {
+    /// The bounds of the finite agents of `positions` (all zero when there are none).
+    fn of<V: Vector>(positions: &[V]) -> Self {
+        debug_assert!(V::DIM <= 3);
+        let mut bounds = Self {
+            lo: [0.0; 3],
+            hi: [0.0; 3],
+            max_abs: 0.0,
+            finite: 0,
+        };
+        let mut finite = positions.iter().filter(|q| q.is_finite());
+        if let Some(&first) = finite.next() {
+            let (lo, hi) = finite.fold((first, first), |(lo, hi), &q| (lo.min(q), hi.max(q)));
+            for k in 0..V::DIM {
+                bounds.lo[k] = lo.coord(k);
+                bounds.hi[k] = hi.coord(k);
+                bounds.max_abs = bounds.max_abs.max(lo.coord(k).abs()).max(hi.coord(k).abs());
+            }
+            bounds.finite = positions.iter().filter(|q| q.is_finite()).count();
+        }
+        bounds
+    }
+
+    /// hi − lo per axis (0 on the unused axes of 2D); may overflow to +∞.
+    fn extents(&self) -> [f64; 3] {
+        core::array::from_fn(|k| self.hi[k] - self.lo[k])
+    }
+
+    /// (volume / n)^(1/m') over the m' axes of non-zero extent: the typical spacing of agents
+    /// spread uniformly in their bounding box (0 when they all coincide).
+    fn mean_spacing(&self) -> f64 {
+        let (log_volume, axes) = self
+            .extents()
+            .into_iter()
+            .filter(|&e| e > 0.0)
+            .fold((0.0, 0_u32), |(sum, axes), e| (sum + e.ln(), axes + 1));
+        if axes == 0 {
+            return 0.0;
+        }
+        ((log_volume - (self.finite as f64).ln()) / f64::from(axes)).exp()
+    }
+}
+
+/// The geometry of a uniform grid of cubic cells over the bounding box of the finite agents.
+/// Unused axes of 2D have one cell.
+#[derive(Clone, Copy, Debug, Default)]
+struct Layout {
+    /// Lower corner of the grid (the lower corner of the bounding box).
+    origin: [f64; 3],
+    /// Cell side.
+    side: f64,
+    /// Cells per axis.
+    dims: [usize; 3],
+}
+
+impl Layout {
+    /// The layout for agents within `bounds` such that two finite agents whose squared distance,
+    /// as the predicate computes it, is below `reach²` lie in the same or adjacent cells, with at
+    /// most [`CELLS_PER_AGENT`] cells per finite agent.
+    fn new(bounds: &Bounds, reach: f64) -> Self {
+        let extents = bounds.extents();
+        let side = padded_side(reach, bounds.max_abs);
+        let max_cells = CELLS_PER_AGENT * bounds.finite.max(1);
+        if side.is_finite() && extents.iter().all(|e| e.is_finite()) {
+            let side = fit_side(side, &extents, max_cells);
+            // fit_side bounds the product by max_cells, so each factor fits a usize.
+            Self {
+                origin: bounds.lo,
+                side,
+                dims: extents.map(|e| cells_along(e, side) as usize),
+            }
+        } else {
+            // Infinite range or extent: a single cell (every pair is a candidate).
+            Self {
+                origin: bounds.lo,
+                side,
+                dims: [1; 3],
+            }
+        }
+    }
+
+    /// Total number of cells.
+    #[inline]
+    fn cells(&self) -> usize {
+        self.dims.iter().product()
+    }
+
+    /// Cell coordinate of `q` along `axis`, clamped to the grid.
+    #[inline]
+    fn axis_cell<V: Vector>(&self, q: V, axis: usize) -> usize {
+        if self.dims[axis] == 1 {
+            return 0;
+        }
+        // x − origin ≥ 0; the float-to-int cast saturates.
+        let t = ((q.coord(axis) - self.origin[axis]) / self.side).floor() as usize;
+        t.min(self.dims[axis] - 1)
+    }
+
+    /// Linear index of the cell with coordinates `c`.
+    #[inline]
+    fn cell(&self, c: [usize; 3]) -> usize {
+        c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
+    }
+
+    /// Linear cell of a finite `q` ([`NO_SLOT`] for a non-finite one).
+    #[inline]
+    fn cell_of<V: Vector>(&self, q: V) -> usize {
+        if q.is_finite() {
+            self.cell(core::array::from_fn(|k| self.axis_cell(q, k)))
+        } else {
+            NO_SLOT
+        }
+    }
+}
+
+/// A uniform cell grid with the finite agents sorted by cell (counting sort, ascending index
+/// within a cell). Position `s` in that order is a *slot*.
+#[derive(Clone, Debug, Default)]
+struct CellGrid {
+    layout: Layout,
+    /// The slots of cell c are `cell_start[c]..cell_start[c + 1]`.
+    cell_start: Vec<usize>,
+    /// Agent in each slot.
+    order: Vec<u32>,
+    /// Coordinates of the agent in each slot (0 on unused axes), for a contiguous candidate scan.
+    coords: Vec<[f64; 3]>,
+    /// Cell of each slot.
+    slot_cell: Vec<usize>,
+    /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
+    slot_of: Vec<usize>,
+}
+
+impl CellGrid {
+    /// Rebuilds the grid for `positions` (see [`Layout::new`] for `reach`).
+    fn rebuild<V: Vector>(&mut self, positions: &[V], reach: f64) {
+        let bounds = Bounds::of(positions);
+        let layout = Layout::new(&bounds, reach);
+        let cells = layout.cells();
+        self.layout = layout;
+        self.slot_of.clear();
+        self.slot_of
+            .extend(positions.iter().map(|&q| layout.cell_of(q)));
+
+        // Counting sort: count into cell_start[c + 1], prefix-sum into starts, scatter with
+        // cell_start[c] as cursor (leaving it at the start of c + 1), then shift back.
+        self.cell_start.clear();
+        self.cell_start.resize(cells + 1, 0);
+        for &c in self.slot_of.iter().filter(|&&c| c != NO_SLOT) {
+            self.cell_start[c + 1] += 1;
+        }
+        for c in 0..cells {
+            self.cell_start[c + 1] += self.cell_start[c];
+        }
+        self.order.resize(bounds.finite, 0);
+        self.coords.resize(bounds.finite, [0.0; 3]);
+        self.slot_cell.resize(bounds.finite, 0);
+        for (i, (slot_of, q)) in self.slot_of.iter_mut().zip(positions).enumerate() {
+            let c = *slot_of;
+            if c != NO_SLOT {
+                let slot = self.cell_start[c];
+                self.cell_start[c] += 1;
+                self.order[slot] = node_index(i);
+                self.coords[slot] =
+                    core::array::from_fn(|k| if k < V::DIM { q.coord(k) } else { 0.0 });
+                self.slot_cell[slot] = c;
+                *slot_of = slot;
+            }
+        }
+        self.cell_start.copy_within(0..cells, 1);
+        self.cell_start[0] = 0;
+    }
+
+    /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
+    #[inline]
+    fn position<V: Vector>(&self, slot: usize) -> V {
+        let c = &self.coords[slot];
+        V::from_fn(|k| c[k])
+    }
+
+    /// Calls `f(j, q_j)` on every agent j of `cell` and of its adjacent cells (in no useful
+    /// order); q_j is bit-identical to `positions[j]`.
+    #[inline]
+    fn for_each_candidate<V: Vector>(&self, cell: usize, mut f: impl FnMut(usize, V)) {
+        let [dx, dy, dz] = self.layout.dims;
+        let (cx, cy, cz) = (cell % dx, (cell / dx) % dy, cell / (dx * dy));
+        let (x0, x1) = (cx.saturating_sub(1), (cx + 1).min(dx - 1));
+        for z in cz.saturating_sub(1)..=(cz + 1).min(dz - 1) {
+            for y in cy.saturating_sub(1)..=(cy + 1).min(dy - 1) {
+                // Cells x0..=x1 of a row are contiguous in `order`.
+                let row = self.layout.cell([0, y, z]);
+                for slot in self.cell_start[row + x0]..self.cell_start[row + x1 + 1] {
+                    f(self.order[slot] as usize, self.position(slot));
+                }
+            }
+        }
+    }
+
+    /// The smallest squared distance below `threshold` over all pairs, if any (the grid must have
+    /// been built with reach `threshold.sqrt()`).
+    fn min_squared_distance<V: Vector>(&self, threshold: f64) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        for slot in 0..self.order.len() {
+            let (i, qi) = (self.order[slot] as usize, self.position::<V>(slot));
+            self.for_each_candidate(self.slot_cell[slot], |j, qj: V| {
+                let d2 = squared_distance(qi, qj);
+                if j > i && in_range(d2, threshold) {
+                    best = Some(best.map_or(d2, |b| b.min(d2)));
+                }
+            });
+        }
+        best
+    }
+}
+
+/// The cell side for a given reach: the reach padded against rounding.
+///
+/// If the predicate accepts a pair, `fl(‖fl(q_j − q_i)‖²) < reach²`, then each true coordinate
+/// difference is below `reach · (1 + 2ε)` (plus a few subnormals' worth, ≤ 1e-161, when reach² is
+/// subnormal). The computed cell coordinates `⌊fl(fl(x − origin) / side)⌋` are off by at most
+/// `1.5 ε · extent / side` each, extent ≤ 2 · max_abs. Two agents land in adjacent cells when the
+/// difference of their computed cell coordinates is at most 1, which holds with
+/// `side ≥ reach · (1 + 2ε) + 6 ε · max_abs`; the padding below has a wide margin.
+#[inline]
+#[must_use]
+fn padded_side(reach: f64, max_abs: f64) -> f64 {
+    const PAD: f64 = 64.0 * f64::EPSILON;
+    reach * (1.0 + PAD) + PAD * max_abs + f64::MIN_POSITIVE.sqrt()
+}
+
+/// Number of cells of side `side` covering an extent: ⌊extent / side⌋ + 1, as an f64.
+#[inline]
+#[must_use]
+fn cells_along(extent: f64, side: f64) -> f64 {
+    (extent / side).floor() + 1.0
+}
+
+/// The smallest side (to bisection precision) ≥ `min_side` for which the grid over `extents` has
+/// at most `max_cells` cells. `min_side` and the extents must be finite.
+#[must_use]
+fn fit_side(min_side: f64, extents: &[f64; 3], max_cells: usize) -> f64 {
+    let fits = |side: f64| {
+        extents
+            .iter()
+            .map(|&e| cells_along(e, side))
+            .product::<f64>()
+            <= max_cells as f64
+    };
+    if fits(min_side) {
+        return min_side;
+    }
+    // Above the largest extent every axis has a single cell.
+    let (mut lo, mut hi) = (
+        min_side,
+        2.0 * extents.iter().fold(min_side, |m, &e| m.max(e)),
+    );
+    // Geometric bisection: the ratio hi / lo may span hundreds of orders of magnitude.
+    for _ in 0..64 {
+        let mid = lo.sqrt() * hi.sqrt();
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        if fits(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{DVec2, DVec3};
+
+    fn line<V: Vector>(n: usize, spacing: f64) -> Vec<V> {
+        (0..n)
+            .map(|k| V::from_fn(|axis| if axis == 0 { k as f64 * spacing } else { 0.0 }))
+            .collect()
+    }
+
+    fn check_cell_cap<V: Vector>() {
+        // 50 agents spread over 1e12 with a range of 1: without the cap, 1e12 cells.
+        let q: Vec<V> = line(50, 2e10);
+        let mut grid = CellGrid::default();
+        grid.rebuild(&q, 1.0);
+        let cells = grid.layout.cells();
+        assert!(cells <= CELLS_PER_AGENT * 50, "{cells} cells");
+        assert!(
+            cells >= 50,
+            "the cap should still separate the agents: {cells} cells"
+        );
+        assert_eq!(grid.cell_start.len(), cells + 1);
+        assert_eq!(grid.order.len(), 50);
+    }
+
+    #[test]
+    fn cell_cap_2d() {
+        check_cell_cap::<DVec2>();
+    }
+
+    #[test]
+    fn cell_cap_3d() {
+        check_cell_cap::<DVec3>();
+    }
+
+    #[test]
+    fn fit_side_handles_huge_ratios() {
+        let side = fit_side(1e-300, &[1e300, 0.0, 0.0], 8);
+        let cells = cells_along(1e300, side);
+        assert!((4.0..=8.0).contains(&cells), "{cells}");
+        assert_eq!(fit_side(1.0, &[3.0, 3.0, 0.0], 100), 1.0);
+    }
+
+    #[test]
+    fn grid_sorts_agents_by_cell_ascending_within_cells() {
+        let q = [
+            DVec2::new(5.0, 5.0),
+            DVec2::new(0.0, 0.0),
+            DVec2::new(5.1, 5.0),
+            DVec2::new(0.1, 0.0),
+        ];
+        let mut grid = CellGrid::default();
+        grid.rebuild(&q, 1.0);
+        assert_eq!(grid.order, [1, 3, 0, 2]);
+        assert_eq!(grid.slot_of, [2, 0, 3, 1]);
+        assert_eq!(grid.slot_cell[0], grid.slot_cell[1]);
+        assert_eq!(grid.slot_cell[2], grid.slot_cell[3]);
+        let first = grid.slot_cell[0];
+        assert_eq!(grid.cell_start[first]..grid.cell_start[first + 1], 0..2);
+        for (slot, &i) in grid.order.iter().enumerate() {
+            assert_eq!(grid.position::<DVec2>(slot), q[i as usize]);
+        }
+    }
+
+    #[test]
+    fn non_finite_agents_are_in_no_cell() {
+        let q = [
+            DVec3::ZERO,
+            DVec3::NAN,
+            DVec3::X,
+            DVec3::new(f64::INFINITY, 0.0, 0.0),
+        ];
+        let mut grid = CellGrid::default();
+        grid.rebuild(&q, 2.0);
+        assert_eq!(grid.slot_of, [0, NO_SLOT, 1, NO_SLOT]);
+        assert_eq!(grid.order, [0, 2]);
+    }
+
+    #[test]
+    fn mean_spacing_ignores_flat_axes() {
+        let q: Vec<DVec3> = line(11, 1.0);
+        let spacing = Bounds::of(&q).mean_spacing();
+        assert!((spacing - 10.0 / 11.0).abs() < 1e-12, "{spacing}");
+        assert_eq!(Bounds::of(&[DVec2::ONE, DVec2::ONE]).mean_spacing(), 0.0);
+    }
+
+    /// The blocks only partition the work: any block length, and any rayon pool size, gives the
+    /// same net, so the net does not depend on the `parallel` feature.
+    #[test]
+    fn net_is_independent_of_blocks_and_threads() {
+        use rand::{RngExt, SeedableRng};
+
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
+        let mut q: Vec<DVec2> = (0..3000)
+            .map(|_| DVec2::new(rng.random::<f64>() * 40.0, rng.random::<f64>() * 40.0))
+            .collect();
+        q[17] = DVec2::NAN;
+        let expected = ProximityNet::brute_force(&q, 1.3);
+        assert!(expected.graph().directed_edge_count() > q.len());
+        let mut search = NeighbourSearch::new();
+        let mut net = ProximityNet::new();
+        for block_len in [1, 7, 1024, 2999, usize::MAX] {
+            search.build_in_blocks(&q, 1.3, &mut net, block_len);
+            assert_eq!(net, expected, "blocks of {block_len}");
+        }
+        #[cfg(feature = "parallel")]
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| search.build(&q, 1.3, &mut net));
+            assert_eq!(net, expected, "{threads} threads");
+        }
+    }
+}
