@@ -20,7 +20,7 @@ enum Command {
     Run {
         /// The scenario file (.ron).
         scenario: PathBuf,
-        /// The output directory (default: out/<scenario file stem>).
+        /// The output directory (default: `out/<scenario file stem>`).
         #[arg(long)]
         out: Option<PathBuf>,
         /// Replace an existing output directory.
