@@ -55,6 +55,23 @@ fn algorithm1_preserves_momentum_3d() {
     momentum_preserved::<DVec3>();
 }
 
+/// Runs `steps` steps asserting H(t_{k+1}) ≤ H(t_k) up to round-off; returns (H(0), H(end)).
+fn energy_along<V: Vector, P: Protocol<V>>(sim: &mut Simulation<V, P>, steps: usize) -> (f64, f64) {
+    let start = sim.energy();
+    let mut energy = start;
+    for _ in 0..steps {
+        sim.step();
+        let next = sim.energy();
+        assert!(
+            next <= energy + 1e-9 * energy.abs().max(1.0),
+            "H rose from {energy} to {next} at t = {}",
+            sim.time()
+        );
+        energy = next;
+    }
+    (start, energy)
+}
+
 /// Theorem 1: H = V + ½Σ‖p_i − p_c‖² is non-increasing along Algorithm 1 (checked with RK4 and a
 /// small step, so the integration error per step is far below the dissipation).
 fn energy_non_increasing<V: Vector>() {
@@ -67,19 +84,8 @@ fn energy_non_increasing<V: Vector>() {
         swarm,
         0.002,
     );
-    let mut energy = sim.energy();
-    let start = energy;
-    for _ in 0..2500 {
-        sim.step();
-        let next = sim.energy();
-        assert!(
-            next <= energy + 1e-9 * energy.abs().max(1.0),
-            "H rose from {energy} to {next} at t = {}",
-            sim.time()
-        );
-        energy = next;
-    }
-    assert!(energy < start - 1.0, "H must dissipate: {start} → {energy}");
+    let (start, end) = energy_along(&mut sim, 2500);
+    assert!(end < start - 1.0, "H must dissipate: {start} → {end}");
 }
 
 #[test]
@@ -109,19 +115,8 @@ fn algorithm2_energy_non_increasing_with_a_moving_gamma_agent() {
         navigation,
     };
     let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.002);
-    let mut energy = sim.energy();
-    let start = energy;
-    for _ in 0..2500 {
-        sim.step();
-        let next = sim.energy();
-        assert!(
-            next <= energy + 1e-9 * energy.abs().max(1.0),
-            "H rose from {energy} to {next} at t = {}",
-            sim.time()
-        );
-        energy = next;
-    }
-    assert!(energy < 0.5 * start, "H must dissipate: {start} → {energy}");
+    let (start, end) = energy_along(&mut sim, 2500);
+    assert!(end < 0.5 * start, "H must dissipate: {start} → {end}");
 }
 
 /// On an exact α-lattice moving rigidly every α-input vanishes (φ_α(d_α) = 0, equal velocities).
