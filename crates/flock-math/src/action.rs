@@ -252,4 +252,20 @@ mod tests {
         let reference = -GaussLegendre::new(20).integrate(|s| phi.action(s), 0.0, d_beta, 400);
         assert_relative_eq!(phi.potential(0.0), reference, epsilon = 1e-10);
     }
+
+    proptest::proptest! {
+        /// ψ_α ≥ 0 with its minimum at d_α, ψ_β ≥ 0, and φ = dψ/dz, for every argument.
+        #[test]
+        fn potentials_are_nonnegative_with_phi_their_derivative(fraction in 0.0f64..1.3) {
+            for phi in [papers_alpha(), papers_beta()] {
+                let z = fraction * phi.range();
+                proptest::prop_assert!(phi.potential(z) >= -1e-12);
+                let step = 1e-6 * phi.range();
+                if z > step {
+                    let fd = (phi.potential(z + step) - phi.potential(z - step)) / (2.0 * step);
+                    proptest::prop_assert!((phi.action(z) - fd).abs() <= 1e-6);
+                }
+            }
+        }
+    }
 }
