@@ -106,11 +106,7 @@ pub fn run<V: Vector, R: Recorder>(
     match &scenario.algorithm {
         Algorithm::Algorithm1 => drive::<V, _, _>(scenario, Algorithm1 { alpha }, recorder),
         Algorithm::Algorithm2 { gamma, c1, c2 } => {
-            let navigation = NavigationalFeedback {
-                gamma: gamma_agent::<V>(gamma),
-                c1: *c1,
-                c2: *c2,
-            };
+            let navigation = NavigationalFeedback::linear(gamma_agent::<V>(gamma), *c1, *c2);
             drive(scenario, Algorithm2 { alpha, navigation }, recorder)
         }
     }

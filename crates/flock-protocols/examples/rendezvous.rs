@@ -16,13 +16,13 @@ fn main() {
         DVec2::new(angle.cos(), angle.sin()) * (4.0 + 1.5 * f64::from(i))
     });
     let swarm = Swarm::new(positions.collect(), vec![DVec2::ZERO; 60]);
-    let navigation = NavigationalFeedback {
-        gamma: GammaAgent::Static {
+    let navigation = NavigationalFeedback::linear(
+        GammaAgent::Static {
             position: DVec2::ZERO,
         },
-        c1: 0.02,
-        c2: 0.4,
-    };
+        0.02,
+        0.4,
+    );
     let protocol = Algorithm2 {
         alpha: AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0),
         navigation,

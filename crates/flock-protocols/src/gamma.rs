@@ -1,6 +1,6 @@
 //! γ-agents: the group objective (q_r, p_r) of Algorithms 2 and 3 (TAC 2006 eq. 25–26).
 
-use flock_math::Vector;
+use flock_math::{Vector, sigma1_vec};
 
 /// The γ-agent's trajectory (q_r(t), p_r(t)), solution of q̇_r = p_r, ṗ_r = f_r(q_r, p_r).
 #[derive(Clone, Debug, PartialEq)]
@@ -90,7 +90,18 @@ impl<V: Vector> Path<V> {
     }
 }
 
-/// The navigational feedback f_i^γ = −c₁(q_i − q_r) − c₂(p_i − p_r) of Algorithm 2 (TAC 2006 eq. 25).
+/// The form of the position feedback to the γ-agent.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Feedback {
+    /// −c₁(q_i − q_r): Algorithm 2 (TAC 2006 eq. 25), the sink of the 2003 papers.
+    #[default]
+    Linear,
+    /// −c₁ σ₁(q_i − q_r), bounded by c₁: Algorithm 3 (TAC 2006 eq. 67).
+    Bounded,
+}
+
+/// The navigational feedback f_i^γ = −c₁ g(q_i − q_r) − c₂(p_i − p_r), g the identity (Algorithm 2,
+/// TAC 2006 eq. 25) or σ₁ (Algorithm 3, eq. 67).
 #[derive(Clone, Debug, PartialEq)]
 pub struct NavigationalFeedback<V> {
     /// The γ-agent.
@@ -99,14 +110,56 @@ pub struct NavigationalFeedback<V> {
     pub c1: f64,
     /// Velocity gain c₂ > 0.
     pub c2: f64,
+    /// The form of the position term.
+    pub form: Feedback,
 }
 
 impl<V: Vector> NavigationalFeedback<V> {
+    /// f^γ = −c₁(q − q_r) − c₂(p − p_r) (Algorithm 2).
+    #[must_use]
+    pub const fn linear(gamma: GammaAgent<V>, c1: f64, c2: f64) -> Self {
+        Self {
+            gamma,
+            c1,
+            c2,
+            form: Feedback::Linear,
+        }
+    }
+
+    /// f^γ = −c₁ σ₁(q − q_r) − c₂(p − p_r) (Algorithm 3).
+    #[must_use]
+    pub const fn bounded(gamma: GammaAgent<V>, c1: f64, c2: f64) -> Self {
+        Self {
+            gamma,
+            c1,
+            c2,
+            form: Feedback::Bounded,
+        }
+    }
+
     /// f_i^γ for an agent at (q, p) given the γ-agent state (q_r, p_r).
     #[inline]
     #[must_use]
     pub fn input(&self, q: V, p: V, (q_r, p_r): (V, V)) -> V {
-        -((q - q_r) * self.c1) - (p - p_r) * self.c2
+        let offset = q - q_r;
+        let pull = match self.form {
+            Feedback::Linear => offset,
+            Feedback::Bounded => sigma1_vec(offset),
+        };
+        -(pull * self.c1) - (p - p_r) * self.c2
+    }
+
+    /// The potential whose negative gradient is the position term, times c₁:
+    /// (c₁/2)‖q − q_r‖² (linear) or c₁(√(1 + ‖q − q_r‖²) − 1) (bounded, V_γ of TAC 2006 eq. 70).
+    #[inline]
+    #[must_use]
+    pub fn potential(&self, q: V, q_r: V) -> f64 {
+        let d2 = (q - q_r).length_squared();
+        self.c1
+            * match self.form {
+                Feedback::Linear => 0.5 * d2,
+                Feedback::Bounded => d2 / ((1.0 + d2).sqrt() + 1.0),
+            }
     }
 }
 
@@ -142,12 +195,28 @@ mod tests {
             gamma.state(4.0),
             (DVec2::new(3.0, 1.0), DVec2::new(0.5, 0.0))
         );
-        let feedback = NavigationalFeedback {
-            gamma,
-            c1: 2.0,
-            c2: 3.0,
-        };
+        let feedback = NavigationalFeedback::linear(gamma, 2.0, 3.0);
         let u = feedback.input(DVec2::new(4.0, 1.0), DVec2::ZERO, feedback.gamma.state(4.0));
         assert_relative_eq!(u, DVec2::new(-2.0 + 1.5, 0.0));
+        assert_relative_eq!(
+            feedback.potential(DVec2::new(4.0, 1.0), DVec2::new(3.0, 1.0)),
+            1.0
+        );
+    }
+
+    #[test]
+    fn bounded_feedback_is_the_gradient_of_its_potential() {
+        let (q, q_r) = (DVec2::new(4.0, 2.0), DVec2::new(1.0, -2.0));
+        let feedback =
+            NavigationalFeedback::bounded(GammaAgent::Static { position: q_r }, 0.7, 0.0);
+        let u = feedback.input(q, DVec2::ZERO, (q_r, DVec2::ZERO));
+        assert_relative_eq!(u.length(), 0.7 * 5.0 / 26f64.sqrt(), epsilon = 1e-15);
+        let step = 1e-6;
+        for e in [DVec2::X, DVec2::Y] {
+            let fd = (feedback.potential(q + e * step, q_r)
+                - feedback.potential(q - e * step, q_r))
+                / (2.0 * step);
+            assert_relative_eq!(-u.dot(e), fd, epsilon = 1e-8);
+        }
     }
 }

@@ -14,7 +14,7 @@ pub mod protocol;
 pub mod swarm;
 
 pub use alpha::{AlphaInteraction, AlphaParams};
-pub use gamma::{GammaAgent, NavigationalFeedback, Path};
+pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, Path};
 pub use integrator::{Integrator, Simulation};
 pub use olfati_saber2006::{Algorithm1, Algorithm2};
 pub use protocol::Protocol;

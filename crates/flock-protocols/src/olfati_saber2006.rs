@@ -58,17 +58,18 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
         });
     }
 
-    /// H = c₁^α V(q) + (c₁/2) Σ ‖q_i − q_r‖² + ½ Σ ‖p_i − p_r‖², the energy of the frame moving with
+    /// H = c₁^α V(q) + Σ V_γ(q_i) + ½ Σ ‖p_i − p_r‖² with V_γ the feedback potential ((c₁/2)‖q_i − q_r‖²
+    /// for the linear form), the energy of the frame moving with
     /// the γ-agent; Ḣ = −c₂^α pᵀL̂p − c₂ Σ ‖p_i − p_r‖² ≤ 0 when p_r is constant (Theorem 3).
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         let (q_r, p_r) = self.navigation.gamma.state(t);
         let tether: f64 = swarm
             .positions
             .iter()
-            .map(|&q| (q - q_r).length_squared())
+            .map(|&q| self.navigation.potential(q, q_r))
             .sum();
         self.alpha.c1() * self.alpha.potential(&swarm.positions, net)
-            + 0.5 * self.navigation.c1 * tether
+            + tether
             + kinetic(&swarm.velocities, p_r)
     }
 }

@@ -13,14 +13,14 @@ fn run(threads: usize, integrator: Integrator) -> Swarm<DVec2> {
         .build()
         .expect("a thread pool");
     pool.install(|| {
-        let navigation = NavigationalFeedback {
-            gamma: GammaAgent::ConstantVelocity {
+        let navigation = NavigationalFeedback::linear(
+            GammaAgent::ConstantVelocity {
                 position: DVec2::ZERO,
                 velocity: DVec2::new(1.0, 0.0),
             },
-            c1: 0.05,
-            c2: 0.4,
-        };
+            0.05,
+            0.4,
+        );
         let protocol = Algorithm2 {
             alpha: papers_alpha(),
             navigation,

@@ -23,11 +23,7 @@ fn algorithm2(gamma_position: DVec3) -> Algorithm2<DVec3> {
     };
     Algorithm2 {
         alpha: papers_alpha(),
-        navigation: NavigationalFeedback {
-            gamma,
-            c1: 0.1,
-            c2: 0.5,
-        },
+        navigation: NavigationalFeedback::linear(gamma, 0.1, 0.5),
     }
 }
 
@@ -93,25 +89,25 @@ fn planar_runs_agree_in_2d_and_3d() {
     );
     let protocol2 = Algorithm2 {
         alpha: papers_alpha(),
-        navigation: NavigationalFeedback {
-            gamma: GammaAgent::ConstantVelocity {
+        navigation: NavigationalFeedback::linear(
+            GammaAgent::ConstantVelocity {
                 position: DVec2::ZERO,
                 velocity: DVec2::new(1.0, 0.5),
             },
-            c1: 0.05,
-            c2: 0.4,
-        },
+            0.05,
+            0.4,
+        ),
     };
     let protocol3 = Algorithm2 {
         alpha: papers_alpha(),
-        navigation: NavigationalFeedback {
-            gamma: GammaAgent::ConstantVelocity {
+        navigation: NavigationalFeedback::linear(
+            GammaAgent::ConstantVelocity {
                 position: DVec3::ZERO,
                 velocity: DVec3::new(1.0, 0.5, 0.0),
             },
-            c1: 0.05,
-            c2: 0.4,
-        },
+            0.05,
+            0.4,
+        ),
     };
     let mut sim2 = Simulation::new(protocol2, Integrator::SymplecticEuler, flat, 0.01);
     let mut sim3 = Simulation::new(protocol3, Integrator::SymplecticEuler, lifted, 0.01);

@@ -102,14 +102,14 @@ fn algorithm1_energy_non_increasing_3d() {
 #[test]
 fn algorithm2_energy_non_increasing_with_a_moving_gamma_agent() {
     let swarm: Swarm<DVec2> = random_swarm(40, 15.0, 1.5, 5);
-    let navigation = NavigationalFeedback {
-        gamma: GammaAgent::ConstantVelocity {
+    let navigation = NavigationalFeedback::linear(
+        GammaAgent::ConstantVelocity {
             position: DVec2::new(3.0, -2.0),
             velocity: DVec2::new(1.0, 0.5),
         },
-        c1: 0.05,
-        c2: 0.4,
-    };
+        0.05,
+        0.4,
+    );
     let protocol = Algorithm2 {
         alpha: papers_alpha(),
         navigation,
