@@ -4,6 +4,7 @@
 //! - [`run_scenario`]: runs it in its dimension and hands records to a [`Recorder`].
 //! - [`RunDirectory`]: the recorder behind `flock run --out DIR`.
 
+pub mod diagnostics;
 pub mod error;
 pub mod initial;
 pub mod output;

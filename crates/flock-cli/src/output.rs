@@ -52,7 +52,11 @@ impl RunDirectory {
         let text = scenario.to_ron().map_err(io::Error::other)?;
         fs::write(partial.join("scenario.ron"), text + "\n")?;
         let mut metrics = BufWriter::new(File::create(partial.join("metrics.csv"))?);
-        writeln!(metrics, "{METRICS_HEADER}")?;
+        write!(metrics, "{METRICS_HEADER}")?;
+        for column in scenario.extra_columns() {
+            write!(metrics, ",{column}")?;
+        }
+        writeln!(metrics)?;
         let mut trajectory = BufWriter::new(File::create(partial.join("trajectory.csv"))?);
         writeln!(trajectory, "t,{}", state_header(scenario.dim))?;
         Ok(Self {
@@ -118,7 +122,7 @@ impl Recorder for RunDirectory {
 
     fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> io::Result<()> {
         let m = &record.metrics;
-        writeln!(
+        write!(
             self.metrics,
             "{},{},{},{},{},{},{},{},{}",
             record.t,
@@ -131,6 +135,10 @@ impl Recorder for RunDirectory {
             m.collisions,
             record.energy
         )?;
+        for value in record.extra {
+            write!(self.metrics, ",{value}")?;
+        }
+        writeln!(self.metrics)?;
         self.last_state.clear();
         let swarm = record.swarm;
         for (i, (&q, &p)) in swarm.positions.iter().zip(&swarm.velocities).enumerate() {

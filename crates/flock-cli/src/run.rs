@@ -11,6 +11,7 @@ use flock_protocols::{
     NavigationalFeedback, Path, Protocol, Simulation, Swarm,
 };
 
+use crate::diagnostics::Diagnostics;
 use crate::initial::{initial_swarm, to_vector};
 use crate::scenario::{Algorithm, Gamma, IntegratorKind, Scenario};
 
@@ -25,6 +26,8 @@ pub struct Record<'a, V> {
     pub energy: f64,
     /// The state at t.
     pub swarm: &'a Swarm<V>,
+    /// The protocol's own diagnostics at t, in the order of [`Scenario::extra_columns`].
+    pub extra: &'a [f64],
 }
 
 /// What a finished run reports.
@@ -47,6 +50,8 @@ pub struct RunSummary {
     pub initial_energy: f64,
     /// H at the final time.
     pub final_energy: f64,
+    /// The protocol's own diagnostics at the final time, named as in [`Scenario::extra_columns`].
+    pub extra: Vec<(&'static str, f64)>,
     /// Wall-clock time of the integration.
     pub elapsed: Duration,
 }
@@ -128,7 +133,7 @@ fn gamma_agent<V: Vector>(gamma: &Gamma) -> GammaAgent<V> {
     }
 }
 
-fn drive<V: Vector, P: Protocol<V>, R: Recorder>(
+fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
     scenario: &Scenario,
     protocol: P,
     recorder: &mut R,
@@ -155,31 +160,34 @@ fn drive<V: Vector, P: Protocol<V>, R: Recorder>(
             sim.net(),
             &metric_params,
         );
-        (metrics, sim.energy())
+        let extra = sim.protocol().values(sim.time(), swarm);
+        (metrics, sim.energy(), extra)
     };
-    let (metrics, initial_energy) = measure(&sim);
+    let (metrics, initial_energy, extra) = measure(&sim);
     recorder.record(&Record {
         t: 0.0,
         metrics,
         energy: initial_energy,
         swarm: sim.swarm(),
+        extra: &extra,
     })?;
     let total = scenario.steps();
     let start = Instant::now();
     while sim.steps() < total {
         sim.step();
         if sim.steps() % scenario.record_every == 0 || sim.steps() == total {
-            let (metrics, energy) = measure(&sim);
+            let (metrics, energy, extra) = measure(&sim);
             recorder.record(&Record {
                 t: sim.time(),
                 metrics,
                 energy,
                 swarm: sim.swarm(),
+                extra: &extra,
             })?;
         }
     }
     let elapsed = start.elapsed();
-    let (metrics, final_energy) = measure(&sim);
+    let (metrics, final_energy, extra) = measure(&sim);
     let components = Components::of(sim.net().graph());
     Ok(RunSummary {
         agents: scenario.agents,
@@ -193,6 +201,12 @@ fn drive<V: Vector, P: Protocol<V>, R: Recorder>(
         ),
         initial_energy,
         final_energy,
+        extra: scenario
+            .extra_columns()
+            .iter()
+            .copied()
+            .zip(extra)
+            .collect(),
         elapsed,
     })
 }

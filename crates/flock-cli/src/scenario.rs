@@ -249,6 +249,12 @@ impl Scenario {
         }
     }
 
+    /// The protocol-specific columns appended to `metrics.csv` for this scenario.
+    #[must_use]
+    pub fn extra_columns(&self) -> &'static [&'static str] {
+        &[]
+    }
+
     /// The scenario as RON text with every default filled in.
     ///
     /// # Errors

@@ -38,6 +38,9 @@ impl fmt::Display for Report<'_> {
         )?;
         writeln!(f, "  min distance          {:.4}", m.min_distance)?;
         writeln!(f, "  colliding pairs       {}", m.collisions)?;
+        for (name, value) in &s.extra {
+            writeln!(f, "  {name:<22}{value:.6e}")?;
+        }
         writeln!(
             f,
             "  energy H              {:.6e} -> {:.6e}",
