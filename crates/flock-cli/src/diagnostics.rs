@@ -1,7 +1,12 @@
 //! Protocol-specific columns of `metrics.csv`, appended after the common ones.
 
 use flock_math::Vector;
-use flock_protocols::{Algorithm1, Algorithm2, Swarm};
+use flock_metrics::ObstacleMetrics;
+use flock_obstacles::Space;
+use flock_protocols::{
+    Algorithm1, Algorithm2, Algorithm3, Flocking2003, ObstacleFlocking2003, Swarm,
+    TannerJadbabaiePappas,
+};
 
 /// Diagnostics a protocol adds to the common flocking metrics.
 pub trait Diagnostics<V: Vector> {
@@ -16,3 +21,36 @@ pub trait Diagnostics<V: Vector> {
 impl<V: Vector> Diagnostics<V> for Algorithm1 {}
 
 impl<V: Vector> Diagnostics<V> for Algorithm2<V> {}
+
+impl<V: Vector> Diagnostics<V> for Flocking2003<V> {}
+
+/// `obstacle_clearance`, `inside_obstacles`.
+impl<V: Space> Diagnostics<V> for Algorithm3<V> {
+    fn values(&self, _t: f64, swarm: &Swarm<V>) -> Vec<f64> {
+        let field = self.beta.field();
+        ObstacleMetrics::measure(&swarm.positions, |q| field.clearance(q)).values()
+    }
+}
+
+/// `obstacle_clearance`, `inside_obstacles`.
+impl<V: Space> Diagnostics<V> for ObstacleFlocking2003<V> {
+    fn values(&self, _t: f64, swarm: &Swarm<V>) -> Vec<f64> {
+        let clearance = |q: V| {
+            self.obstacles
+                .iter()
+                .map(|ball| (q - ball.centre()).length() - ball.radius())
+                .fold(f64::INFINITY, f64::min)
+        };
+        ObstacleMetrics::measure(&swarm.positions, clearance).values()
+    }
+}
+
+/// `velocity_disagreement`, `min_linked_distance`.
+impl<V: Vector> Diagnostics<V> for TannerJadbabaiePappas {
+    fn values(&self, _t: f64, swarm: &Swarm<V>) -> Vec<f64> {
+        vec![
+            Self::velocity_disagreement(&swarm.velocities),
+            self.min_linked_distance(&swarm.positions),
+        ]
+    }
+}

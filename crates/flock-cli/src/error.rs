@@ -24,6 +24,8 @@ pub enum ScenarioError {
         /// The parser's message.
         message: String,
     },
+    /// An obstacle is malformed (its error names `obstacles[k].field`, the value, why and the fix).
+    Obstacle(flock_obstacles::ObstacleError),
     /// A value is out of its domain.
     Invalid {
         /// The field, as a path (`alpha.h`, `initial.positions`).
@@ -75,6 +77,18 @@ impl ScenarioError {
     }
 }
 
+impl ScenarioError {
+    /// The path of the field at fault, for the errors that name one.
+    #[must_use]
+    pub fn field(&self) -> Option<String> {
+        match self {
+            Self::Invalid { field, .. } => Some(field.clone()),
+            Self::Obstacle(error) => Some(error.field()),
+            Self::Io { .. } | Self::Syntax { .. } => None,
+        }
+    }
+}
+
 impl fmt::Display for ScenarioError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -85,6 +99,7 @@ impl fmt::Display for ScenarioError {
                 col,
                 message,
             } => write!(f, "{origin}:{line}:{col}: {message}"),
+            Self::Obstacle(error) => write!(f, "{error}"),
             Self::Invalid {
                 field,
                 value,

@@ -15,6 +15,6 @@ mod validate;
 
 pub use error::ScenarioError;
 pub use output::{METRICS_HEADER, RunDirectory};
-pub use run::{Record, Recorder, RunSummary, run, run_scenario};
+pub use run::{Record, Recorder, RunError, RunSummary, run, run_scenario};
 pub use scenario::Scenario;
 pub use summary::Report;

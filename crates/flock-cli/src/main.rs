@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use flock_cli::{Report, RunDirectory, Scenario, run_scenario};
+use flock_cli::{Report, RunDirectory, RunError, Scenario, run_scenario};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -82,18 +82,25 @@ fn main() -> ExitCode {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {
                     eprintln!("error: {e}");
-                    ExitCode::FAILURE
+                    match e {
+                        RunError::Scenario(_) => ExitCode::from(INVALID),
+                        RunError::Record(_) => ExitCode::FAILURE,
+                    }
                 }
             }
         }
     }
 }
 
-fn execute(scenario: &Scenario, out: &std::path::Path, force: bool) -> std::io::Result<()> {
-    let mut dir = RunDirectory::create(out, scenario, force)?;
+fn execute(
+    scenario: &Scenario,
+    out: &std::path::Path,
+    force: bool,
+) -> Result<(), RunError<std::io::Error>> {
+    let mut dir = RunDirectory::create(out, scenario, force).map_err(RunError::Record)?;
     match run_scenario(scenario, &mut dir) {
         Ok(summary) => {
-            let target = dir.finish()?;
+            let target = dir.finish().map_err(RunError::Record)?;
             println!(
                 "{}",
                 Report {

@@ -1,7 +1,12 @@
 //! Validation of a parsed scenario: every value inside the domain the theory needs.
 
+use flock_graph::{Components, Graph};
+use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
+use glam::{DVec2, DVec3};
+
 use crate::error::ScenarioError;
-use crate::scenario::{Algorithm, Cloud, Gamma, Scenario};
+use crate::initial::initial_swarm;
+use crate::scenario::{Algorithm, Cloud, Gamma, Scenario, TannerGraph};
 
 type Check = Result<(), ScenarioError>;
 
@@ -32,6 +37,28 @@ fn positive(field: &str, value: f64) -> Check {
         value,
         "must be > 0",
         "give a positive value",
+    )
+}
+
+fn non_negative(field: &str, value: f64) -> Check {
+    finite(field, value)?;
+    require(
+        value >= 0.0,
+        field,
+        value,
+        "must be ≥ 0",
+        "give a non-negative value",
+    )
+}
+
+fn unit_interval(field: &str, value: f64) -> Check {
+    finite(field, value)?;
+    require(
+        value > 0.0 && value < 1.0,
+        field,
+        value,
+        "must lie in (0, 1)",
+        "choose a value strictly between 0 and 1",
     )
 }
 
@@ -108,7 +135,8 @@ impl Scenario {
         }
         self.validate_algorithm()?;
         self.validate_cloud("initial.positions", &self.initial.positions)?;
-        self.validate_cloud("initial.velocities", &self.initial.velocities)
+        self.validate_cloud("initial.velocities", &self.initial.velocities)?;
+        self.validate_obstacles()
     }
 
     fn validate_alpha(&self) -> Check {
@@ -165,30 +193,196 @@ impl Scenario {
             Algorithm::Algorithm2 { gamma, c1, c2 } => {
                 positive("algorithm.c1", *c1)?;
                 positive("algorithm.c2", *c2)?;
-                self.validate_gamma(gamma)
+                self.validate_gamma("algorithm.gamma", gamma)
             }
+            Algorithm::Algorithm3 {
+                gamma,
+                c1,
+                c2,
+                beta,
+            } => {
+                positive("algorithm.c1", *c1)?;
+                if let Some(c2) = c2 {
+                    positive("algorithm.c2", *c2)?;
+                }
+                self.validate_gamma("algorithm.gamma", gamma)?;
+                let d = self.alpha.d;
+                if let Some(d_beta) = beta.d {
+                    positive("algorithm.beta.d", d_beta)?;
+                }
+                finite("algorithm.beta.r", beta.range(d))?;
+                require(
+                    beta.range(d) > beta.distance(d),
+                    "algorithm.beta.r",
+                    beta.range(d),
+                    &format!(
+                        "must exceed the obstacle distance d′ = {} (0 < d′ < r′)",
+                        beta.distance(d)
+                    ),
+                    "raise algorithm.beta.r (the papers use r′ = 1.2 d′) or lower algorithm.beta.d",
+                )?;
+                unit_interval("algorithm.beta.h", beta.h)?;
+                positive("algorithm.beta.c1", beta.c1)?;
+                non_negative("algorithm.beta.c2", beta.damping())
+            }
+            Algorithm::Flocking2003 {
+                c1,
+                delta,
+                power,
+                translation,
+                avoidance,
+                ..
+            } => {
+                non_negative("algorithm.c1", *c1)?;
+                require(
+                    self.alpha.a < self.alpha.b,
+                    "alpha.a",
+                    self.alpha.a,
+                    &format!(
+                        "must be below alpha.b = {}: the 2003 potential (eq. 29) needs b > a > 0",
+                        self.alpha.b
+                    ),
+                    "use e.g. a: 1.0, b: 5.0",
+                )?;
+                if let Some(delta) = delta {
+                    unit_interval("algorithm.delta", *delta)?;
+                }
+                require(
+                    *power >= 1,
+                    "algorithm.power",
+                    power,
+                    "the influence map needs k ≥ 1",
+                    "use power: 1 (C¹) or more",
+                )?;
+                if let Some(t) = translation {
+                    non_negative("algorithm.translation.c1", t.c1)?;
+                    positive("algorithm.translation.c2", t.c2)?;
+                    self.validate_gamma("algorithm.translation.gamma", &t.gamma)?;
+                }
+                if let Some(a) = avoidance {
+                    positive("algorithm.avoidance.c3", a.c3)?;
+                    non_negative("algorithm.avoidance.c4", a.c4)?;
+                    require(
+                        a.lambda_d > 0.0 && a.lambda_d <= 1.0,
+                        "algorithm.avoidance.lambda_d",
+                        a.lambda_d,
+                        "the γ-agent x_k = b_k + λ_d n_d needs λ_d in (0, 1]",
+                        "use lambda_d: 1.0",
+                    )?;
+                    for (k, spec) in self.obstacles.iter().enumerate() {
+                        require(
+                            matches!(spec, ObstacleSpec::Ball { .. }),
+                            &format!("obstacles[{k}]"),
+                            spec.kind(),
+                            "the 2003 obstacle protocol handles balls only (seed 004 § 11)",
+                            "use Ball obstacles, or Algorithm3 for other convex shapes",
+                        )?;
+                    }
+                }
+                Ok(())
+            }
+            Algorithm::Tanner { graph } => match graph {
+                TannerGraph::Random { extra } => {
+                    finite("algorithm.graph.extra", *extra)?;
+                    require(
+                        (0.0..=1.0).contains(extra),
+                        "algorithm.graph.extra",
+                        extra,
+                        "is a probability",
+                        "use a value in [0, 1]",
+                    )
+                }
+                TannerGraph::Edges(edges) => {
+                    let graph = Graph::from_edges(self.agents, edges).map_err(|e| {
+                        ScenarioError::invalid(
+                            "algorithm.graph",
+                            edges.len(),
+                            e.to_string(),
+                            "list edges (i, j) with i ≠ j < agents",
+                        )
+                    })?;
+                    let components = Components::of(&graph).count();
+                    require(
+                        components == 1,
+                        "algorithm.graph",
+                        format!("{components} components"),
+                        "the Tanner law needs a connected graph",
+                        "add edges joining the components",
+                    )
+                }
+            },
         }
     }
 
-    fn validate_gamma(&self, gamma: &Gamma) -> Check {
+    fn uses_obstacles(&self) -> bool {
+        matches!(
+            self.algorithm,
+            Algorithm::Algorithm3 { .. }
+                | Algorithm::Flocking2003 {
+                    avoidance: Some(_),
+                    ..
+                }
+        )
+    }
+
+    /// Obstacles are well formed in the scenario's dimension, seen by the algorithm, and no agent
+    /// starts inside one.
+    fn validate_obstacles(&self) -> Check {
+        if self.obstacles.is_empty() {
+            return Ok(());
+        }
+        require(
+            self.uses_obstacles(),
+            "obstacles",
+            format!("{} obstacle(s)", self.obstacles.len()),
+            "this algorithm does not see obstacles",
+            "use Algorithm3 (or Flocking2003 with avoidance), or remove the obstacles",
+        )?;
+        match self.dim {
+            2 => self.validate_start_outside::<DVec2>(),
+            _ => self.validate_start_outside::<DVec3>(),
+        }
+    }
+
+    fn validate_start_outside<V: Space>(&self) -> Check {
+        let field =
+            ObstacleField::<V>::from_specs(&self.obstacles).map_err(ScenarioError::Obstacle)?;
+        let swarm = initial_swarm::<V>(self);
+        for (i, &q) in swarm.positions.iter().enumerate() {
+            if let Some(k) = field.containing(q) {
+                return Err(ScenarioError::invalid(
+                    "initial.positions",
+                    format!("agent {i} at {q:?}"),
+                    format!(
+                        "starts inside obstacles[{k}] ({})",
+                        self.obstacles[k].kind()
+                    ),
+                    "move the initial cloud or the obstacle so that every agent starts outside",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_gamma(&self, field: &str, gamma: &Gamma) -> Check {
         match gamma {
-            Gamma::Static { position } => vector("algorithm.gamma.position", position, self.dim),
+            Gamma::Static { position } => vector(&format!("{field}.position"), position, self.dim),
             Gamma::ConstantVelocity { position, velocity } => {
-                vector("algorithm.gamma.position", position, self.dim)?;
-                vector("algorithm.gamma.velocity", velocity, self.dim)
+                vector(&format!("{field}.position"), position, self.dim)?;
+                vector(&format!("{field}.velocity"), velocity, self.dim)
             }
             Gamma::Path { waypoints, speed } => {
                 require(
                     !waypoints.is_empty(),
-                    "algorithm.gamma.waypoints",
+                    &format!("{field}.waypoints"),
                     waypoints,
                     "a path needs a waypoint",
                     "list at least one waypoint",
                 )?;
                 for (k, w) in waypoints.iter().enumerate() {
-                    vector(&format!("algorithm.gamma.waypoints[{k}]"), w, self.dim)?;
+                    vector(&format!("{field}.waypoints[{k}]"), w, self.dim)?;
                 }
-                positive("algorithm.gamma.speed", *speed)
+                positive(&format!("{field}.speed"), *speed)
             }
         }
     }

@@ -4,5 +4,6 @@
 mod common;
 mod errors;
 mod fixtures;
+mod obstacle_errors;
 mod papers;
 mod snapshots;

@@ -3,13 +3,14 @@
 //! velocity; Algorithm 1 from a sparse cloud (Fig. 12) fragments into rigidly moving flocks while its
 //! energy H decreases.
 
-use flock_cli::{RunSummary, Scenario, run_scenario};
+use flock_cli::{Record, Recorder, RunSummary, Scenario, run_scenario};
+use flock_math::Vector;
 
 use crate::common::fixture;
 
 fn run_fixture(name: &str) -> (Scenario, RunSummary) {
     let scenario = fixture(name);
-    let Ok(summary) = run_scenario(&scenario, &mut ());
+    let summary = run_scenario(&scenario, &mut ()).expect("the scenario runs");
     assert_eq!(summary.steps, scenario.steps(), "{name}: every step taken");
     approx::assert_relative_eq!(summary.t, scenario.duration, max_relative = 1e-9);
     (scenario, summary)
@@ -73,5 +74,175 @@ fn tac2006_fig12_algorithm1_energy_decreases() {
     assert!(
         s.final_energy < s.initial_energy,
         "H must decrease under Algorithm 1: {s:#?}"
+    );
+}
+
+/// Every recorded instant of a run: (t, metrics, extra columns).
+#[derive(Default)]
+struct Trace(Vec<(f64, flock_metrics::FlockMetrics, f64, Vec<f64>)>);
+
+impl Recorder for Trace {
+    type Error = std::convert::Infallible;
+    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+        self.0.push((
+            record.t,
+            record.metrics,
+            record.energy,
+            record.extra.to_vec(),
+        ));
+        Ok(())
+    }
+}
+
+fn trace_fixture(name: &str) -> (Scenario, RunSummary, Trace) {
+    let scenario = fixture(name);
+    let mut trace = Trace::default();
+    let summary = run_scenario(&scenario, &mut trace).expect("the scenario runs");
+    (scenario, summary, trace)
+}
+
+/// No recorded instant has an agent inside an obstacle (column `inside_obstacles`), and every agent
+/// keeps a positive clearance (`obstacle_clearance`).
+fn assert_never_inside(name: &str, trace: &Trace) -> f64 {
+    let mut closest = f64::INFINITY;
+    for (t, _, _, extra) in &trace.0 {
+        let [clearance, inside] = extra[..] else {
+            panic!("{name}: obstacle columns expected")
+        };
+        assert_eq!(
+            inside, 0.0,
+            "{name}: an agent is inside an obstacle at t = {t}"
+        );
+        closest = closest.min(clearance);
+    }
+    assert!(closest > 0.0, "{name}: clearance {closest}");
+    closest
+}
+
+/// CDS 03-006 Fig. 7–8: the flock splits around the six balls, squeezes between O5 and O6 and ends
+/// with a giant component of about 97 of 100 agents (the report's δ₀ ≈ 0.97); no agent ever enters
+/// an obstacle.
+#[test]
+fn tr2003_fig7_flock_passes_six_obstacles() {
+    let (_, s, trace) = trace_fixture("tr2003_fig7_obstacles_n100");
+    assert_never_inside("tr2003_fig7", &trace);
+    let split = trace
+        .0
+        .iter()
+        .map(|(_, m, _, _)| m.giant_component)
+        .fold(1.0, f64::min);
+    assert!(
+        split < 0.9,
+        "the flock must split at the obstacles (min C* = {split})"
+    );
+    assert!(
+        s.metrics.giant_component >= 0.95,
+        "final C* = {}",
+        s.metrics.giant_component
+    );
+}
+
+/// CDS 03-006 Fig. 9 and ACC 2004 Fig. 4: an initially disconnected net becomes connected after a
+/// few seconds and stays connected (the report: after about 4 s).
+fn assert_connects(name: &str, by: f64) {
+    let (scenario, s, trace) = trace_fixture(name);
+    assert!(
+        trace.0[0].1.connectivity < 1.0,
+        "{name}: the initial net must be disconnected"
+    );
+    let last_disconnected = trace
+        .0
+        .iter()
+        .filter(|(_, m, _, _)| m.connectivity < 1.0)
+        .map(|r| r.0)
+        .fold(0.0, f64::max);
+    assert!(
+        last_disconnected <= by,
+        "{name}: disconnected until t = {last_disconnected}"
+    );
+    let m = &s.metrics;
+    assert_eq!(m.connectivity, 1.0);
+    assert!(
+        m.deviation_energy <= 0.03,
+        "{name}: Ẽ = {}",
+        m.deviation_energy
+    );
+    assert!(
+        m.min_distance >= 0.5 * scenario.alpha.d,
+        "{name}: min distance {}",
+        m.min_distance
+    );
+    assert_eq!(m.collisions, 0);
+}
+
+#[test]
+fn tr2003_fig9_sink_connects_the_net() {
+    assert_connects("tr2003_fig9_sink_n100", 4.0);
+}
+
+#[test]
+fn acc2004_fig4_sink_connects_the_net() {
+    assert_connects("acc2004_fig4_sink_n100", 8.0);
+}
+
+/// TAC 2006 Fig. 14–17 and the 3D field: zero agents inside obstacles at every recorded instant,
+/// the flock splits (or squeezes) and ends as one connected, collision-free lattice.
+fn assert_avoids_and_rejoins(name: &str) {
+    let (scenario, s, trace) = trace_fixture(name);
+    let closest = assert_never_inside(name, &trace);
+    assert!(
+        closest < BETA_RANGE_FACTOR * scenario.alpha.d,
+        "{name}: the flock must meet the obstacles"
+    );
+    let m = &s.metrics;
+    let report = format!("{name}: {s:#?}");
+    assert_eq!(m.connectivity, 1.0, "{report}");
+    assert_eq!(m.collisions, 0, "{report}");
+    assert!(m.min_distance >= 0.85 * scenario.alpha.d, "{report}");
+    assert!(m.velocity_mismatch <= 1e-2, "{report}");
+}
+
+/// r′ = 1.2 d′ = 0.72 d: an agent closer than this to an obstacle has met it.
+const BETA_RANGE_FACTOR: f64 = 0.72;
+
+#[test]
+fn tac2006_fig14_split_and_rejoin() {
+    assert_avoids_and_rejoins("tac2006_fig14_split_rejoin_n150");
+}
+
+#[test]
+fn tac2006_fig16_squeeze() {
+    assert_avoids_and_rejoins("tac2006_fig16_squeeze_n150");
+}
+
+#[test]
+fn alg3_3d_mixed_obstacle_field() {
+    assert_avoids_and_rejoins("alg3_3d_mixed_obstacles_n100");
+}
+
+/// Tanner, Jadbabaie & Pappas 2003: velocities align (disagreement → 0), W never increases, and
+/// linked agents never collide (V_ij → ∞).
+#[test]
+fn tanner2003_velocities_align_without_linked_collisions() {
+    let (scenario, _, trace) = trace_fixture("tanner2003_fig3_fixed_n10");
+    let first = &trace.0[0];
+    let last = trace.0.last().expect("records");
+    let (disagreement0, disagreement) = (first.3[0], last.3[0]);
+    assert!(
+        disagreement <= 1e-6 * disagreement0,
+        "disagreement {disagreement0} → {disagreement}"
+    );
+    for pair in trace.0.windows(2) {
+        let (w0, w1) = (pair[0].2, pair[1].2);
+        assert!(
+            w1 <= w0 + 1e-9 * w0.abs(),
+            "W rose from {w0} to {w1} at t = {}",
+            pair[1].0
+        );
+    }
+    let closest_linked = trace.0.iter().map(|r| r.3[1]).fold(f64::INFINITY, f64::min);
+    assert!(
+        closest_linked > 0.1 * scenario.alpha.d,
+        "linked agents came within {closest_linked}"
     );
 }

@@ -51,6 +51,9 @@ fn rounded(name: &str, s: &RunSummary) -> String {
     line("collisions", m.collisions.to_string());
     line("initial_energy", sig6(s.initial_energy));
     line("final_energy", sig6(s.final_energy));
+    for (column, value) in &s.extra {
+        line(column, sig6(*value));
+    }
     text
 }
 
@@ -80,8 +83,7 @@ fn bits(s: &RunSummary) -> Vec<u64> {
 }
 
 fn short_run(scenario: &Scenario) -> RunSummary {
-    let Ok(summary) = run_scenario(scenario, &mut ());
-    summary
+    run_scenario(scenario, &mut ()).expect("the scenario runs")
 }
 
 #[test]
@@ -156,7 +158,7 @@ fn run_on_pool(scenario: &Scenario, threads: usize) -> (RunSummary, LastState) {
         .expect("a rayon pool");
     pool.install(|| {
         let mut state = LastState::default();
-        let Ok(summary) = run_scenario(scenario, &mut state);
+        let summary = run_scenario(scenario, &mut state).expect("the scenario runs");
         (summary, state)
     })
 }
@@ -196,7 +198,7 @@ fn records_start_at_zero_every_record_every_steps_and_at_the_end() {
         // 2 s = 200 steps; every 30 steps gives 30, 60, …, 180, then the last step 200.
         scenario.record_every = 30;
         let mut state = LastState::default();
-        let Ok(summary) = run_scenario(&scenario, &mut state);
+        let summary = run_scenario(&scenario, &mut state).expect("the scenario runs");
         assert_eq!(state.records, 1 + 6 + 1, "{name}: {:?}", state.times);
         assert_eq!(state.times[0], 0.0, "{name}");
         approx::assert_relative_eq!(state.times[1], 0.3, max_relative = 1e-12);

@@ -9,6 +9,11 @@ use crate::{BetaAgent, ObstacleError};
 /// Checks a ball's `centre` (finite) and `radius` (finite, `> 0`).
 pub(crate) fn validate<V: Vector>(centre: V, radius: f64) -> Result<(), ObstacleError> {
     check_finite("centre", centre)?;
+    check_radius(radius)
+}
+
+/// Checks a `radius` (finite, `> 0`), of a ball or a capsule.
+pub(crate) fn check_radius(radius: f64) -> Result<(), ObstacleError> {
     if radius.is_finite() && radius > 0.0 {
         Ok(())
     } else {

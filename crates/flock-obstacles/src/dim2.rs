@@ -1,22 +1,30 @@
 //! [`Obstacle2d`]: convex obstacles of the plane, projected by parry2d-f64.
 //!
-//! - [`Obstacle2d::ball`]: a disc `B(y, R)`.
-//! - [`Obstacle2d::wall`]: a half-plane through `y` with outward normal `a`.
+//! - [`Obstacle2d::ball`], [`Obstacle2d::wall`], [`Obstacle2d::cuboid`],
+//!   [`Obstacle2d::convex_hull`], [`Obstacle2d::capsule`], [`Obstacle2d::segment`],
+//!   [`Obstacle2d::triangle`]: the shapes; [`Obstacle2d::from_spec`] from an [`ObstacleSpec`].
 //! - [`Obstacle::beta_agent`]: the β-agent of an α-agent `(q, p)` on it.
 
 use glam::DVec2;
 use parry2d_f64::math::Pose;
-use parry2d_f64::query::PointQuery;
-use parry2d_f64::shape::{Ball, HalfSpace, Shape};
+use parry2d_f64::query::{PointQuery, PointQueryWithLocation};
+use parry2d_f64::shape::{
+    Ball, Capsule, ConvexPolygon, Cuboid, HalfSpace, Segment, SegmentPointLocation, Shape,
+};
 
-use crate::{BetaAgent, Obstacle, ObstacleError, ball, wall};
+use crate::basis::orthogonal_unit;
+use crate::error::{check_finite, coordinates, from_coordinates};
+use crate::polytope::{self, Planes};
+use crate::thin::{self, Feature};
+use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, capsule, cuboid, wall};
 
 /// A convex obstacle of ℝ²: a parry shape placed by a [`Pose`].
 ///
 /// The β-agent's position `q̂` and the inside test come from parry's
 /// `project_point(pose, q, solid = false)`, which returns the closest *boundary* point even for an
-/// α-agent inside; the normal `a`, `μ` and `p̂ = μ P p` follow the closed forms of Olfati-Saber (IEEE
-/// TAC 51(3) 2006) described on [`BetaAgent`].
+/// α-agent inside (except inside convex polygons, see [`convex_hull`](Self::convex_hull)); the
+/// normal `a`, `μ` and the velocity `p̂` follow the closed forms per feature listed on
+/// [`BetaAgent`].
 ///
 /// # Example
 /// ```
@@ -42,6 +50,21 @@ pub struct Obstacle2d {
 enum Kind {
     Ball(Ball),
     Wall(HalfSpace),
+    /// Local frame: the pose's translation and rotation.
+    Cuboid(Cuboid),
+    /// Local frame: the pose's translation (the centroid of the points).
+    Polygon(Box<Polygon>),
+    /// World coordinates (identity pose).
+    Capsule(Capsule),
+    /// World coordinates (identity pose).
+    Segment(Segment),
+}
+
+/// A convex polygon and its edge lines.
+#[derive(Clone, Debug)]
+struct Polygon {
+    shape: ConvexPolygon,
+    planes: Planes<DVec2>,
 }
 
 impl Obstacle2d {
@@ -94,12 +117,250 @@ impl Obstacle2d {
         })
     }
 
+    /// The closed rectangle of half-widths `half_extents` along its own axes, centred at `centre`
+    /// and turned counter-clockwise by `angle` radians.
+    ///
+    /// # Errors
+    /// [`ObstacleError::InvalidHalfExtent`] unless each half extent is finite and `> 0`;
+    /// [`ObstacleError::InvalidRotation`] when `angle` is not finite;
+    /// [`ObstacleError::NonFinitePoint`] when `centre` has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle2d};
+    /// use glam::DVec2;
+    ///
+    /// // A 4 × 2 rectangle turned by 90°: 2 wide along x, 4 tall along y.
+    /// let rectangle = Obstacle2d::cuboid(DVec2::ZERO, DVec2::new(2.0, 1.0), core::f64::consts::FRAC_PI_2)?;
+    /// let beta = rectangle.beta_agent(DVec2::new(0.5, 5.0), DVec2::new(1.0, 1.0));
+    /// assert!((beta.position - DVec2::new(0.5, 2.0)).length() < 1e-12);
+    /// assert!((beta.velocity - DVec2::new(1.0, 0.0)).length() < 1e-12); // P p on the top face
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn cuboid(centre: DVec2, half_extents: DVec2, angle: f64) -> Result<Self, ObstacleError> {
+        check_finite("centre", centre)?;
+        cuboid::validate(half_extents)?;
+        if !angle.is_finite() {
+            return Err(ObstacleError::InvalidRotation {
+                rotation: vec![angle],
+                dim: 2,
+            });
+        }
+        Ok(Self {
+            kind: Kind::Cuboid(Cuboid::new(half_extents)),
+            pose: Pose::new(centre, angle),
+        })
+    }
+
+    /// The convex polygon that is the convex hull of `points` (any order).
+    ///
+    /// The β-agent of an α-agent outside is parry's projection; inside, parry's projection (EPA)
+    /// is not reliable for polygons, and the β-agent is the foot of the perpendicular on the
+    /// nearest edge line, computed here.
+    ///
+    /// # Errors
+    /// [`ObstacleError::NonFinitePoint`] for a point with a NaN or infinite coordinate
+    /// (`points[i]`); [`ObstacleError::TooFewPoints`] for fewer than 3 points;
+    /// [`ObstacleError::FlatHull`] when they are all on one line;
+    /// [`ObstacleError::PointInsideHull`] when a point is strictly inside the hull of the others (the
+    /// outline given is not convex).
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle2d};
+    /// use glam::DVec2;
+    ///
+    /// let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y].map(|v| v * 2.0);
+    /// let polygon = Obstacle2d::convex_hull(&square)?;
+    /// let corner = polygon.beta_agent(DVec2::new(3.0, 3.0), DVec2::new(1.0, -1.0));
+    /// assert!((corner.position - DVec2::new(2.0, 2.0)).length() < 1e-12);
+    /// assert_eq!((corner.velocity, corner.mu), (DVec2::ZERO, 0.0)); // a vertex
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn convex_hull(points: &[DVec2]) -> Result<Self, ObstacleError> {
+        polytope::validate(points)?;
+        let centroid = flock_math::mean(points);
+        let local: Vec<DVec2> = points.iter().map(|&x| x - centroid).collect();
+        let shape =
+            ConvexPolygon::from_convex_hull(&local).ok_or(ObstacleError::FlatHull { dim: 2 })?;
+        let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
+        let planes = shape
+            .points()
+            .iter()
+            .zip(shape.normals())
+            .map(|(&vertex, &normal)| (normal, normal.dot(vertex)))
+            .collect();
+        let planes = Planes::new(planes, radius);
+        planes.check_convex(&local, points)?;
+        Ok(Self {
+            kind: Kind::Polygon(Box::new(Polygon { shape, planes })),
+            pose: Pose::from_translation(centroid),
+        })
+    }
+
+    /// The capsule (stadium) of the points within `radius` of the segment `[a, b]`; with `a = b`,
+    /// the disc `B(a, radius)`.
+    ///
+    /// # Errors
+    /// [`ObstacleError::InvalidRadius`] unless `radius` is finite and `> 0`;
+    /// [`ObstacleError::NonFinitePoint`] when `a` or `b` has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle2d};
+    /// use glam::DVec2;
+    ///
+    /// let capsule = Obstacle2d::capsule(DVec2::ZERO, DVec2::new(4.0, 0.0), 1.0)?;
+    /// let side = capsule.beta_agent(DVec2::new(2.0, 3.0), DVec2::new(1.0, 1.0));
+    /// assert_eq!((side.position, side.velocity, side.mu), (DVec2::new(2.0, 1.0), DVec2::X, 1.0));
+    /// let cap = capsule.beta_agent(DVec2::new(-2.0, 0.0), DVec2::new(1.0, 1.0));
+    /// assert_eq!((cap.position, cap.velocity, cap.mu), (DVec2::new(-1.0, 0.0), DVec2::new(0.0, 0.5), 0.5));
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn capsule(a: DVec2, b: DVec2, radius: f64) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        ball::check_radius(radius)?;
+        if a == b {
+            return Self::ball(a, radius);
+        }
+        Ok(Self {
+            kind: Kind::Capsule(Capsule::new(a, b, radius)),
+            pose: Pose::IDENTITY,
+        })
+    }
+
+    /// The segment `[a, b]` of zero thickness: a thin wall, both sides of which are boundary. An
+    /// α-agent is inside only when on it (parry's approximate test).
+    ///
+    /// # Errors
+    /// [`ObstacleError::DegenerateSegment`] when `a = b`;
+    /// [`ObstacleError::NonFinitePoint`] when `a` or `b` has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle2d};
+    /// use glam::DVec2;
+    ///
+    /// let segment = Obstacle2d::segment(DVec2::ZERO, DVec2::new(0.0, 4.0))?;
+    /// let left = segment.beta_agent(DVec2::new(-1.0, 1.0), DVec2::new(1.0, 2.0));
+    /// assert_eq!((left.position, left.normal), (DVec2::new(0.0, 1.0), DVec2::new(-1.0, 0.0)));
+    /// assert_eq!(left.velocity, DVec2::new(0.0, 2.0));
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn segment(a: DVec2, b: DVec2) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        if a == b {
+            return Err(ObstacleError::DegenerateSegment {
+                point: coordinates(a),
+            });
+        }
+        Ok(Self {
+            kind: Kind::Segment(Segment::new(a, b)),
+            pose: Pose::IDENTITY,
+        })
+    }
+
+    /// The solid triangle of vertices `a`, `b`, `c`: the convex polygon
+    /// [`convex_hull`](Self::convex_hull)`(&[a, b, c])`.
+    ///
+    /// # Errors
+    /// [`ObstacleError::FlatTriangle`] when the vertices are on one line;
+    /// [`ObstacleError::NonFinitePoint`] when one has a NaN or infinite coordinate.
+    pub fn triangle(a: DVec2, b: DVec2, c: DVec2) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        check_finite("c", c)?;
+        if polytope::affine_rank(&[a, b, c]) < 2 {
+            return Err(ObstacleError::FlatTriangle {
+                vertices: [coordinates(a), coordinates(b), coordinates(c)],
+            });
+        }
+        Self::convex_hull(&[a, b, c])
+    }
+
+    /// The obstacle `spec` describes, validated; vectors must have 2 coordinates, and a cuboid's
+    /// `rotation` is one angle or none.
+    ///
+    /// # Errors
+    /// [`ObstacleError::WrongDimension`] for a vector without 2 coordinates,
+    /// [`ObstacleError::InvalidRotation`] for a rotation of more than one number, and the errors
+    /// of the constructor of the shape.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle2d, ObstacleSpec};
+    ///
+    /// let spec = ObstacleSpec::Ball { centre: vec![1.0, 2.0, 3.0], radius: 1.0 };
+    /// let error = Obstacle2d::from_spec(&spec).unwrap_err();
+    /// assert_eq!(error.field(), "centre");
+    /// assert!(error.to_string().contains("has 3 coordinates, but the scenario is 2D"));
+    /// ```
+    pub fn from_spec(spec: &ObstacleSpec) -> Result<Self, ObstacleError> {
+        match spec {
+            ObstacleSpec::Ball { centre, radius } => {
+                Self::ball(from_coordinates("centre", centre)?, *radius)
+            }
+            ObstacleSpec::Wall { point, normal } => Self::wall(
+                from_coordinates("point", point)?,
+                from_coordinates("normal", normal)?,
+            ),
+            ObstacleSpec::Cuboid {
+                centre,
+                half_extents,
+                rotation,
+            } => {
+                let angle = match rotation.as_slice() {
+                    [] => 0.0,
+                    &[angle] => angle,
+                    _ => {
+                        return Err(ObstacleError::InvalidRotation {
+                            rotation: rotation.clone(),
+                            dim: 2,
+                        });
+                    }
+                };
+                Self::cuboid(
+                    from_coordinates("centre", centre)?,
+                    from_coordinates("half_extents", half_extents)?,
+                    angle,
+                )
+            }
+            ObstacleSpec::ConvexHull { points } => {
+                let points = points
+                    .iter()
+                    .enumerate()
+                    .map(|(i, x)| from_coordinates(&format!("points[{i}]"), x))
+                    .collect::<Result<Vec<DVec2>, _>>()?;
+                Self::convex_hull(&points)
+            }
+            ObstacleSpec::Capsule { a, b, radius } => Self::capsule(
+                from_coordinates("a", a)?,
+                from_coordinates("b", b)?,
+                *radius,
+            ),
+            ObstacleSpec::Segment { a, b } => {
+                Self::segment(from_coordinates("a", a)?, from_coordinates("b", b)?)
+            }
+            ObstacleSpec::Triangle { a, b, c } => Self::triangle(
+                from_coordinates("a", a)?,
+                from_coordinates("b", b)?,
+                from_coordinates("c", c)?,
+            ),
+        }
+    }
+
     /// The parry shape, in its local frame (for other parry queries, e.g. `compute_aabb`).
     #[must_use]
     pub fn shape(&self) -> &dyn Shape {
         match &self.kind {
             Kind::Ball(ball) => ball,
             Kind::Wall(half_space) => half_space,
+            Kind::Cuboid(cuboid) => cuboid,
+            Kind::Polygon(polygon) => &polygon.shape,
+            Kind::Capsule(capsule) => capsule,
+            Kind::Segment(segment) => segment,
         }
     }
 
@@ -107,6 +368,19 @@ impl Obstacle2d {
     #[must_use]
     pub fn pose(&self) -> &Pose {
         &self.pose
+    }
+
+    /// The β-agent computed in the local frame of the pose, brought back to the world.
+    #[inline]
+    fn to_world(&self, q: DVec2, local: BetaAgent<DVec2>) -> BetaAgent<DVec2> {
+        BetaAgent::with_velocity(
+            q,
+            self.pose.transform_point(local.position),
+            self.pose.transform_vector(local.normal),
+            self.pose.transform_vector(local.velocity),
+            local.mu,
+            local.inside,
+        )
     }
 }
 
@@ -138,6 +412,74 @@ impl Obstacle<DVec2> for Obstacle2d {
                 let normal = self.pose.transform_vector(shape.normal);
                 wall::beta_agent(q, p, normal, projection.point, projection.is_inside)
             }
+            Kind::Cuboid(shape) => {
+                let local_q = self.pose.inverse_transform_point(q);
+                let local_p = self.pose.inverse_transform_vector(p);
+                let projection = shape.project_local_point(local_q, false);
+                let local = cuboid::beta_agent(
+                    local_q,
+                    local_p,
+                    shape.half_extents,
+                    projection.point,
+                    projection.is_inside,
+                );
+                self.to_world(q, local)
+            }
+            Kind::Polygon(polygon) => {
+                let local_q = q - self.pose.translation;
+                let projection = polygon.shape.project_local_point(local_q, false);
+                let local = polytope::beta_agent(
+                    local_q,
+                    p,
+                    &polygon.planes,
+                    projection.point,
+                    projection.is_inside,
+                );
+                BetaAgent::with_velocity(
+                    q,
+                    local.position + self.pose.translation,
+                    local.normal,
+                    local.velocity,
+                    local.mu,
+                    local.inside,
+                )
+            }
+            Kind::Capsule(shape) => {
+                let projection = shape.project_local_point(q, false);
+                capsule::beta_agent(
+                    q,
+                    p,
+                    shape.segment.a,
+                    shape.segment.b,
+                    shape.radius,
+                    projection.point,
+                    projection.is_inside,
+                )
+            }
+            Kind::Segment(shape) => {
+                let (projection, location) = shape.project_local_point_and_get_location(q, false);
+                let direction = (shape.b - shape.a).normalize();
+                let feature = match location {
+                    SegmentPointLocation::OnVertex(_) => Feature::Vertex,
+                    SegmentPointLocation::OnEdge(_) => Feature::Edge(direction),
+                };
+                thin::beta_agent(
+                    q,
+                    p,
+                    projection.point,
+                    projection.is_inside,
+                    feature,
+                    orthogonal_unit(direction),
+                )
+            }
         }
+    }
+
+    fn aabb(&self) -> Option<(DVec2, DVec2)> {
+        if let Kind::Wall(_) = self.kind {
+            return None;
+        }
+        let aabb = self.shape().compute_aabb(&self.pose);
+        Some((aabb.mins, aabb.maxs))
     }
 }

@@ -1,22 +1,31 @@
 //! [`Obstacle3d`]: convex obstacles of space, projected by parry3d-f64.
 //!
-//! - [`Obstacle3d::ball`]: a ball `B(y, R)`.
-//! - [`Obstacle3d::wall`]: a half-space through `y` with outward normal `a`.
+//! - [`Obstacle3d::ball`], [`Obstacle3d::wall`], [`Obstacle3d::cuboid`],
+//!   [`Obstacle3d::convex_hull`], [`Obstacle3d::capsule`], [`Obstacle3d::segment`],
+//!   [`Obstacle3d::triangle`]: the shapes; [`Obstacle3d::from_spec`] from an [`ObstacleSpec`].
 //! - [`Obstacle::beta_agent`]: the β-agent of an α-agent `(q, p)` on it.
 
 use glam::DVec3;
 use parry3d_f64::math::Pose;
-use parry3d_f64::query::PointQuery;
-use parry3d_f64::shape::{Ball, HalfSpace, Shape};
+use parry3d_f64::query::{PointQuery, PointQueryWithLocation};
+use parry3d_f64::shape::{
+    Ball, Capsule, ConvexPolyhedron, Cuboid, HalfSpace, Segment, SegmentPointLocation, Shape,
+    Triangle, TrianglePointLocation,
+};
 
-use crate::{BetaAgent, Obstacle, ObstacleError, ball, wall};
+use crate::basis::orthogonal_unit;
+use crate::error::{check_finite, coordinates, from_coordinates};
+use crate::polytope::{self, Planes};
+use crate::thin::{self, Feature};
+use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, capsule, cuboid, wall};
 
 /// A convex obstacle of ℝ³: a parry shape placed by a [`Pose`].
 ///
 /// The β-agent's position `q̂` and the inside test come from parry's
 /// `project_point(pose, q, solid = false)`, which returns the closest *boundary* point even for an
-/// α-agent inside; the normal `a`, `μ` and `p̂ = μ P p` follow the closed forms of Olfati-Saber (IEEE
-/// TAC 51(3) 2006) described on [`BetaAgent`].
+/// α-agent inside (except inside convex polyhedra, see [`convex_hull`](Self::convex_hull)); the
+/// normal `a`, `μ` and the velocity `p̂` follow the closed forms per feature listed on
+/// [`BetaAgent`].
 ///
 /// # Example
 /// ```
@@ -42,6 +51,32 @@ pub struct Obstacle3d {
 enum Kind {
     Ball(Ball),
     Wall(HalfSpace),
+    /// Local frame: the pose's translation and rotation.
+    Cuboid(Cuboid),
+    /// Local frame: the pose's translation (the centroid of the points).
+    Polyhedron(Box<Polyhedron>),
+    /// World coordinates (identity pose).
+    Capsule(Capsule),
+    /// World coordinates (identity pose).
+    Segment(Segment),
+    /// World coordinates (identity pose).
+    Triangle(Plate),
+}
+
+/// A convex polyhedron and its face planes.
+#[derive(Clone, Debug)]
+struct Polyhedron {
+    shape: ConvexPolyhedron,
+    planes: Planes<DVec3>,
+}
+
+/// A triangle of zero thickness, with its unit normal `(b − a) × (c − a)` normalised and the unit
+/// directions of its sides `ab`, `bc`, `ac` (parry's edge numbering).
+#[derive(Clone, Debug)]
+struct Plate {
+    shape: Triangle,
+    normal: DVec3,
+    sides: [DVec3; 3],
 }
 
 impl Obstacle3d {
@@ -94,12 +129,285 @@ impl Obstacle3d {
         })
     }
 
+    /// The closed box of half-widths `half_extents` along its own axes, centred at `centre` and
+    /// turned by the axis-angle vector `axis_angle` (the unit axis times the angle in radians;
+    /// zero for none).
+    ///
+    /// # Errors
+    /// [`ObstacleError::InvalidHalfExtent`] unless each half extent is finite and `> 0`;
+    /// [`ObstacleError::InvalidRotation`] when `axis_angle` is not finite;
+    /// [`ObstacleError::NonFinitePoint`] when `centre` has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle3d};
+    /// use glam::DVec3;
+    ///
+    /// // A unit cube turned by 45° about z, seen from far along x: its vertical edge is closest.
+    /// let turn = DVec3::Z * core::f64::consts::FRAC_PI_4;
+    /// let cube = Obstacle3d::cuboid(DVec3::ZERO, DVec3::ONE, turn)?;
+    /// let beta = cube.beta_agent(DVec3::new(5.0, 0.0, 0.5), DVec3::new(1.0, 1.0, 1.0));
+    /// assert!((beta.position - DVec3::new(2.0_f64.sqrt(), 0.0, 0.5)).length() < 1e-12);
+    /// assert!((beta.velocity - DVec3::Z).length() < 1e-12); // (e · p) e along the edge
+    /// assert_eq!(beta.mu, 0.0);
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn cuboid(
+        centre: DVec3,
+        half_extents: DVec3,
+        axis_angle: DVec3,
+    ) -> Result<Self, ObstacleError> {
+        check_finite("centre", centre)?;
+        cuboid::validate(half_extents)?;
+        if !axis_angle.is_finite() {
+            return Err(ObstacleError::InvalidRotation {
+                rotation: coordinates(axis_angle),
+                dim: 3,
+            });
+        }
+        Ok(Self {
+            kind: Kind::Cuboid(Cuboid::new(half_extents)),
+            pose: Pose::new(centre, axis_angle),
+        })
+    }
+
+    /// The convex polyhedron that is the convex hull of `points` (any order).
+    ///
+    /// The β-agent of an α-agent outside is parry's projection; inside, parry's projection (EPA)
+    /// is not relied on (it is wrong for some 2D polygons), and the β-agent is the foot of the
+    /// perpendicular on the nearest face plane, computed here.
+    ///
+    /// # Errors
+    /// [`ObstacleError::NonFinitePoint`] for a point with a NaN or infinite coordinate
+    /// (`points[i]`); [`ObstacleError::TooFewPoints`] for fewer than 4 points;
+    /// [`ObstacleError::FlatHull`] when they are all on one plane;
+    /// [`ObstacleError::PointInsideHull`] when a point is strictly inside the hull of the others (the
+    /// outline given is not convex).
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle3d};
+    /// use glam::DVec3;
+    ///
+    /// // The tetrahedron of the origin and the three unit vectors.
+    /// let tetrahedron = Obstacle3d::convex_hull(&[DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z])?;
+    /// let corner = tetrahedron.beta_agent(DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 3.0));
+    /// assert!(corner.position.length() < 1e-12);
+    /// assert_eq!((corner.velocity, corner.mu), (DVec3::ZERO, 0.0)); // a vertex
+    /// let edge = tetrahedron.beta_agent(DVec3::new(-1.0, -1.0, 0.5), DVec3::new(1.0, 2.0, 3.0));
+    /// assert!((edge.position - DVec3::new(0.0, 0.0, 0.5)).length() < 1e-12);
+    /// assert!((edge.velocity - DVec3::new(0.0, 0.0, 3.0)).length() < 1e-12); // along the edge
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn convex_hull(points: &[DVec3]) -> Result<Self, ObstacleError> {
+        polytope::validate(points)?;
+        let centroid = flock_math::mean(points);
+        let local: Vec<DVec3> = points.iter().map(|&x| x - centroid).collect();
+        let shape =
+            ConvexPolyhedron::from_convex_hull(&local).ok_or(ObstacleError::FlatHull { dim: 3 })?;
+        let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
+        let planes = shape
+            .faces()
+            .iter()
+            .map(|face| {
+                let first = shape.vertices_adj_to_face()[face.first_vertex_or_edge as usize];
+                (face.normal, face.normal.dot(shape.points()[first as usize]))
+            })
+            .collect();
+        let planes = Planes::new(planes, radius);
+        planes.check_convex(&local, points)?;
+        Ok(Self {
+            kind: Kind::Polyhedron(Box::new(Polyhedron { shape, planes })),
+            pose: Pose::from_translation(centroid),
+        })
+    }
+
+    /// The capsule of the points within `radius` of the segment `[a, b]`; with `a = b`, the ball
+    /// `B(a, radius)`.
+    ///
+    /// # Errors
+    /// [`ObstacleError::InvalidRadius`] unless `radius` is finite and `> 0`;
+    /// [`ObstacleError::NonFinitePoint`] when `a` or `b` has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle3d};
+    /// use glam::DVec3;
+    ///
+    /// // Axis along x; an α-agent above the side at distance ρ = 4 from the axis.
+    /// let capsule = Obstacle3d::capsule(DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), 1.0)?;
+    /// let side = capsule.beta_agent(DVec3::new(2.0, 0.0, 4.0), DVec3::new(1.0, 2.0, 3.0));
+    /// assert_eq!((side.position, side.mu), (DVec3::new(2.0, 0.0, 1.0), 0.25));
+    /// // Along the axis kept, around it scaled by R/ρ, across dropped.
+    /// assert_eq!(side.velocity, DVec3::new(1.0, 0.5, 0.0));
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn capsule(a: DVec3, b: DVec3, radius: f64) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        ball::check_radius(radius)?;
+        if a == b {
+            return Self::ball(a, radius);
+        }
+        Ok(Self {
+            kind: Kind::Capsule(Capsule::new(a, b, radius)),
+            pose: Pose::IDENTITY,
+        })
+    }
+
+    /// The segment `[a, b]` of zero thickness: a thin rod. An α-agent is inside only when on it
+    /// (parry's approximate test).
+    ///
+    /// # Errors
+    /// [`ObstacleError::DegenerateSegment`] when `a = b`;
+    /// [`ObstacleError::NonFinitePoint`] when `a` or `b` has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle3d};
+    /// use glam::DVec3;
+    ///
+    /// let rod = Obstacle3d::segment(DVec3::ZERO, DVec3::new(0.0, 0.0, 4.0))?;
+    /// let beta = rod.beta_agent(DVec3::new(-1.0, 0.0, 1.0), DVec3::new(1.0, 2.0, 3.0));
+    /// assert_eq!((beta.position, beta.normal), (DVec3::new(0.0, 0.0, 1.0), DVec3::new(-1.0, 0.0, 0.0)));
+    /// assert_eq!((beta.velocity, beta.mu), (DVec3::new(0.0, 0.0, 3.0), 0.0));
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn segment(a: DVec3, b: DVec3) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        if a == b {
+            return Err(ObstacleError::DegenerateSegment {
+                point: coordinates(a),
+            });
+        }
+        Ok(Self {
+            kind: Kind::Segment(Segment::new(a, b)),
+            pose: Pose::IDENTITY,
+        })
+    }
+
+    /// The triangle of vertices `a`, `b`, `c` as a plate of zero thickness, both sides of which are
+    /// boundary. An α-agent is inside only when on it (parry's approximate test).
+    ///
+    /// # Errors
+    /// [`ObstacleError::FlatTriangle`] when the vertices are on one line;
+    /// [`ObstacleError::NonFinitePoint`] when one has a NaN or infinite coordinate.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle, Obstacle3d};
+    /// use glam::DVec3;
+    ///
+    /// let plate = Obstacle3d::triangle(DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(0.0, 4.0, 0.0))?;
+    /// let below = plate.beta_agent(DVec3::new(1.0, 1.0, -2.0), DVec3::new(1.0, 2.0, 3.0));
+    /// assert_eq!((below.position, below.normal), (DVec3::new(1.0, 1.0, 0.0), DVec3::NEG_Z));
+    /// assert_eq!((below.velocity, below.mu), (DVec3::new(1.0, 2.0, 0.0), 1.0));
+    /// # Ok::<(), flock_obstacles::ObstacleError>(())
+    /// ```
+    pub fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        check_finite("c", c)?;
+        let normal = (b - a).cross(c - a).normalize_or_zero();
+        if polytope::affine_rank(&[a, b, c]) < 2 || normal == DVec3::ZERO {
+            return Err(ObstacleError::FlatTriangle {
+                vertices: [coordinates(a), coordinates(b), coordinates(c)],
+            });
+        }
+        let sides = [b - a, c - b, c - a].map(DVec3::normalize);
+        Ok(Self {
+            kind: Kind::Triangle(Plate {
+                shape: Triangle::new(a, b, c),
+                normal,
+                sides,
+            }),
+            pose: Pose::IDENTITY,
+        })
+    }
+
+    /// The obstacle `spec` describes, validated; vectors must have 3 coordinates, and a cuboid's
+    /// `rotation` is an axis-angle vector of 3 numbers or none.
+    ///
+    /// # Errors
+    /// [`ObstacleError::WrongDimension`] for a vector without 3 coordinates,
+    /// [`ObstacleError::InvalidRotation`] for a rotation of neither 0 nor 3 numbers, and the errors
+    /// of the constructor of the shape.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_obstacles::{Obstacle3d, ObstacleSpec};
+    ///
+    /// let spec = ObstacleSpec::Ball { centre: vec![1.0, 2.0], radius: 1.0 };
+    /// let error = Obstacle3d::from_spec(&spec).unwrap_err();
+    /// assert_eq!(error.field(), "centre");
+    /// assert!(error.to_string().contains("has 2 coordinates, but the scenario is 3D"));
+    /// ```
+    pub fn from_spec(spec: &ObstacleSpec) -> Result<Self, ObstacleError> {
+        match spec {
+            ObstacleSpec::Ball { centre, radius } => {
+                Self::ball(from_coordinates("centre", centre)?, *radius)
+            }
+            ObstacleSpec::Wall { point, normal } => Self::wall(
+                from_coordinates("point", point)?,
+                from_coordinates("normal", normal)?,
+            ),
+            ObstacleSpec::Cuboid {
+                centre,
+                half_extents,
+                rotation,
+            } => {
+                let axis_angle = match rotation.as_slice() {
+                    [] => DVec3::ZERO,
+                    &[x, y, z] => DVec3::new(x, y, z),
+                    _ => {
+                        return Err(ObstacleError::InvalidRotation {
+                            rotation: rotation.clone(),
+                            dim: 3,
+                        });
+                    }
+                };
+                Self::cuboid(
+                    from_coordinates("centre", centre)?,
+                    from_coordinates("half_extents", half_extents)?,
+                    axis_angle,
+                )
+            }
+            ObstacleSpec::ConvexHull { points } => {
+                let points = points
+                    .iter()
+                    .enumerate()
+                    .map(|(i, x)| from_coordinates(&format!("points[{i}]"), x))
+                    .collect::<Result<Vec<DVec3>, _>>()?;
+                Self::convex_hull(&points)
+            }
+            ObstacleSpec::Capsule { a, b, radius } => Self::capsule(
+                from_coordinates("a", a)?,
+                from_coordinates("b", b)?,
+                *radius,
+            ),
+            ObstacleSpec::Segment { a, b } => {
+                Self::segment(from_coordinates("a", a)?, from_coordinates("b", b)?)
+            }
+            ObstacleSpec::Triangle { a, b, c } => Self::triangle(
+                from_coordinates("a", a)?,
+                from_coordinates("b", b)?,
+                from_coordinates("c", c)?,
+            ),
+        }
+    }
+
     /// The parry shape, in its local frame (for other parry queries, e.g. `compute_aabb`).
     #[must_use]
     pub fn shape(&self) -> &dyn Shape {
         match &self.kind {
             Kind::Ball(ball) => ball,
             Kind::Wall(half_space) => half_space,
+            Kind::Cuboid(cuboid) => cuboid,
+            Kind::Polyhedron(polyhedron) => &polyhedron.shape,
+            Kind::Capsule(capsule) => capsule,
+            Kind::Segment(segment) => segment,
+            Kind::Triangle(plate) => &plate.shape,
         }
     }
 
@@ -107,6 +415,19 @@ impl Obstacle3d {
     #[must_use]
     pub fn pose(&self) -> &Pose {
         &self.pose
+    }
+
+    /// The β-agent computed in the local frame of the pose, brought back to the world.
+    #[inline]
+    fn to_world(&self, q: DVec3, local: BetaAgent<DVec3>) -> BetaAgent<DVec3> {
+        BetaAgent::with_velocity(
+            q,
+            self.pose.transform_point(local.position),
+            self.pose.transform_vector(local.normal),
+            self.pose.transform_vector(local.velocity),
+            local.mu,
+            local.inside,
+        )
     }
 }
 
@@ -138,6 +459,95 @@ impl Obstacle<DVec3> for Obstacle3d {
                 let normal = self.pose.transform_vector(shape.normal);
                 wall::beta_agent(q, p, normal, projection.point, projection.is_inside)
             }
+            Kind::Cuboid(shape) => {
+                let local_q = self.pose.inverse_transform_point(q);
+                let local_p = self.pose.inverse_transform_vector(p);
+                let projection = shape.project_local_point(local_q, false);
+                let local = cuboid::beta_agent(
+                    local_q,
+                    local_p,
+                    shape.half_extents,
+                    projection.point,
+                    projection.is_inside,
+                );
+                self.to_world(q, local)
+            }
+            Kind::Polyhedron(polyhedron) => {
+                let local_q = q - self.pose.translation;
+                let projection = polyhedron.shape.project_local_point(local_q, false);
+                let local = polytope::beta_agent(
+                    local_q,
+                    p,
+                    &polyhedron.planes,
+                    projection.point,
+                    projection.is_inside,
+                );
+                BetaAgent::with_velocity(
+                    q,
+                    local.position + self.pose.translation,
+                    local.normal,
+                    local.velocity,
+                    local.mu,
+                    local.inside,
+                )
+            }
+            Kind::Capsule(shape) => {
+                let projection = shape.project_local_point(q, false);
+                capsule::beta_agent(
+                    q,
+                    p,
+                    shape.segment.a,
+                    shape.segment.b,
+                    shape.radius,
+                    projection.point,
+                    projection.is_inside,
+                )
+            }
+            Kind::Segment(shape) => {
+                let (projection, location) = shape.project_local_point_and_get_location(q, false);
+                let direction = (shape.b - shape.a).normalize();
+                let feature = match location {
+                    SegmentPointLocation::OnVertex(_) => Feature::Vertex,
+                    SegmentPointLocation::OnEdge(_) => Feature::Edge(direction),
+                };
+                thin::beta_agent(
+                    q,
+                    p,
+                    projection.point,
+                    projection.is_inside,
+                    feature,
+                    orthogonal_unit(direction),
+                )
+            }
+            Kind::Triangle(plate) => {
+                let (projection, location) =
+                    plate.shape.project_local_point_and_get_location(q, false);
+                let feature = match location {
+                    TrianglePointLocation::OnVertex(_) => Feature::Vertex,
+                    TrianglePointLocation::OnEdge(side, _) => {
+                        Feature::Edge(plate.sides[side as usize])
+                    }
+                    TrianglePointLocation::OnFace(..) | TrianglePointLocation::OnSolid => {
+                        Feature::Face(plate.normal)
+                    }
+                };
+                thin::beta_agent(
+                    q,
+                    p,
+                    projection.point,
+                    projection.is_inside,
+                    feature,
+                    plate.normal,
+                )
+            }
         }
+    }
+
+    fn aabb(&self) -> Option<(DVec3, DVec3)> {
+        if let Kind::Wall(_) = self.kind {
+            return None;
+        }
+        let aabb = self.shape().compute_aabb(&self.pose);
+        Some((aabb.mins, aabb.maxs))
     }
 }

@@ -6,7 +6,8 @@ use flock_math::Vector;
 use crate::error::{check_finite, coordinates};
 use crate::{BetaAgent, ObstacleError};
 
-/// Checks a wall's `point` (finite) and `outward_normal` (finite, non-zero); returns the unit normal.
+/// Checks a wall's `point` (finite) and `outward_normal` (the `normal` field: finite, non-zero);
+/// returns the unit normal.
 pub(crate) fn unit_normal<V: Vector>(point: V, outward_normal: V) -> Result<V, ObstacleError> {
     check_finite("point", point)?;
     let unit = outward_normal.normalize_or_zero();

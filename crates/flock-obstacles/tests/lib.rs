@@ -3,7 +3,14 @@
 
 mod ball;
 mod beta_agent;
+mod capsule;
 mod common;
+mod contract;
+mod cuboid;
 mod errors;
+mod field;
+mod hull;
 mod planar;
+mod spec;
+mod thin;
 mod wall;

@@ -1,11 +1,12 @@
-//! Algorithms 1 and 2 of Olfati-Saber, *Flocking for multi-agent dynamic systems: algorithms and
+//! Algorithms 1, 2 and 3 of Olfati-Saber, *Flocking for multi-agent dynamic systems: algorithms and
 //! theory*, IEEE TAC 51(3), 2006.
 
 use flock_graph::ProximityNet;
 use flock_math::{Vector, mean};
+use flock_obstacles::Space;
 
 use crate::protocol::per_agent;
-use crate::{AlphaInteraction, NavigationalFeedback, Protocol, Swarm};
+use crate::{AlphaInteraction, BetaInteraction, NavigationalFeedback, Protocol, Swarm};
 
 /// Algorithm 1 (eq. 24): u_i = u_i^α, the α-interaction alone. Total momentum is preserved
 /// (Σ_i u_i = 0) and, in the frame of the centre of mass, H = V(q) + ½ Σ ‖p_i − p_c‖² is
@@ -45,6 +46,24 @@ pub struct Algorithm2<V> {
     pub navigation: NavigationalFeedback<V>,
 }
 
+impl<V: Vector> Algorithm2<V> {
+    /// u_i = u_i^α + f_i^γ for agent `i`, given the γ-agent's state `reference` = (q_r, p_r).
+    #[must_use]
+    pub fn input(&self, i: usize, reference: (V, V), q: &[V], p: &[V], net: &ProximityNet) -> V {
+        self.alpha.input(i, q, p, net) + self.navigation.input(q[i], p[i], reference)
+    }
+
+    /// c₁^α V(q) + Σ_i V_γ(q_i): the potential part of the Hamiltonian.
+    fn potential(&self, q_r: V, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        let tether: f64 = swarm
+            .positions
+            .iter()
+            .map(|&q| self.navigation.potential(q, q_r))
+            .sum();
+        self.alpha.c1() * self.alpha.potential(&swarm.positions, net) + tether
+    }
+}
+
 impl<V: Vector> Protocol<V> for Algorithm2<V> {
     fn interaction_range(&self) -> f64 {
         self.alpha.params().r
@@ -53,9 +72,7 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let reference = self.navigation.gamma.state(t);
-        per_agent(inputs, |i| {
-            self.alpha.input(i, q, p, net) + self.navigation.input(q[i], p[i], reference)
-        });
+        per_agent(inputs, |i| self.input(i, reference, q, p, net));
     }
 
     /// H = c₁^α V(q) + Σ V_γ(q_i) + ½ Σ ‖p_i − p_r‖² with V_γ the feedback potential ((c₁/2)‖q_i − q_r‖²
@@ -63,14 +80,43 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
     /// the γ-agent; Ḣ = −c₂^α pᵀL̂p − c₂ Σ ‖p_i − p_r‖² ≤ 0 when p_r is constant (Theorem 3).
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         let (q_r, p_r) = self.navigation.gamma.state(t);
-        let tether: f64 = swarm
-            .positions
-            .iter()
-            .map(|&q| self.navigation.potential(q, q_r))
-            .sum();
-        self.alpha.c1() * self.alpha.potential(&swarm.positions, net)
-            + tether
-            + kinetic(&swarm.velocities, p_r)
+        self.potential(q_r, swarm, net) + kinetic(&swarm.velocities, p_r)
+    }
+}
+
+/// Algorithm 3 (eq. 67): u_i = u_i^α + u_i^β + u_i^γ, flocking with obstacle avoidance. The α-part
+/// and the navigational feedback are those of an [`Algorithm2`] (use
+/// [`NavigationalFeedback::bounded`](crate::NavigationalFeedback::bounded) for the paper's
+/// u_i^γ = −c₁^γ σ₁(q_i − q_r) − c₂^γ(p_i − p_r)); the β-part repels from the obstacles' β-agents.
+/// With no obstacle within r′ of any agent it is exactly that Algorithm 2.
+#[derive(Clone, Debug)]
+pub struct Algorithm3<V: Space> {
+    /// The α-interaction and the navigational feedback.
+    pub flock: Algorithm2<V>,
+    /// The β-interaction with the obstacles.
+    pub beta: BetaInteraction<V>,
+}
+
+impl<V: Space> Protocol<V> for Algorithm3<V> {
+    fn interaction_range(&self) -> f64 {
+        self.flock.alpha.params().r
+    }
+
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
+        let (q, p) = (&swarm.positions, &swarm.velocities);
+        let reference = self.flock.navigation.gamma.state(t);
+        per_agent(inputs, |i| {
+            self.flock.input(i, reference, q, p, net) + self.beta.input(q[i], p[i])
+        });
+    }
+
+    /// H = c₁^α V_α + c₁^β V_β + c₁^γ V_γ + ½ Σ ‖p_i‖² (Theorem 6): non-increasing once
+    /// (n/2)⟨p_c, p_d⟩ ≤ T (eq. 76), e.g. always for a static γ-agent.
+    fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        let (q_r, _) = self.flock.navigation.gamma.state(t);
+        self.flock.potential(q_r, swarm, net)
+            + self.beta.potential(&swarm.positions)
+            + kinetic(&swarm.velocities, V::ZERO)
     }
 }
 

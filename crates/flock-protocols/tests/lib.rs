@@ -1,6 +1,9 @@
 //! Integration tests of flock-protocols: the theorems of TAC 2006 checked numerically.
 
+mod algorithm3;
 mod common;
 mod determinism;
 mod invariance;
+mod olfati_saber2003;
+mod tanner2003;
 mod theory;

@@ -1,0 +1,149 @@
+//! Algorithm 3 of TAC 2006: obstacle avoidance with β-agents.
+
+use flock_graph::ProximityNet;
+use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
+use flock_protocols::{
+    Algorithm2, Algorithm3, BetaInteraction, BetaParams, GammaAgent, Integrator,
+    NavigationalFeedback, Protocol, Simulation, Swarm,
+};
+use glam::{DVec2, DVec3};
+
+use crate::common::{papers_alpha, random_swarm};
+
+fn lifted<V: Space>(v: &[f64]) -> Vec<f64> {
+    (0..V::DIM)
+        .map(|k| v.get(k).copied().unwrap_or(0.0))
+        .collect()
+}
+
+fn algorithm3<V: Space>(specs: &[ObstacleSpec], gamma: GammaAgent<V>) -> Algorithm3<V> {
+    let field = ObstacleField::from_specs(specs).expect("valid obstacles");
+    Algorithm3 {
+        flock: Algorithm2 {
+            alpha: papers_alpha(),
+            navigation: NavigationalFeedback::bounded(gamma, 2.0, 2.0 * 2f64.sqrt()),
+        },
+        beta: BetaInteraction::new(
+            field,
+            BetaParams::papers(7.0),
+            0.1,
+            10.0,
+            2.0 * 10f64.sqrt(),
+        ),
+    }
+}
+
+fn controls<V: Space, P: Protocol<V>>(protocol: &P, swarm: &Swarm<V>) -> Vec<V> {
+    let net = ProximityNet::brute_force(&swarm.positions, protocol.interaction_range());
+    let mut u = vec![V::ZERO; swarm.len()];
+    protocol.controls(0.0, swarm, &net, &mut u);
+    u
+}
+
+/// With every obstacle farther than r′ from every agent, Algorithm 3 is its Algorithm 2, bit for bit.
+fn reduces_to_algorithm2<V: Space>() {
+    let swarm: Swarm<V> = random_swarm(100, 20.0, 2.0, 21);
+    let far = [
+        ObstacleSpec::Ball {
+            centre: lifted::<V>(&[200.0, 0.0]),
+            radius: 10.0,
+        },
+        ObstacleSpec::Wall {
+            point: lifted::<V>(&[0.0, -100.0]),
+            normal: lifted::<V>(&[0.0, 1.0]),
+        },
+    ];
+    let gamma = GammaAgent::Static { position: V::ZERO };
+    let with_obstacles = algorithm3::<V>(&far, gamma);
+    assert_eq!(
+        controls(&with_obstacles, &swarm),
+        controls(&with_obstacles.flock, &swarm)
+    );
+    // and an obstacle in range does change the inputs
+    let near = [ObstacleSpec::Ball {
+        centre: lifted::<V>(&[0.0, 0.0]),
+        radius: 3.0,
+    }];
+    let shifted = Swarm::new(
+        swarm
+            .positions
+            .iter()
+            .map(|&q| q + V::from_fn(|_| 30.0))
+            .collect(),
+        swarm.velocities.clone(),
+    );
+    let blocked = algorithm3::<V>(&near, GammaAgent::Static { position: V::ZERO });
+    assert_ne!(controls(&blocked, &swarm), controls(&blocked.flock, &swarm));
+    assert_eq!(
+        controls(&blocked, &shifted),
+        controls(&blocked.flock, &shifted)
+    );
+}
+
+#[test]
+fn reduces_to_algorithm2_without_obstacles_in_range_2d() {
+    reduces_to_algorithm2::<DVec2>();
+}
+
+#[test]
+fn reduces_to_algorithm2_without_obstacles_in_range_3d() {
+    reduces_to_algorithm2::<DVec3>();
+}
+
+/// Theorem 6 with a static γ-agent (condition (76) holds for all t): H is non-increasing, and no agent
+/// enters an obstacle.
+fn theorem6<V: Space>() {
+    let specs = [
+        ObstacleSpec::Ball {
+            centre: lifted::<V>(&[25.0, 2.0]),
+            radius: 6.0,
+        },
+        ObstacleSpec::Wall {
+            point: lifted::<V>(&[0.0, -14.0]),
+            normal: lifted::<V>(&[0.0, 1.0]),
+        },
+    ];
+    let protocol = algorithm3::<V>(
+        &specs,
+        GammaAgent::Static {
+            position: V::from_fn(|k| if k == 0 { 45.0 } else { 0.0 }),
+        },
+    );
+    let swarm: Swarm<V> = random_swarm(30, 9.0, 0.5, 6);
+    let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.002);
+    let start = sim.energy();
+    let mut energy = start;
+    let mut closest = f64::INFINITY;
+    let mut used_beta = false;
+    for _ in 0..4000 {
+        sim.step();
+        let next = sim.energy();
+        assert!(
+            next <= energy + 1e-9 * energy.abs().max(1.0),
+            "H rose from {energy} to {next} at t = {}",
+            sim.time()
+        );
+        energy = next;
+        for &q in &sim.swarm().positions {
+            let clearance = sim.protocol().beta.field().clearance(q);
+            closest = closest.min(clearance);
+            used_beta |= clearance < BetaParams::papers(7.0).r;
+        }
+    }
+    assert!(used_beta, "the run must bring agents near the obstacles");
+    assert!(
+        closest > 0.5,
+        "an agent came within {closest} of an obstacle"
+    );
+    assert!(energy < start, "H must dissipate: {start} → {energy}");
+}
+
+#[test]
+fn theorem6_energy_non_increasing_2d() {
+    theorem6::<DVec2>();
+}
+
+#[test]
+fn theorem6_energy_non_increasing_3d() {
+    theorem6::<DVec3>();
+}
