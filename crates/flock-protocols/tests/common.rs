@@ -1,7 +1,7 @@
 //! Shared fixtures: seeded random swarms and exact α-lattices.
 
 use flock_math::Vector;
-use flock_protocols::{AlphaInteraction, AlphaParams, Swarm};
+use flock_protocols::{AlphaInteraction, AlphaParams, Protocol, Simulation, Swarm};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -34,4 +34,25 @@ pub fn triangular_lattice<V: Vector>(rows: usize, cols: usize, d: f64) -> Vec<V>
         }
     }
     points
+}
+
+/// Runs `steps` steps asserting the energy does not rise; returns (first, last).
+pub fn energy_along<V: Vector, P: Protocol<V>>(
+    sim: &mut Simulation<V, P>,
+    steps: usize,
+    energy: impl Fn(&Simulation<V, P>) -> f64,
+) -> (f64, f64) {
+    let start = energy(sim);
+    let mut previous = start;
+    for _ in 0..steps {
+        sim.step();
+        let next = energy(sim);
+        assert!(
+            next <= previous + 1e-9 * previous.abs().max(1.0),
+            "energy rose from {previous} to {next} at t = {}",
+            sim.time()
+        );
+        previous = next;
+    }
+    (start, previous)
 }

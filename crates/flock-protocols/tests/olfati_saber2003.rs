@@ -14,7 +14,7 @@ use flock_protocols::{
 };
 use glam::{DVec2, DVec3};
 
-use crate::common::{planar, random_swarm, triangular_lattice};
+use crate::common::{energy_along, planar, random_swarm, triangular_lattice};
 
 /// ‖a − b‖ ≤ epsilon for vectors of either dimension.
 #[track_caller]
@@ -296,27 +296,6 @@ fn eq_37_needs_the_binary_potential() {
         error > 5.0 * with_smooth_v,
         "error {error} vs smooth-V bound {with_smooth_v}"
     );
-}
-
-/// Runs `steps` steps asserting the energy does not rise; returns (first, last).
-fn energy_along<V: Vector, P: Protocol<V>>(
-    sim: &mut Simulation<V, P>,
-    steps: usize,
-    energy: impl Fn(&Simulation<V, P>) -> f64,
-) -> (f64, f64) {
-    let start = energy(sim);
-    let mut previous = start;
-    for _ in 0..steps {
-        sim.step();
-        let next = energy(sim);
-        assert!(
-            next <= previous + 1e-9 * previous.abs().max(1.0),
-            "energy rose from {previous} to {next} at t = {}",
-            sim.time()
-        );
-        previous = next;
-    }
-    (start, previous)
 }
 
 /// Proposition 5: H_s = V + K_r does not rise along (α, α, 2), links made and lost included

@@ -9,7 +9,7 @@ use flock_protocols::{
 };
 use glam::{DVec2, DVec3};
 
-use crate::common::{papers_alpha, random_swarm, triangular_lattice};
+use crate::common::{energy_along, papers_alpha, random_swarm, triangular_lattice};
 
 fn controls<V: Vector, P: Protocol<V>>(protocol: &P, t: f64, swarm: &Swarm<V>) -> Vec<V> {
     let net = ProximityNet::brute_force(&swarm.positions, protocol.interaction_range());
@@ -55,23 +55,6 @@ fn algorithm1_preserves_momentum_3d() {
     momentum_preserved::<DVec3>();
 }
 
-/// Runs `steps` steps asserting H(t_{k+1}) ≤ H(t_k) up to round-off; returns (H(0), H(end)).
-fn energy_along<V: Vector, P: Protocol<V>>(sim: &mut Simulation<V, P>, steps: usize) -> (f64, f64) {
-    let start = sim.energy();
-    let mut energy = start;
-    for _ in 0..steps {
-        sim.step();
-        let next = sim.energy();
-        assert!(
-            next <= energy + 1e-9 * energy.abs().max(1.0),
-            "H rose from {energy} to {next} at t = {}",
-            sim.time()
-        );
-        energy = next;
-    }
-    (start, energy)
-}
-
 /// Theorem 1: H = V + ½Σ‖p_i − p_c‖² is non-increasing along Algorithm 1 (checked with RK4 and a
 /// small step, so the integration error per step is far below the dissipation).
 fn energy_non_increasing<V: Vector>() {
@@ -84,7 +67,7 @@ fn energy_non_increasing<V: Vector>() {
         swarm,
         0.002,
     );
-    let (start, end) = energy_along(&mut sim, 2500);
+    let (start, end) = energy_along(&mut sim, 2500, Simulation::energy);
     assert!(end < start - 1.0, "H must dissipate: {start} → {end}");
 }
 
@@ -115,7 +98,7 @@ fn algorithm2_energy_non_increasing_with_a_moving_gamma_agent() {
         navigation,
     };
     let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.002);
-    let (start, end) = energy_along(&mut sim, 2500);
+    let (start, end) = energy_along(&mut sim, 2500, Simulation::energy);
     assert!(end < 0.5 * start, "H must dissipate: {start} → {end}");
 }
 
