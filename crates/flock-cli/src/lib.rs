@@ -3,11 +3,14 @@
 //! - [`Scenario`]: a RON scenario file, [`Scenario::load`] parses and validates it.
 //! - [`run_scenario`]: runs it in its dimension and hands records to a [`Recorder`].
 //! - [`RunDirectory`]: the recorder behind `flock run --out DIR`.
+//! - [`bench::bench()`]: the synthetic throughput benchmark behind `flock bench`.
 
+pub mod bench;
 pub mod diagnostics;
 pub mod error;
 pub mod initial;
 pub mod output;
+pub mod plot;
 pub mod run;
 pub mod scenario;
 pub mod summary;
@@ -15,6 +18,7 @@ mod validate;
 
 pub use error::ScenarioError;
 pub use output::{METRICS_HEADER, RunDirectory};
+pub use plot::{PlotError, plot_run};
 pub use run::{Record, Recorder, RunError, RunSummary, run, run_scenario};
 pub use scenario::Scenario;
 pub use summary::Report;

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use flock_cli::{Report, RunDirectory, RunError, Scenario, run_scenario};
+use flock_cli::{Report, RunDirectory, RunError, Scenario, plot_run, run_scenario};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -29,11 +29,41 @@ enum Command {
         /// Worker threads (default: all cores); results are identical for any count.
         #[arg(long)]
         threads: Option<usize>,
+        /// Also draw the run's figures into DIR/figures (as `flock plot DIR`).
+        #[arg(long)]
+        plot: bool,
+    },
+    /// Draw the figures of a finished run into DIR/figures: snapshots (SVG, PNG), the metric curves
+    /// of TAC 2006 Fig. 18, an animated GIF and a self-contained HTML player.
+    Plot {
+        /// A run directory written by `flock run`.
+        dir: PathBuf,
     },
     /// Check a scenario file and print it with every default filled in.
     Validate {
         /// The scenario file (.ron).
         scenario: PathBuf,
+    },
+    /// Time a synthetic scenario of n agents on an α-lattice and print agent-steps/s and memory.
+    Bench {
+        /// The number of agents.
+        #[arg(long, default_value_t = 100_000)]
+        n: usize,
+        /// The dimension, 2 or 3.
+        #[arg(long, default_value_t = 2)]
+        dim: usize,
+        /// Timed steps (metrics recorded every 10).
+        #[arg(long, default_value_t = 20)]
+        steps: u64,
+        /// The algorithm: 1, 2 or 3 (3 adds 1,000 obstacles).
+        #[arg(long, default_value = "2")]
+        algorithm: flock_cli::bench::BenchAlgorithm,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Untimed steps before the timed ones.
+        #[arg(long, default_value_t = 3)]
+        warmup: u64,
     },
 }
 
@@ -42,6 +72,54 @@ const INVALID: u8 = 2;
 
 fn main() -> ExitCode {
     match Cli::parse().command {
+        Command::Bench {
+            n,
+            dim,
+            steps,
+            algorithm,
+            threads,
+            warmup,
+        } => {
+            if let Some(threads) = threads
+                && let Err(e) = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build_global()
+            {
+                eprintln!("error: cannot start {threads} threads: {e}");
+                return ExitCode::FAILURE;
+            }
+            let config = flock_cli::bench::BenchConfig {
+                n,
+                dim,
+                steps,
+                warmup,
+                algorithm,
+            };
+            match flock_cli::bench::bench(&config) {
+                Ok(report) => {
+                    println!("{report}");
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(INVALID)
+                }
+            }
+        }
+        Command::Plot { dir } => match plot_run(&dir) {
+            Ok(files) => {
+                println!(
+                    "{} figure file(s) in {}",
+                    files.len(),
+                    dir.join("figures").display()
+                );
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
                 println!("{}: valid", scenario.display());
@@ -59,6 +137,7 @@ fn main() -> ExitCode {
             out,
             force,
             threads,
+            plot,
         } => {
             let loaded = match Scenario::load(&scenario) {
                 Ok(s) => s,
@@ -79,6 +158,20 @@ fn main() -> ExitCode {
                 PathBuf::from("out").join(scenario.file_stem().unwrap_or_default())
             });
             match execute(&loaded, &out, force) {
+                Ok(()) if plot => match plot_run(&out) {
+                    Ok(files) => {
+                        println!(
+                            "  figures               {} file(s) in {}",
+                            files.len(),
+                            out.join("figures").display()
+                        );
+                        ExitCode::SUCCESS
+                    }
+                    Err(e) => {
+                        eprintln!("error: the run is complete, but its figures failed: {e}");
+                        ExitCode::FAILURE
+                    }
+                },
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {
                     eprintln!("error: {e}");

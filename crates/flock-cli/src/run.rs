@@ -254,7 +254,8 @@ pub fn run<V: Space, R: Recorder>(
     }
 }
 
-fn gamma_agent<V: Vector>(gamma: &Gamma) -> GammaAgent<V> {
+/// The γ-agent of a validated scenario.
+pub(crate) fn gamma_agent<V: Vector>(gamma: &Gamma) -> GammaAgent<V> {
     match gamma {
         Gamma::Static { position } => GammaAgent::Static {
             position: to_vector(position),

@@ -1,9 +1,11 @@
 //! Integration tests of `flock-cli`, one binary (see STYLE.md): scenario files, the papers' runs,
 //! snapshots and determinism of short runs, and the errors of bad scenarios and of the `flock` binary.
 
+mod bench;
 mod common;
 mod errors;
 mod fixtures;
 mod obstacle_errors;
 mod papers;
+mod plot;
 mod snapshots;

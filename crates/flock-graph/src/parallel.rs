@@ -29,6 +29,17 @@ pub(crate) fn for_each_indexed_mut<T: Send>(
     }
 }
 
+/// Runs `a` and `b`, potentially in parallel (rayon's `join` with the `parallel` feature).
+pub(crate) fn join(a: impl FnOnce() + Send, b: impl FnOnce() + Send) {
+    #[cfg(feature = "parallel")]
+    rayon::join(a, b);
+    #[cfg(not(feature = "parallel"))]
+    {
+        a();
+        b();
+    }
+}
+
 /// `out[k] = f(k)` for every `k`, on the rayon pool with the `parallel` feature.
 pub(crate) fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
     for_each_indexed_mut(out, FILL_MIN_LEN, |k, o| *o = f(k));

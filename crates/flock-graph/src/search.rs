@@ -10,17 +10,19 @@
 //! whatever the configuration.
 //!
 //! The lists are built agent by agent in cell order (so that consecutive agents scan the same
-//! memory), each sorted by neighbour index, into per-block buffers; they are then gathered in agent
-//! order into the net. The net is canonical: equal to [`ProximityNet::brute_force`] edge for edge
-//! and bit for bit. With the `parallel` feature the blocks are filled on the rayon pool; since the
-//! blocks only partition the work, the net is identical with or without it, for any pool size.
+//! memory), each sorted by neighbour index, into per-block buffers of neighbour indices only; they
+//! are then gathered in agent order into the net, each distance recomputed there from the positions
+//! with the predicate's own squared length. The net is canonical: equal to
+//! [`ProximityNet::brute_force`] edge for edge and bit for bit. With the `parallel` feature the
+//! blocks are filled, and the net gathered, on the rayon pool; since the blocks and gather ranges
+//! only partition the work, the net is identical with or without it, for any pool size.
 
 use core::ops::Range;
 
 use flock_math::Vector;
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
-use crate::parallel::for_each_indexed_mut;
+use crate::parallel::{for_each_indexed_mut, join};
 
 /// Agents per block of work (any value gives the same net): a unit of rayon work with the
 /// `parallel` feature, a single block without it.
@@ -105,16 +107,41 @@ impl NeighbourSearch {
             let start = b * block_len;
             block.fill::<V>(grid, r2, start..start + (slots - start).min(block_len));
         });
-        // Gather in agent order.
-        for &slot in &grid.slot_of {
-            if slot != NO_SLOT {
-                let block = &self.blocks[slot / block_len];
-                let edges = block.edges(slot % block_len);
-                neighbours.extend_from_slice(&block.neighbours[edges.clone()]);
-                distances.extend_from_slice(&block.distances[edges]);
-            }
-            offsets.push(neighbours.len());
+        // Gather in agent order: the offsets first, then the lists and their distances (recomputed
+        // with the predicate's own squared length, so bit-identical) in parallel ranges of agents.
+        let slot_of = &grid.slot_of;
+        let blocks = &self.blocks[..count];
+        let list = |i: usize| {
+            let slot = slot_of[i];
+            (slot != NO_SLOT).then(|| {
+                let block = &blocks[slot / block_len];
+                &block.neighbours[block.edges(slot % block_len)]
+            })
+        };
+        for i in 0..n {
+            let len = list(i).map_or(0, <[u32]>::len);
+            offsets.push(offsets[i] + len);
         }
+        let edges = offsets[n];
+        neighbours.resize(edges, 0);
+        distances.resize(edges, 0.0);
+        let offsets = &offsets[..];
+        gather(
+            0..n,
+            neighbours,
+            distances,
+            &|i, out, lengths| {
+                if let Some(list) = list(i) {
+                    let qi = positions[i];
+                    out.copy_from_slice(list);
+                    for (l, &j) in lengths.iter_mut().zip(list) {
+                        *l = squared_distance(qi, positions[j as usize]).sqrt();
+                    }
+                }
+                debug_assert_eq!(out.len(), offsets[i + 1] - offsets[i]);
+            },
+            offsets,
+        );
     }
 
     /// The exact minimum distance over all pairs of finite agents, `None` when there are fewer
@@ -154,6 +181,37 @@ impl NeighbourSearch {
     }
 }
 
+/// Agents per task of the parallel gather.
+const GATHER_LEN: usize = 4096;
+
+/// Calls `f(i, neighbours_i, distances_i)` for every agent of `agents`, where the slices are agent
+/// i's ranges (given by `offsets`) of `neighbours` and `distances`, which start at agent
+/// `agents.start`; halves the range on the rayon pool down to [`GATHER_LEN`] agents.
+fn gather(
+    agents: Range<usize>,
+    neighbours: &mut [u32],
+    distances: &mut [f64],
+    f: &(impl Fn(usize, &mut [u32], &mut [f64]) + Sync),
+    offsets: &[usize],
+) {
+    if agents.len() > GATHER_LEN {
+        let mid = agents.start + agents.len() / 2;
+        let split = offsets[mid] - offsets[agents.start];
+        let (n_lo, n_hi) = neighbours.split_at_mut(split);
+        let (d_lo, d_hi) = distances.split_at_mut(split);
+        join(
+            || gather(agents.start..mid, n_lo, d_lo, f, offsets),
+            || gather(mid..agents.end, n_hi, d_hi, f, offsets),
+        );
+        return;
+    }
+    let base = offsets[agents.start];
+    for i in agents {
+        let edges = offsets[i] - base..offsets[i + 1] - base;
+        f(i, &mut neighbours[edges.clone()], &mut distances[edges]);
+    }
+}
+
 /// The exact minimum distance min_{i≠j} ‖q_j − q_i‖ over all pairs of finite agents (agents with
 /// a NaN or infinite coordinate are ignored), `None` when there are fewer than two.
 ///
@@ -179,12 +237,11 @@ pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
 /// The sorted neighbour lists of a block of consecutive slots.
 #[derive(Clone, Debug, Default)]
 struct Block {
-    /// End of each slot's list in `neighbours` and `distances`.
+    /// End of each slot's list in `neighbours`.
     ends: Vec<usize>,
     neighbours: Vec<u32>,
-    distances: Vec<f64>,
-    /// Candidates `(j, ‖q_j − q_i‖²)` of one agent, before sorting.
-    scratch: Vec<(u32, f64)>,
+    /// Candidates j of one agent, before sorting.
+    scratch: Vec<u32>,
 }
 
 impl Block {
@@ -192,21 +249,17 @@ impl Block {
     fn fill<V: Vector>(&mut self, grid: &CellGrid, r2: f64, slots: Range<usize>) {
         self.ends.clear();
         self.neighbours.clear();
-        self.distances.clear();
         for slot in slots {
             let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
             self.scratch.clear();
             grid.for_each_candidate(grid.slot_cell[slot], |j, qj: V| {
                 let d2 = squared_distance(qi, qj);
                 if j != i && in_range(d2, r2) {
-                    self.scratch.push((node_index(j), d2));
+                    self.scratch.push(node_index(j));
                 }
             });
-            self.scratch.sort_unstable_by_key(|&(j, _)| j);
-            for &(j, d2) in &self.scratch {
-                self.neighbours.push(j);
-                self.distances.push(d2.sqrt());
-            }
+            self.scratch.sort_unstable();
+            self.neighbours.extend_from_slice(&self.scratch);
             self.ends.push(self.neighbours.len());
         }
     }

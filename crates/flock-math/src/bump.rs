@@ -66,7 +66,13 @@ impl Bump {
         if (0.0..self.h).contains(&z) {
             1.0
         } else if (self.h..=1.0).contains(&z) {
-            (0.5 * (1.0 + self.phase(z).cos())).powi(self.power)
+            let half = 0.5 * (1.0 + self.phase(z).cos());
+            // powi(1) is exact; skipping the call keeps ρ_h to one cosine
+            if self.power == 1 {
+                half
+            } else {
+                half.powi(self.power)
+            }
         } else {
             0.0
         }

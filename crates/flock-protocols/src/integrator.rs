@@ -128,14 +128,26 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             positions,
             velocities,
         } = &mut self.swarm;
-        for ((q, p), &u) in positions
+        let update = |((q, p), &u): ((&mut V, &mut V), &V)| {
+            *p += u * h;
+            *q += *p * h;
+        };
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            positions
+                .par_iter_mut()
+                .zip(velocities.par_iter_mut())
+                .zip(self.inputs.par_iter())
+                .with_min_len(4096)
+                .for_each(update);
+        }
+        #[cfg(not(feature = "parallel"))]
+        positions
             .iter_mut()
             .zip(velocities.iter_mut())
             .zip(&self.inputs)
-        {
-            *p += u * h;
-            *q += *p * h;
-        }
+            .for_each(update);
     }
 
     /// y ← y + (h/6)(k₁ + 2k₂ + 2k₃ + k₄) with y = (q, p) and k = (p, u(t, q, p)).

@@ -1,0 +1,130 @@
+//! `flock plot DIR` and `flock run --plot`: the figures of a finished run (flock-viz), with the
+//! obstacles and the γ-agent read back from the run's resolved `scenario.ron`.
+
+use std::path::{Path, PathBuf};
+
+use flock_math::Vector;
+use flock_obstacles::ObstacleSpec;
+use flock_viz::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figures};
+use glam::{DMat2, DQuat, DVec2, DVec3};
+
+use crate::initial::to_vector;
+use crate::run::gamma_agent;
+use crate::scenario::{Algorithm, Gamma, Scenario};
+
+/// Why figures could not be drawn.
+#[derive(Debug)]
+pub enum PlotError {
+    /// The run's `scenario.ron` is missing or invalid.
+    Scenario(crate::ScenarioError),
+    /// Reading the run's CSV files or drawing failed.
+    Viz(VizError),
+}
+
+impl std::fmt::Display for PlotError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Scenario(e) => write!(f, "{e}"),
+            Self::Viz(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for PlotError {}
+
+/// Draws the figures of the run in `dir` (snapshots, metric curves, GIF, HTML player) into
+/// `dir/figures/`, and returns the files written.
+///
+/// # Errors
+/// When `dir` is not a complete run directory, or drawing fails.
+pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    let scenario = Scenario::load(&dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
+    let run = RunData::load(dir).map_err(PlotError::Viz)?;
+    let scene = match scenario.dim {
+        2 => decorate::<DVec2>(run.scene(scenario.range()), &scenario),
+        _ => decorate::<DVec3>(run.scene(scenario.range()), &scenario),
+    };
+    write_figures(
+        &scene,
+        Some(&run.metrics),
+        &dir.join("figures"),
+        &FigureOptions::default(),
+    )
+    .map_err(PlotError::Viz)
+}
+
+/// The scene with its title, obstacles and γ-agent.
+fn decorate<V: Vector>(scene: Scene, scenario: &Scenario) -> Scene {
+    let mut scene = scene.with_title(scenario.name.clone());
+    for spec in &scenario.obstacles {
+        scene = scene.with_obstacle(drawable::<V>(spec));
+    }
+    match gamma(scenario) {
+        Some(gamma) => {
+            let gamma = gamma_agent::<V>(gamma);
+            scene.with_gamma(move |t| lift(gamma.state(t).0))
+        }
+        None => scene,
+    }
+}
+
+/// The γ-agent of the scenario's algorithm, if it has one.
+fn gamma(scenario: &Scenario) -> Option<&Gamma> {
+    match &scenario.algorithm {
+        Algorithm::Algorithm2 { gamma, .. } | Algorithm::Algorithm3 { gamma, .. } => Some(gamma),
+        Algorithm::Flocking2003 { translation, .. } => translation.as_ref().map(|t| &t.gamma),
+        Algorithm::Algorithm1 | Algorithm::Tanner { .. } => None,
+    }
+}
+
+/// How an obstacle is drawn (a validated spec of dimension `V::DIM`).
+fn drawable<V: Vector>(spec: &ObstacleSpec) -> Drawable {
+    let v = |x: &[f64]| to_vector::<V>(x);
+    match spec {
+        ObstacleSpec::Ball { centre, radius } => Drawable::ball(v(centre), *radius),
+        ObstacleSpec::Wall { point, normal } => Drawable::half_space(v(point), v(normal)),
+        ObstacleSpec::Cuboid {
+            centre,
+            half_extents,
+            rotation,
+        } => Drawable::convex_hull(&cuboid_corners::<V>(centre, half_extents, rotation)),
+        ObstacleSpec::ConvexHull { points } => {
+            Drawable::convex_hull(&points.iter().map(|p| v(p)).collect::<Vec<V>>())
+        }
+        ObstacleSpec::Capsule { a, b, radius } => Drawable::capsule(v(a), v(b), *radius),
+        ObstacleSpec::Segment { a, b } => Drawable::capsule(v(a), v(b), 0.0),
+        ObstacleSpec::Triangle { a, b, c } => Drawable::convex_hull(&[v(a), v(b), v(c)]),
+    }
+}
+
+/// The 2^m corners of a rotated box (2D: angle; 3D: axis-angle vector).
+fn cuboid_corners<V: Vector>(centre: &[f64], half: &[f64], rotation: &[f64]) -> Vec<V> {
+    let corners = 1usize << V::DIM;
+    (0..corners)
+        .map(|mask| {
+            let local: Vec<f64> = (0..V::DIM)
+                .map(|k| {
+                    if mask >> k & 1 == 1 {
+                        half[k]
+                    } else {
+                        -half[k]
+                    }
+                })
+                .collect();
+            let turned = if V::DIM == 2 {
+                let angle = rotation.first().copied().unwrap_or(0.0);
+                DMat2::from_angle(angle)
+                    .mul_vec2(DVec2::new(local[0], local[1]))
+                    .extend(0.0)
+            } else {
+                let axis = DVec3::new(
+                    rotation.first().copied().unwrap_or(0.0),
+                    rotation.get(1).copied().unwrap_or(0.0),
+                    rotation.get(2).copied().unwrap_or(0.0),
+                );
+                DQuat::from_scaled_axis(axis) * DVec3::new(local[0], local[1], local[2])
+            };
+            V::from_fn(|k| centre[k] + turned[k])
+        })
+        .collect()
+}

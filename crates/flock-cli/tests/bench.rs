@@ -1,0 +1,78 @@
+//! `flock bench` through the binary: the report names every measurement (timings not checked).
+
+use std::process::Command;
+
+fn bench(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_flock"))
+        .arg("bench")
+        .args(args)
+        .output()
+        .expect("the flock binary runs")
+}
+
+#[test]
+fn bench_reports_throughput_memory_and_threads() {
+    let out = bench(&["--n", "500", "--steps", "3"]);
+    assert!(out.status.success(), "{out:?}");
+    let report = String::from_utf8(out.stdout).expect("UTF-8 report");
+    assert!(
+        report.starts_with("flock bench: Algorithm 2, 2D, n = 500, 3 steps after 3 warm-up"),
+        "{report}"
+    );
+    for field in [
+        "threads",
+        "agent-steps/s",
+        "ns per agent-step",
+        "ms per step",
+        "ms per plain step",
+        "ms per recorded step",
+        "peak memory",
+        "mean neighbours",
+    ] {
+        assert!(
+            report.lines().any(|l| l.trim_start().starts_with(field)),
+            "no `{field}` line in\n{report}"
+        );
+    }
+    if cfg!(target_os = "linux") {
+        assert!(report.contains("bytes/agent"), "{report}");
+    }
+}
+
+#[test]
+fn bench_runs_algorithm_3_in_3d_on_one_thread() {
+    let out = bench(&[
+        "--n",
+        "300",
+        "--dim",
+        "3",
+        "--steps",
+        "10",
+        "--algorithm",
+        "3",
+        "--threads",
+        "1",
+        "--warmup",
+        "0",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let report = String::from_utf8(out.stdout).expect("UTF-8 report");
+    assert!(report.contains("Algorithm 3, 3D, n = 300"), "{report}");
+    assert!(report.contains("obstacles             1000"), "{report}");
+    let threads = report
+        .lines()
+        .find(|l| l.trim_start().starts_with("threads"))
+        .expect("a threads line");
+    assert_eq!(threads.split_whitespace().nth(1), Some("1"), "{report}");
+    assert!(
+        report.contains("(1 steps, metrics and energy included)"),
+        "{report}"
+    );
+}
+
+#[test]
+fn bench_refuses_a_bad_dimension() {
+    let out = bench(&["--n", "100", "--dim", "4", "--steps", "1"]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--dim must be 2 or 3"));
+}

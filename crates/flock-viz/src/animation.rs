@@ -1,0 +1,145 @@
+//! The whole run as an animated GIF: each recorded frame (subsampled to a bounded count) drawn as a
+//! snapshot panel (TAC 2006 Figs. 10–13 in motion), rasterised with plotters' bitmap backend and
+//! encoded with the `gif` crate (NeuQuant palette per frame, looping forever).
+//!
+//! - [`animation_gif`]: the GIF's bytes.
+//! - [`AnimationOptions`]: size, frame budget, delay, view, framing, trails, edges.
+
+use gif::{Encoder, Frame as GifFrame, Repeat};
+use plotters::coord::Shift;
+use plotters::prelude::{DrawingArea, DrawingBackend};
+
+use crate::error::VizError;
+use crate::framing::{Framer, Framing};
+use crate::render::{self, Figure, TextMode};
+use crate::scene::Scene;
+use crate::snapshot::{PanelStyle, TITLE_BAND, draw_panel, draw_title, figure_title};
+use crate::view::View;
+
+/// How the animation is drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnimationOptions {
+    /// The image size in pixels (width, height), at most 65535 each.
+    pub size: (u32, u32),
+    /// At most this many frames: a longer run is subsampled evenly, first and last frames kept.
+    pub max_frames: usize,
+    /// The time each frame is shown, in milliseconds (GIF counts in hundredths of a second).
+    pub frame_delay_ms: u32,
+    /// The projection of 3D runs.
+    pub view: View,
+    /// Which part of the plane is shown; [`Framing::Run`] keeps the window still.
+    pub framing: Framing,
+    /// How many earlier recorded frames each agent's trail goes back (0: no trails).
+    pub trail: usize,
+    /// Whether to draw the edges of the proximity net.
+    pub edges: bool,
+    /// The length of an agent's triangle, in pixels.
+    pub marker_size: f64,
+    /// The scenario's unit of length, for the axis labels.
+    pub length_unit: String,
+}
+
+impl Default for AnimationOptions {
+    fn default() -> Self {
+        Self {
+            size: (640, 640),
+            max_frames: 120,
+            frame_delay_ms: 80,
+            view: View::default(),
+            framing: Framing::Run,
+            trail: 0,
+            edges: true,
+            marker_size: 9.0,
+            length_unit: "m".to_owned(),
+        }
+    }
+}
+
+/// The frames of `scene` an animation with `options` shows (indices into `scene.frames`).
+#[must_use]
+pub fn animation_frames(scene: &Scene, options: &AnimationOptions) -> Vec<usize> {
+    scene.evenly_spaced_frames(options.max_frames.max(1).min(scene.frames.len()))
+}
+
+/// The run as an animated GIF (see the module documentation); [`animation_frames`] tells which
+/// frames it shows.
+///
+/// # Errors
+/// [`VizError::Invalid`] when the scene cannot be drawn or the size is out of bounds;
+/// [`VizError::Encode`] if GIF encoding fails.
+pub fn animation_gif(scene: &Scene, options: &AnimationOptions) -> Result<Vec<u8>, VizError> {
+    scene.validate()?;
+    let (w, h) = options.size;
+    let (Ok(w16), Ok(h16)) = (u16::try_from(w), u16::try_from(h)) else {
+        return Err(VizError::invalid(format!(
+            "a GIF of {w} × {h} pixels: each side must be at most 65535"
+        )));
+    };
+    let frames = animation_frames(scene, options);
+    let framer = Framer::new(scene, options.view, options.trail);
+    let panel = PanelStyle {
+        framing: options.framing,
+        trail: options.trail,
+        edges: options.edges,
+        marker_size: options.marker_size,
+        length_unit: options.length_unit.clone(),
+    };
+    let title = figure_title(scene, options.view);
+    let delay = u16::try_from(options.frame_delay_ms.div_ceil(10)).unwrap_or(u16::MAX);
+    let mut out = Vec::new();
+    {
+        let mut encoder = Encoder::new(&mut out, w16, h16, &[]).map_err(VizError::encode)?;
+        encoder
+            .set_repeat(Repeat::Infinite)
+            .map_err(VizError::encode)?;
+        for (k, &frame) in frames.iter().enumerate() {
+            let figure = AnimationFrame {
+                framer: &framer,
+                frame,
+                panel: &panel,
+                title: &title,
+                size: options.size,
+            };
+            let rgb = render::rgb(&figure)?;
+            let mut gif_frame = GifFrame::from_rgb_speed(w16, h16, &rgb, 10);
+            // Hold the last frame a little longer before the loop starts again.
+            gif_frame.delay = if k + 1 == frames.len() {
+                delay.saturating_mul(10)
+            } else {
+                delay
+            };
+            encoder.write_frame(&gif_frame).map_err(VizError::encode)?;
+        }
+    }
+    Ok(out)
+}
+
+/// One frame of the animation: the title band and one snapshot panel.
+struct AnimationFrame<'a> {
+    framer: &'a Framer<'a>,
+    frame: usize,
+    panel: &'a PanelStyle,
+    title: &'a str,
+    size: (u32, u32),
+}
+
+impl Figure for AnimationFrame<'_> {
+    fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        text: TextMode,
+    ) -> Result<(), VizError> {
+        let body = if self.title.is_empty() {
+            root.clone()
+        } else {
+            let (top, body) = root.split_vertically(TITLE_BAND);
+            draw_title(&top, &text.text(self.title))?;
+            body
+        };
+        draw_panel(&body, self.framer, self.frame, self.panel)
+    }
+}

@@ -1,0 +1,131 @@
+//! [`write_figures`]: every figure of a run into one directory, as `flock plot DIR` writes them
+//! into `DIR/figures/`.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use crate::animation::{AnimationOptions, animation_gif};
+use crate::error::VizError;
+use crate::metrics::Metrics;
+use crate::metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
+use crate::player::{PlayerOptions, player_html};
+use crate::scene::Scene;
+use crate::snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
+use crate::view::View;
+
+/// Which figures [`write_figures`] writes, and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FigureOptions {
+    /// How many snapshot times, spread evenly over the run (first and last included).
+    pub snapshot_count: usize,
+    /// How snapshots are drawn (for 3D runs `snapshot.view` is the oblique view; a top view is
+    /// written beside it).
+    pub snapshot: SnapshotOptions,
+    /// How the metric figure is drawn (its title defaults to the scene's).
+    pub metrics: MetricsOptions,
+    /// The animated GIF, or `None` to skip it.
+    pub animation: Option<AnimationOptions>,
+    /// The HTML player, or `None` to skip it.
+    pub player: Option<PlayerOptions>,
+    /// Whether to write SVG files.
+    pub svg: bool,
+    /// Whether to write PNG files.
+    pub png: bool,
+}
+
+impl Default for FigureOptions {
+    fn default() -> Self {
+        Self {
+            snapshot_count: 6,
+            snapshot: SnapshotOptions::default(),
+            metrics: MetricsOptions::default(),
+            animation: Some(AnimationOptions::default()),
+            player: Some(PlayerOptions::default()),
+            svg: true,
+            png: true,
+        }
+    }
+}
+
+/// Writes the figures of a run into `dir` (created if needed) and returns the files written:
+///
+/// | file | figure |
+/// | --- | --- |
+/// | `snapshots.svg`, `snapshots.png` | agents, net, obstacles at `snapshot_count` times (TAC 2006 Figs. 10–13) |
+/// | `snapshots_top.svg`, `snapshots_top.png` | 3D runs: the same from above ([`View::TOP`]) |
+/// | `metrics.svg`, `metrics.png` | C, R, Ẽ, K̃, H, min distance, clearance against t (Fig. 18) |
+/// | `animation.gif` | the whole run, animated |
+/// | `player.html` | the whole run in a self-contained canvas player |
+///
+/// # Errors
+/// [`VizError::Io`] when a file cannot be written; any error of the figures' functions.
+pub fn write_figures(
+    scene: &Scene,
+    metrics: Option<&Metrics>,
+    dir: &Path,
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>, VizError> {
+    scene.validate()?;
+    fs::create_dir_all(dir).map_err(|source| VizError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut written = Vec::new();
+    let mut write = |name: &str, bytes: &[u8]| -> Result<(), VizError> {
+        let path = dir.join(name);
+        fs::write(&path, bytes).map_err(|source| VizError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        written.push(path);
+        Ok(())
+    };
+
+    let frames = scene.evenly_spaced_frames(options.snapshot_count.max(1));
+    let mut views = vec![("snapshots", options.snapshot.view)];
+    if scene.dim == 3 {
+        views.push(("snapshots_top", View::TOP));
+    }
+    for (name, view) in views {
+        let snapshot = SnapshotOptions {
+            view,
+            ..options.snapshot.clone()
+        };
+        if options.svg {
+            write(
+                &format!("{name}.svg"),
+                snapshot_svg(scene, &frames, &snapshot)?.as_bytes(),
+            )?;
+        }
+        if options.png {
+            write(
+                &format!("{name}.png"),
+                &snapshot_png(scene, &frames, &snapshot)?,
+            )?;
+        }
+    }
+
+    if let Some(metrics) = metrics {
+        let mut metrics_options = options.metrics.clone();
+        if metrics_options.title.is_empty() && !scene.title.is_empty() {
+            metrics_options.title = format!("{}: metrics", scene.title);
+        }
+        if options.svg {
+            write(
+                "metrics.svg",
+                metrics_svg(metrics, &metrics_options)?.as_bytes(),
+            )?;
+        }
+        if options.png {
+            write("metrics.png", &metrics_png(metrics, &metrics_options)?)?;
+        }
+    }
+
+    if let Some(animation) = &options.animation {
+        write("animation.gif", &animation_gif(scene, animation)?)?;
+    }
+    if let Some(player) = &options.player {
+        write("player.html", player_html(scene, player)?.as_bytes())?;
+    }
+    Ok(written)
+}

@@ -1,0 +1,61 @@
+//! Figures of flocking runs, drawn as Olfati-Saber's *Flocking for multi-agent dynamic systems:
+//! algorithms and theory* (IEEE TAC 51(3), 2006) draws them, from the same runs, so that they can
+//! be put beside the paper's figures. Drawn with plotters and an embedded font (DejaVu Sans): no
+//! system font is needed, and the same input gives byte-identical files.
+//!
+//! - [`RunData::load`]: a run directory's `metrics.csv` and `trajectory.csv`; [`RunData::scene`].
+//! - [`Scene`], [`Frame`], [`Drawable`], [`View`], [`Framing`]: what is drawn and how it is
+//!   framed, independent of files.
+//! - [`snapshot_svg`], [`snapshot_png`]: agents, net and obstacles at chosen times
+//!   (TAC 2006 Figs. 10–17).
+//! - [`metrics_svg`], [`metrics_png`]: C, R, Ẽ, K̃ against t (TAC 2006 Fig. 18), energy,
+//!   distances.
+//! - [`animation_gif`]: the whole run as an animated GIF.
+//! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
+//! - [`write_figures`]: all of them into a directory, as `flock plot` writes them.
+//!
+//! # Example
+//! ```
+//! use flock_viz::{FigureOptions, Frame, Scene, write_figures};
+//! use glam::DVec2;
+//!
+//! let q = [DVec2::new(0.0, 0.0), DVec2::new(7.0, 0.0)];
+//! let scene = Scene::new(2, 8.4).with_frame(Frame::from_vectors(0.0, &q, &[DVec2::X; 2]));
+//! let dir = std::env::temp_dir().join(format!("flock-viz-doc-{}", std::process::id()));
+//! let options = FigureOptions { animation: None, png: false, ..FigureOptions::default() };
+//! let written = write_figures(&scene, None, &dir, &options).unwrap();
+//! assert_eq!(written, [dir.join("snapshots.svg"), dir.join("player.html")]);
+//! # std::fs::remove_dir_all(&dir).unwrap();
+//! ```
+
+pub mod animation;
+pub mod drawable;
+pub mod error;
+pub mod figures;
+pub mod font;
+mod format;
+pub mod framing;
+mod geometry;
+pub mod metrics;
+pub mod metrics_plot;
+pub mod player;
+mod render;
+pub mod run_data;
+pub mod scene;
+pub mod snapshot;
+pub mod style;
+mod table;
+pub mod view;
+
+pub use animation::{AnimationOptions, animation_frames, animation_gif};
+pub use drawable::Drawable;
+pub use error::VizError;
+pub use figures::{FigureOptions, write_figures};
+pub use framing::Framing;
+pub use metrics::Metrics;
+pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
+pub use player::{PlayerOptions, player_html};
+pub use run_data::{RunData, load_metrics, load_trajectory};
+pub use scene::{Frame, Scene, lift};
+pub use snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
+pub use view::View;

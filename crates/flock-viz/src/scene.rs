@@ -1,0 +1,220 @@
+//! [`Scene`]: what the figures draw, independent of files: the frames of a run (positions and
+//! velocities of the α-agents, the γ-agent), the interaction range r that defines the net's edges,
+//! and the obstacles.
+
+use flock_graph::{NeighbourSearch, ProximityNet};
+use flock_math::Vector;
+use glam::DVec3;
+
+use crate::drawable::Drawable;
+use crate::error::VizError;
+
+/// A point or vector of a 2D or 3D run in 3D, z = 0 in 2D: how scenes store positions.
+///
+/// # Example
+/// ```
+/// use flock_viz::lift;
+/// use glam::{DVec2, DVec3};
+///
+/// assert_eq!(lift(DVec2::new(1.0, 2.0)), DVec3::new(1.0, 2.0, 0.0));
+/// ```
+#[inline]
+#[must_use]
+pub fn lift<V: Vector>(v: V) -> DVec3 {
+    DVec3::new(
+        v.coord(0),
+        v.coord(1),
+        if V::DIM > 2 { v.coord(2) } else { 0.0 },
+    )
+}
+
+/// The state of the flock at one recorded time.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Frame {
+    /// The time t (s).
+    pub t: f64,
+    /// The α-agents' positions q_i, in agent order (z = 0 in 2D).
+    pub positions: Vec<DVec3>,
+    /// The α-agents' velocities p_i, aligned with `positions`: the heading of each marker.
+    pub velocities: Vec<DVec3>,
+    /// The γ-agent's position q_r, when the run has one.
+    pub gamma: Option<DVec3>,
+}
+
+impl Frame {
+    /// A frame from positions and velocities of equal length.
+    #[must_use]
+    pub fn new(t: f64, positions: Vec<DVec3>, velocities: Vec<DVec3>) -> Self {
+        Self {
+            t,
+            positions,
+            velocities,
+            gamma: None,
+        }
+    }
+
+    /// A frame from a run's own vectors (`DVec2` or `DVec3`), as the protocols hold them.
+    #[must_use]
+    pub fn from_vectors<V: Vector>(t: f64, positions: &[V], velocities: &[V]) -> Self {
+        Self::new(
+            t,
+            positions.iter().map(|&q| lift(q)).collect(),
+            velocities.iter().map(|&p| lift(p)).collect(),
+        )
+    }
+
+    /// The frame with the γ-agent at `gamma`.
+    #[must_use]
+    pub fn with_gamma(mut self, gamma: DVec3) -> Self {
+        self.gamma = Some(gamma);
+        self
+    }
+}
+
+/// Everything a figure of a run draws: frames, the range r of the proximity net, obstacles.
+///
+/// # Example
+/// ```
+/// use flock_viz::{Drawable, Frame, Scene};
+/// use glam::DVec2;
+///
+/// let q = [DVec2::new(0.0, 0.0), DVec2::new(5.0, 0.0), DVec2::new(20.0, 0.0)];
+/// let p = [DVec2::X; 3];
+/// let scene = Scene::new(2, 8.4)
+///     .with_title("three agents")
+///     .with_frame(Frame::from_vectors(0.0, &q, &p))
+///     .with_obstacle(Drawable::ball(DVec2::new(10.0, 10.0), 2.0))
+///     .with_gamma(|t| glam::DVec3::new(t, 0.0, 0.0));
+/// assert_eq!(scene.edges(0), vec![(0, 1)]); // ‖q_1 − q_0‖ = 5 < 8.4, the third is alone
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// A title for the figures (the scenario's name), may be empty.
+    pub title: String,
+    /// The dimension of the run, 2 or 3.
+    pub dim: usize,
+    /// The interaction range r: agents closer than r are neighbours, joined by an edge.
+    pub range: f64,
+    /// The recorded frames, in time order.
+    pub frames: Vec<Frame>,
+    /// The obstacles.
+    pub obstacles: Vec<Drawable>,
+}
+
+impl Scene {
+    /// An empty scene of dimension `dim` (2 or 3) and interaction range `range`.
+    #[must_use]
+    pub fn new(dim: usize, range: f64) -> Self {
+        Self {
+            title: String::new(),
+            dim,
+            range,
+            frames: Vec::new(),
+            obstacles: Vec::new(),
+        }
+    }
+
+    /// The scene with a title.
+    #[must_use]
+    pub fn with_title(mut self, title: impl Into<String>) -> Self {
+        self.title = title.into();
+        self
+    }
+
+    /// The scene with one more frame.
+    #[must_use]
+    pub fn with_frame(mut self, frame: Frame) -> Self {
+        self.frames.push(frame);
+        self
+    }
+
+    /// The scene with one more obstacle.
+    #[must_use]
+    pub fn with_obstacle(mut self, obstacle: Drawable) -> Self {
+        self.obstacles.push(obstacle);
+        self
+    }
+
+    /// The scene with the γ-agent at `gamma(t)` in every frame (runs record the α-agents only;
+    /// the γ-agent's motion is known from the scenario).
+    #[must_use]
+    pub fn with_gamma(mut self, gamma: impl Fn(f64) -> DVec3) -> Self {
+        for frame in &mut self.frames {
+            frame.gamma = Some(gamma(frame.t));
+        }
+        self
+    }
+
+    /// The edges of the proximity net of frame `frame`: pairs (i, j), i < j, with
+    /// ‖q_j − q_i‖ < r, in order (built with [`flock_graph::NeighbourSearch`]).
+    ///
+    /// # Panics
+    /// When `frame` is out of range.
+    #[must_use]
+    pub fn edges(&self, frame: usize) -> Vec<(u32, u32)> {
+        let mut net = ProximityNet::new();
+        NeighbourSearch::new().build(&self.frames[frame].positions, self.range, &mut net);
+        let graph = net.graph();
+        let mut edges = Vec::with_capacity(graph.undirected_edge_count());
+        for i in 0..graph.len() {
+            for &j in graph.neighbours(i) {
+                if (j as usize) > i {
+                    edges.push((i as u32, j));
+                }
+            }
+        }
+        edges
+    }
+
+    /// The index of the frame recorded nearest to time `t` (the earlier on a tie), if any.
+    #[must_use]
+    pub fn frame_nearest(&self, t: f64) -> Option<usize> {
+        (0..self.frames.len()).min_by(|&a, &b| {
+            let da = (self.frames[a].t - t).abs();
+            let db = (self.frames[b].t - t).abs();
+            da.total_cmp(&db).then(a.cmp(&b))
+        })
+    }
+
+    /// `count` frame indices spread evenly over the run, first and last included, without
+    /// repeats: the snapshot times of a figure like TAC 2006 Figs. 10–13 (a)–(f).
+    #[must_use]
+    pub fn evenly_spaced_frames(&self, count: usize) -> Vec<usize> {
+        let n = self.frames.len();
+        if n == 0 || count == 0 {
+            return Vec::new();
+        }
+        if count == 1 {
+            return vec![n - 1];
+        }
+        let mut out: Vec<usize> = (0..count)
+            .map(|k| ((k * (n - 1)) as f64 / (count - 1) as f64).round() as usize)
+            .collect();
+        out.dedup();
+        out
+    }
+
+    /// Checks that the scene can be drawn.
+    pub(crate) fn validate(&self) -> Result<(), VizError> {
+        if self.dim != 2 && self.dim != 3 {
+            return Err(VizError::invalid(format!(
+                "a scene has dimension 2 or 3, not {}",
+                self.dim
+            )));
+        }
+        if self.frames.is_empty() {
+            return Err(VizError::invalid("the scene has no frames"));
+        }
+        for (k, frame) in self.frames.iter().enumerate() {
+            if frame.positions.len() != frame.velocities.len() {
+                return Err(VizError::invalid(format!(
+                    "frame {k} (t = {}) has {} positions but {} velocities",
+                    frame.t,
+                    frame.positions.len(),
+                    frame.velocities.len()
+                )));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,497 @@
+//! Snapshots of a run as TAC 2006 Figs. 10–13 draw them: at chosen times, the α-agents as small
+//! triangles pointing along their velocity, the edges of the proximity net between neighbours
+//! (‖q_j − q_i‖ < r), obstacles filled grey, the γ-agent as a red diamond, optional trails; one
+//! panel per time, each with equal axis scales and labelled axes. 3D runs are drawn as an
+//! orthographic projection ([`View`]); [`View::TOP`] gives the top view.
+//!
+//! - [`snapshot_svg`], [`snapshot_png`]: a figure of one panel per chosen frame.
+//! - [`SnapshotOptions`]: panel size, view, framing, trails, edges, marker size, length unit.
+
+use glam::DVec2;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::{
+    Cartesian2d, ChartBuilder, ChartContext, Circle, DrawingArea, DrawingBackend, PathElement,
+    Polygon,
+};
+use plotters::style::{Color, IntoFont, TextStyle};
+
+use crate::drawable::{CIRCLE_SIDES, Drawable, Shape};
+use crate::error::VizError;
+use crate::font::FONT_FAMILY;
+use crate::format;
+use crate::framing::{Framer, Framing};
+use crate::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_segment};
+use crate::render::{self, Figure, TextMode};
+use crate::scene::Scene;
+use crate::style::{self, AGENT, EDGE, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, TRAIL, WALL_PLANE};
+use crate::view::View;
+
+/// Height in pixels of the band that holds a figure's title.
+pub(crate) const TITLE_BAND: u32 = 36;
+/// Margins of a panel's plotting area (top, bottom, left, right), in pixels.
+const MARGIN: (u32, u32, u32, u32) = (4, 6, 6, 18);
+/// Height of the x-axis label area, in pixels.
+const X_LABEL_AREA: u32 = 44;
+/// Width of the y-axis label area, in pixels.
+const Y_LABEL_AREA: u32 = 62;
+
+/// How snapshots are drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SnapshotOptions {
+    /// The size of one panel in pixels (width, height).
+    pub panel_size: (u32, u32),
+    /// Panels per row of the figure.
+    pub columns: usize,
+    /// The projection of 3D runs (2D runs are drawn in their plane).
+    pub view: View,
+    /// Which part of the plane each panel shows.
+    pub framing: Framing,
+    /// How many earlier frames each agent's trail goes back (0: no trails).
+    pub trail: usize,
+    /// Whether to draw the edges of the proximity net.
+    pub edges: bool,
+    /// The length of an agent's triangle, in pixels.
+    pub marker_size: f64,
+    /// The scenario's unit of length, for the axis labels.
+    pub length_unit: String,
+}
+
+impl Default for SnapshotOptions {
+    fn default() -> Self {
+        Self {
+            panel_size: (480, 480),
+            columns: 3,
+            view: View::default(),
+            framing: Framing::Flock,
+            trail: 0,
+            edges: true,
+            marker_size: 10.0,
+            length_unit: "m".to_owned(),
+        }
+    }
+}
+
+/// An SVG figure of `frames` (indices into `scene.frames`), one panel per frame, titled
+/// `t = … s`, in rows of `options.columns`: the snapshots of TAC 2006 Figs. 10–13.
+///
+/// # Errors
+/// [`VizError::Invalid`] when the scene cannot be drawn (no frames, a dimension other than 2 or
+/// 3), `frames` is empty or holds an index out of range, or the panel size is out of bounds.
+///
+/// # Example
+/// ```
+/// use flock_viz::{Frame, Scene, SnapshotOptions, snapshot_svg};
+/// use glam::DVec2;
+///
+/// let q = [DVec2::new(0.0, 0.0), DVec2::new(7.0, 0.0)];
+/// let scene = Scene::new(2, 8.4).with_frame(Frame::from_vectors(0.0, &q, &[DVec2::X; 2]));
+/// let svg = snapshot_svg(&scene, &[0], &SnapshotOptions::default()).unwrap();
+/// assert!(svg.contains("t = 0 s"));
+/// assert_eq!(svg.matches(r##"fill="#1F4E9C""##).count(), 2); // two agents
+/// ```
+pub fn snapshot_svg(
+    scene: &Scene,
+    frames: &[usize],
+    options: &SnapshotOptions,
+) -> Result<String, VizError> {
+    render::svg(&Snapshot::new(scene, frames, options)?)
+}
+
+/// The figure of [`snapshot_svg`] as a PNG image (text rendered with the embedded font).
+///
+/// # Errors
+/// As [`snapshot_svg`]; [`VizError::Encode`] if PNG encoding fails.
+pub fn snapshot_png(
+    scene: &Scene,
+    frames: &[usize],
+    options: &SnapshotOptions,
+) -> Result<Vec<u8>, VizError> {
+    render::png(&Snapshot::new(scene, frames, options)?)
+}
+
+/// A snapshot figure, checked and ready to draw.
+struct Snapshot<'a> {
+    scene: &'a Scene,
+    frames: &'a [usize],
+    options: &'a SnapshotOptions,
+    columns: usize,
+    rows: usize,
+}
+
+impl<'a> Snapshot<'a> {
+    fn new(
+        scene: &'a Scene,
+        frames: &'a [usize],
+        options: &'a SnapshotOptions,
+    ) -> Result<Self, VizError> {
+        scene.validate()?;
+        if frames.is_empty() {
+            return Err(VizError::invalid("no frames chosen for the snapshot"));
+        }
+        if let Some(&k) = frames.iter().find(|&&k| k >= scene.frames.len()) {
+            return Err(VizError::invalid(format!(
+                "frame {k} chosen, but the scene has {} frames",
+                scene.frames.len()
+            )));
+        }
+        let columns = options.columns.clamp(1, frames.len());
+        let rows = frames.len().div_ceil(columns);
+        Ok(Self {
+            scene,
+            frames,
+            options,
+            columns,
+            rows,
+        })
+    }
+
+    fn title(&self) -> String {
+        figure_title(self.scene, self.options.view)
+    }
+}
+
+/// A figure's title: the scene's title, and for 3D runs the view.
+pub(crate) fn figure_title(scene: &Scene, view: View) -> String {
+    match (scene.title.is_empty(), scene.dim == 3) {
+        (true, false) => String::new(),
+        (true, true) => view.describe(),
+        (false, false) => scene.title.clone(),
+        (false, true) => format!("{} ({})", scene.title, view.describe()),
+    }
+}
+
+impl Figure for Snapshot<'_> {
+    fn size(&self) -> (u32, u32) {
+        let (w, h) = self.options.panel_size;
+        let band = if self.title().is_empty() {
+            0
+        } else {
+            TITLE_BAND
+        };
+        (
+            w.saturating_mul(self.columns as u32),
+            h.saturating_mul(self.rows as u32).saturating_add(band),
+        )
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        text: TextMode,
+    ) -> Result<(), VizError> {
+        let title = self.title();
+        let body = if title.is_empty() {
+            root.clone()
+        } else {
+            let (top, body) = root.split_vertically(TITLE_BAND);
+            draw_title(&top, &text.text(&title))?;
+            body
+        };
+        let panels = body.split_evenly((self.rows, self.columns));
+        let framer = Framer::new(self.scene, self.options.view, self.options.trail);
+        for (panel, &frame) in panels.iter().zip(self.frames) {
+            draw_panel(panel, &framer, frame, &PanelStyle::from(self.options))?;
+        }
+        Ok(())
+    }
+}
+
+/// Draws a figure title centred in `area`.
+pub(crate) fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> Result<(), VizError> {
+    area.titled(title, (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)))
+        .map_err(VizError::draw)?;
+    Ok(())
+}
+
+/// What a panel draws, shared by snapshots, animations and the player.
+#[derive(Clone, Debug)]
+pub(crate) struct PanelStyle {
+    pub(crate) framing: Framing,
+    pub(crate) trail: usize,
+    pub(crate) edges: bool,
+    pub(crate) marker_size: f64,
+    pub(crate) length_unit: String,
+}
+
+impl From<&SnapshotOptions> for PanelStyle {
+    fn from(o: &SnapshotOptions) -> Self {
+        Self {
+            framing: o.framing,
+            trail: o.trail,
+            edges: o.edges,
+            marker_size: o.marker_size,
+            length_unit: o.length_unit.clone(),
+        }
+    }
+}
+
+/// Text of the given size in the figures' font and ink.
+pub(crate) fn text_style(size: u32) -> TextStyle<'static> {
+    (FONT_FAMILY, size).into_font().color(&style::rgb(INK))
+}
+
+/// The chart of a snapshot panel: page coordinates in data units on both axes.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A page point as plotters takes it.
+fn tuple(p: DVec2) -> (f64, f64) {
+    (p.x, p.y)
+}
+
+/// Draws frame `frame` of the framer's scene in `area`: title `t = … s`, axes, obstacles, edges,
+/// trails, agents and the γ-agent.
+pub(crate) fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    framer: &Framer<'_>,
+    frame: usize,
+    panel: &PanelStyle,
+) -> Result<(), VizError> {
+    let scene = framer.scene();
+    let area = area
+        .titled(
+            &format!("t = {} s", format::number(scene.frames[frame].t, 2)),
+            text_style(17),
+        )
+        .map_err(VizError::draw)?;
+
+    // The plotting area in pixels, to give both axes the same scale.
+    let (w, h) = area.dim_in_pixel();
+    let plot_w = w.saturating_sub(MARGIN.2 + MARGIN.3 + Y_LABEL_AREA).max(1);
+    let plot_h = h.saturating_sub(MARGIN.0 + MARGIN.1 + X_LABEL_AREA).max(1);
+    let window = framer
+        .window(panel.framing, frame)
+        .with_aspect(f64::from(plot_w) / f64::from(plot_h));
+    let per_pixel = window.size().x / f64::from(plot_w);
+
+    let mut chart = ChartBuilder::on(&area)
+        .margin_top(MARGIN.0)
+        .margin_bottom(MARGIN.1)
+        .margin_left(MARGIN.2)
+        .margin_right(MARGIN.3)
+        .x_label_area_size(X_LABEL_AREA)
+        .y_label_area_size(Y_LABEL_AREA)
+        .build_cartesian_2d(window.min.x..window.max.x, window.min.y..window.max.y)
+        .map_err(VizError::draw)?;
+    debug_assert_eq!(chart.plotting_area().dim_in_pixel(), (plot_w, plot_h));
+    let (x_name, y_name) = if scene.dim == 2 {
+        ("x", "y")
+    } else {
+        framer.view().axis_names()
+    };
+    let unit = &panel.length_unit;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(format!("{x_name} ({unit})"))
+        .y_desc(format!("{y_name} ({unit})"))
+        .x_labels(6)
+        .y_labels(6)
+        .x_label_formatter(&|v| format::tick(*v))
+        .y_label_formatter(&|v| format::tick(*v))
+        .label_style(text_style(13))
+        .axis_desc_style(text_style(14))
+        .axis_style(style::rgb(INK))
+        .draw()
+        .map_err(VizError::draw)?;
+
+    let marker = panel.marker_size * per_pixel;
+    draw_obstacles(&mut chart, framer, window)?;
+    if panel.edges {
+        draw_edges(&mut chart, framer, frame, window)?;
+    }
+    if panel.trail > 0 {
+        draw_trails(&mut chart, framer, frame, panel.trail, window)?;
+    }
+    draw_agents(&mut chart, framer, frame, window, marker, panel.marker_size)?;
+    draw_gamma(&mut chart, framer, frame, window, marker)?;
+
+    // A frame around the plotting area, as the papers' figures have.
+    let (lo, hi) = (window.min, window.max);
+    chart
+        .draw_series([PathElement::new(
+            vec![
+                (lo.x, lo.y),
+                (hi.x, lo.y),
+                (hi.x, hi.y),
+                (lo.x, hi.y),
+                (lo.x, lo.y),
+            ],
+            style::rgb(INK).stroke_width(1),
+        )])
+        .map_err(VizError::draw)?;
+    Ok(())
+}
+
+/// Obstacles, filled grey and outlined, cut to the window; light wall planes first.
+fn draw_obstacles<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    window: Rect,
+) -> Result<(), VizError> {
+    let scene = framer.scene();
+    let world = framer.world_for(window);
+    for shape in Drawable::project_all(&scene.obstacles, framer.view(), scene.dim, world) {
+        let (polygon, fill) = match shape {
+            Shape::Circle { centre, radius } => {
+                (circle_polygon(centre, radius, CIRCLE_SIDES), OBSTACLE)
+            }
+            Shape::Polygon(points) => (points, OBSTACLE),
+            Shape::Plane(points) => (points, WALL_PLANE),
+        };
+        let clipped = clip_polygon(&polygon, window);
+        if clipped.len() < 3 {
+            continue;
+        }
+        let points: Vec<(f64, f64)> = clipped.iter().map(|&p| tuple(p)).collect();
+        let mut outline = points.clone();
+        outline.push(points[0]);
+        chart
+            .draw_series([Polygon::new(points, style::rgb(fill).filled())])
+            .map_err(VizError::draw)?;
+        chart
+            .draw_series([PathElement::new(
+                outline,
+                style::rgb(OBSTACLE_OUTLINE).stroke_width(1),
+            )])
+            .map_err(VizError::draw)?;
+    }
+    Ok(())
+}
+
+/// The proximity net: a thin grey line per edge, ‖q_j − q_i‖ < r.
+fn draw_edges<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    frame: usize,
+    window: Rect,
+) -> Result<(), VizError> {
+    let positions = &framer.scene().frames[frame].positions;
+    let project = |i: u32| framer.project(positions[i as usize]);
+    let lines: Vec<PathElement<(f64, f64)>> = framer
+        .scene()
+        .edges(frame)
+        .into_iter()
+        .filter_map(|(i, j)| clip_segment(project(i), project(j), window))
+        .map(|(a, b)| PathElement::new(vec![tuple(a), tuple(b)], style::rgb(EDGE).stroke_width(1)))
+        .collect();
+    chart.draw_series(lines).map_err(VizError::draw)?;
+    Ok(())
+}
+
+/// Trails of the last `trail` frames, of the agents present in all of them, and of the γ-agent.
+fn draw_trails<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    frame: usize,
+    trail: usize,
+    window: Rect,
+) -> Result<(), VizError> {
+    let frames = &framer.scene().frames[frame.saturating_sub(trail)..=frame];
+    let mut paths = Vec::new();
+    let mut add = |points: Option<Vec<DVec2>>, colour| {
+        for run in clip_polyline(&points.unwrap_or_default(), window) {
+            paths.push(PathElement::new(
+                run.into_iter().map(tuple).collect::<Vec<_>>(),
+                style::rgb(colour).stroke_width(1),
+            ));
+        }
+    };
+    for i in 0..frames[frames.len() - 1].positions.len() {
+        let points = frames
+            .iter()
+            .map(|f| f.positions.get(i).map(|&q| framer.project(q)))
+            .collect();
+        add(points, TRAIL);
+    }
+    let gamma = frames
+        .iter()
+        .map(|f| f.gamma.map(|g| framer.project(g)))
+        .collect();
+    add(gamma, GAMMA);
+    chart.draw_series(paths).map_err(VizError::draw)?;
+    Ok(())
+}
+
+/// The α-agents, far ones first, as triangles of length `length` (data units) along their
+/// (projected) velocity; agents at rest as dots of a quarter of `marker_px` pixels.
+fn draw_agents<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    frame: usize,
+    window: Rect,
+    length: f64,
+    marker_px: f64,
+) -> Result<(), VizError> {
+    let state = &framer.scene().frames[frame];
+    let mut order: Vec<usize> = (0..state.positions.len()).collect();
+    if framer.scene().dim == 3 {
+        let view = framer.view();
+        let depth: Vec<f64> = state.positions.iter().map(|&q| view.depth(q)).collect();
+        order.sort_by(|&a, &b| depth[a].total_cmp(&depth[b]).then(a.cmp(&b)));
+    }
+    let agent = style::rgb(AGENT).filled();
+    let mut triangles = Vec::new();
+    let mut dots = Vec::new();
+    for i in order {
+        let centre = framer.project(state.positions[i]);
+        if !window.contains(centre) {
+            continue;
+        }
+        match framer.project_vector(state.velocities[i]).try_normalize() {
+            Some(e) => {
+                let side = 0.36 * length * e.perp();
+                let tip = centre + (2.0 / 3.0) * length * e;
+                let back = centre - (1.0 / 3.0) * length * e;
+                triangles.push(Polygon::new(
+                    vec![tuple(tip), tuple(back + side), tuple(back - side)],
+                    agent,
+                ));
+            }
+            None => dots.push(Circle::new(
+                tuple(centre),
+                (0.25 * marker_px).round().max(1.0) as u32,
+                agent,
+            )),
+        }
+    }
+    chart.draw_series(triangles).map_err(VizError::draw)?;
+    chart.draw_series(dots).map_err(VizError::draw)?;
+    Ok(())
+}
+
+/// The γ-agent: a red diamond with a dark outline.
+fn draw_gamma<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    frame: usize,
+    window: Rect,
+    length: f64,
+) -> Result<(), VizError> {
+    let Some(gamma) = framer.scene().frames[frame]
+        .gamma
+        .map(|g| framer.project(g))
+    else {
+        return Ok(());
+    };
+    if !window.contains(gamma) {
+        return Ok(());
+    }
+    let r = 0.7 * length;
+    let diamond: Vec<(f64, f64)> = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y]
+        .into_iter()
+        .map(|d| tuple(gamma + r * d))
+        .collect();
+    let mut outline = diamond.clone();
+    outline.push(diamond[0]);
+    chart
+        .draw_series([Polygon::new(diamond, style::rgb(GAMMA).filled())])
+        .map_err(VizError::draw)?;
+    chart
+        .draw_series([PathElement::new(outline, style::rgb(INK).stroke_width(1))])
+        .map_err(VizError::draw)?;
+    Ok(())
+}

@@ -1,0 +1,49 @@
+//! The colours and sizes of the figures, chosen to read like the papers' black-and-white plots:
+//! white background, dark-blue agents, light-grey edges, grey obstacles, a red γ-agent.
+//!
+//! Every kind of mark has a colour of its own, so the marks of an SVG can be found by colour: an
+//! agent is a `<polygon>` (a triangle; a `<circle>` when it does not move) with
+//! `fill="#1F4E9C"` ([`hex`]`(`[`AGENT`]`)`), the γ-agent a `<polygon>` with `fill="#D62728"`.
+
+use plotters::style::RGBColor;
+
+/// The background.
+pub const BACKGROUND: [u8; 3] = [0xFF, 0xFF, 0xFF];
+/// Text and axes.
+pub const INK: [u8; 3] = [0x00, 0x00, 0x00];
+/// The α-agents' markers.
+pub const AGENT: [u8; 3] = [0x1F, 0x4E, 0x9C];
+/// The edges of the proximity net.
+pub const EDGE: [u8; 3] = [0xB4, 0xB4, 0xB4];
+/// The agents' trails.
+pub const TRAIL: [u8; 3] = [0x9D, 0xB9, 0xE0];
+/// The obstacles' fill.
+pub const OBSTACLE: [u8; 3] = [0xA8, 0xA8, 0xA8];
+/// The obstacles' outline.
+pub const OBSTACLE_OUTLINE: [u8; 3] = [0x5A, 0x5A, 0x5A];
+/// A 3D wall seen face-on (its boundary plane), drawn behind the flock.
+pub const WALL_PLANE: [u8; 3] = [0xE8, 0xE8, 0xE8];
+/// The γ-agent's marker and path.
+pub const GAMMA: [u8; 3] = [0xD6, 0x27, 0x28];
+/// Metric curves.
+pub const CURVE: [u8; 3] = [0x1F, 0x4E, 0x9C];
+/// Secondary metric curves (C* beside C).
+pub const CURVE_SECONDARY: [u8; 3] = [0x8C, 0x8C, 0x8C];
+/// Light grid lines of the metric panels.
+pub const GRID: [u8; 3] = [0xE6, 0xE6, 0xE6];
+
+/// A colour as SVG writes it, e.g. `#1F4E9C`.
+///
+/// # Example
+/// ```
+/// assert_eq!(flock_viz::style::hex(flock_viz::style::AGENT), "#1F4E9C");
+/// ```
+#[must_use]
+pub fn hex(colour: [u8; 3]) -> String {
+    format!("#{:02X}{:02X}{:02X}", colour[0], colour[1], colour[2])
+}
+
+/// The plotters colour.
+pub(crate) fn rgb(colour: [u8; 3]) -> RGBColor {
+    RGBColor(colour[0], colour[1], colour[2])
+}

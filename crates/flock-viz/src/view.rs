@@ -1,0 +1,146 @@
+//! [`View`]: the orthographic projection that draws a 3D run on the page, as TAC 2006 Fig. 13 draws
+//! its 3D flocks; 2D runs are drawn in their own plane whatever the view.
+
+use glam::{DVec2, DVec3};
+
+/// An orthographic view of 3D space from a direction given by azimuth and elevation (degrees), as
+/// matplotlib's 3D axes define them: the viewer looks at the origin from
+/// (cos el cos az, cos el sin az, sin el); the page's horizontal axis u is
+/// (−sin az, cos az, 0) and its vertical axis v is (−sin el cos az, −sin el sin az, cos el).
+///
+/// [`View::TOP`] looks down the z-axis (u = x, v = y); [`View::default`] is matplotlib's default
+/// view, azimuth −60°, elevation 30°.
+///
+/// # Example
+/// ```
+/// use flock_viz::View;
+/// use glam::{DVec2, DVec3};
+///
+/// assert_eq!(View::TOP.project(DVec3::new(1.0, 2.0, 3.0)), DVec2::new(1.0, 2.0));
+/// let side = View::new(-90.0, 0.0); // looking along +y: u = x, v = z
+/// assert_eq!(side.project(DVec3::new(1.0, 2.0, 3.0)), DVec2::new(1.0, 3.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Azimuth in degrees, about the z-axis from the x-axis.
+    pub azimuth: f64,
+    /// Elevation in degrees above the xy-plane.
+    pub elevation: f64,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        Self::new(-60.0, 30.0)
+    }
+}
+
+impl View {
+    /// The top view: looking down the z-axis, x to the right, y up.
+    pub const TOP: Self = Self {
+        azimuth: -90.0,
+        elevation: 90.0,
+    };
+
+    /// The view from azimuth and elevation in degrees.
+    #[must_use]
+    pub const fn new(azimuth: f64, elevation: f64) -> Self {
+        Self { azimuth, elevation }
+    }
+
+    /// The page axes (u, v) and the direction towards the viewer w, orthonormal and right-handed
+    /// (u × v = w).
+    #[must_use]
+    pub fn basis(self) -> (DVec3, DVec3, DVec3) {
+        let (sa, ca) = sin_cos_degrees(self.azimuth);
+        let (se, ce) = sin_cos_degrees(self.elevation);
+        let u = DVec3::new(-sa, ca, 0.0);
+        let v = DVec3::new(-se * ca, -se * sa, ce);
+        let w = DVec3::new(ce * ca, ce * sa, se);
+        (u, v, w)
+    }
+
+    /// The page coordinates (u, v) of a point.
+    #[inline]
+    #[must_use]
+    pub fn project(self, p: DVec3) -> DVec2 {
+        let (u, v, _) = self.basis();
+        DVec2::new(p.dot(u), p.dot(v))
+    }
+
+    /// How far a point is towards the viewer (larger is nearer): the order in which to draw.
+    #[inline]
+    #[must_use]
+    pub fn depth(self, p: DVec3) -> f64 {
+        p.dot(self.basis().2)
+    }
+
+    /// Whether this is [`View::TOP`] (the page axes are x and y).
+    #[must_use]
+    pub fn is_top(self) -> bool {
+        self.basis().0 == DVec3::X && self.basis().1 == DVec3::Y
+    }
+
+    /// The names of the page axes: `("x", "y")` for the top view, `("u", "v")` otherwise.
+    #[must_use]
+    pub fn axis_names(self) -> (&'static str, &'static str) {
+        if self.is_top() {
+            ("x", "y")
+        } else {
+            ("u", "v")
+        }
+    }
+
+    /// A short description for titles: `top view` or `view az −60°, el 30°`.
+    #[must_use]
+    pub fn describe(self) -> String {
+        if self.is_top() {
+            "top view".to_owned()
+        } else {
+            format!(
+                "view az {}°, el {}°",
+                crate::format::number(self.azimuth, 1),
+                crate::format::number(self.elevation, 1)
+            )
+        }
+    }
+}
+
+/// sin and cos of an angle in degrees, exact at multiples of 90° (so that [`View::TOP`] projects
+/// onto x and y without rounding).
+fn sin_cos_degrees(degrees: f64) -> (f64, f64) {
+    let quarter = degrees / 90.0;
+    if quarter == quarter.round() && quarter.abs() < 1e9 {
+        match (quarter as i64).rem_euclid(4) {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        }
+    } else {
+        degrees.to_radians().sin_cos()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn basis_is_orthonormal_and_right_handed() {
+        for view in [View::default(), View::TOP, View::new(17.0, -40.0)] {
+            let (u, v, w) = view.basis();
+            assert!((u.length() - 1.0).abs() < 1e-12);
+            assert!((v.length() - 1.0).abs() < 1e-12);
+            assert!(u.dot(v).abs() < 1e-12);
+            assert!((u.cross(v) - w).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn top_view_is_exact() {
+        assert!(View::TOP.is_top());
+        assert!(!View::default().is_top());
+        assert_eq!(View::TOP.describe(), "top view");
+        assert_eq!(View::default().describe(), "view az -60°, el 30°");
+    }
+}

@@ -1,0 +1,211 @@
+//! Snapshots (TAC 2006 Figs. 10–13): markers, edges, obstacles, γ-agent, labels, PNG output.
+
+use flock_viz::style::{EDGE, GAMMA, OBSTACLE, TRAIL};
+use flock_viz::{Frame, Scene, SnapshotOptions, View, VizError, snapshot_png, snapshot_svg};
+use glam::DVec2;
+
+use crate::support::{
+    AGENTS, EDGES, agent_markers, count_marks, cube_scene, decode_png, lattice_scene,
+};
+
+#[test]
+fn one_marker_per_agent_and_one_line_per_edge_in_each_panel() {
+    let scene = lattice_scene();
+    let svg = snapshot_svg(&scene, &[0, 4], &SnapshotOptions::default()).unwrap();
+    assert!(svg.starts_with("<svg"));
+    assert_eq!(agent_markers(&svg), 2 * AGENTS);
+    assert_eq!(scene.edges(0).len(), EDGES);
+    assert_eq!(count_marks(&svg, "polyline", "stroke", EDGE), 2 * EDGES);
+    assert_eq!(count_marks(&svg, "polygon", "fill", GAMMA), 2);
+    // The disc obstacle is within the window of the last frame only.
+    assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 1);
+}
+
+#[test]
+fn panels_have_titles_axis_labels_and_units() {
+    let svg = snapshot_svg(&lattice_scene(), &[0, 2, 4], &SnapshotOptions::default()).unwrap();
+    for text in [
+        "synthetic lattice",
+        "t = 0 s",
+        "t = 2 s",
+        "t = 4 s",
+        "x (m)",
+        "y (m)",
+    ] {
+        assert!(svg.contains(text), "{text} missing");
+    }
+    let svg = snapshot_svg(
+        &lattice_scene(),
+        &[0],
+        &SnapshotOptions {
+            length_unit: "d".into(),
+            ..SnapshotOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(svg.contains("x (d)"));
+}
+
+#[test]
+fn markers_point_along_the_velocity() {
+    // One agent moving up: the triangle's tip (its highest point on the page) lies above the
+    // others by 10 px (the marker length), as y grows upwards in data and downwards in pixels.
+    let scene = Scene::new(2, 1.0).with_frame(Frame::from_vectors(
+        0.0,
+        &[DVec2::ZERO],
+        &[DVec2::new(0.0, 3.0)],
+    ));
+    let svg = snapshot_svg(&scene, &[0], &SnapshotOptions::default()).unwrap();
+    let polygon = svg
+        .split('<')
+        .find(|e| e.starts_with("polygon ") && e.contains("#1F4E9C"))
+        .unwrap();
+    let points: Vec<(i32, i32)> = polygon
+        .split("points=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect();
+    assert_eq!(points.len(), 3);
+    let (tip, base) = (points[0], [points[1], points[2]]);
+    assert!(base.iter().all(|b| b.1 - tip.1 >= 9), "{points:?}");
+    assert!((base[0].0 + base[1].0 - 2 * tip.0).abs() <= 1, "{points:?}");
+}
+
+#[test]
+fn agents_at_rest_are_dots_and_trails_follow_the_agents() {
+    let mut scene = lattice_scene();
+    scene.frames[0].velocities.fill(glam::DVec3::ZERO);
+    let svg = snapshot_svg(&scene, &[0], &SnapshotOptions::default()).unwrap();
+    assert_eq!(
+        count_marks(&svg, "circle", "fill", flock_viz::style::AGENT),
+        AGENTS
+    );
+    let with_trails = SnapshotOptions {
+        trail: 2,
+        ..SnapshotOptions::default()
+    };
+    let svg = snapshot_svg(&scene, &[4], &with_trails).unwrap();
+    assert_eq!(count_marks(&svg, "polyline", "stroke", TRAIL), AGENTS);
+    // The γ-agent's path is drawn in its colour.
+    assert_eq!(count_marks(&svg, "polyline", "stroke", GAMMA), 1);
+}
+
+#[test]
+fn three_d_runs_are_projected_with_a_chosen_view_and_a_top_view() {
+    let scene = cube_scene();
+    let oblique = snapshot_svg(&scene, &[0, 2], &SnapshotOptions::default()).unwrap();
+    assert_eq!(agent_markers(&oblique), 2 * 27);
+    assert!(oblique.contains("u (m)") && oblique.contains("v (m)"));
+    assert!(oblique.contains("view az -60°, el 30°"));
+    let top = snapshot_svg(
+        &scene,
+        &[0],
+        &SnapshotOptions {
+            view: View::TOP,
+            ..SnapshotOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(top.contains("x (m)") && top.contains("top view"));
+    assert_eq!(agent_markers(&top), 27);
+    assert_ne!(oblique, top);
+}
+
+#[test]
+fn the_png_has_the_requested_size_and_more_than_one_colour() {
+    let options = SnapshotOptions {
+        panel_size: (300, 240),
+        ..SnapshotOptions::default()
+    };
+    let png = snapshot_png(&lattice_scene(), &[0, 2, 4], &options).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let image = decode_png(&png);
+    // Three panels in a row, and the title band of 36 pixels.
+    assert_eq!(image.size, (900, 276));
+    let first = image.pixels[0];
+    assert_eq!(first, [255, 255, 255], "white background");
+    assert!(image.pixels.iter().any(|&p| p != first));
+    let agent = flock_viz::style::AGENT;
+    assert!(image.pixels.iter().filter(|&&p| p == agent).count() > 3 * AGENTS);
+}
+
+#[test]
+fn bad_requests_are_refused() {
+    let scene = lattice_scene();
+    let options = SnapshotOptions::default();
+    assert!(matches!(
+        snapshot_svg(&scene, &[5], &options),
+        Err(VizError::Invalid(m)) if m.contains("frame 5")
+    ));
+    assert!(snapshot_svg(&scene, &[], &options).is_err());
+    assert!(snapshot_svg(&Scene::new(2, 1.0), &[0], &options).is_err());
+    let tiny = SnapshotOptions {
+        panel_size: (0, 10),
+        ..SnapshotOptions::default()
+    };
+    assert!(snapshot_png(&scene, &[0], &tiny).is_err());
+}
+
+#[test]
+fn walls_and_capsules_are_drawn_in_2d_and_3d() {
+    use flock_viz::Drawable;
+    use flock_viz::style::{OBSTACLE, WALL_PLANE};
+    use glam::DVec3;
+
+    // A 2D wall below the lattice fills the bottom of every panel; a capsule beside it.
+    let scene = lattice_scene()
+        .with_obstacle(Drawable::half_space(DVec2::new(0.0, -3.0), DVec2::Y))
+        .with_obstacle(Drawable::capsule(
+            DVec2::new(-2.5, 0.0),
+            DVec2::new(-2.5, 14.0),
+            1.0,
+        ));
+    let svg = snapshot_svg(&scene, &[0], &SnapshotOptions::default()).unwrap();
+    assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 2);
+
+    // In 3D a floor is a light plane behind the flock (drawn first), a box stays solid.
+    let cube =
+        cube_scene().with_obstacle(Drawable::half_space(DVec3::new(0.0, 0.0, -5.0), DVec3::Z));
+    let options = SnapshotOptions {
+        framing: flock_viz::Framing::Run,
+        ..SnapshotOptions::default()
+    };
+    for view in [View::default(), View::TOP] {
+        let svg = snapshot_svg(
+            &cube,
+            &[0],
+            &SnapshotOptions {
+                view,
+                ..options.clone()
+            },
+        )
+        .unwrap();
+        assert_eq!(count_marks(&svg, "polygon", "fill", WALL_PLANE), 1);
+        assert_eq!(
+            count_marks(&svg, "polygon", "fill", OBSTACLE),
+            2,
+            "ball and box"
+        );
+        let plane = svg.find(&flock_viz::style::hex(WALL_PLANE)).unwrap();
+        let solid = svg
+            .find(&format!("fill=\"{}\"", flock_viz::style::hex(OBSTACLE)))
+            .unwrap();
+        assert!(plane < solid, "the plane is drawn first");
+    }
+    // Seen from the side, the floor is edge-on: a solid region.
+    let side = SnapshotOptions {
+        view: View::new(-90.0, 0.0),
+        ..options
+    };
+    let svg = snapshot_svg(&cube, &[0], &side).unwrap();
+    assert_eq!(count_marks(&svg, "polygon", "fill", WALL_PLANE), 0);
+    assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 3);
+}
