@@ -3,22 +3,28 @@
 //! - [`Scenario`]: a RON scenario file, [`Scenario::load`] parses and validates it.
 //! - [`run_scenario`]: runs it in its dimension and hands records to a [`Recorder`].
 //! - [`RunDirectory`]: the recorder behind `flock run --out DIR`.
+//! - [`figures()`]: every fixture run and drawn into one directory with an `index.html`.
+//! - [`Progress`]: the progress bar of `flock run`, a recorder wrapper.
 //! - [`bench::bench()`]: the synthetic throughput benchmark behind `flock bench`.
 
 pub mod bench;
 pub mod diagnostics;
 pub mod error;
+pub mod figures;
 pub mod initial;
 pub mod output;
 pub mod plot;
+pub mod progress;
 pub mod run;
 pub mod scenario;
 pub mod summary;
 mod validate;
 
 pub use error::ScenarioError;
+pub use figures::{FigureEntry, FiguresError, figures};
 pub use output::{METRICS_HEADER, RunDirectory};
 pub use plot::{PlotError, plot_run};
+pub use progress::Progress;
 pub use run::{Record, Recorder, RunError, RunSummary, run, run_scenario};
 pub use scenario::Scenario;
 pub use summary::Report;

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use flock_cli::{Report, RunDirectory, RunError, Scenario, plot_run, run_scenario};
+use flock_cli::{Progress, Report, RunDirectory, RunError, Scenario, plot_run, run_scenario};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -32,6 +32,20 @@ enum Command {
         /// Also draw the run's figures into DIR/figures (as `flock plot DIR`).
         #[arg(long)]
         plot: bool,
+        /// No progress bar (it is shown only on a terminal, for runs longer than about a second).
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Run every `fixtures/*.ron` (relative to the current directory) into `DIR/<fixture stem>/`,
+    /// draw its figures (GIF and trajectory CSVs dropped), and write `DIR/index.html`, a static page
+    /// of the papers' figures and final metrics.
+    Figures {
+        /// The output directory.
+        #[arg(long, default_value = "docs/figures")]
+        out: PathBuf,
+        /// Print nothing but errors.
+        #[arg(long)]
+        quiet: bool,
     },
     /// Draw the figures of a finished run into DIR/figures: snapshots (SVG, PNG), the metric curves
     /// of TAC 2006 Fig. 18, an animated GIF and a self-contained HTML player.
@@ -80,13 +94,8 @@ fn main() -> ExitCode {
             threads,
             warmup,
         } => {
-            if let Some(threads) = threads
-                && let Err(e) = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build_global()
-            {
-                eprintln!("error: cannot start {threads} threads: {e}");
-                return ExitCode::FAILURE;
+            if let Err(code) = use_threads(threads) {
+                return code;
             }
             let config = flock_cli::bench::BenchConfig {
                 n,
@@ -120,6 +129,15 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+        Command::Figures { out, quiet } => {
+            match flock_cli::figures(std::path::Path::new("fixtures"), &out, quiet) {
+                Ok(_) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
                 println!("{}: valid", scenario.display());
@@ -138,6 +156,7 @@ fn main() -> ExitCode {
             force,
             threads,
             plot,
+            quiet,
         } => {
             let loaded = match Scenario::load(&scenario) {
                 Ok(s) => s,
@@ -146,18 +165,13 @@ fn main() -> ExitCode {
                     return ExitCode::from(INVALID);
                 }
             };
-            if let Some(threads) = threads
-                && let Err(e) = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build_global()
-            {
-                eprintln!("error: cannot start {threads} threads: {e}");
-                return ExitCode::FAILURE;
+            if let Err(code) = use_threads(threads) {
+                return code;
             }
             let out = out.unwrap_or_else(|| {
                 PathBuf::from("out").join(scenario.file_stem().unwrap_or_default())
             });
-            match execute(&loaded, &out, force) {
+            match execute(&loaded, &out, force, quiet) {
                 Ok(()) if plot => match plot_run(&out) {
                     Ok(files) => {
                         println!(
@@ -189,9 +203,13 @@ fn execute(
     scenario: &Scenario,
     out: &std::path::Path,
     force: bool,
+    quiet: bool,
 ) -> Result<(), RunError<std::io::Error>> {
-    let mut dir = RunDirectory::create(out, scenario, force).map_err(RunError::Record)?;
-    match run_scenario(scenario, &mut dir) {
+    let dir = RunDirectory::create(out, scenario, force).map_err(RunError::Record)?;
+    let mut recorder = Progress::for_terminal(dir, scenario, quiet);
+    let result = run_scenario(scenario, &mut recorder);
+    let dir = recorder.into_inner();
+    match result {
         Ok(summary) => {
             let target = dir.finish().map_err(RunError::Record)?;
             println!(
@@ -209,4 +227,18 @@ fn execute(
             Err(e)
         }
     }
+}
+
+/// Sizes rayon's global pool (default: all cores); results are identical for any size.
+fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
+    let Some(threads) = threads else {
+        return Ok(());
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global()
+        .map_err(|e| {
+            eprintln!("error: cannot start {threads} threads: {e}");
+            ExitCode::FAILURE
+        })
 }

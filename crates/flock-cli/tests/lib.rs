@@ -4,6 +4,7 @@
 mod bench;
 mod common;
 mod errors;
+mod figures_cmd;
 mod fixtures;
 mod obstacle_errors;
 mod papers;

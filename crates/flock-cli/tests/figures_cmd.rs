@@ -1,0 +1,113 @@
+//! `flock figures`: every fixture run and drawn, with a static `index.html`; and `flock run --quiet`.
+
+use std::fs;
+use std::process::Command;
+
+use flock_cli::figures;
+
+use crate::common::TempDir;
+
+/// A tiny 2D scenario: 8 agents for 0.5 s.
+const TINY: &str = r#"Scenario(
+    name: "tac2006_fig99_tiny",
+    description: "Algorithm 2, n = 8, 2D: a tiny test flock <with> markup & such",
+    dim: 2,
+    agents: 8,
+    seed: 3,
+    algorithm: Algorithm2(gamma: ConstantVelocity(position: [0.0, 0.0], velocity: [1.0, 0.0]), c1: 1.0, c2: 2.0),
+    initial: (positions: Box(min: [-5.0, -5.0], max: [5.0, 5.0])),
+    step: 0.01,
+    duration: 0.5,
+    record_every: 5,
+)
+"#;
+
+#[test]
+fn figures_writes_an_offline_index_of_every_fixture() {
+    let tmp = TempDir::new("figures_cmd");
+    let fixtures = tmp.path().join("fixtures");
+    fs::create_dir_all(&fixtures).expect("create fixtures/");
+    fs::write(fixtures.join("tac2006_fig99_tiny.ron"), TINY).expect("write the scenario");
+    fs::write(fixtures.join("notes.txt"), "not a scenario").expect("write a non-fixture");
+    let out = tmp.path().join("site");
+
+    let entries = figures(&fixtures, &out, true).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(entries.len(), 1);
+    assert_eq!(entries[0].reference, "Olfati-Saber, TAC 2006, Fig. 99");
+
+    let index = fs::read_to_string(out.join("index.html")).expect("index.html");
+    assert!(index.contains("tac2006_fig99_tiny"), "{index}");
+    assert!(index.contains("TAC 2006, Fig. 99"), "{index}");
+    assert!(
+        index.contains("&lt;with&gt; markup &amp; such"),
+        "escaped description"
+    );
+    assert!(index.contains("giant component"), "the metric table");
+    assert!(!index.contains("http"), "no network reference");
+
+    let images: Vec<&str> = index
+        .split("<img src=\"")
+        .skip(1)
+        .map(|rest| rest.split('"').next().expect("a closing quote"))
+        .collect();
+    assert!(
+        images.contains(&"tac2006_fig99_tiny/figures/snapshots.png")
+            && images.contains(&"tac2006_fig99_tiny/figures/metrics.png"),
+        "{images:?}"
+    );
+    for image in images {
+        let len = fs::metadata(out.join(image))
+            .unwrap_or_else(|e| panic!("{image}: {e}"))
+            .len();
+        assert!(len > 0, "{image} is empty");
+    }
+
+    let run = out.join("tac2006_fig99_tiny");
+    assert!(run.join("scenario.ron").is_file() && run.join("metrics.csv").is_file());
+    assert!(run.join("figures/player.html").is_file());
+    assert!(!run.join("trajectory.csv").exists() && !run.join("final.csv").exists());
+    assert!(!run.join("figures/animation.gif").exists());
+
+    // A second call replaces the runs in place.
+    figures(&fixtures, &out, true).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn figures_without_fixtures_is_a_clear_error() {
+    let tmp = TempDir::new("figures_none");
+    let err = figures(&tmp.path().join("fixtures"), &tmp.path().join("o"), true)
+        .expect_err("no fixtures directory");
+    assert!(err.to_string().contains("no fixtures"), "{err}");
+    let output = Command::new(env!("CARGO_BIN_EXE_flock"))
+        .current_dir(tmp.path())
+        .args(["figures", "--out", "o", "--quiet"])
+        .output()
+        .expect("flock runs");
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("no fixtures"));
+}
+
+#[test]
+fn run_quiet_is_accepted_and_writes_the_same_files() {
+    let tmp = TempDir::new("run_quiet");
+    fs::write(tmp.path().join("s.ron"), TINY).expect("write the scenario");
+    let flock = |args: &[&str]| {
+        let output = Command::new(env!("CARGO_BIN_EXE_flock"))
+            .current_dir(tmp.path())
+            .args(args)
+            .output()
+            .expect("flock runs");
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    };
+    flock(&["run", "s.ron", "--out", "a"]);
+    flock(&["run", "s.ron", "--out", "b", "--quiet"]);
+    for file in ["metrics.csv", "trajectory.csv", "final.csv", "scenario.ron"] {
+        let a = fs::read(tmp.path().join("a").join(file)).expect("a");
+        let b = fs::read(tmp.path().join("b").join(file)).expect("b");
+        assert!(a == b, "{file} differs with --quiet");
+    }
+}
