@@ -21,6 +21,8 @@ use flock_protocols::{
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
+use crate::run::measure;
+
 /// Steps between two recorded steps (metrics and energy), as the targets count them.
 pub const RECORD_EVERY: u64 = 10;
 
@@ -288,16 +290,7 @@ fn time<V: Vector, P: Protocol<V>>(
     for _ in 0..config.warmup {
         sim.step();
     }
-    let measure = |sim: &Simulation<V, P>| {
-        let swarm = sim.swarm();
-        let metrics = FlockMetrics::measure(
-            &swarm.positions,
-            &swarm.velocities,
-            sim.net(),
-            &metric_params,
-        );
-        (metrics, sim.energy())
-    };
+    let measure = |sim: &Simulation<V, P>| measure(sim, &metric_params);
     let (mut plain, mut recorded) = (Duration::ZERO, Duration::ZERO);
     let (mut plain_steps, mut recorded_steps) = (0, 0);
     let mut metrics = None;

@@ -291,15 +291,12 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
         scenario.step,
     );
     let measure = |sim: &Simulation<V, P>| {
-        let swarm = sim.swarm();
-        let metrics = FlockMetrics::measure(
-            &swarm.positions,
-            &swarm.velocities,
-            sim.net(),
-            &metric_params,
-        );
-        let extra = sim.protocol().values(sim.time(), swarm);
-        (metrics, sim.energy(), extra)
+        let (metrics, energy) = measure(sim, &metric_params);
+        (
+            metrics,
+            energy,
+            sim.protocol().values(sim.time(), sim.swarm()),
+        )
     };
     let (metrics, initial_energy, extra) = measure(&sim);
     recorder
@@ -351,4 +348,15 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
             .collect(),
         elapsed,
     })
+}
+
+/// The flocking metrics and the energy H of a simulation's current state: what every recorded
+/// step costs on top of a plain step.
+pub(crate) fn measure<V: Vector, P: Protocol<V>>(
+    sim: &Simulation<V, P>,
+    params: &MetricParams,
+) -> (FlockMetrics, f64) {
+    let swarm = sim.swarm();
+    let metrics = FlockMetrics::measure(&swarm.positions, &swarm.velocities, sim.net(), params);
+    (metrics, sim.energy())
 }
