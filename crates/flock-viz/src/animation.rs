@@ -13,7 +13,7 @@ use crate::error::VizError;
 use crate::framing::{Framer, Framing};
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
-use crate::snapshot::{PanelStyle, TITLE_BAND, draw_panel, draw_title, figure_title};
+use crate::snapshot::{PanelStyle, below_title, draw_panel, figure_title};
 use crate::view::View;
 
 /// How the animation is drawn.
@@ -133,13 +133,7 @@ impl Figure for AnimationFrame<'_> {
         root: &DrawingArea<DB, Shift>,
         text: TextMode,
     ) -> Result<(), VizError> {
-        let body = if self.title.is_empty() {
-            root.clone()
-        } else {
-            let (top, body) = root.split_vertically(TITLE_BAND);
-            draw_title(&top, &text.text(self.title))?;
-            body
-        };
+        let body = below_title(root, self.title, text)?;
         draw_panel(&body, self.framer, self.frame, self.panel)
     }
 }

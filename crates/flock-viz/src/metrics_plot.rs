@@ -20,7 +20,7 @@ use crate::error::VizError;
 use crate::format;
 use crate::metrics::Metrics;
 use crate::render::{self, Figure, TextMode};
-use crate::snapshot::{TITLE_BAND, draw_title, text_style};
+use crate::snapshot::{below_title, grid_size, text_style};
 use crate::style::{self, CURVE, CURVE_SECONDARY, GRID, INK};
 
 /// How the metric figure is drawn.
@@ -202,15 +202,11 @@ impl<'a> MetricsFigure<'a> {
 
 impl Figure for MetricsFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let (w, h) = self.options.panel_size;
-        let band = if self.options.title.is_empty() {
-            0
-        } else {
-            TITLE_BAND
-        };
-        (
-            w.saturating_mul(self.columns as u32),
-            h.saturating_mul(self.rows as u32).saturating_add(band),
+        grid_size(
+            self.options.panel_size,
+            self.columns,
+            self.rows,
+            &self.options.title,
         )
     }
 
@@ -219,13 +215,7 @@ impl Figure for MetricsFigure<'_> {
         root: &DrawingArea<DB, Shift>,
         text: TextMode,
     ) -> Result<(), VizError> {
-        let body = if self.options.title.is_empty() {
-            root.clone()
-        } else {
-            let (top, body) = root.split_vertically(TITLE_BAND);
-            draw_title(&top, &text.text(&self.options.title))?;
-            body
-        };
+        let body = below_title(root, &self.options.title, text)?;
         let areas = body.split_evenly((self.rows, self.columns));
         for (area, panel) in areas.iter().zip(&self.panels) {
             self.draw_panel(area, panel, text)?;

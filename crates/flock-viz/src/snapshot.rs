@@ -28,7 +28,7 @@ use crate::style::{self, AGENT, EDGE, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, TR
 use crate::view::View;
 
 /// Height in pixels of the band that holds a figure's title.
-pub(crate) const TITLE_BAND: u32 = 36;
+const TITLE_BAND: u32 = 36;
 /// Margins of a panel's plotting area (top, bottom, left, right), in pixels.
 const MARGIN: (u32, u32, u32, u32) = (4, 6, 6, 18);
 /// Height of the x-axis label area, in pixels.
@@ -163,15 +163,11 @@ pub(crate) fn figure_title(scene: &Scene, view: View) -> String {
 
 impl Figure for Snapshot<'_> {
     fn size(&self) -> (u32, u32) {
-        let (w, h) = self.options.panel_size;
-        let band = if self.title().is_empty() {
-            0
-        } else {
-            TITLE_BAND
-        };
-        (
-            w.saturating_mul(self.columns as u32),
-            h.saturating_mul(self.rows as u32).saturating_add(band),
+        grid_size(
+            self.options.panel_size,
+            self.columns,
+            self.rows,
+            &self.title(),
         )
     }
 
@@ -180,14 +176,7 @@ impl Figure for Snapshot<'_> {
         root: &DrawingArea<DB, Shift>,
         text: TextMode,
     ) -> Result<(), VizError> {
-        let title = self.title();
-        let body = if title.is_empty() {
-            root.clone()
-        } else {
-            let (top, body) = root.split_vertically(TITLE_BAND);
-            draw_title(&top, &text.text(&title))?;
-            body
-        };
+        let body = below_title(root, &self.title(), text)?;
         let panels = body.split_evenly((self.rows, self.columns));
         let framer = Framer::new(self.scene, self.options.view, self.options.trail);
         for (panel, &frame) in panels.iter().zip(self.frames) {
@@ -197,14 +186,32 @@ impl Figure for Snapshot<'_> {
     }
 }
 
-/// Draws a figure title centred in `area`.
-pub(crate) fn draw_title<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
+/// The size of `rows × columns` panels of `panel` pixels, under a title band unless `title` is empty.
+pub(crate) fn grid_size(panel: (u32, u32), columns: usize, rows: usize, title: &str) -> (u32, u32) {
+    let band = if title.is_empty() { 0 } else { TITLE_BAND };
+    (
+        panel.0.saturating_mul(columns as u32),
+        panel.1.saturating_mul(rows as u32).saturating_add(band),
+    )
+}
+
+/// Draws `title` centred in a band at the top of `root` (nothing when it is empty) and returns the
+/// area below it.
+pub(crate) fn below_title<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
     title: &str,
-) -> Result<(), VizError> {
-    area.titled(title, (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)))
-        .map_err(VizError::draw)?;
-    Ok(())
+    text: TextMode,
+) -> Result<DrawingArea<DB, Shift>, VizError> {
+    if title.is_empty() {
+        return Ok(root.clone());
+    }
+    let (top, body) = root.split_vertically(TITLE_BAND);
+    top.titled(
+        &text.text(title),
+        (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)),
+    )
+    .map_err(VizError::draw)?;
+    Ok(body)
 }
 
 /// What a panel draws, shared by snapshots, animations and the player.
