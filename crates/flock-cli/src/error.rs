@@ -23,6 +23,8 @@ pub enum ScenarioError {
         col: usize,
         /// The parser's message.
         message: String,
+        /// The innermost field whose value holds the error, when the message does not name it.
+        field: Option<String>,
     },
     /// An obstacle is malformed (its error names `obstacles[k].field`, the value, why and the fix).
     Obstacle(flock_obstacles::ObstacleError),
@@ -49,14 +51,19 @@ impl ScenarioError {
         }
     }
 
-    /// A RON error at its position.
+    /// A RON error in `text` at its position.
     #[must_use]
-    pub fn syntax(origin: &str, error: &ron::error::SpannedError) -> Self {
+    pub fn syntax(origin: &str, text: &str, error: &ron::error::SpannedError) -> Self {
+        let (line, col) = (error.span.start.line, error.span.start.col);
+        let message = error.code.to_string();
+        let field = enclosing_field(text, line, col)
+            .filter(|field| !message.contains(&format!("`{field}`")));
         Self::Syntax {
             origin: origin.to_owned(),
-            line: error.span.start.line,
-            col: error.span.start.col,
-            message: error.code.to_string(),
+            line,
+            col,
+            message,
+            field,
         }
     }
 
@@ -84,7 +91,8 @@ impl ScenarioError {
         match self {
             Self::Invalid { field, .. } => Some(field.clone()),
             Self::Obstacle(error) => Some(error.field()),
-            Self::Io { .. } | Self::Syntax { .. } => None,
+            Self::Syntax { field, .. } => field.clone(),
+            Self::Io { .. } => None,
         }
     }
 }
@@ -98,7 +106,14 @@ impl fmt::Display for ScenarioError {
                 line,
                 col,
                 message,
-            } => write!(f, "{origin}:{line}:{col}: {message}"),
+                field,
+            } => {
+                write!(f, "{origin}:{line}:{col}: {message}")?;
+                match field {
+                    Some(field) => write!(f, " (in the value of `{field}`)"),
+                    None => Ok(()),
+                }
+            }
             Self::Obstacle(error) => write!(f, "{error}"),
             Self::Invalid {
                 field,
@@ -111,3 +126,34 @@ impl fmt::Display for ScenarioError {
 }
 
 impl std::error::Error for ScenarioError {}
+
+/// The last `name:` (outside `//` comments) before 1-based `line`:`col` of `text`: the field whose
+/// value is being read.
+fn enclosing_field(text: &str, line: usize, col: usize) -> Option<String> {
+    let code = |l: &str| l.split("//").next().unwrap_or_default().to_owned();
+    let mut prefix: String = text
+        .lines()
+        .take(line.saturating_sub(1))
+        .flat_map(|l| [code(l), "\n".to_owned()])
+        .collect();
+    let last: String = text
+        .lines()
+        .nth(line.saturating_sub(1))?
+        .chars()
+        .take(col.saturating_sub(1))
+        .collect();
+    prefix.push_str(&code(&last));
+    let mut rest = prefix.as_str();
+    while let Some(colon) = rest.rfind(':') {
+        let before = rest[..colon].trim_end();
+        let start = before
+            .rfind(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .map_or(0, |k| k + 1);
+        let name = &before[start..];
+        if !name.is_empty() && !name.starts_with(|c: char| c.is_ascii_digit()) {
+            return Some(name.to_owned());
+        }
+        rest = &rest[..colon];
+    }
+    None
+}

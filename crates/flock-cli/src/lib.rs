@@ -8,23 +8,31 @@
 //! - [`bench::bench()`]: the synthetic throughput benchmark behind `flock bench`.
 
 pub mod bench;
+pub mod checkpoint;
 pub mod diagnostics;
 pub mod error;
 pub mod figures;
+pub mod health;
 pub mod initial;
+pub mod npy;
 pub mod output;
 pub mod plot;
 pub mod progress;
 pub mod run;
 pub mod scenario;
+pub mod stability;
 pub mod summary;
 mod validate;
 
 pub use error::ScenarioError;
 pub use figures::{FigureEntry, FiguresError, figures};
-pub use output::{METRICS_HEADER, RunDirectory};
+pub use health::NumericalError;
+pub use output::{
+    INCOMPLETE_FILE, METRICS_HEADER, OutputOptions, ResumeError, RunDirectory, TrajectoryFormat,
+};
 pub use plot::{PlotError, plot_run};
 pub use progress::Progress;
-pub use run::{Record, Recorder, RunError, RunSummary, run, run_scenario};
+pub use run::{Record, Recorder, RunError, RunSummary, Start, resume_scenario, run, run_scenario};
 pub use scenario::Scenario;
+pub use stability::Warning;
 pub use summary::Report;

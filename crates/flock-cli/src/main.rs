@@ -1,10 +1,14 @@
 //! `flock`: run flocking scenarios from RON files.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
-use flock_cli::{Progress, Report, RunDirectory, RunError, Scenario, plot_run, run_scenario};
+use flock_cli::{
+    OutputOptions, Progress, Report, ResumeError, RunDirectory, RunError, Scenario, Start,
+    TrajectoryFormat, plot_run, resume_scenario,
+};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -16,16 +20,29 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Run a scenario and write metrics.csv, trajectory.csv, final.csv and scenario.ron to DIR.
+    /// Run a scenario and write metrics.csv, the trajectory, final.csv and scenario.ron to DIR
+    /// (through DIR.partial, which holds a killed or interrupted run until `--resume DIR`).
     Run {
         /// The scenario file (.ron).
-        scenario: PathBuf,
+        #[arg(required_unless_present = "resume")]
+        scenario: Option<PathBuf>,
         /// The output directory (default: `out/<scenario file stem>`).
-        #[arg(long)]
+        #[arg(long, conflicts_with = "resume")]
         out: Option<PathBuf>,
         /// Replace an existing output directory.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "resume")]
         force: bool,
+        /// Continue the interrupted or killed run DIR (or DIR.partial) from its last checkpoint;
+        /// the outputs are bit-identical to those of an uninterrupted run.
+        #[arg(long, value_name = "DIR", conflicts_with = "scenario")]
+        resume: Option<PathBuf>,
+        /// The trajectory's format: csv (trajectory.csv) or npy (trajectory.npy, for large runs;
+        /// `numpy.load` reads it).
+        #[arg(long, default_value = "csv", conflicts_with = "resume")]
+        trajectory_format: TrajectoryFormat,
+        /// Keep a checkpoint every N steps for `--resume` (0: only on Ctrl-C).
+        #[arg(long, value_name = "N", default_value_t = 1000)]
+        checkpoint_every: u64,
         /// Worker threads (default: all cores); results are identical for any count.
         #[arg(long)]
         threads: Option<usize>,
@@ -143,6 +160,15 @@ fn main() -> ExitCode {
                 println!("{}: valid", scenario.display());
                 print!("{}", s.to_ron().unwrap_or_default());
                 println!();
+                if let Some(stable) = flock_cli::stability::largest_stable_step(&s) {
+                    println!(
+                        "// step {} against the estimated largest stable step {stable:.3e}",
+                        s.step
+                    );
+                }
+                for warning in s.warnings() {
+                    eprintln!("{warning}");
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => {
@@ -154,25 +180,39 @@ fn main() -> ExitCode {
             scenario,
             out,
             force,
+            resume,
+            trajectory_format,
+            checkpoint_every,
             threads,
             plot,
             quiet,
         } => {
-            let loaded = match Scenario::load(&scenario) {
-                Ok(s) => s,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::from(INVALID);
-                }
-            };
             if let Err(code) = use_threads(threads) {
                 return code;
             }
-            let out = out.unwrap_or_else(|| {
-                PathBuf::from("out").join(scenario.file_stem().unwrap_or_default())
-            });
-            match execute(&loaded, &out, force, quiet) {
-                Ok(()) if plot => match plot_run(&out) {
+            let opened = match (resume, scenario) {
+                (Some(dir), _) => resume_directory(&dir, checkpoint_every),
+                (None, Some(scenario)) => {
+                    let out = out.unwrap_or_else(|| {
+                        PathBuf::from("out").join(scenario.file_stem().unwrap_or_default())
+                    });
+                    let options = OutputOptions {
+                        force,
+                        format: trajectory_format,
+                        checkpoint_every,
+                    };
+                    create_directory(&scenario, &out, &options)
+                }
+                (None, None) => unreachable!("clap requires a scenario unless --resume is given"),
+            };
+            let (dir, scenario, start) = match opened {
+                Ok(opened) => opened,
+                Err(code) => return code,
+            };
+            stop_on_ctrl_c();
+            let dir = dir.with_stop_flag(&STOP);
+            match execute(&scenario, dir, start.as_ref(), quiet) {
+                Ok(out) if plot => match plot_run(&out) {
                     Ok(files) => {
                         println!(
                             "  figures               {} file(s) in {}",
@@ -186,32 +226,98 @@ fn main() -> ExitCode {
                         ExitCode::FAILURE
                     }
                 },
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    match e {
-                        RunError::Scenario(_) => ExitCode::from(INVALID),
-                        RunError::Record(_) => ExitCode::FAILURE,
-                    }
-                }
+                Ok(_) => ExitCode::SUCCESS,
+                Err(code) => code,
             }
         }
     }
 }
 
+/// Set by Ctrl-C (or SIGTERM): the run stops after the current step.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Exit code of a run stopped by Ctrl-C (128 + SIGINT).
+const INTERRUPTED: u8 = 130;
+
+/// The first Ctrl-C stops the run cleanly after the current step; a second one quits at once
+/// (the partial directory then still holds whole records and the last checkpoint).
+fn stop_on_ctrl_c() {
+    let installed = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            std::process::exit(i32::from(INTERRUPTED));
+        }
+        eprintln!("\nstopping after the current step (Ctrl-C again to quit at once)");
+    });
+    if let Err(e) = installed {
+        eprintln!("warning: Ctrl-C will not stop the run cleanly: {e}");
+    }
+}
+
+/// Loads and checks a scenario, prints its warnings and starts its output directory.
+fn create_directory(
+    path: &Path,
+    out: &Path,
+    options: &OutputOptions,
+) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
+    let scenario = Scenario::load(path).map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(INVALID)
+    })?;
+    for warning in scenario.warnings() {
+        eprintln!("{warning}");
+    }
+    let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::FAILURE
+    })?;
+    Ok((dir, scenario, None))
+}
+
+/// Reopens an interrupted run directory at its last checkpoint.
+fn resume_directory(
+    dir: &Path,
+    checkpoint_every: u64,
+) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
+    let (dir, scenario, start) = RunDirectory::resume(dir, checkpoint_every).map_err(|e| {
+        eprintln!("error: {e}");
+        match e {
+            ResumeError::Scenario(_) => ExitCode::from(INVALID),
+            ResumeError::Refused(_) | ResumeError::Io(_) => ExitCode::FAILURE,
+        }
+    })?;
+    match &start {
+        Some(start) => println!(
+            "resuming {} at step {} of {}",
+            dir.partial().display(),
+            start.steps,
+            scenario.steps()
+        ),
+        None => println!(
+            "resuming {}: no checkpoint yet, starting over",
+            dir.partial().display()
+        ),
+    }
+    Ok((dir, scenario, start))
+}
+
+/// Runs into `dir` and reports; on failure keeps what was written, marked incomplete, and
+/// returns the exit code.
 fn execute(
     scenario: &Scenario,
-    out: &std::path::Path,
-    force: bool,
+    dir: RunDirectory,
+    start: Option<&Start>,
     quiet: bool,
-) -> Result<(), RunError<std::io::Error>> {
-    let dir = RunDirectory::create(out, scenario, force).map_err(RunError::Record)?;
-    let mut recorder = Progress::for_terminal(dir, scenario, quiet);
-    let result = run_scenario(scenario, &mut recorder);
+) -> Result<PathBuf, ExitCode> {
+    let mut recorder = Progress::for_terminal(dir, scenario, quiet)
+        .starting_at(start.map_or(0, |start| start.steps));
+    let result = resume_scenario(scenario, start, &mut recorder);
     let dir = recorder.into_inner();
-    match result {
+    let error = match result {
         Ok(summary) => {
-            let target = dir.finish().map_err(RunError::Record)?;
+            let target = dir.finish().map_err(|e| {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            })?;
             println!(
                 "{}",
                 Report {
@@ -220,13 +326,37 @@ fn execute(
                 }
             );
             println!("  outputs               {}", target.display());
-            Ok(())
+            return Ok(target);
         }
-        Err(e) => {
+        Err(error) => error,
+    };
+    eprintln!("error: {error}");
+    let (why, resumable, code) = match &error {
+        RunError::Scenario(_) => {
             dir.abandon();
-            Err(e)
+            return Err(ExitCode::from(INVALID));
         }
+        RunError::Numerical(_) => (error.to_string(), false, ExitCode::FAILURE),
+        RunError::Record(e) => (format!("writing failed: {e}"), true, ExitCode::FAILURE),
+        RunError::Interrupted { .. } => (
+            format!("{error} by Ctrl-C"),
+            true,
+            ExitCode::from(INTERRUPTED),
+        ),
+    };
+    match dir.keep_incomplete(&why, resumable) {
+        Ok(partial) if resumable => eprintln!(
+            "the records so far are kept in {}; continue with `flock run --resume {}`",
+            partial.display(),
+            partial.display()
+        ),
+        Ok(partial) => eprintln!(
+            "the records up to the last good step are kept in {}, marked incomplete",
+            partial.display()
+        ),
+        Err(e) => eprintln!("error: cannot mark the run incomplete: {e}"),
     }
+    Err(code)
 }
 
 /// Sizes rayon's global pool (default: all cores); results are identical for any size.

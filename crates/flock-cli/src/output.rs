@@ -1,39 +1,177 @@
-//! The output directory of `flock run`: `metrics.csv`, `trajectory.csv`, `final.csv` and the
-//! resolved `scenario.ron`, written into a sibling `DIR.partial` that is renamed to `DIR` only when
-//! the run completes, so a failed run leaves nothing partial behind.
+//! The output directory of `flock run`: `metrics.csv`, the trajectory (`trajectory.csv`, or
+//! `trajectory.npy` for large runs), `final.csv` and the resolved `scenario.ron`.
+//!
+//! Crash safety:
+//! - Everything is written into a sibling `DIR.partial`, renamed to `DIR` only when the run
+//!   completes: `DIR` exists only for complete runs.
+//! - `DIR.partial/INCOMPLETE` says why the directory is incomplete (running or killed,
+//!   interrupted, failed) and how to resume it.
+//! - Each record goes to each file in one write of whole lines (a `.npy` header counts only
+//!   whole records), and `checkpoint.bin` ([`Checkpoint`]) is replaced atomically every
+//!   `checkpoint_every` steps and when the run is interrupted. [`RunDirectory::resume`] cuts the
+//!   files back to the last checkpoint and continues them.
 
-use std::fs::{self, File};
-use std::io::{self, BufWriter, Write};
+use std::fmt::Write as _;
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use flock_math::Vector;
 
-use crate::run::{Record, Recorder};
+use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
+use crate::error::ScenarioError;
+use crate::npy::{NpyFile, trajectory_dtype};
+use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
 
 /// The header of `metrics.csv`.
 pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy";
+
+/// The file that marks a directory as incomplete, and says why.
+pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
+
+/// The first word of [`INCOMPLETE_FILE`] for a run that cannot be resumed.
+const FAILED: &str = "failed";
+
+/// How a run's trajectory is stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TrajectoryFormat {
+    /// `trajectory.csv`: `t,id,x,y[,z],vx,vy[,vz]`, one line per agent and record.
+    #[default]
+    Csv,
+    /// `trajectory.npy`: one structured record per instant, fields `t`, `q` (n × dim) and
+    /// `p` (n × dim), read by `numpy.load` (see [`crate::npy`]).
+    Npy,
+}
+
+impl FromStr for TrajectoryFormat {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "csv" => Ok(Self::Csv),
+            "npy" => Ok(Self::Npy),
+            other => Err(format!(
+                "unknown trajectory format {other:?}: use csv or npy"
+            )),
+        }
+    }
+}
+
+/// How a run directory is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutputOptions {
+    /// Replace an existing `DIR`.
+    pub force: bool,
+    /// The trajectory's format.
+    pub format: TrajectoryFormat,
+    /// Keep a checkpoint every this many steps (0: only when interrupted).
+    pub checkpoint_every: u64,
+}
+
+impl Default for OutputOptions {
+    fn default() -> Self {
+        Self {
+            force: false,
+            format: TrajectoryFormat::Csv,
+            checkpoint_every: 1000,
+        }
+    }
+}
+
+/// The trajectory file being written.
+#[derive(Debug)]
+enum Trajectory {
+    Csv { file: File, bytes: u64 },
+    Npy(NpyFile),
+}
 
 /// An output directory being written.
 #[derive(Debug)]
 pub struct RunDirectory {
     target: PathBuf,
     partial: PathBuf,
-    metrics: BufWriter<File>,
-    trajectory: BufWriter<File>,
+    metrics: File,
+    metrics_bytes: u64,
+    trajectory: Trajectory,
+    records: u64,
     dim: usize,
-    last_state: Vec<u8>,
+    checkpoint_every: u64,
+    stop: Option<&'static AtomicBool>,
+    /// One record's bytes, reused.
+    buffer: Vec<u8>,
+    /// The last recorded state (dim coordinates of q, then of p, per agent) for `final.csv`.
+    last_state: Vec<f64>,
+}
+
+/// Why a run directory cannot be resumed.
+#[derive(Debug)]
+pub enum ResumeError {
+    /// There is nothing to resume, or it cannot be resumed; the message says why and what to do.
+    Refused(String),
+    /// The directory's `scenario.ron` no longer loads.
+    Scenario(ScenarioError),
+    /// Reading or cutting back the files failed.
+    Io(io::Error),
+}
+
+impl std::fmt::Display for ResumeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Refused(why) => write!(f, "{why}"),
+            Self::Scenario(e) => write!(f, "{e}"),
+            Self::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for ResumeError {}
+
+impl From<io::Error> for ResumeError {
+    fn from(e: io::Error) -> Self {
+        Self::Io(e)
+    }
+}
+
+/// `DIR.partial`.
+#[must_use]
+pub fn partial_path(target: &Path) -> PathBuf {
+    let mut partial = target.as_os_str().to_owned();
+    partial.push(".partial");
+    PathBuf::from(partial)
 }
 
 impl RunDirectory {
-    /// Starts writing the run of `scenario` to `target`; refuses an existing non-empty `target`
-    /// unless `force`.
+    /// Starts writing the run of `scenario` to `target` with default options but `force`: CSV,
+    /// a checkpoint every 1,000 steps.
     ///
     /// # Errors
     /// When `target` holds files and `force` is false, or on any I/O error.
     pub fn create(target: &Path, scenario: &Scenario, force: bool) -> io::Result<Self> {
+        Self::create_with(
+            target,
+            scenario,
+            &OutputOptions {
+                force,
+                ..OutputOptions::default()
+            },
+        )
+    }
+
+    /// Starts writing the run of `scenario` to `target`; refuses an existing non-empty `target`
+    /// unless `options.force`.
+    ///
+    /// # Errors
+    /// When `target` holds files and `force` is false, or on any I/O error.
+    pub fn create_with(
+        target: &Path,
+        scenario: &Scenario,
+        options: &OutputOptions,
+    ) -> io::Result<Self> {
         let non_empty = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
-        if non_empty && !force {
+        if non_empty && !options.force {
             return Err(io::Error::new(
                 io::ErrorKind::AlreadyExists,
                 format!(
@@ -42,31 +180,193 @@ impl RunDirectory {
                 ),
             ));
         }
-        let mut partial = target.as_os_str().to_owned();
-        partial.push(".partial");
-        let partial = PathBuf::from(partial);
-        if partial.exists() {
-            fs::remove_dir_all(&partial)?;
+        let partial = partial_path(target);
+        if partial.exists() && !options.force {
+            return Err(io::Error::new(
+                io::ErrorKind::AlreadyExists,
+                format!(
+                    "{} holds an interrupted run; continue it with `flock run --resume {}`, or pass --force to start over",
+                    partial.display(),
+                    target.display()
+                ),
+            ));
         }
-        fs::create_dir_all(&partial)?;
+        // The directory is prepared under another name and appears as `DIR.partial` with its
+        // `INCOMPLETE` note and scenario already inside.
+        let mut staging = partial.clone().into_os_string();
+        staging.push(".new");
+        let staging = PathBuf::from(staging);
+        for stale in [&partial, &staging] {
+            if stale.exists() {
+                fs::remove_dir_all(stale)?;
+            }
+        }
+        fs::create_dir_all(&staging)?;
+        write_incomplete(&staging, &running_note(target))?;
         let text = scenario.to_ron().map_err(io::Error::other)?;
-        fs::write(partial.join("scenario.ron"), text + "\n")?;
-        let mut metrics = BufWriter::new(File::create(partial.join("metrics.csv"))?);
-        write!(metrics, "{METRICS_HEADER}")?;
-        for column in scenario.extra_columns() {
-            write!(metrics, ",{column}")?;
-        }
-        writeln!(metrics)?;
-        let mut trajectory = BufWriter::new(File::create(partial.join("trajectory.csv"))?);
-        writeln!(trajectory, "t,{}", state_header(scenario.dim))?;
+        fs::write(staging.join("scenario.ron"), text + "\n")?;
+        let mut this = Self::start_files(target, staging, scenario, options.format, options)?;
+        // The open files follow the directory's rename.
+        fs::rename(&this.partial, &partial)?;
+        this.partial = partial;
+        Ok(this)
+    }
+
+    /// Writes the headers of fresh output files into `partial`.
+    fn start_files(
+        target: &Path,
+        partial: PathBuf,
+        scenario: &Scenario,
+        format: TrajectoryFormat,
+        options: &OutputOptions,
+    ) -> io::Result<Self> {
+        let headers = Headers::of(scenario);
+        let mut metrics = File::create(partial.join("metrics.csv"))?;
+        metrics.write_all(headers.metrics.as_bytes())?;
+        let trajectory = match format {
+            TrajectoryFormat::Csv => {
+                let mut file = File::create(partial.join("trajectory.csv"))?;
+                file.write_all(headers.trajectory.as_bytes())?;
+                Trajectory::Csv {
+                    file,
+                    bytes: headers.trajectory.len() as u64,
+                }
+            }
+            TrajectoryFormat::Npy => {
+                let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
+                Trajectory::Npy(NpyFile::create(
+                    &partial.join("trajectory.npy"),
+                    descr,
+                    row_bytes,
+                )?)
+            }
+        };
         Ok(Self {
             target: target.to_owned(),
             partial,
             metrics,
+            metrics_bytes: headers.metrics.len() as u64,
             trajectory,
+            records: 0,
             dim: scenario.dim,
+            checkpoint_every: options.checkpoint_every,
+            stop: None,
+            buffer: Vec::new(),
             last_state: Vec::new(),
         })
+    }
+
+    /// Reopens the interrupted run `dir` (`DIR` or `DIR.partial`): loads its `scenario.ron`,
+    /// cuts its outputs back to its last checkpoint and returns the directory with the scenario
+    /// and the state to continue from (`None`: no checkpoint yet, the run starts over).
+    ///
+    /// # Errors
+    /// [`ResumeError::Refused`] when there is no interrupted run at `dir`, when the run failed
+    /// numerically (resuming would fail again), or when its files do not match its checkpoint;
+    /// otherwise the scenario's or the I/O error.
+    pub fn resume(
+        dir: &Path,
+        checkpoint_every: u64,
+    ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
+        let dir: PathBuf = dir.components().collect();
+        let (target, partial) = match dir.to_str().and_then(|s| s.strip_suffix(".partial")) {
+            Some(stem) => (PathBuf::from(stem), dir.clone()),
+            None => (dir.clone(), partial_path(&dir)),
+        };
+        if !partial.is_dir() {
+            return Err(ResumeError::Refused(if target.is_dir() {
+                format!(
+                    "{} holds a complete run: there is nothing to resume",
+                    target.display()
+                )
+            } else {
+                format!(
+                    "there is no interrupted run at {}: start it with `flock run SCENARIO --out {}`",
+                    partial.display(),
+                    target.display()
+                )
+            }));
+        }
+        let note = fs::read_to_string(partial.join(INCOMPLETE_FILE)).unwrap_or_default();
+        if note.starts_with(FAILED) {
+            return Err(ResumeError::Refused(format!(
+                "the run in {} cannot be resumed, it would fail again: {}",
+                partial.display(),
+                note.trim_end()
+            )));
+        }
+        let scenario =
+            Scenario::load(&partial.join("scenario.ron")).map_err(ResumeError::Scenario)?;
+        let format = if partial.join("trajectory.npy").exists() {
+            TrajectoryFormat::Npy
+        } else {
+            TrajectoryFormat::Csv
+        };
+        let checkpoint = Checkpoint::read(&partial)?;
+        write_incomplete(&partial, &running_note(&target))?;
+        // With no checkpoint yet the run starts over: its files are cut back to their headers
+        // (they were whole before the directory appeared).
+        let headers = Headers::of(&scenario);
+        let (records, metrics_bytes, trajectory_bytes, start) = match checkpoint {
+            Some(checkpoint) => {
+                check_size(&checkpoint, &scenario, &partial)?;
+                (
+                    checkpoint.records,
+                    checkpoint.metrics_bytes,
+                    checkpoint.trajectory_bytes,
+                    Some(checkpoint.start),
+                )
+            }
+            None => (
+                0,
+                headers.metrics.len() as u64,
+                headers.trajectory.len() as u64,
+                None,
+            ),
+        };
+        let metrics = cut(&partial.join("metrics.csv"), metrics_bytes)?;
+        let trajectory = match format {
+            TrajectoryFormat::Csv => Trajectory::Csv {
+                file: cut(&partial.join("trajectory.csv"), trajectory_bytes)?,
+                bytes: trajectory_bytes,
+            },
+            TrajectoryFormat::Npy => {
+                let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
+                Trajectory::Npy(NpyFile::truncate_to(
+                    &partial.join("trajectory.npy"),
+                    descr,
+                    row_bytes,
+                    records,
+                )?)
+            }
+        };
+        let this = Self {
+            target,
+            partial,
+            metrics,
+            metrics_bytes,
+            trajectory,
+            records,
+            dim: scenario.dim,
+            checkpoint_every,
+            stop: None,
+            buffer: Vec::new(),
+            last_state: Vec::new(),
+        };
+        Ok((this, scenario, start))
+    }
+
+    /// Stops the run (after keeping a checkpoint) once `flag` is set, e.g. by Ctrl-C.
+    #[must_use]
+    pub const fn with_stop_flag(mut self, flag: &'static AtomicBool) -> Self {
+        self.stop = Some(flag);
+        self
+    }
+
+    /// The directory being written, `DIR.partial`.
+    #[must_use]
+    pub fn partial(&self) -> &Path {
+        &self.partial
     }
 
     /// Writes `final.csv` and moves the directory into place.
@@ -82,11 +382,18 @@ impl RunDirectory {
     }
 
     fn complete(&mut self) -> io::Result<()> {
-        self.metrics.flush()?;
-        self.trajectory.flush()?;
-        let mut last = format!("{}\n", state_header(self.dim)).into_bytes();
-        last.extend_from_slice(&self.last_state);
+        let mut last = format!("{}\n", state_header(self.dim));
+        let coordinates = 2 * self.dim;
+        for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
+            write_state(&mut last, i, state);
+        }
         fs::write(self.partial.join("final.csv"), last)?;
+        for name in [CHECKPOINT_FILE, INCOMPLETE_FILE] {
+            match fs::remove_file(self.partial.join(name)) {
+                Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
+                _ => {}
+            }
+        }
         if self.target.exists() {
             fs::remove_dir_all(&self.target)?;
         }
@@ -97,6 +404,101 @@ impl RunDirectory {
     pub fn abandon(self) {
         let _ = fs::remove_dir_all(&self.partial);
     }
+
+    /// Keeps the partial directory, its records and its last checkpoint, and says in its
+    /// `INCOMPLETE` file why the run stopped; `resumable` tells whether `flock run --resume` may
+    /// continue it. Returns the partial directory.
+    ///
+    /// # Errors
+    /// When the note cannot be written.
+    pub fn keep_incomplete(self, why: &str, resumable: bool) -> io::Result<PathBuf> {
+        let note = if resumable {
+            format!(
+                "incomplete: {why}\nEvery record in this directory is complete up to the last one written.\nResume: flock run --resume {}\n",
+                self.target.display()
+            )
+        } else {
+            format!(
+                "{FAILED}: {why}\nEvery record in this directory is complete up to the last one written; the run cannot be resumed.\n"
+            )
+        };
+        write_incomplete(&self.partial, &note)?;
+        Ok(self.partial)
+    }
+}
+
+/// The header lines of `metrics.csv` and `trajectory.csv`.
+struct Headers {
+    metrics: String,
+    trajectory: String,
+}
+
+impl Headers {
+    fn of(scenario: &Scenario) -> Self {
+        let mut metrics = String::from(METRICS_HEADER);
+        for column in scenario.extra_columns() {
+            metrics.push(',');
+            metrics.push_str(column);
+        }
+        metrics.push('\n');
+        Self {
+            metrics,
+            trajectory: format!("t,{}\n", state_header(scenario.dim)),
+        }
+    }
+}
+
+/// A checkpoint must hold the state of the scenario's agents in its dimension.
+fn check_size(
+    checkpoint: &Checkpoint,
+    scenario: &Scenario,
+    partial: &Path,
+) -> Result<(), ResumeError> {
+    if checkpoint.dim == scenario.dim
+        && checkpoint.start.positions.len() == scenario.agents * scenario.dim
+    {
+        return Ok(());
+    }
+    Err(ResumeError::Refused(format!(
+        "the checkpoint in {} is of {} coordinates in {}D, not of this scenario's {} agents in {}D",
+        partial.display(),
+        checkpoint.start.positions.len(),
+        checkpoint.dim,
+        scenario.agents,
+        scenario.dim
+    )))
+}
+
+/// The note of a directory being written.
+fn running_note(target: &Path) -> String {
+    format!(
+        "incomplete: the run is in progress (flock process {}), or was killed.\nEvery record in this directory is complete up to the last one written.\nResume a killed run: flock run --resume {}\n",
+        std::process::id(),
+        target.display()
+    )
+}
+
+/// Replaces the `INCOMPLETE` note atomically.
+fn write_incomplete(partial: &Path, note: &str) -> io::Result<()> {
+    let temporary = partial.join("INCOMPLETE.tmp");
+    fs::write(&temporary, note)?;
+    fs::rename(temporary, partial.join(INCOMPLETE_FILE))
+}
+
+/// Opens `path` for appending after cutting it to its first `bytes` bytes.
+fn cut(path: &Path, bytes: u64) -> io::Result<File> {
+    let file = OpenOptions::new().append(true).open(path)?;
+    if file.metadata()?.len() < bytes {
+        return Err(io::Error::new(
+            io::ErrorKind::UnexpectedEof,
+            format!(
+                "{} is shorter than its checkpoint says ({bytes} bytes)",
+                path.display()
+            ),
+        ));
+    }
+    file.set_len(bytes)?;
+    Ok(file)
 }
 
 /// `id,x,y[,z],vx,vy[,vz]`.
@@ -107,14 +509,12 @@ fn state_header(dim: usize) -> String {
 }
 
 /// Appends `id,x,y[,z],vx,vy[,vz]` of agent `i` (shortest round-trip decimal forms).
-fn write_state<V: Vector>(out: &mut impl Write, i: usize, q: V, p: V) -> io::Result<()> {
-    write!(out, "{i}")?;
-    for v in [q, p] {
-        for k in 0..V::DIM {
-            write!(out, ",{}", v.coord(k))?;
-        }
+fn write_state(out: &mut String, i: usize, state: &[f64]) {
+    let _ = write!(out, "{i}");
+    for x in state {
+        let _ = write!(out, ",{x}");
     }
-    writeln!(out)
+    out.push('\n');
 }
 
 impl Recorder for RunDirectory {
@@ -122,8 +522,7 @@ impl Recorder for RunDirectory {
 
     fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> io::Result<()> {
         let m = &record.metrics;
-        write!(
-            self.metrics,
+        let mut line = format!(
             "{},{},{},{},{},{},{},{},{}",
             record.t,
             m.connectivity,
@@ -134,18 +533,69 @@ impl Recorder for RunDirectory {
             m.min_distance,
             m.collisions,
             record.energy
-        )?;
+        );
         for value in record.extra {
-            write!(self.metrics, ",{value}")?;
+            let _ = write!(line, ",{value}");
         }
-        writeln!(self.metrics)?;
-        self.last_state.clear();
+        line.push('\n');
         let swarm = record.swarm;
-        for (i, (&q, &p)) in swarm.positions.iter().zip(&swarm.velocities).enumerate() {
-            write!(self.trajectory, "{},", record.t)?;
-            write_state(&mut self.trajectory, i, q, p)?;
-            write_state(&mut self.last_state, i, q, p)?;
+        self.last_state.clear();
+        for (&q, &p) in swarm.positions.iter().zip(&swarm.velocities) {
+            self.last_state.extend(
+                (0..V::DIM)
+                    .map(|k| q.coord(k))
+                    .chain((0..V::DIM).map(|k| p.coord(k))),
+            );
         }
+        match &mut self.trajectory {
+            Trajectory::Csv { file, bytes } => {
+                let mut text = String::new();
+                for (i, state) in self.last_state.chunks_exact(2 * V::DIM).enumerate() {
+                    let _ = write!(text, "{},", record.t);
+                    write_state(&mut text, i, state);
+                }
+                file.write_all(text.as_bytes())?;
+                *bytes += text.len() as u64;
+            }
+            Trajectory::Npy(file) => {
+                self.buffer.clear();
+                self.buffer.extend_from_slice(&record.t.to_le_bytes());
+                for field in 0..2 {
+                    for state in self.last_state.chunks_exact(2 * V::DIM) {
+                        for x in &state[field * V::DIM..(field + 1) * V::DIM] {
+                            self.buffer.extend_from_slice(&x.to_le_bytes());
+                        }
+                    }
+                }
+                file.append(&self.buffer)?;
+            }
+        }
+        self.metrics.write_all(line.as_bytes())?;
+        self.metrics_bytes += line.len() as u64;
+        self.records += 1;
         Ok(())
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        self.checkpoint_every > 0 && steps % self.checkpoint_every == 0
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> io::Result<()> {
+        let trajectory_bytes = match &self.trajectory {
+            Trajectory::Csv { bytes, .. } => *bytes,
+            Trajectory::Npy(file) => file.rows(),
+        };
+        Checkpoint {
+            dim: self.dim,
+            start: start.clone(),
+            records: self.records,
+            metrics_bytes: self.metrics_bytes,
+            trajectory_bytes,
+        }
+        .write(&self.partial)
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.stop.is_some_and(|flag| flag.load(Ordering::Relaxed))
     }
 }

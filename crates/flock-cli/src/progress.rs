@@ -30,6 +30,8 @@ pub struct Progress<R> {
     start: Instant,
     step: f64,
     total: u64,
+    /// The step the run starts from (a resumed run's checkpoint).
+    first: u64,
 }
 
 impl<R> Progress<R> {
@@ -59,7 +61,19 @@ impl<R> Progress<R> {
             start: Instant::now(),
             step: scenario.step,
             total,
+            first: 0,
         }
+    }
+
+    /// The bar of a run resumed after `steps` steps: its rate and ETA count the steps from there.
+    #[must_use]
+    pub fn starting_at(mut self, steps: u64) -> Self {
+        self.first = steps.min(self.total);
+        if let Some(bar) = &self.bar {
+            bar.set_position(self.first);
+            bar.reset_eta();
+        }
+        self
     }
 
     /// Wraps `inner`, enabling the bar when stderr is a terminal and not `quiet`.
@@ -89,9 +103,10 @@ impl<R> Progress<R> {
         // Records carry t = steps · step up to rounding.
         let done = ((t / self.step).round().max(0.0) as u64).min(self.total);
         bar.set_position(done);
-        if !self.shown && done > 0 && done < self.total {
+        if !self.shown && done > self.first && done < self.total {
             let elapsed = self.start.elapsed();
-            let projected = elapsed.mul_f64(self.total as f64 / done as f64);
+            let projected =
+                elapsed.mul_f64((self.total - self.first) as f64 / (done - self.first) as f64);
             if elapsed >= SHOW_AFTER && projected >= MIN_RUN {
                 bar.set_draw_target(ProgressDrawTarget::stderr());
                 bar.enable_steady_tick(Duration::from_millis(200));
@@ -108,5 +123,17 @@ impl<R: Recorder> Recorder for Progress<R> {
         let result = self.inner.record(record);
         self.tick(record.t);
         result
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        self.inner.wants_checkpoint(steps)
+    }
+
+    fn checkpoint(&mut self, start: &crate::run::Start) -> Result<(), Self::Error> {
+        self.inner.checkpoint(start)
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.inner.stop_requested()
     }
 }

@@ -18,6 +18,7 @@ use flock_protocols::{
 
 use crate::diagnostics::Diagnostics;
 use crate::error::ScenarioError;
+use crate::health::{Health, NumericalError};
 use crate::initial::{initial_swarm, to_vector};
 use crate::scenario::{
     Algorithm, Form2003, Gamma, IntegratorKind, Scenario, TannerGraph, critical_damping,
@@ -64,7 +65,47 @@ pub struct RunSummary {
     pub elapsed: Duration,
 }
 
-/// Receives the recorded instants of a run.
+/// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
+/// resumed bit-identically (a [`Simulation`] carries nothing else between steps).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Start {
+    /// The number of steps taken.
+    pub steps: u64,
+    /// H at t = 0 (for the run's summary).
+    pub initial_energy: f64,
+    /// The positions, `dim` coordinates per agent.
+    pub positions: Vec<f64>,
+    /// The velocities, `dim` coordinates per agent.
+    pub velocities: Vec<f64>,
+}
+
+impl Start {
+    /// The state of `swarm` after `steps` steps.
+    #[must_use]
+    pub fn of<V: Vector>(steps: u64, initial_energy: f64, swarm: &Swarm<V>) -> Self {
+        let flat = |vs: &[V]| -> Vec<f64> {
+            vs.iter()
+                .flat_map(|v| (0..V::DIM).map(move |k| v.coord(k)))
+                .collect()
+        };
+        Self {
+            steps,
+            initial_energy,
+            positions: flat(&swarm.positions),
+            velocities: flat(&swarm.velocities),
+        }
+    }
+
+    /// The swarm of this state in vectors `V`.
+    #[must_use]
+    pub fn swarm<V: Vector>(&self) -> Swarm<V> {
+        let vectors =
+            |flat: &[f64]| -> Vec<V> { flat.chunks_exact(V::DIM).map(to_vector::<V>).collect() };
+        Swarm::new(vectors(&self.positions), vectors(&self.velocities))
+    }
+}
+
+/// Receives the recorded instants of a run, and may keep checkpoints of it or stop it.
 pub trait Recorder {
     /// Why recording failed.
     type Error;
@@ -73,6 +114,24 @@ pub trait Recorder {
     /// # Errors
     /// When the record cannot be kept; the run stops with this error.
     fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error>;
+
+    /// Whether the run should keep a checkpoint after `steps` steps (never, by default).
+    fn wants_checkpoint(&self, _steps: u64) -> bool {
+        false
+    }
+
+    /// Keeps `start`, the state after its steps, so that the run can be resumed from it.
+    ///
+    /// # Errors
+    /// When the checkpoint cannot be kept; the run stops with this error.
+    fn checkpoint(&mut self, _start: &Start) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    /// Whether the run should stop (after keeping a checkpoint); asked after every step.
+    fn stop_requested(&self) -> bool {
+        false
+    }
 }
 
 /// Keeps nothing: for runs whose summary is all that matters.
@@ -90,6 +149,15 @@ pub enum RunError<E> {
     Scenario(ScenarioError),
     /// The recorder failed.
     Record(E),
+    /// The state blew up (NaN, ∞ or a runaway speed); nothing from that step was recorded.
+    Numerical(NumericalError),
+    /// The recorder asked the run to stop (Ctrl-C); a checkpoint of the state was kept.
+    Interrupted {
+        /// The steps taken.
+        steps: u64,
+        /// The time reached.
+        t: f64,
+    },
 }
 
 impl<E: std::fmt::Display> std::fmt::Display for RunError<E> {
@@ -97,6 +165,10 @@ impl<E: std::fmt::Display> std::fmt::Display for RunError<E> {
         match self {
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Record(e) => write!(f, "{e}"),
+            Self::Numerical(e) => write!(f, "{e}"),
+            Self::Interrupted { steps, t } => {
+                write!(f, "interrupted after step {steps} (t = {t})")
+            }
         }
     }
 }
@@ -112,20 +184,52 @@ pub fn run_scenario<R: Recorder>(
     scenario: &Scenario,
     recorder: &mut R,
 ) -> Result<RunSummary, RunError<R::Error>> {
+    resume_scenario(scenario, None, recorder)
+}
+
+/// Runs a scenario as [`run_scenario`] does, or continues it from `start` (a checkpoint of the
+/// same scenario): the records after `start` are then bit-identical to those of the
+/// uninterrupted run, and t = 0 is not recorded again.
+///
+/// # Errors
+/// An invalid scenario, a `start` of another size, a numerical blow-up, an interruption, or the
+/// recorder's first error.
+pub fn resume_scenario<R: Recorder>(
+    scenario: &Scenario,
+    start: Option<&Start>,
+    recorder: &mut R,
+) -> Result<RunSummary, RunError<R::Error>> {
     scenario.validate().map_err(RunError::Scenario)?;
+    if let Some(start) = start {
+        let size = scenario.agents * scenario.dim;
+        if start.positions.len() != size || start.velocities.len() != size {
+            return Err(RunError::Scenario(ScenarioError::invalid(
+                "agents",
+                scenario.agents,
+                format!(
+                    "the checkpoint holds {} coordinates where {} agents in {}D need {size}",
+                    start.positions.len(),
+                    scenario.agents,
+                    scenario.dim
+                ),
+                "resume a checkpoint with the scenario.ron of its own run",
+            )));
+        }
+    }
     match scenario.dim {
-        2 => run::<glam::DVec2, R>(scenario, recorder),
-        _ => run::<glam::DVec3, R>(scenario, recorder),
+        2 => run::<glam::DVec2, R>(scenario, start, recorder),
+        _ => run::<glam::DVec3, R>(scenario, start, recorder),
     }
 }
 
-/// Runs a scenario with vectors `V` (of the scenario's dimension).
+/// Runs a scenario with vectors `V` (of the scenario's dimension), from t = 0 or from `start`.
 ///
 /// # Errors
-/// An obstacle or graph the scenario describes cannot be built (it is invalid), or the recorder's
-/// first error.
+/// An obstacle or graph the scenario describes cannot be built (it is invalid), a numerical
+/// blow-up, an interruption, or the recorder's first error.
 pub fn run<V: Space, R: Recorder>(
     scenario: &Scenario,
+    start: Option<&Start>,
     recorder: &mut R,
 ) -> Result<RunSummary, RunError<R::Error>> {
     let a = &scenario.alpha;
@@ -148,10 +252,10 @@ pub fn run<V: Space, R: Recorder>(
         ))
     };
     match &scenario.algorithm {
-        Algorithm::Algorithm1 => drive::<V, _, _>(scenario, Algorithm1 { alpha }, recorder),
+        Algorithm::Algorithm1 => drive::<V, _, _>(scenario, start, Algorithm1 { alpha }, recorder),
         Algorithm::Algorithm2 { gamma, c1, c2 } => {
             let navigation = NavigationalFeedback::linear(gamma_agent::<V>(gamma), *c1, *c2);
-            drive(scenario, Algorithm2 { alpha, navigation }, recorder)
+            drive(scenario, start, Algorithm2 { alpha, navigation }, recorder)
         }
         Algorithm::Algorithm3 {
             gamma,
@@ -171,6 +275,7 @@ pub fn run<V: Space, R: Recorder>(
             let beta = BetaInteraction::new(field, beta_params, a.epsilon, beta.c1, beta.damping());
             drive(
                 scenario,
+                start,
                 Algorithm3 {
                     flock: Algorithm2 { alpha, navigation },
                     beta,
@@ -203,7 +308,7 @@ pub fn run<V: Space, R: Recorder>(
                 translation,
             };
             match avoidance {
-                None => drive(scenario, flocking, recorder),
+                None => drive(scenario, start, flocking, recorder),
                 Some(avoid) => {
                     let obstacles = scenario
                         .obstacles
@@ -229,6 +334,7 @@ pub fn run<V: Space, R: Recorder>(
                     };
                     drive(
                         scenario,
+                        start,
                         ObstacleFlocking2003 {
                             flocking,
                             obstacles,
@@ -249,7 +355,7 @@ pub fn run<V: Space, R: Recorder>(
             };
             let law = TannerJadbabaiePappas::new(graph, TannerPotential::new(d), r)
                 .map_err(|e| invalid("algorithm.graph", e.to_string()))?;
-            drive::<V, _, _>(scenario, law, recorder)
+            drive::<V, _, _>(scenario, start, law, recorder)
         }
     }
 }
@@ -273,6 +379,7 @@ pub(crate) fn gamma_agent<V: Vector>(gamma: &Gamma) -> GammaAgent<V> {
 
 fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
     scenario: &Scenario,
+    start: Option<&Start>,
     protocol: P,
     recorder: &mut R,
 ) -> Result<RunSummary, RunError<R::Error>> {
@@ -284,12 +391,6 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
         d: scenario.alpha.d,
         collision_distance: scenario.collision_distance(),
     };
-    let mut sim = Simulation::new(
-        protocol,
-        integrator,
-        initial_swarm::<V>(scenario),
-        scenario.step,
-    );
     let measure = |sim: &Simulation<V, P>| {
         let (metrics, energy) = measure(sim, &metric_params);
         (
@@ -298,34 +399,63 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
             sim.protocol().values(sim.time(), sim.swarm()),
         )
     };
-    let (metrics, initial_energy, extra) = measure(&sim);
-    recorder
-        .record(&Record {
-            t: 0.0,
-            metrics,
-            energy: initial_energy,
-            swarm: sim.swarm(),
-            extra: &extra,
-        })
-        .map_err(RunError::Record)?;
+    let record = |recorder: &mut R, sim: &Simulation<V, P>| {
+        let (metrics, energy, extra) = measure(sim);
+        recorder
+            .record(&Record {
+                t: sim.time(),
+                metrics,
+                energy,
+                swarm: sim.swarm(),
+                extra: &extra,
+            })
+            .map_err(RunError::Record)
+            .map(|()| energy)
+    };
+    let (mut sim, initial_energy) = match start {
+        None => {
+            let sim = Simulation::new(
+                protocol,
+                integrator,
+                initial_swarm::<V>(scenario),
+                scenario.step,
+            );
+            let energy = record(recorder, &sim)?;
+            (sim, energy)
+        }
+        Some(start) => (
+            Simulation::resume(
+                protocol,
+                integrator,
+                start.swarm(),
+                scenario.step,
+                start.steps,
+            ),
+            start.initial_energy,
+        ),
+    };
     let total = scenario.steps();
-    let start = Instant::now();
+    let clock = Instant::now();
     while sim.steps() < total {
         sim.step();
-        if sim.steps() % scenario.record_every == 0 || sim.steps() == total {
-            let (metrics, energy, extra) = measure(&sim);
-            recorder
-                .record(&Record {
-                    t: sim.time(),
-                    metrics,
-                    energy,
-                    swarm: sim.swarm(),
-                    extra: &extra,
-                })
-                .map_err(RunError::Record)?;
+        Health::check(scenario, sim.steps(), sim.swarm()).map_err(RunError::Numerical)?;
+        let steps = sim.steps();
+        if steps % scenario.record_every == 0 || steps == total {
+            record(recorder, &sim)?;
+        }
+        let stop = steps < total && recorder.stop_requested();
+        if stop || (steps < total && recorder.wants_checkpoint(steps)) {
+            let state = Start::of(steps, initial_energy, sim.swarm());
+            recorder.checkpoint(&state).map_err(RunError::Record)?;
+        }
+        if stop {
+            return Err(RunError::Interrupted {
+                steps,
+                t: sim.time(),
+            });
         }
     }
-    let elapsed = start.elapsed();
+    let elapsed = clock.elapsed();
     let (metrics, final_energy, extra) = measure(&sim);
     let components = Components::of(sim.net().graph());
     Ok(RunSummary {

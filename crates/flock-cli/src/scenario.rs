@@ -386,7 +386,7 @@ impl Scenario {
         let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
         let scenario: Self = options
             .from_str(text)
-            .map_err(|e| ScenarioError::syntax(origin, &e))?;
+            .map_err(|e| ScenarioError::syntax(origin, text, &e))?;
         scenario.validate()?;
         Ok(scenario.resolved())
     }

@@ -76,3 +76,24 @@ impl Drop for TempDir {
         let _ = fs::remove_dir_all(&self.0);
     }
 }
+
+/// Runs the `flock` binary in `dir` with `args` and waits for it.
+pub fn flock(dir: &Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flock"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("the flock binary runs")
+}
+
+/// The standard error of a finished command, as text.
+pub fn stderr(output: &std::process::Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Writes `text` to `dir/name` and returns the path as a string.
+pub fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    fs::write(&path, text).expect("write a scenario file");
+    path.to_str().expect("a UTF-8 temporary path").to_owned()
+}

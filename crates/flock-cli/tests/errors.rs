@@ -4,14 +4,13 @@
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
 
 use flock_cli::{METRICS_HEADER, Scenario, ScenarioError};
 
-use crate::common::TempDir;
+use crate::common::{TempDir, flock, stderr, write};
 
 /// A valid 2D scenario of 5 agents and 10 steps; each error test breaks one field of it.
-const TINY_2D: &str = r#"Scenario(
+pub const TINY_2D: &str = r#"Scenario(
     name: "tiny",
     dim: 2,
     agents: 5,
@@ -181,6 +180,176 @@ fn non_positive_step_names_step() {
 }
 
 #[test]
+fn negative_agent_count_names_agents_with_line_and_column() {
+    let (error, message) = parse_error(&edit(TINY_2D, "agents: 5", "agents: -1"));
+    assert_eq!(error.field().as_deref(), Some("agents"), "{message}");
+    assert!(message.starts_with("test.ron:4:"), "{message}");
+    assert!(message.contains("in the value of `agents`"), "{message}");
+}
+
+#[test]
+fn a_value_of_the_wrong_type_names_its_field() {
+    let (error, message) = parse_error(&edit(TINY_2D, "epsilon: 0.1", "epsilon: \"small\""));
+    assert!(
+        matches!(error, ScenarioError::Syntax { line: 7, .. }),
+        "{error:?}"
+    );
+    assert!(message.contains("`epsilon`"), "{message}");
+}
+
+#[test]
+fn non_positive_duration_names_duration() {
+    for bad in ["-1.0", "0.0"] {
+        let message = invalid_field(
+            &edit(TINY_2D, "duration: 0.1", &format!("duration: {bad}")),
+            "duration",
+        );
+        assert!(message.contains("must be > 0"), "{message}");
+    }
+}
+
+#[test]
+fn gains_the_theory_needs_positive_are_named() {
+    let alpha = "h: 0.2)";
+    for (text, field, why) in [
+        (
+            edit(TINY_2D, alpha, "h: 0.2, c1: 0.0)"),
+            "alpha.c1",
+            "` = 0.0: must be > 0",
+        ),
+        (
+            edit(TINY_2D, alpha, "h: 0.2, c1: -1.0)"),
+            "alpha.c1",
+            "` = -1.0: must be > 0",
+        ),
+        (
+            edit(TINY_2D, alpha, "h: 0.2, c2: -1.0)"),
+            "alpha.c2",
+            "negative consensus gain",
+        ),
+        (
+            edit(TINY_2D, "c1: 0.02", "c1: 0.0"),
+            "algorithm.c1",
+            "` = 0.0: must be > 0",
+        ),
+        (
+            edit(TINY_2D, "c2: 0.4", "c2: -0.4"),
+            "algorithm.c2",
+            "` = -0.4: must be > 0",
+        ),
+    ] {
+        let message = invalid_field(&text, field);
+        assert!(message.contains(why), "{message}");
+    }
+}
+
+/// The warnings of a valid scenario, as text.
+fn warnings(text: &str) -> Vec<String> {
+    let scenario = Scenario::parse(text, "test.ron").unwrap_or_else(|e| panic!("{e}"));
+    scenario
+        .warnings()
+        .iter()
+        .map(ToString::to_string)
+        .collect()
+}
+
+#[test]
+fn the_fixtures_and_the_base_scenarios_give_no_warning() {
+    assert_eq!(warnings(TINY_2D), Vec::<String>::new());
+    assert_eq!(warnings(&tiny_3d()), Vec::<String>::new());
+    for path in crate::common::fixture_paths() {
+        let scenario = Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(
+            scenario.warnings().is_empty(),
+            "{}: {:?}",
+            path.display(),
+            scenario.warnings()
+        );
+    }
+}
+
+#[test]
+fn a_step_the_stiffness_makes_unstable_is_warned_with_the_largest_stable_step() {
+    let stiff = edit(TINY_2D, "h: 0.2)", "h: 0.2, c1: 500.0)");
+    let stable = flock_cli::stability::largest_stable_step(
+        &Scenario::parse(&stiff, "test.ron").expect("valid"),
+    )
+    .expect("an estimate for Algorithm 2");
+    // The papers' gains leave a wide margin above h = 0.01; c₁^α = 500 takes it below.
+    assert!(stable < 0.01, "{stable}");
+    let found = warnings(&stiff);
+    assert_eq!(found.len(), 1, "{found:?}");
+    let expected = format!("{stable:.3e}");
+    assert!(
+        found[0].starts_with("warning: `step` = 0.01:"),
+        "{}",
+        found[0]
+    );
+    assert!(found[0].contains("largest stable step"), "{}", found[0]);
+    assert!(
+        found[0].contains(&format!("set `step` to at most {expected}")),
+        "{}",
+        found[0]
+    );
+    // The same scenario with a step below the estimate is not warned.
+    let fine = edit(&stiff, "step: 0.01", &format!("step: {}", stable / 2.0));
+    assert_eq!(warnings(&fine), Vec::<String>::new());
+}
+
+#[test]
+fn the_stable_step_estimate_separates_stable_from_unstable_runs() {
+    // 30 agents in a 20 × 20 box under Algorithm 1 with c₁^α = 200: half the estimated step
+    // flocks, four times the estimate blows up (or is caught running away).
+    let text = r#"Scenario(
+        dim: 2, agents: 30, seed: 4, algorithm: Algorithm1, alpha: (c1: 200.0),
+        initial: (positions: Box(min: [0.0, 0.0], max: [20.0, 20.0])),
+        step: 0.01, duration: 6.0, record_every: 100,
+    )"#;
+    let base = Scenario::parse(text, "test.ron").expect("valid");
+    let stable = flock_cli::stability::largest_stable_step(&base).expect("an estimate");
+    let with_step = |h: f64| Scenario {
+        step: h,
+        ..base.clone()
+    };
+    let summary = flock_cli::run_scenario(&with_step(0.5 * stable), &mut ())
+        .unwrap_or_else(|e| panic!("half the estimate must run: {e}"));
+    assert!(
+        summary.metrics.min_distance > 0.8 * 7.0,
+        "{:?}",
+        summary.metrics
+    );
+    match flock_cli::run_scenario(&with_step(4.0 * stable), &mut ()) {
+        Err(flock_cli::RunError::Numerical(e)) => {
+            assert!(e.cause.contains("largest stable step"), "{e}");
+        }
+        Ok(summary) => assert!(
+            summary.metrics.cohesion_radius > 100.0,
+            "four times the estimate stayed stable: {:?}",
+            summary.metrics
+        ),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+#[test]
+fn coincident_agents_at_the_start_are_warned() {
+    let rows = "Explicit([[0.0, 0.0], [5.0, 0.0], [9.0, 1.0], [5.0, 0.0], [2.0, 8.0]])";
+    let text = edit(
+        TINY_2D,
+        "positions: Box(min: [-10.0, -10.0], max: [10.0, 10.0])",
+        &format!("positions: {rows}"),
+    );
+    let found = warnings(&text);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0]
+            .starts_with("warning: `initial.positions` = agents 1 and 3: start at the same point"),
+        "{}",
+        found[0]
+    );
+}
+
+#[test]
 fn step_longer_than_duration_names_step() {
     invalid_field(&edit(TINY_2D, "step: 0.01", "step: 0.5"), "step");
 }
@@ -247,25 +416,6 @@ fn explicit_position_of_the_wrong_dimension_is_named_with_its_index() {
 }
 
 // ---- The `flock` binary ----------------------------------------------------------------------
-
-fn flock(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_flock"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("the flock binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-/// Writes `text` to `dir/name` and returns the path as a string.
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    fs::write(&path, text).expect("write a scenario file");
-    path.to_str().expect("a UTF-8 temporary path").to_owned()
-}
 
 /// The files of a directory by name, with their contents.
 fn contents(dir: &Path) -> BTreeMap<String, String> {

@@ -2,6 +2,7 @@
 //! snapshots and determinism of short runs, and the errors of bad scenarios and of the `flock` binary.
 
 mod bench;
+mod browser;
 mod common;
 mod errors;
 mod figures_cmd;
@@ -10,3 +11,4 @@ mod obstacle_errors;
 mod papers;
 mod plot;
 mod snapshots;
+mod trust;

@@ -67,6 +67,21 @@ fn flat_hull_is_rejected() {
 }
 
 #[test]
+fn non_convex_outline_is_rejected_with_the_inner_point() {
+    // (61, 1) lies strictly inside the triangle of the other three points: not a convex outline.
+    let text = ALG3.replace(
+        "Ball(centre: [50.0, 0.0], radius: 5.0)",
+        "Ball(centre: [50.0, 0.0], radius: 5.0), ConvexHull(points: [[60.0, 0.0], [64.0, 0.0], [61.0, 1.0], [62.0, 4.0]])",
+    );
+    let (field, message) = invalid(&text);
+    assert!(
+        field.starts_with("obstacles[1].points"),
+        "{field}: {message}"
+    );
+    assert!(message.contains("not convex"), "{message}");
+}
+
+#[test]
 fn agents_starting_inside_an_obstacle_are_rejected() {
     let (field, message) = invalid(&ALG3.replace("centre: [50.0, 0.0]", "centre: [0.0, 0.0]"));
     assert_eq!(field, "initial.positions", "{message}");

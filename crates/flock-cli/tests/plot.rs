@@ -1,9 +1,8 @@
 //! `flock run --plot` and `flock plot DIR`: the figures of a run, with its obstacles and γ-agent.
 
 use std::fs;
-use std::process::Command;
 
-use crate::common::TempDir;
+use crate::common::{TempDir, flock};
 
 /// A short Algorithm 3 run in 2D with one ball in the way.
 const SCENARIO: &str = r#"Scenario(
@@ -18,14 +17,6 @@ const SCENARIO: &str = r#"Scenario(
     duration: 2.0,
 )
 "#;
-
-fn flock(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_flock"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("flock runs")
-}
 
 #[test]
 fn run_with_plot_writes_every_figure() {
@@ -77,4 +68,34 @@ fn plot_of_a_directory_that_is_not_a_run_fails_clearly() {
     assert!(!output.status.success());
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(message.contains("scenario.ron"), "{message}");
+}
+
+#[test]
+fn a_run_with_an_npy_trajectory_draws_the_same_figures() {
+    let tmp = TempDir::new("plot_npy");
+    fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
+    for args in [
+        &["run", "s.ron", "--out", "csv", "--plot", "--quiet"][..],
+        &[
+            "run",
+            "s.ron",
+            "--out",
+            "npy",
+            "--plot",
+            "--quiet",
+            "--trajectory-format",
+            "npy",
+        ],
+    ] {
+        let output = flock(tmp.path(), args);
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    for file in ["snapshots.svg", "metrics.svg", "player.html"] {
+        let read = |run: &str| fs::read(tmp.path().join(run).join("figures").join(file));
+        assert_eq!(read("csv").ok(), read("npy").ok(), "{file}");
+    }
 }

@@ -70,6 +70,23 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         }
     }
 
+    /// A simulation resumed after `steps` steps, at t = steps · h, from the state `swarm` those
+    /// steps reached: stepping it gives bit-identical states to the uninterrupted simulation, since
+    /// the state (q, p) and the step count are all a simulation carries between steps.
+    #[must_use]
+    pub fn resume(
+        protocol: P,
+        integrator: Integrator,
+        swarm: Swarm<V>,
+        step: f64,
+        steps: u64,
+    ) -> Self {
+        Self {
+            steps,
+            ..Self::new(protocol, integrator, swarm, step)
+        }
+    }
+
     /// The protocol.
     #[must_use]
     pub const fn protocol(&self) -> &P {

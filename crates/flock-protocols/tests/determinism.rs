@@ -52,3 +52,44 @@ fn one_and_four_threads_are_bit_identical() {
         assert_eq!(bits(&serial), bits(&parallel), "{integrator:?}");
     }
 }
+
+/// A simulation resumed from the state and step count of an interrupted one (a checkpoint) goes
+/// on bit-identically, the time-dependent γ-agent included.
+#[test]
+fn a_resumed_simulation_is_bit_identical_to_the_uninterrupted_one() {
+    let protocol = || Algorithm2 {
+        alpha: papers_alpha(),
+        navigation: NavigationalFeedback::linear(
+            GammaAgent::ConstantVelocity {
+                position: DVec2::ZERO,
+                velocity: DVec2::new(1.0, 0.5),
+            },
+            0.05,
+            0.4,
+        ),
+    };
+    for integrator in [Integrator::SymplecticEuler, Integrator::Rk4] {
+        let start = random_swarm(300, 40.0, 2.0, 3);
+        let mut whole = Simulation::new(protocol(), integrator, start.clone(), 0.01);
+        let mut first = Simulation::new(protocol(), integrator, start, 0.01);
+        for _ in 0..37 {
+            whole.step();
+            first.step();
+        }
+        let mut resumed = Simulation::resume(
+            protocol(),
+            integrator,
+            first.swarm().clone(),
+            0.01,
+            first.steps(),
+        );
+        assert_eq!(resumed.time().to_bits(), whole.time().to_bits());
+        for _ in 0..41 {
+            whole.step();
+            resumed.step();
+        }
+        assert_eq!(resumed.steps(), 78);
+        assert_eq!(resumed.swarm(), whole.swarm(), "{integrator:?}");
+        assert_eq!(resumed.energy().to_bits(), whole.energy().to_bits());
+    }
+}

@@ -11,6 +11,10 @@
 //! (select, 3D only), `#canvas`, `#time` (the shown time) and the data
 //! in `<script id="flock-data" type="application/json">`. The canvas's `data-frame` attribute holds
 //! the index of the frame drawn, and `window.flockPlayer` offers `frame()`, `frames`, `show(k)`.
+//! Unzoomed, a view's `window` `[x0, y0, x1, y1]` is fitted into the canvas with a 12 px margin,
+//! centred, y up, and each agent's triangle, filled with [`AGENT`] above the edges, has its centroid
+//! on the agent: `tests/browser/player.mjs` checks the page against this in headless Chromium (see
+//! `docs/figures.md`).
 //!
 //! - [`player_html`]: the page.
 //! - [`PlayerOptions`]: canvas size, frame budget, the view of 3D runs.

@@ -28,7 +28,8 @@ pub struct RunData {
 }
 
 impl RunData {
-    /// Reads `dir/metrics.csv` and `dir/trajectory.csv`.
+    /// Reads `dir/metrics.csv` and `dir/trajectory.csv` (or `dir/trajectory.npy` when the run
+    /// wrote that instead).
     ///
     /// # Errors
     /// [`VizError::Io`] naming a file that cannot be read, [`VizError::Parse`] naming the file
@@ -36,7 +37,13 @@ impl RunData {
     /// range or repeated, an agent missing from a frame, time going backwards).
     pub fn load(dir: &Path) -> Result<Self, VizError> {
         let metrics = load_metrics(&dir.join("metrics.csv"))?;
-        let (dim, frames) = load_trajectory(&dir.join("trajectory.csv"))?;
+        let npy = dir.join("trajectory.npy");
+        let csv = dir.join("trajectory.csv");
+        let (dim, frames) = if !csv.exists() && npy.exists() {
+            load_trajectory_npy(&npy)?
+        } else {
+            load_trajectory(&csv)?
+        };
         Ok(Self {
             dim,
             metrics,
@@ -137,6 +144,88 @@ pub fn load_trajectory(path: &Path) -> Result<(usize, Vec<Frame>), VizError> {
         frames.push(frame_of(&table, &table.rows[start..end], dim)?);
         start = end;
     }
+    Ok((dim, frames))
+}
+
+/// Reads a `trajectory.npy` as `flock run --trajectory-format npy` writes it: a NumPy 1.0 file of
+/// records `[('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))]`, one per frame.
+///
+/// # Errors
+/// [`VizError::Io`] when it cannot be read, [`VizError::Parse`] (line 1: the header) when it is
+/// not such a file.
+pub fn load_trajectory_npy(path: &Path) -> Result<(usize, Vec<Frame>), VizError> {
+    let bytes = std::fs::read(path).map_err(|source| VizError::Io {
+        path: path.to_owned(),
+        source,
+    })?;
+    let bad = |message: String| VizError::Parse {
+        path: path.to_owned(),
+        line: 1,
+        message,
+    };
+    let header_end = bytes
+        .get(8..10)
+        .filter(|_| bytes.starts_with(b"\x93NUMPY\x01\x00"))
+        .map(|len| 10 + usize::from(u16::from_le_bytes([len[0], len[1]])))
+        .ok_or_else(|| bad("not a NumPy 1.0 .npy file".to_owned()))?;
+    let header = bytes
+        .get(10..header_end)
+        .and_then(|h| std::str::from_utf8(h).ok())
+        .ok_or_else(|| bad("the header is cut or not ASCII".to_owned()))?;
+    let numbers_after = |key: &str| -> Option<Vec<usize>> {
+        let rest = &header[header.find(key)? + key.len()..];
+        let inner = &rest[..rest.find(')')?];
+        inner
+            .split(',')
+            .map(str::trim)
+            .filter(|x| !x.is_empty())
+            .map(|x| x.parse().ok())
+            .collect()
+    };
+    let (agents, dim, records) = match (
+        numbers_after("('q', '<f8', ("),
+        numbers_after("'shape': ("),
+    ) {
+        (Some(q), Some(shape))
+            if q.len() == 2
+                && (q[1] == 2 || q[1] == 3)
+                && shape.len() == 1
+                && header.contains("[('t', '<f8'), ('q', '<f8', ")
+                && header.contains("('p', '<f8', ") =>
+        {
+            (q[0], q[1], shape[0])
+        }
+        _ => {
+            return Err(bad(format!(
+                "expected records [('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))], found {}",
+                header.trim_end()
+            )));
+        }
+    };
+    let record = 1 + 2 * agents * dim;
+    let data: Vec<f64> = bytes[header_end..]
+        .chunks_exact(8)
+        .take(records * record)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default()))
+        .collect();
+    if data.len() < records * record {
+        return Err(bad(format!(
+            "the header counts {records} records but the file holds {}",
+            data.len() / record
+        )));
+    }
+    let vector = |v: &[f64]| DVec3::new(v[0], v[1], if dim == 3 { v[2] } else { 0.0 });
+    let frames = data
+        .chunks_exact(record)
+        .map(|r| {
+            let (q, p) = r[1..].split_at(agents * dim);
+            Frame::new(
+                r[0],
+                q.chunks_exact(dim).map(vector).collect(),
+                p.chunks_exact(dim).map(vector).collect(),
+            )
+        })
+        .collect();
     Ok((dim, frames))
 }
 

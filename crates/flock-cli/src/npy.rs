@@ -1,0 +1,142 @@
+//! A growing NumPy `.npy` file (format version 1.0) of records of a fixed structured dtype, which
+//! `numpy.load` reads without custom code (`np.load("trajectory.npy")["q"]`, memory-mapped with
+//! `mmap_mode="r"`).
+//!
+//! The header has a fixed length, so appending a record is one write of the record at the end of
+//! the file followed by one rewrite of the header's row count: a process killed between the two
+//! leaves a file whose header counts only complete records (numpy reads exactly that many).
+
+use std::fs::{File, OpenOptions};
+use std::io::{self, Seek, SeekFrom, Write};
+use std::path::Path;
+
+/// The magic string and version 1.0 of the format.
+const MAGIC: &[u8] = b"\x93NUMPY\x01\x00";
+
+/// A `.npy` file of `rows` records of a structured dtype, open for appending.
+#[derive(Debug)]
+pub struct NpyFile {
+    file: File,
+    descr: String,
+    header_len: u64,
+    row_bytes: u64,
+    rows: u64,
+}
+
+impl NpyFile {
+    /// Creates `path` with no rows. `descr` is the dtype as numpy writes it (e.g.
+    /// `[('t', '<f8'), ('q', '<f8', (100, 2))]`) and `row_bytes` its item size.
+    ///
+    /// # Errors
+    /// On any I/O error.
+    pub fn create(path: &Path, descr: String, row_bytes: u64) -> io::Result<Self> {
+        Self::open_at(&File::create(path)?, path, descr, row_bytes, 0)
+    }
+
+    /// Opens the file written by [`NpyFile::create`] at `path` and cuts it back to its first
+    /// `rows` records (those a checkpoint counted).
+    ///
+    /// # Errors
+    /// When the file is shorter than `rows` records, or on any I/O error.
+    pub fn truncate_to(path: &Path, descr: String, row_bytes: u64, rows: u64) -> io::Result<Self> {
+        let file = OpenOptions::new().read(true).write(true).open(path)?;
+        Self::open_at(&file, path, descr, row_bytes, rows)
+    }
+
+    fn open_at(
+        file: &File,
+        path: &Path,
+        descr: String,
+        row_bytes: u64,
+        rows: u64,
+    ) -> io::Result<Self> {
+        let mut this = Self {
+            file: file.try_clone()?,
+            header_len: 0,
+            descr,
+            row_bytes,
+            rows,
+        };
+        this.header_len = this.header(u64::MAX).len() as u64;
+        let length = this.header_len + rows * row_bytes;
+        if this.file.metadata()?.len() < length && rows > 0 {
+            return Err(io::Error::new(
+                io::ErrorKind::UnexpectedEof,
+                format!(
+                    "{} holds fewer than the {rows} records its checkpoint counts",
+                    path.display()
+                ),
+            ));
+        }
+        this.file.set_len(length)?;
+        this.write_header()?;
+        Ok(this)
+    }
+
+    /// The number of records.
+    #[must_use]
+    pub const fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Appends one record, `row_bytes` long.
+    ///
+    /// # Errors
+    /// When `row` is not one record long, or on any I/O error.
+    pub fn append(&mut self, row: &[u8]) -> io::Result<()> {
+        if row.len() as u64 != self.row_bytes {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "a record of {} bytes where the dtype has {}",
+                    row.len(),
+                    self.row_bytes
+                ),
+            ));
+        }
+        self.file.seek(SeekFrom::Start(
+            self.header_len + self.rows * self.row_bytes,
+        ))?;
+        self.file.write_all(row)?;
+        self.rows += 1;
+        self.write_header()
+    }
+
+    fn write_header(&mut self) -> io::Result<()> {
+        let header = self.header(self.rows);
+        self.file.seek(SeekFrom::Start(0))?;
+        self.file.write_all(&header)
+    }
+
+    /// The header for `rows` records, padded with spaces to the length the largest count needs,
+    /// a multiple of 64 bytes as the format asks.
+    fn header(&self, rows: u64) -> Vec<u8> {
+        let dict = format!(
+            "{{'descr': {}, 'fortran_order': False, 'shape': ({rows},), }}",
+            self.descr
+        );
+        let widest = format!(
+            "{{'descr': {}, 'fortran_order': False, 'shape': ({},), }}",
+            self.descr,
+            u64::MAX
+        );
+        let unpadded = MAGIC.len() + 2 + widest.len() + 1;
+        let total = unpadded.div_ceil(64) * 64;
+        let dict_len = total - MAGIC.len() - 2;
+        let mut header = MAGIC.to_vec();
+        let len = u16::try_from(dict_len).unwrap_or(u16::MAX);
+        header.extend_from_slice(&len.to_le_bytes());
+        header.extend_from_slice(dict.as_bytes());
+        header.resize(total - 1, b' ');
+        header.push(b'\n');
+        header
+    }
+}
+
+/// The dtype of a trajectory record: `t` and the `n × dim` positions `q` and velocities `p`.
+#[must_use]
+pub fn trajectory_dtype(agents: usize, dim: usize) -> (String, u64) {
+    let descr =
+        format!("[('t', '<f8'), ('q', '<f8', ({agents}, {dim})), ('p', '<f8', ({agents}, {dim}))]");
+    (descr, 8 * (1 + 2 * agents * dim) as u64)
+}

@@ -1,0 +1,494 @@
+//! Runs that blow up, are interrupted or are killed keep whole records, say that they are
+//! incomplete, and resume to outputs bit-identical with an uninterrupted run; the `.npy`
+//! trajectory holds exactly what the CSV one does.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::thread::sleep;
+use std::time::{Duration, Instant};
+
+use flock_cli::checkpoint::Checkpoint;
+use flock_cli::health::{Fault, Health};
+use flock_cli::{INCOMPLETE_FILE, RunError, Scenario, run_scenario};
+use flock_protocols::Swarm;
+use glam::DVec2;
+
+use crate::common::{TempDir, flock, stderr, write};
+
+/// Algorithm 2, 60 agents, 12,000 steps recorded every 10: long enough (about a second in a
+/// test build) to be interrupted at many points.
+const LONG_2D: &str = r#"Scenario(
+    name: "long",
+    dim: 2,
+    agents: 60,
+    seed: 3,
+    algorithm: Algorithm2(
+        gamma: ConstantVelocity(position: [0.0, 0.0], velocity: [1.0, 0.5]),
+        c1: 0.02,
+        c2: 0.4,
+    ),
+    initial: (
+        positions: Box(min: [-35.0, -35.0], max: [35.0, 35.0]),
+        velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0]),
+    ),
+    step: 0.01,
+    duration: 120.0,
+    record_every: 10,
+)
+"#;
+
+/// 30 agents with c₁^α = 200 and h = 0.05: far above the stable step, it runs away at step 1.
+const BLOW_UP: &str = r#"Scenario(
+    dim: 2,
+    agents: 30,
+    seed: 1,
+    algorithm: Algorithm1,
+    alpha: (c1: 200.0),
+    initial: (positions: Box(min: [0.0, 0.0], max: [20.0, 20.0])),
+    step: 0.05,
+    duration: 5.0,
+)
+"#;
+
+fn partial(out: &Path) -> PathBuf {
+    flock_cli::output::partial_path(out)
+}
+
+/// The files of a run directory, byte for byte.
+fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| {
+            let path = entry.expect("a directory entry").path();
+            let name = path
+                .file_name()
+                .expect("a name")
+                .to_string_lossy()
+                .into_owned();
+            (name, fs::read(&path).expect("a readable file"))
+        })
+        .collect()
+}
+
+/// Runs `args` to completion, asserting success.
+fn complete(dir: &Path, args: &[&str]) {
+    let output = flock(dir, args);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+}
+
+/// A `flock` process in the background.
+fn spawn(dir: &Path, args: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_flock"))
+        .current_dir(dir)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the flock binary starts")
+}
+
+/// Every line of a CSV file is whole: it ends with a newline and has the header's field count.
+/// Returns the number of data lines.
+fn whole_lines(path: &Path) -> usize {
+    let text = fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(
+        text.ends_with('\n'),
+        "{} ends in a cut line",
+        path.display()
+    );
+    let mut lines = text.lines();
+    let fields = lines.next().expect("a header").split(',').count();
+    lines
+        .map(|line| {
+            assert_eq!(
+                line.split(',').count(),
+                fields,
+                "{}: cut line {line:?}",
+                path.display()
+            );
+            assert!(
+                line.split(',').all(|x| x.parse::<f64>().is_ok()),
+                "{}: unreadable line {line:?}",
+                path.display()
+            );
+        })
+        .count()
+}
+
+/// What a killed or interrupted run leaves: `DIR.partial` with its note, whole records in every
+/// file, and a readable checkpoint, if any, that the files reach.
+fn check_incomplete(out: &Path, agents: usize) {
+    let dir = partial(out);
+    let note = fs::read_to_string(dir.join(INCOMPLETE_FILE)).expect("an INCOMPLETE note");
+    assert!(note.starts_with("incomplete: "), "{note}");
+    assert!(note.contains("flock run --resume"), "{note}");
+    assert!(!out.exists(), "DIR appears only for complete runs");
+    let names = files(&dir);
+    for name in names.keys() {
+        assert!(
+            [
+                "INCOMPLETE",
+                "INCOMPLETE.tmp",
+                "scenario.ron",
+                "metrics.csv",
+                "trajectory.csv",
+                "trajectory.npy",
+                "checkpoint.bin",
+                "checkpoint.tmp",
+            ]
+            .contains(&name.as_str()),
+            "unexpected file {name}"
+        );
+    }
+    if !names.contains_key("metrics.csv") {
+        return;
+    }
+    let records = whole_lines(&dir.join("metrics.csv"));
+    if names.contains_key("trajectory.csv") {
+        let lines = whole_lines(&dir.join("trajectory.csv"));
+        assert_eq!(
+            lines % agents,
+            0,
+            "a trajectory record is cut: {lines} lines"
+        );
+        assert!(
+            lines / agents >= records,
+            "{lines} lines, {records} records"
+        );
+    }
+    if let Some(checkpoint) = Checkpoint::read(&dir).expect("a whole checkpoint or none") {
+        assert!(checkpoint.records <= records as u64);
+        let metrics = fs::metadata(dir.join("metrics.csv"))
+            .expect("metrics.csv")
+            .len();
+        assert!(checkpoint.metrics_bytes <= metrics);
+    }
+}
+
+#[test]
+fn the_health_check_names_the_step_the_agent_and_the_fault() {
+    let scenario = Scenario::parse(LONG_2D, "long.ron").expect("valid");
+    let q = vec![DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(0.0, 7.0)];
+    let mut p = vec![DVec2::ZERO; 3];
+    assert!(Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone())).is_ok());
+    p[2] = DVec2::new(f64::NAN, 0.0);
+    let error = Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone())).unwrap_err();
+    assert_eq!((error.steps, error.agent), (5, 2));
+    assert!(matches!(
+        error.fault,
+        Fault::NotFinite {
+            quantity: "velocity",
+            ..
+        }
+    ));
+    let message = error.to_string();
+    assert!(
+        message.starts_with(
+            "numerical blow-up at step 5 (t = 0.05): agent 2 has a non-finite velocity"
+        ),
+        "{message}"
+    );
+    // r/h = 8.4/0.01 = 840: one step may not cross the interaction range.
+    p[2] = DVec2::new(0.0, 841.0);
+    p[1] = DVec2::new(f64::INFINITY, 0.0);
+    let error = Health::check(&scenario, 9, &Swarm::new(q, p)).unwrap_err();
+    assert_eq!(error.agent, 1, "the lowest agent at fault");
+    let mut p = vec![DVec2::ZERO; 3];
+    p[2] = DVec2::new(0.0, 841.0);
+    let q = vec![DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(0.0, 7.0)];
+    let error = Health::check(&scenario, 9, &Swarm::new(q, p)).unwrap_err();
+    assert!(
+        matches!(error.fault, Fault::Runaway { speed, limit } if speed == 841.0 && (limit - 840.0).abs() < 1e-9),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_blow_up_stops_the_run_with_the_step_agent_and_cause() {
+    let scenario = Scenario::parse(BLOW_UP, "blow_up.ron").expect("valid (with a warning)");
+    match run_scenario(&scenario, &mut ()) {
+        Err(RunError::Numerical(e)) => {
+            assert_eq!(e.steps, 1);
+            let message = e.to_string();
+            assert!(
+                message.starts_with("numerical blow-up at step 1 (t = 0.05): agent"),
+                "{message}"
+            );
+            assert!(
+                message.contains("Likely cause: the step h = 0.05 exceeds the largest stable step"),
+                "{message}"
+            );
+        }
+        other => panic!("expected a numerical error, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
+    let tmp = TempDir::new("blow_up_cli");
+    let file = write(tmp.path(), "blow_up.ron", BLOW_UP);
+    let out = tmp.path().join("out");
+    let output = flock(tmp.path(), &["run", &file, "--out", "out", "--quiet"]);
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    let err = stderr(&output);
+    assert!(err.contains("warning: `step` = 0.05"), "{err}");
+    assert!(err.contains("error: numerical blow-up at step 1"), "{err}");
+    assert!(err.contains("marked incomplete"), "{err}");
+    assert!(!out.exists());
+    let dir = partial(&out);
+    let note = fs::read_to_string(dir.join(INCOMPLETE_FILE)).expect("the note");
+    assert!(
+        note.starts_with("failed: numerical blow-up at step 1"),
+        "{note}"
+    );
+    // t = 0 was recorded whole; nothing of the bad step was.
+    assert_eq!(whole_lines(&dir.join("metrics.csv")), 1);
+    assert_eq!(whole_lines(&dir.join("trajectory.csv")), 30);
+    let resumed = flock(tmp.path(), &["run", "--resume", "out"]);
+    assert_eq!(resumed.status.code(), Some(1));
+    assert!(
+        stderr(&resumed).contains("cannot be resumed, it would fail again"),
+        "{}",
+        stderr(&resumed)
+    );
+}
+
+#[test]
+fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
+    let tmp = TempDir::new("ctrl_c");
+    let file = write(tmp.path(), "long.ron", LONG_2D);
+    complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
+    let child = spawn(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "cut",
+            "--quiet",
+            "--checkpoint-every",
+            "0",
+        ],
+    );
+    sleep(Duration::from_millis(400));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(status.success());
+    let output = child.wait_with_output().expect("the run ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(
+        output.status.code(),
+        Some(130),
+        "the run ended before Ctrl-C: {err}"
+    );
+    assert!(err.contains("interrupted after step"), "{err}");
+    let out = tmp.path().join("cut");
+    check_incomplete(&out, 60);
+    let note = fs::read_to_string(partial(&out).join(INCOMPLETE_FILE)).expect("the note");
+    assert!(
+        note.starts_with("incomplete: interrupted after step"),
+        "{note}"
+    );
+    let checkpoint = Checkpoint::read(&partial(&out))
+        .expect("readable")
+        .expect("Ctrl-C keeps a checkpoint even with --checkpoint-every 0");
+    assert!(checkpoint.start.steps > 0 && checkpoint.start.steps < 12_000);
+    // A new run into the same directory is refused: it would discard the interrupted one.
+    let again = flock(tmp.path(), &["run", &file, "--out", "cut"]);
+    assert_eq!(again.status.code(), Some(1));
+    assert!(
+        stderr(&again).contains("flock run --resume"),
+        "{}",
+        stderr(&again)
+    );
+    complete(tmp.path(), &["run", "--resume", "cut", "--quiet"]);
+    assert_eq!(files(&out), files(&tmp.path().join("whole")));
+    assert!(!partial(&out).exists());
+    let finished = flock(tmp.path(), &["run", "--resume", "cut"]);
+    assert!(
+        stderr(&finished).contains("holds a complete run"),
+        "{}",
+        stderr(&finished)
+    );
+}
+
+/// Kills runs with SIGKILL at pseudo-random instants, checks what each leaves, resumes, and
+/// compares the completed outputs with an uninterrupted run's.
+fn kill_and_resume(test: &str, format: &str, kills: usize) {
+    let tmp = TempDir::new(test);
+    let file = write(tmp.path(), "long.ron", LONG_2D);
+    let format_args = ["--trajectory-format", format];
+    let mut args = vec!["run", &file, "--out", "whole", "--quiet"];
+    args.extend(format_args);
+    let clock = Instant::now();
+    complete(tmp.path(), &args);
+    // Kills land between 1 % and 12 % of an uninterrupted run's time after each (re)start, so
+    // that most of them fall mid-run whatever the machine's speed.
+    let whole_run = clock.elapsed().as_secs_f64();
+    let out = tmp.path().join("cut");
+    let mut first = vec![
+        "run",
+        &file,
+        "--out",
+        "cut",
+        "--quiet",
+        "--checkpoint-every",
+        "50",
+    ];
+    first.extend(format_args);
+    let resume = [
+        "run",
+        "--resume",
+        "cut",
+        "--quiet",
+        "--checkpoint-every",
+        "50",
+    ];
+    // A fixed linear congruential sequence of fractions in [0.01, 0.12).
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut delay = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        let fraction = 0.01 + 0.11 * ((state >> 11) as f64 / (1u64 << 53) as f64);
+        Duration::from_secs_f64(fraction * whole_run)
+    };
+    let mut killed = 0;
+    let mut child = spawn(tmp.path(), &first);
+    while killed < kills {
+        let started = Instant::now();
+        let wait = delay();
+        while started.elapsed() < wait && child.try_wait().expect("poll").is_none() {
+            sleep(Duration::from_millis(2));
+        }
+        if child.try_wait().expect("poll").is_some() {
+            break;
+        }
+        child.kill().expect("SIGKILL");
+        child.wait().expect("reaped");
+        killed += 1;
+        check_incomplete(&out, 60);
+        child = spawn(tmp.path(), &resume);
+    }
+    let output = child.wait_with_output().expect("the last run ends");
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    eprintln!("{killed} SIGKILLs mid-run, each leaving whole records");
+    assert!(killed >= kills / 2, "only {killed} kills landed mid-run");
+    assert_eq!(
+        files(&out),
+        files(&tmp.path().join("whole")),
+        "after {killed} kills"
+    );
+}
+
+#[test]
+fn runs_killed_at_random_instants_resume_to_bit_identical_csv_outputs() {
+    kill_and_resume("sigkill_csv", "csv", 12);
+}
+
+#[test]
+fn runs_killed_at_random_instants_resume_to_bit_identical_npy_outputs() {
+    kill_and_resume("sigkill_npy", "npy", 6);
+}
+
+#[test]
+fn a_corrupt_checkpoint_is_refused_with_its_path() {
+    let tmp = TempDir::new("corrupt_checkpoint");
+    let out = tmp.path().join("cut");
+    let dir = partial(&out);
+    fs::create_dir_all(&dir).expect("mkdir");
+    fs::write(dir.join("scenario.ron"), LONG_2D).expect("scenario");
+    fs::write(dir.join("checkpoint.bin"), b"FLOCKCK1 but cut short").expect("checkpoint");
+    let output = flock(tmp.path(), &["run", "--resume", "cut"]);
+    assert_eq!(output.status.code(), Some(1));
+    let err = stderr(&output);
+    assert!(
+        err.contains("checkpoint.bin is not a flock checkpoint"),
+        "{err}"
+    );
+}
+
+/// The records of a `.npy` file: its header's dict and its data as f64.
+fn read_npy(path: &Path) -> (String, Vec<f64>) {
+    let bytes = fs::read(path).expect("the npy file");
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let len = usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
+    assert_eq!((10 + len) % 64, 0, "the header is padded to 64 bytes");
+    let dict = String::from_utf8(bytes[10..10 + len].to_vec()).expect("an ASCII header");
+    assert!(dict.ends_with('\n'));
+    let data = bytes[10 + len..]
+        .chunks_exact(8)
+        .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")))
+        .collect();
+    (dict, data)
+}
+
+#[test]
+fn the_npy_trajectory_holds_exactly_the_csv_trajectory() {
+    let tmp = TempDir::new("npy");
+    let text = LONG_2D.replace("duration: 120.0", "duration: 0.5");
+    let file = write(tmp.path(), "short.ron", &text);
+    complete(tmp.path(), &["run", &file, "--out", "csv", "--quiet"]);
+    complete(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "npy",
+            "--quiet",
+            "--trajectory-format",
+            "npy",
+        ],
+    );
+    let (csv, npy) = (tmp.path().join("csv"), tmp.path().join("npy"));
+    for name in ["metrics.csv", "final.csv", "scenario.ron"] {
+        assert_eq!(
+            fs::read(csv.join(name)).ok(),
+            fs::read(npy.join(name)).ok(),
+            "{name}"
+        );
+    }
+    assert!(!npy.join("trajectory.csv").exists());
+    let (dict, data) = read_npy(&npy.join("trajectory.npy"));
+    let (agents, records) = (60, 6);
+    assert!(
+        dict.starts_with(
+            "{'descr': [('t', '<f8'), ('q', '<f8', (60, 2)), ('p', '<f8', (60, 2))], 'fortran_order': False, 'shape': (6,), }"
+        ),
+        "{dict}"
+    );
+    assert_eq!(data.len(), records * (1 + 4 * agents));
+    let rows: Vec<Vec<f64>> = fs::read_to_string(csv.join("trajectory.csv"))
+        .expect("trajectory.csv")
+        .lines()
+        .skip(1)
+        .map(|line| {
+            line.split(',')
+                .map(|x| x.parse().expect("a number"))
+                .collect()
+        })
+        .collect();
+    for (k, record) in data.chunks_exact(1 + 4 * agents).enumerate() {
+        let (q, p) = record[1..].split_at(2 * agents);
+        for i in 0..agents {
+            let row = &rows[k * agents + i];
+            assert_eq!(record[0].to_bits(), row[0].to_bits(), "t of record {k}");
+            assert_eq!(row[1], i as f64);
+            assert_eq!(
+                [q[2 * i], q[2 * i + 1], p[2 * i], p[2 * i + 1]],
+                row[2..6],
+                "agent {i} of record {k}"
+            );
+        }
+    }
+}
