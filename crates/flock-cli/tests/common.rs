@@ -97,3 +97,19 @@ pub fn write(dir: &Path, name: &str, text: &str) -> String {
     fs::write(&path, text).expect("write a scenario file");
     path.to_str().expect("a UTF-8 temporary path").to_owned()
 }
+
+/// The files of a directory by name, with their bytes.
+pub fn files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| {
+            let path = entry.expect("a directory entry").path();
+            let name = path
+                .file_name()
+                .expect("a name")
+                .to_string_lossy()
+                .into_owned();
+            (name, fs::read(&path).expect("a readable file"))
+        })
+        .collect()
+}

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use flock_cli::{METRICS_HEADER, Scenario, ScenarioError};
 
-use crate::common::{TempDir, flock, stderr, write};
+use crate::common::{TempDir, files, flock, stderr, write};
 
 /// A valid 2D scenario of 5 agents and 10 steps; each error test breaks one field of it.
 pub const TINY_2D: &str = r#"Scenario(
@@ -417,19 +417,11 @@ fn explicit_position_of_the_wrong_dimension_is_named_with_its_index() {
 
 // ---- The `flock` binary ----------------------------------------------------------------------
 
-/// The files of a directory by name, with their contents.
+/// The files of a directory by name, with their contents as text.
 fn contents(dir: &Path) -> BTreeMap<String, String> {
-    fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|entry| {
-            let path = entry.expect("a directory entry").path();
-            let name = path
-                .file_name()
-                .expect("a name")
-                .to_string_lossy()
-                .into_owned();
-            (name, fs::read_to_string(&path).expect("a text file"))
-        })
+    files(dir)
+        .into_iter()
+        .map(|(name, bytes)| (name, String::from_utf8(bytes).expect("a text file")))
         .collect()
 }
 

@@ -2,7 +2,6 @@
 //! incomplete, and resume to outputs bit-identical with an uninterrupted run; the `.npy`
 //! trajectory holds exactly what the CSV one does.
 
-use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -15,7 +14,7 @@ use flock_cli::{INCOMPLETE_FILE, RunError, Scenario, run_scenario};
 use flock_protocols::Swarm;
 use glam::DVec2;
 
-use crate::common::{TempDir, flock, stderr, write};
+use crate::common::{TempDir, files, flock, stderr, write};
 
 /// Algorithm 2, 60 agents, 12,000 steps recorded every 10: long enough (about a second in a
 /// test build) to be interrupted at many points.
@@ -54,22 +53,6 @@ const BLOW_UP: &str = r#"Scenario(
 
 fn partial(out: &Path) -> PathBuf {
     flock_cli::output::partial_path(out)
-}
-
-/// The files of a run directory, byte for byte.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|entry| {
-            let path = entry.expect("a directory entry").path();
-            let name = path
-                .file_name()
-                .expect("a name")
-                .to_string_lossy()
-                .into_owned();
-            (name, fs::read(&path).expect("a readable file"))
-        })
-        .collect()
 }
 
 /// Runs `args` to completion, asserting success.

@@ -1,7 +1,10 @@
 //! Shared fixtures: seeded random swarms and exact α-lattices.
 
 use flock_math::Vector;
-use flock_protocols::{AlphaInteraction, AlphaParams, Protocol, Simulation, Swarm};
+use flock_protocols::{
+    Algorithm2, AlphaInteraction, AlphaParams, GammaAgent, NavigationalFeedback, Protocol,
+    Simulation, Swarm,
+};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -17,6 +20,22 @@ pub fn random_swarm<V: Vector>(n: usize, half: f64, speed: f64, seed: u64) -> Sw
 /// The papers' α-interaction (d = 7, r = 8.4, ε = 0.1, a = b = 5, h = 0.2) with unit gains.
 pub fn papers_alpha() -> AlphaInteraction {
     AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0)
+}
+
+/// Algorithm 2 with the papers' α-interaction following a γ-agent that starts at the origin
+/// with `velocity` (c₁ = 0.05, c₂ = 0.4).
+pub fn following<V: Vector>(velocity: V) -> Algorithm2<V> {
+    Algorithm2 {
+        alpha: papers_alpha(),
+        navigation: NavigationalFeedback::linear(
+            GammaAgent::ConstantVelocity {
+                position: V::ZERO,
+                velocity,
+            },
+            0.05,
+            0.4,
+        ),
+    }
 }
 
 /// A planar point lifted to V (z = 0 in 3D).

@@ -1,11 +1,9 @@
 //! Bit-identical results whatever the number of threads.
 
-use flock_protocols::{
-    Algorithm2, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
-};
+use flock_protocols::{Integrator, Simulation, Swarm};
 use glam::DVec2;
 
-use crate::common::{papers_alpha, random_swarm};
+use crate::common::{following, random_swarm};
 
 fn run(threads: usize, integrator: Integrator) -> Swarm<DVec2> {
     let pool = rayon::ThreadPoolBuilder::new()
@@ -13,18 +11,7 @@ fn run(threads: usize, integrator: Integrator) -> Swarm<DVec2> {
         .build()
         .expect("a thread pool");
     pool.install(|| {
-        let navigation = NavigationalFeedback::linear(
-            GammaAgent::ConstantVelocity {
-                position: DVec2::ZERO,
-                velocity: DVec2::new(1.0, 0.0),
-            },
-            0.05,
-            0.4,
-        );
-        let protocol = Algorithm2 {
-            alpha: papers_alpha(),
-            navigation,
-        };
+        let protocol = following(DVec2::new(1.0, 0.0));
         let mut sim = Simulation::new(
             protocol,
             integrator,
@@ -57,17 +44,7 @@ fn one_and_four_threads_are_bit_identical() {
 /// on bit-identically, the time-dependent γ-agent included.
 #[test]
 fn a_resumed_simulation_is_bit_identical_to_the_uninterrupted_one() {
-    let protocol = || Algorithm2 {
-        alpha: papers_alpha(),
-        navigation: NavigationalFeedback::linear(
-            GammaAgent::ConstantVelocity {
-                position: DVec2::ZERO,
-                velocity: DVec2::new(1.0, 0.5),
-            },
-            0.05,
-            0.4,
-        ),
-    };
+    let protocol = || following(DVec2::new(1.0, 0.5));
     for integrator in [Integrator::SymplecticEuler, Integrator::Rk4] {
         let start = random_swarm(300, 40.0, 2.0, 3);
         let mut whole = Simulation::new(protocol(), integrator, start.clone(), 0.01);

@@ -8,7 +8,7 @@ use flock_protocols::{
 };
 use glam::{DMat3, DVec2, DVec3};
 
-use crate::common::{papers_alpha, planar, random_swarm};
+use crate::common::{following, papers_alpha, planar, random_swarm};
 
 fn controls<P: Protocol<DVec3>>(protocol: &P, swarm: &Swarm<DVec3>) -> Vec<DVec3> {
     let net = ProximityNet::brute_force(&swarm.positions, protocol.interaction_range());
@@ -87,28 +87,8 @@ fn planar_runs_agree_in_2d_and_3d() {
         flat.positions.iter().map(|q| planar(q.x, q.y)).collect(),
         flat.velocities.iter().map(|p| planar(p.x, p.y)).collect(),
     );
-    let protocol2 = Algorithm2 {
-        alpha: papers_alpha(),
-        navigation: NavigationalFeedback::linear(
-            GammaAgent::ConstantVelocity {
-                position: DVec2::ZERO,
-                velocity: DVec2::new(1.0, 0.5),
-            },
-            0.05,
-            0.4,
-        ),
-    };
-    let protocol3 = Algorithm2 {
-        alpha: papers_alpha(),
-        navigation: NavigationalFeedback::linear(
-            GammaAgent::ConstantVelocity {
-                position: DVec3::ZERO,
-                velocity: DVec3::new(1.0, 0.5, 0.0),
-            },
-            0.05,
-            0.4,
-        ),
-    };
+    let protocol2 = following(DVec2::new(1.0, 0.5));
+    let protocol3 = following(DVec3::new(1.0, 0.5, 0.0));
     let mut sim2 = Simulation::new(protocol2, Integrator::SymplecticEuler, flat, 0.01);
     let mut sim3 = Simulation::new(protocol3, Integrator::SymplecticEuler, lifted, 0.01);
     for _ in 0..1000 {
