@@ -24,17 +24,23 @@ impl<V: Vector> Diagnostics<V> for Algorithm2<V> {}
 
 impl<V: Vector> Diagnostics<V> for Flocking2003<V> {}
 
-/// `obstacle_clearance`, `inside_obstacles`.
+/// `obstacle_clearance`, `inside_obstacles` (none without obstacles, as the columns).
 impl<V: Space> Diagnostics<V> for Algorithm3<V> {
     fn values(&self, _t: f64, swarm: &Swarm<V>) -> Vec<f64> {
         let field = self.beta.field();
+        if field.is_empty() {
+            return Vec::new();
+        }
         ObstacleMetrics::measure(&swarm.positions, |q| field.clearance(q)).values()
     }
 }
 
-/// `obstacle_clearance`, `inside_obstacles`.
+/// `obstacle_clearance`, `inside_obstacles` (none without obstacles, as the columns).
 impl<V: Space> Diagnostics<V> for ObstacleFlocking2003<V> {
     fn values(&self, _t: f64, swarm: &Swarm<V>) -> Vec<f64> {
+        if self.obstacles.is_empty() {
+            return Vec::new();
+        }
         let clearance = |q: V| {
             self.obstacles
                 .iter()

@@ -147,8 +147,9 @@ fn enclosing_field(text: &str, line: usize, col: usize) -> Option<String> {
     while let Some(colon) = rest.rfind(':') {
         let before = rest[..colon].trim_end();
         let start = before
-            .rfind(|c: char| !(c.is_alphanumeric() || c == '_'))
-            .map_or(0, |k| k + 1);
+            .char_indices()
+            .rfind(|&(_, c)| !(c.is_alphanumeric() || c == '_'))
+            .map_or(0, |(k, c)| k + c.len_utf8());
         let name = &before[start..];
         if !name.is_empty() && !name.starts_with(|c: char| c.is_ascii_digit()) {
             return Some(name.to_owned());

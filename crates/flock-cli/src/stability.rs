@@ -131,7 +131,7 @@ fn initial_degree<V: Vector>(scenario: &Scenario) -> usize {
 }
 
 /// The first pair of agents that start at the same point, if any.
-fn coincident_pair<V: Vector>(scenario: &Scenario) -> Option<(usize, usize)> {
+pub(crate) fn coincident_pair<V: Vector>(scenario: &Scenario) -> Option<(usize, usize)> {
     let swarm = initial_swarm::<V>(scenario);
     let mut net = ProximityNet::new();
     // Pairs closer than this are, for the σ-norm and its gradient, at the same point.

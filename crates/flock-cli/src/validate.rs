@@ -7,6 +7,7 @@ use glam::{DVec2, DVec3};
 use crate::error::ScenarioError;
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Cloud, Gamma, Scenario, TannerGraph};
+use crate::stability::coincident_pair;
 
 type Check = Result<(), ScenarioError>;
 
@@ -82,8 +83,44 @@ fn vector(field: &str, v: &[f64], dim: usize) -> Check {
         v,
         "has a non-finite component",
         "use finite numbers",
+    )?;
+    require(
+        v.iter().all(|x| x.abs() <= MAX_COORDINATE),
+        field,
+        v,
+        &format!("has a component beyond ±{MAX_COORDINATE:e}, {WHY_BOUNDED}"),
+        "rescale the scenario (or move its origin) so that every coordinate stays within ±1e9",
     )
 }
+
+/// The largest coordinate, length or speed accepted.
+const MAX_COORDINATE: f64 = 1e9;
+
+/// The smallest length (and potential bound a, b) accepted.
+const MIN_LENGTH: f64 = 1e-9;
+
+/// Why lengths are bounded.
+const WHY_BOUNDED: &str = "where 64-bit floats keep too few digits to resolve the lattice distance (and squares of distances overflow)";
+
+/// A length in [[`MIN_LENGTH`], [`MAX_COORDINATE`]].
+fn length(field: &str, value: f64) -> Check {
+    within_scale(field, value, WHY_BOUNDED)
+}
+
+/// A positive value in [[`MIN_LENGTH`], [`MAX_COORDINATE`]], where `why` says what breaks outside.
+fn within_scale(field: &str, value: f64, why: &str) -> Check {
+    positive(field, value)?;
+    require(
+        (MIN_LENGTH..=MAX_COORDINATE).contains(&value),
+        field,
+        value,
+        &format!("lies outside [{MIN_LENGTH:e}, {MAX_COORDINATE:e}], {why}"),
+        "rescale the scenario so that it stays within [1e-9, 1e9]",
+    )
+}
+
+/// The most agents accepted: flock keeps about 250 bytes per agent (docs/performance.md).
+const MAX_AGENTS: usize = 100_000_000;
 
 impl Scenario {
     /// Checks every value against its domain.
@@ -105,6 +142,16 @@ impl Scenario {
             self.agents,
             "a flock needs at least one agent",
             "set agents to n ≥ 1",
+        )?;
+        require(
+            self.agents <= MAX_AGENTS,
+            "agents",
+            self.agents,
+            &format!(
+                "exceeds {MAX_AGENTS}: at about 250 bytes per agent the state alone needs {:.0} GB",
+                self.agents as f64 * 250e-9
+            ),
+            "split the swarm into runs of at most 10^8 agents",
         )?;
         self.validate_alpha()?;
         positive("step", self.step)?;
@@ -136,14 +183,17 @@ impl Scenario {
         self.validate_algorithm()?;
         self.validate_cloud("initial.positions", &self.initial.positions)?;
         self.validate_cloud("initial.velocities", &self.initial.velocities)?;
+        if matches!(self.algorithm, Algorithm::Tanner { .. }) {
+            self.validate_distinct_start()?;
+        }
         self.validate_obstacles()
     }
 
     fn validate_alpha(&self) -> Check {
         let a = &self.alpha;
-        positive("alpha.d", a.d)?;
+        length("alpha.d", a.d)?;
         if let Some(r) = a.r {
-            finite("alpha.r", r)?;
+            length("alpha.r", r)?;
             require(
                 r > a.d,
                 "alpha.r",
@@ -164,8 +214,10 @@ impl Scenario {
             "the bump ρ_h needs h in (0, 1)",
             "use e.g. h: 0.2 (the papers' value)",
         )?;
-        positive("alpha.a", a.a)?;
-        positive("alpha.b", a.b)?;
+        let why =
+            "where the uneven sigmoid's shift c = |a − b|/√(4ab) loses precision or overflows";
+        within_scale("alpha.a", a.a, why)?;
+        within_scale("alpha.b", a.b, why)?;
         require(
             a.a <= a.b,
             "alpha.a",
@@ -314,6 +366,24 @@ impl Scenario {
         }
     }
 
+    /// No two agents of a Tanner scenario start at the same point, where the potential
+    /// d²/z² + ln(z²/d²) − 1 of a linked pair is infinite.
+    fn validate_distinct_start(&self) -> Check {
+        let pair = match self.dim {
+            2 => coincident_pair::<DVec2>(self),
+            _ => coincident_pair::<DVec3>(self),
+        };
+        match pair {
+            None => Ok(()),
+            Some((i, j)) => Err(ScenarioError::invalid(
+                "initial.positions",
+                format!("agents {i} and {j}"),
+                "start at the same point, where the Tanner potential d²/z² + ln(z²/d²) − 1 of a linked pair is infinite",
+                "give every agent its own position",
+            )),
+        }
+    }
+
     fn uses_obstacles(&self) -> bool {
         matches!(
             self.algorithm,
@@ -404,11 +474,11 @@ impl Scenario {
             }
             Cloud::Ball { centre, radius } => {
                 vector(&format!("{field}.centre"), centre, dim)?;
-                positive(&format!("{field}.radius"), *radius)
+                length(&format!("{field}.radius"), *radius)
             }
             Cloud::Gaussian { mean, std } => {
                 vector(&format!("{field}.mean"), mean, dim)?;
-                positive(&format!("{field}.std"), *std)
+                length(&format!("{field}.std"), *std)
             }
             Cloud::Explicit(rows) => {
                 require(

@@ -350,6 +350,45 @@ fn coincident_agents_at_the_start_are_warned() {
 }
 
 #[test]
+fn values_beyond_what_doubles_resolve_are_named() {
+    let message = invalid_field(&edit(TINY_2D, "d: 7.0", "d: 1e200"), "alpha.d");
+    assert!(message.contains("outside [1e-9, 1e9]"), "{message}");
+    invalid_field(&edit(TINY_2D, "d: 7.0", "d: 5e-324"), "alpha.d");
+    let message = invalid_field(
+        &edit(TINY_2D, "a: 5.0, b: 5.0", "a: 1e-300, b: 5.0"),
+        "alpha.a",
+    );
+    assert!(message.contains("uneven sigmoid"), "{message}");
+    let message = invalid_field(
+        &edit(TINY_2D, "max: [10.0, 10.0]", "max: [7e154, 10.0]"),
+        "initial.positions.max",
+    );
+    assert!(message.contains("beyond ±1e9"), "{message}");
+    let message = invalid_field(
+        &edit(TINY_2D, "agents: 5", "agents: 100000000000"),
+        "agents",
+    );
+    assert!(message.contains("25000 GB"), "{message}");
+}
+
+#[test]
+fn tanner_agents_starting_at_the_same_point_are_rejected() {
+    let text = edit(
+        TINY_2D,
+        "algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.02, c2: 0.4)",
+        "algorithm: Tanner(graph: Edges([(0, 1), (1, 2), (2, 3), (3, 4)]))",
+    );
+    let text = edit(
+        &text,
+        "positions: Box(min: [-10.0, -10.0], max: [10.0, 10.0])",
+        "positions: Explicit([[0.0, 0.0], [5.0, 0.0], [9.0, 1.0], [0.0, 0.0], [2.0, 8.0]])",
+    );
+    let message = invalid_field(&text, "initial.positions");
+    assert!(message.contains("agents 0 and 3"), "{message}");
+    assert!(message.contains("Tanner potential"), "{message}");
+}
+
+#[test]
 fn step_longer_than_duration_names_step() {
     invalid_field(&edit(TINY_2D, "step: 0.01", "step: 0.5"), "step");
 }

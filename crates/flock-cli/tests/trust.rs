@@ -475,3 +475,82 @@ fn the_npy_trajectory_holds_exactly_the_csv_trajectory() {
         }
     }
 }
+
+/// Checks that every recorded value is finite (`min_distance` may be +∞ for a single agent) and
+/// that the protocol's values match the declared columns.
+struct Finite {
+    columns: usize,
+    agents: usize,
+}
+
+impl flock_cli::Recorder for Finite {
+    type Error = std::convert::Infallible;
+
+    fn record<V: flock_math::Vector>(
+        &mut self,
+        record: &flock_cli::Record<'_, V>,
+    ) -> Result<(), Self::Error> {
+        let m = &record.metrics;
+        let values = [
+            m.connectivity,
+            m.giant_component,
+            m.cohesion_radius,
+            m.deviation_energy,
+            m.velocity_mismatch,
+            record.energy,
+        ];
+        assert!(
+            values.iter().all(|x| x.is_finite()),
+            "t = {}: {values:?}",
+            record.t
+        );
+        assert!(m.min_distance.is_finite() || self.agents < 2);
+        assert_eq!(
+            record.extra.len(),
+            self.columns,
+            "values of the extra columns"
+        );
+        assert!(
+            record.extra.iter().all(|x| x.is_finite()),
+            "{:?}",
+            record.extra
+        );
+        Ok(())
+    }
+}
+
+/// Every input the fuzzer found (`fuzz/regressions/`) is now rejected with a message naming a
+/// field, or runs (cut to 20 steps) recording only finite values in the declared columns.
+#[test]
+fn the_fuzzers_findings_are_rejected_or_run_finite() {
+    let dir = crate::common::fixtures_dir().join("../fuzz/regressions");
+    let mut paths: Vec<PathBuf> = fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("an entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "ron"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 10, "{} findings", paths.len());
+    for path in paths {
+        let text = fs::read_to_string(&path).expect("a finding");
+        let scenario = match Scenario::parse(&text, "finding.ron") {
+            Err(e) => {
+                assert!(e.field().is_some(), "{}: {e}", path.display());
+                continue;
+            }
+            Ok(scenario) => scenario,
+        };
+        let short = Scenario {
+            duration: scenario.duration.min(20.0 * scenario.step),
+            ..scenario
+        };
+        let mut finite = Finite {
+            columns: short.extra_columns().len(),
+            agents: short.agents,
+        };
+        match run_scenario(&short, &mut finite) {
+            Ok(_) | Err(RunError::Numerical(_)) => {}
+            Err(e) => panic!("{}: {e}", path.display()),
+        }
+    }
+}
