@@ -2,7 +2,6 @@
 //! and `flock run` writes its outputs whole or not at all.
 
 use std::collections::BTreeMap;
-use std::fs;
 use std::path::Path;
 
 use flock_cli::{METRICS_HEADER, Scenario, ScenarioError};
