@@ -31,10 +31,15 @@ fn protocol<V: flock_math::Vector>(swarm: &Swarm<V>) -> Algorithm2<V> {
 
 fn kernels<V: flock_obstacles::Space>(c: &mut Criterion, dim: &str) {
     let (swarm, _) = scenario::<V>(N, 0);
-    let mut search = NeighbourSearch::new();
-    let mut net = ProximityNet::new();
-    search.build(&swarm.positions, R, &mut net);
     let protocol = protocol(&swarm);
+    let mut search = NeighbourSearch::new();
+    // the kind of net a Simulation keeps for this protocol
+    let mut net = if Protocol::<V>::uses_net_distances(&protocol) {
+        ProximityNet::new()
+    } else {
+        ProximityNet::without_distances()
+    };
+    search.build(&swarm.positions, R, &mut net);
     let mut inputs = vec![V::ZERO; N];
 
     let mut group = c.benchmark_group(format!("kernels_{dim}"));

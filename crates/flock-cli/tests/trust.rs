@@ -242,10 +242,15 @@ fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
 fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
     let tmp = TempDir::new("ctrl_c");
     let file = write(tmp.path(), "long.ron", LONG_2D);
+    let clock = Instant::now();
     complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
-    let child = spawn(
-        tmp.path(),
-        &[
+    let whole_run = clock.elapsed();
+    // Ctrl-C a third of an uninterrupted run's time after the start: past start-up (the handler is
+    // installed), before the end; sooner again if a faster run still finished first.
+    let mut delay = whole_run / 3;
+    let output = loop {
+        let _ = fs::remove_dir_all(tmp.path().join("cut"));
+        let args = [
             "run",
             &file,
             "--out",
@@ -253,15 +258,21 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
             "--quiet",
             "--checkpoint-every",
             "0",
-        ],
-    );
-    sleep(Duration::from_millis(400));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(status.success());
-    let output = child.wait_with_output().expect("the run ends");
+        ];
+        let child = spawn(tmp.path(), &args);
+        sleep(delay);
+        let status = Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(status.success());
+        let output = child.wait_with_output().expect("the run ends");
+        if output.status.code() == Some(0) && delay > Duration::from_millis(40) {
+            delay /= 4;
+            continue;
+        }
+        break output;
+    };
     let err = String::from_utf8_lossy(&output.stderr);
     assert_eq!(
         output.status.code(),

@@ -2,7 +2,7 @@
 //! δ₀ = max_k |F_k| / n of the net (Olfati-Saber, Flocking with Obstacle Avoidance (seed 004),
 //! eq. 7). A flock is a connected net (ACC 2004 (seed 000)).
 //!
-//! [`Components::of`] runs union-find (path compression, union by size) over the edges: O(|E| α(n)).
+//! [`Components::of`] runs union-find (path compression, union by rank) over the edges: O(|E| α(n)).
 
 use crate::graph::Graph;
 
@@ -104,46 +104,57 @@ impl Components {
     }
 }
 
-/// Union-find over `0..n` with path compression and union by size.
+/// Union-find over `0..n` (n ≤ 2³², node indices being `u32`) with path compression and union by
+/// rank: 5 bytes per node.
 struct DisjointSets {
-    parent: Vec<usize>,
-    size: Vec<usize>,
+    parent: Vec<u32>,
+    /// An upper bound on the height of each root's tree (≤ log₂ n).
+    rank: Vec<u8>,
 }
 
 impl DisjointSets {
     fn new(n: usize) -> Self {
+        assert!(
+            n <= 1 << 32,
+            "{n} nodes exceed the u32 node indices of a graph"
+        );
         Self {
-            parent: (0..n).collect(),
-            size: vec![1; n],
+            // i < n ≤ 2³²
+            parent: (0..n).map(|i| i as u32).collect(),
+            rank: vec![0; n],
         }
     }
 
     /// The root of `x`'s set; every node on the path is re-attached to the root.
     fn find(&mut self, x: usize) -> usize {
         let mut root = x;
-        while self.parent[root] != root {
-            root = self.parent[root];
+        while self.parent[root] as usize != root {
+            root = self.parent[root] as usize;
         }
         let mut node = x;
-        while self.parent[node] != root {
-            let next = self.parent[node];
-            self.parent[node] = root;
+        while self.parent[node] as usize != root {
+            let next = self.parent[node] as usize;
+            // root < n ≤ 2³²
+            self.parent[node] = root as u32;
             node = next;
         }
         root
     }
 
-    /// Merges the sets of `a` and `b`, the smaller under the larger.
+    /// Merges the sets of `a` and `b`, the lower tree under the higher.
     fn union(&mut self, a: usize, b: usize) {
         let (mut a, mut b) = (self.find(a), self.find(b));
         if a == b {
             return;
         }
-        if self.size[a] < self.size[b] {
+        if self.rank[a] < self.rank[b] {
             core::mem::swap(&mut a, &mut b);
         }
-        self.parent[b] = a;
-        self.size[a] += self.size[b];
+        // a < n ≤ 2³²
+        self.parent[b] = a as u32;
+        if self.rank[a] == self.rank[b] {
+            self.rank[a] += 1;
+        }
     }
 }
 
@@ -161,13 +172,17 @@ mod tests {
     }
 
     #[test]
-    fn union_hangs_the_smaller_set_under_the_larger() {
+    fn union_hangs_the_lower_tree_under_the_higher() {
         let mut sets = DisjointSets::new(5);
         sets.union(3, 4);
+        let pair = sets.find(4);
+        assert_eq!(sets.rank[pair], 1);
         sets.union(2, 3);
+        assert_eq!(sets.find(2), pair, "a single node goes under the pair");
+        assert_eq!(sets.rank[pair], 1);
         sets.union(0, 2);
         let root = sets.find(4);
-        assert_eq!(sets.size[root], 4);
+        assert_eq!(root, pair);
         assert_eq!(sets.find(0), root);
         assert_ne!(sets.find(1), root);
     }

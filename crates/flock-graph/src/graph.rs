@@ -168,6 +168,12 @@ impl Graph {
         self.neighbours.clear();
         (&mut self.offsets, &mut self.neighbours)
     }
+
+    /// The CSR arrays as they are, to be resized and entirely overwritten (resizing keeps the old
+    /// entries, so only growth is initialised); the caller restores the invariants of [`Graph`].
+    pub(crate) fn arrays_for_rebuild(&mut self) -> (&mut Vec<usize>, &mut Vec<u32>) {
+        (&mut self.offsets, &mut self.neighbours)
+    }
 }
 
 /// Why [`Graph::from_edges`] rejected an edge list.

@@ -2,7 +2,8 @@
 //! and matrices of a flock, for 2D and 3D through [`flock_math::Vector`].
 //!
 //! - [`Graph`]: an undirected graph in CSR form, edges stored in both directions.
-//! - [`ProximityNet`]: the net N_i = { j ≠ i : ‖q_j − q_i‖ < r } with its edge lengths, built in
+//! - [`ProximityNet`]: the net N_i = { j ≠ i : ‖q_j − q_i‖ < r } with its edge lengths (or
+//!   without them: [`ProximityNet::without_distances`], [`ProximityNet::edge_lengths`]), built in
 //!   expected O(n) by [`NeighbourSearch`] (a uniform cell grid), exactly as
 //!   [`ProximityNet::brute_force`]; [`nearest_pair_distance`] for the closest pair.
 //! - [`binary_weights`], [`weights_from_distances`]: adjacency weights a_ij per directed edge.

@@ -34,10 +34,13 @@ use crate::graph::Graph;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ProximityNet {
     graph: Graph,
-    /// ‖q_j − q_i‖ per directed edge, aligned with `graph.neighbour_indices()`.
+    /// ‖q_j − q_i‖ per directed edge, aligned with `graph.neighbour_indices()`; empty when
+    /// `lean`.
     distances: Vec<f64>,
     /// The interaction range r.
     range: f64,
+    /// True for a net that keeps no distances ([`ProximityNet::without_distances`]).
+    lean: bool,
 }
 
 impl ProximityNet {
@@ -46,6 +49,72 @@ impl ProximityNet {
     #[must_use]
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// The net of no agents, to be filled by
+    /// [`NeighbourSearch::build`](crate::NeighbourSearch::build) with its graph only: it keeps no
+    /// distances (8 bytes less per directed edge), [`ProximityNet::distances`] is empty and
+    /// [`ProximityNet::edge_lengths`] recomputes them, bit-identically, from the positions.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::{NeighbourSearch, ProximityNet};
+    /// use glam::DVec2;
+    ///
+    /// let q = [DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0), DVec2::new(3.0, 0.0)];
+    /// let mut net = ProximityNet::without_distances();
+    /// NeighbourSearch::new().build(&q, 2.0, &mut net);
+    /// assert_eq!(net.graph().neighbours(0), &[1]);
+    /// assert!(!net.has_distances() && net.distances().is_empty());
+    /// assert_eq!(net.edge_lengths(&q).collect::<Vec<_>>(), [1.0, 1.0]);
+    /// ```
+    #[must_use]
+    pub fn without_distances() -> Self {
+        Self {
+            lean: true,
+            ..Self::default()
+        }
+    }
+
+    /// False for a net made by [`ProximityNet::without_distances`], whose
+    /// [`ProximityNet::distances`] is empty.
+    #[inline]
+    #[must_use]
+    pub fn has_distances(&self) -> bool {
+        !self.lean
+    }
+
+    /// ‖q_j − q_i‖ for every directed edge `i → j`, in the order of
+    /// [`Graph::neighbour_indices`]: the stored [`ProximityNet::distances`], or, for a net without
+    /// them, the same bits recomputed from `positions` (which must be the positions the net was
+    /// built from; they are not read when the distances are stored).
+    ///
+    /// # Panics
+    /// When the net has no distances and `positions` has fewer agents than the net.
+    pub fn edge_lengths<'a, V: Vector>(
+        &'a self,
+        positions: &'a [V],
+    ) -> impl Iterator<Item = f64> + 'a {
+        let computed = self.lean.then(|| {
+            assert!(
+                positions.len() >= self.graph.len(),
+                "{} positions for a net of {} agents",
+                positions.len(),
+                self.graph.len()
+            );
+            (0..self.graph.len()).flat_map(move |i| {
+                let qi = positions[i];
+                self.graph
+                    .neighbours(i)
+                    .iter()
+                    .map(move |&j| squared_distance(qi, positions[j as usize]).sqrt())
+            })
+        });
+        let stored = (!self.lean).then(|| self.distances.iter().copied());
+        computed
+            .into_iter()
+            .flatten()
+            .chain(stored.into_iter().flatten())
     }
 
     /// The graph of the net.
@@ -57,6 +126,8 @@ impl ProximityNet {
 
     /// ‖q_j − q_i‖ for every directed edge `i → j`, aligned with
     /// [`Graph::neighbour_indices`]; the two directions of an edge hold bit-identical values.
+    /// Empty for a net made by [`ProximityNet::without_distances`] (see
+    /// [`ProximityNet::edge_lengths`]).
     #[inline]
     #[must_use]
     pub fn distances(&self) -> &[f64] {
@@ -81,6 +152,7 @@ impl ProximityNet {
         let mut net = Self::new();
         let r2 = range_squared(r);
         let (offsets, neighbours, distances) = net.clear_for_rebuild(positions.len(), r);
+        let distances = distances.unwrap_or_else(|| unreachable!("a new net keeps distances"));
         for (i, &qi) in positions.iter().enumerate() {
             for (j, &qj) in positions.iter().enumerate() {
                 let d2 = squared_distance(qi, qj);
@@ -95,7 +167,8 @@ impl ProximityNet {
     }
 
     /// Empties the net for `n` agents and range `r`, keeping its allocations, and hands out the CSR
-    /// arrays and the distances to be refilled (see `Graph::clear_for_rebuild`).
+    /// arrays and, unless the net keeps none, the distances to be refilled (see
+    /// `Graph::clear_for_rebuild`).
     ///
     /// # Panics
     /// When `n` exceeds `u32::MAX`.
@@ -103,7 +176,7 @@ impl ProximityNet {
         &mut self,
         n: usize,
         r: f64,
-    ) -> (&mut Vec<usize>, &mut Vec<u32>, &mut Vec<f64>) {
+    ) -> (&mut Vec<usize>, &mut Vec<u32>, Option<&mut Vec<f64>>) {
         assert!(
             u32::try_from(n).is_ok(),
             "a proximity net holds at most {} agents, got {n}",
@@ -113,7 +186,38 @@ impl ProximityNet {
         self.distances.clear();
         let (offsets, neighbours) = self.graph.clear_for_rebuild();
         offsets.reserve(n);
-        (offsets, neighbours, &mut self.distances)
+        (
+            offsets,
+            neighbours,
+            (!self.lean).then_some(&mut self.distances),
+        )
+    }
+}
+
+impl ProximityNet {
+    /// Sets the range of a net to be rebuilt for `n` agents and hands out its arrays as they are,
+    /// to be resized and entirely overwritten: the CSR arrays and, unless the net keeps none, the
+    /// distances (see `Graph::arrays_for_rebuild`).
+    ///
+    /// # Panics
+    /// When `n` exceeds `u32::MAX`.
+    pub(crate) fn arrays_for_rebuild(
+        &mut self,
+        n: usize,
+        r: f64,
+    ) -> (&mut Vec<usize>, &mut Vec<u32>, Option<&mut Vec<f64>>) {
+        assert!(
+            u32::try_from(n).is_ok(),
+            "a proximity net holds at most {} agents, got {n}",
+            u32::MAX
+        );
+        self.range = r;
+        let (offsets, neighbours) = self.graph.arrays_for_rebuild();
+        (
+            offsets,
+            neighbours,
+            (!self.lean).then_some(&mut self.distances),
+        )
     }
 }
 
@@ -177,9 +281,35 @@ mod tests {
         let (offsets, neighbours, distances) = net.clear_for_rebuild(0, 1.5);
         assert_eq!(offsets, &[0]);
         assert!(neighbours.is_empty());
+        let distances = distances.unwrap();
         assert!(distances.is_empty());
         assert_eq!(distances.capacity(), capacity);
         assert_eq!(net.range(), 1.5);
         assert!(net.graph().is_empty());
+    }
+
+    #[test]
+    fn edge_lengths_of_both_kinds_of_nets_agree() {
+        let q = [
+            glam::DVec3::ZERO,
+            glam::DVec3::new(0.3, -0.2, 0.1),
+            glam::DVec3::new(1.0, 0.7, -0.4),
+            glam::DVec3::new(0.3, -0.2, 0.1),
+        ];
+        let full = ProximityNet::brute_force(&q, 1.5);
+        let mut lean = ProximityNet::without_distances();
+        crate::NeighbourSearch::new().build(&q, 1.5, &mut lean);
+        assert_eq!(lean.graph(), full.graph());
+        assert!(lean.distances().is_empty() && !lean.has_distances());
+        let bits =
+            |net: &ProximityNet| -> Vec<u64> { net.edge_lengths(&q).map(f64::to_bits).collect() };
+        assert_eq!(bits(&lean), bits(&full));
+        assert_eq!(
+            bits(&full),
+            full.distances()
+                .iter()
+                .map(|d| d.to_bits())
+                .collect::<Vec<_>>()
+        );
     }
 }

@@ -40,6 +40,24 @@ pub(crate) fn join(a: impl FnOnce() + Send, b: impl FnOnce() + Send) {
     }
 }
 
+/// `[f(0..chunk), f(chunk..2 chunk), …]` over `0..len` in chunks of `chunk` indices (the last one
+/// shorter), evaluated on the rayon pool with the `parallel` feature, returned in chunk order.
+pub(crate) fn map_chunks<T: Send>(
+    len: usize,
+    chunk: usize,
+    f: impl Fn(core::ops::Range<usize>) -> T + Sync,
+) -> Vec<T> {
+    let range = |c: usize| c * chunk..((c + 1) * chunk).min(len);
+    let chunks = len.div_ceil(chunk);
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..chunks).into_par_iter().map(|c| f(range(c))).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    (0..chunks).map(|c| f(range(c))).collect()
+}
+
 /// `out[k] = f(k)` for every `k`, on the rayon pool with the `parallel` feature.
 pub(crate) fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
     for_each_indexed_mut(out, FILL_MIN_LEN, |k, o| *o = f(k));
@@ -54,6 +72,12 @@ mod tests {
         let mut out = vec![0_usize; 5000];
         fill_indexed(&mut out, |k| 3 * k + 1);
         assert!(out.iter().enumerate().all(|(k, &v)| v == 3 * k + 1));
+    }
+
+    #[test]
+    fn maps_chunks_in_order() {
+        assert_eq!(map_chunks(10, 4, |r| r), [0..4, 4..8, 8..10]);
+        assert!(map_chunks(0, 4, |r| r).is_empty());
     }
 
     #[test]

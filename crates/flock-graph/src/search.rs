@@ -22,21 +22,24 @@ use core::ops::Range;
 use flock_math::Vector;
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
-use crate::parallel::{for_each_indexed_mut, join};
+use crate::parallel::{fill_indexed, for_each_indexed_mut, join, map_chunks};
 
-/// Agents per block of work (any value gives the same net): a unit of rayon work with the
-/// `parallel` feature, a single block without it.
-const BLOCK_LEN: usize = if cfg!(feature = "parallel") {
-    1024
-} else {
-    usize::MAX
-};
+/// log₂ of the agents per block of work (any value gives the same net): 1,024 agents, a unit of
+/// rayon work with the `parallel` feature.
+const BLOCK_SHIFT: u32 = 10;
+
+/// Agents per chunk of the parallel bounds.
+const BOUNDS_CHUNK: usize = 1 << 16;
 
 /// Cells allowed per agent: the grid has at most `CELLS_PER_AGENT · n` cells.
 const CELLS_PER_AGENT: usize = 4;
 
-/// Slot (and cell) of an agent with a non-finite coordinate: it is in no cell.
-const NO_SLOT: usize = usize::MAX;
+/// Slot (and cell) of an agent with a non-finite coordinate: it is in no cell. Slots are below
+/// n ≤ `u32::MAX` and cells below [`MAX_CELLS`].
+const NO_SLOT: u32 = u32::MAX;
+
+/// Most cells of a grid, so that a cell index fits a `u32` other than [`NO_SLOT`].
+const MAX_CELLS: usize = u32::MAX as usize - 1;
 
 /// Reusable fixed-radius neighbour search. Its buffers (and those of the nets it fills) are kept
 /// between calls, so a warm search allocates nothing while the number of agents does not grow.
@@ -56,7 +59,7 @@ const NO_SLOT: usize = usize::MAX;
 #[derive(Clone, Debug, Default)]
 pub struct NeighbourSearch {
     grid: CellGrid,
-    /// Neighbour lists of blocks of [`BLOCK_LEN`] slots (agents in cell order).
+    /// Neighbour lists of blocks of 2^[`BLOCK_SHIFT`] slots (agents in cell order).
     blocks: Vec<Block>,
 }
 
@@ -73,27 +76,35 @@ impl NeighbourSearch {
     /// The result is identical to [`ProximityNet::brute_force`]`(positions, r)`: same neighbour
     /// order (ascending), bit-identical distances. A range that is not positive (or NaN) gives no
     /// edges; an infinite range joins every pair of finite agents. Agents with a NaN or infinite
-    /// coordinate have no neighbours (and do not panic).
+    /// coordinate have no neighbours (and do not panic). A net made by
+    /// [`ProximityNet::without_distances`] gets the same graph and no distances.
     ///
     /// # Panics
     /// When `positions.len()` exceeds `u32::MAX`.
     pub fn build<V: Vector>(&mut self, positions: &[V], r: f64, net: &mut ProximityNet) {
-        self.build_in_blocks(positions, r, net, BLOCK_LEN);
+        self.build_in_blocks(positions, r, net, BLOCK_SHIFT);
     }
 
-    /// [`NeighbourSearch::build`] with blocks of `block_len` slots.
+    /// [`NeighbourSearch::build`] with blocks of 2^`block_shift` slots (`block_shift` < 64).
     fn build_in_blocks<V: Vector>(
         &mut self,
         positions: &[V],
         r: f64,
         net: &mut ProximityNet,
-        block_len: usize,
+        block_shift: u32,
     ) {
+        let block_len = 1_usize << block_shift;
         let n = positions.len();
         let r2 = range_squared(r);
-        let (offsets, neighbours, distances) = net.clear_for_rebuild(n, r);
+        // Every array is resized and overwritten below: the retained part is not zeroed first.
+        let (offsets, neighbours, distances) = net.arrays_for_rebuild(n, r);
         if n < 2 || r2 == 0.0 {
+            offsets.clear();
             offsets.resize(n + 1, 0);
+            neighbours.clear();
+            if let Some(distances) = distances {
+                distances.clear();
+            }
             return;
         }
         self.grid.rebuild(positions, r);
@@ -114,17 +125,29 @@ impl NeighbourSearch {
         let list = |i: usize| {
             let slot = slot_of[i];
             (slot != NO_SLOT).then(|| {
-                let block = &blocks[slot / block_len];
-                &block.neighbours[block.edges(slot % block_len)]
+                let slot = slot as usize;
+                let block = &blocks[slot >> block_shift];
+                &block.neighbours[block.edges(slot & (block_len - 1))]
             })
         };
+        // offsets[i + 1] = |N_i| (in parallel), then the running sum
+        offsets.resize(n + 1, 0);
+        offsets[0] = 0;
+        fill_indexed(&mut offsets[1..], |i| list(i).map_or(0, <[u32]>::len));
         for i in 0..n {
-            let len = list(i).map_or(0, <[u32]>::len);
-            offsets.push(offsets[i] + len);
+            offsets[i + 1] += offsets[i];
         }
         let edges = offsets[n];
         neighbours.resize(edges, 0);
-        distances.resize(edges, 0.0);
+        let mut no_distances = Vec::new();
+        let distances = match distances {
+            Some(distances) => {
+                distances.resize(edges, 0.0);
+                distances
+            }
+            // a net without distances: the gather fills empty length slices
+            None => &mut no_distances,
+        };
         let offsets = &offsets[..];
         gather(
             0..n,
@@ -186,7 +209,8 @@ const GATHER_LEN: usize = 4096;
 
 /// Calls `f(i, neighbours_i, distances_i)` for every agent of `agents`, where the slices are agent
 /// i's ranges (given by `offsets`) of `neighbours` and `distances`, which start at agent
-/// `agents.start`; halves the range on the rayon pool down to [`GATHER_LEN`] agents.
+/// `agents.start` (`distances` may be empty: then every `distances_i` is); halves the range on the
+/// rayon pool down to [`GATHER_LEN`] agents.
 fn gather(
     agents: Range<usize>,
     neighbours: &mut [u32],
@@ -198,7 +222,8 @@ fn gather(
         let mid = agents.start + agents.len() / 2;
         let split = offsets[mid] - offsets[agents.start];
         let (n_lo, n_hi) = neighbours.split_at_mut(split);
-        let (d_lo, d_hi) = distances.split_at_mut(split);
+        // empty `distances` (a net without them) stay empty
+        let (d_lo, d_hi) = distances.split_at_mut(split.min(distances.len()));
         join(
             || gather(agents.start..mid, n_lo, d_lo, f, offsets),
             || gather(mid..agents.end, n_hi, d_hi, f, offsets),
@@ -208,7 +233,11 @@ fn gather(
     let base = offsets[agents.start];
     for i in agents {
         let edges = offsets[i] - base..offsets[i + 1] - base;
-        f(i, &mut neighbours[edges.clone()], &mut distances[edges]);
+        f(
+            i,
+            &mut neighbours[edges.clone()],
+            distances.get_mut(edges).unwrap_or_default(),
+        );
     }
 }
 
@@ -239,28 +268,51 @@ pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
 struct Block {
     /// End of each slot's list in `neighbours`.
     ends: Vec<usize>,
+    /// The lists, one after the other, followed by scratch space.
     neighbours: Vec<u32>,
-    /// Candidates j of one agent, before sorting.
-    scratch: Vec<u32>,
 }
 
 impl Block {
     /// Refills the block with the lists (predicate `d² < r2`) of the agents in `slots`.
     fn fill<V: Vector>(&mut self, grid: &CellGrid, r2: f64, slots: Range<usize>) {
         self.ends.clear();
-        self.neighbours.clear();
+        let mut end = 0;
+        // consecutive slots share their cell, and so its candidate rows
+        let mut cells = grid.cells_of(slots.start);
+        let (mut rows_of, mut rows) = (usize::MAX, CandidateRows::default());
+        let mut candidates = 0;
         for slot in slots {
-            let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
-            self.scratch.clear();
-            grid.for_each_candidate(grid.slot_cell[slot], |j, qj: V| {
-                let d2 = squared_distance(qi, qj);
-                if j != i && in_range(d2, r2) {
-                    self.scratch.push(node_index(j));
+            let cell = cells.cell_of(slot);
+            if cell != rows_of {
+                (rows_of, rows) = (cell, grid.candidate_rows(cells.coords()));
+                candidates = rows.iter().map(|row| row.len()).sum();
+            }
+            let (i, qi) = (grid.order[slot], grid.position::<V>(slot));
+            // the neighbours in candidate order, then sorted; `neighbours` beyond `end` is scratch
+            // space, only grown (and zeroed) when too short
+            if self.neighbours.len() < end + candidates {
+                // grow by a quarter at least: fewer reallocations than exact growth, less
+                // unused memory than doubling
+                let len = self.neighbours.len();
+                let grown = (end + candidates).max(len + len / 4);
+                self.neighbours.reserve_exact(grown - len);
+                self.neighbours.resize(grown, 0);
+            }
+            let list = &mut self.neighbours[end..end + candidates];
+            let mut len = 0;
+            for row in rows.iter() {
+                let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
+                for (c, &j) in coords.chunks_exact(V::DIM).zip(&grid.order[row]) {
+                    let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
+                    if in_range(d2, r2) && j != i {
+                        list[len] = j;
+                        len += 1;
+                    }
                 }
-            });
-            self.scratch.sort_unstable();
-            self.neighbours.extend_from_slice(&self.scratch);
-            self.ends.push(self.neighbours.len());
+            }
+            list[..len].sort_unstable();
+            end += len;
+            self.ends.push(end);
         }
     }
 
@@ -292,16 +344,29 @@ impl Bounds {
             max_abs: 0.0,
             finite: 0,
         };
-        let mut finite = positions.iter().filter(|q| q.is_finite());
-        if let Some(&first) = finite.next() {
-            let (lo, hi) = finite.fold((first, first), |(lo, hi), &q| (lo.min(q), hi.max(q)));
-            for k in 0..V::DIM {
-                bounds.lo[k] = lo.coord(k);
-                bounds.hi[k] = hi.coord(k);
-                bounds.max_abs = bounds.max_abs.max(lo.coord(k).abs()).max(hi.coord(k).abs());
-            }
-            bounds.finite = positions.iter().filter(|q| q.is_finite()).count();
+        // (lo, hi, finite agents) of chunks, in parallel. Whichever the chunks, only the sign of a
+        // zero bound may change, which moves no agent to another cell (and the net does not
+        // depend on the grid anyway).
+        let chunks = map_chunks(positions.len(), BOUNDS_CHUNK, |agents| {
+            let mut finite = positions[agents].iter().filter(|q| q.is_finite());
+            let first = *finite.next()?;
+            Some(finite.fold((first, first, 1_usize), |(lo, hi, count), &q| {
+                (lo.min(q), hi.max(q), count + 1)
+            }))
+        });
+        let Some((lo, hi, count)) = chunks
+            .into_iter()
+            .flatten()
+            .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2))
+        else {
+            return bounds;
+        };
+        for k in 0..V::DIM {
+            bounds.lo[k] = lo.coord(k);
+            bounds.hi[k] = hi.coord(k);
+            bounds.max_abs = bounds.max_abs.max(lo.coord(k).abs()).max(hi.coord(k).abs());
         }
+        bounds.finite = count;
         bounds
     }
 
@@ -340,11 +405,11 @@ struct Layout {
 impl Layout {
     /// The layout for agents within `bounds` such that two finite agents whose squared distance,
     /// as the predicate computes it, is below `reach²` lie in the same or adjacent cells, with at
-    /// most [`CELLS_PER_AGENT`] cells per finite agent.
+    /// most [`CELLS_PER_AGENT`] cells per finite agent (and at most [`MAX_CELLS`]).
     fn new(bounds: &Bounds, reach: f64) -> Self {
         let extents = bounds.extents();
         let side = padded_side(reach, bounds.max_abs);
-        let max_cells = CELLS_PER_AGENT * bounds.finite.max(1);
+        let max_cells = (CELLS_PER_AGENT * bounds.finite.max(1)).min(MAX_CELLS);
         if side.is_finite() && extents.iter().all(|e| e.is_finite()) {
             let side = fit_side(side, &extents, max_cells);
             // fit_side bounds the product by max_cells, so each factor fits a usize.
@@ -375,8 +440,9 @@ impl Layout {
         if self.dims[axis] == 1 {
             return 0;
         }
-        // x − origin ≥ 0; the float-to-int cast saturates.
-        let t = ((q.coord(axis) - self.origin[axis]) / self.side).floor() as usize;
+        // x − origin ≥ 0 (NaN only for a NaN side), so truncation is the floor; the cast
+        // saturates.
+        let t = ((q.coord(axis) - self.origin[axis]) / self.side) as usize;
         t.min(self.dims[axis] - 1)
     }
 
@@ -388,9 +454,10 @@ impl Layout {
 
     /// Linear cell of a finite `q` ([`NO_SLOT`] for a non-finite one).
     #[inline]
-    fn cell_of<V: Vector>(&self, q: V) -> usize {
+    fn cell_of<V: Vector>(&self, q: V) -> u32 {
         if q.is_finite() {
-            self.cell(core::array::from_fn(|k| self.axis_cell(q, k)))
+            // below MAX_CELLS
+            self.cell(core::array::from_fn(|k| self.axis_cell(q, k))) as u32
         } else {
             NO_SLOT
         }
@@ -406,12 +473,63 @@ struct CellGrid {
     cell_start: Vec<usize>,
     /// Agent in each slot.
     order: Vec<u32>,
-    /// Coordinates of the agent in each slot (0 on unused axes), for a contiguous candidate scan.
-    coords: Vec<[f64; 3]>,
-    /// Cell of each slot.
-    slot_cell: Vec<usize>,
+    /// Coordinates of the agent in each slot, m per slot (m = `V::DIM` of the last rebuild), for a
+    /// contiguous candidate scan.
+    coords: Vec<f64>,
     /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
-    slot_of: Vec<usize>,
+    slot_of: Vec<u32>,
+}
+
+/// The candidate slots of the agents of one cell: the runs of slots of the rows of up to 3^m
+/// adjacent cells (cells x0..=x1 of a row are contiguous).
+#[derive(Clone, Copy, Debug, Default)]
+struct CandidateRows {
+    rows: [(usize, usize); 9],
+    count: usize,
+}
+
+impl CandidateRows {
+    /// The slot ranges, one per row.
+    #[inline]
+    fn iter(&self) -> impl Iterator<Item = Range<usize>> + '_ {
+        self.rows[..self.count].iter().map(|&(a, b)| a..b)
+    }
+}
+
+/// The cell of each slot, for slots visited in ascending order.
+struct SlotCells<'a> {
+    cell_start: &'a [usize],
+    dims: [usize; 3],
+    cell: usize,
+    /// The coordinates of `cell`.
+    coords: [usize; 3],
+}
+
+impl SlotCells<'_> {
+    /// The cell of `slot`; `slot` must not decrease between calls.
+    #[inline]
+    fn cell_of(&mut self, slot: usize) -> usize {
+        while self.cell_start[self.cell + 1] <= slot {
+            self.cell += 1;
+            // the next cell in x-fastest order
+            self.coords[0] += 1;
+            if self.coords[0] == self.dims[0] {
+                self.coords[0] = 0;
+                self.coords[1] += 1;
+                if self.coords[1] == self.dims[1] {
+                    self.coords[1] = 0;
+                    self.coords[2] += 1;
+                }
+            }
+        }
+        self.cell
+    }
+
+    /// The coordinates of the cell last returned by [`SlotCells::cell_of`].
+    #[inline]
+    fn coords(&self) -> [usize; 3] {
+        self.coords
+    }
 }
 
 impl CellGrid {
@@ -421,33 +539,35 @@ impl CellGrid {
         let layout = Layout::new(&bounds, reach);
         let cells = layout.cells();
         self.layout = layout;
-        self.slot_of.clear();
-        self.slot_of
-            .extend(positions.iter().map(|&q| layout.cell_of(q)));
+        self.slot_of.resize(positions.len(), 0);
+        fill_indexed(&mut self.slot_of, |i| layout.cell_of(positions[i]));
 
         // Counting sort: count into cell_start[c + 1], prefix-sum into starts, scatter with
         // cell_start[c] as cursor (leaving it at the start of c + 1), then shift back.
         self.cell_start.clear();
         self.cell_start.resize(cells + 1, 0);
         for &c in self.slot_of.iter().filter(|&&c| c != NO_SLOT) {
-            self.cell_start[c + 1] += 1;
+            self.cell_start[c as usize + 1] += 1;
         }
         for c in 0..cells {
             self.cell_start[c + 1] += self.cell_start[c];
         }
         self.order.resize(bounds.finite, 0);
-        self.coords.resize(bounds.finite, [0.0; 3]);
-        self.slot_cell.resize(bounds.finite, 0);
+        self.coords.resize(bounds.finite * V::DIM, 0.0);
         for (i, (slot_of, q)) in self.slot_of.iter_mut().zip(positions).enumerate() {
             let c = *slot_of;
             if c != NO_SLOT {
-                let slot = self.cell_start[c];
-                self.cell_start[c] += 1;
+                let slot = self.cell_start[c as usize];
+                self.cell_start[c as usize] += 1;
                 self.order[slot] = node_index(i);
-                self.coords[slot] =
-                    core::array::from_fn(|k| if k < V::DIM { q.coord(k) } else { 0.0 });
-                self.slot_cell[slot] = c;
-                *slot_of = slot;
+                for (k, x) in self.coords[slot * V::DIM..(slot + 1) * V::DIM]
+                    .iter_mut()
+                    .enumerate()
+                {
+                    *x = q.coord(k);
+                }
+                // slot < n ≤ u32::MAX
+                *slot_of = slot as u32;
             }
         }
         self.cell_start.copy_within(0..cells, 1);
@@ -457,40 +577,56 @@ impl CellGrid {
     /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
     #[inline]
     fn position<V: Vector>(&self, slot: usize) -> V {
-        let c = &self.coords[slot];
+        let c = &self.coords[slot * V::DIM..(slot + 1) * V::DIM];
         V::from_fn(|k| c[k])
     }
 
-    /// Calls `f(j, q_j)` on every agent j of `cell` and of its adjacent cells (in no useful
-    /// order); q_j is bit-identical to `positions[j]`.
+    /// The cells of ascending slots from `slot` on.
+    fn cells_of(&self, slot: usize) -> SlotCells<'_> {
+        // the last cell starting at or before `slot` (cell_start[0] = 0)
+        let cell = self.cell_start.partition_point(|&s| s <= slot) - 1;
+        let [dx, dy, _] = self.layout.dims;
+        SlotCells {
+            cell_start: &self.cell_start,
+            dims: self.layout.dims,
+            cell,
+            coords: [cell % dx, (cell / dx) % dy, cell / (dx * dy)],
+        }
+    }
+
+    /// The slots of the agents of the cell with coordinates `[cx, cy, cz]` and of its adjacent
+    /// cells (in no useful order).
     #[inline]
-    fn for_each_candidate<V: Vector>(&self, cell: usize, mut f: impl FnMut(usize, V)) {
+    fn candidate_rows(&self, [cx, cy, cz]: [usize; 3]) -> CandidateRows {
         let [dx, dy, dz] = self.layout.dims;
-        let (cx, cy, cz) = (cell % dx, (cell / dx) % dy, cell / (dx * dy));
         let (x0, x1) = (cx.saturating_sub(1), (cx + 1).min(dx - 1));
+        let mut rows = CandidateRows::default();
         for z in cz.saturating_sub(1)..=(cz + 1).min(dz - 1) {
             for y in cy.saturating_sub(1)..=(cy + 1).min(dy - 1) {
-                // Cells x0..=x1 of a row are contiguous in `order`.
                 let row = self.layout.cell([0, y, z]);
-                for slot in self.cell_start[row + x0]..self.cell_start[row + x1 + 1] {
-                    f(self.order[slot] as usize, self.position(slot));
-                }
+                rows.rows[rows.count] = (self.cell_start[row + x0], self.cell_start[row + x1 + 1]);
+                rows.count += 1;
             }
         }
+        rows
     }
 
     /// The smallest squared distance below `threshold` over all pairs, if any (the grid must have
     /// been built with reach `threshold.sqrt()`).
     fn min_squared_distance<V: Vector>(&self, threshold: f64) -> Option<f64> {
         let mut best: Option<f64> = None;
+        let mut cells = self.cells_of(0);
         for slot in 0..self.order.len() {
-            let (i, qi) = (self.order[slot] as usize, self.position::<V>(slot));
-            self.for_each_candidate(self.slot_cell[slot], |j, qj: V| {
-                let d2 = squared_distance(qi, qj);
-                if j > i && in_range(d2, threshold) {
-                    best = Some(best.map_or(d2, |b| b.min(d2)));
+            let (i, qi) = (self.order[slot], self.position::<V>(slot));
+            cells.cell_of(slot);
+            for row in self.candidate_rows(cells.coords()).iter() {
+                for candidate in row {
+                    let d2 = squared_distance(qi, self.position::<V>(candidate));
+                    if self.order[candidate] > i && in_range(d2, threshold) {
+                        best = Some(best.map_or(d2, |b| b.min(d2)));
+                    }
                 }
-            });
+            }
         }
         best
     }
@@ -608,9 +744,12 @@ mod tests {
         grid.rebuild(&q, 1.0);
         assert_eq!(grid.order, [1, 3, 0, 2]);
         assert_eq!(grid.slot_of, [2, 0, 3, 1]);
-        assert_eq!(grid.slot_cell[0], grid.slot_cell[1]);
-        assert_eq!(grid.slot_cell[2], grid.slot_cell[3]);
-        let first = grid.slot_cell[0];
+        let mut cells = grid.cells_of(0);
+        let slot_cell: Vec<usize> = (0..4).map(|slot| cells.cell_of(slot)).collect();
+        assert_eq!(slot_cell[0], slot_cell[1]);
+        assert_eq!(slot_cell[2], slot_cell[3]);
+        assert_eq!(grid.cells_of(2).cell_of(2), slot_cell[2]);
+        let first = slot_cell[0];
         assert_eq!(grid.cell_start[first]..grid.cell_start[first + 1], 0..2);
         for (slot, &i) in grid.order.iter().enumerate() {
             assert_eq!(grid.position::<DVec2>(slot), q[i as usize]);
@@ -654,9 +793,9 @@ mod tests {
         assert!(expected.graph().directed_edge_count() > q.len());
         let mut search = NeighbourSearch::new();
         let mut net = ProximityNet::new();
-        for block_len in [1, 7, 1024, 2999, usize::MAX] {
-            search.build_in_blocks(&q, 1.3, &mut net, block_len);
-            assert_eq!(net, expected, "blocks of {block_len}");
+        for block_shift in [0, 3, 10, 12, 63] {
+            search.build_in_blocks(&q, 1.3, &mut net, block_shift);
+            assert_eq!(net, expected, "blocks of 2^{block_shift}");
         }
         #[cfg(feature = "parallel")]
         for threads in [1, 3] {
@@ -667,5 +806,38 @@ mod tests {
             pool.install(|| search.build(&q, 1.3, &mut net));
             assert_eq!(net, expected, "{threads} threads");
         }
+    }
+
+    /// A reused net is resized and overwritten, not cleared: growing, shrinking and emptying it
+    /// leaves no trace of the previous build, with or without distances.
+    #[test]
+    fn reused_nets_forget_the_previous_build() {
+        use rand::{RngExt, SeedableRng};
+
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        let mut cloud = |n: usize, side: f64| -> Vec<DVec3> {
+            (0..n)
+                .map(|_| DVec3::from_fn(|_| rng.random::<f64>() * side))
+                .collect()
+        };
+        let configurations = [
+            cloud(2000, 12.0),
+            cloud(300, 4.0),
+            cloud(2500, 30.0),
+            cloud(1, 1.0),
+            cloud(700, 3.0),
+        ];
+        let mut search = NeighbourSearch::new();
+        let (mut full, mut lean) = (ProximityNet::new(), ProximityNet::without_distances());
+        for (k, q) in configurations.iter().enumerate() {
+            let expected = ProximityNet::brute_force(q, 1.1);
+            search.build(q, 1.1, &mut full);
+            assert_eq!(full, expected, "configuration {k}");
+            search.build(q, 1.1, &mut lean);
+            assert_eq!(lean.graph(), expected.graph(), "configuration {k}");
+            assert!(lean.distances().is_empty());
+        }
+        search.build(&configurations[0], 0.0, &mut full);
+        assert_eq!(full, ProximityNet::brute_force(&configurations[0], 0.0));
     }
 }

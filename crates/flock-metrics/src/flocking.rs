@@ -36,18 +36,65 @@ pub struct FlockMetrics {
 
 impl FlockMetrics {
     /// Every metric of the state (q, p) with its net.
+    ///
+    /// `net` is the net of `q`, with or without stored distances
+    /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way.
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
         let components = Components::of(net.graph());
+        let edges = EdgeMetrics::of(q, net, params);
         Self {
             connectivity: relative_connectivity(&components),
             giant_component: components.giant_share(),
             components: components.count(),
             cohesion_radius: cohesion_radius(q),
-            deviation_energy: deviation_energy(net, params.d),
+            deviation_energy: edges.deviation_energy,
             velocity_mismatch: velocity_mismatch(p),
-            min_distance: min_distance(q, net),
-            collisions: collisions(net, params.collision_distance),
+            min_distance: edges.min_distance(q),
+            collisions: edges.collisions,
+        }
+    }
+}
+
+/// The metrics of the edge lengths, from one pass over them: Ẽ, the shortest edge and the
+/// colliding pairs (behind [`FlockMetrics::measure`], [`deviation_energy`] and [`collisions`]).
+struct EdgeMetrics {
+    deviation_energy: f64,
+    /// The shortest edge, ∞ without edges.
+    shortest: f64,
+    collisions: usize,
+}
+
+impl EdgeMetrics {
+    fn of<V: Vector>(q: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
+        debug_assert!(
+            params.collision_distance <= net.range(),
+            "collision distance beyond the net's range"
+        );
+        let d = params.d;
+        let (mut shortest, mut close) = (f64::INFINITY, 0);
+        let sum: f64 = net
+            .edge_lengths(q)
+            .inspect(|&l| {
+                shortest = shortest.min(l);
+                close += usize::from(l < params.collision_distance);
+            })
+            .map(|l| (l - d) * (l - d))
+            .sum();
+        let edges = net.graph().directed_edge_count();
+        Self {
+            deviation_energy: sum / (edges as f64 + 1.0) / (d * d),
+            shortest,
+            collisions: close / 2,
+        }
+    }
+
+    /// [`min_distance`].
+    fn min_distance<V: Vector>(&self, q: &[V]) -> f64 {
+        if self.shortest.is_finite() {
+            self.shortest
+        } else {
+            nearest_pair_distance(q).unwrap_or(f64::INFINITY)
         }
     }
 }
@@ -75,10 +122,19 @@ pub fn cohesion_radius<V: Vector>(q: &[V]) -> f64 {
 /// Ẽ = E(q) / d² with E(q) = (1/(|E| + 1)) Σ_i Σ_{j∈N_i} (‖q_j − q_i‖ − d)² (TAC 2006 eq. 7 and 82),
 /// where E is the set of ordered pairs (i, j), j ∈ N_i, so |E| = Σ_i |N_i| and E is close to the mean
 /// squared edge-length error.
+///
+/// `net` is the net of `q`, with or without stored distances.
 #[must_use]
-pub fn deviation_energy(net: &ProximityNet, d: f64) -> f64 {
-    let sum: f64 = net.distances().iter().map(|&l| (l - d) * (l - d)).sum();
-    sum / (net.distances().len() as f64 + 1.0) / (d * d)
+pub fn deviation_energy<V: Vector>(q: &[V], net: &ProximityNet, d: f64) -> f64 {
+    EdgeMetrics::of(
+        q,
+        net,
+        &MetricParams {
+            d,
+            collision_distance: 0.0,
+        },
+    )
+    .deviation_energy
 }
 
 /// K̃ = K / n with K = ½ Σ ‖p_i − p_c‖² (TAC 2006 eq. 83); 0 for no agent.
@@ -121,11 +177,7 @@ pub fn component_velocity_mismatch<V: Vector>(p: &[V], components: &Components) 
 /// closer pair is an edge), otherwise an exact search; ∞ for fewer than two agents.
 #[must_use]
 pub fn min_distance<V: Vector>(q: &[V], net: &ProximityNet) -> f64 {
-    let shortest = net
-        .distances()
-        .iter()
-        .copied()
-        .fold(f64::INFINITY, f64::min);
+    let shortest = net.edge_lengths(q).fold(f64::INFINITY, f64::min);
     if shortest.is_finite() {
         shortest
     } else {
@@ -134,18 +186,15 @@ pub fn min_distance<V: Vector>(q: &[V], net: &ProximityNet) -> f64 {
 }
 
 /// The number of unordered pairs closer than `collision_distance`, which must not exceed the net's
-/// range (every such pair is then an edge).
+/// range (every such pair is then an edge); `net` is the net of `q`, with or without stored
+/// distances.
 #[must_use]
-pub fn collisions(net: &ProximityNet, collision_distance: f64) -> usize {
-    debug_assert!(
-        collision_distance <= net.range(),
-        "collision distance beyond the net's range"
-    );
-    net.distances()
-        .iter()
-        .filter(|&&l| l < collision_distance)
-        .count()
-        / 2
+pub fn collisions<V: Vector>(q: &[V], net: &ProximityNet, collision_distance: f64) -> usize {
+    let params = MetricParams {
+        d: 1.0,
+        collision_distance,
+    };
+    EdgeMetrics::of(q, net, &params).collisions
 }
 
 #[cfg(test)]
@@ -226,9 +275,13 @@ mod tests {
         // two agents 8 apart with d = 7: E = (1/(2 + 1)) · 2 · 1² = 2/3, Ẽ = 2/(3 · 49)
         let q = [DVec2::ZERO, DVec2::new(8.0, 0.0)];
         let net = ProximityNet::brute_force(&q, 8.4);
-        assert_relative_eq!(deviation_energy(&net, 7.0), 2.0 / 147.0, epsilon = 1e-15);
-        assert_eq!(collisions(&net, 8.1), 1);
-        assert_eq!(collisions(&net, 8.0), 0);
+        assert_relative_eq!(
+            deviation_energy(&q, &net, 7.0),
+            2.0 / 147.0,
+            epsilon = 1e-15
+        );
+        assert_eq!(collisions(&q, &net, 8.1), 1);
+        assert_eq!(collisions(&q, &net, 8.0), 0);
     }
 
     #[test]
@@ -261,5 +314,57 @@ mod tests {
             min_distance::<DVec2>(&[], &ProximityNet::new()),
             f64::INFINITY
         );
+    }
+
+    #[test]
+    fn measure_is_the_same_with_or_without_stored_distances() {
+        let q: Vec<DVec2> = (0..300)
+            .map(|k| {
+                let t = f64::from(k);
+                DVec2::new((t * 1.7).sin() * 30.0, (t * 0.37).cos() * 30.0 + 0.1 * t)
+            })
+            .collect();
+        let p: Vec<DVec2> = q.iter().map(|&x| DVec2::new(x.y, -x.x) * 0.01).collect();
+        let params = MetricParams {
+            d: 7.0,
+            collision_distance: 2.0,
+        };
+        let full = ProximityNet::brute_force(&q, 8.4);
+        let mut lean = ProximityNet::without_distances();
+        flock_graph::NeighbourSearch::new().build(&q, 8.4, &mut lean);
+        let (a, b) = (
+            FlockMetrics::measure(&q, &p, &full, &params),
+            FlockMetrics::measure(&q, &p, &lean, &params),
+        );
+        let bits = |m: &FlockMetrics| {
+            [
+                m.deviation_energy.to_bits(),
+                m.min_distance.to_bits(),
+                m.collisions as u64,
+            ]
+        };
+        assert_eq!(bits(&a), bits(&b));
+        assert!(a.collisions > 0, "the test wants colliding pairs");
+        assert_eq!(
+            a.deviation_energy.to_bits(),
+            deviation_energy(&q, &full, 7.0).to_bits()
+        );
+        assert_eq!(a.collisions, collisions(&q, &full, 2.0));
+        assert_eq!(a.min_distance.to_bits(), min_distance(&q, &full).to_bits());
+        assert_eq!(a.min_distance.to_bits(), min_distance(&q, &lean).to_bits());
+    }
+
+    #[test]
+    fn edge_metrics_are_the_same_with_or_without_stored_distances() {
+        let q = [DVec2::ZERO, DVec2::X, DVec2::new(0.5, 3.0)];
+        let full = ProximityNet::brute_force(&q, 3.5);
+        let mut lean = ProximityNet::without_distances();
+        flock_graph::NeighbourSearch::new().build(&q, 3.5, &mut lean);
+        assert_eq!(
+            deviation_energy(&q, &lean, 1.0).to_bits(),
+            deviation_energy(&q, &full, 1.0).to_bits()
+        );
+        assert_eq!(collisions(&q, &lean, 1.5), 1);
+        assert_eq!(collisions(&q, &full, 1.5), 1);
     }
 }

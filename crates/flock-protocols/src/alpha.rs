@@ -6,6 +6,20 @@ use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector
 /// Agents per chunk of the sum in [`AlphaInteraction::potential`].
 const POTENTIAL_CHUNK: usize = 4096;
 
+/// Bounds on the agents per chunk of [`AlphaInteraction::inputs`] (any size gives the same inputs;
+/// large chunks have fewer pairs computed twice across their first boundary).
+const SWEEP_CHUNK: (usize, usize) = (1024, 1 << 17);
+
+/// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
+/// [`SWEEP_CHUNK`].
+fn sweep_chunk(n: usize) -> usize {
+    #[cfg(feature = "parallel")]
+    let threads = rayon::current_num_threads();
+    #[cfg(not(feature = "parallel"))]
+    let threads = 1;
+    n.div_ceil(4 * threads).clamp(SWEEP_CHUNK.0, SWEEP_CHUNK.1)
+}
+
 /// Parameters of the α-interaction, with the papers' values as [`Default`]:
 /// d = 7, r = 1.2 d, ε = 0.1, a = b = 5, h = 0.2 (TAC 2006, Section VIII).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,6 +102,9 @@ impl AlphaInteraction {
     }
 
     /// u_i^α for agent `i`; the σ-norm, n_ij and a_ij of each pair share one square root and one cosine.
+    ///
+    /// [`AlphaInteraction::inputs`] gives the same values for all agents at once, at about half the
+    /// cost.
     #[must_use]
     pub fn input<V: Vector>(&self, i: usize, q: &[V], p: &[V], net: &ProximityNet) -> V {
         let (qi, pi) = (q[i], p[i]);
@@ -95,13 +112,117 @@ impl AlphaInteraction {
         let mut consensus = V::ZERO;
         for &j in net.graph().neighbours(i) {
             let j = j as usize;
-            let dq = q[j] - qi;
-            let (z, scale) = self.sigma.norm_and_gradient_scale(dq.length_squared());
-            let (phi, a_ij) = self.action.action_and_bump(z);
-            gradient += dq * (phi * scale);
-            consensus += (p[j] - pi) * a_ij;
+            let (g, c) = self.pair(qi, pi, q[j], p[j]);
+            gradient += g;
+            consensus += c;
         }
         gradient * self.c1 + consensus * self.c2
+    }
+
+    /// The two terms agent i receives from neighbour j: (φ_α(‖q_j − q_i‖_σ) n_ij,
+    /// a_ij (p_j − p_i)).
+    ///
+    /// Swapping i and j negates both exactly: IEEE subtraction is antisymmetric (up to the sign of
+    /// an exact zero), ‖·‖² and hence the scalar factors are the same bits, and so is the product
+    /// of a negated vector.
+    #[inline]
+    fn pair<V: Vector>(&self, qi: V, pi: V, qj: V, pj: V) -> (V, V) {
+        let dq = qj - qi;
+        let (z, scale) = self.sigma.norm_and_gradient_scale(dq.length_squared());
+        let (phi, a_ij) = self.action.action_and_bump(z);
+        (dq * (phi * scale), (pj - pi) * a_ij)
+    }
+
+    /// `out[i] = finish(i, u_i^α)` for every agent, with u_i^α bit-identical to
+    /// [`AlphaInteraction::input`]`(i, ..)`, for any thread count.
+    ///
+    /// Each undirected edge's terms are computed once where possible (one σ-norm and one cosine
+    /// instead of two), and each agent still sums its terms over its neighbours in ascending order,
+    /// as [`AlphaInteraction::input`] does. The agents are cut into chunks of consecutive indices
+    /// (in parallel with the `parallel` feature); a chunk
+    ///
+    /// 1. starts each sum with the neighbours below the chunk (computed here, their chunk computes
+    ///    them again for itself);
+    /// 2. sweeps its agents i in ascending order: each pair {i, j} with j > i is computed once,
+    ///    added to i's sums and subtracted from j's (j > i is still below j's own upper
+    ///    neighbours, and the lower neighbours of j inside the chunk come in ascending order);
+    ///    j beyond the chunk gets nothing (its chunk computes the pair in step 1).
+    ///
+    /// Sums start at +0 and so never hold −0: a term that differs only in the sign of an exact
+    /// zero (when q_j and q_i share a coordinate) leaves them unchanged. The saving therefore
+    /// needs neighbours close in index (agents indexed roughly in space); with random indices,
+    /// most pairs are computed twice, as by [`AlphaInteraction::input`].
+    ///
+    /// `net` must be the net of `q` (any symmetric graph works); `q`, `p` and `out` have one
+    /// entry per agent.
+    pub fn inputs<V: Vector>(
+        &self,
+        q: &[V],
+        p: &[V],
+        net: &ProximityNet,
+        out: &mut [V],
+        finish: impl Fn(usize, V) -> V + Sync,
+    ) {
+        let chunk = sweep_chunk(out.len());
+        let sweep = |c: usize, out: &mut [V]| self.sweep(c * chunk, q, p, net, out, &finish);
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            out.par_chunks_mut(chunk)
+                .enumerate()
+                .for_each(|(c, out)| sweep(c, out));
+        }
+        #[cfg(not(feature = "parallel"))]
+        for (c, out) in out.chunks_mut(chunk).enumerate() {
+            sweep(c, out);
+        }
+    }
+
+    /// [`AlphaInteraction::inputs`] for the chunk of agents `start..start + out.len()`.
+    fn sweep<V: Vector>(
+        &self,
+        start: usize,
+        q: &[V],
+        p: &[V],
+        net: &ProximityNet,
+        out: &mut [V],
+        finish: &impl Fn(usize, V) -> V,
+    ) {
+        let graph = net.graph();
+        let end = start + out.len();
+        // `out` holds the gradient sums until the end.
+        out.fill(V::ZERO);
+        let mut consensus = vec![V::ZERO; out.len()];
+        for (k, i) in (start..end).enumerate() {
+            let (qi, pi) = (q[i], p[i]);
+            for &j in graph.neighbours(i) {
+                let j = j as usize;
+                if j >= start {
+                    break;
+                }
+                let (g, c) = self.pair(qi, pi, q[j], p[j]);
+                out[k] += g;
+                consensus[k] += c;
+            }
+        }
+        for (k, i) in (start..end).enumerate() {
+            let (qi, pi) = (q[i], p[i]);
+            let neighbours = graph.neighbours(i);
+            let upper = neighbours.partition_point(|&j| (j as usize) < i);
+            for &j in &neighbours[upper..] {
+                let j = j as usize;
+                let (g, c) = self.pair(qi, pi, q[j], p[j]);
+                out[k] += g;
+                consensus[k] += c;
+                if j < end {
+                    out[j - start] -= g;
+                    consensus[j - start] -= c;
+                }
+            }
+        }
+        for (k, (u, &c)) in out.iter_mut().zip(&consensus).enumerate() {
+            *u = finish(start + k, *u * self.c1 + c * self.c2);
+        }
     }
 
     /// The collective potential V(q) = ½ Σ_i Σ_{j≠i} ψ_α(‖q_j − q_i‖_σ) (TAC 2006 eq. 20), shifted by

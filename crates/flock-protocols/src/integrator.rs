@@ -34,6 +34,15 @@ pub struct Simulation<V, P> {
     rk: Option<RungeKuttaScratch<V>>,
 }
 
+/// An empty net for `protocol`: without distances when it does not read them.
+fn empty_net<V: Vector, P: Protocol<V>>(protocol: &P) -> ProximityNet {
+    if protocol.uses_net_distances() {
+        ProximityNet::new()
+    } else {
+        ProximityNet::without_distances()
+    }
+}
+
 /// Buffers of the Runge–Kutta stages, allocated once.
 #[derive(Debug)]
 struct RungeKuttaScratch<V> {
@@ -49,11 +58,11 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     pub fn new(protocol: P, integrator: Integrator, swarm: Swarm<V>, step: f64) -> Self {
         let n = swarm.len();
         let mut search = NeighbourSearch::new();
-        let mut net = ProximityNet::new();
+        let mut net = empty_net(&protocol);
         search.build(&swarm.positions, protocol.interaction_range(), &mut net);
         let rk = (integrator == Integrator::Rk4).then(|| RungeKuttaScratch {
             stage: swarm.clone(),
-            net: ProximityNet::new(),
+            net: empty_net(&protocol),
             sum_q: vec![V::ZERO; n],
             sum_p: vec![V::ZERO; n],
         });
@@ -99,7 +108,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         &self.swarm
     }
 
-    /// The proximity net of the current state.
+    /// The proximity net of the current state; it keeps no distances when the protocol does not
+    /// use them ([`Protocol::uses_net_distances`]), see [`ProximityNet::edge_lengths`].
     #[must_use]
     pub const fn net(&self) -> &ProximityNet {
         &self.net

@@ -5,7 +5,6 @@ use flock_graph::ProximityNet;
 use flock_math::{Vector, mean};
 use flock_obstacles::Space;
 
-use crate::protocol::per_agent;
 use crate::{AlphaInteraction, BetaInteraction, NavigationalFeedback, Protocol, Swarm};
 
 /// Algorithm 1 (eq. 24): u_i = u_i^α, the α-interaction alone. Total momentum is preserved
@@ -19,13 +18,17 @@ pub struct Algorithm1 {
 }
 
 impl<V: Vector> Protocol<V> for Algorithm1 {
+    fn uses_net_distances(&self) -> bool {
+        false
+    }
+
     fn interaction_range(&self) -> f64 {
         self.alpha.params().r
     }
 
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        per_agent(inputs, |i| self.alpha.input(i, q, p, net));
+        self.alpha.inputs(q, p, net, inputs, |_, u| u);
     }
 
     /// H = c₁^α V(q) + ½ Σ ‖p_i − p_c‖² (Theorem 1, moving frame).
@@ -65,6 +68,10 @@ impl<V: Vector> Algorithm2<V> {
 }
 
 impl<V: Vector> Protocol<V> for Algorithm2<V> {
+    fn uses_net_distances(&self) -> bool {
+        false
+    }
+
     fn interaction_range(&self) -> f64 {
         self.alpha.params().r
     }
@@ -72,7 +79,9 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let reference = self.navigation.gamma.state(t);
-        per_agent(inputs, |i| self.input(i, reference, q, p, net));
+        self.alpha.inputs(q, p, net, inputs, |i, u| {
+            u + self.navigation.input(q[i], p[i], reference)
+        });
     }
 
     /// H = c₁^α V(q) + Σ V_γ(q_i) + ½ Σ ‖p_i − p_r‖² with V_γ the feedback potential ((c₁/2)‖q_i − q_r‖²
@@ -98,6 +107,10 @@ pub struct Algorithm3<V: Space> {
 }
 
 impl<V: Space> Protocol<V> for Algorithm3<V> {
+    fn uses_net_distances(&self) -> bool {
+        false
+    }
+
     fn interaction_range(&self) -> f64 {
         self.flock.alpha.params().r
     }
@@ -105,8 +118,9 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let reference = self.flock.navigation.gamma.state(t);
-        per_agent(inputs, |i| {
-            self.flock.input(i, reference, q, p, net) + self.beta.input(q[i], p[i])
+        // (u^α + u^γ) + u^β, as `self.flock.input(i, ..) + self.beta.input(..)`
+        self.flock.alpha.inputs(q, p, net, inputs, |i, u| {
+            u + self.flock.navigation.input(q[i], p[i], reference) + self.beta.input(q[i], p[i])
         });
     }
 

@@ -19,6 +19,15 @@ pub trait Protocol<V: Vector>: Sync {
     /// The energy (Hamiltonian) of the closed-loop system whose non-increase the theory proves.
     #[must_use]
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64;
+
+    /// Whether [`Protocol::controls`] and [`Protocol::energy`] read the net's stored distances
+    /// ([`ProximityNet::distances`]); true unless a protocol says otherwise. When false, a
+    /// [`Simulation`](crate::Simulation) keeps its nets without them
+    /// ([`ProximityNet::without_distances`]): 8 bytes less per directed edge.
+    #[must_use]
+    fn uses_net_distances(&self) -> bool {
+        true
+    }
 }
 
 /// Fills `out[i] = f(i)` for every agent, in parallel with the `parallel` feature. Each entry is

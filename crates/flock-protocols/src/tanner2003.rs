@@ -194,6 +194,10 @@ impl<V: Vector> Protocol<V> for TannerJadbabaiePappas {
     fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
         self.lyapunov(swarm)
     }
+
+    fn uses_net_distances(&self) -> bool {
+        false
+    }
 }
 
 /// A random connected graph on `n` nodes, deterministic for `seed` (seed 001 § V: "generated in
