@@ -414,12 +414,9 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
     };
     let (mut sim, initial_energy) = match start {
         None => {
-            let sim = Simulation::new(
-                protocol,
-                integrator,
-                initial_swarm::<V>(scenario),
-                scenario.step,
-            );
+            let swarm = initial_swarm::<V>(scenario);
+            Health::check(scenario, 0, &swarm).map_err(RunError::Numerical)?;
+            let sim = Simulation::new(protocol, integrator, swarm, scenario.step);
             let energy = record(recorder, &sim)?;
             (sim, energy)
         }

@@ -205,7 +205,11 @@ impl Scenario {
                 "raise alpha.r (the papers use r = 1.2 d) or lower alpha.d",
             )?;
         }
-        positive("alpha.epsilon", a.epsilon)?;
+        within_scale(
+            "alpha.epsilon",
+            a.epsilon,
+            "where the σ-norm (√(1 + ε‖z‖²) − 1)/ε loses precision or overflows",
+        )?;
         finite("alpha.h", a.h)?;
         require(
             a.h > 0.0 && a.h < 1.0,

@@ -354,6 +354,11 @@ fn values_beyond_what_doubles_resolve_are_named() {
     assert!(message.contains("outside [1e-9, 1e9]"), "{message}");
     invalid_field(&edit(TINY_2D, "d: 7.0", "d: 5e-324"), "alpha.d");
     let message = invalid_field(
+        &edit(TINY_2D, "epsilon: 0.1", "epsilon: 1e300"),
+        "alpha.epsilon",
+    );
+    assert!(message.contains("σ-norm"), "{message}");
+    let message = invalid_field(
         &edit(TINY_2D, "a: 5.0, b: 5.0", "a: 1e-300, b: 5.0"),
         "alpha.a",
     );

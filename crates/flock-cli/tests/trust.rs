@@ -209,6 +209,22 @@ fn a_blow_up_stops_the_run_with_the_step_agent_and_cause() {
 }
 
 #[test]
+fn initial_speeds_beyond_what_the_step_resolves_stop_the_run_at_step_0() {
+    let text = LONG_2D.replace(
+        "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0])",
+        "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1e6])",
+    );
+    let scenario = Scenario::parse(&text, "fast.ron").expect("valid");
+    match run_scenario(&scenario, &mut ()) {
+        Err(RunError::Numerical(e)) => {
+            assert_eq!(e.steps, 0);
+            assert!(matches!(e.fault, Fault::Runaway { .. }), "{e}");
+        }
+        other => panic!("expected a numerical error, got {other:?}"),
+    }
+}
+
+#[test]
 fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
     let tmp = TempDir::new("blow_up_cli");
     let file = write(tmp.path(), "blow_up.ron", BLOW_UP);
