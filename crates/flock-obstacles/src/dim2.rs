@@ -11,6 +11,7 @@ use parry2d_f64::query::{PointQuery, PointQueryWithLocation};
 use parry2d_f64::shape::{
     Ball, Capsule, ConvexPolygon, Cuboid, HalfSpace, Segment, SegmentPointLocation, Shape,
 };
+use parry2d_f64::transformation::convex_hull;
 
 use crate::basis::orthogonal_unit;
 use crate::error::{check_finite, coordinates, from_coordinates};
@@ -181,8 +182,10 @@ impl Obstacle2d {
         polytope::validate(points)?;
         let centroid = flock_math::mean(points);
         let local: Vec<DVec2> = points.iter().map(|&x| x - centroid).collect();
-        let shape =
-            ConvexPolygon::from_convex_hull(&local).ok_or(ObstacleError::FlatHull { dim: 2 })?;
+        // Not `ConvexPolygon::from_convex_hull`: it drops a vertex whose two edges turn by less
+        // than about 1.7e-4 rad, which shrinks the polygon below the hull of the points.
+        let shape = ConvexPolygon::from_convex_polyline_unmodified(convex_hull(&local))
+            .ok_or(ObstacleError::FlatHull { dim: 2 })?;
         let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
         let planes = shape
             .points()

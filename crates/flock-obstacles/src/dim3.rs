@@ -12,6 +12,7 @@ use parry3d_f64::shape::{
     Ball, Capsule, ConvexPolyhedron, Cuboid, HalfSpace, Segment, SegmentPointLocation, Shape,
     Triangle, TrianglePointLocation,
 };
+use parry3d_f64::transformation::try_convex_hull;
 
 use crate::basis::orthogonal_unit;
 use crate::error::{check_finite, coordinates, from_coordinates};
@@ -203,17 +204,31 @@ impl Obstacle3d {
         polytope::validate(points)?;
         let centroid = flock_math::mean(points);
         let local: Vec<DVec3> = points.iter().map(|&x| x - centroid).collect();
-        let shape =
-            ConvexPolyhedron::from_convex_hull(&local).ok_or(ObstacleError::FlatHull { dim: 3 })?;
-        let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
-        let planes = shape
-            .faces()
+        let (vertices, triangles) =
+            try_convex_hull(&local).map_err(|_| ObstacleError::FlatHull { dim: 3 })?;
+        // The planes of the hull's triangles, not of parry's faces: parry merges adjacent
+        // triangles whose normals differ by less than about 1.7e-4 rad into one face with the
+        // normal of one of them, whose plane then misses the others' vertices by up to 1.7e-4
+        // times their size (and q̂ inside with it). Outward: the centroid, the local origin, is
+        // inside.
+        let planes = triangles
             .iter()
-            .map(|face| {
-                let first = shape.vertices_adj_to_face()[face.first_vertex_or_edge as usize];
-                (face.normal, face.normal.dot(shape.points()[first as usize]))
+            .filter_map(|&[a, b, c]| {
+                let [a, b, c] = [a, b, c].map(|k| vertices[k as usize]);
+                let normal = (b - a).cross(c - a).normalize_or_zero();
+                let offset = normal.dot(a);
+                (normal != DVec3::ZERO).then(|| {
+                    if offset < 0.0 {
+                        (-normal, -offset)
+                    } else {
+                        (normal, offset)
+                    }
+                })
             })
             .collect();
+        let shape = ConvexPolyhedron::from_convex_mesh(vertices, &triangles)
+            .ok_or(ObstacleError::FlatHull { dim: 3 })?;
+        let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
         let planes = Planes::new(planes, radius);
         planes.check_convex(&local, points)?;
         Ok(Self {

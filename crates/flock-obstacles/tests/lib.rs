@@ -11,6 +11,7 @@ mod errors;
 mod field;
 mod hull;
 mod planar;
+mod projection_properties;
 mod spec;
 mod thin;
 mod wall;

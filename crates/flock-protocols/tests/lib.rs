@@ -6,5 +6,6 @@ mod determinism;
 mod invariance;
 mod long_run;
 mod olfati_saber2003;
+mod properties;
 mod tanner2003;
 mod theory;

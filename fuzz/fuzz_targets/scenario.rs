@@ -1,0 +1,190 @@
+//! Scenario text → parse → validate → round trip through `to_ron` → a few steps of the run.
+//!
+//! The oracle (docs/fuzzing.md):
+//! - nothing panics, aborts, runs out of memory or hangs, whatever the bytes;
+//! - a scenario that [`Scenario::parse`] accepts still validates once resolved, and
+//!   `parse(to_ron(s)) == s` (the resolved scenario round-trips through RON);
+//! - a small accepted scenario (at most [`MAX_AGENTS`] agents, [`MAX_OBSTACLES`] obstacles),
+//!   cut to at most [`MAX_STEPS`] steps, either fails with an `Err`, or every value it records and
+//!   summarises is finite: positions, velocities, energies, metrics and the protocol's extra
+//!   columns. The only exceptions are the ones the metrics document: `min_distance` and
+//!   `min_linked_distance` are +∞ for a single agent (no pair, no link). NaN is never accepted.
+#![no_main]
+
+use flock_cli::scenario::{Algorithm, Cloud, TannerGraph};
+use flock_cli::{Record, Recorder, RunSummary, Scenario, run_scenario};
+use flock_math::Vector;
+use flock_metrics::FlockMetrics;
+use libfuzzer_sys::fuzz_target;
+
+/// Larger flocks are cut to this many agents (or not run, when the scenario lists every agent).
+const MAX_AGENTS: usize = 64;
+/// Scenarios with more obstacles are parsed and validated but not run.
+const MAX_OBSTACLES: usize = 16;
+/// The run is cut to at most this many steps of the scenario's own step.
+const MAX_STEPS: u64 = 6;
+
+/// Asserts that `value`, `field` of the record at time `t`, is finite (or +∞ where `infinite_ok`).
+#[track_caller]
+fn check(field: &str, t: f64, value: f64, infinite_ok: bool) {
+    assert!(
+        value.is_finite() || (infinite_ok && value == f64::INFINITY),
+        "{field} = {value} at t = {t}: a non-finite value recorded as valid"
+    );
+}
+
+/// Checks every recorded instant; panics on the first value the oracle refuses.
+struct FiniteRecorder {
+    /// The number of agents (+∞ distances are documented for fewer than two).
+    agents: usize,
+    /// The names of the extra columns, in order.
+    columns: Vec<&'static str>,
+    /// The number of records seen.
+    records: u64,
+}
+
+impl FiniteRecorder {
+    fn check_extra(&self, name: &str, t: f64, value: f64) {
+        // `min_linked_distance` is ∞ without edges, i.e. for a single agent on a connected graph.
+        let infinite_ok = name == "min_linked_distance" && self.agents < 2;
+        check(name, t, value, infinite_ok);
+    }
+
+    fn check_metrics(&self, t: f64, metrics: &FlockMetrics) {
+        let single = self.agents < 2;
+        check("connectivity", t, metrics.connectivity, false);
+        check("giant_component", t, metrics.giant_component, false);
+        check("cohesion_radius", t, metrics.cohesion_radius, false);
+        check("deviation_energy", t, metrics.deviation_energy, false);
+        check("velocity_mismatch", t, metrics.velocity_mismatch, false);
+        check("min_distance", t, metrics.min_distance, single);
+    }
+
+    fn check_summary(&self, summary: &RunSummary) {
+        let t = summary.t;
+        check("summary.t", t, t, false);
+        self.check_metrics(t, &summary.metrics);
+        check(
+            "summary.component_velocity_mismatch",
+            t,
+            summary.component_velocity_mismatch,
+            false,
+        );
+        check("summary.initial_energy", t, summary.initial_energy, false);
+        check("summary.final_energy", t, summary.final_energy, false);
+        assert_eq!(
+            summary.extra.len(),
+            self.columns.len(),
+            "the summary has {} extra values, but Scenario::extra_columns names {:?}",
+            summary.extra.len(),
+            self.columns
+        );
+        for &(name, value) in &summary.extra {
+            self.check_extra(name, t, value);
+        }
+    }
+}
+
+impl Recorder for FiniteRecorder {
+    type Error = std::convert::Infallible;
+
+    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+        let t = record.t;
+        check("t", t, t, false);
+        self.check_metrics(t, &record.metrics);
+        check("energy", t, record.energy, false);
+        for (i, (q, p)) in record
+            .swarm
+            .positions
+            .iter()
+            .zip(&record.swarm.velocities)
+            .enumerate()
+        {
+            assert!(q.is_finite(), "position of agent {i} = {q:?} at t = {t}");
+            assert!(p.is_finite(), "velocity of agent {i} = {p:?} at t = {t}");
+        }
+        assert_eq!(
+            record.extra.len(),
+            self.columns.len(),
+            "at t = {t}: {} extra values recorded, but Scenario::extra_columns names {:?}",
+            record.extra.len(),
+            self.columns
+        );
+        for (&name, &value) in self.columns.iter().zip(record.extra) {
+            self.check_extra(name, t, value);
+        }
+        self.records += 1;
+        Ok(())
+    }
+}
+
+/// The scenario cut to a few steps and at most [`MAX_AGENTS`] agents, or `None` when it is too big
+/// to run here (an explicit list of agents, or many obstacles).
+fn small(scenario: &Scenario) -> Option<Scenario> {
+    if scenario.obstacles.len() > MAX_OBSTACLES {
+        return None;
+    }
+    let mut small = scenario.clone();
+    if small.agents > MAX_AGENTS {
+        let explicit = |cloud: &Cloud| matches!(cloud, Cloud::Explicit(_));
+        let edges = matches!(
+            small.algorithm,
+            Algorithm::Tanner {
+                graph: TannerGraph::Edges(_)
+            }
+        );
+        if explicit(&small.initial.positions) || explicit(&small.initial.velocities) || edges {
+            return None;
+        }
+        small.agents = MAX_AGENTS;
+    }
+    if small.steps() > MAX_STEPS {
+        // At most the original duration, so still valid: step ≤ duration and both finite.
+        small.duration = small.step * MAX_STEPS as f64;
+    }
+    Some(small)
+}
+
+/// The oracle on one input.
+fn check_input(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(scenario) = Scenario::parse(text, "fuzz") else {
+        return;
+    };
+    // `parse` validated, then resolved the defaults: the resolved scenario is still valid…
+    if let Err(e) = scenario.validate() {
+        panic!("the resolved scenario no longer validates: {e}\n{scenario:#?}");
+    }
+    // …and round-trips through RON.
+    let ron = scenario.to_ron().expect("a valid scenario serializes");
+    match Scenario::parse(&ron, "round-trip") {
+        Ok(back) => assert_eq!(back, scenario, "to_ron changed the scenario\n{ron}"),
+        Err(e) => panic!("to_ron output does not parse back: {e}\n{ron}"),
+    }
+    let Some(small) = small(&scenario) else {
+        return;
+    };
+    let mut recorder = FiniteRecorder {
+        agents: small.agents,
+        columns: small.extra_columns(),
+        records: 0,
+    };
+    if let Ok(summary) = run_scenario(&small, &mut recorder) {
+        assert!(
+            recorder.records >= 2,
+            "a run records t = 0 and its last step"
+        );
+        assert_eq!(summary.steps, small.steps(), "steps taken");
+        recorder.check_summary(&summary);
+    }
+}
+
+fuzz_target!(
+    init: {
+        // One thread: libFuzzer runs one input at a time, and the machine is shared.
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(1).build_global();
+    },
+    |data: &[u8]| check_input(data)
+);
