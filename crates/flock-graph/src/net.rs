@@ -177,20 +177,11 @@ impl ProximityNet {
         n: usize,
         r: f64,
     ) -> (&mut Vec<usize>, &mut Vec<u32>, Option<&mut Vec<f64>>) {
-        assert!(
-            u32::try_from(n).is_ok(),
-            "a proximity net holds at most {} agents, got {n}",
-            u32::MAX
-        );
-        self.range = r;
         self.distances.clear();
-        let (offsets, neighbours) = self.graph.clear_for_rebuild();
+        self.graph.clear_for_rebuild();
+        let (offsets, neighbours, distances) = self.arrays_for_rebuild(n, r);
         offsets.reserve(n);
-        (
-            offsets,
-            neighbours,
-            (!self.lean).then_some(&mut self.distances),
-        )
+        (offsets, neighbours, distances)
     }
 }
 
