@@ -38,7 +38,8 @@ fn positive(field: &str, value: f64) -> Check {
         value,
         "must be > 0",
         "give a positive value",
-    )
+    )?;
+    not_huge(field, value)
 }
 
 fn non_negative(field: &str, value: f64) -> Check {
@@ -49,6 +50,19 @@ fn non_negative(field: &str, value: f64) -> Check {
         value,
         "must be ≥ 0",
         "give a non-negative value",
+    )?;
+    not_huge(field, value)
+}
+
+/// Gains, times and lengths up to [`MAX_COORDINATE`]: beyond, the energies (quadratic in lengths
+/// and linear in gains, summed over pairs) overflow.
+fn not_huge(field: &str, value: f64) -> Check {
+    require(
+        value <= MAX_COORDINATE,
+        field,
+        value,
+        &format!("exceeds {MAX_COORDINATE:e}, where the energies and forces overflow"),
+        "use a value of at most 1e9 (rescale time or length if needed)",
     )
 }
 
@@ -109,7 +123,7 @@ fn length(field: &str, value: f64) -> Check {
 
 /// A positive value in [[`MIN_LENGTH`], [`MAX_COORDINATE`]], where `why` says what breaks outside.
 fn within_scale(field: &str, value: f64, why: &str) -> Check {
-    positive(field, value)?;
+    finite(field, value)?;
     require(
         (MIN_LENGTH..=MAX_COORDINATE).contains(&value),
         field,
@@ -234,6 +248,7 @@ impl Scenario {
         )?;
         positive("alpha.c1", a.c1)?;
         finite("alpha.c2", a.c2)?;
+        not_huge("alpha.c2", a.c2)?;
         require(
             a.c2 >= 0.0,
             "alpha.c2",

@@ -368,6 +368,8 @@ fn values_beyond_what_doubles_resolve_are_named() {
         "initial.positions.max",
     );
     assert!(message.contains("beyond ±1e9"), "{message}");
+    let message = invalid_field(&edit(TINY_2D, "c1: 0.02", "c1: 1e308"), "algorithm.c1");
+    assert!(message.contains("exceeds 1e9"), "{message}");
     let message = invalid_field(
         &edit(TINY_2D, "agents: 5", "agents: 100000000000"),
         "agents",
