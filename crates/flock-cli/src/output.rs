@@ -6,10 +6,11 @@
 //!   completes: `DIR` exists only for complete runs.
 //! - `DIR.partial/INCOMPLETE` says why the directory is incomplete (running or killed,
 //!   interrupted, failed) and how to resume it.
-//! - Each record goes to each file in one write of whole lines (a `.npy` header counts only
-//!   whole records), and `checkpoint.bin` ([`Checkpoint`]) is replaced atomically every
-//!   `checkpoint_every` steps and when the run is interrupted. [`RunDirectory::resume`] cuts the
-//!   files back to the last checkpoint and continues them.
+//! - Each record goes to each file in one write of whole lines; a process killed inside that
+//!   write can still leave the record cut (a `.npy` header counts only whole records).
+//!   `checkpoint.bin` ([`Checkpoint`]) is replaced atomically every `checkpoint_every` steps and
+//!   when the run is interrupted, and the note then says up to which byte the records are whole.
+//!   [`RunDirectory::resume`] cuts the files back to the last checkpoint and continues them.
 
 use std::fmt::Write as _;
 use std::fs::{self, File, OpenOptions};
@@ -472,7 +473,7 @@ fn check_size(
 /// The note of a directory being written.
 fn running_note(target: &Path) -> String {
     format!(
-        "incomplete: the run is in progress (flock process {}), or was killed.\nEvery record in this directory is complete up to the last one written.\nResume a killed run: flock run --resume {}\n",
+        "incomplete: the run is in progress (flock process {}), or was killed.\nA process killed while writing may leave its last record cut; `flock run --resume` removes it.\nResume a killed run: flock run --resume {}\n",
         std::process::id(),
         target.display()
     )
@@ -592,7 +593,20 @@ impl Recorder for RunDirectory {
             metrics_bytes: self.metrics_bytes,
             trajectory_bytes,
         }
-        .write(&self.partial)
+        .write(&self.partial)?;
+        let whole = format!(
+            "{}Whole records, checkpointed after step {}: {} (the first {} bytes of metrics.csv; of the trajectory, {} {}).\n",
+            running_note(&self.target),
+            start.steps,
+            self.records,
+            self.metrics_bytes,
+            trajectory_bytes,
+            match self.trajectory {
+                Trajectory::Csv { .. } => "bytes",
+                Trajectory::Npy(_) => "records",
+            }
+        );
+        write_incomplete(&self.partial, &whole)
     }
 
     fn stop_requested(&self) -> bool {
