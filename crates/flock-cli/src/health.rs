@@ -6,6 +6,7 @@ use std::fmt;
 
 use flock_math::Vector;
 use flock_protocols::Swarm;
+use rayon::prelude::*;
 
 use crate::scenario::Scenario;
 use crate::stability::largest_stable_step;
@@ -83,12 +84,13 @@ impl Health {
         let h = scenario.step;
         let limit = scenario.range() / h;
         let limit_squared = limit * limit;
+        // In parallel, but always the lowest agent at fault.
         let fault = swarm
             .positions
-            .iter()
+            .par_iter()
             .zip(&swarm.velocities)
             .enumerate()
-            .find_map(|(i, (&q, &p))| {
+            .find_map_first(|(i, (&q, &p))| {
                 let fault = if !q.is_finite() {
                     Fault::NotFinite {
                         quantity: "position",

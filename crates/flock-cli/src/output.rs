@@ -101,7 +101,7 @@ pub struct RunDirectory {
     dim: usize,
     checkpoint_every: u64,
     stop: Option<&'static AtomicBool>,
-    /// One record's bytes, reused.
+    /// One trajectory record's bytes (CSV text or `.npy` row), reused.
     buffer: Vec<u8>,
     /// The last recorded state (dim coordinates of q, then of p, per agent) for `final.csv`.
     last_state: Vec<f64>,
@@ -383,7 +383,7 @@ impl RunDirectory {
     }
 
     fn complete(&mut self) -> io::Result<()> {
-        let mut last = format!("{}\n", state_header(self.dim));
+        let mut last = format!("{}\n", state_header(self.dim)).into_bytes();
         let coordinates = 2 * self.dim;
         for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
             write_state(&mut last, i, state);
@@ -510,12 +510,13 @@ fn state_header(dim: usize) -> String {
 }
 
 /// Appends `id,x,y[,z],vx,vy[,vz]` of agent `i` (shortest round-trip decimal forms).
-fn write_state(out: &mut String, i: usize, state: &[f64]) {
+fn write_state(out: &mut Vec<u8>, i: usize, state: &[f64]) {
+    // Writing to a Vec cannot fail.
     let _ = write!(out, "{i}");
     for x in state {
         let _ = write!(out, ",{x}");
     }
-    out.push('\n');
+    out.push(b'\n');
 }
 
 impl Recorder for RunDirectory {
@@ -550,13 +551,13 @@ impl Recorder for RunDirectory {
         }
         match &mut self.trajectory {
             Trajectory::Csv { file, bytes } => {
-                let mut text = String::new();
+                self.buffer.clear();
                 for (i, state) in self.last_state.chunks_exact(2 * V::DIM).enumerate() {
-                    let _ = write!(text, "{},", record.t);
-                    write_state(&mut text, i, state);
+                    let _ = write!(self.buffer, "{},", record.t);
+                    write_state(&mut self.buffer, i, state);
                 }
-                file.write_all(text.as_bytes())?;
-                *bytes += text.len() as u64;
+                file.write_all(&self.buffer)?;
+                *bytes += self.buffer.len() as u64;
             }
             Trajectory::Npy(file) => {
                 self.buffer.clear();

@@ -399,6 +399,7 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
             sim.protocol().values(sim.time(), sim.swarm()),
         )
     };
+    // Records the state and returns what it measured.
     let record = |recorder: &mut R, sim: &Simulation<V, P>| {
         let (metrics, energy, extra) = measure(sim);
         recorder
@@ -410,14 +411,14 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
                 extra: &extra,
             })
             .map_err(RunError::Record)
-            .map(|()| energy)
+            .map(|()| (metrics, energy, extra))
     };
     let (mut sim, initial_energy) = match start {
         None => {
             let swarm = initial_swarm::<V>(scenario);
             Health::check(scenario, 0, &swarm).map_err(RunError::Numerical)?;
             let sim = Simulation::new(protocol, integrator, swarm, scenario.step);
-            let energy = record(recorder, &sim)?;
+            let (_, energy, _) = record(recorder, &sim)?;
             (sim, energy)
         }
         Some(start) => (
@@ -433,12 +434,14 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
     };
     let total = scenario.steps();
     let clock = Instant::now();
+    // The final step is always recorded: its measurements are the summary's.
+    let mut last = None;
     while sim.steps() < total {
         sim.step();
         Health::check(scenario, sim.steps(), sim.swarm()).map_err(RunError::Numerical)?;
         let steps = sim.steps();
         if steps % scenario.record_every == 0 || steps == total {
-            record(recorder, &sim)?;
+            last = Some(record(recorder, &sim)?);
         }
         let stop = steps < total && recorder.stop_requested();
         if stop || (steps < total && recorder.wants_checkpoint(steps)) {
@@ -453,7 +456,7 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
         }
     }
     let elapsed = clock.elapsed();
-    let (metrics, final_energy, extra) = measure(&sim);
+    let (metrics, final_energy, extra) = last.unwrap_or_else(|| measure(&sim));
     let components = Components::of(sim.net().graph());
     Ok(RunSummary {
         agents: scenario.agents,

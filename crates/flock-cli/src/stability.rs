@@ -58,6 +58,12 @@ const RK4_RADIUS: f64 = 2.5;
 /// 2003 protocols and the Tanner law). The scenario must be valid.
 #[must_use]
 pub fn largest_stable_step(scenario: &Scenario) -> Option<f64> {
+    stable_step(scenario, || StartNet::of(scenario).degree)
+}
+
+/// [`largest_stable_step`] with the initial net's largest degree from `degree`, asked only for
+/// the algorithms the estimate covers.
+fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f64> {
     let a = &scenario.alpha;
     let (gamma_c1, gamma_c2, beta) = match &scenario.algorithm {
         Algorithm::Algorithm1 => (0.0, 0.0, None),
@@ -84,7 +90,8 @@ pub fn largest_stable_step(scenario: &Scenario) -> Option<f64> {
             beta.damping(),
         )
     });
-    let deg = largest_degree(scenario) as f64;
+    let kissing = if scenario.dim == 2 { 6 } else { 12 };
+    let deg = degree().max(kissing) as f64;
     let omega2 = 2.0 * deg * k_alpha + gamma_c1 + k_beta;
     let damping = 2.0 * deg * a.c2 + gamma_c2 + c2_beta;
     let step = match scenario.integrator {
@@ -112,39 +119,45 @@ fn pair_stiffness(phi: &BumpedAction, sigma: &SigmaNorm, range: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The larger of the lattice's kissing number and the initial net's largest degree.
-fn largest_degree(scenario: &Scenario) -> usize {
-    match scenario.dim {
-        2 => initial_degree::<DVec2>(scenario).max(6),
-        _ => initial_degree::<DVec3>(scenario).max(12),
+/// What the initial state tells: the largest degree of its net and the first pair of agents at
+/// the same point, from one draw of the initial swarm and one neighbour search.
+pub(crate) struct StartNet {
+    /// The largest number of neighbours within r.
+    pub(crate) degree: usize,
+    /// The first pair (i < j) closer than 10⁻⁹ d: for the σ-norm and its gradient, one point.
+    pub(crate) coincident: Option<(usize, usize)>,
+}
+
+impl StartNet {
+    /// The initial net of a valid `scenario`.
+    pub(crate) fn of(scenario: &Scenario) -> Self {
+        match scenario.dim {
+            2 => Self::in_dim::<DVec2>(scenario),
+            _ => Self::in_dim::<DVec3>(scenario),
+        }
     }
-}
 
-fn initial_degree<V: Vector>(scenario: &Scenario) -> usize {
-    let swarm = initial_swarm::<V>(scenario);
-    let mut net = ProximityNet::new();
-    NeighbourSearch::new().build(&swarm.positions, scenario.range(), &mut net);
-    (0..swarm.len())
-        .map(|i| net.graph().neighbours(i).len())
-        .max()
-        .unwrap_or(0)
-}
-
-/// The first pair of agents that start at the same point, if any.
-pub(crate) fn coincident_pair<V: Vector>(scenario: &Scenario) -> Option<(usize, usize)> {
-    let swarm = initial_swarm::<V>(scenario);
-    let mut net = ProximityNet::new();
-    // Pairs closer than this are, for the σ-norm and its gradient, at the same point.
-    let tiny = 1e-9 * scenario.alpha.d;
-    NeighbourSearch::new().build(&swarm.positions, tiny, &mut net);
-    (0..swarm.len()).find_map(|i| {
-        net.graph()
-            .neighbours(i)
-            .iter()
-            .map(|&j| j as usize)
-            .find(|&j| j > i)
-            .map(|j| (i, j))
-    })
+    fn in_dim<V: Vector>(scenario: &Scenario) -> Self {
+        let q = initial_swarm::<V>(scenario).positions;
+        let mut net = ProximityNet::without_distances();
+        NeighbourSearch::new().build(&q, scenario.range(), &mut net);
+        let graph = net.graph();
+        let tiny = 1e-9 * scenario.alpha.d;
+        Self {
+            degree: (0..q.len())
+                .map(|i| graph.neighbours(i).len())
+                .max()
+                .unwrap_or(0),
+            coincident: (0..q.len()).find_map(|i| {
+                graph
+                    .neighbours(i)
+                    .iter()
+                    .map(|&j| j as usize)
+                    .find(|&j| j > i && (q[j] - q[i]).length() < tiny)
+                    .map(|j| (i, j))
+            }),
+        }
+    }
 }
 
 impl Scenario {
@@ -153,7 +166,8 @@ impl Scenario {
     #[must_use]
     pub fn warnings(&self) -> Vec<Warning> {
         let mut warnings = Vec::new();
-        if let Some(stable) = largest_stable_step(self)
+        let start = StartNet::of(self);
+        if let Some(stable) = stable_step(self, || start.degree)
             && self.step > stable
         {
             warnings.push(Warning {
@@ -165,10 +179,7 @@ impl Scenario {
                 fix: format!("set `step` to at most {stable:.3e} (the papers use 0.01)"),
             });
         }
-        let pair = match self.dim {
-            2 => coincident_pair::<DVec2>(self),
-            _ => coincident_pair::<DVec3>(self),
-        };
+        let pair = start.coincident;
         if let Some((i, j)) = pair {
             warnings.push(Warning {
                 field: "initial.positions".to_owned(),

@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use crate::error::ScenarioError;
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Cloud, Gamma, Scenario, TannerGraph};
-use crate::stability::coincident_pair;
+use crate::stability::StartNet;
 
 type Check = Result<(), ScenarioError>;
 
@@ -388,11 +388,7 @@ impl Scenario {
     /// No two agents of a Tanner scenario start at the same point, where the potential
     /// d²/z² + ln(z²/d²) − 1 of a linked pair is infinite.
     fn validate_distinct_start(&self) -> Check {
-        let pair = match self.dim {
-            2 => coincident_pair::<DVec2>(self),
-            _ => coincident_pair::<DVec3>(self),
-        };
-        match pair {
+        match StartNet::of(self).coincident {
             None => Ok(()),
             Some((i, j)) => Err(ScenarioError::invalid(
                 "initial.positions",

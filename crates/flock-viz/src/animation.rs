@@ -10,11 +10,10 @@ use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
 use crate::error::VizError;
-use crate::framing::{Framer, Framing};
+use crate::framing::Framer;
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
 use crate::snapshot::{PanelStyle, below_title, draw_panel, figure_title};
-use crate::view::View;
 
 /// How the animation is drawn.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,18 +24,8 @@ pub struct AnimationOptions {
     pub max_frames: usize,
     /// The time each frame is shown, in milliseconds (GIF counts in hundredths of a second).
     pub frame_delay_ms: u32,
-    /// The projection of 3D runs.
-    pub view: View,
-    /// Which part of the plane is shown; [`Framing::Run`] keeps the window still.
-    pub framing: Framing,
-    /// How many earlier recorded frames each agent's trail goes back (0: no trails).
-    pub trail: usize,
-    /// Whether to draw the edges of the proximity net.
-    pub edges: bool,
-    /// The length of an agent's triangle, in pixels.
-    pub marker_size: f64,
-    /// The scenario's unit of length, for the axis labels.
-    pub length_unit: String,
+    /// What each frame draws and how (by default the whole run's window, which stays still).
+    pub style: PanelStyle,
 }
 
 impl Default for AnimationOptions {
@@ -45,12 +34,7 @@ impl Default for AnimationOptions {
             size: (640, 640),
             max_frames: 120,
             frame_delay_ms: 80,
-            view: View::default(),
-            framing: Framing::Run,
-            trail: 0,
-            edges: true,
-            marker_size: 9.0,
-            length_unit: "m".to_owned(),
+            style: PanelStyle::default(),
         }
     }
 }
@@ -76,15 +60,9 @@ pub fn animation_gif(scene: &Scene, options: &AnimationOptions) -> Result<Vec<u8
         )));
     };
     let frames = animation_frames(scene, options);
-    let framer = Framer::new(scene, options.view, options.trail);
-    let panel = PanelStyle {
-        framing: options.framing,
-        trail: options.trail,
-        edges: options.edges,
-        marker_size: options.marker_size,
-        length_unit: options.length_unit.clone(),
-    };
-    let title = figure_title(scene, options.view);
+    let panel = &options.style;
+    let framer = Framer::new(scene, panel.view, panel.trail);
+    let title = figure_title(scene, panel.view);
     let delay = u16::try_from(options.frame_delay_ms.div_ceil(10)).unwrap_or(u16::MAX);
     let mut out = Vec::new();
     {
@@ -96,7 +74,7 @@ pub fn animation_gif(scene: &Scene, options: &AnimationOptions) -> Result<Vec<u8
             let figure = AnimationFrame {
                 framer: &framer,
                 frame,
-                panel: &panel,
+                panel,
                 title: &title,
                 size: options.size,
             };

@@ -82,15 +82,13 @@ pub fn write_figures(
     };
 
     let frames = scene.evenly_spaced_frames(options.snapshot_count.max(1));
-    let mut views = vec![("snapshots", options.snapshot.view)];
+    let mut views = vec![("snapshots", options.snapshot.style.view)];
     if scene.dim == 3 {
         views.push(("snapshots_top", View::TOP));
     }
     for (name, view) in views {
-        let snapshot = SnapshotOptions {
-            view,
-            ..options.snapshot.clone()
-        };
+        let mut snapshot = options.snapshot.clone();
+        snapshot.style.view = view;
         if options.svg {
             write(
                 &format!("{name}.svg"),

@@ -57,5 +57,5 @@ pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
 pub use player::{PlayerOptions, player_html};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
-pub use snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
+pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
 pub use view::View;

@@ -43,11 +43,32 @@ pub struct SnapshotOptions {
     pub panel_size: (u32, u32),
     /// Panels per row of the figure.
     pub columns: usize,
+    /// What each panel draws and how.
+    pub style: PanelStyle,
+}
+
+impl Default for SnapshotOptions {
+    fn default() -> Self {
+        Self {
+            panel_size: (480, 480),
+            columns: 3,
+            style: PanelStyle {
+                framing: Framing::Flock,
+                marker_size: 10.0,
+                ..PanelStyle::default()
+            },
+        }
+    }
+}
+
+/// What a panel draws and how, shared by snapshots and animations.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PanelStyle {
     /// The projection of 3D runs (2D runs are drawn in their plane).
     pub view: View,
-    /// Which part of the plane each panel shows.
+    /// Which part of the plane a panel shows.
     pub framing: Framing,
-    /// How many earlier frames each agent's trail goes back (0: no trails).
+    /// How many earlier recorded frames each agent's trail goes back (0: no trails).
     pub trail: usize,
     /// Whether to draw the edges of the proximity net.
     pub edges: bool,
@@ -57,16 +78,14 @@ pub struct SnapshotOptions {
     pub length_unit: String,
 }
 
-impl Default for SnapshotOptions {
+impl Default for PanelStyle {
     fn default() -> Self {
         Self {
-            panel_size: (480, 480),
-            columns: 3,
             view: View::default(),
-            framing: Framing::Flock,
+            framing: Framing::Run,
             trail: 0,
             edges: true,
-            marker_size: 10.0,
+            marker_size: 9.0,
             length_unit: "m".to_owned(),
         }
     }
@@ -147,7 +166,7 @@ impl<'a> Snapshot<'a> {
     }
 
     fn title(&self) -> String {
-        figure_title(self.scene, self.options.view)
+        figure_title(self.scene, self.options.style.view)
     }
 }
 
@@ -178,9 +197,10 @@ impl Figure for Snapshot<'_> {
     ) -> Result<(), VizError> {
         let body = below_title(root, &self.title(), text)?;
         let panels = body.split_evenly((self.rows, self.columns));
-        let framer = Framer::new(self.scene, self.options.view, self.options.trail);
+        let style = &self.options.style;
+        let framer = Framer::new(self.scene, style.view, style.trail);
         for (panel, &frame) in panels.iter().zip(self.frames) {
-            draw_panel(panel, &framer, frame, &PanelStyle::from(self.options))?;
+            draw_panel(panel, &framer, frame, style)?;
         }
         Ok(())
     }
@@ -212,28 +232,6 @@ pub(crate) fn below_title<DB: DrawingBackend>(
     )
     .map_err(VizError::draw)?;
     Ok(body)
-}
-
-/// What a panel draws, shared by snapshots, animations and the player.
-#[derive(Clone, Debug)]
-pub(crate) struct PanelStyle {
-    pub(crate) framing: Framing,
-    pub(crate) trail: usize,
-    pub(crate) edges: bool,
-    pub(crate) marker_size: f64,
-    pub(crate) length_unit: String,
-}
-
-impl From<&SnapshotOptions> for PanelStyle {
-    fn from(o: &SnapshotOptions) -> Self {
-        Self {
-            framing: o.framing,
-            trail: o.trail,
-            edges: o.edges,
-            marker_size: o.marker_size,
-            length_unit: o.length_unit.clone(),
-        }
-    }
 }
 
 /// Text of the given size in the figures' font and ink.

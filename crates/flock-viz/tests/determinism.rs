@@ -13,11 +13,11 @@ fn every_figure_is_byte_identical_when_drawn_twice() {
     let scene = lattice_scene();
     let cube = cube_scene();
     let metrics = flocking_metrics(true);
-    let snap = SnapshotOptions {
+    let mut snap = SnapshotOptions {
         panel_size: (240, 240),
-        trail: 2,
         ..SnapshotOptions::default()
     };
+    snap.style.trail = 2;
     let small_metrics = MetricsOptions {
         panel_size: (300, 200),
         ..MetricsOptions::default()

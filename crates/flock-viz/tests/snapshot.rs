@@ -5,7 +5,7 @@ use flock_viz::{Frame, Scene, SnapshotOptions, View, VizError, snapshot_png, sna
 use glam::DVec2;
 
 use crate::support::{
-    AGENTS, EDGES, agent_markers, count_marks, cube_scene, decode_png, lattice_scene,
+    AGENTS, EDGES, agent_markers, count_marks, cube_scene, decode_png, lattice_scene, styled,
 };
 
 #[test]
@@ -37,10 +37,7 @@ fn panels_have_titles_axis_labels_and_units() {
     let svg = snapshot_svg(
         &lattice_scene(),
         &[0],
-        &SnapshotOptions {
-            length_unit: "d".into(),
-            ..SnapshotOptions::default()
-        },
+        &styled(|style| style.length_unit = "d".into()),
     )
     .unwrap();
     assert!(svg.contains("x (d)"));
@@ -88,10 +85,7 @@ fn agents_at_rest_are_dots_and_trails_follow_the_agents() {
         count_marks(&svg, "circle", "fill", flock_viz::style::AGENT),
         AGENTS
     );
-    let with_trails = SnapshotOptions {
-        trail: 2,
-        ..SnapshotOptions::default()
-    };
+    let with_trails = styled(|style| style.trail = 2);
     let svg = snapshot_svg(&scene, &[4], &with_trails).unwrap();
     assert_eq!(count_marks(&svg, "polyline", "stroke", TRAIL), AGENTS);
     // The γ-agent's path is drawn in its colour.
@@ -105,15 +99,7 @@ fn three_d_runs_are_projected_with_a_chosen_view_and_a_top_view() {
     assert_eq!(agent_markers(&oblique), 2 * 27);
     assert!(oblique.contains("u (m)") && oblique.contains("v (m)"));
     assert!(oblique.contains("view az -60°, el 30°"));
-    let top = snapshot_svg(
-        &scene,
-        &[0],
-        &SnapshotOptions {
-            view: View::TOP,
-            ..SnapshotOptions::default()
-        },
-    )
-    .unwrap();
+    let top = snapshot_svg(&scene, &[0], &styled(|style| style.view = View::TOP)).unwrap();
     assert!(top.contains("x (m)") && top.contains("top view"));
     assert_eq!(agent_markers(&top), 27);
     assert_ne!(oblique, top);
@@ -174,20 +160,11 @@ fn walls_and_capsules_are_drawn_in_2d_and_3d() {
     // In 3D a floor is a light plane behind the flock (drawn first), a box stays solid.
     let cube =
         cube_scene().with_obstacle(Drawable::half_space(DVec3::new(0.0, 0.0, -5.0), DVec3::Z));
-    let options = SnapshotOptions {
-        framing: flock_viz::Framing::Run,
-        ..SnapshotOptions::default()
-    };
+    let options = styled(|style| style.framing = flock_viz::Framing::Run);
     for view in [View::default(), View::TOP] {
-        let svg = snapshot_svg(
-            &cube,
-            &[0],
-            &SnapshotOptions {
-                view,
-                ..options.clone()
-            },
-        )
-        .unwrap();
+        let mut seen = options.clone();
+        seen.style.view = view;
+        let svg = snapshot_svg(&cube, &[0], &seen).unwrap();
         assert_eq!(count_marks(&svg, "polygon", "fill", WALL_PLANE), 1);
         assert_eq!(
             count_marks(&svg, "polygon", "fill", OBSTACLE),
@@ -201,10 +178,8 @@ fn walls_and_capsules_are_drawn_in_2d_and_3d() {
         assert!(plane < solid, "the plane is drawn first");
     }
     // Seen from the side, the floor is edge-on: a solid region.
-    let side = SnapshotOptions {
-        view: View::new(-90.0, 0.0),
-        ..options
-    };
+    let mut side = options;
+    side.style.view = View::new(-90.0, 0.0);
     let svg = snapshot_svg(&cube, &[0], &side).unwrap();
     assert_eq!(count_marks(&svg, "polygon", "fill", WALL_PLANE), 0);
     assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 3);

@@ -343,3 +343,10 @@ pub fn decode_png(bytes: &[u8]) -> Decoded {
         pixels,
     }
 }
+
+/// The default snapshot options with their panel style changed by `edit`.
+pub fn styled(edit: impl FnOnce(&mut flock_viz::PanelStyle)) -> flock_viz::SnapshotOptions {
+    let mut options = flock_viz::SnapshotOptions::default();
+    edit(&mut options.style);
+    options
+}
