@@ -38,18 +38,31 @@ impl FlockMetrics {
     /// Every metric of the state (q, p) with its net.
     ///
     /// `net` is the net of `q`, with or without stored distances
-    /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way.
+    /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way. With
+    /// the `parallel` feature the components (union-find) are found while another thread measures
+    /// the edges, the cohesion radius and the velocity mismatch; each is computed as without it.
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
-        let components = Components::of(net.graph());
-        let edges = EdgeMetrics::of(q, net, params);
+        let components = || Components::of(net.graph());
+        let rest = || {
+            (
+                EdgeMetrics::of(q, net, params),
+                cohesion_radius(q),
+                velocity_mismatch(p),
+            )
+        };
+        #[cfg(feature = "parallel")]
+        let (components, (edges, cohesion_radius, velocity_mismatch)) =
+            rayon::join(components, rest);
+        #[cfg(not(feature = "parallel"))]
+        let (components, (edges, cohesion_radius, velocity_mismatch)) = (components(), rest());
         Self {
             connectivity: relative_connectivity(&components),
             giant_component: components.giant_share(),
             components: components.count(),
-            cohesion_radius: cohesion_radius(q),
+            cohesion_radius,
             deviation_energy: edges.deviation_energy,
-            velocity_mismatch: velocity_mismatch(p),
+            velocity_mismatch,
             min_distance: edges.min_distance(q),
             collisions: edges.collisions,
         }
