@@ -3,8 +3,7 @@
 use flock_graph::ProximityNet;
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
-/// Agents per chunk of the sum in [`AlphaInteraction::potential`].
-const POTENTIAL_CHUNK: usize = 4096;
+use crate::protocol::chunked_sum;
 
 /// Bounds on the agents per chunk of [`AlphaInteraction::inputs`] (any size gives the same inputs;
 /// large chunks have fewer pairs computed twice across their first boundary).
@@ -233,11 +232,7 @@ impl AlphaInteraction {
     pub fn potential<V: Vector>(&self, q: &[V], net: &ProximityNet) -> f64 {
         let far = self.action.potential(self.action.range());
         let graph = net.graph();
-        // Running sums over chunks of POTENTIAL_CHUNK agents (in parallel with the `parallel`
-        // feature), added in chunk order: the same value for any thread count, and the plain
-        // running sum over the edges when there is a single chunk.
-        let chunk_sum = |chunk: usize| {
-            let agents = chunk * POTENTIAL_CHUNK..((chunk + 1) * POTENTIAL_CHUNK).min(graph.len());
+        chunked_sum(graph.len(), |agents| {
             let mut total = 0.0;
             for i in agents {
                 for &j in graph.neighbours(i) {
@@ -249,18 +244,6 @@ impl AlphaInteraction {
                 }
             }
             total
-        };
-        let chunks = graph.len().div_ceil(POTENTIAL_CHUNK);
-        #[cfg(feature = "parallel")]
-        let sums: Vec<f64> = {
-            use rayon::prelude::*;
-            (0..chunks).into_par_iter().map(chunk_sum).collect()
-        };
-        #[cfg(not(feature = "parallel"))]
-        let sums: Vec<f64> = (0..chunks).map(chunk_sum).collect();
-        match sums.split_first() {
-            Some((&first, rest)) => rest.iter().fold(first, |total, &s| total + s),
-            None => 0.0,
-        }
+        })
     }
 }

@@ -4,6 +4,8 @@
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm};
 use flock_obstacles::{BetaAgent, ObstacleField, Space};
 
+use crate::protocol::chunked_sum;
+
 /// Parameters of the β-interaction, with the papers' values relative to the lattice distance d:
 /// d′ = 0.6 d, r′ = 1.2 d′, h = 0.9 (TAC 2006, Section VIII).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,18 +100,22 @@ impl<V: Space> BetaInteraction<V> {
         gradient * self.c1 + damping * self.c2
     }
 
-    /// c₁^β V_β(q) with V_β = Σ_i Σ_{k∈N_i^β} ψ_β(‖q̂_ik − q_i‖_σ) (TAC 2006 eq. 70).
+    /// c₁^β V_β(q) with V_β = Σ_i Σ_{k∈N_i^β} ψ_β(‖q̂_ik − q_i‖_σ) (TAC 2006 eq. 70), summed over
+    /// chunks of agents (in parallel with the `parallel` feature; the same bits for any thread
+    /// count).
     #[must_use]
     pub fn potential(&self, q: &[V]) -> f64 {
-        let total: f64 = q
-            .iter()
-            .map(|&qi| {
-                self.neighbours(qi, V::ZERO)
-                    .iter()
-                    .map(|(_, beta)| self.action.potential(self.sigma.norm(beta.position - qi)))
-                    .sum::<f64>()
-            })
-            .sum();
+        let total = chunked_sum(q.len(), |agents| {
+            let (mut total, mut betas) = (0.0, Vec::new());
+            for &qi in &q[agents] {
+                self.field
+                    .beta_agents(qi, V::ZERO, self.params.r, &mut betas);
+                for (_, beta) in &betas {
+                    total += self.action.potential(self.sigma.norm(beta.position - qi));
+                }
+            }
+            total
+        });
         self.c1 * total
     }
 }

@@ -30,6 +30,28 @@ pub trait Protocol<V: Vector>: Sync {
     }
 }
 
+/// Indices per chunk of [`chunked_sum`].
+const SUM_CHUNK: usize = 4096;
+
+/// Σ over `0..len` as running sums `f(range)` over chunks of 4,096 indices (in parallel with the
+/// `parallel` feature), added in chunk order: the same bits for any thread count, and the plain
+/// running sum when there is a single chunk.
+pub(crate) fn chunked_sum(len: usize, f: impl Fn(core::ops::Range<usize>) -> f64 + Sync) -> f64 {
+    let chunk = |c: usize| f(c * SUM_CHUNK..((c + 1) * SUM_CHUNK).min(len));
+    let chunks = len.div_ceil(SUM_CHUNK);
+    #[cfg(feature = "parallel")]
+    let sums: Vec<f64> = {
+        use rayon::prelude::*;
+        (0..chunks).into_par_iter().map(chunk).collect()
+    };
+    #[cfg(not(feature = "parallel"))]
+    let sums: Vec<f64> = (0..chunks).map(chunk).collect();
+    match sums.split_first() {
+        Some((&first, rest)) => rest.iter().fold(first, |total, &s| total + s),
+        None => 0.0,
+    }
+}
+
 /// Fills `out[i] = f(i)` for every agent, in parallel with the `parallel` feature. Each entry is
 /// computed alone, so the result does not depend on how the work is split.
 pub(crate) fn per_agent<V: Vector>(out: &mut [V], f: impl Fn(usize) -> V + Sync) {
