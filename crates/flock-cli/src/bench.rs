@@ -86,6 +86,9 @@ pub struct BenchConfig {
     pub warmup: u64,
     /// The algorithm.
     pub algorithm: BenchAlgorithm,
+    /// Number the agents in a random order instead of along the lattice rows, as a scenario whose
+    /// agents are drawn at random is numbered: neighbours are then far apart in memory.
+    pub shuffled: bool,
 }
 
 /// The measurements of one `flock bench` run.
@@ -152,6 +155,9 @@ impl fmt::Display for BenchReport {
         )?;
         if self.obstacles > 0 {
             writeln!(f, "  obstacles             {}", self.obstacles)?;
+        }
+        if c.shuffled {
+            writeln!(f, "  agents numbered       at random")?;
         }
         writeln!(f, "  threads               {}", self.threads)?;
         writeln!(
@@ -227,18 +233,27 @@ pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
 fn bench_in<V: Space>(config: &BenchConfig) -> BenchReport {
     let start = Instant::now();
     let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0);
+    let scenario = |obstacles: usize| {
+        let (swarm, specs) = scenario::<V>(config.n, obstacles);
+        let swarm = if config.shuffled {
+            shuffled(swarm)
+        } else {
+            swarm
+        };
+        (swarm, specs)
+    };
     match config.algorithm {
         BenchAlgorithm::Algorithm1 => {
-            let (swarm, _) = scenario::<V>(config.n, 0);
+            let (swarm, _) = scenario(0);
             time(config, Algorithm1 { alpha }, swarm, 0, start)
         }
         BenchAlgorithm::Algorithm2 => {
-            let (swarm, _) = scenario::<V>(config.n, 0);
+            let (swarm, _) = scenario(0);
             let navigation = navigation(&swarm, NavigationalFeedback::linear);
             time(config, Algorithm2 { alpha, navigation }, swarm, 0, start)
         }
         BenchAlgorithm::Algorithm3 => {
-            let (swarm, specs) = scenario::<V>(config.n, BENCH_OBSTACLES);
+            let (swarm, specs) = scenario(BENCH_OBSTACLES);
             let navigation = navigation(&swarm, NavigationalFeedback::bounded);
             let field = ObstacleField::<V>::from_specs(&specs)
                 .unwrap_or_else(|e| unreachable!("the benchmark's obstacles are valid: {e}"));
@@ -448,6 +463,19 @@ pub fn scenario<V: Vector>(n: usize, obstacles: usize) -> (Swarm<V>, Vec<Obstacl
     (Swarm::new(positions, velocities), specs)
 }
 
+/// The swarm with its agents renumbered by a seeded random permutation (Fisher–Yates).
+fn shuffled<V: Vector>(swarm: Swarm<V>) -> Swarm<V> {
+    let mut rng = Pcg64::seed_from_u64(SEED + 1);
+    let mut order: Vec<usize> = (0..swarm.len()).collect();
+    for k in (1..order.len()).rev() {
+        order.swap(k, rng.random_range(0..=k));
+    }
+    Swarm::new(
+        order.iter().map(|&i| swarm.positions[i]).collect(),
+        order.iter().map(|&i| swarm.velocities[i]).collect(),
+    )
+}
+
 /// The number of obstacles per axis of the grid holding `count` obstacles.
 fn obstacles_per_axis(count: usize, dim: usize) -> usize {
     let mut k = (count as f64).powf(1.0 / dim as f64).round() as usize;
@@ -551,6 +579,30 @@ mod tests {
     #[test]
     fn lattice_has_the_papers_spacing_3d() {
         check_lattice::<DVec3>();
+    }
+
+    #[test]
+    fn shuffling_renumbers_the_same_agents() {
+        let (swarm, _) = scenario::<DVec2>(3000, 0);
+        let renumbered = shuffled(swarm.clone());
+        let key = |q: &DVec2, p: &DVec2| [q.x, q.y, p.x, p.y].map(f64::to_bits);
+        let mut before: Vec<_> = swarm
+            .positions
+            .iter()
+            .zip(&swarm.velocities)
+            .map(|(q, p)| key(q, p))
+            .collect();
+        let mut after: Vec<_> = renumbered
+            .positions
+            .iter()
+            .zip(&renumbered.velocities)
+            .map(|(q, p)| key(q, p))
+            .collect();
+        let moved = before.iter().zip(&after).filter(|(a, b)| a != b).count();
+        assert!(moved > 2900, "only {moved} of 3000 agents renumbered");
+        before.sort_unstable();
+        after.sort_unstable();
+        assert_eq!(before, after);
     }
 
     fn check_obstacles<V: Space>(n: usize) {

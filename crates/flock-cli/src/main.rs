@@ -95,6 +95,9 @@ enum Command {
         /// Untimed steps before the timed ones.
         #[arg(long, default_value_t = 3)]
         warmup: u64,
+        /// Number the agents at random instead of along the lattice (as random initial states are).
+        #[arg(long)]
+        shuffled: bool,
     },
 }
 
@@ -110,6 +113,7 @@ fn main() -> ExitCode {
             algorithm,
             threads,
             warmup,
+            shuffled,
         } => {
             if let Err(code) = use_threads(threads) {
                 return code;
@@ -120,6 +124,7 @@ fn main() -> ExitCode {
                 steps,
                 warmup,
                 algorithm,
+                shuffled,
             };
             match flock_cli::bench::bench(&config) {
                 Ok(report) => {

@@ -127,17 +127,32 @@ impl<V: Space> ObstacleField<V> {
     /// obstacles whose bounding boxes are within `range` of `q`.
     pub fn beta_agents(&self, q: V, p: V, range: f64, out: &mut Vec<(usize, BetaAgent<V>)>) {
         out.clear();
-        let mut check = |k: usize| {
+        self.for_each_beta_agent(q, p, range, |k, beta| out.push((k, beta)));
+    }
+
+    /// Calls `visit(k, β)` for the β-neighbours of the α-agent `(q, p)`, in increasing `k`: the
+    /// entries [`Self::beta_agents`] lists, without a list. Allocates nothing unless more than
+    /// 32 obstacles have their bounding boxes within `range` of `q`.
+    pub fn for_each_beta_agent(
+        &self,
+        q: V,
+        p: V,
+        range: f64,
+        mut visit: impl FnMut(usize, BetaAgent<V>),
+    ) {
+        let mut candidates = Candidates::default();
+        for &k in &self.unbounded {
+            candidates.push(k);
+        }
+        self.bvh.visit_near(q, range, &mut |k| candidates.push(k));
+        let candidates = candidates.as_mut_slice();
+        candidates.sort_unstable();
+        for &k in &*candidates {
             let beta = self.obstacles[k].beta_agent(q, p);
             if beta.inside || beta.distance < range {
-                out.push((k, beta));
+                visit(k, beta);
             }
-        };
-        for &k in &self.unbounded {
-            check(k);
         }
-        self.bvh.visit_near(q, range, &mut check);
-        out.sort_unstable_by_key(|&(k, _)| k);
     }
 
     /// The signed distance from `q` to the nearest obstacle: the least
@@ -180,5 +195,46 @@ impl<V: Space> ObstacleField<V> {
 impl<V: Space> Default for ObstacleField<V> {
     fn default() -> Self {
         Self::empty()
+    }
+}
+
+/// Obstacle indices near a query: on the stack up to [`Candidates::INLINE`] of them, then on the heap.
+struct Candidates {
+    inline: [usize; Self::INLINE],
+    len: usize,
+    spill: Vec<usize>,
+}
+
+impl Candidates {
+    const INLINE: usize = 32;
+
+    fn push(&mut self, k: usize) {
+        if self.spill.is_empty() && self.len < Self::INLINE {
+            self.inline[self.len] = k;
+            self.len += 1;
+        } else {
+            if self.spill.is_empty() {
+                self.spill.extend_from_slice(&self.inline);
+            }
+            self.spill.push(k);
+        }
+    }
+
+    fn as_mut_slice(&mut self) -> &mut [usize] {
+        if self.spill.is_empty() {
+            &mut self.inline[..self.len]
+        } else {
+            &mut self.spill
+        }
+    }
+}
+
+impl Default for Candidates {
+    fn default() -> Self {
+        Self {
+            inline: [0; Self::INLINE],
+            len: 0,
+            spill: Vec::new(),
+        }
     }
 }

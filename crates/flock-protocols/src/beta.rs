@@ -90,13 +90,14 @@ impl<V: Space> BetaInteraction<V> {
     pub fn input(&self, q: V, p: V) -> V {
         let mut gradient = V::ZERO;
         let mut damping = V::ZERO;
-        for (_, beta) in self.neighbours(q, p) {
-            let dq = beta.position - q;
-            let (z, scale) = self.sigma.norm_and_gradient_scale(dq.length_squared());
-            let (phi, b_ik) = self.action.action_and_bump(z);
-            gradient += dq * (phi * scale);
-            damping += (beta.velocity - p) * b_ik;
-        }
+        self.field
+            .for_each_beta_agent(q, p, self.params.r, |_, beta| {
+                let dq = beta.position - q;
+                let (z, scale) = self.sigma.norm_and_gradient_scale(dq.length_squared());
+                let (phi, b_ik) = self.action.action_and_bump(z);
+                gradient += dq * (phi * scale);
+                damping += (beta.velocity - p) * b_ik;
+            });
         gradient * self.c1 + damping * self.c2
     }
 
@@ -106,13 +107,12 @@ impl<V: Space> BetaInteraction<V> {
     #[must_use]
     pub fn potential(&self, q: &[V]) -> f64 {
         let total = chunked_sum(q.len(), |agents| {
-            let (mut total, mut betas) = (0.0, Vec::new());
+            let mut total = 0.0;
             for &qi in &q[agents] {
                 self.field
-                    .beta_agents(qi, V::ZERO, self.params.r, &mut betas);
-                for (_, beta) in &betas {
-                    total += self.action.potential(self.sigma.norm(beta.position - qi));
-                }
+                    .for_each_beta_agent(qi, V::ZERO, self.params.r, |_, beta| {
+                        total += self.action.potential(self.sigma.norm(beta.position - qi));
+                    });
             }
             total
         });
