@@ -27,6 +27,6 @@ pub use adjacency::{binary_weights, weights_from_distances};
 pub use components::Components;
 pub use graph::{Graph, GraphError};
 pub use laplacian::{laplacian_apply, laplacian_quadratic_form};
-pub use net::ProximityNet;
+pub use net::{CellLayout, ProximityNet};
 pub use search::{NeighbourSearch, nearest_pair_distance};
 pub use stress::{Friends, StressWeights};

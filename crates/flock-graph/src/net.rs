@@ -31,7 +31,10 @@ use crate::graph::Graph;
 /// assert_eq!(net.graph().neighbours(1), &[0]); // ‖q_2 − q_1‖ = 2 is not < 2
 /// assert_eq!(net.distances(), &[1.0, 1.0]);
 /// ```
-#[derive(Clone, Debug, Default, PartialEq)]
+///
+/// Two nets are equal when their graphs, distances, ranges and kinds are: the
+/// [`ProximityNet::cell_layout`] is not compared.
+#[derive(Clone, Debug, Default)]
 pub struct ProximityNet {
     graph: Graph,
     /// ‖q_j − q_i‖ per directed edge, aligned with `graph.neighbour_indices()`; empty when
@@ -41,6 +44,72 @@ pub struct ProximityNet {
     range: f64,
     /// True for a net that keeps no distances ([`ProximityNet::without_distances`]).
     lean: bool,
+    /// The search's cell layout, when it laid the agents out (`laid_out`); its buffers are kept.
+    layout: CellLayout,
+    laid_out: bool,
+}
+
+/// The agents of a net in the order of the cells of the search that built it — each position in
+/// that order a *slot* — with every agent's neighbours given as slots, still in ascending agent
+/// index. Consecutive slots are near in space and share most of their neighbours, so a protocol
+/// that copies the states into slot order and visits the slots reads its neighbours' states from
+/// cache however the agents are numbered, and sums their terms in the net's order.
+///
+/// A [`NeighbourSearch`](crate::NeighbourSearch) lays a net out when the agents are numbered at
+/// random (most neighbours of 256 sampled agents at least 4,096 indices away): agents numbered
+/// along space are visited in index order with the same locality and no extra memory.
+#[derive(Clone, Debug, Default)]
+pub struct CellLayout {
+    /// The agent in each slot: every agent with a finite position, once.
+    order: Vec<u32>,
+    /// The end of each slot's list in `neighbours`.
+    ends: Vec<usize>,
+    /// The neighbours of each slot, as slots, in ascending agent index.
+    neighbours: Vec<u32>,
+}
+
+impl CellLayout {
+    /// The agent in each slot.
+    #[inline]
+    #[must_use]
+    pub fn order(&self) -> &[u32] {
+        &self.order
+    }
+
+    /// The neighbours of the agent in `slot`, as slots, in ascending agent index: the agents are
+    /// `order[t]` for each slot t, the list of [`Graph::neighbours`]`(order[slot])`.
+    #[inline]
+    #[must_use]
+    pub fn neighbours(&self, slot: usize) -> &[u32] {
+        let start = if slot == 0 { 0 } else { self.ends[slot - 1] };
+        &self.neighbours[start..self.ends[slot]]
+    }
+
+    /// Empties the layout for a rebuild, keeping its allocations.
+    pub(crate) fn clear(&mut self) {
+        self.order.clear();
+        self.ends.clear();
+        self.neighbours.clear();
+    }
+
+    /// Appends a slot-ordered run of lists: the agents `order`, the list ends `ends` (relative to
+    /// `lists`) and the lists themselves.
+    pub(crate) fn extend(&mut self, order: &[u32], ends: &[usize], lists: &[u32]) {
+        let base = self.neighbours.len();
+        self.order.extend_from_slice(order);
+        self.ends.extend(ends.iter().map(|&end| base + end));
+        self.neighbours
+            .extend_from_slice(&lists[..ends.last().copied().unwrap_or(0)]);
+    }
+}
+
+impl PartialEq for ProximityNet {
+    fn eq(&self, other: &Self) -> bool {
+        self.graph == other.graph
+            && self.distances == other.distances
+            && self.range == other.range
+            && self.lean == other.lean
+    }
 }
 
 impl ProximityNet {
@@ -134,6 +203,14 @@ impl ProximityNet {
         &self.distances
     }
 
+    /// The [`CellLayout`] of the search that built the net, when it laid the agents out (agents
+    /// numbered at random); `None` otherwise, and for [`ProximityNet::brute_force`].
+    #[inline]
+    #[must_use]
+    pub fn cell_layout(&self) -> Option<&CellLayout> {
+        self.laid_out.then_some(&self.layout)
+    }
+
     /// The range r the net was built with (0 for [`ProximityNet::new`]).
     #[inline]
     #[must_use]
@@ -186,6 +263,13 @@ impl ProximityNet {
 }
 
 impl ProximityNet {
+    /// The emptied [`CellLayout`] of a net just rebuilt, to be filled; the net then has it.
+    pub(crate) fn layout_for_rebuild(&mut self) -> &mut CellLayout {
+        self.laid_out = true;
+        self.layout.clear();
+        &mut self.layout
+    }
+
     /// Sets the range of a net to be rebuilt for `n` agents and hands out its arrays as they are,
     /// to be resized and entirely overwritten: the CSR arrays and, unless the net keeps none, the
     /// distances (see `Graph::arrays_for_rebuild`).
@@ -203,6 +287,7 @@ impl ProximityNet {
             u32::MAX
         );
         self.range = r;
+        self.laid_out = false;
         let (offsets, neighbours) = self.graph.arrays_for_rebuild();
         (
             offsets,

@@ -10,9 +10,10 @@
 //! whatever the configuration.
 //!
 //! The lists are built agent by agent in cell order (so that consecutive agents scan the same
-//! memory), each sorted by neighbour index, into per-block buffers of neighbour indices only; they
-//! are then gathered in agent order into the net, each distance recomputed there from the positions
-//! with the predicate's own squared length. The net is canonical: equal to
+//! memory), each as slots sorted by neighbour index, into per-block buffers; they are then
+//! gathered in agent order into the net as agent indices, each distance recomputed there with the
+//! predicate's own squared length. When the agents are numbered at random, the net also keeps the
+//! slot lists as its [`CellLayout`](crate::CellLayout), for protocols to visit agents in space. The net is canonical: equal to
 //! [`ProximityNet::brute_force`] edge for edge and bit for bit. With the `parallel` feature the
 //! blocks are filled, and the net gathered, on the rayon pool; since the blocks and gather ranges
 //! only partition the work, the net is identical with or without it, for any pool size.
@@ -155,16 +156,26 @@ impl NeighbourSearch {
             distances,
             &|i, out, lengths| {
                 if let Some(list) = list(i) {
+                    for (o, &t) in out.iter_mut().zip(list) {
+                        *o = grid.order[t as usize];
+                    }
                     let qi = positions[i];
-                    out.copy_from_slice(list);
-                    for (l, &j) in lengths.iter_mut().zip(list) {
-                        *l = squared_distance(qi, positions[j as usize]).sqrt();
+                    for (l, &t) in lengths.iter_mut().zip(list) {
+                        *l = squared_distance(qi, grid.position::<V>(t as usize)).sqrt();
                     }
                 }
                 debug_assert_eq!(out.len(), offsets[i + 1] - offsets[i]);
             },
             offsets,
         );
+        if numbered_at_random(net.graph()) {
+            let layout = net.layout_for_rebuild();
+            for (b, block) in blocks.iter().enumerate() {
+                let start = b * block_len;
+                let end = (start + block_len).min(slots);
+                layout.extend(&grid.order[start..end], &block.ends, &block.neighbours);
+            }
+        }
     }
 
     /// The exact minimum distance over all pairs of finite agents, `None` when there are fewer
@@ -202,6 +213,33 @@ impl NeighbourSearch {
             threshold = (4.0 * threshold).min(upper);
         }
     }
+}
+
+/// Index distance beyond which a neighbour counts as scattered in memory (a quarter of a megabyte
+/// of 2D positions and velocities away).
+const SCATTERED: usize = 4096;
+
+/// Agents sampled by [`numbered_at_random`].
+const SAMPLED: usize = 256;
+
+/// Whether most neighbours of [`SAMPLED`] agents spread evenly over the indices are at least
+/// [`SCATTERED`] indices away: the agents are not numbered along space, and the search lays the
+/// net out ([`crate::net::CellLayout`]). Deterministic; it only chooses a path, never a result.
+fn numbered_at_random(graph: &crate::Graph) -> bool {
+    let n = graph.len();
+    let sampled = SAMPLED.min(n);
+    let (mut near, mut far) = (0_usize, 0_usize);
+    for s in 0..sampled {
+        let i = s * n / sampled;
+        for &j in graph.neighbours(i) {
+            if (j as usize).abs_diff(i) >= SCATTERED {
+                far += 1;
+            } else {
+                near += 1;
+            }
+        }
+    }
+    far > near
 }
 
 /// Agents per task of the parallel gather.
@@ -263,13 +301,15 @@ pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
     NeighbourSearch::new().nearest_pair_distance(positions)
 }
 
-/// The sorted neighbour lists of a block of consecutive slots.
+/// The neighbour lists of a block of consecutive slots, as slots in ascending agent index.
 #[derive(Clone, Debug, Default)]
 struct Block {
     /// End of each slot's list in `neighbours`.
     ends: Vec<usize>,
-    /// The lists, one after the other, followed by scratch space.
+    /// The lists, one after the other, followed by unused space.
     neighbours: Vec<u32>,
+    /// Scratch: one slot's neighbours keyed by agent, to be sorted.
+    keyed: Vec<u64>,
 }
 
 impl Block {
@@ -287,9 +327,8 @@ impl Block {
                 (rows_of, rows) = (cell, grid.candidate_rows(cells.coords()));
                 candidates = rows.iter().map(|row| row.len()).sum();
             }
-            let (i, qi) = (grid.order[slot], grid.position::<V>(slot));
-            // the neighbours in candidate order, then sorted; `neighbours` beyond `end` is scratch
-            // space, only grown (and zeroed) when too short
+            let qi = grid.position::<V>(slot);
+            // `neighbours` beyond `end` is only grown (and zeroed) when too short
             if self.neighbours.len() < end + candidates {
                 // grow by a quarter at least: fewer reallocations than exact growth, less
                 // unused memory than doubling
@@ -298,19 +337,27 @@ impl Block {
                 self.neighbours.reserve_exact(grown - len);
                 self.neighbours.resize(grown, 0);
             }
-            let list = &mut self.neighbours[end..end + candidates];
-            let mut len = 0;
+            // each neighbour as (agent << 32 | slot), so that a plain sort orders by agent
+            self.keyed.clear();
             for row in rows.iter() {
                 let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
-                for (c, &j) in coords.chunks_exact(V::DIM).zip(&grid.order[row]) {
+                for ((t, c), &j) in row
+                    .clone()
+                    .zip(coords.chunks_exact(V::DIM))
+                    .zip(&grid.order[row])
+                {
                     let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
-                    if in_range(d2, r2) && j != i {
-                        list[len] = j;
-                        len += 1;
+                    if in_range(d2, r2) && t != slot {
+                        self.keyed.push(u64::from(j) << 32 | t as u64);
                     }
                 }
             }
-            list[..len].sort_unstable();
+            self.keyed.sort_unstable();
+            let len = self.keyed.len();
+            for (out, &key) in self.neighbours[end..end + len].iter_mut().zip(&self.keyed) {
+                // the slot: t < n ≤ u32::MAX
+                *out = key as u32;
+            }
             end += len;
             self.ends.push(end);
         }
@@ -780,6 +827,55 @@ mod tests {
 
     /// The blocks only partition the work: any block length, and any rayon pool size, gives the
     /// same net, so the net does not depend on the `parallel` feature.
+    /// 20,000 agents uniform in a square, with about 6 neighbours each, and the index of one
+    /// with a NaN coordinate (in no cell).
+    fn scattered_agents(sorted: bool) -> Vec<DVec2> {
+        use rand::{RngExt, SeedableRng};
+
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+        let mut q: Vec<DVec2> = (0..20_000)
+            .map(|_| DVec2::new(rng.random::<f64>() * 860.0, rng.random::<f64>() * 860.0))
+            .collect();
+        if sorted {
+            q.sort_by(|a, b| (a.y.floor(), a.x).partial_cmp(&(b.y.floor(), b.x)).unwrap());
+        }
+        q
+    }
+
+    /// Agents numbered at random get a cell layout holding every finite agent once, whose slot
+    /// lists name the net's lists in the same order; agents numbered along space get none.
+    #[test]
+    fn nets_of_agents_numbered_at_random_are_laid_out() {
+        for (sorted, with_nan) in [(false, false), (false, true), (true, false)] {
+            let mut q = scattered_agents(sorted);
+            if with_nan {
+                q[123] = DVec2::NAN;
+            }
+            let mut net = ProximityNet::without_distances();
+            NeighbourSearch::new().build(&q, 8.4, &mut net);
+            assert!(net.graph().directed_edge_count() > 4 * q.len());
+            let Some(layout) = net.cell_layout() else {
+                assert!(sorted, "no layout for agents numbered at random");
+                continue;
+            };
+            assert!(!sorted, "a layout for agents numbered along space");
+            let mut agents: Vec<u32> = layout.order().to_vec();
+            agents.sort_unstable();
+            let finite: Vec<u32> = (0..q.len() as u32)
+                .filter(|&i| q[i as usize].is_finite())
+                .collect();
+            assert_eq!(agents, finite);
+            for (s, &i) in layout.order().iter().enumerate() {
+                let named: Vec<u32> = layout
+                    .neighbours(s)
+                    .iter()
+                    .map(|&t| layout.order()[t as usize])
+                    .collect();
+                assert_eq!(named, net.graph().neighbours(i as usize), "agent {i}");
+            }
+        }
+    }
+
     #[test]
     fn net_is_independent_of_blocks_and_threads() {
         use rand::{RngExt, SeedableRng};

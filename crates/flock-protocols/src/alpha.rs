@@ -1,6 +1,6 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
-use flock_graph::ProximityNet;
+use flock_graph::{CellLayout, ProximityNet};
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
 use crate::protocol::chunked_sum;
@@ -8,6 +8,9 @@ use crate::protocol::chunked_sum;
 /// Bounds on the agents per chunk of [`AlphaInteraction::inputs`] (any size gives the same inputs;
 /// large chunks have fewer pairs computed twice across their first boundary).
 const SWEEP_CHUNK: (usize, usize) = (1024, 1 << 17);
+
+/// Slots per parallel chunk when [`AlphaInteraction::inputs`] follows a cell layout.
+const SLOT_CHUNK: usize = 4096;
 
 /// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
 /// [`SWEEP_CHUNK`].
@@ -152,6 +155,11 @@ impl AlphaInteraction {
     /// needs neighbours close in index (agents indexed roughly in space); with random indices,
     /// most pairs are computed twice, as by [`AlphaInteraction::input`].
     ///
+    /// A net laid out in cells ([`ProximityNet::cell_layout`], agents numbered at random) is
+    /// visited slot by slot instead, from copies of q and p in slot order: each agent's terms are
+    /// computed as by [`AlphaInteraction::input`] (every pair twice, as the sweep would with random
+    /// numbering) from neighbours near in memory. The inputs are the same bits either way.
+    ///
     /// `net` must be the net of `q` (any symmetric graph works); `q`, `p` and `out` have one
     /// entry per agent.
     pub fn inputs<V: Vector>(
@@ -162,6 +170,12 @@ impl AlphaInteraction {
         out: &mut [V],
         finish: impl Fn(usize, V) -> V + Sync,
     ) {
+        if let Some(layout) = net.cell_layout()
+            && layout.order().len() == out.len()
+        {
+            self.inputs_by_slot(q, p, layout, out, &finish);
+            return;
+        }
         let chunk = sweep_chunk(out.len());
         let sweep = |c: usize, out: &mut [V]| self.sweep(c * chunk, q, p, net, out, &finish);
         #[cfg(feature = "parallel")]
@@ -174,6 +188,50 @@ impl AlphaInteraction {
         #[cfg(not(feature = "parallel"))]
         for (c, out) in out.chunks_mut(chunk).enumerate() {
             sweep(c, out);
+        }
+    }
+
+    /// [`AlphaInteraction::inputs`] over the slots of a cell layout holding every agent: q and p
+    /// copied into slot order, the slots computed in parallel chunks, each value then written to
+    /// its agent.
+    fn inputs_by_slot<V: Vector>(
+        &self,
+        q: &[V],
+        p: &[V],
+        layout: &CellLayout,
+        out: &mut [V],
+        finish: &(impl Fn(usize, V) -> V + Sync),
+    ) {
+        let order = layout.order();
+        let by_slot = |x: &[V]| -> Vec<V> { order.iter().map(|&i| x[i as usize]).collect() };
+        let (q_slot, p_slot) = (by_slot(q), by_slot(p));
+        let slot_input = |s: usize| {
+            let (qs, ps) = (q_slot[s], p_slot[s]);
+            let mut gradient = V::ZERO;
+            let mut consensus = V::ZERO;
+            for &t in layout.neighbours(s) {
+                let t = t as usize;
+                let (g, c) = self.pair(qs, ps, q_slot[t], p_slot[t]);
+                gradient += g;
+                consensus += c;
+            }
+            let i = order[s] as usize;
+            finish(i, gradient * self.c1 + consensus * self.c2)
+        };
+        let chunk = |c: usize| -> Vec<V> {
+            let end = ((c + 1) * SLOT_CHUNK).min(order.len());
+            (c * SLOT_CHUNK..end).map(slot_input).collect()
+        };
+        let chunks = order.len().div_ceil(SLOT_CHUNK);
+        #[cfg(feature = "parallel")]
+        let values: Vec<Vec<V>> = {
+            use rayon::prelude::*;
+            (0..chunks).into_par_iter().map(chunk).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let values: Vec<Vec<V>> = (0..chunks).map(chunk).collect();
+        for (&i, u) in order.iter().zip(values.into_iter().flatten()) {
+            out[i as usize] = u;
         }
     }
 
@@ -245,5 +303,63 @@ impl AlphaInteraction {
             }
             total
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use flock_graph::NeighbourSearch;
+    use glam::DVec2;
+    use rand::{RngExt, SeedableRng};
+    use rand_pcg::Pcg64;
+
+    /// 20,000 agents with about 6 neighbours apiece: uniform in a square (numbered at random), or
+    /// the same points sorted by rows (numbered along space).
+    fn swarm(sorted: bool) -> (Vec<DVec2>, Vec<DVec2>) {
+        let mut rng = Pcg64::seed_from_u64(11);
+        let mut q: Vec<DVec2> = (0..20_000)
+            .map(|_| DVec2::new(rng.random::<f64>() * 860.0, rng.random::<f64>() * 860.0))
+            .collect();
+        if sorted {
+            q.sort_by(|a, b| {
+                ((a.y / 8.4).floor(), a.x)
+                    .partial_cmp(&((b.y / 8.4).floor(), b.x))
+                    .unwrap()
+            });
+        }
+        let p = (0..q.len())
+            .map(|_| DVec2::new(rng.random::<f64>() - 0.5, rng.random::<f64>() - 0.5))
+            .collect();
+        (q, p)
+    }
+
+    /// Both paths of `inputs` (slot by slot through the cell layout of agents numbered at random,
+    /// the sweep for agents numbered along space) give the bits of `input`, with `finish` applied
+    /// to the right agent, on one thread and on three.
+    #[test]
+    fn both_paths_of_inputs_are_bit_identical_to_input() {
+        let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0);
+        for sorted in [false, true] {
+            let (q, p) = swarm(sorted);
+            let mut net = ProximityNet::without_distances();
+            NeighbourSearch::new().build(&q, alpha.params().r, &mut net);
+            assert_eq!(net.cell_layout().is_some(), !sorted);
+            let finish = |i: usize, u: DVec2| u * 3.0 + DVec2::new(i as f64, 0.5);
+            let bits = |u: DVec2| u.to_array().map(f64::to_bits);
+            let expected: Vec<[u64; 2]> = (0..q.len())
+                .map(|i| bits(finish(i, alpha.input(i, &q, &p, &net))))
+                .collect();
+            for threads in [1, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let mut out = vec![DVec2::ZERO; q.len()];
+                pool.install(|| alpha.inputs(&q, &p, &net, &mut out, finish));
+                let got: Vec<[u64; 2]> = out.iter().map(|&u| bits(u)).collect();
+                assert!(got == expected, "sorted {sorted}, {threads} threads");
+            }
+        }
     }
 }
