@@ -585,19 +585,14 @@ mod tests {
     fn shuffling_renumbers_the_same_agents() {
         let (swarm, _) = scenario::<DVec2>(3000, 0);
         let renumbered = shuffled(swarm.clone());
-        let key = |q: &DVec2, p: &DVec2| [q.x, q.y, p.x, p.y].map(f64::to_bits);
-        let mut before: Vec<_> = swarm
-            .positions
-            .iter()
-            .zip(&swarm.velocities)
-            .map(|(q, p)| key(q, p))
-            .collect();
-        let mut after: Vec<_> = renumbered
-            .positions
-            .iter()
-            .zip(&renumbered.velocities)
-            .map(|(q, p)| key(q, p))
-            .collect();
+        // each agent's state as bits, in index order
+        let states = |s: &Swarm<DVec2>| -> Vec<[u64; 4]> {
+            let agents = s.positions.iter().zip(&s.velocities);
+            agents
+                .map(|(q, p)| [q.x, q.y, p.x, p.y].map(f64::to_bits))
+                .collect()
+        };
+        let (mut before, mut after) = (states(&swarm), states(&renumbered));
         let moved = before.iter().zip(&after).filter(|(a, b)| a != b).count();
         assert!(moved > 2900, "only {moved} of 3000 agents renumbered");
         before.sort_unstable();
