@@ -120,7 +120,7 @@ fn pair_stiffness(phi: &BumpedAction, sigma: &SigmaNorm, range: f64) -> f64 {
 }
 
 /// What the initial state tells: the largest degree of its net and the first pair of agents at
-/// the same point, from one draw of the initial swarm and one neighbour search.
+/// the same point, from one draw of the initial swarm.
 pub(crate) struct StartNet {
     /// The largest number of neighbours within r.
     pub(crate) degree: usize,
@@ -142,22 +142,45 @@ impl StartNet {
         let mut net = ProximityNet::without_distances();
         NeighbourSearch::new().build(&q, scenario.range(), &mut net);
         let graph = net.graph();
-        let tiny = 1e-9 * scenario.alpha.d;
         Self {
             degree: (0..q.len())
                 .map(|i| graph.neighbours(i).len())
                 .max()
                 .unwrap_or(0),
-            coincident: (0..q.len()).find_map(|i| {
-                graph
-                    .neighbours(i)
-                    .iter()
-                    .map(|&j| j as usize)
-                    .find(|&j| j > i && (q[j] - q[i]).length() < tiny)
-                    .map(|j| (i, j))
-            }),
+            coincident: coincident_pair(&q, scenario.alpha.d),
         }
     }
+}
+
+/// The first pair of agents (i < j) of a valid `scenario` that start closer than 10⁻⁹ d.
+pub(crate) fn coincident_start(scenario: &Scenario) -> Option<(usize, usize)> {
+    match scenario.dim {
+        2 => coincident_pair(
+            &initial_swarm::<DVec2>(scenario).positions,
+            scenario.alpha.d,
+        ),
+        _ => coincident_pair(
+            &initial_swarm::<DVec3>(scenario).positions,
+            scenario.alpha.d,
+        ),
+    }
+}
+
+/// The first pair (i < j) of `q` closer than 10⁻⁹ d, from a search at that range: cheap however
+/// dense the agents are, unlike the net at range r (a dense start can have thousands of
+/// neighbours per agent within r).
+fn coincident_pair<V: Vector>(q: &[V], d: f64) -> Option<(usize, usize)> {
+    let mut net = ProximityNet::without_distances();
+    NeighbourSearch::new().build(q, 1e-9 * d, &mut net);
+    let graph = net.graph();
+    (0..q.len()).find_map(|i| {
+        let j = graph
+            .neighbours(i)
+            .iter()
+            .map(|&j| j as usize)
+            .find(|&j| j > i)?;
+        Some((i, j))
+    })
 }
 
 impl Scenario {

@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use crate::error::ScenarioError;
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Cloud, Gamma, Scenario, TannerGraph};
-use crate::stability::StartNet;
+use crate::stability::coincident_start;
 
 type Check = Result<(), ScenarioError>;
 
@@ -388,7 +388,7 @@ impl Scenario {
     /// No two agents of a Tanner scenario start at the same point, where the potential
     /// d²/z² + ln(z²/d²) − 1 of a linked pair is infinite.
     fn validate_distinct_start(&self) -> Check {
-        match StartNet::of(self).coincident {
+        match coincident_start(self) {
             None => Ok(()),
             Some((i, j)) => Err(ScenarioError::invalid(
                 "initial.positions",
