@@ -19,7 +19,7 @@ pub mod components;
 pub mod graph;
 pub mod laplacian;
 pub mod net;
-mod parallel;
+pub mod parallel;
 pub mod search;
 pub mod stress;
 

@@ -1,12 +1,13 @@
-//! The one switch between rayon and serial loops: per-index work whose results do not depend on
-//! how it is split, so the output is identical with or without the `parallel` feature.
+//! The one switch between rayon and serial loops, shared by the workspace's crates: per-index work
+//! whose results do not depend on how it is split, so the output is identical with or without the
+//! `parallel` feature, for any pool size.
 
 /// Minimum number of elements per rayon task in [`fill_indexed`] (small arrays stay on one thread).
 const FILL_MIN_LEN: usize = 1024;
 
 /// Calls `f(k, &mut items[k])` for every `k`, on the rayon pool with the `parallel` feature, in
 /// tasks of at least `min_len` items (a scheduling hint only).
-pub(crate) fn for_each_indexed_mut<T: Send>(
+pub fn for_each_indexed_mut<T: Send>(
     items: &mut [T],
     min_len: usize,
     f: impl Fn(usize, &mut T) + Sync,
@@ -29,20 +30,24 @@ pub(crate) fn for_each_indexed_mut<T: Send>(
     }
 }
 
-/// Runs `a` and `b`, potentially in parallel (rayon's `join` with the `parallel` feature).
-pub(crate) fn join(a: impl FnOnce() + Send, b: impl FnOnce() + Send) {
+/// `(a(), b())`, potentially computed in parallel (rayon's `join` with the `parallel` feature).
+pub fn join<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
     #[cfg(feature = "parallel")]
-    rayon::join(a, b);
+    {
+        rayon::join(a, b)
+    }
     #[cfg(not(feature = "parallel"))]
     {
-        a();
-        b();
+        (a(), b())
     }
 }
 
 /// `[f(0..chunk), f(chunk..2 chunk), …]` over `0..len` in chunks of `chunk` indices (the last one
 /// shorter), evaluated on the rayon pool with the `parallel` feature, returned in chunk order.
-pub(crate) fn map_chunks<T: Send>(
+pub fn map_chunks<T: Send>(
     len: usize,
     chunk: usize,
     f: impl Fn(core::ops::Range<usize>) -> T + Sync,
@@ -59,7 +64,7 @@ pub(crate) fn map_chunks<T: Send>(
 }
 
 /// `out[k] = f(k)` for every `k`, on the rayon pool with the `parallel` feature.
-pub(crate) fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
+pub fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
     for_each_indexed_mut(out, FILL_MIN_LEN, |k, o| *o = f(k));
 }
 

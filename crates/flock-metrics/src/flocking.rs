@@ -1,5 +1,6 @@
 //! The flocking metrics of TAC 2006, Section VIII.
 
+use flock_graph::parallel::join;
 use flock_graph::{Components, ProximityNet, nearest_pair_distance};
 use flock_math::{Vector, mean};
 
@@ -51,11 +52,7 @@ impl FlockMetrics {
                 velocity_mismatch(p),
             )
         };
-        #[cfg(feature = "parallel")]
-        let (components, (edges, cohesion_radius, velocity_mismatch)) =
-            rayon::join(components, rest);
-        #[cfg(not(feature = "parallel"))]
-        let (components, (edges, cohesion_radius, velocity_mismatch)) = (components(), rest());
+        let (components, (edges, cohesion_radius, velocity_mismatch)) = join(components, rest);
         Self {
             connectivity: relative_connectivity(&components),
             giant_component: components.giant_share(),

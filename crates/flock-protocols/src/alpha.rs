@@ -1,5 +1,6 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
+use flock_graph::parallel::map_chunks;
 use flock_graph::{CellLayout, ProximityNet};
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
@@ -218,18 +219,9 @@ impl AlphaInteraction {
             let i = order[s] as usize;
             finish(i, gradient * self.c1 + consensus * self.c2)
         };
-        let chunk = |c: usize| -> Vec<V> {
-            let end = ((c + 1) * SLOT_CHUNK).min(order.len());
-            (c * SLOT_CHUNK..end).map(slot_input).collect()
-        };
-        let chunks = order.len().div_ceil(SLOT_CHUNK);
-        #[cfg(feature = "parallel")]
-        let values: Vec<Vec<V>> = {
-            use rayon::prelude::*;
-            (0..chunks).into_par_iter().map(chunk).collect()
-        };
-        #[cfg(not(feature = "parallel"))]
-        let values: Vec<Vec<V>> = (0..chunks).map(chunk).collect();
+        let values = map_chunks(order.len(), SLOT_CHUNK, |slots| {
+            slots.map(slot_input).collect::<Vec<V>>()
+        });
         for (&i, u) in order.iter().zip(values.into_iter().flatten()) {
             out[i as usize] = u;
         }

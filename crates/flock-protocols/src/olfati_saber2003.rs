@@ -21,8 +21,8 @@ use flock_graph::ProximityNet;
 use flock_math::{Bump, Potential, UnevenSigmoid, Vector, mean};
 use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
-use crate::protocol::per_agent;
 use crate::{NavigationalFeedback, Protocol, Swarm};
+use flock_graph::parallel::fill_indexed;
 
 /// Parameters of the 2003 (α, α) protocols.
 ///
@@ -251,7 +251,7 @@ impl<V: Vector> Protocol<V> for AlphaAlpha {
 
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        per_agent(inputs, |i| self.input(i, q, p, net));
+        fill_indexed(inputs, |i| self.input(i, q, p, net));
     }
 
     /// H_s = V + K_r (seed 004 eq. 27): Ḣ_s = −(c₁/2) Σ_{(i,j)∈E} ‖p̃_j − p̃_i‖² ≤ 0 for (α, α, 2)
@@ -333,7 +333,7 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
 
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let destination = self.destination(t);
-        per_agent(inputs, |i| self.input(i, swarm, net, destination));
+        fill_indexed(inputs, |i| self.input(i, swarm, net, destination));
     }
 
     /// Without a translational controller, H_s = V + K_r (seed 004 eq. 27). With one,
@@ -524,7 +524,7 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
         let destination = self.flocking.destination(t);
         let direction = destination.1.normalize_or_zero();
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        per_agent(inputs, |i| {
+        fill_indexed(inputs, |i| {
             self.flocking.input(i, swarm, net, destination)
                 + self.obstacle_input(q[i], p[i], direction)
         });

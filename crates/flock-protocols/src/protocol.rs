@@ -1,6 +1,7 @@
 //! The [`Protocol`] trait: every flocking algorithm computes all agents' inputs from a read-only state.
 
 use flock_graph::ProximityNet;
+use flock_graph::parallel::map_chunks;
 use flock_math::Vector;
 
 use crate::Swarm;
@@ -37,31 +38,9 @@ const SUM_CHUNK: usize = 4096;
 /// `parallel` feature), added in chunk order: the same bits for any thread count, and the plain
 /// running sum when there is a single chunk.
 pub(crate) fn chunked_sum(len: usize, f: impl Fn(core::ops::Range<usize>) -> f64 + Sync) -> f64 {
-    let chunk = |c: usize| f(c * SUM_CHUNK..((c + 1) * SUM_CHUNK).min(len));
-    let chunks = len.div_ceil(SUM_CHUNK);
-    #[cfg(feature = "parallel")]
-    let sums: Vec<f64> = {
-        use rayon::prelude::*;
-        (0..chunks).into_par_iter().map(chunk).collect()
-    };
-    #[cfg(not(feature = "parallel"))]
-    let sums: Vec<f64> = (0..chunks).map(chunk).collect();
+    let sums = map_chunks(len, SUM_CHUNK, f);
     match sums.split_first() {
         Some((&first, rest)) => rest.iter().fold(first, |total, &s| total + s),
         None => 0.0,
-    }
-}
-
-/// Fills `out[i] = f(i)` for every agent, in parallel with the `parallel` feature. Each entry is
-/// computed alone, so the result does not depend on how the work is split.
-pub(crate) fn per_agent<V: Vector>(out: &mut [V], f: impl Fn(usize) -> V + Sync) {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        out.par_iter_mut().enumerate().for_each(|(i, u)| *u = f(i));
-    }
-    #[cfg(not(feature = "parallel"))]
-    for (i, u) in out.iter_mut().enumerate() {
-        *u = f(i);
     }
 }

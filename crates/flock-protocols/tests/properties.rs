@@ -100,6 +100,14 @@ impl Case {
             .collect()
     }
 
+    /// (the largest degree, Σ_i S_i) over the net of range r: what the round-off of Σ u_i grows
+    /// with.
+    fn degree_and_scale<V: Vector>(&self, swarm: &Swarm<V>) -> (usize, f64) {
+        let sizes = self.sizes(swarm, self.params.r);
+        let max_degree = sizes.iter().map(|s| s.0).max().unwrap_or(0);
+        (max_degree, sizes.iter().map(|s| s.1).sum())
+    }
+
     /// The bound on ‖u_i − u′_i‖ when u′ is computed from a state whose relative positions differ
     /// by at most `delta_q` and velocities by at most `delta_p` (see the module's notes).
     fn perturbation_bounds<V: Vector>(
@@ -185,9 +193,7 @@ fn total<V: Vector>(vectors: &[V]) -> V {
 fn check_momentum<V: Vector>(case: &Case) -> Result<(), TestCaseError> {
     let swarm: Swarm<V> = case.swarm();
     let u = controls(&case.protocol(), &swarm);
-    let sizes = case.sizes(&swarm, case.params.r);
-    let max_degree = sizes.iter().map(|s| s.0).max().unwrap_or(0);
-    let scale: f64 = sizes.iter().map(|s| s.1).sum();
+    let (max_degree, scale) = case.degree_and_scale(&swarm);
     let k = (swarm.len() + max_degree + 2) as f64;
     let tolerance = k * U * (V::DIM as f64).sqrt() * scale;
     let sum = total(&u).length();
@@ -212,9 +218,7 @@ fn check_momentum_along_a_run<V: Vector>(case: &Case, steps: usize) -> Result<()
     let mut tolerance = n as f64 * U * root_m * speeds(&swarm);
     let mut sim = Simulation::new(case.protocol(), Integrator::SymplecticEuler, swarm, h);
     for _ in 0..steps {
-        let sizes = case.sizes(sim.swarm(), case.params.r);
-        let max_degree = sizes.iter().map(|s| s.0).max().unwrap_or(0);
-        let scale: f64 = sizes.iter().map(|s| s.1).sum();
+        let (max_degree, scale) = case.degree_and_scale(sim.swarm());
         sim.step();
         let k = (n + max_degree + 3) as f64;
         tolerance += k * U * root_m * (h * scale + speeds(sim.swarm()));
