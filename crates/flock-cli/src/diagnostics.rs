@@ -11,7 +11,10 @@ use flock_protocols::{
 /// Diagnostics a protocol adds to the common flocking metrics.
 pub trait Diagnostics<V: Vector> {
     /// The values at time `t` of the state `swarm`, in the order of
-    /// [`Scenario::extra_columns`](crate::Scenario::extra_columns).
+    /// [`Scenario::extra_columns`](crate::Scenario::extra_columns). The state is as the
+    /// simulation stores it ([`Simulation::stored_swarm`](flock_protocols::Simulation::stored_swarm)):
+    /// in original order unless the protocol [follows the numbering](flock_protocols::Protocol::follows_numbering),
+    /// whose values must then not depend on the order of the agents (minima, counts).
     #[must_use]
     fn values(&self, _t: f64, _swarm: &Swarm<V>) -> Vec<f64> {
         Vec::new()

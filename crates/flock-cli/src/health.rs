@@ -4,6 +4,7 @@
 
 use std::fmt;
 
+use flock_graph::Numbering;
 use flock_math::Vector;
 use flock_protocols::Swarm;
 use rayon::prelude::*;
@@ -72,7 +73,8 @@ impl std::error::Error for NumericalError {}
 pub struct Health;
 
 impl Health {
-    /// Checks the state of `scenario` after `steps` steps.
+    /// Checks the state of `scenario` after `steps` steps, `swarm` stored as `numbering` says
+    /// (errors name the agent's original index).
     ///
     /// # Errors
     /// The first agent whose position or velocity is not finite, or whose speed exceeds r/h.
@@ -80,17 +82,18 @@ impl Health {
         scenario: &Scenario,
         steps: u64,
         swarm: &Swarm<V>,
+        numbering: &Numbering,
     ) -> Result<(), NumericalError> {
         let h = scenario.step;
         let limit = scenario.range() / h;
         let limit_squared = limit * limit;
-        // In parallel, but always the lowest agent at fault.
+        // In parallel, but always the agent at fault of lowest original index.
         let fault = swarm
             .positions
             .par_iter()
             .zip(&swarm.velocities)
             .enumerate()
-            .find_map_first(|(i, (&q, &p))| {
+            .filter_map(|(i, (&q, &p))| {
                 let fault = if !q.is_finite() {
                     Fault::NotFinite {
                         quantity: "position",
@@ -109,8 +112,9 @@ impl Health {
                 } else {
                     return None;
                 };
-                Some((i, fault))
-            });
+                Some((numbering.original(i), fault))
+            })
+            .min_by_key(|&(agent, _)| agent);
         match fault {
             None => Ok(()),
             Some((agent, fault)) => Err(NumericalError {

@@ -3,8 +3,8 @@
 
 use std::time::{Duration, Instant};
 
-use flock_graph::Components;
 use flock_graph::Graph;
+use flock_graph::{Components, Numbering};
 use flock_math::Vector;
 use flock_math::{Bump, TannerPotential};
 use flock_metrics::{FlockMetrics, MetricParams, component_velocity_mismatch};
@@ -396,7 +396,7 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
         (
             metrics,
             energy,
-            sim.protocol().values(sim.time(), sim.swarm()),
+            sim.protocol().values(sim.time(), sim.stored_swarm()),
         )
     };
     // Records the state and returns what it measured.
@@ -407,7 +407,7 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
                 t: sim.time(),
                 metrics,
                 energy,
-                swarm: sim.swarm(),
+                swarm: &sim.swarm(),
                 extra: &extra,
             })
             .map_err(RunError::Record)
@@ -416,7 +416,8 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
     let (mut sim, initial_energy) = match start {
         None => {
             let swarm = initial_swarm::<V>(scenario);
-            Health::check(scenario, 0, &swarm).map_err(RunError::Numerical)?;
+            Health::check(scenario, 0, &swarm, &Numbering::identity())
+                .map_err(RunError::Numerical)?;
             let sim = Simulation::new(protocol, integrator, swarm, scenario.step);
             let (_, energy, _) = record(recorder, &sim)?;
             (sim, energy)
@@ -438,14 +439,15 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
     let mut last = None;
     while sim.steps() < total {
         sim.step();
-        Health::check(scenario, sim.steps(), sim.swarm()).map_err(RunError::Numerical)?;
+        Health::check(scenario, sim.steps(), sim.stored_swarm(), sim.numbering())
+            .map_err(RunError::Numerical)?;
         let steps = sim.steps();
         if steps % scenario.record_every == 0 || steps == total {
             last = Some(record(recorder, &sim)?);
         }
         let stop = steps < total && recorder.stop_requested();
         if stop || (steps < total && recorder.wants_checkpoint(steps)) {
-            let state = Start::of(steps, initial_energy, sim.swarm());
+            let state = Start::of(steps, initial_energy, &sim.swarm());
             recorder.checkpoint(&state).map_err(RunError::Record)?;
         }
         if stop {
@@ -465,8 +467,9 @@ fn drive<V: Vector, P: Protocol<V> + Diagnostics<V>, R: Recorder>(
         t: sim.time(),
         metrics,
         component_velocity_mismatch: component_velocity_mismatch(
-            &sim.swarm().velocities,
+            &sim.stored_swarm().velocities,
             &components,
+            sim.numbering(),
         ),
         initial_energy,
         final_energy,
@@ -486,7 +489,7 @@ pub(crate) fn measure<V: Vector, P: Protocol<V>>(
     sim: &Simulation<V, P>,
     params: &MetricParams,
 ) -> (FlockMetrics, f64) {
-    let swarm = sim.swarm();
+    let swarm = sim.stored_swarm();
     // the energy's chunks fill the threads the metrics leave idle; each value as computed alone
     rayon::join(
         || FlockMetrics::measure(&swarm.positions, &swarm.velocities, sim.net(), params),

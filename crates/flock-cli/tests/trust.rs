@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 use flock_cli::checkpoint::Checkpoint;
 use flock_cli::health::{Fault, Health};
 use flock_cli::{INCOMPLETE_FILE, RunError, Scenario, run_scenario};
+use flock_graph::Numbering;
 use flock_protocols::Swarm;
 use glam::DVec2;
 
@@ -155,11 +156,13 @@ fn check_incomplete(out: &Path, agents: usize) {
 #[test]
 fn the_health_check_names_the_step_the_agent_and_the_fault() {
     let scenario = Scenario::parse(LONG_2D, "long.ron").expect("valid");
+    let identity = Numbering::identity();
     let q = vec![DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(0.0, 7.0)];
     let mut p = vec![DVec2::ZERO; 3];
-    assert!(Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone())).is_ok());
+    assert!(Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone()), &identity).is_ok());
     p[2] = DVec2::new(f64::NAN, 0.0);
-    let error = Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone())).unwrap_err();
+    let error =
+        Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone()), &identity).unwrap_err();
     assert_eq!((error.steps, error.agent), (5, 2));
     assert!(matches!(
         error.fault,
@@ -178,12 +181,21 @@ fn the_health_check_names_the_step_the_agent_and_the_fault() {
     // r/h = 8.4/0.01 = 840: one step may not cross the interaction range.
     p[2] = DVec2::new(0.0, 841.0);
     p[1] = DVec2::new(f64::INFINITY, 0.0);
-    let error = Health::check(&scenario, 9, &Swarm::new(q, p)).unwrap_err();
+    let error =
+        Health::check(&scenario, 9, &Swarm::new(q.clone(), p.clone()), &identity).unwrap_err();
     assert_eq!(error.agent, 1, "the lowest agent at fault");
+    // stored in reverse order, the lowest original index at fault is still named
+    let mut reversed = Numbering::identity();
+    reversed.permute(&[2, 1, 0]);
+    let rev = |x: &[DVec2]| x.iter().rev().copied().collect::<Vec<_>>();
+    let stored = Swarm::new(rev(&q), rev(&p));
+    let error = Health::check(&scenario, 9, &stored, &reversed).unwrap_err();
+    assert_eq!(error.agent, 1, "the lowest original agent at fault");
+    assert!(matches!(error.fault, Fault::NotFinite { .. }), "{error}");
     let mut p = vec![DVec2::ZERO; 3];
     p[2] = DVec2::new(0.0, 841.0);
     let q = vec![DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(0.0, 7.0)];
-    let error = Health::check(&scenario, 9, &Swarm::new(q, p)).unwrap_err();
+    let error = Health::check(&scenario, 9, &Swarm::new(q, p), &identity).unwrap_err();
     assert!(
         matches!(error.fault, Fault::Runaway { speed, limit } if speed == 841.0 && (limit - 840.0).abs() < 1e-9),
         "{error}"

@@ -10,6 +10,8 @@
 //! - [`laplacian_apply`], [`laplacian_quadratic_form`]: L̂ = (Δ(A) − A) ⊗ I_m without matrices.
 //! - [`StressWeights`], [`Friends`]: stress weights, local stress, signed friends and centres.
 //! - [`Components`]: connected components (flocks) and the density δ₀.
+//! - [`Numbering`]: agents stored out of their original order (sorted in space), with nets and
+//!   sums that keep the original order's bits.
 //!
 //! Feature `parallel` (default): build nets and apply Laplacians on the rayon pool; results are
 //! bit-identical without it.
@@ -19,6 +21,7 @@ pub mod components;
 pub mod graph;
 pub mod laplacian;
 pub mod net;
+pub mod numbering;
 pub mod parallel;
 pub mod search;
 pub mod stress;
@@ -27,6 +30,7 @@ pub use adjacency::{binary_weights, weights_from_distances};
 pub use components::Components;
 pub use graph::{Graph, GraphError};
 pub use laplacian::{laplacian_apply, laplacian_quadratic_form};
-pub use net::{CellLayout, ProximityNet};
+pub use net::ProximityNet;
+pub use numbering::Numbering;
 pub use search::{NeighbourSearch, nearest_pair_distance};
 pub use stress::{Friends, StressWeights};

@@ -12,10 +12,16 @@
 //! (neighbour order and distance bits) does not depend on the path that built it.
 //! Agents with a NaN or infinite coordinate fail the predicate with every other agent: they have no
 //! neighbours.
+//!
+//! A net may carry a [`Numbering`] of agents stored out of their original order (a simulation
+//! that keeps them sorted in space): its lists are then storage indices in ascending *original*
+//! index, so that sums over an agent's neighbours, added in original order
+//! ([`Numbering::ordered_sum`]), have the bits of the same net in original order.
 
 use flock_math::Vector;
 
 use crate::graph::Graph;
+use crate::numbering::Numbering;
 
 /// A proximity net: the graph N_i = { j ≠ i : ‖q_j − q_i‖ < r } (strict) and the distance
 /// ‖q_j − q_i‖ of every directed edge.
@@ -32,9 +38,8 @@ use crate::graph::Graph;
 /// assert_eq!(net.distances(), &[1.0, 1.0]);
 /// ```
 ///
-/// Two nets are equal when their graphs, distances, ranges and kinds are: the
-/// [`ProximityNet::cell_layout`] is not compared.
-#[derive(Clone, Debug, Default)]
+/// Two nets are equal when their graphs, distances, ranges, kinds and numberings are.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ProximityNet {
     graph: Graph,
     /// ‖q_j − q_i‖ per directed edge, aligned with `graph.neighbour_indices()`; empty when
@@ -44,72 +49,8 @@ pub struct ProximityNet {
     range: f64,
     /// True for a net that keeps no distances ([`ProximityNet::without_distances`]).
     lean: bool,
-    /// The search's cell layout, when it laid the agents out (`laid_out`); its buffers are kept.
-    layout: CellLayout,
-    laid_out: bool,
-}
-
-/// The agents of a net in the order of the cells of the search that built it — each position in
-/// that order a *slot* — with every agent's neighbours given as slots, still in ascending agent
-/// index. Consecutive slots are near in space and share most of their neighbours, so a protocol
-/// that copies the states into slot order and visits the slots reads its neighbours' states from
-/// cache however the agents are numbered, and sums their terms in the net's order.
-///
-/// A [`NeighbourSearch`](crate::NeighbourSearch) lays a net out when the agents are numbered at
-/// random (most neighbours of 256 sampled agents at least 4,096 indices away): agents numbered
-/// along space are visited in index order with the same locality and no extra memory.
-#[derive(Clone, Debug, Default)]
-pub struct CellLayout {
-    /// The agent in each slot: every agent with a finite position, once.
-    order: Vec<u32>,
-    /// The end of each slot's list in `neighbours`.
-    ends: Vec<usize>,
-    /// The neighbours of each slot, as slots, in ascending agent index.
-    neighbours: Vec<u32>,
-}
-
-impl CellLayout {
-    /// The agent in each slot.
-    #[inline]
-    #[must_use]
-    pub fn order(&self) -> &[u32] {
-        &self.order
-    }
-
-    /// The neighbours of the agent in `slot`, as slots, in ascending agent index: the agents are
-    /// `order[t]` for each slot t, the list of [`Graph::neighbours`]`(order[slot])`.
-    #[inline]
-    #[must_use]
-    pub fn neighbours(&self, slot: usize) -> &[u32] {
-        let start = if slot == 0 { 0 } else { self.ends[slot - 1] };
-        &self.neighbours[start..self.ends[slot]]
-    }
-
-    /// Empties the layout for a rebuild, keeping its allocations.
-    pub(crate) fn clear(&mut self) {
-        self.order.clear();
-        self.ends.clear();
-        self.neighbours.clear();
-    }
-
-    /// Appends a slot-ordered run of lists: the agents `order`, the list ends `ends` (relative to
-    /// `lists`) and the lists themselves.
-    pub(crate) fn extend(&mut self, order: &[u32], ends: &[usize], lists: &[u32]) {
-        let base = self.neighbours.len();
-        self.order.extend_from_slice(order);
-        self.ends.extend(ends.iter().map(|&end| base + end));
-        self.neighbours
-            .extend_from_slice(&lists[..ends.last().copied().unwrap_or(0)]);
-    }
-}
-
-impl PartialEq for ProximityNet {
-    fn eq(&self, other: &Self) -> bool {
-        self.graph == other.graph
-            && self.distances == other.distances
-            && self.range == other.range
-            && self.lean == other.lean
-    }
+    /// How the positions it is built from are stored; kept across rebuilds.
+    numbering: Numbering,
 }
 
 impl ProximityNet {
@@ -164,26 +105,37 @@ impl ProximityNet {
         &'a self,
         positions: &'a [V],
     ) -> impl Iterator<Item = f64> + 'a {
-        let computed = self.lean.then(|| {
+        if self.lean {
             assert!(
                 positions.len() >= self.graph.len(),
                 "{} positions for a net of {} agents",
                 positions.len(),
                 self.graph.len()
             );
-            (0..self.graph.len()).flat_map(move |i| {
-                let qi = positions[i];
-                self.graph
-                    .neighbours(i)
-                    .iter()
-                    .map(move |&j| squared_distance(qi, positions[j as usize]).sqrt())
-            })
-        });
-        let stored = (!self.lean).then(|| self.distances.iter().copied());
-        computed
-            .into_iter()
-            .flatten()
-            .chain(stored.into_iter().flatten())
+        }
+        (0..self.graph.len()).flat_map(move |i| self.lengths_of(i, positions))
+    }
+
+    /// The lengths ‖q_j − q_i‖ of agent `i`'s edges, in list order: stored or recomputed, as by
+    /// [`ProximityNet::edge_lengths`].
+    ///
+    /// # Panics
+    /// When `i` is not an agent of the net, or the net has no distances and `positions` has no
+    /// agent `i` or one of its neighbours.
+    pub fn lengths_of<'a, V: Vector>(
+        &'a self,
+        i: usize,
+        positions: &'a [V],
+    ) -> impl Iterator<Item = f64> + 'a {
+        let graph = &self.graph;
+        graph.edge_range(i).map(move |e| {
+            if self.lean {
+                let j = graph.neighbour_indices()[e] as usize;
+                squared_distance(positions[i], positions[j]).sqrt()
+            } else {
+                self.distances[e]
+            }
+        })
     }
 
     /// The graph of the net.
@@ -203,12 +155,56 @@ impl ProximityNet {
         &self.distances
     }
 
-    /// The [`CellLayout`] of the search that built the net, when it laid the agents out (agents
-    /// numbered at random); `None` otherwise, and for [`ProximityNet::brute_force`].
+    /// How the agents of the positions the net is built from are stored: its lists hold storage
+    /// indices in ascending original index. The identity unless set with
+    /// [`ProximityNet::permute`].
     #[inline]
     #[must_use]
-    pub fn cell_layout(&self) -> Option<&CellLayout> {
-        self.laid_out.then_some(&self.layout)
+    pub fn numbering(&self) -> &Numbering {
+        &self.numbering
+    }
+
+    /// Moves the agents as [`Numbering::permute`]`(order)` (the agent at storage index `order[s]`
+    /// goes to s), for the positions the net will next be built from; the net is emptied until
+    /// that rebuild, keeping its allocations.
+    ///
+    /// # Panics
+    /// As [`Numbering::permute`].
+    pub fn permute(&mut self, order: &[u32]) {
+        self.numbering.permute(order);
+        self.distances.clear();
+        self.graph.clear_for_rebuild();
+    }
+
+    /// Gives the net the numbering of `other` (as [`Clone::clone_from`], reusing allocations);
+    /// the net is emptied until its next rebuild.
+    pub fn share_numbering(&mut self, other: &Self) {
+        self.numbering.clone_from(&other.numbering);
+        self.distances.clear();
+        self.graph.clear_for_rebuild();
+    }
+
+    /// Whether most neighbours of 256 agents spread evenly over the storage indices are at least
+    /// 4,096 indices away from them: the agents are not stored along space, so
+    /// that reading their neighbours' states misses the caches (a simulation then sorts them by
+    /// cell). Deterministic.
+    #[must_use]
+    pub fn is_scattered(&self) -> bool {
+        let graph = &self.graph;
+        let n = graph.len();
+        let sampled = SAMPLED.min(n);
+        let (mut near, mut far) = (0_usize, 0_usize);
+        for s in 0..sampled {
+            let i = s * n / sampled;
+            for &j in graph.neighbours(i) {
+                if (j as usize).abs_diff(i) >= SCATTERED {
+                    far += 1;
+                } else {
+                    near += 1;
+                }
+            }
+        }
+        far > near
     }
 
     /// The range r the net was built with (0 for [`ProximityNet::new`]).
@@ -256,46 +252,57 @@ impl ProximityNet {
     ) -> (&mut Vec<usize>, &mut Vec<u32>, Option<&mut Vec<f64>>) {
         self.distances.clear();
         self.graph.clear_for_rebuild();
-        let (offsets, neighbours, distances) = self.arrays_for_rebuild(n, r);
+        let (offsets, neighbours, distances, _) = self.arrays_for_rebuild(n, r);
         offsets.reserve(n);
         (offsets, neighbours, distances)
     }
 }
 
 impl ProximityNet {
-    /// The emptied [`CellLayout`] of a net just rebuilt, to be filled; the net then has it.
-    pub(crate) fn layout_for_rebuild(&mut self) -> &mut CellLayout {
-        self.laid_out = true;
-        self.layout.clear();
-        &mut self.layout
-    }
-
     /// Sets the range of a net to be rebuilt for `n` agents and hands out its arrays as they are,
     /// to be resized and entirely overwritten: the CSR arrays and, unless the net keeps none, the
-    /// distances (see `Graph::arrays_for_rebuild`).
+    /// distances (see `Graph::arrays_for_rebuild`); and its numbering, which the lists follow.
     ///
     /// # Panics
-    /// When `n` exceeds `u32::MAX`.
+    /// When `n` exceeds `u32::MAX`, or differs from the number of agents of a numbering other
+    /// than the identity.
+    #[allow(clippy::type_complexity)]
     pub(crate) fn arrays_for_rebuild(
         &mut self,
         n: usize,
         r: f64,
-    ) -> (&mut Vec<usize>, &mut Vec<u32>, Option<&mut Vec<f64>>) {
+    ) -> (
+        &mut Vec<usize>,
+        &mut Vec<u32>,
+        Option<&mut Vec<f64>>,
+        &Numbering,
+    ) {
         assert!(
             u32::try_from(n).is_ok(),
             "a proximity net holds at most {} agents, got {n}",
             u32::MAX
         );
+        assert!(
+            self.numbering.numbers(n),
+            "{n} positions for a net whose numbering has another number of agents"
+        );
         self.range = r;
-        self.laid_out = false;
         let (offsets, neighbours) = self.graph.arrays_for_rebuild();
         (
             offsets,
             neighbours,
             (!self.lean).then_some(&mut self.distances),
+            &self.numbering,
         )
     }
 }
+
+/// Index distance beyond which a neighbour counts as scattered in memory (a quarter of a megabyte
+/// of 2D positions and velocities away).
+const SCATTERED: usize = 4096;
+
+/// Agents sampled by [`ProximityNet::is_scattered`].
+const SAMPLED: usize = 256;
 
 /// r² as the predicate uses it: 0 (no edge passes) when `r` is not positive or is NaN.
 #[inline]

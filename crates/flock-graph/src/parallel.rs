@@ -63,6 +63,20 @@ pub fn map_chunks<T: Send>(
     (0..chunks).map(|c| f(range(c))).collect()
 }
 
+/// Indices per chunk of [`chunked_sum`].
+const SUM_CHUNK: usize = 4096;
+
+/// Σ over `0..len` as running sums `f(range)` over chunks of 4,096 indices (in parallel with the
+/// `parallel` feature), added in chunk order: the same bits for any thread count, and the plain
+/// running sum when there is a single chunk.
+pub fn chunked_sum(len: usize, f: impl Fn(core::ops::Range<usize>) -> f64 + Sync) -> f64 {
+    let sums = map_chunks(len, SUM_CHUNK, f);
+    match sums.split_first() {
+        Some((&first, rest)) => rest.iter().fold(first, |total, &s| total + s),
+        None => 0.0,
+    }
+}
+
 /// `out[k] = f(k)` for every `k`, on the rayon pool with the `parallel` feature.
 pub fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
     for_each_indexed_mut(out, FILL_MIN_LEN, |k, o| *o = f(k));

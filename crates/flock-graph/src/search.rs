@@ -10,19 +10,22 @@
 //! whatever the configuration.
 //!
 //! The lists are built agent by agent in cell order (so that consecutive agents scan the same
-//! memory), each as slots sorted by neighbour index, into per-block buffers; they are then
-//! gathered in agent order into the net as agent indices, each distance recomputed there with the
-//! predicate's own squared length. When the agents are numbered at random, the net also keeps the
-//! slot lists as its [`CellLayout`](crate::CellLayout), for protocols to visit agents in space. The net is canonical: equal to
-//! [`ProximityNet::brute_force`] edge for edge and bit for bit. With the `parallel` feature the
-//! blocks are filled, and the net gathered, on the rayon pool; since the blocks and gather ranges
-//! only partition the work, the net is identical with or without it, for any pool size.
+//! memory), each as slots sorted by neighbour index (original index, for a net with a
+//! [`Numbering`]), into per-block buffers; they are then gathered in agent order
+//! into the net as agent indices, each distance recomputed there with the predicate's own squared
+//! length. The net is canonical: equal to [`ProximityNet::brute_force`] edge for edge and bit for
+//! bit (for a numbering, to the brute-force net of the agents in original order, relabelled). With
+//! the `parallel` feature the blocks are filled, and the net gathered, on the rayon pool; since the
+//! blocks and gather ranges only partition the work, the net is identical with or without it, for
+//! any pool size. [`NeighbourSearch::cell_order`] gives the cell order itself, for callers that
+//! store their agents in it.
 
 use core::ops::Range;
 
 use flock_math::Vector;
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
+use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, join, map_chunks};
 
 /// log₂ of the agents per block of work (any value gives the same net): 1,024 agents, a unit of
@@ -75,7 +78,8 @@ impl NeighbourSearch {
     /// N_i = { j ≠ i : ‖q_j − q_i‖ < r }.
     ///
     /// The result is identical to [`ProximityNet::brute_force`]`(positions, r)`: same neighbour
-    /// order (ascending), bit-identical distances. A range that is not positive (or NaN) gives no
+    /// order (ascending), bit-identical distances. A net with a [`Numbering`]
+    /// keeps it, and lists each agent's neighbours in ascending original index. A range that is not positive (or NaN) gives no
     /// edges; an infinite range joins every pair of finite agents. Agents with a NaN or infinite
     /// coordinate have no neighbours (and do not panic). A net made by
     /// [`ProximityNet::without_distances`] gets the same graph and no distances.
@@ -98,7 +102,7 @@ impl NeighbourSearch {
         let n = positions.len();
         let r2 = range_squared(r);
         // Every array is resized and overwritten below: the retained part is not zeroed first.
-        let (offsets, neighbours, distances) = net.arrays_for_rebuild(n, r);
+        let (offsets, neighbours, distances, numbering) = net.arrays_for_rebuild(n, r);
         if n < 2 || r2 == 0.0 {
             offsets.clear();
             offsets.resize(n + 1, 0);
@@ -117,7 +121,8 @@ impl NeighbourSearch {
         }
         for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
             let start = b * block_len;
-            block.fill::<V>(grid, r2, start..start + (slots - start).min(block_len));
+            let slots = start..start + (slots - start).min(block_len);
+            block.fill::<V>(grid, r2, numbering, slots);
         });
         // Gather in agent order: the offsets first, then the lists and their distances (recomputed
         // with the predicate's own squared length, so bit-identical) in parallel ranges of agents.
@@ -168,14 +173,14 @@ impl NeighbourSearch {
             },
             offsets,
         );
-        if numbered_at_random(net.graph()) {
-            let layout = net.layout_for_rebuild();
-            for (b, block) in blocks.iter().enumerate() {
-                let start = b * block_len;
-                let end = (start + block_len).min(slots);
-                layout.extend(&grid.order[start..end], &block.ends, &block.neighbours);
-            }
-        }
+    }
+
+    /// The agents with a finite position, in the order of the cells of side at least `r` of a
+    /// grid over them (ascending index within a cell): agents near in that order are near in
+    /// space. The order [`NeighbourSearch::build`] visits them in; its buffer is reused.
+    pub fn cell_order<V: Vector>(&mut self, positions: &[V], r: f64) -> &[u32] {
+        self.grid.rebuild(positions, r);
+        &self.grid.order
     }
 
     /// The exact minimum distance over all pairs of finite agents, `None` when there are fewer
@@ -213,33 +218,6 @@ impl NeighbourSearch {
             threshold = (4.0 * threshold).min(upper);
         }
     }
-}
-
-/// Index distance beyond which a neighbour counts as scattered in memory (a quarter of a megabyte
-/// of 2D positions and velocities away).
-const SCATTERED: usize = 4096;
-
-/// Agents sampled by [`numbered_at_random`].
-const SAMPLED: usize = 256;
-
-/// Whether most neighbours of [`SAMPLED`] agents spread evenly over the indices are at least
-/// [`SCATTERED`] indices away: the agents are not numbered along space, and the search lays the
-/// net out ([`crate::net::CellLayout`]). Deterministic; it only chooses a path, never a result.
-fn numbered_at_random(graph: &crate::Graph) -> bool {
-    let n = graph.len();
-    let sampled = SAMPLED.min(n);
-    let (mut near, mut far) = (0_usize, 0_usize);
-    for s in 0..sampled {
-        let i = s * n / sampled;
-        for &j in graph.neighbours(i) {
-            if (j as usize).abs_diff(i) >= SCATTERED {
-                far += 1;
-            } else {
-                near += 1;
-            }
-        }
-    }
-    far > near
 }
 
 /// Agents per task of the parallel gather.
@@ -313,8 +291,15 @@ struct Block {
 }
 
 impl Block {
-    /// Refills the block with the lists (predicate `d² < r2`) of the agents in `slots`.
-    fn fill<V: Vector>(&mut self, grid: &CellGrid, r2: f64, slots: Range<usize>) {
+    /// Refills the block with the lists (predicate `d² < r2`) of the agents in `slots`, each in
+    /// ascending original index of `numbering`.
+    fn fill<V: Vector>(
+        &mut self,
+        grid: &CellGrid,
+        r2: f64,
+        numbering: &Numbering,
+        slots: Range<usize>,
+    ) {
         self.ends.clear();
         let mut end = 0;
         // consecutive slots share their cell, and so its candidate rows
@@ -337,7 +322,8 @@ impl Block {
                 self.neighbours.reserve_exact(grown - len);
                 self.neighbours.resize(grown, 0);
             }
-            // each neighbour as (agent << 32 | slot), so that a plain sort orders by agent
+            // each neighbour as (original index << 32 | slot), so that a plain sort orders by
+            // original index
             self.keyed.clear();
             for row in rows.iter() {
                 let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
@@ -348,7 +334,8 @@ impl Block {
                 {
                     let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
                     if in_range(d2, r2) && t != slot {
-                        self.keyed.push(u64::from(j) << 32 | t as u64);
+                        let k = numbering.original(j as usize) as u64;
+                        self.keyed.push(k << 32 | t as u64);
                     }
                 }
             }
@@ -825,57 +812,63 @@ mod tests {
         assert_eq!(Bounds::of(&[DVec2::ONE, DVec2::ONE]).mean_spacing(), 0.0);
     }
 
-    /// The blocks only partition the work: any block length, and any rayon pool size, gives the
-    /// same net, so the net does not depend on the `parallel` feature.
-    /// 20,000 agents uniform in a square, with about 6 neighbours each, and the index of one
-    /// with a NaN coordinate (in no cell).
-    fn scattered_agents(sorted: bool) -> Vec<DVec2> {
+    /// A net built from agents stored out of order, with their numbering, is the net of the
+    /// agents in original order relabelled: each list names the same agents in the same order,
+    /// with the same distance bits (recomputed ones too, without stored distances). Sorting the
+    /// agents by cell makes the net of agents numbered at random no longer scattered.
+    #[test]
+    fn numbered_nets_are_the_original_nets_relabelled() {
         use rand::{RngExt, SeedableRng};
 
         let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
         let mut q: Vec<DVec2> = (0..20_000)
             .map(|_| DVec2::new(rng.random::<f64>() * 860.0, rng.random::<f64>() * 860.0))
             .collect();
-        if sorted {
-            q.sort_by(|a, b| (a.y.floor(), a.x).partial_cmp(&(b.y.floor(), b.x)).unwrap());
-        }
-        q
-    }
-
-    /// Agents numbered at random get a cell layout holding every finite agent once, whose slot
-    /// lists name the net's lists in the same order; agents numbered along space get none.
-    #[test]
-    fn nets_of_agents_numbered_at_random_are_laid_out() {
-        for (sorted, with_nan) in [(false, false), (false, true), (true, false)] {
-            let mut q = scattered_agents(sorted);
-            if with_nan {
-                q[123] = DVec2::NAN;
-            }
-            let mut net = ProximityNet::without_distances();
-            NeighbourSearch::new().build(&q, 8.4, &mut net);
-            assert!(net.graph().directed_edge_count() > 4 * q.len());
-            let Some(layout) = net.cell_layout() else {
-                assert!(sorted, "no layout for agents numbered at random");
-                continue;
-            };
-            assert!(!sorted, "a layout for agents numbered along space");
-            let mut agents: Vec<u32> = layout.order().to_vec();
-            agents.sort_unstable();
-            let finite: Vec<u32> = (0..q.len() as u32)
-                .filter(|&i| q[i as usize].is_finite())
+        q[123] = DVec2::NAN;
+        let mut search = NeighbourSearch::new();
+        let mut original = ProximityNet::new();
+        search.build(&q, 8.4, &mut original);
+        assert!(original.graph().directed_edge_count() > 4 * q.len());
+        assert!(original.is_scattered());
+        // the finite agents by cell, then the NaN one
+        let mut order = search.cell_order(&q, 8.4).to_vec();
+        assert_eq!(order.len(), q.len() - 1);
+        order.push(123);
+        let stored: Vec<DVec2> = order.iter().map(|&k| q[k as usize]).collect();
+        let mut net = ProximityNet::new();
+        net.permute(&order);
+        search.build(&stored, 8.4, &mut net);
+        assert!(!net.is_scattered());
+        let numbering = net.numbering();
+        for (s, &k) in order.iter().enumerate() {
+            let k = k as usize;
+            assert_eq!(numbering.original(s), k);
+            let named: Vec<u32> = net
+                .graph()
+                .neighbours(s)
+                .iter()
+                .map(|&t| numbering.original(t as usize) as u32)
                 .collect();
-            assert_eq!(agents, finite);
-            for (s, &i) in layout.order().iter().enumerate() {
-                let named: Vec<u32> = layout
-                    .neighbours(s)
-                    .iter()
-                    .map(|&t| layout.order()[t as usize])
-                    .collect();
-                assert_eq!(named, net.graph().neighbours(i as usize), "agent {i}");
-            }
+            assert_eq!(named, original.graph().neighbours(k), "agent {k}");
+            let bits = |net: &ProximityNet, i: usize| -> Vec<u64> {
+                net.graph()
+                    .edge_range(i)
+                    .map(|e| net.distances()[e].to_bits())
+                    .collect()
+            };
+            assert_eq!(bits(&net, s), bits(&original, k), "agent {k}");
         }
+        let mut lean = ProximityNet::without_distances();
+        lean.share_numbering(&net);
+        search.build(&stored, 8.4, &mut lean);
+        assert_eq!(lean.graph(), net.graph());
+        let lengths: Vec<u64> = lean.edge_lengths(&stored).map(f64::to_bits).collect();
+        let distances: Vec<u64> = net.distances().iter().map(|d| d.to_bits()).collect();
+        assert_eq!(lengths, distances);
     }
 
+    /// The blocks only partition the work: any block length, and any rayon pool size, gives the
+    /// same net, so the net does not depend on the `parallel` feature.
     #[test]
     fn net_is_independent_of_blocks_and_threads() {
         use rand::{RngExt, SeedableRng};

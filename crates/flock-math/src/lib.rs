@@ -25,4 +25,4 @@ pub use quadrature::{CumulativeIntegral, GaussLegendre};
 pub use sigma::{SigmaNorm, sigma1, sigma1_vec};
 pub use sigmoid::UnevenSigmoid;
 pub use tanner::TannerPotential;
-pub use vector::{Vector, mean};
+pub use vector::{Vector, mean, mean_of};

@@ -135,10 +135,18 @@ impl_vector!(DVec3, 3);
 /// The arithmetic mean of vectors, summed in index order (deterministic); zero for none.
 #[must_use]
 pub fn mean<V: Vector>(vectors: &[V]) -> V {
-    if vectors.is_empty() {
+    mean_of(vectors.iter().copied())
+}
+
+/// The arithmetic mean of the vectors of an iterator, summed in its order; zero for none.
+/// [`mean`] of a slice is `mean_of` its elements.
+#[must_use]
+pub fn mean_of<V: Vector>(vectors: impl ExactSizeIterator<Item = V>) -> V {
+    let n = vectors.len();
+    if n == 0 {
         return V::ZERO;
     }
-    vectors.iter().fold(V::ZERO, |acc, &v| acc + v) / vectors.len() as f64
+    vectors.fold(V::ZERO, |acc, v| acc + v) / n as f64
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! The flocking metrics of TAC 2006, Section VIII.
 
-use flock_graph::parallel::join;
-use flock_graph::{Components, ProximityNet, nearest_pair_distance};
-use flock_math::{Vector, mean};
+use flock_graph::parallel::{join, map_chunks};
+use flock_graph::{Components, Numbering, ProximityNet, nearest_pair_distance};
+use flock_math::{Vector, mean_of};
 
 /// What the metrics compare against.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -13,6 +13,9 @@ pub struct MetricParams {
     /// pair is an edge of the net.
     pub collision_distance: f64,
 }
+
+/// Agents per parallel chunk of the shortest edge and the close pairs.
+const EDGE_CHUNK: usize = 4096;
 
 /// One evaluation of every metric.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,17 +42,20 @@ impl FlockMetrics {
     /// Every metric of the state (q, p) with its net.
     ///
     /// `net` is the net of `q`, with or without stored distances
-    /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way. With
-    /// the `parallel` feature the components (union-find) are found while another thread measures
-    /// the edges, the cohesion radius and the velocity mismatch; each is computed as without it.
+    /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way. The
+    /// states may be stored in any order with the net's [`Numbering`]: every sum runs in original
+    /// order, so the metrics have the bits of the agents in original order. With the `parallel`
+    /// feature the components (union-find) are found while another thread measures the edges,
+    /// the cohesion radius and the velocity mismatch; each is computed as without it.
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
         let components = || Components::of(net.graph());
+        let numbering = net.numbering();
         let rest = || {
             (
                 EdgeMetrics::of(q, net, params),
-                cohesion_radius(q),
-                velocity_mismatch(p),
+                radius_about(q, mean_of(numbering.ordered(q))),
+                mismatch(numbering.ordered(p)),
             )
         };
         let (components, (edges, cohesion_radius, velocity_mismatch)) = join(components, rest);
@@ -76,21 +82,32 @@ struct EdgeMetrics {
 }
 
 impl EdgeMetrics {
+    /// One pass over the edges in storage order for the squared errors of each agent, added in
+    /// original order ([`Numbering::ordered_sum`]), and one, in chunks, for the shortest edge and
+    /// the close pairs (which do not depend on the order).
     fn of<V: Vector>(q: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
         debug_assert!(
             params.collision_distance <= net.range(),
             "collision distance beyond the net's range"
         );
-        let d = params.d;
-        let (mut shortest, mut close) = (f64::INFINITY, 0);
-        let sum: f64 = net
-            .edge_lengths(q)
-            .inspect(|&l| {
-                shortest = shortest.min(l);
-                close += usize::from(l < params.collision_distance);
-            })
-            .map(|l| (l - d) * (l - d))
-            .sum();
+        let (d, n) = (params.d, net.graph().len());
+        let sum = net.numbering().ordered_sum(n, |i| {
+            net.lengths_of(i, q)
+                .fold(0.0, |sum, l| sum + (l - d) * (l - d))
+        });
+        let (shortest, close) = map_chunks(n, EDGE_CHUNK, |agents| {
+            agents.flat_map(|i| net.lengths_of(i, q)).fold(
+                (f64::INFINITY, 0),
+                |(shortest, close), l| {
+                    let colliding = usize::from(l < params.collision_distance);
+                    (shortest.min(l), close + colliding)
+                },
+            )
+        })
+        .into_iter()
+        .fold((f64::INFINITY, 0), |(s, c), (chunk_s, chunk_c)| {
+            (s.min(chunk_s), c + chunk_c)
+        });
         let edges = net.graph().directed_edge_count();
         Self {
             deviation_energy: sum / (edges as f64 + 1.0) / (d * d),
@@ -123,7 +140,11 @@ pub fn relative_connectivity(components: &Components) -> f64 {
 /// R(t) = max_i ‖q_i − q_c‖ (TAC 2006 eq. 81).
 #[must_use]
 pub fn cohesion_radius<V: Vector>(q: &[V]) -> f64 {
-    let centre = mean(q);
+    radius_about(q, mean_of(q.iter().copied()))
+}
+
+/// max_i ‖q_i − centre‖ (0 for no agent).
+fn radius_about<V: Vector>(q: &[V], centre: V) -> f64 {
     q.iter()
         .map(|&qi| (qi - centre).length())
         .fold(0.0, f64::max)
@@ -150,35 +171,47 @@ pub fn deviation_energy<V: Vector>(q: &[V], net: &ProximityNet, d: f64) -> f64 {
 /// K̃ = K / n with K = ½ Σ ‖p_i − p_c‖² (TAC 2006 eq. 83); 0 for no agent.
 #[must_use]
 pub fn velocity_mismatch<V: Vector>(p: &[V]) -> f64 {
-    if p.is_empty() {
+    mismatch(p.iter().copied())
+}
+
+/// K̃ of the velocities, summed in the iterator's order.
+fn mismatch<V: Vector>(p: impl ExactSizeIterator<Item = V> + Clone) -> f64 {
+    let n = p.len();
+    if n == 0 {
         return 0.0;
     }
-    let p_c = mean(p);
-    0.5 * p.iter().map(|&pi| (pi - p_c).length_squared()).sum::<f64>() / p.len() as f64
+    let p_c = mean_of(p.clone());
+    0.5 * p.map(|pi| (pi - p_c).length_squared()).sum::<f64>() / n as f64
 }
 
 /// The velocity mismatch with each agent compared to the mean velocity of its own component:
 /// (1/n) Σ_k ½ Σ_{i∈F_k} ‖p_i − p_c^k‖². It vanishes when every flock moves rigidly (translation),
 /// the outcome of regular fragmentation under Algorithm 1 (TAC 2006 Fig. 12).
+///
+/// `components` are those of the net of the agents, stored as `numbering` says (the net's
+/// [`ProximityNet::numbering`]); the sums run in original order.
 #[must_use]
-pub fn component_velocity_mismatch<V: Vector>(p: &[V], components: &Components) -> f64 {
+pub fn component_velocity_mismatch<V: Vector>(
+    p: &[V],
+    components: &Components,
+    numbering: &Numbering,
+) -> f64 {
     if p.is_empty() {
         return 0.0;
     }
+    let labels = components.labels();
     let mut sums = vec![V::ZERO; components.count()];
-    for (&label, &pi) in components.labels().iter().zip(p) {
-        sums[label as usize] += pi;
+    for i in numbering.stored_of(0..p.len()) {
+        sums[labels[i] as usize] += p[i];
     }
     let means: Vec<V> = sums
         .iter()
         .zip(components.sizes())
         .map(|(&s, &size)| s / size as f64)
         .collect();
-    let k: f64 = components
-        .labels()
-        .iter()
-        .zip(p)
-        .map(|(&label, &pi)| (pi - means[label as usize]).length_squared())
+    let k: f64 = numbering
+        .stored_of(0..p.len())
+        .map(|i| (p[i] - means[labels[i] as usize]).length_squared())
         .sum();
     0.5 * k / p.len() as f64
 }
@@ -306,7 +339,10 @@ mod tests {
         let graph = Graph::from_edges(4, &[(0, 1), (2, 3)]).expect("valid edges");
         let components = Components::of(&graph);
         let p = [DVec2::X, DVec2::X, DVec2::Y, DVec2::Y];
-        assert_eq!(component_velocity_mismatch(&p, &components), 0.0);
+        assert_eq!(
+            component_velocity_mismatch(&p, &components, &Numbering::identity()),
+            0.0
+        );
         assert!(velocity_mismatch(&p) > 0.1);
     }
 
@@ -362,6 +398,62 @@ mod tests {
         assert_eq!(a.collisions, collisions(&q, &full, 2.0));
         assert_eq!(a.min_distance.to_bits(), min_distance(&q, &full).to_bits());
         assert_eq!(a.min_distance.to_bits(), min_distance(&q, &lean).to_bits());
+    }
+
+    /// The agents stored in another order, with the net's numbering, give every metric the bits
+    /// of the agents in original order.
+    #[test]
+    fn measure_follows_the_numbering() {
+        let q: Vec<DVec3> = (0..500)
+            .map(|k| {
+                let t = f64::from(k);
+                DVec3::new((t * 1.7).sin() * 20.0, (t * 0.37).cos() * 20.0, 0.3 * t)
+            })
+            .collect();
+        let p: Vec<DVec3> = q
+            .iter()
+            .map(|&x| DVec3::new(x.y, -x.x, 0.3) * 0.01)
+            .collect();
+        let params = MetricParams {
+            d: 7.0,
+            collision_distance: 2.0,
+        };
+        let mut search = flock_graph::NeighbourSearch::new();
+        let mut net = ProximityNet::new();
+        search.build(&q, 8.4, &mut net);
+        let order = search.cell_order(&q, 8.4).to_vec();
+        assert!(order.iter().enumerate().any(|(s, &k)| k as usize != s));
+        let stored = |x: &[DVec3]| -> Vec<DVec3> { order.iter().map(|&k| x[k as usize]).collect() };
+        let (q_s, p_s) = (stored(&q), stored(&p));
+        let mut numbered = ProximityNet::without_distances();
+        numbered.permute(&order);
+        search.build(&q_s, 8.4, &mut numbered);
+        let bits = |m: FlockMetrics| {
+            [
+                m.connectivity,
+                m.giant_component,
+                m.cohesion_radius,
+                m.deviation_energy,
+                m.velocity_mismatch,
+                m.min_distance,
+            ]
+            .map(f64::to_bits)
+        };
+        let (original, renumbered) = (
+            FlockMetrics::measure(&q, &p, &net, &params),
+            FlockMetrics::measure(&q_s, &p_s, &numbered, &params),
+        );
+        assert_eq!(bits(original), bits(renumbered));
+        assert_eq!(original.components, renumbered.components);
+        assert_eq!(original.collisions, renumbered.collisions);
+        assert!(
+            original.components > 1 && original.collisions > 0,
+            "{original:?}"
+        );
+        let mismatch = |p: &[DVec3], net: &ProximityNet| {
+            component_velocity_mismatch(p, &Components::of(net.graph()), net.numbering()).to_bits()
+        };
+        assert_eq!(mismatch(&p, &net), mismatch(&p_s, &numbered));
     }
 
     #[test]

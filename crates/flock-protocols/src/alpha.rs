@@ -1,17 +1,12 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
-use flock_graph::parallel::map_chunks;
-use flock_graph::{CellLayout, ProximityNet};
+use flock_graph::ProximityNet;
+use flock_graph::parallel::fill_indexed;
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
-
-use crate::protocol::chunked_sum;
 
 /// Bounds on the agents per chunk of [`AlphaInteraction::inputs`] (any size gives the same inputs;
 /// large chunks have fewer pairs computed twice across their first boundary).
 const SWEEP_CHUNK: (usize, usize) = (1024, 1 << 17);
-
-/// Slots per parallel chunk when [`AlphaInteraction::inputs`] follows a cell layout.
-const SLOT_CHUNK: usize = 4096;
 
 /// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
 /// [`SWEEP_CHUNK`].
@@ -156,13 +151,14 @@ impl AlphaInteraction {
     /// needs neighbours close in index (agents indexed roughly in space); with random indices,
     /// most pairs are computed twice, as by [`AlphaInteraction::input`].
     ///
-    /// A net laid out in cells ([`ProximityNet::cell_layout`], agents numbered at random) is
-    /// visited slot by slot instead, from copies of q and p in slot order: each agent's terms are
-    /// computed as by [`AlphaInteraction::input`] (every pair twice, as the sweep would with random
-    /// numbering) from neighbours near in memory. The inputs are the same bits either way.
+    /// For a net with a [`Numbering`](flock_graph::Numbering) other than the identity (agents
+    /// stored in space order by a [`Simulation`](crate::Simulation)), the lists are in ascending
+    /// original index, not storage index, and each agent's terms are computed as by
+    /// [`AlphaInteraction::input`] (every pair twice, as the sweep would with random numbering),
+    /// in parallel over the agents, from neighbours near in memory.
     ///
     /// `net` must be the net of `q` (any symmetric graph works); `q`, `p` and `out` have one
-    /// entry per agent.
+    /// entry per agent, in the net's storage order.
     pub fn inputs<V: Vector>(
         &self,
         q: &[V],
@@ -171,10 +167,8 @@ impl AlphaInteraction {
         out: &mut [V],
         finish: impl Fn(usize, V) -> V + Sync,
     ) {
-        if let Some(layout) = net.cell_layout()
-            && layout.order().len() == out.len()
-        {
-            self.inputs_by_slot(q, p, layout, out, &finish);
+        if !net.numbering().is_identity() {
+            fill_indexed(out, |i| finish(i, self.input(i, q, p, net)));
             return;
         }
         let chunk = sweep_chunk(out.len());
@@ -189,41 +183,6 @@ impl AlphaInteraction {
         #[cfg(not(feature = "parallel"))]
         for (c, out) in out.chunks_mut(chunk).enumerate() {
             sweep(c, out);
-        }
-    }
-
-    /// [`AlphaInteraction::inputs`] over the slots of a cell layout holding every agent: q and p
-    /// copied into slot order, the slots computed in parallel chunks, each value then written to
-    /// its agent.
-    fn inputs_by_slot<V: Vector>(
-        &self,
-        q: &[V],
-        p: &[V],
-        layout: &CellLayout,
-        out: &mut [V],
-        finish: &(impl Fn(usize, V) -> V + Sync),
-    ) {
-        let order = layout.order();
-        let by_slot = |x: &[V]| -> Vec<V> { order.iter().map(|&i| x[i as usize]).collect() };
-        let (q_slot, p_slot) = (by_slot(q), by_slot(p));
-        let slot_input = |s: usize| {
-            let (qs, ps) = (q_slot[s], p_slot[s]);
-            let mut gradient = V::ZERO;
-            let mut consensus = V::ZERO;
-            for &t in layout.neighbours(s) {
-                let t = t as usize;
-                let (g, c) = self.pair(qs, ps, q_slot[t], p_slot[t]);
-                gradient += g;
-                consensus += c;
-            }
-            let i = order[s] as usize;
-            finish(i, gradient * self.c1 + consensus * self.c2)
-        };
-        let values = map_chunks(order.len(), SLOT_CHUNK, |slots| {
-            slots.map(slot_input).collect::<Vec<V>>()
-        });
-        for (&i, u) in order.iter().zip(values.into_iter().flatten()) {
-            out[i as usize] = u;
         }
     }
 
@@ -277,20 +236,22 @@ impl AlphaInteraction {
     /// The collective potential V(q) = ½ Σ_i Σ_{j≠i} ψ_α(‖q_j − q_i‖_σ) (TAC 2006 eq. 20), shifted by
     /// the constant of a fully dispersed group so that it is O(|E|): pairs out of range contribute
     /// ψ_α(r_α) each, and we sum ψ_α(z) − ψ_α(r_α) over the net's edges only. Gradients and Ḣ are
-    /// unchanged; V = 0 when no two agents interact.
+    /// unchanged; V = 0 when no two agents interact. Each pair is taken once, by the agent of lower
+    /// original index, whose pairs are summed in list order; the agents' sums are added in original
+    /// order ([`Numbering::ordered_sum`](flock_graph::Numbering::ordered_sum)), so the bits do not
+    /// depend on how the agents are stored.
     #[must_use]
     pub fn potential<V: Vector>(&self, q: &[V], net: &ProximityNet) -> f64 {
         let far = self.action.potential(self.action.range());
-        let graph = net.graph();
-        chunked_sum(graph.len(), |agents| {
+        let (graph, numbering) = (net.graph(), net.numbering());
+        numbering.ordered_sum(graph.len(), |i| {
+            let k = numbering.original(i);
             let mut total = 0.0;
-            for i in agents {
-                for &j in graph.neighbours(i) {
-                    let j = j as usize;
-                    if j > i {
-                        let z = self.sigma.norm(q[j] - q[i]);
-                        total += self.action.potential(z) - far;
-                    }
+            for &j in graph.neighbours(i) {
+                let j = j as usize;
+                if numbering.original(j) > k {
+                    let z = self.sigma.norm(q[j] - q[i]);
+                    total += self.action.potential(z) - far;
                 }
             }
             total
@@ -326,22 +287,38 @@ mod tests {
         (q, p)
     }
 
-    /// Both paths of `inputs` (slot by slot through the cell layout of agents numbered at random,
-    /// the sweep for agents numbered along space) give the bits of `input`, with `finish` applied
-    /// to the right agent, on one thread and on three.
+    /// The inputs of agents stored along space (rows), at random, and at random but stored by
+    /// cell with their numbering (the direct path) are the bits of `input` on the agents in
+    /// original order, with `finish` applied to the right agent, on one thread and on three; the
+    /// potential too.
     #[test]
-    fn both_paths_of_inputs_are_bit_identical_to_input() {
+    fn every_path_of_inputs_is_bit_identical_to_input() {
         let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0);
+        let r = alpha.params().r;
+        let finish = |k: usize, u: DVec2| u * 3.0 + DVec2::new(k as f64, 0.5);
+        let bits = |u: DVec2| u.to_array().map(f64::to_bits);
         for sorted in [false, true] {
             let (q, p) = swarm(sorted);
+            let mut search = NeighbourSearch::new();
             let mut net = ProximityNet::without_distances();
-            NeighbourSearch::new().build(&q, alpha.params().r, &mut net);
-            assert_eq!(net.cell_layout().is_some(), !sorted);
-            let finish = |i: usize, u: DVec2| u * 3.0 + DVec2::new(i as f64, 0.5);
-            let bits = |u: DVec2| u.to_array().map(f64::to_bits);
+            search.build(&q, r, &mut net);
+            assert_eq!(net.is_scattered(), !sorted);
             let expected: Vec<[u64; 2]> = (0..q.len())
-                .map(|i| bits(finish(i, alpha.input(i, &q, &p, &net))))
+                .map(|k| bits(finish(k, alpha.input(k, &q, &p, &net))))
                 .collect();
+            // the same agents stored by cell
+            let order = search.cell_order(&q, r).to_vec();
+            let stored =
+                |x: &[DVec2]| -> Vec<DVec2> { order.iter().map(|&k| x[k as usize]).collect() };
+            let (q_s, p_s) = (stored(&q), stored(&p));
+            let mut numbered = ProximityNet::without_distances();
+            numbered.permute(&order);
+            search.build(&q_s, r, &mut numbered);
+            assert!(!numbered.is_scattered());
+            assert_eq!(
+                alpha.potential(&q_s, &numbered).to_bits(),
+                alpha.potential(&q, &net).to_bits()
+            );
             for threads in [1, 3] {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
@@ -351,7 +328,21 @@ mod tests {
                 pool.install(|| alpha.inputs(&q, &p, &net, &mut out, finish));
                 let got: Vec<[u64; 2]> = out.iter().map(|&u| bits(u)).collect();
                 assert!(got == expected, "sorted {sorted}, {threads} threads");
+                let renumbered = |s: usize, u| finish(order[s] as usize, u);
+                pool.install(|| alpha.inputs(&q_s, &p_s, &numbered, &mut out, renumbered));
+                let got: Vec<[u64; 2]> =
+                    stored_back(&order, &out).iter().map(|&u| bits(u)).collect();
+                assert!(got == expected, "stored by cell, {threads} threads");
             }
         }
+    }
+
+    /// `x` (in storage order `order`) in original order.
+    fn stored_back(order: &[u32], x: &[DVec2]) -> Vec<DVec2> {
+        let mut back = vec![DVec2::NAN; x.len()];
+        for (&k, &v) in order.iter().zip(x) {
+            back[k as usize] = v;
+        }
+        back
     }
 }

@@ -1,10 +1,9 @@
 //! The α-β interaction of TAC 2006 Algorithm 3: repulsion from β-agents on obstacles and damping
 //! towards their velocities (eq. 67, u_i^β).
 
+use flock_graph::Numbering;
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm};
 use flock_obstacles::{BetaAgent, ObstacleField, Space};
-
-use crate::protocol::chunked_sum;
 
 /// Parameters of the β-interaction, with the papers' values relative to the lattice distance d:
 /// d′ = 0.6 d, r′ = 1.2 d′, h = 0.9 (TAC 2006, Section VIII).
@@ -101,19 +100,18 @@ impl<V: Space> BetaInteraction<V> {
         gradient * self.c1 + damping * self.c2
     }
 
-    /// c₁^β V_β(q) with V_β = Σ_i Σ_{k∈N_i^β} ψ_β(‖q̂_ik − q_i‖_σ) (TAC 2006 eq. 70), summed over
-    /// chunks of agents (in parallel with the `parallel` feature; the same bits for any thread
-    /// count).
+    /// c₁^β V_β(q) with V_β = Σ_i Σ_{k∈N_i^β} ψ_β(‖q̂_ik − q_i‖_σ) (TAC 2006 eq. 70), the agents' sums
+    /// added in ascending original index of `numbering` ([`Numbering::ordered_sum`]: in parallel
+    /// with the `parallel` feature; the same bits for any thread count and any storage order).
     #[must_use]
-    pub fn potential(&self, q: &[V]) -> f64 {
-        let total = chunked_sum(q.len(), |agents| {
+    pub fn potential(&self, q: &[V], numbering: &Numbering) -> f64 {
+        let total = numbering.ordered_sum(q.len(), |i| {
+            let qi = q[i];
             let mut total = 0.0;
-            for &qi in &q[agents] {
-                self.field
-                    .for_each_beta_agent(qi, V::ZERO, self.params.r, |_, beta| {
-                        total += self.action.potential(self.sigma.norm(beta.position - qi));
-                    });
-            }
+            self.field
+                .for_each_beta_agent(qi, V::ZERO, self.params.r, |_, beta| {
+                    total += self.action.potential(self.sigma.norm(beta.position - qi));
+                });
             total
         });
         self.c1 * total

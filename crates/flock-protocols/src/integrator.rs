@@ -1,7 +1,10 @@
 //! Fixed-step time integration of the closed loop q̇ = p, ṗ = u(t, q, p), with the net rebuilt at
 //! every evaluation of u.
 
-use flock_graph::{NeighbourSearch, ProximityNet};
+use std::borrow::Cow;
+
+use flock_graph::parallel::fill_indexed;
+use flock_graph::{NeighbourSearch, Numbering, ProximityNet};
 use flock_math::Vector;
 
 use crate::{Protocol, Swarm};
@@ -17,10 +20,20 @@ pub enum Integrator {
     Rk4,
 }
 
+/// Steps between two re-sorts of agents stored in space order.
+const RESORT_EVERY: u64 = 16;
+
 /// A protocol integrated in time from an initial swarm with a fixed step.
 ///
 /// The proximity net of the current state is kept up to date, so metrics and energies can be read
 /// between steps without another neighbour search.
+///
+/// When the agents are numbered at random (their net [`ProximityNet::is_scattered`]) and the
+/// protocol [`Protocol::follows_numbering`], the simulation stores them in the order of the
+/// search's cells, so that neighbours are near in memory, and re-sorts them every 16 steps; the
+/// net carries the [`Numbering`]. Every state, energy and metric keeps the bits of the agents in
+/// original order: [`Simulation::swarm`] gives the state in original order, while
+/// [`Simulation::stored_swarm`] and [`Simulation::net`] are in storage order.
 #[derive(Debug)]
 pub struct Simulation<V, P> {
     protocol: P,
@@ -57,26 +70,25 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     #[must_use]
     pub fn new(protocol: P, integrator: Integrator, swarm: Swarm<V>, step: f64) -> Self {
         let n = swarm.len();
-        let mut search = NeighbourSearch::new();
-        let mut net = empty_net(&protocol);
-        search.build(&swarm.positions, protocol.interaction_range(), &mut net);
         let rk = (integrator == Integrator::Rk4).then(|| RungeKuttaScratch {
             stage: swarm.clone(),
             net: empty_net(&protocol),
             sum_q: vec![V::ZERO; n],
             sum_p: vec![V::ZERO; n],
         });
-        Self {
+        let mut simulation = Self {
+            net: empty_net(&protocol),
             protocol,
             integrator,
             step,
             steps: 0,
             swarm,
-            search,
-            net,
+            search: NeighbourSearch::new(),
             inputs: vec![V::ZERO; n],
             rk,
-        }
+        };
+        simulation.rebuild_net();
+        simulation
     }
 
     /// A simulation resumed after `steps` steps, at t = steps · h, from the state `swarm` those
@@ -102,14 +114,37 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         &self.protocol
     }
 
-    /// The current state.
+    /// The current state, agents in original order: borrowed when they are stored so, otherwise
+    /// a copy in that order (see [`Simulation::stored_swarm`]).
     #[must_use]
-    pub const fn swarm(&self) -> &Swarm<V> {
+    pub fn swarm(&self) -> Cow<'_, Swarm<V>> {
+        let numbering = self.net.numbering();
+        if numbering.is_identity() {
+            return Cow::Borrowed(&self.swarm);
+        }
+        let ordered = |x: &[V]| numbering.ordered(x).collect();
+        Cow::Owned(Swarm {
+            positions: ordered(&self.swarm.positions),
+            velocities: ordered(&self.swarm.velocities),
+        })
+    }
+
+    /// The current state as stored: agent [`Numbering::original`]`(s)` at index s.
+    #[must_use]
+    pub const fn stored_swarm(&self) -> &Swarm<V> {
         &self.swarm
     }
 
-    /// The proximity net of the current state; it keeps no distances when the protocol does not
-    /// use them ([`Protocol::uses_net_distances`]), see [`ProximityNet::edge_lengths`].
+    /// How the agents are stored (the identity unless they were numbered at random; see
+    /// [`Simulation`]).
+    #[must_use]
+    pub fn numbering(&self) -> &Numbering {
+        self.net.numbering()
+    }
+
+    /// The proximity net of the current state, in storage order with the [`Numbering`]; it keeps
+    /// no distances when the protocol does not use them ([`Protocol::uses_net_distances`]), see
+    /// [`ProximityNet::edge_lengths`].
     #[must_use]
     pub const fn net(&self) -> &ProximityNet {
         &self.net
@@ -140,11 +175,51 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             Integrator::Rk4 => self.runge_kutta(),
         }
         self.steps += 1;
-        self.search.build(
-            &self.swarm.positions,
-            self.protocol.interaction_range(),
-            &mut self.net,
-        );
+        self.rebuild_net();
+    }
+
+    /// Builds the net of the current state; agents stored in space order are re-sorted every
+    /// [`RESORT_EVERY`] steps first, and agents found scattered in memory are sorted, when the
+    /// protocol follows the numbering.
+    fn rebuild_net(&mut self) {
+        let r = self.protocol.interaction_range();
+        let sorts = self.protocol.follows_numbering();
+        if sorts && !self.net.numbering().is_identity() && self.steps % RESORT_EVERY == 0 {
+            self.sort_by_cell();
+        }
+        self.search.build(&self.swarm.positions, r, &mut self.net);
+        if sorts && self.net.is_scattered() {
+            self.sort_by_cell();
+            self.search.build(&self.swarm.positions, r, &mut self.net);
+        }
+    }
+
+    /// Stores the agents in the order of the search's cells (agents with a non-finite position
+    /// last, in their storage order) and renumbers the nets, which must then be rebuilt.
+    fn sort_by_cell(&mut self) {
+        let q = &self.swarm.positions;
+        let cells = self.search.cell_order(q, self.protocol.interaction_range());
+        let completed: Vec<u32>;
+        let order = if cells.len() == q.len() {
+            cells
+        } else {
+            let lost = (0..q.len()).filter(|&i| !q[i].is_finite());
+            completed = cells
+                .iter()
+                .copied()
+                .chain(lost.map(|i| i as u32))
+                .collect();
+            &completed
+        };
+        // the inputs are free between steps: each array is gathered there and swapped in
+        for x in [&mut self.swarm.positions, &mut self.swarm.velocities] {
+            fill_indexed(&mut self.inputs, |s| x[order[s] as usize]);
+            core::mem::swap(x, &mut self.inputs);
+        }
+        self.net.permute(order);
+        if let Some(rk) = self.rk.as_mut() {
+            rk.net.share_numbering(&self.net);
+        }
     }
 
     fn symplectic_euler(&mut self) {

@@ -1,8 +1,8 @@
 //! Algorithms 1, 2 and 3 of Olfati-Saber, *Flocking for multi-agent dynamic systems: algorithms and
 //! theory*, IEEE TAC 51(3), 2006.
 
-use flock_graph::ProximityNet;
-use flock_math::{Vector, mean};
+use flock_graph::{Numbering, ProximityNet};
+use flock_math::{Vector, mean_of};
 use flock_obstacles::Space;
 
 use crate::{AlphaInteraction, BetaInteraction, NavigationalFeedback, Protocol, Swarm};
@@ -22,6 +22,10 @@ impl<V: Vector> Protocol<V> for Algorithm1 {
         false
     }
 
+    fn follows_numbering(&self) -> bool {
+        true
+    }
+
     fn interaction_range(&self) -> f64 {
         self.alpha.params().r
     }
@@ -33,9 +37,10 @@ impl<V: Vector> Protocol<V> for Algorithm1 {
 
     /// H = c₁^α V(q) + ½ Σ ‖p_i − p_c‖² (Theorem 1, moving frame).
     fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
-        let p_c = mean(&swarm.velocities);
+        let numbering = net.numbering();
+        let p_c = mean_of(numbering.ordered(&swarm.velocities));
         self.alpha.c1() * self.alpha.potential(&swarm.positions, net)
-            + kinetic(&swarm.velocities, p_c)
+            + kinetic(&swarm.velocities, numbering, p_c)
     }
 }
 
@@ -56,13 +61,12 @@ impl<V: Vector> Algorithm2<V> {
         self.alpha.input(i, q, p, net) + self.navigation.input(q[i], p[i], reference)
     }
 
-    /// c₁^α V(q) + Σ_i V_γ(q_i): the potential part of the Hamiltonian.
+    /// c₁^α V(q) + Σ_i V_γ(q_i): the potential part of the Hamiltonian, summed in original order.
     fn potential(&self, q_r: V, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
-        let tether: f64 = swarm
-            .positions
-            .iter()
-            .map(|&q| self.navigation.potential(q, q_r))
-            .sum();
+        let q = &swarm.positions;
+        let tether = net
+            .numbering()
+            .ordered_sum(q.len(), |i| self.navigation.potential(q[i], q_r));
         self.alpha.c1() * self.alpha.potential(&swarm.positions, net) + tether
     }
 }
@@ -70,6 +74,10 @@ impl<V: Vector> Algorithm2<V> {
 impl<V: Vector> Protocol<V> for Algorithm2<V> {
     fn uses_net_distances(&self) -> bool {
         false
+    }
+
+    fn follows_numbering(&self) -> bool {
+        true
     }
 
     fn interaction_range(&self) -> f64 {
@@ -89,7 +97,7 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
     /// the γ-agent; Ḣ = −c₂^α pᵀL̂p − c₂ Σ ‖p_i − p_r‖² ≤ 0 when p_r is constant (Theorem 3).
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         let (q_r, p_r) = self.navigation.gamma.state(t);
-        self.potential(q_r, swarm, net) + kinetic(&swarm.velocities, p_r)
+        self.potential(q_r, swarm, net) + kinetic(&swarm.velocities, net.numbering(), p_r)
     }
 }
 
@@ -111,6 +119,10 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
         false
     }
 
+    fn follows_numbering(&self) -> bool {
+        true
+    }
+
     fn interaction_range(&self) -> f64 {
         self.flock.alpha.params().r
     }
@@ -129,15 +141,13 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         let (q_r, _) = self.flock.navigation.gamma.state(t);
         self.flock.potential(q_r, swarm, net)
-            + self.beta.potential(&swarm.positions)
-            + kinetic(&swarm.velocities, V::ZERO)
+            + self.beta.potential(&swarm.positions, net.numbering())
+            + kinetic(&swarm.velocities, net.numbering(), V::ZERO)
     }
 }
 
-/// ½ Σ ‖p_i − p_ref‖².
-fn kinetic<V: Vector>(velocities: &[V], reference: V) -> f64 {
-    0.5 * velocities
-        .iter()
-        .map(|&p| (p - reference).length_squared())
-        .sum::<f64>()
+/// ½ Σ ‖p_i − p_ref‖², summed in ascending original index ([`Numbering::ordered_sum`]).
+fn kinetic<V: Vector>(velocities: &[V], numbering: &Numbering, reference: V) -> f64 {
+    let p = velocities;
+    0.5 * numbering.ordered_sum(p.len(), |i| (p[i] - reference).length_squared())
 }

@@ -1,7 +1,6 @@
 //! The [`Protocol`] trait: every flocking algorithm computes all agents' inputs from a read-only state.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::map_chunks;
 use flock_math::Vector;
 
 use crate::Swarm;
@@ -29,18 +28,15 @@ pub trait Protocol<V: Vector>: Sync {
     fn uses_net_distances(&self) -> bool {
         true
     }
-}
 
-/// Indices per chunk of [`chunked_sum`].
-const SUM_CHUNK: usize = 4096;
-
-/// Σ over `0..len` as running sums `f(range)` over chunks of 4,096 indices (in parallel with the
-/// `parallel` feature), added in chunk order: the same bits for any thread count, and the plain
-/// running sum when there is a single chunk.
-pub(crate) fn chunked_sum(len: usize, f: impl Fn(core::ops::Range<usize>) -> f64 + Sync) -> f64 {
-    let sums = map_chunks(len, SUM_CHUNK, f);
-    match sums.split_first() {
-        Some((&first, rest)) => rest.iter().fold(first, |total, &s| total + s),
-        None => 0.0,
+    /// Whether the protocol follows a net's [`Numbering`](flock_graph::Numbering): given the state
+    /// stored in any order and the net built from it with its numbering, [`Protocol::controls`]
+    /// gives each agent the bits it gets in original order, and [`Protocol::energy`] the same
+    /// bits. A [`Simulation`](crate::Simulation) then stores the agents in space order when
+    /// they are numbered at random. False unless a protocol says otherwise (the protocols with
+    /// sums over all agents in their controls, or a graph fixed by agent index, keep their order).
+    #[must_use]
+    fn follows_numbering(&self) -> bool {
+        false
     }
 }

@@ -18,7 +18,7 @@ fn lifted<V: Space>(v: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn algorithm3<V: Space>(specs: &[ObstacleSpec], gamma: GammaAgent<V>) -> Algorithm3<V> {
+pub(crate) fn algorithm3<V: Space>(specs: &[ObstacleSpec], gamma: GammaAgent<V>) -> Algorithm3<V> {
     let field = ObstacleField::from_specs(specs).expect("valid obstacles");
     Algorithm3 {
         flock: Algorithm2 {

@@ -21,7 +21,7 @@ fn run(threads: usize, integrator: Integrator) -> Swarm<DVec2> {
         for _ in 0..60 {
             sim.step();
         }
-        sim.swarm().clone()
+        sim.swarm().into_owned()
     })
 }
 
@@ -56,7 +56,7 @@ fn a_resumed_simulation_is_bit_identical_to_the_uninterrupted_one() {
         let mut resumed = Simulation::resume(
             protocol(),
             integrator,
-            first.swarm().clone(),
+            first.swarm().into_owned(),
             0.01,
             first.steps(),
         );

@@ -7,5 +7,6 @@ mod invariance;
 mod long_run;
 mod olfati_saber2003;
 mod properties;
+mod storage_order;
 mod tanner2003;
 mod theory;

@@ -34,12 +34,12 @@ fn algorithm_1_preserves_momentum_over_a_million_steps() {
         for _ in 0..1000 {
             sim.step();
         }
-        let drift = (momentum(sim.swarm()) - initial).length() / initial.length();
+        let drift = (momentum(&sim.swarm()) - initial).length() / initial.length();
         worst = worst.max(drift);
     }
     println!(
         "Algorithm 1, n = 100, {STEPS} steps: largest relative momentum drift {worst:.3e}, final {:.3e}",
-        (momentum(sim.swarm()) - initial).length() / initial.length()
+        (momentum(&sim.swarm()) - initial).length() / initial.length()
     );
     assert!(worst <= 1e-9, "momentum drifted by {worst:e} (relative)");
 }

@@ -341,7 +341,7 @@ fn sink<V: Vector>() {
     let mut sim = Simulation::new(flocking, Integrator::Rk4, swarm, 0.01);
     let translational = |sim: &Simulation<V, Flocking2003<V>>| {
         sim.protocol()
-            .translational_energy(sim.time(), sim.swarm())
+            .translational_energy(sim.time(), &sim.swarm())
             .expect("a sink")
     };
     let (start, end) = energy_along(&mut sim, 1000, translational);

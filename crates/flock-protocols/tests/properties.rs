@@ -218,12 +218,12 @@ fn check_momentum_along_a_run<V: Vector>(case: &Case, steps: usize) -> Result<()
     let mut tolerance = n as f64 * U * root_m * speeds(&swarm);
     let mut sim = Simulation::new(case.protocol(), Integrator::SymplecticEuler, swarm, h);
     for _ in 0..steps {
-        let (max_degree, scale) = case.degree_and_scale(sim.swarm());
+        let (max_degree, scale) = case.degree_and_scale(&sim.swarm());
         sim.step();
         let k = (n + max_degree + 3) as f64;
-        tolerance += k * U * root_m * (h * scale + speeds(sim.swarm()));
+        tolerance += k * U * root_m * (h * scale + speeds(&sim.swarm()));
     }
-    tolerance += n as f64 * U * root_m * speeds(sim.swarm());
+    tolerance += n as f64 * U * root_m * speeds(&sim.swarm());
     let drift = (total(&sim.swarm().velocities) - start).length();
     prop_assert!(
         drift <= tolerance,
