@@ -116,6 +116,8 @@ pub struct BenchReport {
     pub peak_memory: Option<u64>,
     /// Mean number of neighbours per agent at the end.
     pub mean_neighbours: f64,
+    /// Whether the simulation stored the agents by cell (they were numbered at random).
+    pub stored_by_cell: bool,
     /// The metrics at the end.
     pub metrics: FlockMetrics,
 }
@@ -158,6 +160,12 @@ impl fmt::Display for BenchReport {
         }
         if c.shuffled {
             writeln!(f, "  agents numbered       at random")?;
+        }
+        if self.stored_by_cell {
+            writeln!(
+                f,
+                "  agents stored         by cell (re-sorted every 16 steps)"
+            )?;
         }
         writeln!(f, "  threads               {}", self.threads)?;
         writeln!(
@@ -336,6 +344,7 @@ fn time<V: Vector, P: Protocol<V>>(
         recorded_steps,
         peak_memory: peak_memory(),
         mean_neighbours: sim.net().graph().directed_edge_count() as f64 / config.n as f64,
+        stored_by_cell: !sim.numbering().is_identity(),
         metrics,
     }
 }

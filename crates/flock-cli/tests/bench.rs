@@ -37,6 +37,29 @@ fn bench_reports_throughput_memory_and_threads() {
     if cfg!(target_os = "linux") {
         assert!(report.contains("bytes/agent"), "{report}");
     }
+    assert!(!report.contains("agents stored"), "{report}");
+}
+
+/// Agents numbered at random are stored by cell when there are enough of them to be scattered in
+/// memory (neighbours 4,096 indices apart).
+#[test]
+fn bench_stores_agents_numbered_at_random_by_cell() {
+    let out = bench(&[
+        "--n",
+        "20000",
+        "--steps",
+        "2",
+        "--warmup",
+        "0",
+        "--shuffled",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let report = String::from_utf8(out.stdout).expect("UTF-8 report");
+    assert!(
+        report.contains("agents numbered       at random"),
+        "{report}"
+    );
+    assert!(report.contains("agents stored         by cell"), "{report}");
 }
 
 #[test]

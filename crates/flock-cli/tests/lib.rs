@@ -11,4 +11,5 @@ mod obstacle_errors;
 mod papers;
 mod plot;
 mod snapshots;
+mod storage_order;
 mod trust;
