@@ -8,6 +8,11 @@ use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector
 /// large chunks have fewer pairs computed twice across their first boundary).
 const SWEEP_CHUNK: (usize, usize) = (1024, 1 << 17);
 
+/// Agents per chunk of [`AlphaInteraction::inputs`] for a net with a numbering: pairs leaving a
+/// chunk are computed twice, and a chunk keeps two vectors per edge (about 3 MB in 2D, 9 MB in
+/// 3D at the papers' density).
+const PAIRED_CHUNK: usize = 1 << 14;
+
 /// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
 /// [`SWEEP_CHUNK`].
 fn sweep_chunk(n: usize) -> usize {
@@ -153,9 +158,13 @@ impl AlphaInteraction {
     ///
     /// For a net with a [`Numbering`](flock_graph::Numbering) other than the identity (agents
     /// stored in space order by a [`Simulation`](crate::Simulation)), the lists are in ascending
-    /// original index, not storage index, and each agent's terms are computed as by
-    /// [`AlphaInteraction::input`] (every pair twice, as the sweep would with random numbering),
-    /// in parallel over the agents, from neighbours near in memory.
+    /// original index, not storage index, so the sweep's order does not apply. In 2D the agents
+    /// are cut into chunks of [`PAIRED_CHUNK`] storage indices instead; a chunk computes each pair
+    /// inside it once and keeps both directions' terms (the second negated) in a buffer aligned
+    /// with its edges, each pair leaving the chunk directly, then sums every agent's terms in list
+    /// order, as [`AlphaInteraction::input`] does. In 3D such a chunk of agents in cell order is
+    /// a thin slab that most pairs leave, and each agent's terms are computed directly as by
+    /// [`AlphaInteraction::input`], in parallel (measured ≈ 8 % faster at 10⁶ agents).
     ///
     /// `net` must be the net of `q` (any symmetric graph works); `q`, `p` and `out` have one
     /// entry per agent, in the net's storage order.
@@ -167,12 +176,23 @@ impl AlphaInteraction {
         out: &mut [V],
         finish: impl Fn(usize, V) -> V + Sync,
     ) {
-        if !net.numbering().is_identity() {
+        let numbered = !net.numbering().is_identity();
+        if numbered && V::DIM == 3 {
             fill_indexed(out, |i| finish(i, self.input(i, q, p, net)));
             return;
         }
-        let chunk = sweep_chunk(out.len());
-        let sweep = |c: usize, out: &mut [V]| self.sweep(c * chunk, q, p, net, out, &finish);
+        let chunk = if numbered {
+            PAIRED_CHUNK
+        } else {
+            sweep_chunk(out.len())
+        };
+        let sweep = |c: usize, out: &mut [V]| {
+            if numbered {
+                self.paired(c * chunk, q, p, net, out, &finish);
+            } else {
+                self.sweep(c * chunk, q, p, net, out, &finish);
+            }
+        };
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;
@@ -183,6 +203,53 @@ impl AlphaInteraction {
         #[cfg(not(feature = "parallel"))]
         for (c, out) in out.chunks_mut(chunk).enumerate() {
             sweep(c, out);
+        }
+    }
+
+    /// [`AlphaInteraction::inputs`] for the chunk of agents `start..start + out.len()` of a net
+    /// whose lists follow a numbering: each pair inside the chunk computed once (by its agent of
+    /// lower storage index), its terms kept for both directions; each agent's terms then summed
+    /// in list order. Negating a term changes at most the sign of an exact zero, which a sum
+    /// starting at +0 never keeps, so the sums are the bits of [`AlphaInteraction::input`].
+    fn paired<V: Vector>(
+        &self,
+        start: usize,
+        q: &[V],
+        p: &[V],
+        net: &ProximityNet,
+        out: &mut [V],
+        finish: &impl Fn(usize, V) -> V,
+    ) {
+        let graph = net.graph();
+        let chunk = start..start + out.len();
+        let base = graph.offsets()[chunk.start];
+        let mut terms = vec![(V::ZERO, V::ZERO); graph.offsets()[chunk.end] - base];
+        for i in chunk.clone() {
+            let (qi, pi) = (q[i], p[i]);
+            for (e, &j) in graph.edge_range(i).zip(graph.neighbours(i)) {
+                let j = j as usize;
+                if (chunk.start..i).contains(&j) {
+                    continue; // j computed the pair
+                }
+                let (g, c) = self.pair(qi, pi, q[j], p[j]);
+                terms[e - base] = (g, c);
+                if j > i && j < chunk.end {
+                    let Some(back) = graph.neighbours(j).iter().position(|&k| k as usize == i)
+                    else {
+                        unreachable!("a net's neighbour lists are symmetric");
+                    };
+                    terms[graph.edge_range(j).start + back - base] = (-g, -c);
+                }
+            }
+        }
+        for (u, i) in out.iter_mut().zip(chunk) {
+            let edges = graph.edge_range(i);
+            let (mut gradient, mut consensus) = (V::ZERO, V::ZERO);
+            for &(g, c) in &terms[edges.start - base..edges.end - base] {
+                gradient += g;
+                consensus += c;
+            }
+            *u = finish(i, gradient * self.c1 + consensus * self.c2);
         }
     }
 
