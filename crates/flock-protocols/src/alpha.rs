@@ -159,7 +159,7 @@ impl AlphaInteraction {
     /// For a net with a [`Numbering`](flock_graph::Numbering) other than the identity (agents
     /// stored in space order by a [`Simulation`](crate::Simulation)), the lists are in ascending
     /// original index, not storage index, so the sweep's order does not apply. In 2D the agents
-    /// are cut into chunks of [`PAIRED_CHUNK`] storage indices instead; a chunk computes each pair
+    /// are cut into chunks of 16,384 storage indices instead; a chunk computes each pair
     /// inside it once and keeps both directions' terms (the second negated) in a buffer aligned
     /// with its edges, each pair leaving the chunk directly, then sums every agent's terms in list
     /// order, as [`AlphaInteraction::input`] does. In 3D such a chunk of agents in cell order is
