@@ -179,16 +179,18 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     }
 
     /// Builds the net of the current state; agents stored in space order are re-sorted every
-    /// [`RESORT_EVERY`] steps first, and agents found scattered in memory are sorted, when the
-    /// protocol follows the numbering.
+    /// [`RESORT_EVERY`] steps first, and agents in original order found scattered in memory are
+    /// sorted, when the protocol follows the numbering. (Agents once sorted wait for the next
+    /// re-sort even if still scattered, e.g. thousands in one cell: no sort at every step.)
     fn rebuild_net(&mut self) {
         let r = self.protocol.interaction_range();
         let sorts = self.protocol.follows_numbering();
-        if sorts && !self.net.numbering().is_identity() && self.steps % RESORT_EVERY == 0 {
+        let sorted = !self.net.numbering().is_identity();
+        if sorts && sorted && self.steps % RESORT_EVERY == 0 {
             self.sort_by_cell();
         }
         self.search.build(&self.swarm.positions, r, &mut self.net);
-        if sorts && self.net.is_scattered() {
+        if sorts && !sorted && self.net.is_scattered() {
             self.sort_by_cell();
             self.search.build(&self.swarm.positions, r, &mut self.net);
         }
