@@ -524,18 +524,11 @@ impl Recorder for RunDirectory {
 
     fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> io::Result<()> {
         let m = &record.metrics;
-        let mut line = format!(
-            "{},{},{},{},{},{},{},{},{}",
-            record.t,
-            m.connectivity,
-            m.giant_component,
-            m.cohesion_radius,
-            m.deviation_energy,
-            m.velocity_mismatch,
-            m.min_distance,
-            m.collisions,
-            record.energy
-        );
+        let mut line = record.t.to_string();
+        for value in m.reals() {
+            let _ = write!(line, ",{value}");
+        }
+        let _ = write!(line, ",{},{}", m.collisions, record.energy);
         for value in record.extra {
             let _ = write!(line, ",{value}");
         }

@@ -60,18 +60,11 @@ fn rounded(name: &str, s: &RunSummary) -> String {
 /// Every number of a summary as its bits, except the wall time.
 fn bits(s: &RunSummary) -> Vec<u64> {
     let m = &s.metrics;
-    let floats = [
-        s.t,
-        m.connectivity,
-        m.giant_component,
-        m.cohesion_radius,
-        m.deviation_energy,
-        m.velocity_mismatch,
-        m.min_distance,
+    let floats = [s.t].into_iter().chain(m.reals()).chain([
         s.component_velocity_mismatch,
         s.initial_energy,
         s.final_energy,
-    ];
+    ]);
     let counts = [
         s.agents as u64,
         s.dim as u64,
@@ -79,7 +72,7 @@ fn bits(s: &RunSummary) -> Vec<u64> {
         m.components as u64,
         m.collisions as u64,
     ];
-    floats.iter().map(|x| x.to_bits()).chain(counts).collect()
+    floats.map(f64::to_bits).chain(counts).collect()
 }
 
 fn short_run(scenario: &Scenario) -> RunSummary {

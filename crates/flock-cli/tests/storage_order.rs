@@ -40,26 +40,14 @@ impl Recorder for Bits {
     type Error = std::convert::Infallible;
 
     fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
-        let m = &record.metrics;
-        let numbers = [
-            record.t,
-            record.energy,
-            m.connectivity,
-            m.cohesion_radius,
-            m.deviation_energy,
-            m.velocity_mismatch,
-            m.min_distance,
-        ];
+        let numbers = [record.t, record.energy]
+            .into_iter()
+            .chain(record.metrics.reals());
         let swarm = record.swarm;
         let states = swarm.positions.iter().chain(&swarm.velocities);
         let coordinates = states.flat_map(|v| (0..V::DIM).map(|k| v.coord(k)));
-        self.records.push(
-            numbers
-                .into_iter()
-                .chain(coordinates)
-                .map(f64::to_bits)
-                .collect(),
-        );
+        self.records
+            .push(numbers.chain(coordinates).map(f64::to_bits).collect());
         Ok(())
     }
 
@@ -89,7 +77,7 @@ fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identic
         .map(f64::to_bits)
         .collect();
     assert!(
-        whole.records[0][7..] == drawn[..],
+        whole.records[0][8..] == drawn[..],
         "t = 0 is recorded in original order"
     );
     // the net of the drawn state is scattered in memory: the simulation stores it by cell

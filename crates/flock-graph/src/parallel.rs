@@ -30,6 +30,41 @@ pub fn for_each_indexed_mut<T: Send>(
     }
 }
 
+/// Calls `f(c, chunk)` for the consecutive chunks of `chunk` items of `items` (the last one
+/// shorter), `c` counting from 0: on the rayon pool with the `parallel` feature.
+pub fn for_each_chunk_mut<T: Send>(
+    items: &mut [T],
+    chunk: usize,
+    f: impl Fn(usize, &mut [T]) + Sync,
+) {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        items
+            .par_chunks_mut(chunk)
+            .enumerate()
+            .for_each(|(c, items)| f(c, items));
+    }
+    #[cfg(not(feature = "parallel"))]
+    for (c, items) in items.chunks_mut(chunk).enumerate() {
+        f(c, items);
+    }
+}
+
+/// The number of threads that work of this module runs on: the rayon pool's with the `parallel`
+/// feature, 1 without it.
+#[must_use]
+pub fn threads() -> usize {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::current_num_threads()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        1
+    }
+}
+
 /// `(a(), b())`, potentially computed in parallel (rayon's `join` with the `parallel` feature).
 pub fn join<A: Send, B: Send>(
     a: impl FnOnce() -> A + Send,
@@ -97,6 +132,14 @@ mod tests {
     fn maps_chunks_in_order() {
         assert_eq!(map_chunks(10, 4, |r| r), [0..4, 4..8, 8..10]);
         assert!(map_chunks(0, 4, |r| r).is_empty());
+    }
+
+    #[test]
+    fn chunks_are_numbered_in_order() {
+        let mut items = vec![0_usize; 10];
+        for_each_chunk_mut(&mut items, 4, |c, chunk| chunk.fill(c + 1));
+        assert_eq!(items, [1, 1, 1, 1, 2, 2, 2, 2, 3, 3]);
+        assert!(threads() >= 1);
     }
 
     #[test]

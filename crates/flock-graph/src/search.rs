@@ -812,18 +812,23 @@ mod tests {
         assert_eq!(Bounds::of(&[DVec2::ONE, DVec2::ONE]).mean_spacing(), 0.0);
     }
 
+    /// `n` points uniform in the square [0, side]², from `seed`.
+    fn uniform_square(n: usize, side: f64, seed: u64) -> Vec<DVec2> {
+        use rand::{RngExt, SeedableRng};
+
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+        (0..n)
+            .map(|_| DVec2::new(rng.random::<f64>() * side, rng.random::<f64>() * side))
+            .collect()
+    }
+
     /// A net built from agents stored out of order, with their numbering, is the net of the
     /// agents in original order relabelled: each list names the same agents in the same order,
     /// with the same distance bits (recomputed ones too, without stored distances). Sorting the
     /// agents by cell makes the net of agents numbered at random no longer scattered.
     #[test]
     fn numbered_nets_are_the_original_nets_relabelled() {
-        use rand::{RngExt, SeedableRng};
-
-        let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
-        let mut q: Vec<DVec2> = (0..20_000)
-            .map(|_| DVec2::new(rng.random::<f64>() * 860.0, rng.random::<f64>() * 860.0))
-            .collect();
+        let mut q = uniform_square(20_000, 860.0, 5);
         q[123] = DVec2::NAN;
         let mut search = NeighbourSearch::new();
         let mut original = ProximityNet::new();
@@ -871,12 +876,7 @@ mod tests {
     /// same net, so the net does not depend on the `parallel` feature.
     #[test]
     fn net_is_independent_of_blocks_and_threads() {
-        use rand::{RngExt, SeedableRng};
-
-        let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
-        let mut q: Vec<DVec2> = (0..3000)
-            .map(|_| DVec2::new(rng.random::<f64>() * 40.0, rng.random::<f64>() * 40.0))
-            .collect();
+        let mut q = uniform_square(3000, 40.0, 7);
         q[17] = DVec2::NAN;
         let expected = ProximityNet::brute_force(&q, 1.3);
         assert!(expected.graph().directed_edge_count() > q.len());

@@ -72,6 +72,22 @@ impl FlockMetrics {
     }
 }
 
+impl FlockMetrics {
+    /// The real-valued metrics in the order of the columns of `metrics.csv`: C, C*, R, Ẽ, K̃ and
+    /// the minimum distance.
+    #[must_use]
+    pub fn reals(&self) -> [f64; 6] {
+        [
+            self.connectivity,
+            self.giant_component,
+            self.cohesion_radius,
+            self.deviation_energy,
+            self.velocity_mismatch,
+            self.min_distance,
+        ]
+    }
+}
+
 /// The metrics of the edge lengths, from one pass over them: Ẽ, the shortest edge and the
 /// colliding pairs (behind [`FlockMetrics::measure`], [`deviation_energy`] and [`collisions`]).
 struct EdgeMetrics {
@@ -428,17 +444,7 @@ mod tests {
         let mut numbered = ProximityNet::without_distances();
         numbered.permute(&order);
         search.build(&q_s, 8.4, &mut numbered);
-        let bits = |m: FlockMetrics| {
-            [
-                m.connectivity,
-                m.giant_component,
-                m.cohesion_radius,
-                m.deviation_energy,
-                m.velocity_mismatch,
-                m.min_distance,
-            ]
-            .map(f64::to_bits)
-        };
+        let bits = |m: FlockMetrics| m.reals().map(f64::to_bits);
         let (original, renumbered) = (
             FlockMetrics::measure(&q, &p, &net, &params),
             FlockMetrics::measure(&q_s, &p_s, &numbered, &params),

@@ -1,7 +1,7 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::{fill_indexed, for_each_chunk_mut, threads};
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
 /// Bounds on the agents per chunk of [`AlphaInteraction::inputs`] (any size gives the same inputs;
@@ -16,11 +16,8 @@ const PAIRED_CHUNK: usize = 1 << 14;
 /// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
 /// [`SWEEP_CHUNK`].
 fn sweep_chunk(n: usize) -> usize {
-    #[cfg(feature = "parallel")]
-    let threads = rayon::current_num_threads();
-    #[cfg(not(feature = "parallel"))]
-    let threads = 1;
-    n.div_ceil(4 * threads).clamp(SWEEP_CHUNK.0, SWEEP_CHUNK.1)
+    n.div_ceil(4 * threads())
+        .clamp(SWEEP_CHUNK.0, SWEEP_CHUNK.1)
 }
 
 /// Parameters of the α-interaction, with the papers' values as [`Default`]:
@@ -176,33 +173,17 @@ impl AlphaInteraction {
         out: &mut [V],
         finish: impl Fn(usize, V) -> V + Sync,
     ) {
-        let numbered = !net.numbering().is_identity();
-        if numbered && V::DIM == 3 {
-            fill_indexed(out, |i| finish(i, self.input(i, q, p, net)));
-            return;
-        }
-        let chunk = if numbered {
-            PAIRED_CHUNK
-        } else {
-            sweep_chunk(out.len())
-        };
-        let sweep = |c: usize, out: &mut [V]| {
-            if numbered {
-                self.paired(c * chunk, q, p, net, out, &finish);
-            } else {
+        if net.numbering().is_identity() {
+            let chunk = sweep_chunk(out.len());
+            for_each_chunk_mut(out, chunk, |c, out| {
                 self.sweep(c * chunk, q, p, net, out, &finish);
-            }
-        };
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            out.par_chunks_mut(chunk)
-                .enumerate()
-                .for_each(|(c, out)| sweep(c, out));
-        }
-        #[cfg(not(feature = "parallel"))]
-        for (c, out) in out.chunks_mut(chunk).enumerate() {
-            sweep(c, out);
+            });
+        } else if V::DIM == 2 {
+            for_each_chunk_mut(out, PAIRED_CHUNK, |c, out| {
+                self.paired(c * PAIRED_CHUNK, q, p, net, out, &finish);
+            });
+        } else {
+            fill_indexed(out, |i| finish(i, self.input(i, q, p, net)));
         }
     }
 
