@@ -18,7 +18,7 @@ const R: f64 = 8.4;
 
 fn protocol<V: flock_math::Vector>(swarm: &Swarm<V>) -> Algorithm2<V> {
     Algorithm2 {
-        alpha: AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0),
+        alpha: AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0).expect("valid α-parameters"),
         navigation: NavigationalFeedback::linear(
             GammaAgent::Static {
                 position: swarm.centre(),

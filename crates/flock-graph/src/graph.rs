@@ -95,6 +95,32 @@ impl Graph {
         })
     }
 
+    /// The graph of agents stored as `numbering` says (node s is agent `numbering.original(s)`,
+    /// each list in ascending original index, as a [`ProximityNet`](crate::ProximityNet) built
+    /// with a numbering lists them) relabelled by original index: node k is agent k. The graph
+    /// itself (a copy) for the identity.
+    #[must_use]
+    pub fn in_original_order(&self, numbering: &crate::Numbering) -> Self {
+        if numbering.is_identity() {
+            return self.clone();
+        }
+        let mut offsets = Vec::with_capacity(self.offsets.len());
+        let mut neighbours = Vec::with_capacity(self.neighbours.len());
+        offsets.push(0);
+        for s in numbering.stored_of(0..self.len()) {
+            neighbours.extend(
+                self.neighbours(s)
+                    .iter()
+                    .map(|&j| numbering.original(j as usize) as u32),
+            );
+            offsets.push(neighbours.len());
+        }
+        Self {
+            offsets,
+            neighbours,
+        }
+    }
+
     /// Number of nodes n.
     #[inline]
     #[must_use]

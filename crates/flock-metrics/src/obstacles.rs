@@ -28,10 +28,13 @@ impl ObstacleMetrics {
         metrics
     }
 
-    /// `[obstacle_clearance, inside_obstacles]`, the columns of `metrics.csv`.
+    /// The columns of `metrics.csv` with their values: `obstacle_clearance`, `inside_obstacles`.
     #[must_use]
-    pub fn values(&self) -> Vec<f64> {
-        vec![self.clearance, self.inside as f64]
+    pub fn columns(&self) -> Vec<(&'static str, f64)> {
+        vec![
+            ("obstacle_clearance", self.clearance),
+            ("inside_obstacles", self.inside as f64),
+        ]
     }
 }
 
@@ -50,6 +53,9 @@ mod tests {
         let m = ObstacleMetrics::measure(&q, |q| q.length() - 1.0);
         assert_eq!(m.clearance, -0.5);
         assert_eq!(m.inside, 1);
-        assert_eq!(m.values(), vec![-0.5, 1.0]);
+        assert_eq!(
+            m.columns(),
+            vec![("obstacle_clearance", -0.5), ("inside_obstacles", 1.0)]
+        );
     }
 }

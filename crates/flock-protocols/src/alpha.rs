@@ -4,6 +4,8 @@ use flock_graph::ProximityNet;
 use flock_graph::parallel::{fill_indexed, for_each_chunk_mut, threads};
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
+use crate::error::{ParamError, check};
+
 /// Bounds on the agents per chunk of [`AlphaInteraction::inputs`] (any size gives the same inputs;
 /// large chunks have fewer pairs computed twice across their first boundary).
 const SWEEP_CHUNK: (usize, usize) = (1024, 1 << 17);
@@ -38,17 +40,179 @@ pub struct AlphaParams {
     pub h: f64,
 }
 
-impl Default for AlphaParams {
-    fn default() -> Self {
+impl AlphaParams {
+    /// The papers' lattice distance d = 7 (TAC 2006, Section VIII).
+    pub const PAPERS_D: f64 = 7.0;
+
+    /// The papers' parameters for lattice distance `d`: r = 1.2 d ([`AlphaParams::range_for`]),
+    /// ε = 0.1, a = b = 5, h = 0.2 (TAC 2006, Section VIII).
+    #[must_use]
+    pub fn papers(d: f64) -> Self {
         Self {
-            d: 7.0,
-            r: 8.4,
+            d,
+            r: Self::range_for(d),
             epsilon: 0.1,
             a: 5.0,
             b: 5.0,
             h: 0.2,
         }
     }
+
+    /// The papers' interaction range for lattice distance `d`: r = 1.2 d (κ = r/d = 1.2).
+    #[must_use]
+    pub fn range_for(d: f64) -> f64 {
+        1.2 * d
+    }
+
+    /// Checks every parameter against the domain of TAC 2006: 0 < d < r, ε > 0, 0 < a ≤ b,
+    /// h ∈ (0, 1), lengths within [10⁻⁹, 10⁹].
+    ///
+    /// # Errors
+    /// The first parameter outside its domain, named by its field (`d`, `r`, `epsilon`, `a`, `b`,
+    /// `h`).
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check::length("d", self.d)?;
+        check::length("r", self.r)?;
+        check::require(
+            self.r > self.d,
+            "r",
+            self.r,
+            &format!(
+                "must exceed the lattice distance d = {} (0 < d < r)",
+                self.d
+            ),
+            "raise r (the papers use r = 1.2 d) or lower d",
+        )?;
+        check::within_scale(
+            "epsilon",
+            self.epsilon,
+            "where the σ-norm (√(1 + ε‖z‖²) − 1)/ε loses precision or overflows",
+        )?;
+        check::finite("h", self.h)?;
+        check::require(
+            self.h > 0.0 && self.h < 1.0,
+            "h",
+            self.h,
+            "the bump ρ_h needs h in (0, 1)",
+            "use e.g. h: 0.2 (the papers' value)",
+        )?;
+        let why =
+            "where the uneven sigmoid's shift c = |a − b|/√(4ab) loses precision or overflows";
+        check::within_scale("a", self.a, why)?;
+        check::within_scale("b", self.b, why)?;
+        check::require(
+            self.a <= self.b,
+            "a",
+            self.a,
+            &format!(
+                "exceeds b = {}: the uneven sigmoid φ needs 0 < a ≤ b",
+                self.b
+            ),
+            "swap a and b or lower a",
+        )
+    }
+}
+
+impl Default for AlphaParams {
+    fn default() -> Self {
+        Self::papers(Self::PAPERS_D)
+    }
+}
+
+/// The α-interaction as a scenario writes it: the parameters of [`AlphaParams`] with the range
+/// r optional (default 1.2 d) and the gains c₁^α, c₂^α (1 and 1 give Algorithms 1 and 2 exactly).
+/// Every field defaults to the papers' value ([`AlphaParams::default`]).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields, default)
+)]
+pub struct AlphaConfig {
+    /// Lattice distance d > 0.
+    pub d: f64,
+    /// Interaction range r > d; default 1.2 d.
+    pub r: Option<f64>,
+    /// σ-norm parameter ε > 0.
+    pub epsilon: f64,
+    /// Attraction bound a, 0 < a ≤ b.
+    pub a: f64,
+    /// Repulsion bound b.
+    pub b: f64,
+    /// Bump parameter h ∈ (0, 1).
+    pub h: f64,
+    /// Gradient gain c₁^α > 0.
+    pub c1: f64,
+    /// Consensus gain c₂^α ≥ 0.
+    pub c2: f64,
+}
+
+impl Default for AlphaConfig {
+    fn default() -> Self {
+        let p = AlphaParams::default();
+        Self {
+            d: p.d,
+            r: None,
+            epsilon: p.epsilon,
+            a: p.a,
+            b: p.b,
+            h: p.h,
+            c1: 1.0,
+            c2: 1.0,
+        }
+    }
+}
+
+impl AlphaConfig {
+    /// The interaction range r (default 1.2 d).
+    #[must_use]
+    pub fn range(&self) -> f64 {
+        self.r.unwrap_or_else(|| AlphaParams::range_for(self.d))
+    }
+
+    /// The parameters, r filled in.
+    #[must_use]
+    pub fn params(&self) -> AlphaParams {
+        AlphaParams {
+            d: self.d,
+            r: self.range(),
+            epsilon: self.epsilon,
+            a: self.a,
+            b: self.b,
+            h: self.h,
+        }
+    }
+
+    /// Checks the parameters ([`AlphaParams::validate`]) and the gains (c₁ > 0, c₂ ≥ 0).
+    ///
+    /// # Errors
+    /// The first value outside its domain, named by its field.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        self.params().validate()?;
+        check_gains(self.c1, self.c2)
+    }
+
+    /// The α-interaction of these parameters and gains.
+    ///
+    /// # Errors
+    /// As [`AlphaConfig::validate`].
+    pub fn interaction(&self) -> Result<AlphaInteraction, ParamError> {
+        AlphaInteraction::new(self.params(), self.c1, self.c2)
+    }
+}
+
+/// The gains of the α-interaction: c₁^α > 0, c₂^α ≥ 0.
+fn check_gains(c1: f64, c2: f64) -> Result<(), ParamError> {
+    check::positive("c1", c1)?;
+    check::finite("c2", c2)?;
+    check::not_huge("c2", c2)?;
+    check::require(
+        c2 >= 0.0,
+        "c2",
+        c2,
+        "a negative consensus gain amplifies velocity mismatch",
+        "use c2 ≥ 0",
+    )
 }
 
 /// u_i^α = c₁ Σ_{j∈N_i} φ_α(‖q_j − q_i‖_σ) n_ij + c₂ Σ_{j∈N_i} a_ij(q)(p_j − p_i),
@@ -65,8 +229,24 @@ pub struct AlphaInteraction {
 
 impl AlphaInteraction {
     /// The interaction with gains c₁ (gradient) and c₂ (consensus).
-    #[must_use]
-    pub fn new(params: AlphaParams, c1: f64, c2: f64) -> Self {
+    ///
+    /// # Example
+    /// ```
+    /// use flock_protocols::{AlphaInteraction, AlphaParams};
+    ///
+    /// let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0).unwrap();
+    /// assert_eq!(alpha.params().r, 8.4);
+    /// // r ≤ d is refused with the field at fault
+    /// let bad = AlphaParams { r: 7.0, ..AlphaParams::default() };
+    /// assert_eq!(AlphaInteraction::new(bad, 1.0, 1.0).unwrap_err().field, "r");
+    /// ```
+    ///
+    /// # Errors
+    /// Parameters outside their domain ([`AlphaParams::validate`]), c₁ ≤ 0 or c₂ < 0 (or either
+    /// not finite).
+    pub fn new(params: AlphaParams, c1: f64, c2: f64) -> Result<Self, ParamError> {
+        params.validate()?;
+        check_gains(c1, c2)?;
         let sigma = SigmaNorm::new(params.epsilon);
         let action = BumpedAction::alpha(
             UnevenSigmoid::new(params.a, params.b),
@@ -74,13 +254,13 @@ impl AlphaInteraction {
             sigma.of_length(params.d),
             sigma.of_length(params.r),
         );
-        Self {
+        Ok(Self {
             params,
             sigma,
             action,
             c1,
             c2,
-        }
+        })
     }
 
     /// The parameters.
@@ -341,7 +521,8 @@ mod tests {
     /// potential too.
     #[test]
     fn every_path_of_inputs_is_bit_identical_to_input() {
-        let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0);
+        let alpha =
+            AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0).expect("valid α-parameters");
         let r = alpha.params().r;
         let finish = |k: usize, u: DVec2| u * 3.0 + DVec2::new(k as f64, 0.5);
         let bits = |u: DVec2| u.to_array().map(f64::to_bits);

@@ -5,6 +5,9 @@ use flock_graph::Numbering;
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm};
 use flock_obstacles::{BetaAgent, ObstacleField, Space};
 
+use crate::critical_damping;
+use crate::error::{ParamError, check};
+
 /// Parameters of the β-interaction, with the papers' values relative to the lattice distance d:
 /// d′ = 0.6 d, r′ = 1.2 d′, h = 0.9 (TAC 2006, Section VIII).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,14 +21,140 @@ pub struct BetaParams {
 }
 
 impl BetaParams {
+    /// The papers' flat part h = 0.9 of the bump of φ_β.
+    pub const PAPERS_H: f64 = 0.9;
+
     /// The papers' choice for lattice distance `d`: d′ = 0.6 d, r′ = 1.2 d′, h = 0.9.
     #[must_use]
     pub fn papers(d: f64) -> Self {
+        let distance = Self::distance_for(d);
         Self {
-            d: 0.6 * d,
-            r: 0.72 * d,
-            h: 0.9,
+            d: distance,
+            r: Self::range_for(distance),
+            h: Self::PAPERS_H,
         }
+    }
+
+    /// The papers' obstacle distance d′ = 0.6 d for lattice distance `d`.
+    #[must_use]
+    pub fn distance_for(d: f64) -> f64 {
+        0.6 * d
+    }
+
+    /// The papers' β-range r′ = 1.2 d′ for obstacle distance `d_beta`.
+    #[must_use]
+    pub fn range_for(d_beta: f64) -> f64 {
+        1.2 * d_beta
+    }
+
+    /// Checks 0 < d′ < r′ and h ∈ (0, 1).
+    ///
+    /// # Errors
+    /// The first parameter outside its domain, named by its field (`d`, `r`, `h`).
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check::positive("d", self.d)?;
+        check::finite("r", self.r)?;
+        check::require(
+            self.r > self.d,
+            "r",
+            self.r,
+            &format!(
+                "must exceed the obstacle distance d′ = {} (0 < d′ < r′)",
+                self.d
+            ),
+            "raise r (the papers use r′ = 1.2 d′) or lower d",
+        )?;
+        check::unit_interval("h", self.h)
+    }
+}
+
+/// Algorithm 3's β-interaction as a scenario writes it: distances relative to the lattice
+/// distance d by default (d′ = 0.6 d, r′ = 1.2 d′, [`BetaParams::papers`]), h = 0.9, and the gains
+/// c₁^β (default 10) and c₂^β (default 2√c₁^β, [`critical_damping`]).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields, default)
+)]
+pub struct BetaConfig {
+    /// Desired distance d′ to obstacles; default 0.6 d.
+    pub d: Option<f64>,
+    /// β-neighbour range r′ > d′; default 1.2 d′.
+    pub r: Option<f64>,
+    /// Bump parameter h ∈ (0, 1) of φ_β and b_ik.
+    pub h: f64,
+    /// Repulsion gain c₁^β > 0.
+    pub c1: f64,
+    /// Damping gain c₂^β ≥ 0; default 2√c₁^β.
+    pub c2: Option<f64>,
+}
+
+impl Default for BetaConfig {
+    fn default() -> Self {
+        Self {
+            d: None,
+            r: None,
+            h: BetaParams::PAPERS_H,
+            c1: 10.0,
+            c2: None,
+        }
+    }
+}
+
+impl BetaConfig {
+    /// d′ for lattice distance `d` (default 0.6 d).
+    #[must_use]
+    pub fn distance(&self, d: f64) -> f64 {
+        self.d.unwrap_or_else(|| BetaParams::distance_for(d))
+    }
+
+    /// r′ for lattice distance `d` (default 1.2 d′).
+    #[must_use]
+    pub fn range(&self, d: f64) -> f64 {
+        self.r
+            .unwrap_or_else(|| BetaParams::range_for(self.distance(d)))
+    }
+
+    /// c₂^β (default 2√c₁^β).
+    #[must_use]
+    pub fn damping(&self) -> f64 {
+        self.c2.unwrap_or_else(|| critical_damping(self.c1))
+    }
+
+    /// The parameters for lattice distance `d`.
+    #[must_use]
+    pub fn params(&self, d: f64) -> BetaParams {
+        BetaParams {
+            d: self.distance(d),
+            r: self.range(d),
+            h: self.h,
+        }
+    }
+
+    /// The configuration with every default written out for lattice distance `d`.
+    #[must_use]
+    pub fn resolved(&self, d: f64) -> Self {
+        Self {
+            d: Some(self.distance(d)),
+            r: Some(self.range(d)),
+            c2: Some(self.damping()),
+            ..*self
+        }
+    }
+
+    /// Checks the parameters for lattice distance `d` ([`BetaParams::validate`]) and the gains
+    /// c₁^β > 0, c₂^β ≥ 0.
+    ///
+    /// # Errors
+    /// The first value outside its domain, named by its field.
+    pub fn validate(&self, d: f64) -> Result<(), ParamError> {
+        if let Some(d_beta) = self.d {
+            check::positive("d", d_beta)?;
+        }
+        self.params(d).validate()?;
+        check::positive("c1", self.c1)?;
+        check::non_negative("c2", self.damping())
     }
 }
 
@@ -44,24 +173,31 @@ pub struct BetaInteraction<V: Space> {
 
 impl<V: Space> BetaInteraction<V> {
     /// The interaction with the obstacles of `field`, σ-norm parameter `epsilon` and gains c₁^β, c₂^β.
-    #[must_use]
+    ///
+    /// # Errors
+    /// Parameters outside their domain ([`BetaParams::validate`]), ε not positive, c₁^β ≤ 0 or
+    /// c₂^β < 0.
     pub fn new(
         field: ObstacleField<V>,
         params: BetaParams,
         epsilon: f64,
         c1: f64,
         c2: f64,
-    ) -> Self {
+    ) -> Result<Self, ParamError> {
+        params.validate()?;
+        check::positive("epsilon", epsilon)?;
+        check::positive("c1", c1)?;
+        check::non_negative("c2", c2)?;
         let sigma = SigmaNorm::new(epsilon);
         let action = BumpedAction::beta(Bump::tac(params.h), sigma.of_length(params.d));
-        Self {
+        Ok(Self {
             field,
             params,
             sigma,
             action,
             c1,
             c2,
-        }
+        })
     }
 
     /// The obstacles.

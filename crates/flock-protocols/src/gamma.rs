@@ -2,8 +2,19 @@
 
 use flock_math::{Vector, sigma1_vec};
 
+use crate::error::{ParamError, check};
+
 /// The γ-agent's trajectory (q_r(t), p_r(t)), solution of q̇_r = p_r, ṗ_r = f_r(q_r, p_r).
+///
+/// `V` is the vector type of the simulation (`DVec2`, `DVec3`); a scenario file writes a
+/// γ-agent with lists of numbers (`GammaAgent<Vec<f64>>`, feature `serde`), turned into vectors
+/// by [`GammaAgent::map`].
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub enum GammaAgent<V> {
     /// A fixed rendezvous point: p_r = 0.
     Static {
@@ -17,8 +28,69 @@ pub enum GammaAgent<V> {
         /// p_r.
         velocity: V,
     },
-    /// Motion along a polyline at constant speed, holding still at the last waypoint.
-    Path(Path<V>),
+    /// Motion along a polyline at constant `speed`, starting at its first waypoint at t = 0 and
+    /// holding still at the last one.
+    Path {
+        /// The waypoints, at least one.
+        waypoints: Vec<V>,
+        /// The speed > 0.
+        speed: f64,
+    },
+}
+
+impl<V> GammaAgent<V> {
+    /// The same trajectory with every vector mapped by `f` (e.g. lists of numbers to vectors).
+    #[must_use]
+    pub fn map<W>(&self, mut f: impl FnMut(&V) -> W) -> GammaAgent<W> {
+        match self {
+            Self::Static { position } => GammaAgent::Static {
+                position: f(position),
+            },
+            Self::ConstantVelocity { position, velocity } => GammaAgent::ConstantVelocity {
+                position: f(position),
+                velocity: f(velocity),
+            },
+            Self::Path { waypoints, speed } => GammaAgent::Path {
+                waypoints: waypoints.iter().map(f).collect(),
+                speed: *speed,
+            },
+        }
+    }
+
+    /// Every vector of the trajectory with its field (`position`, `velocity`, `waypoints[k]`).
+    #[must_use]
+    pub fn vectors(&self) -> Vec<(String, &V)> {
+        match self {
+            Self::Static { position } => vec![("position".to_owned(), position)],
+            Self::ConstantVelocity { position, velocity } => vec![
+                ("position".to_owned(), position),
+                ("velocity".to_owned(), velocity),
+            ],
+            Self::Path { waypoints, .. } => waypoints
+                .iter()
+                .enumerate()
+                .map(|(k, w)| (format!("waypoints[{k}]"), w))
+                .collect(),
+        }
+    }
+
+    /// Checks what does not depend on the vectors: a path has a waypoint and a speed > 0.
+    ///
+    /// # Errors
+    /// An empty path or a speed that is not positive, named by its field (`waypoints`, `speed`).
+    pub fn validate_path(&self) -> Result<(), ParamError> {
+        let Self::Path { waypoints, speed } = self else {
+            return Ok(());
+        };
+        check::require(
+            !waypoints.is_empty(),
+            "waypoints",
+            "[]",
+            "a path needs a waypoint",
+            "list at least one waypoint",
+        )?;
+        check::positive("speed", *speed)
+    }
 }
 
 impl<V: Vector> GammaAgent<V> {
@@ -28,66 +100,53 @@ impl<V: Vector> GammaAgent<V> {
         match self {
             Self::Static { position } => (*position, V::ZERO),
             Self::ConstantVelocity { position, velocity } => (*position + *velocity * t, *velocity),
-            Self::Path(path) => path.state(t),
+            Self::Path { waypoints, speed } => path_state(waypoints, *speed, t),
         }
     }
 
     /// True when p_r is constant in time, the case of the energy theorems.
     #[must_use]
     pub fn is_uniform(&self) -> bool {
-        !matches!(self, Self::Path(_))
+        !matches!(self, Self::Path { .. })
     }
-}
 
-/// A polyline q_r travels at constant `speed`, starting at its first waypoint at t = 0.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Path<V> {
-    waypoints: Vec<V>,
-    /// Arc length at each waypoint.
-    arc: Vec<f64>,
-    speed: f64,
-}
-
-impl<V: Vector> Path<V> {
-    /// A path through at least one waypoint, travelled at `speed > 0`.
+    /// Checks that every vector is finite and the path well formed ([`GammaAgent::validate_path`]).
     ///
-    /// # Panics
-    /// With no waypoint.
-    #[must_use]
-    pub fn new(waypoints: Vec<V>, speed: f64) -> Self {
-        assert!(!waypoints.is_empty(), "a path needs a waypoint");
-        let mut arc = Vec::with_capacity(waypoints.len());
-        let mut length = 0.0;
-        arc.push(length);
-        for pair in waypoints.windows(2) {
-            length += (pair[1] - pair[0]).length();
-            arc.push(length);
+    /// # Errors
+    /// The first vector that is not finite, or a malformed path, named by its field.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        for (field, v) in self.vectors() {
+            let coordinates: Vec<f64> = (0..V::DIM).map(|k| v.coord(k)).collect();
+            check::coordinates(&field, &coordinates)?;
         }
-        Self {
-            waypoints,
-            arc,
-            speed,
-        }
+        self.validate_path()
     }
+}
 
-    /// (q_r(t), p_r(t)): position on the polyline at arc length `speed · t`, velocity along the
-    /// current segment; after the last waypoint, that waypoint with zero velocity.
-    #[must_use]
-    pub fn state(&self, t: f64) -> (V, V) {
-        let s = self.speed * t.max(0.0);
-        // arc[0] = 0 ≤ s, so k ≥ 1: the current segment joins waypoints k − 1 and k (zero-length
-        // segments are skipped, their two arc lengths being equal)
-        let k = self.arc.partition_point(|&a| a <= s);
-        if k == self.waypoints.len() {
-            return (self.waypoints[k - 1], V::ZERO);
+/// The state on the polyline `waypoints` at arc length `speed · t`: the position, and the velocity
+/// along the current segment; after the last waypoint, that waypoint with zero velocity
+/// (the origin at rest for no waypoint). Zero-length segments are passed over.
+fn path_state<V: Vector>(waypoints: &[V], speed: f64, t: f64) -> (V, V) {
+    let s = speed * t.max(0.0);
+    // `arc` is the arc length at waypoint k − 1; segment k − 1 → k is current when s < arc + ‖·‖
+    let mut arc = 0.0;
+    for k in 1..waypoints.len() {
+        let (from, to) = (waypoints[k - 1], waypoints[k]);
+        let next = arc + (to - from).length();
+        if next > s {
+            let direction = (to - from).normalize_or_zero();
+            return (from + direction * (s - arc), direction * speed);
         }
-        let (from, to) = (self.waypoints[k - 1], self.waypoints[k]);
-        let direction = (to - from).normalize_or_zero();
-        (
-            from + direction * (s - self.arc[k - 1]),
-            direction * self.speed,
-        )
+        arc = next;
     }
+    (waypoints.last().copied().unwrap_or(V::ZERO), V::ZERO)
+}
+
+/// c₂ = 2√c₁, the critically damped velocity gain of a position gain c₁ (TAC 2006 Section VIII),
+/// the default c₂^γ of Algorithm 3 and c₂^β of its β-interaction.
+#[must_use]
+pub fn critical_damping(c1: f64) -> f64 {
+    2.0 * c1.sqrt()
 }
 
 /// The form of the position feedback to the γ-agent.
@@ -171,10 +230,10 @@ mod tests {
 
     #[test]
     fn path_is_travelled_at_constant_speed() {
-        let path = Path::new(
-            vec![DVec2::ZERO, DVec2::new(3.0, 0.0), DVec2::new(3.0, 4.0)],
-            2.0,
-        );
+        let path = GammaAgent::Path {
+            waypoints: vec![DVec2::ZERO, DVec2::new(3.0, 0.0), DVec2::new(3.0, 4.0)],
+            speed: 2.0,
+        };
         assert_eq!(path.state(0.0), (DVec2::ZERO, DVec2::new(2.0, 0.0)));
         let (q, p) = path.state(1.0);
         assert_relative_eq!(q, DVec2::new(2.0, 0.0));

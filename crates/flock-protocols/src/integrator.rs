@@ -3,14 +3,18 @@
 
 use std::borrow::Cow;
 
-use flock_graph::parallel::fill_indexed;
-use flock_graph::{NeighbourSearch, Numbering, ProximityNet};
+use flock_graph::parallel::{fill_indexed, join};
+use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::Vector;
+use flock_metrics::{FlockMetrics, MetricParams, component_velocity_mismatch};
 
+use crate::error::{ParamError, check};
+use crate::health::{AgentFault, first_fault};
 use crate::{Protocol, Swarm};
 
 /// The integration scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Integrator {
     /// Semi-implicit (symplectic) Euler: p ← p + h u(t, q, p), then q ← q + h p. First order,
     /// one net per step, and free of the energy drift of explicit Euler.
@@ -30,10 +34,38 @@ const RESORT_EVERY: u64 = 16;
 ///
 /// When the agents are numbered at random (their net [`ProximityNet::is_scattered`]) and the
 /// protocol [`Protocol::follows_numbering`], the simulation stores them in the order of the
-/// search's cells, so that neighbours are near in memory, and re-sorts them every 16 steps; the
-/// net carries the [`Numbering`]. Every state, energy and metric keeps the bits of the agents in
-/// original order: [`Simulation::swarm`] gives the state in original order, while
-/// [`Simulation::stored_swarm`] and [`Simulation::net`] are in storage order.
+/// search's cells, so that neighbours are near in memory, and re-sorts them every 16 steps
+/// ([`Simulation::stored_by_cell`]). That storage is internal: every state, graph, energy, metric
+/// and diagnostic the simulation gives is of the agents in original order, with the bits of a
+/// simulation that kept them in that order.
+///
+/// # Example
+/// ```
+/// use flock_metrics::MetricParams;
+/// use flock_protocols::{
+///     Algorithm2, AlphaInteraction, AlphaParams, GammaAgent, Integrator, NavigationalFeedback,
+///     Simulation, Swarm,
+/// };
+/// use glam::DVec2;
+///
+/// // four agents at rest on a line, drawn to a static γ-agent at the origin (TAC 2006 Algorithm 2)
+/// let q = (0..4).map(|i| DVec2::new(6.0 * f64::from(i), 0.0)).collect();
+/// let swarm = Swarm::new(q, vec![DVec2::ZERO; 4]);
+/// let gamma = GammaAgent::Static { position: DVec2::ZERO };
+/// let protocol = Algorithm2 {
+///     alpha: AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0)?,
+///     navigation: NavigationalFeedback::linear(gamma, 0.05, 0.4),
+/// };
+/// let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01)?;
+/// let h0 = sim.energy();
+/// for _ in 0..1000 {
+///     sim.step();
+/// }
+/// assert!(sim.energy() < h0); // Theorem 3: H does not increase
+/// let metrics = sim.metrics(&MetricParams { d: 7.0, collision_distance: 1.75 });
+/// assert_eq!(metrics.connectivity, 1.0);
+/// # Ok::<(), flock_protocols::ParamError>(())
+/// ```
 #[derive(Debug)]
 pub struct Simulation<V, P> {
     protocol: P,
@@ -45,6 +77,17 @@ pub struct Simulation<V, P> {
     net: ProximityNet,
     inputs: Vec<V>,
     rk: Option<RungeKuttaScratch<V>>,
+}
+
+/// What [`Simulation::observe`] measures of a state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Observation {
+    /// The flocking metrics.
+    pub metrics: FlockMetrics,
+    /// The protocol's energy.
+    pub energy: f64,
+    /// The protocol's diagnostics, named ([`Protocol::diagnostics`]).
+    pub diagnostics: Vec<(&'static str, f64)>,
 }
 
 /// An empty net for `protocol`: without distances when it does not read them.
@@ -67,8 +110,32 @@ struct RungeKuttaScratch<V> {
 
 impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// A simulation at t = 0 from `swarm`, advancing by `step > 0`.
-    #[must_use]
-    pub fn new(protocol: P, integrator: Integrator, swarm: Swarm<V>, step: f64) -> Self {
+    ///
+    /// # Errors
+    /// A step that is not positive and finite (field `step`), a protocol whose interaction range
+    /// is not (`interaction_range`), or an agent whose position or velocity is not finite
+    /// (`positions[i]`, `velocities[i]`).
+    pub fn new(
+        protocol: P,
+        integrator: Integrator,
+        swarm: Swarm<V>,
+        step: f64,
+    ) -> Result<Self, ParamError> {
+        check::positive("step", step)?;
+        check::positive("interaction_range", protocol.interaction_range())?;
+        for (name, vectors) in [
+            ("positions", &swarm.positions),
+            ("velocities", &swarm.velocities),
+        ] {
+            if let Some(i) = vectors.iter().position(|v| !v.is_finite()) {
+                return Err(ParamError::new(
+                    format!("{name}[{i}]"),
+                    vectors[i],
+                    "is not finite",
+                    "start every agent at a finite position with a finite velocity",
+                ));
+            }
+        }
         let n = swarm.len();
         let rk = (integrator == Integrator::Rk4).then(|| RungeKuttaScratch {
             stage: swarm.clone(),
@@ -88,24 +155,26 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             rk,
         };
         simulation.rebuild_net();
-        simulation
+        Ok(simulation)
     }
 
     /// A simulation resumed after `steps` steps, at t = steps · h, from the state `swarm` those
     /// steps reached: stepping it gives bit-identical states to the uninterrupted simulation, since
     /// the state (q, p) and the step count are all a simulation carries between steps.
-    #[must_use]
+    ///
+    /// # Errors
+    /// As [`Simulation::new`].
     pub fn resume(
         protocol: P,
         integrator: Integrator,
         swarm: Swarm<V>,
         step: f64,
         steps: u64,
-    ) -> Self {
-        Self {
+    ) -> Result<Self, ParamError> {
+        Ok(Self {
             steps,
-            ..Self::new(protocol, integrator, swarm, step)
-        }
+            ..Self::new(protocol, integrator, swarm, step)?
+        })
     }
 
     /// The protocol.
@@ -114,8 +183,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         &self.protocol
     }
 
+    /// The time step h.
+    #[must_use]
+    pub const fn step_size(&self) -> f64 {
+        self.step
+    }
+
     /// The current state, agents in original order: borrowed when they are stored so, otherwise
-    /// a copy in that order (see [`Simulation::stored_swarm`]).
+    /// a copy in that order.
     #[must_use]
     pub fn swarm(&self) -> Cow<'_, Swarm<V>> {
         let numbering = self.net.numbering();
@@ -129,25 +204,81 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         })
     }
 
-    /// The current state as stored: agent [`Numbering::original`]`(s)` at index s.
+    /// The proximity net's graph of the current state, agents in original order (node k is agent
+    /// k): borrowed when they are stored so, otherwise relabelled.
     #[must_use]
-    pub const fn stored_swarm(&self) -> &Swarm<V> {
-        &self.swarm
+    pub fn graph(&self) -> Cow<'_, Graph> {
+        let numbering = self.net.numbering();
+        if numbering.is_identity() {
+            return Cow::Borrowed(self.net.graph());
+        }
+        Cow::Owned(self.net.graph().in_original_order(numbering))
     }
 
-    /// How the agents are stored (the identity unless they were numbered at random; see
-    /// [`Simulation`]).
+    /// Whether the agents are stored by cell (they were numbered at random; see [`Simulation`]).
     #[must_use]
-    pub fn numbering(&self) -> &Numbering {
-        self.net.numbering()
+    pub fn stored_by_cell(&self) -> bool {
+        !self.net.numbering().is_identity()
     }
 
-    /// The proximity net of the current state, in storage order with the [`Numbering`]; it keeps
-    /// no distances when the protocol does not use them ([`Protocol::uses_net_distances`]), see
-    /// [`ProximityNet::edge_lengths`].
+    /// The flocking metrics of the current state (TAC 2006 Section VIII); `params.collision_distance`
+    /// must not exceed the interaction range (every colliding pair is then an edge of the net).
     #[must_use]
-    pub const fn net(&self) -> &ProximityNet {
-        &self.net
+    pub fn metrics(&self, params: &MetricParams) -> FlockMetrics {
+        FlockMetrics::measure(
+            &self.swarm.positions,
+            &self.swarm.velocities,
+            &self.net,
+            params,
+        )
+    }
+
+    /// The protocol's energy at the current state.
+    #[must_use]
+    pub fn energy(&self) -> f64 {
+        self.protocol.energy(self.time(), &self.swarm, &self.net)
+    }
+
+    /// The protocol's own diagnostics of the current state ([`Protocol::diagnostics`]).
+    #[must_use]
+    pub fn diagnostics(&self) -> Vec<(&'static str, f64)> {
+        self.protocol
+            .diagnostics(self.time(), &self.swarm, &self.net)
+    }
+
+    /// Everything a recorded step measures: the metrics, the energy (computed concurrently, each
+    /// with the bits it has alone) and the diagnostics.
+    #[must_use]
+    pub fn observe(&self, params: &MetricParams) -> Observation {
+        let (metrics, energy) = join(|| self.metrics(params), || self.energy());
+        Observation {
+            metrics,
+            energy,
+            diagnostics: self.diagnostics(),
+        }
+    }
+
+    /// The velocity mismatch of each agent against the mean velocity of its own component of the
+    /// net, per agent: ½ Σ_i ‖p_i − p̄_{c(i)}‖² / n (0 when every component moves rigidly).
+    #[must_use]
+    pub fn component_velocity_mismatch(&self) -> f64 {
+        component_velocity_mismatch(
+            &self.swarm.velocities,
+            &Components::of(self.net.graph()),
+            self.net.numbering(),
+        )
+    }
+
+    /// Checks the current state: every position and velocity finite, every speed at most r/h.
+    ///
+    /// # Errors
+    /// The agent at fault of lowest original index.
+    pub fn check_health(&self) -> Result<(), AgentFault> {
+        let limit = self.protocol.interaction_range() / self.step;
+        match first_fault(&self.swarm, self.net.numbering(), limit) {
+            None => Ok(()),
+            Some(fault) => Err(fault),
+        }
     }
 
     /// The number of steps taken.
@@ -160,12 +291,6 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     #[must_use]
     pub fn time(&self) -> f64 {
         self.steps as f64 * self.step
-    }
-
-    /// The protocol's energy at the current state.
-    #[must_use]
-    pub fn energy(&self) -> f64 {
-        self.protocol.energy(self.time(), &self.swarm, &self.net)
     }
 
     /// Advances the state by one step h.

@@ -7,12 +7,22 @@
 //!   [`StressForm`] (ACC 2004 eq. 39), [`Flocking2003`] with a sink, [`ObstacleFlocking2003`]
 //!   (eq. 54–58) and [`TannerJadbabaiePappas`] (Tanner, Jadbabaie & Pappas 2003, eq. 5).
 //! - [`Simulation`]: fixed-step [`Integrator`]s (symplectic Euler by default, RK4) that rebuild the
-//!   proximity net at every evaluation.
+//!   proximity net at every evaluation, with the metrics, energy, diagnostics and health of the
+//!   state in the agents' original order.
 //! - [`Swarm`]: positions and velocities of n double integrators.
+//! - [`AlphaConfig`], [`BetaConfig`], [`AvoidanceGains`]: parameters as a scenario writes them,
+//!   with the papers' defaults; [`ParamError`] names a parameter outside its domain.
+//!
+//! Features: `parallel` (default; rayon, bit-identical results for any thread count),
+//! `obstacles` (default; Algorithm 3 and the 2003 obstacle protocol, through flock-obstacles and
+//! parry), `serde` (the parameter types read and written as the `flock` crate's scenarios).
 
 pub mod alpha;
+#[cfg(feature = "obstacles")]
 pub mod beta;
+pub mod error;
 pub mod gamma;
+pub mod health;
 pub mod integrator;
 pub mod olfati_saber2003;
 pub mod olfati_saber2004;
@@ -21,17 +31,24 @@ pub mod protocol;
 pub mod swarm;
 pub mod tanner2003;
 
-pub use alpha::{AlphaInteraction, AlphaParams};
-pub use beta::{BetaInteraction, BetaParams};
-pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, Path};
-pub use integrator::{Integrator, Simulation};
+pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
+#[cfg(feature = "obstacles")]
+pub use beta::{BetaConfig, BetaInteraction, BetaParams};
+pub use error::{ParamError, check};
+pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
+pub use health::{AgentFault, Fault};
+pub use integrator::{Integrator, Observation, Simulation};
 pub use olfati_saber2003::{
-    AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, BallObstacle, Flocking2003, ObstacleFlocking2003,
-    ObstacleParams, influence_map_lipschitz,
+    AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, AvoidanceGains, Flocking2003, ObstacleParams,
+    influence_map_lipschitz,
 };
+#[cfg(feature = "obstacles")]
+pub use olfati_saber2003::{BallObstacle, ObstacleFlocking2003};
 pub use olfati_saber2004::StressForm;
-pub use olfati_saber2006::{Algorithm1, Algorithm2, Algorithm3};
-pub use protocol::Protocol;
+#[cfg(feature = "obstacles")]
+pub use olfati_saber2006::Algorithm3;
+pub use olfati_saber2006::{Algorithm1, Algorithm2};
+pub use protocol::{DynProtocol, Protocol};
 pub use swarm::Swarm;
 pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,

@@ -19,8 +19,12 @@ use core::f64::consts::PI;
 
 use flock_graph::ProximityNet;
 use flock_math::{Bump, Potential, UnevenSigmoid, Vector, mean};
+#[cfg(feature = "obstacles")]
+use flock_metrics::ObstacleMetrics;
+#[cfg(feature = "obstacles")]
 use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
+use crate::error::{ParamError, check};
 use crate::{NavigationalFeedback, Protocol, Swarm};
 use flock_graph::parallel::fill_indexed;
 
@@ -68,6 +72,7 @@ impl Default for AlphaAlphaParams {
 /// Which of the three 2003 (α, α) protocols: they differ only in the scalar g(‖q_j − q_i‖) that
 /// multiplies n_ij = (q_j − q_i)/‖q_j − q_i‖ in the gradient term (z = ‖q_j − q_i‖ − d_α).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum AlphaAlphaForm {
     /// (α, α, 1), seed 004 eq. 34: 0/1 adjacency, g = φ_α(z). Its energy (eq. 28/60) jumps by
     /// h₀ = ψ_α(r − d_α) when a link is made or lost (eq. 31); between switches it does not rise
@@ -358,6 +363,7 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
 /// A ball obstacle O_k = B(b_k, l_k) (seed 004 § 11): its centre and radius, which the γ-agent
 /// needs, and the obstacle of the space ([`Space::Obstacle`], built by [`Obstacle::ball`]) that
 /// projects on it.
+#[cfg(feature = "obstacles")]
 #[derive(Clone, Debug)]
 pub struct BallObstacle<V: Space> {
     centre: V,
@@ -365,6 +371,7 @@ pub struct BallObstacle<V: Space> {
     shape: V::Obstacle,
 }
 
+#[cfg(feature = "obstacles")]
 impl<V: Space> BallObstacle<V> {
     /// The closed ball B(centre, radius).
     ///
@@ -425,25 +432,76 @@ pub struct ObstacleParams {
 
 impl ObstacleParams {
     /// Our choice for an (α, α) protocol of range r (the seed gives no values): r₀ = r/2 (the
-    /// seed's), d_β = r₀ (which is TAC 2006's d′ = 0.6 d_α when r = 1.2 d_α), d_γ = d_α, λ_d = 1,
-    /// c₃ = 10 (≫ 1, repulsion up to c₃ b), c₄ = 1, and the (α, α) influence map as ρ.
-    ///
-    /// c₄ matches the velocity of the β-agent, p̂ = μ P p with μ < 1 outside a ball, so it also
-    /// brakes motion along the obstacle: with c₄ = 2√c₃ ≈ 6.3 (TAC 2006's critical-damping rule) the
-    /// 9-agent flock of `tests/olfati_saber2003.rs` was still jammed in front of the ball after
-    /// 16 s; with c₄ = 1 it splits around the ball and passes.
+    /// seed's), d_β = r₀ (which is TAC 2006's d′ = 0.6 d_α when r = 1.2 d_α), d_γ = d_α, the
+    /// (α, α) influence map as ρ, and the default [`AvoidanceGains`].
     #[must_use]
     pub fn for_alpha(alpha: &AlphaAlphaParams) -> Self {
+        Self::new(alpha, AvoidanceGains::default())
+    }
+
+    /// The distances and bump of [`ObstacleParams::for_alpha`] with the gains `gains`.
+    #[must_use]
+    pub fn new(alpha: &AlphaAlphaParams, gains: AvoidanceGains) -> Self {
         let r0 = 0.5 * alpha.r;
         Self {
             r0,
-            c3: 10.0,
-            c4: 1.0,
+            c3: gains.c3,
+            c4: gains.c4,
             d_beta: r0,
             d_gamma: alpha.d_alpha,
-            lambda_d: 1.0,
+            lambda_d: gains.lambda_d,
             bump: alpha.bump,
         }
+    }
+}
+
+/// The gains of the 2003 obstacle protocol as a scenario writes them (seed 004 eq. 54), with our
+/// defaults (the seed gives no values): c₃ = 10 (≫ 1, repulsion up to c₃ b), c₄ = 1, λ_d = 1.
+///
+/// c₄ matches the velocity of the β-agent, p̂ = μ P p with μ < 1 outside a ball, so it also
+/// brakes motion along the obstacle: with c₄ = 2√c₃ ≈ 6.3 (TAC 2006's critical-damping rule) the
+/// 9-agent flock of `tests/olfati_saber2003.rs` was still jammed in front of the ball after
+/// 16 s; with c₄ = 1 it splits around the ball and passes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields, default)
+)]
+pub struct AvoidanceGains {
+    /// Gain c₃ > 0 of the β/γ position terms (the seed asks c₃ ≫ 1).
+    pub c3: f64,
+    /// Gain c₄ ≥ 0 of the velocity term c₄(p̂ − p_i).
+    pub c4: f64,
+    /// λ_d ∈ (0, 1]: the γ-agent of obstacle k sits at b_k + λ_d n_d.
+    pub lambda_d: f64,
+}
+
+impl Default for AvoidanceGains {
+    fn default() -> Self {
+        Self {
+            c3: 10.0,
+            c4: 1.0,
+            lambda_d: 1.0,
+        }
+    }
+}
+
+impl AvoidanceGains {
+    /// Checks c₃ > 0, c₄ ≥ 0 and λ_d ∈ (0, 1].
+    ///
+    /// # Errors
+    /// The first gain outside its domain, named by its field (`c3`, `c4`, `lambda_d`).
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check::positive("c3", self.c3)?;
+        check::non_negative("c4", self.c4)?;
+        check::require(
+            self.lambda_d > 0.0 && self.lambda_d <= 1.0,
+            "lambda_d",
+            self.lambda_d,
+            "the γ-agent x_k = b_k + λ_d n_d needs λ_d in (0, 1]",
+            "use lambda_d: 1.0",
+        )
     }
 }
 
@@ -461,6 +519,7 @@ impl ObstacleParams {
 ///
 /// The seed states no energy result with obstacles; [`Protocol::energy`] is that of the
 /// obstacle-free part ([`Flocking2003`]), which active obstacles may raise.
+#[cfg(feature = "obstacles")]
 #[derive(Clone, Debug)]
 pub struct ObstacleFlocking2003<V: Space> {
     /// The (α, α) part (eq. 58 uses (α, α, 2)) and the translational controller u^tr.
@@ -471,6 +530,7 @@ pub struct ObstacleFlocking2003<V: Space> {
     pub params: ObstacleParams,
 }
 
+#[cfg(feature = "obstacles")]
 impl<V: Space> ObstacleFlocking2003<V> {
     /// φ_β(z) = min(φ_α(z), 0): the repulsive branch of eq. 29.
     #[must_use]
@@ -515,6 +575,7 @@ impl<V: Space> ObstacleFlocking2003<V> {
     }
 }
 
+#[cfg(feature = "obstacles")]
 impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
     fn interaction_range(&self) -> f64 {
         self.flocking.alpha.params().r
@@ -533,6 +594,25 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
     /// The energy of the obstacle-free part, [`Flocking2003`]'s (no theorem covers obstacles).
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         self.flocking.energy(t, swarm, net)
+    }
+
+    /// `obstacle_clearance`, `inside_obstacles` (none without obstacles).
+    fn diagnostics(
+        &self,
+        _t: f64,
+        swarm: &Swarm<V>,
+        _net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        if self.obstacles.is_empty() {
+            return Vec::new();
+        }
+        let clearance = |q: V| {
+            self.obstacles
+                .iter()
+                .map(|ball| (q - ball.centre()).length() - ball.radius())
+                .fold(f64::INFINITY, f64::min)
+        };
+        ObstacleMetrics::measure(&swarm.positions, clearance).columns()
     }
 }
 

@@ -3,9 +3,14 @@
 
 use flock_graph::{Numbering, ProximityNet};
 use flock_math::{Vector, mean_of};
+#[cfg(feature = "obstacles")]
+use flock_metrics::ObstacleMetrics;
+#[cfg(feature = "obstacles")]
 use flock_obstacles::Space;
 
-use crate::{AlphaInteraction, BetaInteraction, NavigationalFeedback, Protocol, Swarm};
+#[cfg(feature = "obstacles")]
+use crate::BetaInteraction;
+use crate::{AlphaInteraction, NavigationalFeedback, Protocol, Swarm};
 
 /// Algorithm 1 (eq. 24): u_i = u_i^α, the α-interaction alone. Total momentum is preserved
 /// (Σ_i u_i = 0) and, in the frame of the centre of mass, H = V(q) + ½ Σ ‖p_i − p_c‖² is
@@ -106,6 +111,7 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
 /// [`NavigationalFeedback::bounded`](crate::NavigationalFeedback::bounded) for the paper's
 /// u_i^γ = −c₁^γ σ₁(q_i − q_r) − c₂^γ(p_i − p_r)); the β-part repels from the obstacles' β-agents.
 /// With no obstacle within r′ of any agent it is exactly that Algorithm 2.
+#[cfg(feature = "obstacles")]
 #[derive(Clone, Debug)]
 pub struct Algorithm3<V: Space> {
     /// The α-interaction and the navigational feedback.
@@ -114,6 +120,7 @@ pub struct Algorithm3<V: Space> {
     pub beta: BetaInteraction<V>,
 }
 
+#[cfg(feature = "obstacles")]
 impl<V: Space> Protocol<V> for Algorithm3<V> {
     fn uses_net_distances(&self) -> bool {
         false
@@ -143,6 +150,20 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
         self.flock.potential(q_r, swarm, net)
             + self.beta.potential(&swarm.positions, net.numbering())
             + kinetic(&swarm.velocities, net.numbering(), V::ZERO)
+    }
+
+    /// `obstacle_clearance`, `inside_obstacles` (none without obstacles).
+    fn diagnostics(
+        &self,
+        _t: f64,
+        swarm: &Swarm<V>,
+        _net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        let field = self.beta.field();
+        if field.is_empty() {
+            return Vec::new();
+        }
+        ObstacleMetrics::measure(&swarm.positions, |q| field.clearance(q)).columns()
     }
 }
 

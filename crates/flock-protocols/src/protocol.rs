@@ -7,6 +7,10 @@ use crate::Swarm;
 
 /// A distributed flocking protocol: u_i as a function of the state of agent i and of its neighbours
 /// in the proximity net, plus the energy function its stability theorem uses.
+///
+/// The trait is object safe: a protocol chosen at run time is a `Box<dyn Protocol<V> + Send>`
+/// ([`DynProtocol`]), itself a protocol, so one [`Simulation`](crate::Simulation) type serves
+/// every algorithm.
 pub trait Protocol<V: Vector>: Sync {
     /// The interaction range r that defines N_i = { j : ‖q_j − q_i‖ < r }.
     #[must_use]
@@ -19,6 +23,23 @@ pub trait Protocol<V: Vector>: Sync {
     /// The energy (Hamiltonian) of the closed-loop system whose non-increase the theory proves.
     #[must_use]
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64;
+
+    /// The protocol's own diagnostics of the state at time `t`, each with its column name
+    /// (`obstacle_clearance`, `velocity_disagreement`, …): the same names in the same order at
+    /// every state of a run. None by default.
+    ///
+    /// The state is as the simulation stores it: in original order unless the protocol
+    /// [follows the numbering](Protocol::follows_numbering), whose values must then not depend on
+    /// the order of the agents (minima, counts).
+    #[must_use]
+    fn diagnostics(
+        &self,
+        _t: f64,
+        _swarm: &Swarm<V>,
+        _net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        Vec::new()
+    }
 
     /// Whether [`Protocol::controls`] and [`Protocol::energy`] read the net's stored distances
     /// ([`ProximityNet::distances`]); true unless a protocol says otherwise. When false, a
@@ -38,5 +59,40 @@ pub trait Protocol<V: Vector>: Sync {
     #[must_use]
     fn follows_numbering(&self) -> bool {
         false
+    }
+}
+
+/// A protocol chosen at run time.
+pub type DynProtocol<V> = Box<dyn Protocol<V> + Send>;
+
+/// A boxed protocol is the protocol it holds.
+impl<V: Vector, P: Protocol<V> + ?Sized> Protocol<V> for Box<P> {
+    fn interaction_range(&self) -> f64 {
+        (**self).interaction_range()
+    }
+
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
+        (**self).controls(t, swarm, net, inputs);
+    }
+
+    fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        (**self).energy(t, swarm, net)
+    }
+
+    fn diagnostics(
+        &self,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        (**self).diagnostics(t, swarm, net)
+    }
+
+    fn uses_net_distances(&self) -> bool {
+        (**self).uses_net_distances()
+    }
+
+    fn follows_numbering(&self) -> bool {
+        (**self).follows_numbering()
     }
 }

@@ -198,6 +198,25 @@ impl<V: Vector> Protocol<V> for TannerJadbabaiePappas {
     fn uses_net_distances(&self) -> bool {
         false
     }
+
+    /// `velocity_disagreement` (½ Σ ‖v_i − v̄‖²) and `min_linked_distance`.
+    fn diagnostics(
+        &self,
+        _t: f64,
+        swarm: &Swarm<V>,
+        _net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        vec![
+            (
+                "velocity_disagreement",
+                Self::velocity_disagreement(&swarm.velocities),
+            ),
+            (
+                "min_linked_distance",
+                self.min_linked_distance(&swarm.positions),
+            ),
+        ]
+    }
 }
 
 /// A random connected graph on `n` nodes, deterministic for `seed` (seed 001 § V: "generated in

@@ -31,7 +31,8 @@ pub(crate) fn algorithm3<V: Space>(specs: &[ObstacleSpec], gamma: GammaAgent<V>)
             0.1,
             10.0,
             2.0 * 10f64.sqrt(),
-        ),
+        )
+        .expect("valid β-parameters"),
     }
 }
 
@@ -112,7 +113,8 @@ fn theorem6<V: Space>() {
         },
     );
     let swarm: Swarm<V> = random_swarm(30, 9.0, 0.5, 6);
-    let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.002);
+    let mut sim =
+        Simulation::new(protocol, Integrator::Rk4, swarm, 0.002).expect("a valid simulation");
     let closest = Cell::new(f64::INFINITY);
     let energy_and_clearance = |sim: &Simulation<V, Algorithm3<V>>| {
         for &q in &sim.swarm().positions {

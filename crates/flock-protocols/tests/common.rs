@@ -19,7 +19,7 @@ pub fn random_swarm<V: Vector>(n: usize, half: f64, speed: f64, seed: u64) -> Sw
 
 /// The papers' α-interaction (d = 7, r = 8.4, ε = 0.1, a = b = 5, h = 0.2) with unit gains.
 pub fn papers_alpha() -> AlphaInteraction {
-    AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0)
+    AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0).expect("valid α-parameters")
 }
 
 /// Algorithm 2 with the papers' α-interaction following a γ-agent that starts at the origin

@@ -17,7 +17,8 @@ fn run(threads: usize, integrator: Integrator) -> Swarm<DVec2> {
             integrator,
             random_swarm(2000, 100.0, 2.0, 8),
             0.01,
-        );
+        )
+        .expect("a valid simulation");
         for _ in 0..60 {
             sim.step();
         }
@@ -47,8 +48,10 @@ fn a_resumed_simulation_is_bit_identical_to_the_uninterrupted_one() {
     let protocol = || following(DVec2::new(1.0, 0.5));
     for integrator in [Integrator::SymplecticEuler, Integrator::Rk4] {
         let start = random_swarm(300, 40.0, 2.0, 3);
-        let mut whole = Simulation::new(protocol(), integrator, start.clone(), 0.01);
-        let mut first = Simulation::new(protocol(), integrator, start, 0.01);
+        let mut whole = Simulation::new(protocol(), integrator, start.clone(), 0.01)
+            .expect("a valid simulation");
+        let mut first =
+            Simulation::new(protocol(), integrator, start, 0.01).expect("a valid simulation");
         for _ in 0..37 {
             whole.step();
             first.step();
@@ -59,7 +62,8 @@ fn a_resumed_simulation_is_bit_identical_to_the_uninterrupted_one() {
             first.swarm().into_owned(),
             0.01,
             first.steps(),
-        );
+        )
+        .expect("a valid simulation");
         assert_eq!(resumed.time().to_bits(), whole.time().to_bits());
         for _ in 0..41 {
             whole.step();

@@ -89,13 +89,15 @@ fn planar_runs_agree_in_2d_and_3d() {
     );
     let protocol2 = following(DVec2::new(1.0, 0.5));
     let protocol3 = following(DVec3::new(1.0, 0.5, 0.0));
-    let mut sim2 = Simulation::new(protocol2, Integrator::SymplecticEuler, flat, 0.01);
-    let mut sim3 = Simulation::new(protocol3, Integrator::SymplecticEuler, lifted, 0.01);
+    let mut sim2 = Simulation::new(protocol2, Integrator::SymplecticEuler, flat, 0.01)
+        .expect("a valid simulation");
+    let mut sim3 = Simulation::new(protocol3, Integrator::SymplecticEuler, lifted, 0.01)
+        .expect("a valid simulation");
     for _ in 0..1000 {
         sim2.step();
         sim3.step();
     }
-    assert_eq!(sim2.net().graph(), sim3.net().graph());
+    assert_eq!(sim2.graph(), sim3.graph());
     for (q2, q3) in sim2.swarm().positions.iter().zip(&sim3.swarm().positions) {
         assert_abs_diff_eq!(*q2, q3.truncate(), epsilon = 1e-9);
         assert_eq!(q3.z, 0.0);

@@ -28,7 +28,8 @@ fn algorithm_1_preserves_momentum_over_a_million_steps() {
         Integrator::SymplecticEuler,
         start,
         0.01,
-    );
+    )
+    .expect("a valid simulation");
     let mut worst = 0.0_f64;
     for _ in 0..STEPS / 1000 {
         for _ in 0..1000 {

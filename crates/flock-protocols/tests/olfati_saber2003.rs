@@ -307,11 +307,12 @@ fn structural_energy_non_increasing<V: Vector>() {
         Integrator::Rk4,
         swarm,
         0.005,
-    );
-    let links = sim.net().graph().undirected_edge_count();
+    )
+    .expect("a valid simulation");
+    let links = sim.graph().undirected_edge_count();
     let (start, end) = energy_along(&mut sim, 800, Simulation::energy);
     assert!(end < 0.5 * start, "H_s must dissipate: {start} → {end}");
-    assert_ne!(sim.net().graph().undirected_edge_count(), links);
+    assert_ne!(sim.graph().undirected_edge_count(), links);
 }
 
 #[test]
@@ -338,7 +339,8 @@ fn sink<V: Vector>() {
     // random start at rest (seed 004 Fig. 9)
     let swarm: Swarm<V> = random_swarm(30, 25.0, 0.0, 11);
     let e0 = swarm.centre() - q_d;
-    let mut sim = Simulation::new(flocking, Integrator::Rk4, swarm, 0.01);
+    let mut sim =
+        Simulation::new(flocking, Integrator::Rk4, swarm, 0.01).expect("a valid simulation");
     let translational = |sim: &Simulation<V, Flocking2003<V>>| {
         sim.protocol()
             .translational_energy(sim.time(), &sim.swarm())
@@ -356,7 +358,8 @@ fn sink<V: Vector>() {
         Integrator::Rk4,
         random_swarm(30, 25.0, 0.0, 12),
         0.01,
-    );
+    )
+    .expect("a valid simulation");
     let (start, end) = energy_along(&mut sim, 500, Simulation::energy);
     assert!(end < 0.2 * start, "H: {start} → {end}");
 }
@@ -439,7 +442,8 @@ fn agent_is_repelled<V: Space>() {
     let p_d = planar::<V>(5.0, 0.0);
     let protocol = obstacle_protocol::<V>(centre, radius, p_d);
     let swarm = Swarm::new(vec![planar(10.0, 2.0)], vec![p_d]);
-    let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.01);
+    let mut sim =
+        Simulation::new(protocol, Integrator::Rk4, swarm, 0.01).expect("a valid simulation");
     let mut closest = f64::INFINITY;
     let mut slowest = f64::INFINITY;
     for _ in 0..1000 {
@@ -475,7 +479,8 @@ fn flock_avoids_a_ball<V: Space>() {
     let shift = planar::<V>(-7.0, -6.0);
     let q: Vec<V> = patch.iter().map(|&x| x + shift).collect();
     let swarm = Swarm::new(q.clone(), vec![p_d; q.len()]);
-    let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.01);
+    let mut sim =
+        Simulation::new(protocol, Integrator::Rk4, swarm, 0.01).expect("a valid simulation");
     let mut closest = f64::INFINITY;
     let mut active = 0;
     for _ in 0..2000 {

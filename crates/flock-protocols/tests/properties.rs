@@ -46,7 +46,8 @@ struct Case {
 impl Case {
     fn protocol(&self) -> Algorithm1 {
         Algorithm1 {
-            alpha: AlphaInteraction::new(self.params, self.c1, self.c2),
+            alpha: AlphaInteraction::new(self.params, self.c1, self.c2)
+                .expect("valid α-parameters"),
         }
     }
 
@@ -78,7 +79,8 @@ impl Case {
     /// Per agent: (degree, S_i = Σ_j s_ij, A_i = Σ_j a-priori size of t_ij), over the net of range
     /// `range`.
     fn sizes<V: Vector>(&self, swarm: &Swarm<V>, range: f64) -> Vec<(usize, f64, f64)> {
-        let alpha = AlphaInteraction::new(self.params, self.c1, self.c2);
+        let alpha =
+            AlphaInteraction::new(self.params, self.c1, self.c2).expect("valid α-parameters");
         let sigma = SigmaNorm::new(self.params.epsilon);
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let net = ProximityNet::brute_force(q, range);
@@ -216,7 +218,8 @@ fn check_momentum_along_a_run<V: Vector>(case: &Case, steps: usize) -> Result<()
     let speeds = |s: &Swarm<V>| s.velocities.iter().map(|p| p.length()).sum::<f64>();
     let start = total(&swarm.velocities);
     let mut tolerance = n as f64 * U * root_m * speeds(&swarm);
-    let mut sim = Simulation::new(case.protocol(), Integrator::SymplecticEuler, swarm, h);
+    let mut sim = Simulation::new(case.protocol(), Integrator::SymplecticEuler, swarm, h)
+        .expect("a valid simulation");
     for _ in 0..steps {
         let (max_degree, scale) = case.degree_and_scale(&sim.swarm());
         sim.step();

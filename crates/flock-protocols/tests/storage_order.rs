@@ -3,6 +3,7 @@
 
 use flock_graph::ProximityNet;
 use flock_math::Vector;
+use flock_metrics::{FlockMetrics, MetricParams};
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{GammaAgent, Integrator, Protocol, Simulation, Swarm};
 use glam::{DVec2, DVec3};
@@ -26,6 +27,15 @@ impl<V: Vector, P: Protocol<V>> Protocol<V> for InOriginalOrder<P> {
         self.0.energy(t, swarm, net)
     }
 
+    fn diagnostics(
+        &self,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        self.0.diagnostics(t, swarm, net)
+    }
+
     fn uses_net_distances(&self) -> bool {
         self.0.uses_net_distances()
     }
@@ -42,46 +52,91 @@ fn bits<V: Vector>(swarm: &Swarm<V>) -> Vec<u64> {
 }
 
 /// 17 steps (a re-sort at step 16) of `protocol` stored by cell against the same protocol kept in
-/// original order, from 20,000 agents numbered at random: the same state and energy bits after
-/// every step, with both integrators.
+/// original order, from 20,000 agents numbered at random: the same state, graph, energy, metrics
+/// and diagnostics bits after every step, with both integrators.
 fn stored_by_cell_is_bit_identical<V: Vector, P: Protocol<V> + Clone>(protocol: &P, half: f64) {
     assert!(protocol.follows_numbering());
+    let params = MetricParams {
+        d: 7.0,
+        collision_distance: 1.75,
+    };
     for integrator in [Integrator::SymplecticEuler, Integrator::Rk4] {
         let start: Swarm<V> = random_swarm(20_000, half, 2.0, 17);
-        let mut sorted = Simulation::new(protocol.clone(), integrator, start.clone(), 0.01);
+        let mut sorted = Simulation::new(protocol.clone(), integrator, start.clone(), 0.01)
+            .expect("a valid simulation");
         let mut original =
-            Simulation::new(InOriginalOrder(protocol.clone()), integrator, start, 0.01);
-        assert!(original.net().is_scattered() && original.numbering().is_identity());
-        assert!(!sorted.net().is_scattered() && !sorted.numbering().is_identity());
+            Simulation::new(InOriginalOrder(protocol.clone()), integrator, start, 0.01)
+                .expect("a valid simulation");
+        assert!(!original.stored_by_cell() && sorted.stored_by_cell());
         for step in 0..=17 {
             if step > 0 {
                 sorted.step();
                 original.step();
             }
-            let state = sorted.swarm();
+            let context = format!("{integrator:?}, step {step}");
             assert!(
-                bits(&state) == bits(original.stored_swarm()),
-                "{integrator:?}, step {step}"
+                bits(&sorted.swarm()) == bits(&original.swarm()),
+                "{context}"
             );
             assert_eq!(
                 sorted.energy().to_bits(),
                 original.energy().to_bits(),
-                "{integrator:?}, step {step}"
+                "{context}"
             );
         }
-        let degree = |net: &ProximityNet| net.graph().directed_edge_count();
-        assert_eq!(degree(sorted.net()), degree(original.net()));
+        assert_eq!(sorted.graph(), original.graph());
         assert!(
-            degree(sorted.net()) > 4 * 20_000,
+            sorted.graph().directed_edge_count() > 4 * 20_000,
             "the test wants neighbours"
         );
-        let (stored, in_order) = (sorted.stored_swarm(), sorted.swarm());
-        let numbering = sorted.numbering();
+        let (a, b) = (sorted.observe(&params), original.observe(&params));
         assert!(
-            (0..stored.len())
-                .all(|s| stored.positions[s] == in_order.positions[numbering.original(s)])
+            a.metrics.reals().map(f64::to_bits) == b.metrics.reals().map(f64::to_bits)
+                && a.metrics.collisions == b.metrics.collisions
+                && a.metrics.components == b.metrics.components,
+            "{a:?} {b:?}"
+        );
+        assert_eq!(a.diagnostics, b.diagnostics);
+        assert_eq!(
+            sorted.component_velocity_mismatch().to_bits(),
+            original.component_velocity_mismatch().to_bits()
         );
     }
+}
+
+/// Issue 12: measuring the state of 20,000 agents numbered at random (stored by cell) through
+/// the simulation gives the metrics of the state in original order with its brute-force net —
+/// not those of the original-order state read against the storage-order net (Ẽ = 4238 and 1
+/// collision where the truth was Ẽ = 0.119 and 2909 collisions).
+#[test]
+fn issue_12_metrics_of_agents_stored_by_cell_are_those_of_the_original_order_state() {
+    let start: Swarm<DVec2> = random_swarm(20_000, 200.0, 2.0, 12);
+    let mut sim = Simulation::new(
+        following(DVec2::new(1.0, 0.5)),
+        Integrator::SymplecticEuler,
+        start,
+        0.01,
+    )
+    .expect("a valid simulation");
+    for _ in 0..5 {
+        sim.step();
+    }
+    assert!(sim.stored_by_cell(), "the test wants agents stored by cell");
+    let params = MetricParams {
+        d: 7.0,
+        collision_distance: 1.75,
+    };
+    let measured = sim.metrics(&params);
+    let state = sim.swarm();
+    let brute = ProximityNet::brute_force(&state.positions, 8.4);
+    let truth = FlockMetrics::measure(&state.positions, &state.velocities, &brute, &params);
+    assert!(truth.collisions > 1000, "{truth:?}");
+    assert_eq!(measured.collisions, truth.collisions);
+    assert_eq!(measured.components, truth.components);
+    for (got, want) in measured.reals().iter().zip(truth.reals()) {
+        approx::assert_relative_eq!(*got, want, max_relative = 1e-12);
+    }
+    assert_eq!(*sim.graph(), *brute.graph());
 }
 
 #[test]

@@ -127,7 +127,7 @@ fn flocking_on_a_fixed_graph<V: Vector>(seed: u64) {
     let guaranteed = law.collision_bound(w0);
     assert!(guaranteed > 0.1 * d, "W(0) = {w0} allows {guaranteed}");
     assert!(law.min_linked_distance(&swarm.positions) >= guaranteed);
-    let mut sim = Simulation::new(law, Integrator::Rk4, swarm, 0.01);
+    let mut sim = Simulation::new(law, Integrator::Rk4, swarm, 0.01).expect("a valid simulation");
     let mut w = w0;
     let mut closest = f64::INFINITY;
     while sim.time() < 100.0 - 1e-9 {

@@ -36,7 +36,8 @@ fn momentum_preserved<V: Vector>() {
     }
     // and along a run: p_c is constant to round-off
     let swarm: Swarm<V> = random_swarm(60, 20.0, 2.0, 9);
-    let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01);
+    let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01)
+        .expect("a valid simulation");
     let p_c = sim.swarm().mean_velocity();
     for _ in 0..500 {
         sim.step();
@@ -66,7 +67,8 @@ fn energy_non_increasing<V: Vector>() {
         Integrator::Rk4,
         swarm,
         0.002,
-    );
+    )
+    .expect("a valid simulation");
     let (start, end) = energy_along(&mut sim, 2500, Simulation::energy);
     assert!(end < start - 1.0, "H must dissipate: {start} → {end}");
 }
@@ -97,7 +99,8 @@ fn algorithm2_energy_non_increasing_with_a_moving_gamma_agent() {
         alpha: papers_alpha(),
         navigation,
     };
-    let mut sim = Simulation::new(protocol, Integrator::Rk4, swarm, 0.002);
+    let mut sim =
+        Simulation::new(protocol, Integrator::Rk4, swarm, 0.002).expect("a valid simulation");
     let (start, end) = energy_along(&mut sim, 2500, Simulation::energy);
     assert!(end < 0.5 * start, "H must dissipate: {start} → {end}");
 }
