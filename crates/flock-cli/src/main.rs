@@ -5,10 +5,10 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
-use flock_cli::{
-    OutputOptions, Progress, Report, ResumeError, RunDirectory, RunError, Scenario, Start,
-    TrajectoryFormat, plot_run, resume_scenario,
-};
+use flock::run_dir::{CreateError, ResumeError};
+use flock::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
+use flock_cli::{Progress, Report};
+use flock_viz::plot_run;
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -165,7 +165,7 @@ fn main() -> ExitCode {
                 println!("{}: valid", scenario.display());
                 print!("{}", s.to_ron().unwrap_or_default());
                 println!();
-                if let Some(stable) = flock_cli::stability::largest_stable_step(&s) {
+                if let Some(stable) = flock::largest_stable_step(&s) {
                     println!(
                         "// step {} against the estimated largest stable step {stable:.3e}",
                         s.step
@@ -272,7 +272,18 @@ fn create_directory(
         eprintln!("{warning}");
     }
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| {
-        eprintln!("error: {e}");
+        match e {
+            CreateError::Occupied { target } => eprintln!(
+                "error: output directory {} already holds files; choose another --out or pass --force to replace it",
+                target.display()
+            ),
+            CreateError::Interrupted { partial, target } => eprintln!(
+                "error: {} holds an interrupted run; continue it with `flock run --resume {}`, or pass --force to start over",
+                partial.display(),
+                target.display()
+            ),
+            CreateError::Io(e) => eprintln!("error: {e}"),
+        }
         ExitCode::FAILURE
     })?;
     Ok((dir, scenario, None))
@@ -284,10 +295,23 @@ fn resume_directory(
     checkpoint_every: u64,
 ) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
     let (dir, scenario, start) = RunDirectory::resume(dir, checkpoint_every).map_err(|e| {
-        eprintln!("error: {e}");
+        match &e {
+            ResumeError::Nothing {
+                partial,
+                target,
+                complete: false,
+            } => eprintln!(
+                "error: there is no interrupted run at {}: start it with `flock run SCENARIO --out {}`",
+                partial.display(),
+                target.display()
+            ),
+            _ => eprintln!("error: {e}"),
+        }
         match e {
             ResumeError::Scenario(_) => ExitCode::from(INVALID),
-            ResumeError::Refused(_) | ResumeError::Io(_) => ExitCode::FAILURE,
+            ResumeError::Nothing { .. } | ResumeError::Refused(_) | ResumeError::Io(_) => {
+                ExitCode::FAILURE
+            }
         }
     })?;
     match &start {
@@ -315,7 +339,7 @@ fn execute(
 ) -> Result<PathBuf, ExitCode> {
     let mut recorder = Progress::for_terminal(dir, scenario, quiet)
         .starting_at(start.map_or(0, |start| start.steps));
-    let result = resume_scenario(scenario, start, &mut recorder);
+    let result = flock::resume(scenario, start, &mut recorder);
     let dir = recorder.into_inner();
     let error = match result {
         Ok(summary) => {

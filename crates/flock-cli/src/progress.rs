@@ -9,11 +9,8 @@
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
-use flock_math::Vector;
+use flock::{Record, Recorder, Scenario, Start};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressState, ProgressStyle};
-
-use crate::run::{Record, Recorder};
-use crate::scenario::Scenario;
 
 /// How long a run goes before its bar may appear.
 pub const SHOW_AFTER: Duration = Duration::from_millis(300);
@@ -119,7 +116,7 @@ impl<R> Progress<R> {
 impl<R: Recorder> Recorder for Progress<R> {
     type Error = R::Error;
 
-    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         let result = self.inner.record(record);
         self.tick(record.t);
         result
@@ -129,7 +126,7 @@ impl<R: Recorder> Recorder for Progress<R> {
         self.inner.wants_checkpoint(steps)
     }
 
-    fn checkpoint(&mut self, start: &crate::run::Start) -> Result<(), Self::Error> {
+    fn checkpoint(&mut self, start: &Start) -> Result<(), Self::Error> {
         self.inner.checkpoint(start)
     }
 

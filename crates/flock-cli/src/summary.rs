@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use crate::run::RunSummary;
+use flock::RunSummary;
 
 /// A run summary with its scenario's name, ready to print.
 #[derive(Debug)]
@@ -38,7 +38,7 @@ impl fmt::Display for Report<'_> {
         )?;
         writeln!(f, "  min distance          {:.4}", m.min_distance)?;
         writeln!(f, "  colliding pairs       {}", m.collisions)?;
-        for (name, value) in &s.extra {
+        for (name, value) in &s.diagnostics {
             writeln!(f, "  {name:<22}{value:.6e}")?;
         }
         writeln!(

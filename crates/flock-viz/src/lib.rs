@@ -13,6 +13,8 @@
 //! - [`animation_gif`]: the whole run as an animated GIF.
 //! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
 //! - [`write_figures`]: all of them into a directory, as `flock plot` writes them.
+//! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
+//! - [`index_html`]: the page of every fixture's figures that `flock figures` writes.
 //!
 //! # Example
 //! ```
@@ -35,16 +37,17 @@ pub mod figures;
 pub mod font;
 mod format;
 pub mod framing;
+pub mod gallery;
 mod geometry;
 pub mod metrics;
 pub mod metrics_plot;
 pub mod player;
+pub mod plot;
 mod render;
 pub mod run_data;
 pub mod scene;
 pub mod snapshot;
 pub mod style;
-mod table;
 pub mod view;
 
 pub use animation::{AnimationOptions, animation_frames, animation_gif};
@@ -52,9 +55,11 @@ pub use drawable::Drawable;
 pub use error::VizError;
 pub use figures::{FigureOptions, write_figures};
 pub use framing::Framing;
+pub use gallery::{FigureEntry, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
 pub use player::{PlayerOptions, player_html};
+pub use plot::{PlotError, plot_run};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
 pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};

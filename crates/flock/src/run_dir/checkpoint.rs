@@ -5,11 +5,12 @@
 //! The file is little-endian: the magic `FLOCKCK1`, then as u64 the dimension, the number of
 //! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
 //! trajectory; then the positions and the velocities as f64 (`dim` per agent), and last an FNV-1a
-//! hash of everything before it. It is written to `checkpoint.tmp` and renamed over
-//! `checkpoint.bin`, so a run killed while writing one leaves the previous checkpoint intact.
+//! hash of everything before it. It is written to `checkpoint.tmp`, flushed to the disk, and
+//! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
+//! leaves the previous checkpoint intact.
 
 use std::fs;
-use std::io;
+use std::io::{self, Write};
 use std::path::Path;
 
 use crate::run::Start;
@@ -59,8 +60,11 @@ impl Checkpoint {
         let hash = fnv1a(&bytes);
         bytes.extend_from_slice(&hash.to_le_bytes());
         let temporary = dir.join("checkpoint.tmp");
-        fs::write(&temporary, &bytes)?;
-        fs::rename(temporary, dir.join(CHECKPOINT_FILE))
+        let mut file = fs::File::create(&temporary)?;
+        file.write_all(&bytes)?;
+        file.sync_all()?;
+        fs::rename(temporary, dir.join(CHECKPOINT_FILE))?;
+        sync_dir(dir)
     }
 
     /// Reads the checkpoint of `dir`, if it has one.
@@ -131,4 +135,12 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| {
         (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     })
+}
+
+/// Flushes the entries of directory `dir` (a rename or a new file in it) to the disk.
+///
+/// # Errors
+/// When the directory cannot be opened or flushed.
+pub fn sync_dir(dir: &Path) -> io::Result<()> {
+    fs::File::open(dir)?.sync_all()
 }

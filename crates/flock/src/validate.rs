@@ -1,82 +1,27 @@
-//! Validation of a parsed scenario: every value inside the domain the theory needs.
+//! Validation of a parsed scenario: every value inside the domain the theory needs. The domain of
+//! each parameter type is checked by the type itself (`flock-protocols`: [`AlphaConfig`],
+//! [`BetaConfig`], [`AvoidanceGains`], [`GammaAgent`]); this module adds what only the whole
+//! scenario knows (the dimension of its vectors, its agents, obstacles and graph).
+//!
+//! [`AlphaConfig`]: flock_protocols::AlphaConfig
+//! [`BetaConfig`]: flock_protocols::BetaConfig
+//! [`AvoidanceGains`]: flock_protocols::AvoidanceGains
 
 use flock_graph::{Components, Graph};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
+use flock_protocols::check::{self, Check, length, non_negative, positive, require};
+use flock_protocols::{GammaAgent, ParamError};
 use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
 use crate::initial::initial_swarm;
-use crate::scenario::{Algorithm, Cloud, Gamma, Scenario, TannerGraph};
+use crate::scenario::{Algorithm, Cloud, Point, Scenario, TannerGraph};
 use crate::stability::coincident_start;
 
-type Check = Result<(), ScenarioError>;
+/// The most agents accepted: flock keeps about 250 bytes per agent (docs/performance.md).
+pub const MAX_AGENTS: usize = 100_000_000;
 
-/// Fails with an [`ScenarioError::Invalid`] unless `ok`.
-fn require(ok: bool, field: &str, value: impl std::fmt::Debug, why: &str, fix: &str) -> Check {
-    if ok {
-        Ok(())
-    } else {
-        Err(ScenarioError::invalid(field, value, why, fix))
-    }
-}
-
-fn finite(field: &str, value: f64) -> Check {
-    require(
-        value.is_finite(),
-        field,
-        value,
-        "must be a finite number",
-        "write a finite decimal value",
-    )
-}
-
-fn positive(field: &str, value: f64) -> Check {
-    finite(field, value)?;
-    require(
-        value > 0.0,
-        field,
-        value,
-        "must be > 0",
-        "give a positive value",
-    )?;
-    not_huge(field, value)
-}
-
-fn non_negative(field: &str, value: f64) -> Check {
-    finite(field, value)?;
-    require(
-        value >= 0.0,
-        field,
-        value,
-        "must be ≥ 0",
-        "give a non-negative value",
-    )?;
-    not_huge(field, value)
-}
-
-/// Gains, times and lengths up to [`MAX_COORDINATE`]: beyond, the energies (quadratic in lengths
-/// and linear in gains, summed over pairs) overflow.
-fn not_huge(field: &str, value: f64) -> Check {
-    require(
-        value <= MAX_COORDINATE,
-        field,
-        value,
-        &format!("exceeds {MAX_COORDINATE:e}, where the energies and forces overflow"),
-        "use a value of at most 1e9 (rescale time or length if needed)",
-    )
-}
-
-fn unit_interval(field: &str, value: f64) -> Check {
-    finite(field, value)?;
-    require(
-        value > 0.0 && value < 1.0,
-        field,
-        value,
-        "must lie in (0, 1)",
-        "choose a value strictly between 0 and 1",
-    )
-}
-
+/// `v` has `dim` finite coordinates within ±10⁹.
 fn vector(field: &str, v: &[f64], dim: usize) -> Check {
     require(
         v.len() == dim,
@@ -91,57 +36,24 @@ fn vector(field: &str, v: &[f64], dim: usize) -> Check {
             vec!["0.0"; dim].join(", ")
         ),
     )?;
-    require(
-        v.iter().all(|x| x.is_finite()),
-        field,
-        v,
-        "has a non-finite component",
-        "use finite numbers",
-    )?;
-    require(
-        v.iter().all(|x| x.abs() <= MAX_COORDINATE),
-        field,
-        v,
-        &format!("has a component beyond ±{MAX_COORDINATE:e}, {WHY_BOUNDED}"),
-        "rescale the scenario (or move its origin) so that every coordinate stays within ±1e9",
-    )
+    check::coordinates(field, v)
 }
-
-/// The largest coordinate, length or speed accepted.
-const MAX_COORDINATE: f64 = 1e9;
-
-/// The smallest length (and potential bound a, b) accepted.
-const MIN_LENGTH: f64 = 1e-9;
-
-/// Why lengths are bounded.
-const WHY_BOUNDED: &str = "where 64-bit floats keep too few digits to resolve the lattice distance (and squares of distances overflow)";
-
-/// A length in [[`MIN_LENGTH`], [`MAX_COORDINATE`]].
-fn length(field: &str, value: f64) -> Check {
-    within_scale(field, value, WHY_BOUNDED)
-}
-
-/// A positive value in [[`MIN_LENGTH`], [`MAX_COORDINATE`]], where `why` says what breaks outside.
-fn within_scale(field: &str, value: f64, why: &str) -> Check {
-    finite(field, value)?;
-    require(
-        (MIN_LENGTH..=MAX_COORDINATE).contains(&value),
-        field,
-        value,
-        &format!("lies outside [{MIN_LENGTH:e}, {MAX_COORDINATE:e}], {why}"),
-        "rescale the scenario so that it stays within [1e-9, 1e9]",
-    )
-}
-
-/// The most agents accepted: flock keeps about 250 bytes per agent (docs/performance.md).
-const MAX_AGENTS: usize = 100_000_000;
 
 impl Scenario {
     /// Checks every value against its domain.
     ///
     /// # Errors
     /// The first invalid value, with its field, why and the fix.
-    pub fn validate(&self) -> Check {
+    pub fn validate(&self) -> Result<(), ScenarioError> {
+        self.validate_values().map_err(ScenarioError::from)?;
+        if matches!(self.algorithm, Algorithm::Tanner { .. }) {
+            self.validate_distinct_start()?;
+        }
+        self.validate_obstacles()
+    }
+
+    /// Everything but what needs the initial state or the obstacles built.
+    fn validate_values(&self) -> Check {
         let dim = self.dim;
         require(
             dim == 2 || dim == 3,
@@ -167,7 +79,7 @@ impl Scenario {
             ),
             "split the swarm into runs of at most 10^8 agents",
         )?;
-        self.validate_alpha()?;
+        self.alpha.validate().map_err(|e| e.within("alpha"))?;
         positive("step", self.step)?;
         positive("duration", self.duration)?;
         require(
@@ -196,69 +108,11 @@ impl Scenario {
         }
         self.validate_algorithm()?;
         self.validate_cloud("initial.positions", &self.initial.positions)?;
-        self.validate_cloud("initial.velocities", &self.initial.velocities)?;
-        if matches!(self.algorithm, Algorithm::Tanner { .. }) {
-            self.validate_distinct_start()?;
-        }
-        self.validate_obstacles()
-    }
-
-    fn validate_alpha(&self) -> Check {
-        let a = &self.alpha;
-        length("alpha.d", a.d)?;
-        if let Some(r) = a.r {
-            length("alpha.r", r)?;
-            require(
-                r > a.d,
-                "alpha.r",
-                r,
-                &format!(
-                    "must exceed the lattice distance alpha.d = {} (0 < d < r)",
-                    a.d
-                ),
-                "raise alpha.r (the papers use r = 1.2 d) or lower alpha.d",
-            )?;
-        }
-        within_scale(
-            "alpha.epsilon",
-            a.epsilon,
-            "where the σ-norm (√(1 + ε‖z‖²) − 1)/ε loses precision or overflows",
-        )?;
-        finite("alpha.h", a.h)?;
-        require(
-            a.h > 0.0 && a.h < 1.0,
-            "alpha.h",
-            a.h,
-            "the bump ρ_h needs h in (0, 1)",
-            "use e.g. h: 0.2 (the papers' value)",
-        )?;
-        let why =
-            "where the uneven sigmoid's shift c = |a − b|/√(4ab) loses precision or overflows";
-        within_scale("alpha.a", a.a, why)?;
-        within_scale("alpha.b", a.b, why)?;
-        require(
-            a.a <= a.b,
-            "alpha.a",
-            a.a,
-            &format!(
-                "exceeds alpha.b = {}: the uneven sigmoid φ needs 0 < a ≤ b",
-                a.b
-            ),
-            "swap a and b or lower a",
-        )?;
-        positive("alpha.c1", a.c1)?;
-        finite("alpha.c2", a.c2)?;
-        not_huge("alpha.c2", a.c2)?;
-        require(
-            a.c2 >= 0.0,
-            "alpha.c2",
-            a.c2,
-            "a negative consensus gain amplifies velocity mismatch",
-            "use c2 ≥ 0",
-        )
+        self.validate_cloud("initial.velocities", &self.initial.velocities)
     }
 
     fn validate_algorithm(&self) -> Check {
+        let within = |prefix: &'static str| move |e: ParamError| e.within(prefix);
         match &self.algorithm {
             Algorithm::Algorithm1 => Ok(()),
             Algorithm::Algorithm2 { gamma, c1, c2 } => {
@@ -277,24 +131,8 @@ impl Scenario {
                     positive("algorithm.c2", *c2)?;
                 }
                 self.validate_gamma("algorithm.gamma", gamma)?;
-                let d = self.alpha.d;
-                if let Some(d_beta) = beta.d {
-                    positive("algorithm.beta.d", d_beta)?;
-                }
-                finite("algorithm.beta.r", beta.range(d))?;
-                require(
-                    beta.range(d) > beta.distance(d),
-                    "algorithm.beta.r",
-                    beta.range(d),
-                    &format!(
-                        "must exceed the obstacle distance d′ = {} (0 < d′ < r′)",
-                        beta.distance(d)
-                    ),
-                    "raise algorithm.beta.r (the papers use r′ = 1.2 d′) or lower algorithm.beta.d",
-                )?;
-                unit_interval("algorithm.beta.h", beta.h)?;
-                positive("algorithm.beta.c1", beta.c1)?;
-                non_negative("algorithm.beta.c2", beta.damping())
+                beta.validate(self.alpha.d)
+                    .map_err(within("algorithm.beta"))
             }
             Algorithm::Flocking2003 {
                 c1,
@@ -316,7 +154,7 @@ impl Scenario {
                     "use e.g. a: 1.0, b: 5.0",
                 )?;
                 if let Some(delta) = delta {
-                    unit_interval("algorithm.delta", *delta)?;
+                    check::unit_interval("algorithm.delta", *delta)?;
                 }
                 require(
                     *power >= 1,
@@ -331,15 +169,7 @@ impl Scenario {
                     self.validate_gamma("algorithm.translation.gamma", &t.gamma)?;
                 }
                 if let Some(a) = avoidance {
-                    positive("algorithm.avoidance.c3", a.c3)?;
-                    non_negative("algorithm.avoidance.c4", a.c4)?;
-                    require(
-                        a.lambda_d > 0.0 && a.lambda_d <= 1.0,
-                        "algorithm.avoidance.lambda_d",
-                        a.lambda_d,
-                        "the γ-agent x_k = b_k + λ_d n_d needs λ_d in (0, 1]",
-                        "use lambda_d: 1.0",
-                    )?;
+                    a.validate().map_err(within("algorithm.avoidance"))?;
                     for (k, spec) in self.obstacles.iter().enumerate() {
                         require(
                             matches!(spec, ObstacleSpec::Ball { .. }),
@@ -354,7 +184,7 @@ impl Scenario {
             }
             Algorithm::Tanner { graph } => match graph {
                 TannerGraph::Random { extra } => {
-                    finite("algorithm.graph.extra", *extra)?;
+                    check::finite("algorithm.graph.extra", *extra)?;
                     require(
                         (0.0..=1.0).contains(extra),
                         "algorithm.graph.extra",
@@ -365,7 +195,7 @@ impl Scenario {
                 }
                 TannerGraph::Edges(edges) => {
                     let graph = Graph::from_edges(self.agents, edges).map_err(|e| {
-                        ScenarioError::invalid(
+                        ParamError::new(
                             "algorithm.graph",
                             edges.len(),
                             e.to_string(),
@@ -387,7 +217,7 @@ impl Scenario {
 
     /// No two agents of a Tanner scenario start at the same point, where the potential
     /// d²/z² + ln(z²/d²) − 1 of a linked pair is infinite.
-    fn validate_distinct_start(&self) -> Check {
+    fn validate_distinct_start(&self) -> Result<(), ScenarioError> {
         match coincident_start(self) {
             None => Ok(()),
             Some((i, j)) => Err(ScenarioError::invalid(
@@ -399,25 +229,14 @@ impl Scenario {
         }
     }
 
-    fn uses_obstacles(&self) -> bool {
-        matches!(
-            self.algorithm,
-            Algorithm::Algorithm3 { .. }
-                | Algorithm::Flocking2003 {
-                    avoidance: Some(_),
-                    ..
-                }
-        )
-    }
-
     /// Obstacles are well formed in the scenario's dimension, seen by the algorithm, and no agent
     /// starts inside one.
-    fn validate_obstacles(&self) -> Check {
+    fn validate_obstacles(&self) -> Result<(), ScenarioError> {
         if self.obstacles.is_empty() {
             return Ok(());
         }
         require(
-            self.uses_obstacles(),
+            self.algorithm.uses_obstacles(),
             "obstacles",
             format!("{} obstacle(s)", self.obstacles.len()),
             "this algorithm does not see obstacles",
@@ -429,7 +248,7 @@ impl Scenario {
         }
     }
 
-    fn validate_start_outside<V: Space>(&self) -> Check {
+    fn validate_start_outside<V: Space>(&self) -> Result<(), ScenarioError> {
         let field =
             ObstacleField::<V>::from_specs(&self.obstacles).map_err(ScenarioError::Obstacle)?;
         let swarm = initial_swarm::<V>(self);
@@ -449,27 +268,12 @@ impl Scenario {
         Ok(())
     }
 
-    fn validate_gamma(&self, field: &str, gamma: &Gamma) -> Check {
-        match gamma {
-            Gamma::Static { position } => vector(&format!("{field}.position"), position, self.dim),
-            Gamma::ConstantVelocity { position, velocity } => {
-                vector(&format!("{field}.position"), position, self.dim)?;
-                vector(&format!("{field}.velocity"), velocity, self.dim)
-            }
-            Gamma::Path { waypoints, speed } => {
-                require(
-                    !waypoints.is_empty(),
-                    &format!("{field}.waypoints"),
-                    waypoints,
-                    "a path needs a waypoint",
-                    "list at least one waypoint",
-                )?;
-                for (k, w) in waypoints.iter().enumerate() {
-                    vector(&format!("{field}.waypoints[{k}]"), w, self.dim)?;
-                }
-                positive(&format!("{field}.speed"), *speed)
-            }
+    /// The γ-agent's vectors have the scenario's dimension and are finite; a path is well formed.
+    fn validate_gamma(&self, field: &str, gamma: &GammaAgent<Point>) -> Check {
+        for (name, v) in gamma.vectors() {
+            vector(&format!("{field}.{name}"), v, self.dim)?;
         }
+        gamma.validate_path().map_err(|e| e.within(field))
     }
 
     fn validate_cloud(&self, field: &str, cloud: &Cloud) -> Check {

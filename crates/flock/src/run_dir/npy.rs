@@ -79,6 +79,14 @@ impl NpyFile {
         self.rows
     }
 
+    /// Flushes the file's data to the disk.
+    ///
+    /// # Errors
+    /// On any I/O error.
+    pub fn sync_data(&self) -> io::Result<()> {
+        self.file.sync_data()
+    }
+
     /// Appends one record, `row_bytes` long.
     ///
     /// # Errors

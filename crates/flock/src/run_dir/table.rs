@@ -4,7 +4,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::error::VizError;
+use super::read::ReadError;
 
 /// A numeric table: column names and rows of numbers, each as long as the header.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -20,17 +20,14 @@ pub(crate) struct Table {
 impl Table {
     /// Reads `path`. Blank lines are skipped; every other line must have as many fields as the
     /// header, each a number (`nan`, `inf` and `-inf` are accepted, as Rust prints them).
-    pub(crate) fn read(path: &Path) -> Result<Self, VizError> {
-        let text = fs::read_to_string(path).map_err(|source| VizError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+    pub(crate) fn read(path: &Path) -> Result<Self, ReadError> {
+        let text = fs::read_to_string(path).map_err(|e| ReadError::io(path, e))?;
         Self::parse(&text, path)
     }
 
     /// Parses the text of a file (`path` is only used in error messages).
-    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self, VizError> {
-        let error = |line: usize, message: String| VizError::Parse {
+    pub(crate) fn parse(text: &str, path: &Path) -> Result<Self, ReadError> {
+        let error = |line: usize, message: String| ReadError::Parse {
             path: path.to_path_buf(),
             line,
             message,
@@ -98,8 +95,8 @@ impl Table {
     }
 
     /// An error about `line` of this table's file.
-    pub(crate) fn error_at(&self, line: usize, message: impl Into<String>) -> VizError {
-        VizError::Parse {
+    pub(crate) fn error_at(&self, line: usize, message: impl Into<String>) -> ReadError {
+        ReadError::Parse {
             path: self.path.clone(),
             line,
             message: message.into(),

@@ -11,6 +11,13 @@
 //!   `checkpoint.bin` ([`Checkpoint`]) is replaced atomically every `checkpoint_every` steps and
 //!   when the run is interrupted, and the note then says up to which byte the records are whole.
 //!   [`RunDirectory::resume`] cuts the files back to the last checkpoint and continues them.
+//! - Durability: before `checkpoint.bin` is replaced, the outputs it counts are flushed to the
+//!   disk (fsync), and so is every file and directory before each rename (the checkpoint, the
+//!   `INCOMPLETE` note, `DIR.partial` to `DIR`), so that a power cut cannot leave a checkpoint
+//!   that counts bytes the disk does not hold.
+//! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
+//!   diagnostics are named by the diagnostics themselves ([`Record::diagnostics`]), and every
+//!   later record must carry the same names.
 
 use std::fmt::Write as _;
 use std::fs::{self, File, OpenOptions};
@@ -19,11 +26,10 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use flock_math::Vector;
-
-use crate::checkpoint::{CHECKPOINT_FILE, Checkpoint};
+use super::checkpoint::{CHECKPOINT_FILE, Checkpoint, sync_dir};
+use super::npy::{NpyFile, trajectory_dtype};
+use super::read::trajectory_header;
 use crate::error::ScenarioError;
-use crate::npy::{NpyFile, trajectory_dtype};
 use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
 
@@ -105,12 +111,68 @@ pub struct RunDirectory {
     buffer: Vec<u8>,
     /// The last recorded state (dim coordinates of q, then of p, per agent) for `final.csv`.
     last_state: Vec<f64>,
+    /// The diagnostic columns of the header of `metrics.csv`, once written.
+    columns: Option<Vec<String>>,
+}
+
+/// Why a run directory cannot be created.
+#[derive(Debug)]
+pub enum CreateError {
+    /// The target directory already holds files (and `force` was not set).
+    Occupied {
+        /// The target directory.
+        target: PathBuf,
+    },
+    /// `DIR.partial` holds an interrupted run (and `force` was not set).
+    Interrupted {
+        /// `DIR.partial`.
+        partial: PathBuf,
+        /// `DIR`.
+        target: PathBuf,
+    },
+    /// Writing failed.
+    Io(io::Error),
+}
+
+impl std::fmt::Display for CreateError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Occupied { target } => write!(
+                f,
+                "output directory {} already holds files (replace it with `force`)",
+                target.display()
+            ),
+            Self::Interrupted { partial, .. } => write!(
+                f,
+                "{} holds an interrupted run (resume it, or start over with `force`)",
+                partial.display()
+            ),
+            Self::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for CreateError {}
+
+impl From<io::Error> for CreateError {
+    fn from(e: io::Error) -> Self {
+        Self::Io(e)
+    }
 }
 
 /// Why a run directory cannot be resumed.
 #[derive(Debug)]
 pub enum ResumeError {
-    /// There is nothing to resume, or it cannot be resumed; the message says why and what to do.
+    /// There is no interrupted run at `partial`.
+    Nothing {
+        /// `DIR.partial`, which does not exist.
+        partial: PathBuf,
+        /// `DIR`.
+        target: PathBuf,
+        /// Whether `DIR` holds a complete run.
+        complete: bool,
+    },
+    /// The run cannot be resumed; the message says why and what to do.
     Refused(String),
     /// The directory's `scenario.ron` no longer loads.
     Scenario(ScenarioError),
@@ -121,6 +183,21 @@ pub enum ResumeError {
 impl std::fmt::Display for ResumeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
+            Self::Nothing {
+                partial,
+                target,
+                complete,
+            } => {
+                if *complete {
+                    write!(
+                        f,
+                        "{} holds a complete run: there is nothing to resume",
+                        target.display()
+                    )
+                } else {
+                    write!(f, "there is no interrupted run at {}", partial.display())
+                }
+            }
             Self::Refused(why) => write!(f, "{why}"),
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Io(e) => write!(f, "{e}"),
@@ -150,7 +227,7 @@ impl RunDirectory {
     ///
     /// # Errors
     /// When `target` holds files and `force` is false, or on any I/O error.
-    pub fn create(target: &Path, scenario: &Scenario, force: bool) -> io::Result<Self> {
+    pub fn create(target: &Path, scenario: &Scenario, force: bool) -> Result<Self, CreateError> {
         Self::create_with(
             target,
             scenario,
@@ -170,28 +247,30 @@ impl RunDirectory {
         target: &Path,
         scenario: &Scenario,
         options: &OutputOptions,
-    ) -> io::Result<Self> {
+    ) -> Result<Self, CreateError> {
         let non_empty = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
         if non_empty && !options.force {
-            return Err(io::Error::new(
-                io::ErrorKind::AlreadyExists,
-                format!(
-                    "output directory {} already holds files; choose another --out or pass --force to replace it",
-                    target.display()
-                ),
-            ));
+            return Err(CreateError::Occupied {
+                target: target.to_owned(),
+            });
         }
         let partial = partial_path(target);
         if partial.exists() && !options.force {
-            return Err(io::Error::new(
-                io::ErrorKind::AlreadyExists,
-                format!(
-                    "{} holds an interrupted run; continue it with `flock run --resume {}`, or pass --force to start over",
-                    partial.display(),
-                    target.display()
-                ),
-            ));
+            return Err(CreateError::Interrupted {
+                partial,
+                target: target.to_owned(),
+            });
         }
+        Ok(Self::create_in(target, partial, scenario, options)?)
+    }
+
+    /// [`RunDirectory::create_with`] once `target` may be written.
+    fn create_in(
+        target: &Path,
+        partial: PathBuf,
+        scenario: &Scenario,
+        options: &OutputOptions,
+    ) -> io::Result<Self> {
         // The directory is prepared under another name and appears as `DIR.partial` with its
         // `INCOMPLETE` note and scenario already inside.
         let mut staging = partial.clone().into_os_string();
@@ -205,10 +284,12 @@ impl RunDirectory {
         fs::create_dir_all(&staging)?;
         write_incomplete(&staging, &running_note(target))?;
         let text = scenario.to_ron().map_err(io::Error::other)?;
-        fs::write(staging.join("scenario.ron"), text + "\n")?;
+        write_durably(&staging.join("scenario.ron"), (text + "\n").as_bytes())?;
         let mut this = Self::start_files(target, staging, scenario, options.format, options)?;
+        sync_dir(&this.partial)?;
         // The open files follow the directory's rename.
         fs::rename(&this.partial, &partial)?;
+        sync_dir(parent_of(&partial))?;
         this.partial = partial;
         Ok(this)
     }
@@ -221,16 +302,15 @@ impl RunDirectory {
         format: TrajectoryFormat,
         options: &OutputOptions,
     ) -> io::Result<Self> {
-        let headers = Headers::of(scenario);
-        let mut metrics = File::create(partial.join("metrics.csv"))?;
-        metrics.write_all(headers.metrics.as_bytes())?;
+        let metrics = File::create(partial.join("metrics.csv"))?;
         let trajectory = match format {
             TrajectoryFormat::Csv => {
+                let header = trajectory_csv_header(scenario.dim);
                 let mut file = File::create(partial.join("trajectory.csv"))?;
-                file.write_all(headers.trajectory.as_bytes())?;
+                file.write_all(header.as_bytes())?;
                 Trajectory::Csv {
                     file,
-                    bytes: headers.trajectory.len() as u64,
+                    bytes: header.len() as u64,
                 }
             }
             TrajectoryFormat::Npy => {
@@ -246,7 +326,7 @@ impl RunDirectory {
             target: target.to_owned(),
             partial,
             metrics,
-            metrics_bytes: headers.metrics.len() as u64,
+            metrics_bytes: 0,
             trajectory,
             records: 0,
             dim: scenario.dim,
@@ -254,6 +334,7 @@ impl RunDirectory {
             stop: None,
             buffer: Vec::new(),
             last_state: Vec::new(),
+            columns: None,
         })
     }
 
@@ -275,18 +356,11 @@ impl RunDirectory {
             None => (dir.clone(), partial_path(&dir)),
         };
         if !partial.is_dir() {
-            return Err(ResumeError::Refused(if target.is_dir() {
-                format!(
-                    "{} holds a complete run: there is nothing to resume",
-                    target.display()
-                )
-            } else {
-                format!(
-                    "there is no interrupted run at {}: start it with `flock run SCENARIO --out {}`",
-                    partial.display(),
-                    target.display()
-                )
-            }));
+            return Err(ResumeError::Nothing {
+                complete: target.is_dir(),
+                partial,
+                target,
+            });
         }
         let note = fs::read_to_string(partial.join(INCOMPLETE_FILE)).unwrap_or_default();
         if note.starts_with(FAILED) {
@@ -306,8 +380,8 @@ impl RunDirectory {
         let checkpoint = Checkpoint::read(&partial)?;
         write_incomplete(&partial, &running_note(&target))?;
         // With no checkpoint yet the run starts over: its files are cut back to their headers
-        // (they were whole before the directory appeared).
-        let headers = Headers::of(&scenario);
+        // (the trajectory's was whole before the directory appeared; the metrics' comes with the
+        // first record).
         let (records, metrics_bytes, trajectory_bytes, start) = match checkpoint {
             Some(checkpoint) => {
                 check_size(&checkpoint, &scenario, &partial)?;
@@ -320,12 +394,18 @@ impl RunDirectory {
             }
             None => (
                 0,
-                headers.metrics.len() as u64,
-                headers.trajectory.len() as u64,
+                0,
+                trajectory_csv_header(scenario.dim).len() as u64,
                 None,
             ),
         };
-        let metrics = cut(&partial.join("metrics.csv"), metrics_bytes)?;
+        let metrics_path = partial.join("metrics.csv");
+        let columns = if records > 0 {
+            Some(diagnostic_columns(&metrics_path)?)
+        } else {
+            None
+        };
+        let metrics = cut(&metrics_path, metrics_bytes)?;
         let trajectory = match format {
             TrajectoryFormat::Csv => Trajectory::Csv {
                 file: cut(&partial.join("trajectory.csv"), trajectory_bytes)?,
@@ -353,6 +433,7 @@ impl RunDirectory {
             stop: None,
             buffer: Vec::new(),
             last_state: Vec::new(),
+            columns,
         };
         Ok((this, scenario, start))
     }
@@ -383,22 +464,34 @@ impl RunDirectory {
     }
 
     fn complete(&mut self) -> io::Result<()> {
-        let mut last = format!("{}\n", state_header(self.dim)).into_bytes();
+        let mut last = format!("{}\n", trajectory_header(self.dim)[1..].join(",")).into_bytes();
         let coordinates = 2 * self.dim;
         for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
             write_state(&mut last, i, state);
         }
-        fs::write(self.partial.join("final.csv"), last)?;
+        write_durably(&self.partial.join("final.csv"), &last)?;
+        self.sync_outputs()?;
         for name in [CHECKPOINT_FILE, INCOMPLETE_FILE] {
             match fs::remove_file(self.partial.join(name)) {
                 Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
                 _ => {}
             }
         }
+        sync_dir(&self.partial)?;
         if self.target.exists() {
             fs::remove_dir_all(&self.target)?;
         }
-        fs::rename(&self.partial, &self.target)
+        fs::rename(&self.partial, &self.target)?;
+        sync_dir(parent_of(&self.target))
+    }
+
+    /// Flushes `metrics.csv` and the trajectory to the disk.
+    fn sync_outputs(&self) -> io::Result<()> {
+        self.metrics.sync_data()?;
+        match &self.trajectory {
+            Trajectory::Csv { file, .. } => file.sync_data(),
+            Trajectory::Npy(file) => file.sync_data(),
+        }
     }
 
     /// Abandons the run: removes the partial directory.
@@ -428,25 +521,56 @@ impl RunDirectory {
     }
 }
 
-/// The header lines of `metrics.csv` and `trajectory.csv`.
-struct Headers {
-    metrics: String,
-    trajectory: String,
+/// The header line of a `trajectory.csv` in `dim` dimensions.
+fn trajectory_csv_header(dim: usize) -> String {
+    format!("{}\n", trajectory_header(dim).join(","))
 }
 
-impl Headers {
-    fn of(scenario: &Scenario) -> Self {
-        let mut metrics = String::from(METRICS_HEADER);
-        for column in scenario.extra_columns() {
-            metrics.push(',');
-            metrics.push_str(column);
-        }
-        metrics.push('\n');
-        Self {
-            metrics,
-            trajectory: format!("t,{}\n", state_header(scenario.dim)),
-        }
+/// The header line of `metrics.csv` with the diagnostic columns `columns`.
+fn metrics_header(columns: &[String]) -> String {
+    let mut header = String::from(METRICS_HEADER);
+    for column in columns {
+        header.push(',');
+        header.push_str(column);
     }
+    header.push('\n');
+    header
+}
+
+/// The diagnostic columns of the header of the `metrics.csv` at `path`: the names after those of
+/// [`METRICS_HEADER`].
+fn diagnostic_columns(path: &Path) -> io::Result<Vec<String>> {
+    let text = fs::read_to_string(path)?;
+    let header = text.lines().next().unwrap_or_default();
+    let Some(rest) = header.strip_prefix(METRICS_HEADER) else {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!(
+                "{} does not start with the header {METRICS_HEADER}",
+                path.display()
+            ),
+        ));
+    };
+    Ok(rest
+        .split(',')
+        .filter(|name| !name.is_empty())
+        .map(str::to_owned)
+        .collect())
+}
+
+/// The parent directory of `path` (`.` for a bare name).
+fn parent_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    }
+}
+
+/// Writes `bytes` to `path` and flushes them to the disk.
+fn write_durably(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let mut file = File::create(path)?;
+    file.write_all(bytes)?;
+    file.sync_all()
 }
 
 /// A checkpoint must hold the state of the scenario's agents in its dimension.
@@ -482,8 +606,9 @@ fn running_note(target: &Path) -> String {
 /// Replaces the `INCOMPLETE` note atomically.
 fn write_incomplete(partial: &Path, note: &str) -> io::Result<()> {
     let temporary = partial.join("INCOMPLETE.tmp");
-    fs::write(&temporary, note)?;
-    fs::rename(temporary, partial.join(INCOMPLETE_FILE))
+    write_durably(&temporary, note.as_bytes())?;
+    fs::rename(temporary, partial.join(INCOMPLETE_FILE))?;
+    sync_dir(partial)
 }
 
 /// Opens `path` for appending after cutting it to its first `bytes` bytes.
@@ -502,13 +627,6 @@ fn cut(path: &Path, bytes: u64) -> io::Result<File> {
     Ok(file)
 }
 
-/// `id,x,y[,z],vx,vy[,vz]`.
-fn state_header(dim: usize) -> String {
-    let axes = &["x", "y", "z"][..dim];
-    let velocities: Vec<String> = axes.iter().map(|a| format!("v{a}")).collect();
-    format!("id,{},{}", axes.join(","), velocities.join(","))
-}
-
 /// Appends `id,x,y[,z],vx,vy[,vz]` of agent `i` (shortest round-trip decimal forms).
 fn write_state(out: &mut Vec<u8>, i: usize, state: &[f64]) {
     // Writing to a Vec cannot fail.
@@ -519,35 +637,65 @@ fn write_state(out: &mut Vec<u8>, i: usize, state: &[f64]) {
     out.push(b'\n');
 }
 
+impl RunDirectory {
+    /// Writes the header of `metrics.csv` with the first record's diagnostic columns, or checks
+    /// that a later record names the same columns.
+    fn check_columns(&mut self, record: &Record<'_>) -> io::Result<()> {
+        let names = record.diagnostics.iter().map(|(name, _)| *name);
+        match &self.columns {
+            Some(columns) if names.clone().eq(columns.iter().map(String::as_str)) => Ok(()),
+            Some(columns) => Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "the record at t = {} has the diagnostic columns {:?} where metrics.csv has {columns:?}",
+                    record.t,
+                    names.collect::<Vec<_>>()
+                ),
+            )),
+            None => {
+                let columns: Vec<String> = names.map(str::to_owned).collect();
+                let header = metrics_header(&columns);
+                self.metrics.write_all(header.as_bytes())?;
+                self.metrics_bytes += header.len() as u64;
+                self.columns = Some(columns);
+                Ok(())
+            }
+        }
+    }
+}
+
 impl Recorder for RunDirectory {
     type Error = io::Error;
 
-    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> io::Result<()> {
+    fn record(&mut self, record: &Record<'_>) -> io::Result<()> {
+        self.check_columns(record)?;
         let m = &record.metrics;
         let mut line = record.t.to_string();
         for value in m.reals() {
             let _ = write!(line, ",{value}");
         }
         let _ = write!(line, ",{},{}", m.collisions, record.energy);
-        for value in record.extra {
+        for (_, value) in record.diagnostics {
             let _ = write!(line, ",{value}");
         }
         line.push('\n');
-        let swarm = record.swarm;
+        let state = &record.state;
+        let dim = state.dim;
         self.last_state.clear();
-        for (&q, &p) in swarm.positions.iter().zip(&swarm.velocities) {
-            self.last_state.extend(
-                (0..V::DIM)
-                    .map(|k| q.coord(k))
-                    .chain((0..V::DIM).map(|k| p.coord(k))),
-            );
+        for (q, p) in state
+            .positions
+            .chunks_exact(dim)
+            .zip(state.velocities.chunks_exact(dim))
+        {
+            self.last_state.extend_from_slice(q);
+            self.last_state.extend_from_slice(p);
         }
         match &mut self.trajectory {
             Trajectory::Csv { file, bytes } => {
                 self.buffer.clear();
-                for (i, state) in self.last_state.chunks_exact(2 * V::DIM).enumerate() {
+                for (i, agent) in self.last_state.chunks_exact(2 * dim).enumerate() {
                     let _ = write!(self.buffer, "{},", record.t);
-                    write_state(&mut self.buffer, i, state);
+                    write_state(&mut self.buffer, i, agent);
                 }
                 file.write_all(&self.buffer)?;
                 *bytes += self.buffer.len() as u64;
@@ -555,11 +703,9 @@ impl Recorder for RunDirectory {
             Trajectory::Npy(file) => {
                 self.buffer.clear();
                 self.buffer.extend_from_slice(&record.t.to_le_bytes());
-                for field in 0..2 {
-                    for state in self.last_state.chunks_exact(2 * V::DIM) {
-                        for x in &state[field * V::DIM..(field + 1) * V::DIM] {
-                            self.buffer.extend_from_slice(&x.to_le_bytes());
-                        }
+                for rows in [&state.positions, &state.velocities] {
+                    for x in rows.iter() {
+                        self.buffer.extend_from_slice(&x.to_le_bytes());
                     }
                 }
                 file.append(&self.buffer)?;
@@ -576,6 +722,8 @@ impl Recorder for RunDirectory {
     }
 
     fn checkpoint(&mut self, start: &Start) -> io::Result<()> {
+        // the records the checkpoint counts are on the disk before it is
+        self.sync_outputs()?;
         let trajectory_bytes = match &self.trajectory {
             Trajectory::Csv { bytes, .. } => *bytes,
             Trajectory::Npy(file) => file.rows(),

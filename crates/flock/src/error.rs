@@ -84,6 +84,18 @@ impl ScenarioError {
     }
 }
 
+/// A parameter outside its domain, its field a path in the scenario (`alpha.r`).
+impl From<flock_protocols::ParamError> for ScenarioError {
+    fn from(e: flock_protocols::ParamError) -> Self {
+        Self::Invalid {
+            field: e.field,
+            value: e.value,
+            why: e.why,
+            fix: e.fix,
+        }
+    }
+}
+
 impl ScenarioError {
     /// The path of the field at fault, for the errors that name one.
     #[must_use]

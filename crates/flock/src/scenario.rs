@@ -2,18 +2,50 @@
 //!
 //! A scenario names the dimension, the algorithm and its parameters, the gains, the γ-agent, the
 //! initial condition, the step, the duration and how often to record. Every parameter with a value in
-//! the papers defaults to it (d = 7, r = 1.2 d, ε = 0.1, a = b = 5, h = 0.2; TAC 2006 Section VIII).
+//! the papers defaults to it (d = 7, r = 1.2 d, ε = 0.1, a = b = 5, h = 0.2; TAC 2006 Section VIII):
+//! the defaults are those of the parameter types of `flock-protocols` ([`AlphaConfig`],
+//! [`BetaConfig`], [`AvoidanceGains`]), which the scenario composes.
 
 use std::path::Path;
+use std::str::FromStr;
 
 use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
+use flock_protocols::{
+    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, GammaAgent, Integrator,
+    critical_damping,
+};
 
 use crate::error::ScenarioError;
 
+/// The collision distance as a fraction of d, by default (TAC 2006 counts pairs closer than d/4).
+pub const COLLISION_FRACTION: f64 = 0.25;
+
 /// A simulation scenario, as written in a `.ron` file.
+///
+/// # Example
+/// ```
+/// use flock::Scenario;
+///
+/// let scenario: Scenario = r#"Scenario(
+///     dim: 2,
+///     agents: 20,
+///     algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.05, c2: 0.4),
+///     initial: (positions: Box(min: [-10.0, -10.0], max: [10.0, 10.0])),
+///     duration: 1.0,
+/// )"#.parse()?;
+/// assert_eq!(scenario.range(), 8.4); // r = 1.2 d, d = 7 by default
+/// assert_eq!(scenario.steps(), 100);
+/// assert!(scenario.warnings().is_empty());
+/// // a bad value is refused with its field, its value, why and the fix
+/// let error = "Scenario(dim: 4, agents: 1, algorithm: Algorithm1, initial: (positions: Zero), duration: 1.0)"
+///     .parse::<Scenario>()
+///     .unwrap_err();
+/// assert_eq!(error.field().as_deref(), Some("dim"));
+/// # Ok::<(), flock::ScenarioError>(())
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scenario {
@@ -34,12 +66,12 @@ pub struct Scenario {
     pub algorithm: Algorithm,
     /// Parameters and gains of the α-interaction.
     #[serde(default)]
-    pub alpha: Alpha,
+    pub alpha: AlphaConfig,
     /// The initial positions and velocities.
     pub initial: Initial,
     /// The integration scheme.
     #[serde(default)]
-    pub integrator: IntegratorKind,
+    pub integrator: Integrator,
     /// The fixed time step h > 0 (the papers use 0.01–0.03 s).
     #[serde(default = "default_step")]
     pub step: f64,
@@ -56,6 +88,9 @@ pub struct Scenario {
     pub obstacles: Vec<ObstacleSpec>,
 }
 
+/// A vector as a scenario writes it: a list of `dim` numbers (`[1.0, 2.0]`).
+pub type Point = Vec<f64>;
+
 /// The protocol of a scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -65,7 +100,7 @@ pub enum Algorithm {
     /// Algorithm 2 of TAC 2006: α-interaction plus navigational feedback −c₁(q_i − q_r) − c₂(p_i − p_r).
     Algorithm2 {
         /// The γ-agent.
-        gamma: Gamma,
+        gamma: GammaAgent<Point>,
         /// Position gain c₁ > 0.
         c1: f64,
         /// Velocity gain c₂ > 0.
@@ -75,7 +110,7 @@ pub enum Algorithm {
     /// navigational feedback −c₁ σ₁(q_i − q_r) − c₂(p_i − p_r).
     Algorithm3 {
         /// The γ-agent.
-        gamma: Gamma,
+        gamma: GammaAgent<Point>,
         /// Position gain c₁^γ > 0.
         c1: f64,
         /// Velocity gain c₂^γ > 0; default 2√c₁^γ (critically damped).
@@ -83,14 +118,14 @@ pub enum Algorithm {
         c2: Option<f64>,
         /// The β-interaction.
         #[serde(default)]
-        beta: Beta,
+        beta: BetaConfig,
     },
     /// The 2003 (α, α) protocols (Caltech CDS 03-006, eq. 34–36) with the potential of eq. 29
     /// (`alpha.a < alpha.b`), an optional translational controller (sink, eq. 50, or velocity
     /// tracking) and optional avoidance of the scenario's ball obstacles (eq. 54–58).
     Flocking2003 {
         /// Which of the three protocols.
-        form: Form2003,
+        form: AlphaAlphaForm,
         /// The consensus gain c₁ ≥ 0 of Σ_j (p_j − p_i).
         c1: f64,
         /// The flat part δ ∈ (0, 1) of the influence map ρ; default d/r.
@@ -104,7 +139,7 @@ pub enum Algorithm {
         translation: Option<Translation>,
         /// β- and γ-agents on the scenario's obstacles (balls only).
         #[serde(default)]
-        avoidance: Option<Avoidance2003>,
+        avoidance: Option<AvoidanceGains>,
     },
     /// The Tanner–Jadbabaie–Pappas law on a fixed connected graph (seed 001 eq. 5), with the pair
     /// potential d²/z² + ln(z²/d²) − 1 of desired distance `alpha.d`.
@@ -115,15 +150,29 @@ pub enum Algorithm {
     },
 }
 
-/// Which 2003 (α, α) protocol.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Form2003 {
-    /// (α, α, 1), eq. 34: 0/1 adjacency.
-    Nonsmooth,
-    /// (α, α, 2), eq. 35: smooth adjacency with its ρ′ term.
-    Smooth,
-    /// eq. 36: (α, α, 2) without the ρ′ term.
-    Approximate,
+impl Algorithm {
+    /// The γ-agent the algorithm steers towards, if it has one.
+    #[must_use]
+    pub fn gamma(&self) -> Option<&GammaAgent<Point>> {
+        match self {
+            Self::Algorithm2 { gamma, .. } | Self::Algorithm3 { gamma, .. } => Some(gamma),
+            Self::Flocking2003 { translation, .. } => translation.as_ref().map(|t| &t.gamma),
+            Self::Algorithm1 | Self::Tanner { .. } => None,
+        }
+    }
+
+    /// Whether the algorithm sees the scenario's obstacles.
+    #[must_use]
+    pub fn uses_obstacles(&self) -> bool {
+        matches!(
+            self,
+            Self::Algorithm3 { .. }
+                | Self::Flocking2003 {
+                    avoidance: Some(_),
+                    ..
+                }
+        )
+    }
 }
 
 /// A translational controller of the 2003 protocols: a sink (static γ-agent, eq. 50) or velocity
@@ -132,33 +181,11 @@ pub enum Form2003 {
 #[serde(deny_unknown_fields)]
 pub struct Translation {
     /// The γ-agent (q_d, p_d).
-    pub gamma: Gamma,
+    pub gamma: GammaAgent<Point>,
     /// Position gain c₁ ≥ 0.
     pub c1: f64,
     /// Velocity gain c₂ > 0.
     pub c2: f64,
-}
-
-/// The β/γ construction of the 2003 obstacle protocol (seed 004 eq. 54).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Avoidance2003 {
-    /// Gain c₃ > 0 of the β/γ position terms (the seed asks c₃ ≫ 1).
-    pub c3: f64,
-    /// Gain c₄ ≥ 0 of the velocity term c₄(p̂ − p_i).
-    pub c4: f64,
-    /// λ_d ∈ (0, 1]: the γ-agent of obstacle k sits at b_k + λ_d n_d.
-    pub lambda_d: f64,
-}
-
-impl Default for Avoidance2003 {
-    fn default() -> Self {
-        Self {
-            c3: 10.0,
-            c4: 1.0,
-            lambda_d: 1.0,
-        }
-    }
 }
 
 /// The fixed graph of the Tanner law.
@@ -181,117 +208,6 @@ impl Default for TannerGraph {
 
 fn default_power() -> i32 {
     1
-}
-
-/// Parameters and gains of Algorithm 3's β-interaction.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Beta {
-    /// Desired distance d′ to obstacles; default 0.6 d.
-    pub d: Option<f64>,
-    /// β-neighbour range r′ > d′; default 1.2 d′.
-    pub r: Option<f64>,
-    /// Bump parameter h ∈ (0, 1) of φ_β and b_ik.
-    pub h: f64,
-    /// Repulsion gain c₁^β > 0.
-    pub c1: f64,
-    /// Damping gain c₂^β ≥ 0; default 2√c₁^β.
-    pub c2: Option<f64>,
-}
-
-impl Default for Beta {
-    fn default() -> Self {
-        Self {
-            d: None,
-            r: None,
-            h: 0.9,
-            c1: 10.0,
-            c2: None,
-        }
-    }
-}
-
-impl Beta {
-    /// d′ for lattice distance `d` (default 0.6 d).
-    #[must_use]
-    pub fn distance(&self, d: f64) -> f64 {
-        self.d.unwrap_or(0.6 * d)
-    }
-
-    /// r′ for lattice distance `d` (default 1.2 d′).
-    #[must_use]
-    pub fn range(&self, d: f64) -> f64 {
-        self.r.unwrap_or(1.2 * self.distance(d))
-    }
-
-    /// c₂^β (default 2√c₁^β).
-    #[must_use]
-    pub fn damping(&self) -> f64 {
-        self.c2.unwrap_or(critical_damping(self.c1))
-    }
-}
-
-/// The γ-agent's trajectory.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub enum Gamma {
-    /// A fixed rendezvous point.
-    Static {
-        /// q_r.
-        position: Vec<f64>,
-    },
-    /// Uniform motion from `position` with `velocity`.
-    ConstantVelocity {
-        /// q_r(0).
-        position: Vec<f64>,
-        /// p_r.
-        velocity: Vec<f64>,
-    },
-    /// A polyline travelled at constant speed, then holding at its last waypoint.
-    Path {
-        /// The waypoints, at least one.
-        waypoints: Vec<Vec<f64>>,
-        /// The speed > 0.
-        speed: f64,
-    },
-}
-
-/// Parameters of the α-interaction and its gains (Algorithm 3 notation c₁^α, c₂^α; 1 and 1 give
-/// Algorithms 1 and 2 exactly).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Alpha {
-    /// Lattice distance d > 0.
-    pub d: f64,
-    /// Interaction range r > d; default 1.2 d.
-    pub r: Option<f64>,
-    /// σ-norm parameter ε > 0.
-    pub epsilon: f64,
-    /// Attraction bound a, 0 < a ≤ b.
-    pub a: f64,
-    /// Repulsion bound b.
-    pub b: f64,
-    /// Bump parameter h ∈ (0, 1).
-    pub h: f64,
-    /// Gradient gain c₁^α > 0.
-    pub c1: f64,
-    /// Consensus gain c₂^α ≥ 0.
-    pub c2: f64,
-}
-
-impl Default for Alpha {
-    fn default() -> Self {
-        Self {
-            d: 7.0,
-            r: None,
-            epsilon: 0.1,
-            a: 5.0,
-            b: 5.0,
-            h: 0.2,
-            c1: 1.0,
-            c2: 1.0,
-        }
-    }
 }
 
 /// The initial condition.
@@ -337,28 +253,6 @@ pub enum Cloud {
     Explicit(Vec<Vec<f64>>),
 }
 
-/// The integration scheme.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum IntegratorKind {
-    /// Semi-implicit (symplectic) Euler.
-    #[default]
-    SymplecticEuler,
-    /// Classical fourth-order Runge–Kutta.
-    Rk4,
-}
-
-/// The columns of obstacle runs: the smallest agent–obstacle clearance and the agents inside.
-pub const OBSTACLE_COLUMNS: [&str; 2] = ["obstacle_clearance", "inside_obstacles"];
-
-/// The columns of Tanner runs: ½ Σ ‖v_i − v̄‖² and the smallest distance between linked agents.
-pub const TANNER_COLUMNS: [&str; 2] = ["velocity_disagreement", "min_linked_distance"];
-
-/// c₂ = 2√c₁, the critically damped gain of TAC 2006 Section VIII.
-#[must_use]
-pub fn critical_damping(c1: f64) -> f64 {
-    2.0 * c1.sqrt()
-}
-
 fn default_step() -> f64 {
     0.01
 }
@@ -373,7 +267,8 @@ impl Scenario {
     /// # Errors
     /// When the file cannot be read, is not valid RON for a scenario (the error gives the line and
     /// column), or fails [`Scenario::validate`].
-    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
+        let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::io(path, &e))?;
         Self::parse(&text, &path.display().to_string())
     }
@@ -391,38 +286,38 @@ impl Scenario {
         Ok(scenario.resolved())
     }
 
-    /// The scenario with every default written out (r = 1.2 d, the collision distance d/4).
+    /// The scenario with every default written out (r = 1.2 d, the collision distance d/4, the
+    /// gains and distances of Algorithm 3, the flat part of the 2003 influence map).
     #[must_use]
     pub fn resolved(mut self) -> Self {
         let d = self.alpha.d;
-        self.alpha.r.get_or_insert(1.2 * d);
-        self.collision_distance.get_or_insert(0.25 * d);
-        if let Algorithm::Algorithm3 { c1, c2, beta, .. } = &mut self.algorithm {
-            c2.get_or_insert(critical_damping(*c1));
-            *beta = Beta {
-                d: Some(beta.distance(d)),
-                r: Some(beta.range(d)),
-                c2: Some(beta.damping()),
-                ..*beta
-            };
-        }
         let r = self.range();
-        if let Algorithm::Flocking2003 { delta, .. } = &mut self.algorithm {
-            delta.get_or_insert(d / r);
+        self.alpha.r = Some(r);
+        self.collision_distance = Some(self.collision_distance());
+        match &mut self.algorithm {
+            Algorithm::Algorithm3 { c1, c2, beta, .. } => {
+                c2.get_or_insert(critical_damping(*c1));
+                *beta = beta.resolved(d);
+            }
+            Algorithm::Flocking2003 { delta, .. } => {
+                delta.get_or_insert(d / r);
+            }
+            _ => {}
         }
         self
     }
 
-    /// The interaction range r.
+    /// The interaction range r (default 1.2 d).
     #[must_use]
     pub fn range(&self) -> f64 {
-        self.alpha.r.unwrap_or(1.2 * self.alpha.d)
+        self.alpha.range()
     }
 
     /// The collision distance.
     #[must_use]
     pub fn collision_distance(&self) -> f64 {
-        self.collision_distance.unwrap_or(0.25 * self.alpha.d)
+        self.collision_distance
+            .unwrap_or_else(|| COLLISION_FRACTION * self.alpha.d)
     }
 
     /// The number of steps ⌈T / h⌉ (rounded to the nearest when T/h is within round-off of an integer).
@@ -437,19 +332,6 @@ impl Scenario {
         }
     }
 
-    /// The protocol-specific columns appended to `metrics.csv` for this scenario.
-    #[must_use]
-    pub fn extra_columns(&self) -> Vec<&'static str> {
-        let mut columns = Vec::new();
-        if !self.obstacles.is_empty() {
-            columns.extend(OBSTACLE_COLUMNS);
-        }
-        if matches!(self.algorithm, Algorithm::Tanner { .. }) {
-            columns.extend(TANNER_COLUMNS);
-        }
-        columns
-    }
-
     /// The scenario as RON text with every default filled in.
     ///
     /// # Errors
@@ -457,5 +339,14 @@ impl Scenario {
     pub fn to_ron(&self) -> Result<String, ron::Error> {
         let config = ron::ser::PrettyConfig::new().extensions(Extensions::IMPLICIT_SOME);
         ron::ser::to_string_pretty(&self.clone().resolved(), config)
+    }
+}
+
+/// Parses and validates scenario text ([`Scenario::parse`] with the origin `<string>`).
+impl FromStr for Scenario {
+    type Err = ScenarioError;
+
+    fn from_str(text: &str) -> Result<Self, ScenarioError> {
+        Self::parse(text, "<string>")
     }
 }

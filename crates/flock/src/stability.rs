@@ -22,8 +22,10 @@ use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_math::{Bump, BumpedAction, SigmaNorm, UnevenSigmoid, Vector};
 use glam::{DVec2, DVec3};
 
+use flock_protocols::{Integrator, critical_damping};
+
 use crate::initial::initial_swarm;
-use crate::scenario::{Algorithm, IntegratorKind, Scenario, critical_damping};
+use crate::scenario::{Algorithm, Scenario};
 
 /// A valid scenario that is likely to go wrong, with the field, the value, why and the fix.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,10 +97,10 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
     let omega2 = 2.0 * deg * k_alpha + gamma_c1 + k_beta;
     let damping = 2.0 * deg * a.c2 + gamma_c2 + c2_beta;
     let step = match scenario.integrator {
-        IntegratorKind::SymplecticEuler => {
+        Integrator::SymplecticEuler => {
             ((damping * damping + 4.0 * omega2).sqrt() - damping) / omega2
         }
-        IntegratorKind::Rk4 => RK4_RADIUS / omega2.sqrt().max(damping),
+        Integrator::Rk4 => RK4_RADIUS / omega2.sqrt().max(damping),
     };
     step.is_finite().then_some(step)
 }
@@ -121,16 +123,16 @@ fn pair_stiffness(phi: &BumpedAction, sigma: &SigmaNorm, range: f64) -> f64 {
 
 /// What the initial state tells: the largest degree of its net and the first pair of agents at
 /// the same point, from one draw of the initial swarm.
-pub(crate) struct StartNet {
+struct StartNet {
     /// The largest number of neighbours within r.
-    pub(crate) degree: usize,
+    degree: usize,
     /// The first pair (i < j) closer than 10⁻⁹ d: for the σ-norm and its gradient, one point.
-    pub(crate) coincident: Option<(usize, usize)>,
+    coincident: Option<(usize, usize)>,
 }
 
 impl StartNet {
     /// The initial net of a valid `scenario`.
-    pub(crate) fn of(scenario: &Scenario) -> Self {
+    fn of(scenario: &Scenario) -> Self {
         match scenario.dim {
             2 => Self::in_dim::<DVec2>(scenario),
             _ => Self::in_dim::<DVec3>(scenario),

@@ -1,22 +1,22 @@
-//! `flock plot DIR` and `flock run --plot`: the figures of a finished run (flock-viz), with the
+//! [`plot_run`] (`flock plot DIR`, `flock run --plot`): the figures of a finished run, with the
 //! obstacles and the γ-agent read back from the run's resolved `scenario.ron`.
 
 use std::path::{Path, PathBuf};
 
+use flock::Scenario;
+use flock::build::gamma_agent;
+use flock::initial::to_vector;
+use flock::obstacles::{ObstacleSpec, Space};
 use flock_math::Vector;
-use flock_obstacles::ObstacleSpec;
-use flock_viz::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figures};
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
-use crate::initial::to_vector;
-use crate::run::gamma_agent;
-use crate::scenario::{Algorithm, Gamma, Scenario};
+use crate::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figures};
 
 /// Why figures could not be drawn.
 #[derive(Debug)]
 pub enum PlotError {
     /// The run's `scenario.ron` is missing or invalid.
-    Scenario(crate::ScenarioError),
+    Scenario(flock::ScenarioError),
     /// Reading the run's CSV files or drawing failed.
     Viz(VizError),
 }
@@ -54,26 +54,17 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
 }
 
 /// The scene with its title, obstacles and γ-agent.
-fn decorate<V: Vector>(scene: Scene, scenario: &Scenario) -> Scene {
+fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Scene {
     let mut scene = scene.with_title(scenario.name.clone());
     for spec in &scenario.obstacles {
         scene = scene.with_obstacle(drawable::<V>(spec));
     }
-    match gamma(scenario) {
+    match scenario.algorithm.gamma() {
         Some(gamma) => {
             let gamma = gamma_agent::<V>(gamma);
             scene.with_gamma(move |t| lift(gamma.state(t).0))
         }
         None => scene,
-    }
-}
-
-/// The γ-agent of the scenario's algorithm, if it has one.
-fn gamma(scenario: &Scenario) -> Option<&Gamma> {
-    match &scenario.algorithm {
-        Algorithm::Algorithm2 { gamma, .. } | Algorithm::Algorithm3 { gamma, .. } => Some(gamma),
-        Algorithm::Flocking2003 { translation, .. } => translation.as_ref().map(|t| &t.gamma),
-        Algorithm::Algorithm1 | Algorithm::Tanner { .. } => None,
     }
 }
 

@@ -1,0 +1,135 @@
+//! The protocol of a scenario, built once for its dimension: the one place that turns the
+//! scenario's algorithm into a [`DynProtocol`].
+
+use flock_graph::Graph;
+use flock_math::{Bump, TannerPotential};
+use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
+use flock_protocols::{
+    Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
+    BetaInteraction, DynProtocol, Flocking2003, GammaAgent, NavigationalFeedback,
+    ObstacleFlocking2003, ObstacleParams, ParamError, TannerJadbabaiePappas,
+    random_connected_graph,
+};
+
+use crate::error::ScenarioError;
+use crate::initial::to_vector;
+use crate::scenario::{Algorithm, Point, Scenario};
+
+/// The γ-agent of a validated scenario in vectors `V`.
+#[must_use]
+pub fn gamma_agent<V: Space>(gamma: &GammaAgent<Point>) -> GammaAgent<V> {
+    gamma.map(|v| to_vector(v))
+}
+
+impl Scenario {
+    /// The scenario's protocol with vectors `V` (of the scenario's dimension). The scenario must
+    /// be valid ([`Scenario::validate`]).
+    ///
+    /// # Errors
+    /// A parameter, obstacle or graph the protocol refuses (which [`Scenario::validate`] reports
+    /// first), with its field.
+    pub fn protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
+        let alpha_config = &self.alpha;
+        let within = |prefix: &'static str| move |e: ParamError| ScenarioError::from(e.within(prefix));
+        let alpha = alpha_config.interaction().map_err(within("alpha"))?;
+        let (d, r) = (alpha_config.d, self.range());
+        Ok(match &self.algorithm {
+            Algorithm::Algorithm1 => Box::new(Algorithm1 { alpha }),
+            Algorithm::Algorithm2 { gamma, c1, c2 } => {
+                let navigation = NavigationalFeedback::linear(gamma_agent::<V>(gamma), *c1, *c2);
+                Box::new(Algorithm2 { alpha, navigation })
+            }
+            Algorithm::Algorithm3 {
+                gamma,
+                c1,
+                c2,
+                beta,
+            } => {
+                let c2 = c2.unwrap_or_else(|| flock_protocols::critical_damping(*c1));
+                let navigation = NavigationalFeedback::bounded(gamma_agent::<V>(gamma), *c1, c2);
+                let field = ObstacleField::<V>::from_specs(&self.obstacles)
+                    .map_err(ScenarioError::Obstacle)?;
+                let interaction = BetaInteraction::new(
+                    field,
+                    beta.params(d),
+                    alpha_config.epsilon,
+                    beta.c1,
+                    beta.damping(),
+                )
+                .map_err(within("algorithm.beta"))?;
+                Box::new(Algorithm3 {
+                    flock: Algorithm2 { alpha, navigation },
+                    beta: interaction,
+                })
+            }
+            Algorithm::Flocking2003 {
+                form,
+                c1,
+                delta,
+                power,
+                translation,
+                avoidance,
+            } => {
+                let params = AlphaAlphaParams {
+                    bump: Bump::influence_map(delta.unwrap_or(d / r), *power),
+                    ..AlphaAlphaParams::new(d, r, alpha_config.a, alpha_config.b)
+                };
+                let translation = translation
+                    .as_ref()
+                    .map(|t| NavigationalFeedback::linear(gamma_agent::<V>(&t.gamma), t.c1, t.c2));
+                let flocking = Flocking2003 {
+                    alpha: AlphaAlpha::new(params, *form, *c1),
+                    translation,
+                };
+                match avoidance {
+                    None => Box::new(flocking),
+                    Some(gains) => Box::new(ObstacleFlocking2003 {
+                        flocking,
+                        obstacles: self.balls()?,
+                        params: ObstacleParams::new(&params, *gains),
+                    }),
+                }
+            }
+            Algorithm::Tanner { graph } => {
+                let invalid = |why: String| {
+                    ScenarioError::invalid(
+                        "algorithm.graph",
+                        "",
+                        why,
+                        "give a connected graph of edges (i, j) with i ≠ j < agents",
+                    )
+                };
+                let graph = match graph {
+                    crate::TannerGraph::Random { extra } => {
+                        random_connected_graph(self.agents, *extra, self.seed)
+                    }
+                    crate::TannerGraph::Edges(edges) => Graph::from_edges(self.agents, edges)
+                        .map_err(|e| invalid(e.to_string()))?,
+                };
+                let law = TannerJadbabaiePappas::new(graph, TannerPotential::new(d), r)
+                    .map_err(|e| invalid(e.to_string()))?;
+                Box::new(law)
+            }
+        })
+    }
+
+    /// The scenario's obstacles as the balls of the 2003 obstacle protocol.
+    fn balls<V: Space>(&self) -> Result<Vec<BallObstacle<V>>, ScenarioError> {
+        self.obstacles
+            .iter()
+            .enumerate()
+            .map(|(k, spec)| match spec {
+                ObstacleSpec::Ball { centre, radius } => {
+                    BallObstacle::new(to_vector(centre), *radius)
+                        .map_err(|e| ScenarioError::Obstacle(e.at(k)))
+                }
+                other => Err(ScenarioError::invalid(
+                    format!("obstacles[{k}]"),
+                    other.kind(),
+                    "the 2003 obstacle protocol handles balls only (seed 004 § 11)",
+                    "use Ball obstacles, or Algorithm3 for other convex shapes",
+                )),
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,23 @@
+//! Run directories: what `flock run --out DIR` writes ([`RunDirectory`], crash-safe, with
+//! checkpoints to resume from) and how to read it back ([`read_run`]).
+//!
+//! | file | contents |
+//! | --- | --- |
+//! | `metrics.csv` | `t`, the metrics of [`METRICS_HEADER`], then the protocol's diagnostics |
+//! | `trajectory.csv` | `t,id,x,y[,z],vx,vy[,vz]`, every agent at every recorded step |
+//! | `trajectory.npy` | instead of `trajectory.csv`: records `t`, `q` (n × dim), `p` (n × dim) |
+//! | `final.csv` | `id,x,y[,z],vx,vy[,vz]`, the final state |
+//! | `scenario.ron` | the scenario with every default filled in |
+
+pub mod checkpoint;
+pub mod npy;
+pub mod read;
+mod table;
+pub mod write;
+
+pub use checkpoint::{CHECKPOINT_FILE, Checkpoint};
+pub use read::{Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv, read_trajectory_npy, trajectory_header};
+pub use write::{
+    CreateError, INCOMPLETE_FILE, METRICS_HEADER, OutputOptions, ResumeError, RunDirectory, TrajectoryFormat,
+    partial_path,
+};

@@ -1,0 +1,361 @@
+//! Reading a run directory back: `metrics.csv` as named columns, the trajectory (`trajectory.csv`
+//! or `trajectory.npy`) as arrays of times, positions and velocities, and the resolved
+//! `scenario.ron` ([`read_run`]). Errors name the file and, for a malformed line, the line.
+
+use std::fmt;
+use std::io;
+use std::path::{Path, PathBuf};
+
+use super::table::Table;
+use crate::error::ScenarioError;
+use crate::scenario::Scenario;
+
+/// The name of the time column of `metrics.csv`.
+pub const TIME: &str = "t";
+
+/// Why a run directory could not be read.
+#[derive(Debug)]
+pub enum ReadError {
+    /// A file could not be read.
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The error of the operating system.
+        source: io::Error,
+    },
+    /// A line of a file is malformed.
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// The line, 1-based (the header is line 1; line 1 for a `.npy` header).
+        line: usize,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The run's `scenario.ron` does not load.
+    Scenario(ScenarioError),
+}
+
+impl ReadError {
+    /// The file `path` could not be read.
+    #[must_use]
+    pub fn io(path: &Path, source: io::Error) -> Self {
+        Self::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}
+
+impl fmt::Display for ReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
+            Self::Parse {
+                path,
+                line,
+                message,
+            } => write!(f, "{}:{line}: {message}", path.display()),
+            Self::Scenario(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for ReadError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Io { source, .. } => Some(source),
+            Self::Scenario(e) => Some(e),
+            Self::Parse { .. } => None,
+        }
+    }
+}
+
+/// The columns of a `metrics.csv`, by name, in file order (`t` first).
+pub type Columns = Vec<(String, Vec<f64>)>;
+
+/// A recorded trajectory: frame k at time `times[k]` holds agent i's position at
+/// `positions[(k * agents + i) * dim..][..dim]`, its velocity likewise.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trajectory {
+    /// The dimension, 2 or 3.
+    pub dim: usize,
+    /// The number of agents.
+    pub agents: usize,
+    /// The recorded times.
+    pub times: Vec<f64>,
+    /// The positions, frame by frame, agent by agent.
+    pub positions: Vec<f64>,
+    /// The velocities, as the positions.
+    pub velocities: Vec<f64>,
+}
+
+impl Trajectory {
+    /// The number of recorded frames.
+    #[must_use]
+    pub fn frames(&self) -> usize {
+        self.times.len()
+    }
+
+    /// The positions of frame `k`: `agents` rows of `dim` coordinates.
+    #[must_use]
+    pub fn positions_at(&self, k: usize) -> &[f64] {
+        let size = self.agents * self.dim;
+        &self.positions[k * size..(k + 1) * size]
+    }
+
+    /// The velocities of frame `k`.
+    #[must_use]
+    pub fn velocities_at(&self, k: usize) -> &[f64] {
+        let size = self.agents * self.dim;
+        &self.velocities[k * size..(k + 1) * size]
+    }
+}
+
+/// What a run directory holds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunFiles {
+    /// The resolved scenario of the run (`scenario.ron`).
+    pub scenario: Scenario,
+    /// The rows of `metrics.csv`, by column.
+    pub metrics: Columns,
+    /// The recorded trajectory.
+    pub trajectory: Trajectory,
+}
+
+/// Reads the run in `dir` (written by [`RunDirectory`](super::RunDirectory), complete or
+/// `DIR.partial`): its scenario, metrics and trajectory (`trajectory.npy` when there is no
+/// `trajectory.csv`).
+///
+/// # Errors
+/// A file that is missing or malformed, named with its line, or a scenario that does not load.
+pub fn read_run(dir: &Path) -> Result<RunFiles, ReadError> {
+    let scenario = Scenario::load(dir.join("scenario.ron")).map_err(ReadError::Scenario)?;
+    let metrics = read_metrics(&dir.join("metrics.csv"))?;
+    let csv = dir.join("trajectory.csv");
+    let npy = dir.join("trajectory.npy");
+    let trajectory = if !csv.exists() && npy.exists() {
+        read_trajectory_npy(&npy)?
+    } else {
+        read_trajectory_csv(&csv)?
+    };
+    Ok(RunFiles {
+        scenario,
+        metrics,
+        trajectory,
+    })
+}
+
+/// Reads a `metrics.csv`: a header with a `t` column, then rows of numbers.
+///
+/// # Errors
+/// As [`read_run`].
+pub fn read_metrics(path: &Path) -> Result<Columns, ReadError> {
+    let table = Table::read(path)?;
+    if table.column_index(TIME).is_none() {
+        return Err(table.error_at(
+            1,
+            format!(
+                "the header has no {TIME:?} column: {:?}",
+                table.header.join(",")
+            ),
+        ));
+    }
+    Ok(table
+        .header
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            (
+                name.clone(),
+                table.rows.iter().map(|(_, row)| row[k]).collect(),
+            )
+        })
+        .collect())
+}
+
+/// The header of a `trajectory.csv` in `dim` dimensions: `t,id,x,y[,z],vx,vy[,vz]`.
+#[must_use]
+pub fn trajectory_header(dim: usize) -> Vec<String> {
+    let axes = &["x", "y", "z"][..dim];
+    ["t", "id"]
+        .iter()
+        .map(|s| (*s).to_owned())
+        .chain(axes.iter().map(|a| (*a).to_owned()))
+        .chain(axes.iter().map(|a| format!("v{a}")))
+        .collect()
+}
+
+/// Reads a `trajectory.csv` (`t,id,x,y,vx,vy` or `t,id,x,y,z,vx,vy,vz`): rows grouped by t, each
+/// frame listing every agent once (in any order).
+///
+/// # Errors
+/// As [`read_run`]: a wrong header, an id out of range or repeated, an agent missing from a
+/// frame, time going backwards.
+pub fn read_trajectory_csv(path: &Path) -> Result<Trajectory, ReadError> {
+    let table = Table::read(path)?;
+    let Some(dim) = [2, 3]
+        .into_iter()
+        .find(|&dim| table.header == trajectory_header(dim))
+    else {
+        return Err(table.error_at(
+            1,
+            format!(
+                "expected the header {:?} (2D) or {:?} (3D), found {:?}",
+                trajectory_header(2).join(","),
+                trajectory_header(3).join(","),
+                table.header.join(",")
+            ),
+        ));
+    };
+    let mut trajectory = Trajectory {
+        dim,
+        ..Trajectory::default()
+    };
+    let mut start = 0;
+    while start < table.rows.len() {
+        let t = table.rows[start].1[0];
+        let end = start
+            + table.rows[start..]
+                .iter()
+                .take_while(|(_, row)| row[0].to_bits() == t.to_bits())
+                .count();
+        if let Some((line, row)) = table.rows.get(end)
+            && row[0].partial_cmp(&t) != Some(std::cmp::Ordering::Greater)
+        {
+            return Err(table.error_at(
+                *line,
+                format!("t = {} after t = {t}: rows must be in time order", row[0]),
+            ));
+        }
+        if trajectory.times.is_empty() {
+            trajectory.agents = end - start;
+        } else if end - start != trajectory.agents {
+            return Err(table.error_at(
+                table.rows[start].0,
+                format!(
+                    "the frame at t = {t} has {} rows, the first frame has {}: \
+                     every frame lists every agent",
+                    end - start,
+                    trajectory.agents
+                ),
+            ));
+        }
+        push_frame(&table, &table.rows[start..end], &mut trajectory)?;
+        start = end;
+    }
+    Ok(trajectory)
+}
+
+/// Appends the frame of the rows of one time, agents in id order.
+fn push_frame(
+    table: &Table,
+    rows: &[(usize, Vec<f64>)],
+    trajectory: &mut Trajectory,
+) -> Result<(), ReadError> {
+    let (n, dim) = (rows.len(), trajectory.dim);
+    let mut slots: Vec<Option<&[f64]>> = vec![None; n];
+    for (line, row) in rows {
+        let id = row[1];
+        if !(id >= 0.0 && id < n as f64 && id.fract() == 0.0) {
+            return Err(table.error_at(
+                *line,
+                format!(
+                    "id {id} is not an agent index: the frame at t = {} has {n} rows, ids 0 to {}",
+                    row[0],
+                    n - 1
+                ),
+            ));
+        }
+        let slot = &mut slots[id as usize];
+        if slot.is_some() {
+            return Err(table.error_at(*line, format!("id {id} appears twice at t = {}", row[0])));
+        }
+        *slot = Some(&row[2..]);
+    }
+    trajectory.times.push(rows[0].1[0]);
+    // n rows, ids in 0..n, none twice: every slot is filled
+    for state in slots.into_iter().flatten() {
+        trajectory.positions.extend_from_slice(&state[..dim]);
+        trajectory.velocities.extend_from_slice(&state[dim..]);
+    }
+    Ok(())
+}
+
+/// Reads a `trajectory.npy` as [`RunDirectory`](super::RunDirectory) writes it: a NumPy 1.0 file of
+/// records `[('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))]`, one per frame (only
+/// the records its header counts).
+///
+/// # Errors
+/// As [`read_run`] (line 1: the header) when it is not such a file.
+pub fn read_trajectory_npy(path: &Path) -> Result<Trajectory, ReadError> {
+    let bytes = std::fs::read(path).map_err(|e| ReadError::io(path, e))?;
+    let bad = |message: String| ReadError::Parse {
+        path: path.to_owned(),
+        line: 1,
+        message,
+    };
+    let header_end = bytes
+        .get(8..10)
+        .filter(|_| bytes.starts_with(b"\x93NUMPY\x01\x00"))
+        .map(|len| 10 + usize::from(u16::from_le_bytes([len[0], len[1]])))
+        .ok_or_else(|| bad("not a NumPy 1.0 .npy file".to_owned()))?;
+    let header = bytes
+        .get(10..header_end)
+        .and_then(|h| std::str::from_utf8(h).ok())
+        .ok_or_else(|| bad("the header is cut or not ASCII".to_owned()))?;
+    let numbers_after = |key: &str| -> Option<Vec<usize>> {
+        let rest = &header[header.find(key)? + key.len()..];
+        let inner = &rest[..rest.find(')')?];
+        inner
+            .split(',')
+            .map(str::trim)
+            .filter(|x| !x.is_empty())
+            .map(|x| x.parse().ok())
+            .collect()
+    };
+    let (agents, dim, records) = match (
+        numbers_after("('q', '<f8', ("),
+        numbers_after("'shape': ("),
+    ) {
+        (Some(q), Some(shape))
+            if q.len() == 2
+                && (q[1] == 2 || q[1] == 3)
+                && shape.len() == 1
+                && header.contains("[('t', '<f8'), ('q', '<f8', ")
+                && header.contains("('p', '<f8', ") =>
+        {
+            (q[0], q[1], shape[0])
+        }
+        _ => {
+            return Err(bad(format!(
+                "expected records [('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))], found {}",
+                header.trim_end()
+            )));
+        }
+    };
+    let record = 1 + 2 * agents * dim;
+    let data: Vec<f64> = bytes[header_end..]
+        .chunks_exact(8)
+        .take(records * record)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default()))
+        .collect();
+    if data.len() < records * record {
+        return Err(bad(format!(
+            "the header counts {records} records but the file holds {}",
+            data.len() / record
+        )));
+    }
+    let mut trajectory = Trajectory {
+        dim,
+        agents,
+        ..Trajectory::default()
+    };
+    for r in data.chunks_exact(record) {
+        let (q, p) = r[1..].split_at(agents * dim);
+        trajectory.times.push(r[0]);
+        trajectory.positions.extend_from_slice(q);
+        trajectory.velocities.extend_from_slice(p);
+    }
+    Ok(trajectory)
+}
