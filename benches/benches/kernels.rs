@@ -1,7 +1,7 @@
 //! The hot kernels of a simulation step on α-lattices of 10⁴ agents, in 2D and 3D.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use flock_cli::bench::scenario;
+use flock::synthetic::lattice_swarm;
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_metrics::{FlockMetrics, MetricParams};
 use flock_protocols::{
@@ -30,7 +30,7 @@ fn protocol<V: flock_math::Vector>(swarm: &Swarm<V>) -> Algorithm2<V> {
 }
 
 fn kernels<V: flock_obstacles::Space>(c: &mut Criterion, dim: &str) {
-    let (swarm, _) = scenario::<V>(N, 0);
+    let (swarm, _) = lattice_swarm::<V>(N, 0);
     let protocol = protocol(&swarm);
     let mut search = NeighbourSearch::new();
     // the kind of net a Simulation keeps for this protocol
@@ -55,7 +55,8 @@ fn kernels<V: flock_obstacles::Space>(c: &mut Criterion, dim: &str) {
         Integrator::SymplecticEuler,
         swarm.clone(),
         0.01,
-    );
+    )
+    .expect("a valid simulation");
     group.bench_function(BenchmarkId::new("step_symplectic_euler", N), |b| {
         b.iter(|| sim.step());
     });

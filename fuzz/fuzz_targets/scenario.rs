@@ -6,15 +6,13 @@
 //!   `parse(to_ron(s)) == s` (the resolved scenario round-trips through RON);
 //! - a small accepted scenario (at most [`MAX_AGENTS`] agents, [`MAX_OBSTACLES`] obstacles),
 //!   cut to at most [`MAX_STEPS`] steps, either fails with an `Err`, or every value it records and
-//!   summarises is finite: positions, velocities, energies, metrics and the protocol's extra
-//!   columns. The only exceptions are the ones the metrics document: `min_distance` and
+//!   summarises is finite: positions, velocities, energies, metrics and the protocol's
+//!   diagnostics, every record naming the same diagnostic columns. The only exceptions are the ones the metrics document: `min_distance` and
 //!   `min_linked_distance` are +∞ for a single agent (no pair, no link). NaN is never accepted.
 #![no_main]
 
-use flock_cli::scenario::{Algorithm, Cloud, TannerGraph};
-use flock_cli::{Record, Recorder, RunSummary, Scenario, run_scenario};
-use flock_math::Vector;
-use flock_metrics::FlockMetrics;
+use flock::metrics::FlockMetrics;
+use flock::{Algorithm, Cloud, Record, Recorder, RunSummary, Scenario, TannerGraph};
 use libfuzzer_sys::fuzz_target;
 
 /// Larger flocks are cut to this many agents (or not run, when the scenario lists every agent).
@@ -37,8 +35,8 @@ fn check(field: &str, t: f64, value: f64, infinite_ok: bool) {
 struct FiniteRecorder {
     /// The number of agents (+∞ distances are documented for fewer than two).
     agents: usize,
-    /// The names of the extra columns, in order.
-    columns: Vec<&'static str>,
+    /// The names of the diagnostic columns, in order, as the first record names them.
+    columns: Option<Vec<&'static str>>,
     /// The number of records seen.
     records: u64,
 }
@@ -72,14 +70,18 @@ impl FiniteRecorder {
         );
         check("summary.initial_energy", t, summary.initial_energy, false);
         check("summary.final_energy", t, summary.final_energy, false);
+        self.check_diagnostics(t, &summary.diagnostics);
+    }
+
+    /// Every diagnostic finite, under the names of the first record.
+    fn check_diagnostics(&self, t: f64, diagnostics: &[(&'static str, f64)]) {
+        let names: Vec<&'static str> = diagnostics.iter().map(|&(name, _)| name).collect();
         assert_eq!(
-            summary.extra.len(),
-            self.columns.len(),
-            "the summary has {} extra values, but Scenario::extra_columns names {:?}",
-            summary.extra.len(),
-            self.columns
+            self.columns.as_ref(),
+            Some(&names),
+            "at t = {t}: the diagnostic columns changed"
         );
-        for &(name, value) in &summary.extra {
+        for &(name, value) in diagnostics {
             self.check_extra(name, t, value);
         }
     }
@@ -88,31 +90,21 @@ impl FiniteRecorder {
 impl Recorder for FiniteRecorder {
     type Error = std::convert::Infallible;
 
-    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         let t = record.t;
         check("t", t, t, false);
         self.check_metrics(t, &record.metrics);
         check("energy", t, record.energy, false);
-        for (i, (q, p)) in record
-            .swarm
-            .positions
-            .iter()
-            .zip(&record.swarm.velocities)
-            .enumerate()
-        {
-            assert!(q.is_finite(), "position of agent {i} = {q:?} at t = {t}");
-            assert!(p.is_finite(), "velocity of agent {i} = {p:?} at t = {t}");
+        let state = &record.state;
+        for (k, x) in state.positions.iter().enumerate() {
+            assert!(x.is_finite(), "position of agent {} = {x} at t = {t}", k / state.dim);
         }
-        assert_eq!(
-            record.extra.len(),
-            self.columns.len(),
-            "at t = {t}: {} extra values recorded, but Scenario::extra_columns names {:?}",
-            record.extra.len(),
-            self.columns
-        );
-        for (&name, &value) in self.columns.iter().zip(record.extra) {
-            self.check_extra(name, t, value);
+        for (k, x) in state.velocities.iter().enumerate() {
+            assert!(x.is_finite(), "velocity of agent {} = {x} at t = {t}", k / state.dim);
         }
+        self.columns
+            .get_or_insert_with(|| record.diagnostics.iter().map(|&(name, _)| name).collect());
+        self.check_diagnostics(t, record.diagnostics);
         self.records += 1;
         Ok(())
     }
@@ -168,10 +160,10 @@ fn check_input(data: &[u8]) {
     };
     let mut recorder = FiniteRecorder {
         agents: small.agents,
-        columns: small.extra_columns(),
+        columns: None,
         records: 0,
     };
-    if let Ok(summary) = run_scenario(&small, &mut recorder) {
+    if let Ok(summary) = flock::run(&small, &mut recorder) {
         assert!(
             recorder.records >= 2,
             "a run records t = 0 and its last step"

@@ -198,4 +198,3 @@ fn remove_if_present(path: &Path) -> Result<(), FiguresError> {
         _ => Ok(()),
     }
 }
-

@@ -3,7 +3,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use flock_cli::Scenario;
+use flock::Scenario;
 
 /// The workspace's `fixtures/` directory.
 pub fn fixtures_dir() -> PathBuf {
@@ -26,28 +26,10 @@ pub fn fixture_paths() -> Vec<PathBuf> {
     paths
 }
 
-/// The file stem of a fixture path.
-pub fn stem(path: &Path) -> String {
-    path.file_stem()
-        .expect("a file name")
-        .to_string_lossy()
-        .into_owned()
-}
-
 /// The fixture `fixtures/{name}.ron`, loaded and validated.
 pub fn fixture(name: &str) -> Scenario {
     let path = fixtures_dir().join(format!("{name}.ron"));
     Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// `x` rounded to 6 significant digits, in scientific notation (`0` for ±0, so the sign of a zero
-/// never changes a snapshot).
-pub fn sig6(x: f64) -> String {
-    if x == 0.0 {
-        "0".to_owned()
-    } else {
-        format!("{x:.5e}")
-    }
 }
 
 /// A fresh directory under the system's temporary directory, named after the process and the

@@ -4,7 +4,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use flock_cli::{METRICS_HEADER, Scenario, ScenarioError};
+use flock::run_dir::METRICS_HEADER;
+use flock::{Scenario, ScenarioError};
 
 use crate::common::{TempDir, files, flock, stderr, write};
 
@@ -160,7 +161,7 @@ fn attraction_above_repulsion_names_alpha_a() {
         &edit(TINY_2D, "a: 5.0, b: 5.0", "a: 6.0, b: 5.0"),
         "alpha.a",
     );
-    assert!(message.contains("alpha.b"), "{message}");
+    assert!(message.contains("exceeds b = 5"), "{message}");
 }
 
 #[test]
@@ -270,10 +271,8 @@ fn the_fixtures_and_the_base_scenarios_give_no_warning() {
 #[test]
 fn a_step_the_stiffness_makes_unstable_is_warned_with_the_largest_stable_step() {
     let stiff = edit(TINY_2D, "h: 0.2)", "h: 0.2, c1: 500.0)");
-    let stable = flock_cli::stability::largest_stable_step(
-        &Scenario::parse(&stiff, "test.ron").expect("valid"),
-    )
-    .expect("an estimate for Algorithm 2");
+    let stable = flock::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
+        .expect("an estimate for Algorithm 2");
     // The papers' gains leave a wide margin above h = 0.01; c₁^α = 500 takes it below.
     assert!(stable < 0.01, "{stable}");
     let found = warnings(&stiff);
@@ -305,20 +304,20 @@ fn the_stable_step_estimate_separates_stable_from_unstable_runs() {
         step: 0.01, duration: 6.0, record_every: 100,
     )"#;
     let base = Scenario::parse(text, "test.ron").expect("valid");
-    let stable = flock_cli::stability::largest_stable_step(&base).expect("an estimate");
+    let stable = flock::largest_stable_step(&base).expect("an estimate");
     let with_step = |h: f64| Scenario {
         step: h,
         ..base.clone()
     };
-    let summary = flock_cli::run_scenario(&with_step(0.5 * stable), &mut ())
+    let summary = flock::run(&with_step(0.5 * stable), &mut ())
         .unwrap_or_else(|e| panic!("half the estimate must run: {e}"));
     assert!(
         summary.metrics.min_distance > 0.8 * 7.0,
         "{:?}",
         summary.metrics
     );
-    match flock_cli::run_scenario(&with_step(4.0 * stable), &mut ()) {
-        Err(flock_cli::RunError::Numerical(e)) => {
+    match flock::run(&with_step(4.0 * stable), &mut ()) {
+        Err(flock::RunError::Numerical(e)) => {
             assert!(e.cause.contains("largest stable step"), "{e}");
         }
         Ok(summary) => assert!(
@@ -618,7 +617,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
     }
 
     // scenario.ron: loads, with the defaults written out.
-    let written = Scenario::load(&out.join("scenario.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let written = Scenario::load(out.join("scenario.ron")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(written.alpha.r, Some(1.2 * written.alpha.d));
     assert!(
         files["scenario.ron"].contains("r: 8.4"),

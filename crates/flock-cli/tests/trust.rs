@@ -8,12 +8,9 @@ use std::process::{Child, Command, Stdio};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
-use flock_cli::checkpoint::Checkpoint;
-use flock_cli::health::{Fault, Health};
-use flock_cli::{INCOMPLETE_FILE, RunError, Scenario, run_scenario};
-use flock_graph::Numbering;
-use flock_protocols::Swarm;
-use glam::DVec2;
+use flock::health::Fault;
+use flock::run_dir::{Checkpoint, INCOMPLETE_FILE};
+use flock::{Cloud, DynSimulation, Initial, Record, Recorder, RunError, Scenario};
 
 use crate::common::{TempDir, files, flock, stderr, write};
 
@@ -53,7 +50,7 @@ const BLOW_UP: &str = r#"Scenario(
 "#;
 
 fn partial(out: &Path) -> PathBuf {
-    flock_cli::output::partial_path(out)
+    flock::run_dir::partial_path(out)
 }
 
 /// Runs `args` to completion, asserting success.
@@ -155,57 +152,42 @@ fn check_incomplete(out: &Path, agents: usize) {
 
 #[test]
 fn the_health_check_names_the_step_the_agent_and_the_fault() {
-    let scenario = Scenario::parse(LONG_2D, "long.ron").expect("valid");
-    let identity = Numbering::identity();
-    let q = vec![DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(0.0, 7.0)];
-    let mut p = vec![DVec2::ZERO; 3];
-    assert!(Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone()), &identity).is_ok());
-    p[2] = DVec2::new(f64::NAN, 0.0);
-    let error =
-        Health::check(&scenario, 5, &Swarm::new(q.clone(), p.clone()), &identity).unwrap_err();
-    assert_eq!((error.steps, error.agent), (5, 2));
-    assert!(matches!(
-        error.fault,
-        Fault::NotFinite {
-            quantity: "velocity",
-            ..
-        }
-    ));
-    let message = error.to_string();
-    assert!(
-        message.starts_with(
-            "numerical blow-up at step 5 (t = 0.05): agent 2 has a non-finite velocity"
-        ),
-        "{message}"
-    );
+    let base = Scenario::parse(LONG_2D, "long.ron").expect("valid");
+    let scenario = Scenario {
+        agents: 3,
+        initial: Initial {
+            positions: Cloud::Explicit(vec![vec![0.0, 0.0], vec![7.0, 0.0], vec![0.0, 7.0]]),
+            velocities: Cloud::Zero,
+        },
+        ..base
+    };
+    let q = [0.0, 0.0, 7.0, 0.0, 0.0, 7.0];
+    let sim = DynSimulation::from_state(&scenario, &q, &[0.0; 6], 5).expect("a valid state");
+    assert!(sim.check_health().is_ok());
     // r/h = 8.4/0.01 = 840: one step may not cross the interaction range.
-    p[2] = DVec2::new(0.0, 841.0);
-    p[1] = DVec2::new(f64::INFINITY, 0.0);
-    let error =
-        Health::check(&scenario, 9, &Swarm::new(q.clone(), p.clone()), &identity).unwrap_err();
-    assert_eq!(error.agent, 1, "the lowest agent at fault");
-    // stored in reverse order, the lowest original index at fault is still named
-    let mut reversed = Numbering::identity();
-    reversed.permute(&[2, 1, 0]);
-    let rev = |x: &[DVec2]| x.iter().rev().copied().collect::<Vec<_>>();
-    let stored = Swarm::new(rev(&q), rev(&p));
-    let error = Health::check(&scenario, 9, &stored, &reversed).unwrap_err();
-    assert_eq!(error.agent, 1, "the lowest original agent at fault");
-    assert!(matches!(error.fault, Fault::NotFinite { .. }), "{error}");
-    let mut p = vec![DVec2::ZERO; 3];
-    p[2] = DVec2::new(0.0, 841.0);
-    let q = vec![DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(0.0, 7.0)];
-    let error = Health::check(&scenario, 9, &Swarm::new(q, p), &identity).unwrap_err();
+    let p = [0.0, 0.0, 0.0, 839.0, 0.0, 841.0];
+    let sim = DynSimulation::from_state(&scenario, &q, &p, 9).expect("a valid state");
+    let error = sim.check_health().unwrap_err();
+    assert_eq!((error.steps, error.fault.agent), (9, 2));
     assert!(
-        matches!(error.fault, Fault::Runaway { speed, limit } if speed == 841.0 && (limit - 840.0).abs() < 1e-9),
+        matches!(error.fault.fault, Fault::Runaway { speed, limit } if speed == 841.0 && (limit - 840.0).abs() < 1e-9),
         "{error}"
     );
+    let message = error.to_string();
+    assert!(
+        message.starts_with("numerical blow-up at step 9 (t = 0.09): agent 2 runs away at speed"),
+        "{message}"
+    );
+    // a state that is not finite is refused before any step, with its agent
+    let p = [0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0];
+    let error = DynSimulation::from_state(&scenario, &q, &p, 0).unwrap_err();
+    assert_eq!(error.field().as_deref(), Some("velocities[1]"), "{error}");
 }
 
 #[test]
 fn a_blow_up_stops_the_run_with_the_step_agent_and_cause() {
     let scenario = Scenario::parse(BLOW_UP, "blow_up.ron").expect("valid (with a warning)");
-    match run_scenario(&scenario, &mut ()) {
+    match flock::run(&scenario, &mut ()) {
         Err(RunError::Numerical(e)) => {
             assert_eq!(e.steps, 1);
             let message = e.to_string();
@@ -229,10 +211,10 @@ fn initial_speeds_beyond_what_the_step_resolves_stop_the_run_at_step_0() {
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1e6])",
     );
     let scenario = Scenario::parse(&text, "fast.ron").expect("valid");
-    match run_scenario(&scenario, &mut ()) {
+    match flock::run(&scenario, &mut ()) {
         Err(RunError::Numerical(e)) => {
             assert_eq!(e.steps, 0);
-            assert!(matches!(e.fault, Fault::Runaway { .. }), "{e}");
+            assert!(matches!(e.fault.fault, Fault::Runaway { .. }), "{e}");
         }
         other => panic!("expected a numerical error, got {other:?}"),
     }
@@ -518,19 +500,16 @@ fn the_npy_trajectory_holds_exactly_the_csv_trajectory() {
 }
 
 /// Checks that every recorded value is finite (`min_distance` may be +∞ for a single agent) and
-/// that the protocol's values match the declared columns.
+/// that every record names the same diagnostic columns as the first.
 struct Finite {
-    columns: usize,
+    columns: Option<Vec<&'static str>>,
     agents: usize,
 }
 
-impl flock_cli::Recorder for Finite {
+impl Recorder for Finite {
     type Error = std::convert::Infallible;
 
-    fn record<V: flock_math::Vector>(
-        &mut self,
-        record: &flock_cli::Record<'_, V>,
-    ) -> Result<(), Self::Error> {
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         let m = &record.metrics;
         let values = [
             m.connectivity,
@@ -546,15 +525,17 @@ impl flock_cli::Recorder for Finite {
             record.t
         );
         assert!(m.min_distance.is_finite() || self.agents < 2);
-        assert_eq!(
-            record.extra.len(),
-            self.columns,
-            "values of the extra columns"
-        );
+        let names: Vec<&'static str> = record.diagnostics.iter().map(|&(name, _)| name).collect();
+        let columns = self.columns.get_or_insert_with(|| names.clone());
+        assert_eq!(*columns, names, "the diagnostic columns of every record");
         assert!(
-            record.extra.iter().all(|x| x.is_finite()),
+            record
+                .diagnostics
+                .iter()
+                .all(|(name, x)| x.is_finite()
+                    || (*name == "min_linked_distance" && self.agents < 2)),
             "{:?}",
-            record.extra
+            record.diagnostics
         );
         Ok(())
     }
@@ -586,10 +567,10 @@ fn the_fuzzers_findings_are_rejected_or_run_finite() {
             ..scenario
         };
         let mut finite = Finite {
-            columns: short.extra_columns().len(),
+            columns: None,
             agents: short.agents,
         };
-        match run_scenario(&short, &mut finite) {
+        match flock::run(&short, &mut finite) {
             Ok(_) | Err(RunError::Numerical(_)) => {}
             Err(e) => panic!("{}: {e}", path.display()),
         }

@@ -38,7 +38,7 @@ impl std::error::Error for PlotError {}
 /// # Errors
 /// When `dir` is not a complete run directory, or drawing fails.
 pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
-    let scenario = Scenario::load(&dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
+    let scenario = Scenario::load(dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
     let run = RunData::load(dir).map_err(PlotError::Viz)?;
     let scene = match scenario.dim {
         2 => decorate::<DVec2>(run.scene(scenario.range()), &scenario),

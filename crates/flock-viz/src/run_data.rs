@@ -93,8 +93,16 @@ fn frames_of(trajectory: &Trajectory) -> (usize, Vec<Frame>) {
         .map(|k| {
             Frame::new(
                 trajectory.times[k],
-                trajectory.positions_at(k).chunks_exact(dim).map(vector).collect(),
-                trajectory.velocities_at(k).chunks_exact(dim).map(vector).collect(),
+                trajectory
+                    .positions_at(k)
+                    .chunks_exact(dim)
+                    .map(vector)
+                    .collect(),
+                trajectory
+                    .velocities_at(k)
+                    .chunks_exact(dim)
+                    .map(vector)
+                    .collect(),
             )
         })
         .collect();

@@ -30,7 +30,8 @@ impl Scenario {
     /// first), with its field.
     pub fn protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
         let alpha_config = &self.alpha;
-        let within = |prefix: &'static str| move |e: ParamError| ScenarioError::from(e.within(prefix));
+        let within =
+            |prefix: &'static str| move |e: ParamError| ScenarioError::from(e.within(prefix));
         let alpha = alpha_config.interaction().map_err(within("alpha"))?;
         let (d, r) = (alpha_config.d, self.range());
         Ok(match &self.algorithm {
@@ -103,8 +104,9 @@ impl Scenario {
                     crate::TannerGraph::Random { extra } => {
                         random_connected_graph(self.agents, *extra, self.seed)
                     }
-                    crate::TannerGraph::Edges(edges) => Graph::from_edges(self.agents, edges)
-                        .map_err(|e| invalid(e.to_string()))?,
+                    crate::TannerGraph::Edges(edges) => {
+                        Graph::from_edges(self.agents, edges).map_err(|e| invalid(e.to_string()))?
+                    }
                 };
                 let law = TannerJadbabaiePappas::new(graph, TannerPotential::new(d), r)
                     .map_err(|e| invalid(e.to_string()))?;

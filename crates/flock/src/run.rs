@@ -4,11 +4,12 @@
 use std::time::{Duration, Instant};
 
 use flock_metrics::FlockMetrics;
+use flock_protocols::Observation;
 
 use crate::error::ScenarioError;
 use crate::health::NumericalError;
-use crate::simulation::{DynSimulation, State};
 use crate::scenario::Scenario;
+use crate::simulation::{DynSimulation, State};
 
 /// One recorded instant.
 #[derive(Debug)]
@@ -183,10 +184,13 @@ pub fn resume<R: Recorder + ?Sized>(
         None => {
             let sim = DynSimulation::new(scenario)?;
             sim.check_health().map_err(RunError::Numerical)?;
-            let (_, energy, _) = record(recorder, &sim)?;
+            let energy = record(recorder, &sim)?.energy;
             (sim, energy)
         }
-        Some(start) => (DynSimulation::resume(scenario, start)?, start.initial_energy),
+        Some(start) => (
+            DynSimulation::resume(scenario, start)?,
+            start.initial_energy,
+        ),
     };
     let total = scenario.steps();
     let clock = Instant::now();
@@ -213,20 +217,17 @@ pub fn resume<R: Recorder + ?Sized>(
         }
     }
     let elapsed = clock.elapsed();
-    let (metrics, final_energy, diagnostics) = last.unwrap_or_else(|| {
-        let o = sim.observe();
-        (o.metrics, o.energy, o.diagnostics)
-    });
+    let last = last.unwrap_or_else(|| sim.observe());
     Ok(RunSummary {
         agents: sim.agents(),
         dim: sim.dim(),
         steps: sim.steps(),
         t: sim.time(),
-        metrics,
+        metrics: last.metrics,
         component_velocity_mismatch: sim.component_velocity_mismatch(),
         initial_energy,
-        final_energy,
-        diagnostics,
+        final_energy: last.energy,
+        diagnostics: last.diagnostics,
         elapsed,
     })
 }
@@ -235,7 +236,7 @@ pub fn resume<R: Recorder + ?Sized>(
 fn record<R: Recorder + ?Sized>(
     recorder: &mut R,
     sim: &DynSimulation,
-) -> Result<(FlockMetrics, f64, Vec<(&'static str, f64)>), RunError<R::Error>> {
+) -> Result<Observation, RunError<R::Error>> {
     let observation = sim.observe();
     recorder
         .record(&Record {
@@ -247,9 +248,5 @@ fn record<R: Recorder + ?Sized>(
             diagnostics: &observation.diagnostics,
         })
         .map_err(RunError::Record)?;
-    Ok((
-        observation.metrics,
-        observation.energy,
-        observation.diagnostics,
-    ))
+    Ok(observation)
 }

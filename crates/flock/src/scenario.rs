@@ -317,7 +317,7 @@ impl Scenario {
     #[must_use]
     pub fn collision_distance(&self) -> f64 {
         self.collision_distance
-            .unwrap_or_else(|| COLLISION_FRACTION * self.alpha.d)
+            .unwrap_or(COLLISION_FRACTION * self.alpha.d)
     }
 
     /// The number of steps ⌈T / h⌉ (rounded to the nearest when T/h is within round-off of an integer).

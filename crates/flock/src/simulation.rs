@@ -327,9 +327,9 @@ impl DynSimulation {
     /// # Errors
     /// The agent at fault of lowest original index, with the step, the time and the likely cause.
     pub fn check_health(&self) -> Result<(), NumericalError> {
-        self.inner.check_health().map_err(|fault| {
-            NumericalError::new(&self.scenario, self.steps(), self.time(), fault)
-        })
+        self.inner
+            .check_health()
+            .map_err(|fault| NumericalError::new(&self.scenario, self.steps(), self.time(), fault))
     }
 
     /// The state after the steps taken, as a checkpoint keeps it (with H(0) = `initial_energy`).

@@ -16,8 +16,11 @@ mod table;
 pub mod write;
 
 pub use checkpoint::{CHECKPOINT_FILE, Checkpoint};
-pub use read::{Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv, read_trajectory_npy, trajectory_header};
+pub use read::{
+    Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv,
+    read_trajectory_npy, trajectory_header,
+};
 pub use write::{
-    CreateError, INCOMPLETE_FILE, METRICS_HEADER, OutputOptions, ResumeError, RunDirectory, TrajectoryFormat,
-    partial_path,
+    CreateError, INCOMPLETE_FILE, METRICS_HEADER, OutputOptions, ResumeError, RunDirectory,
+    TrajectoryFormat, partial_path,
 };

@@ -371,7 +371,7 @@ impl RunDirectory {
             )));
         }
         let scenario =
-            Scenario::load(&partial.join("scenario.ron")).map_err(ResumeError::Scenario)?;
+            Scenario::load(partial.join("scenario.ron")).map_err(ResumeError::Scenario)?;
         let format = if partial.join("trajectory.npy").exists() {
             TrajectoryFormat::Npy
         } else {
@@ -392,12 +392,7 @@ impl RunDirectory {
                     Some(checkpoint.start),
                 )
             }
-            None => (
-                0,
-                0,
-                trajectory_csv_header(scenario.dim).len() as u64,
-                None,
-            ),
+            None => (0, 0, trajectory_csv_header(scenario.dim).len() as u64, None),
         };
         let metrics_path = partial.join("metrics.csv");
         let columns = if records > 0 {

@@ -1,6 +1,6 @@
 //! Every `fixtures/*.ron` parses and validates, and survives a round trip through `to_ron`.
 
-use flock_cli::Scenario;
+use flock::Scenario;
 
 use crate::common::{fixture_paths, stem};
 

@@ -3,14 +3,13 @@
 //! velocity; Algorithm 1 from a sparse cloud (Fig. 12) fragments into rigidly moving flocks while its
 //! energy H decreases.
 
-use flock_cli::{Record, Recorder, RunSummary, Scenario, run_scenario};
-use flock_math::Vector;
+use flock::{Record, Recorder, RunSummary, Scenario};
 
 use crate::common::fixture;
 
 fn run_fixture(name: &str) -> (Scenario, RunSummary) {
     let scenario = fixture(name);
-    let summary = run_scenario(&scenario, &mut ()).expect("the scenario runs");
+    let summary = flock::run(&scenario, &mut ()).expect("the scenario runs");
     assert_eq!(summary.steps, scenario.steps(), "{name}: every step taken");
     approx::assert_relative_eq!(summary.t, scenario.duration, max_relative = 1e-9);
     (scenario, summary)
@@ -83,12 +82,12 @@ struct Trace(Vec<(f64, flock_metrics::FlockMetrics, f64, Vec<f64>)>);
 
 impl Recorder for Trace {
     type Error = std::convert::Infallible;
-    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         self.0.push((
             record.t,
             record.metrics,
             record.energy,
-            record.extra.to_vec(),
+            record.diagnostics.iter().map(|&(_, v)| v).collect(),
         ));
         Ok(())
     }
@@ -97,7 +96,7 @@ impl Recorder for Trace {
 fn trace_fixture(name: &str) -> (Scenario, RunSummary, Trace) {
     let scenario = fixture(name);
     let mut trace = Trace::default();
-    let summary = run_scenario(&scenario, &mut trace).expect("the scenario runs");
+    let summary = flock::run(&scenario, &mut trace).expect("the scenario runs");
     (scenario, summary, trace)
 }
 

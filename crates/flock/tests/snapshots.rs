@@ -4,8 +4,7 @@
 use std::fmt::Write as _;
 use std::time::Duration;
 
-use flock_cli::{Record, Recorder, RunSummary, Scenario, run_scenario};
-use flock_math::Vector;
+use flock::{Record, Recorder, RunSummary, Scenario};
 
 use crate::common::{fixture_paths, sig6, stem};
 
@@ -51,7 +50,7 @@ fn rounded(name: &str, s: &RunSummary) -> String {
     line("collisions", m.collisions.to_string());
     line("initial_energy", sig6(s.initial_energy));
     line("final_energy", sig6(s.final_energy));
-    for (column, value) in &s.extra {
+    for (column, value) in &s.diagnostics {
         line(column, sig6(*value));
     }
     text
@@ -76,7 +75,7 @@ fn bits(s: &RunSummary) -> Vec<u64> {
 }
 
 fn short_run(scenario: &Scenario) -> RunSummary {
-    run_scenario(scenario, &mut ()).expect("the scenario runs")
+    flock::run(scenario, &mut ()).expect("the scenario runs")
 }
 
 #[test]
@@ -110,23 +109,30 @@ struct LastState {
     velocities: Vec<[f64; 3]>,
 }
 
-fn padded<V: Vector>(v: V) -> [f64; 3] {
+fn padded(v: &[f64]) -> [f64; 3] {
     let mut out = [0.0; 3];
-    for (k, x) in out.iter_mut().enumerate().take(V::DIM) {
-        *x = v.coord(k);
-    }
+    out[..v.len()].copy_from_slice(v);
     out
 }
 
 impl Recorder for LastState {
     type Error = std::convert::Infallible;
 
-    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         self.records += 1;
         self.times.push(record.t);
         self.energies.push(record.energy);
-        self.positions = record.swarm.positions.iter().map(|&q| padded(q)).collect();
-        self.velocities = record.swarm.velocities.iter().map(|&p| padded(p)).collect();
+        let state = &record.state;
+        self.positions = state
+            .positions
+            .chunks_exact(state.dim)
+            .map(padded)
+            .collect();
+        self.velocities = state
+            .velocities
+            .chunks_exact(state.dim)
+            .map(padded)
+            .collect();
         Ok(())
     }
 }
@@ -151,7 +157,7 @@ fn run_on_pool(scenario: &Scenario, threads: usize) -> (RunSummary, LastState) {
         .expect("a rayon pool");
     pool.install(|| {
         let mut state = LastState::default();
-        let summary = run_scenario(scenario, &mut state).expect("the scenario runs");
+        let summary = flock::run(scenario, &mut state).expect("the scenario runs");
         (summary, state)
     })
 }
@@ -191,7 +197,7 @@ fn records_start_at_zero_every_record_every_steps_and_at_the_end() {
         // 2 s = 200 steps; every 30 steps gives 30, 60, …, 180, then the last step 200.
         scenario.record_every = 30;
         let mut state = LastState::default();
-        let summary = run_scenario(&scenario, &mut state).expect("the scenario runs");
+        let summary = flock::run(&scenario, &mut state).expect("the scenario runs");
         assert_eq!(state.records, 1 + 6 + 1, "{name}: {:?}", state.times);
         assert_eq!(state.times[0], 0.0, "{name}");
         approx::assert_relative_eq!(state.times[1], 0.3, max_relative = 1e-12);

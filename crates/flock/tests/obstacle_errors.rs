@@ -1,6 +1,6 @@
 //! Scenario errors of obstacles and of the issue-3 algorithms: each names its field.
 
-use flock_cli::Scenario;
+use flock::Scenario;
 
 /// A valid 2D Algorithm 3 scenario with one ball, far from the agents.
 const ALG3: &str = r#"Scenario(

@@ -2,10 +2,9 @@
 //! original order, and a run resumed from a checkpoint (sorted again from the original order, at
 //! another step) records the same bits.
 
-use flock_cli::initial::initial_swarm;
-use flock_cli::{Record, Recorder, Scenario, Start, resume_scenario, run_scenario};
+use flock::initial::initial_swarm;
+use flock::{Record, Recorder, Scenario, Start};
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::Vector;
 use glam::DVec2;
 
 /// 20,000 agents in a Gaussian cloud, numbered at random as drawn; 24 steps recorded every 6, a
@@ -39,13 +38,16 @@ struct Bits {
 impl Recorder for Bits {
     type Error = std::convert::Infallible;
 
-    fn record<V: Vector>(&mut self, record: &Record<'_, V>) -> Result<(), Self::Error> {
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         let numbers = [record.t, record.energy]
             .into_iter()
             .chain(record.metrics.reals());
-        let swarm = record.swarm;
-        let states = swarm.positions.iter().chain(&swarm.velocities);
-        let coordinates = states.flat_map(|v| (0..V::DIM).map(|k| v.coord(k)));
+        let state = &record.state;
+        let coordinates = state
+            .positions
+            .iter()
+            .chain(state.velocities.iter())
+            .copied();
         self.records
             .push(numbers.chain(coordinates).map(f64::to_bits).collect());
         Ok(())
@@ -65,7 +67,7 @@ impl Recorder for Bits {
 fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identically() {
     let scenario = Scenario::parse(CLOUD, "cloud.ron").expect("valid");
     let mut whole = Bits::default();
-    run_scenario(&scenario, &mut whole).expect("the run");
+    flock::run(&scenario, &mut whole).expect("the run");
     assert_eq!(whole.records.len(), 5, "t = 0 and four records");
     // the first record is the initial state as drawn, in its order
     let start = initial_swarm::<DVec2>(&scenario);
@@ -89,7 +91,7 @@ fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identic
         .take()
         .expect("a checkpoint after 12 steps");
     let mut resumed = Bits::default();
-    resume_scenario(&scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
+    flock::resume(&scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
     assert_eq!(resumed.records.len(), 2);
     assert!(
         resumed.records[..] == whole.records[3..],

@@ -1,0 +1,12 @@
+//! Integration tests of the `flock` library, one binary (see STYLE.md): scenario files, the
+//! papers' runs, snapshots and determinism of short runs, agents stored by cell, and the errors
+//! of bad obstacles.
+
+mod common;
+mod fixtures;
+mod obstacle_errors;
+mod papers;
+mod params;
+mod run_dir;
+mod snapshots;
+mod storage_order;
