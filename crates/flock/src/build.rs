@@ -13,7 +13,7 @@ use flock_protocols::{
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;
-use crate::scenario::{Algorithm, Point, Scenario};
+use crate::scenario::{Algorithm, Point, Scenario, TannerGraph};
 
 /// The γ-agent of a validated scenario in vectors `V`.
 #[must_use]
@@ -91,28 +91,31 @@ impl Scenario {
                     }),
                 }
             }
-            Algorithm::Tanner { graph } => {
-                let invalid = |why: String| {
-                    ScenarioError::invalid(
-                        "algorithm.graph",
-                        "",
-                        why,
-                        "give a connected graph of edges (i, j) with i ≠ j < agents",
-                    )
-                };
-                let graph = match graph {
-                    crate::TannerGraph::Random { extra } => {
-                        random_connected_graph(self.agents, *extra, self.seed)
-                    }
-                    crate::TannerGraph::Edges(edges) => {
-                        Graph::from_edges(self.agents, edges).map_err(|e| invalid(e.to_string()))?
-                    }
-                };
-                let law = TannerJadbabaiePappas::new(graph, TannerPotential::new(d), r)
-                    .map_err(|e| invalid(e.to_string()))?;
+            Algorithm::Tanner { .. } => {
+                let law =
+                    TannerJadbabaiePappas::new(self.tanner_graph()?, TannerPotential::new(d), r)
+                        .map_err(|e| tanner_graph_error(e.to_string()))?;
                 Box::new(law)
             }
         })
+    }
+
+    /// The fixed graph of a Tanner scenario (the empty graph on the agents for other algorithms).
+    ///
+    /// # Errors
+    /// Edges that do not form a graph on the agents.
+    pub fn tanner_graph(&self) -> Result<Graph, ScenarioError> {
+        match &self.algorithm {
+            Algorithm::Tanner {
+                graph: TannerGraph::Random { extra },
+            } => Ok(random_connected_graph(self.agents, *extra, self.seed)),
+            Algorithm::Tanner {
+                graph: TannerGraph::Edges(edges),
+            } => {
+                Graph::from_edges(self.agents, edges).map_err(|e| tanner_graph_error(e.to_string()))
+            }
+            _ => Ok(Graph::empty(self.agents)),
+        }
     }
 
     /// The scenario's obstacles as the balls of the 2003 obstacle protocol.
@@ -134,4 +137,14 @@ impl Scenario {
             })
             .collect()
     }
+}
+
+/// A Tanner graph the law refuses.
+fn tanner_graph_error(why: String) -> ScenarioError {
+    ScenarioError::invalid(
+        "algorithm.graph",
+        "",
+        why,
+        "give a connected graph of edges (i, j) with i ≠ j < agents",
+    )
 }

@@ -13,16 +13,31 @@
 //! - RK4 is stable for h |λ| ≲ 2.5 with |λ| ≤ max(ω, γ) the largest eigenvalue modulus.
 //!
 //! `deg` is the larger of the kissing number of the α-lattice (6 in the plane, 12 in space) and
-//! the largest degree of the initial net. The estimate covers the TAC 2006 algorithms; the 2003
-//! protocols and the Tanner law (whose potential is unbounded at contact) get none.
+//! the largest degree of the initial net.
+//!
+//! The 2003 protocols (CDS 03-006 eq. 34–36) pull along unit vectors, F(z) = g(z) n_ij, so
+//! |F(z)/z| = |g(z)|/z grows without bound as two agents meet: their pair stiffness is sampled on
+//! [d/4 or the collision distance, r), the distances of every configuration the run does not
+//! count as a collision; the consensus term is unweighted (λ_max(Γ) ≤ 2 deg c₁), the translational
+//! PD adds c₁ and c₂ of its own, and ball obstacles the slopes c₃(a + b) of their β- and γ-terms
+//! (eq. 54, radial) and c₄.
+//!
+//! The Tanner law (seed 001 eq. 5) has a potential unbounded at contact, but Theorem IV.4 bounds
+//! the distance of linked agents below by z* with V(z*) = W(0) (W is non-increasing); its pair
+//! stiffness is sampled on [z*, 3 d] (beyond, |V″| < 2/z² is small), `deg` is the largest degree
+//! of its fixed graph, and the velocity consensus −Σ_{j∼i}(v_i − v_j) gives λ_max(Γ) ≤ 2 deg.
 
 use std::fmt;
 
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::{Bump, BumpedAction, SigmaNorm, UnevenSigmoid, Vector};
+use flock_math::{
+    Bump, BumpedAction, Potential, SigmaNorm, TannerPotential, UnevenSigmoid, Vector,
+};
 use glam::{DVec2, DVec3};
 
-use flock_protocols::{Integrator, critical_damping};
+use flock_protocols::{
+    AlphaAlpha, AlphaAlphaParams, Integrator, TannerJadbabaiePappas, critical_damping,
+};
 
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Scenario};
@@ -56,24 +71,47 @@ const SAMPLES: usize = 4000;
 /// The RK4 stability radius used (its region reaches 2.78 on the real axis, 2.83 on the imaginary).
 const RK4_RADIUS: f64 = 2.5;
 
-/// The largest stable step of `scenario` estimated as in the module documentation (`None` for the
-/// 2003 protocols and the Tanner law). The scenario must be valid.
+/// The largest stable step of `scenario` estimated as in the module documentation. The scenario
+/// must be valid.
 #[must_use]
 pub fn largest_stable_step(scenario: &Scenario) -> Option<f64> {
     stable_step(scenario, || StartNet::of(scenario).degree)
 }
 
+/// The stiffness ω² and damping γ bounds of the linearised closed loop.
+struct Stiffness {
+    omega2: f64,
+    damping: f64,
+}
+
 /// [`largest_stable_step`] with the initial net's largest degree from `degree`, asked only for
-/// the algorithms the estimate covers.
+/// the algorithms whose bound depends on it.
 fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f64> {
+    let kissing = if scenario.dim == 2 { 6 } else { 12 };
+    let deg = || degree().max(kissing) as f64;
+    let Stiffness { omega2, damping } = match &scenario.algorithm {
+        Algorithm::Flocking2003 { .. } => stiffness_2003(scenario, deg()),
+        Algorithm::Tanner { .. } => stiffness_tanner(scenario)?,
+        _ => stiffness_tac(scenario, deg()),
+    };
+    let step = match scenario.integrator {
+        Integrator::SymplecticEuler => {
+            ((damping * damping + 4.0 * omega2).sqrt() - damping) / omega2
+        }
+        Integrator::Rk4 => RK4_RADIUS / omega2.sqrt().max(damping),
+    };
+    (step.is_finite() && step > 0.0).then_some(step)
+}
+
+/// The bounds of the TAC 2006 algorithms (Algorithms 1–3).
+fn stiffness_tac(scenario: &Scenario, deg: f64) -> Stiffness {
     let a = &scenario.alpha;
     let (gamma_c1, gamma_c2, beta) = match &scenario.algorithm {
-        Algorithm::Algorithm1 => (0.0, 0.0, None),
         Algorithm::Algorithm2 { c1, c2, .. } => (*c1, *c2, None),
         Algorithm::Algorithm3 { c1, c2, beta, .. } => {
             (*c1, c2.unwrap_or(critical_damping(*c1)), Some(beta))
         }
-        Algorithm::Flocking2003 { .. } | Algorithm::Tanner { .. } => return None,
+        _ => (0.0, 0.0, None),
     };
     let sigma = SigmaNorm::new(a.epsilon);
     let r = scenario.range();
@@ -83,38 +121,94 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
         sigma.of_length(a.d),
         sigma.of_length(r),
     );
-    let k_alpha = a.c1 * pair_stiffness(&phi_alpha, &sigma, r);
+    let k_alpha = a.c1 * slope_bound(sigma_force(&phi_alpha, &sigma), 0.0, r);
     let (k_beta, c2_beta) = beta.map_or((0.0, 0.0), |beta| {
         let d_beta = beta.distance(a.d);
         let phi_beta = BumpedAction::beta(Bump::tac(beta.h), sigma.of_length(d_beta));
         (
-            beta.c1 * pair_stiffness(&phi_beta, &sigma, beta.range(a.d)),
+            beta.c1 * slope_bound(sigma_force(&phi_beta, &sigma), 0.0, beta.range(a.d)),
             beta.damping(),
         )
     });
-    let kissing = if scenario.dim == 2 { 6 } else { 12 };
-    let deg = degree().max(kissing) as f64;
-    let omega2 = 2.0 * deg * k_alpha + gamma_c1 + k_beta;
-    let damping = 2.0 * deg * a.c2 + gamma_c2 + c2_beta;
-    let step = match scenario.integrator {
-        Integrator::SymplecticEuler => {
-            ((damping * damping + 4.0 * omega2).sqrt() - damping) / omega2
-        }
-        Integrator::Rk4 => RK4_RADIUS / omega2.sqrt().max(damping),
-    };
-    step.is_finite().then_some(step)
+    Stiffness {
+        omega2: 2.0 * deg * k_alpha + gamma_c1 + k_beta,
+        damping: 2.0 * deg * a.c2 + gamma_c2 + c2_beta,
+    }
 }
 
-/// max over z ∈ (0, range] of |F′(z)| and |F(z)/z| for F(z) = φ(‖z‖_σ) z / √(1 + ε z²).
-fn pair_stiffness(phi: &BumpedAction, sigma: &SigmaNorm, range: f64) -> f64 {
-    let force = |z: f64| {
+/// The bounds of the 2003 (α, α) protocols, with their translational controller and obstacles.
+fn stiffness_2003(scenario: &Scenario, deg: f64) -> Stiffness {
+    let Algorithm::Flocking2003 {
+        form,
+        c1,
+        delta,
+        power,
+        translation,
+        avoidance,
+    } = &scenario.algorithm
+    else {
+        unreachable!("the 2003 bounds of another algorithm");
+    };
+    let a = &scenario.alpha;
+    let r = scenario.range();
+    let params = AlphaAlphaParams {
+        bump: Bump::influence_map(delta.unwrap_or(a.d / r), *power),
+        ..AlphaAlphaParams::new(a.d, r, a.a, a.b)
+    };
+    let alpha = AlphaAlpha::new(params, *form, *c1);
+    let closest = scenario.collision_distance().min(r);
+    // the pair force stops at r: sample below it
+    let k_alpha = slope_bound(|z| alpha.pair_action(z), closest, r * (1.0 - 1e-9));
+    let (t_c1, t_c2) = translation.as_ref().map_or((0.0, 0.0), |t| (t.c1, t.c2));
+    // φ_β and φ_γ are branches of the uneven sigmoid ½[(a + b)σ₁(z + c) + (a − b)], of slope
+    // at most (a + b)/2 (σ₁′ ≤ 1): the two terms of eq. 54 add c₃(a + b)
+    let (k_obstacle, c4) = match avoidance {
+        Some(gains) if !scenario.obstacles.is_empty() => (gains.c3 * (a.a + a.b), gains.c4),
+        _ => (0.0, 0.0),
+    };
+    Stiffness {
+        omega2: 2.0 * deg * k_alpha + t_c1 + k_obstacle,
+        damping: 2.0 * deg * c1 + t_c2 + c4,
+    }
+}
+
+/// The bounds of the Tanner law, from its fixed graph and the collision bound of W(0); `None`
+/// when the graph cannot be built.
+fn stiffness_tanner(scenario: &Scenario) -> Option<Stiffness> {
+    let graph = scenario.tanner_graph().ok()?;
+    let d = scenario.alpha.d;
+    let law = TannerJadbabaiePappas::new(graph, TannerPotential::new(d), scenario.range()).ok()?;
+    let w0 = match scenario.dim {
+        2 => law.lyapunov(&initial_swarm::<DVec2>(scenario)),
+        _ => law.lyapunov(&initial_swarm::<DVec3>(scenario)),
+    };
+    let closest = law.collision_bound(w0);
+    let deg = (0..law.graph().len())
+        .map(|i| law.graph().degree(i))
+        .max()
+        .unwrap_or(0) as f64;
+    let potential = law.pair_potential();
+    let k = slope_bound(|z| potential.action(z), closest, 3.0 * d.max(closest));
+    Some(Stiffness {
+        omega2: 2.0 * deg * k,
+        damping: 2.0 * deg,
+    })
+}
+
+/// F(z) = φ(‖z‖_σ) z / √(1 + ε z²), the TAC 2006 pair force of action φ at distance z.
+fn sigma_force<'a>(phi: &'a BumpedAction, sigma: &'a SigmaNorm) -> impl Fn(f64) -> f64 + 'a {
+    move |z: f64| {
         let (s, scale) = sigma.norm_and_gradient_scale(z * z);
         phi.action_and_bump(s).0 * scale * z
-    };
-    let dz = range / SAMPLES as f64;
+    }
+}
+
+/// max over z ∈ (lo, hi] of |F′(z)| (by differences over [`SAMPLES`] cells) and |F(z)/z|.
+fn slope_bound(force: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    let dz = (hi - lo) / SAMPLES as f64;
     (1..=SAMPLES)
         .map(|k| {
-            let z = k as f64 * dz;
+            let z = lo + k as f64 * dz;
             let slope = (force(z) - force(z - dz)).abs() / dz;
             slope.max((force(z) / z).abs())
         })

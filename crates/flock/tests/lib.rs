@@ -9,4 +9,5 @@ mod papers;
 mod params;
 mod run_dir;
 mod snapshots;
+mod stability;
 mod storage_order;
