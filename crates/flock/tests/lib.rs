@@ -6,6 +6,7 @@ mod common;
 mod fixtures;
 mod obstacle_errors;
 mod papers;
+mod readme;
 mod params;
 mod run_dir;
 mod snapshots;
