@@ -47,7 +47,7 @@ fn eight_times_the_estimate_blows_up_the_2003_protocols() {
         let (scenario, stable) = at(name, 8.0);
         match flock::run(&scenario, &mut ()) {
             Err(RunError::Numerical(e)) => {
-                assert!(e.cause.contains(&format!("{stable:.3e}")), "{name}: {e}")
+                assert!(e.cause.contains(&format!("{stable:.3e}")), "{name}: {e}");
             }
             other => panic!("{name}: expected a blow-up, got {other:?}"),
         }
