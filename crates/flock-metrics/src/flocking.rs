@@ -47,6 +47,29 @@ impl FlockMetrics {
     /// order, so the metrics have the bits of the agents in original order. With the `parallel`
     /// feature the components (union-find) are found while another thread measures the edges,
     /// the cohesion radius and the velocity mismatch; each is computed as without it.
+    ///
+    /// A net built by [`NeighbourSearch`](flock_graph::NeighbourSearch) from `q` has the identity
+    /// numbering: `q` and `p` are then simply in the order of the agents. A simulation that
+    /// stores its agents otherwise measures them itself (`flock_protocols::Simulation::metrics`),
+    /// so that a state and a net of different orders never meet.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::{NeighbourSearch, ProximityNet};
+    /// use flock_metrics::{FlockMetrics, MetricParams};
+    /// use glam::DVec2;
+    ///
+    /// // three agents at the lattice distance d = 7 on a line, moving together
+    /// let q = [DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(14.0, 0.0)];
+    /// let p = [DVec2::X; 3];
+    /// let mut net = ProximityNet::new();
+    /// NeighbourSearch::new().build(&q, 8.4, &mut net);
+    /// let params = MetricParams { d: 7.0, collision_distance: 1.75 };
+    /// let m = FlockMetrics::measure(&q, &p, &net, &params);
+    /// assert_eq!((m.connectivity, m.components), (1.0, 1));
+    /// assert_eq!((m.deviation_energy, m.velocity_mismatch), (0.0, 0.0));
+    /// assert_eq!((m.cohesion_radius, m.min_distance, m.collisions), (7.0, 7.0, 0));
+    /// ```
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
         let components = || Components::of(net.graph());
