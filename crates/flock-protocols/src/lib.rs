@@ -15,6 +15,7 @@ pub mod beta;
 pub mod gamma;
 pub mod integrator;
 pub mod olfati_saber2003;
+pub mod olfati_saber2003_tracking;
 pub mod olfati_saber2004;
 pub mod olfati_saber2006;
 pub mod protocol;
@@ -29,6 +30,7 @@ pub use olfati_saber2003::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, BallObstacle, Flocking2003, ObstacleFlocking2003,
     ObstacleParams, influence_map_lipschitz,
 };
+pub use olfati_saber2003_tracking::{CentralisedTracking2003, TranslationalController};
 pub use olfati_saber2004::StressForm;
 pub use olfati_saber2006::{Algorithm1, Algorithm2, Algorithm3};
 pub use protocol::Protocol;
