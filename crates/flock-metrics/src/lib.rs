@@ -7,8 +7,14 @@
 //! - [`FlockMetrics::measure`]: all of them at once from positions, velocities and the net.
 //! - The functions [`relative_connectivity`], [`cohesion_radius`], [`deviation_energy`],
 //!   [`velocity_mismatch`], [`component_velocity_mismatch`], [`min_distance`], [`collisions`].
+//! - [`LatticeSummary`]: edges near d, triangles, TAC 2006 Theorem 5's 3n − 6 bound and crossings
+//!   of a (final) net; [`DefectFactor`]: μ and μ_n of CDS 03-006 eq. 46–47;
+//!   [`FlockingVerdict`]: TAC 2006 Definition 5 (α-flocking, strict α-flocking) over a window.
 
+pub mod alpha_flocking;
+pub mod defect;
 pub mod flocking;
+pub mod lattice;
 pub mod obstacles;
 
 pub use flocking::{
@@ -16,3 +22,7 @@ pub use flocking::{
     deviation_energy, min_distance, relative_connectivity, velocity_mismatch,
 };
 pub use obstacles::ObstacleMetrics;
+
+pub use alpha_flocking::{Cohesion, FlockingCriteria, FlockingVerdict, Window};
+pub use defect::{Defect, DefectFactor};
+pub use lattice::{EDGE_TOLERANCE, LatticeSummary};

@@ -25,6 +25,8 @@ pub mod gamma;
 pub mod health;
 pub mod integrator;
 pub mod olfati_saber2003;
+#[cfg(feature = "obstacles")]
+pub mod olfati_saber2003_tracking;
 pub mod olfati_saber2004;
 pub mod olfati_saber2006;
 pub mod protocol;
@@ -44,6 +46,8 @@ pub use olfati_saber2003::{
 };
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2003::{BallObstacle, ObstacleFlocking2003};
+#[cfg(feature = "obstacles")]
+pub use olfati_saber2003_tracking::{CentralisedTracking2003, TranslationalController};
 pub use olfati_saber2004::StressForm;
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2006::Algorithm3;

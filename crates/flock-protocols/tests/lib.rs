@@ -6,6 +6,7 @@ mod determinism;
 mod invariance;
 mod long_run;
 mod olfati_saber2003;
+mod olfati_saber2003_tracking;
 mod properties;
 mod storage_order;
 mod tanner2003;
