@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
+use flock::metrics::FlockingCriteria;
 use flock::run_dir::{CreateError, ResumeError};
 use flock::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
 use flock_cli::{Progress, Report};
@@ -52,6 +53,12 @@ enum Command {
         /// No progress bar (it is shown only on a terminal, for runs longer than about a second).
         #[arg(long)]
         quiet: bool,
+        /// ε₁ of TAC 2006 Definition 5 (Ẽ ≤ ε₁), judged over the last quarter in flocking.txt.
+        #[arg(long, value_name = "E1", default_value_t = 0.01)]
+        epsilon1: f64,
+        /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
+        #[arg(long, value_name = "E2", default_value_t = 0.01)]
+        epsilon2: f64,
     },
     /// Run every `fixtures/*.ron` (relative to the current directory) into `DIR/<fixture stem>/`,
     /// draw its figures (GIF and trajectory CSVs dropped), and write `DIR/index.html`, a static page
@@ -191,6 +198,8 @@ fn main() -> ExitCode {
             threads,
             plot,
             quiet,
+            epsilon1,
+            epsilon2,
         } => {
             if let Err(code) = use_threads(threads) {
                 return code;
@@ -215,7 +224,12 @@ fn main() -> ExitCode {
                 Err(code) => return code,
             };
             stop_on_ctrl_c();
-            let dir = dir.with_stop_flag(&STOP);
+            let criteria = FlockingCriteria {
+                epsilon1,
+                epsilon2,
+                ..FlockingCriteria::default()
+            };
+            let dir = dir.with_stop_flag(&STOP).with_criteria(criteria);
             match execute(&scenario, dir, start.as_ref(), quiet) {
                 Ok(out) if plot => match plot_run(&out) {
                     Ok(files) => {
@@ -343,7 +357,7 @@ fn execute(
     let dir = recorder.into_inner();
     let error = match result {
         Ok(summary) => {
-            let target = dir.finish().map_err(|e| {
+            let finished = dir.finish().map_err(|e| {
                 eprintln!("error: {e}");
                 ExitCode::FAILURE
             })?;
@@ -354,8 +368,12 @@ fn execute(
                     summary: &summary
                 }
             );
-            println!("  outputs               {}", target.display());
-            return Ok(target);
+            // judged on the whole metrics.csv, also after a resume
+            if let Some(verdict) = &finished.verdict {
+                println!("  Definition 5          {verdict}");
+            }
+            println!("  outputs               {}", finished.path.display());
+            return Ok(finished.path);
         }
         Err(error) => error,
     };

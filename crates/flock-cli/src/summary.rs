@@ -41,6 +41,7 @@ impl fmt::Display for Report<'_> {
         for (name, value) in &s.diagnostics {
             writeln!(f, "  {name:<22}{value:.6e}")?;
         }
+        writeln!(f, "  {}", s.lattice)?;
         writeln!(
             f,
             "  energy H              {:.6e} -> {:.6e}",

@@ -6,7 +6,7 @@ use std::borrow::Cow;
 use flock_graph::parallel::{fill_indexed, join};
 use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::Vector;
-use flock_metrics::{FlockMetrics, MetricParams, component_velocity_mismatch};
+use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
 
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
@@ -231,6 +231,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             &self.net,
             params,
         )
+    }
+
+    /// The lattice of the current state (CDS 03-006 Fig. 9, TAC 2006 Theorem 5): its edges, those
+    /// within `tolerance` · d of the desired distance `d`, its triangles and, in 2D, the bound
+    /// 3n − 6 and the crossing edges.
+    #[must_use]
+    pub fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary {
+        LatticeSummary::measure(&self.swarm.positions, &self.net, d, tolerance)
     }
 
     /// The protocol's energy at the current state.

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use flock_metrics::FlockMetrics;
+use flock_metrics::{FlockMetrics, FlockingCriteria, FlockingVerdict, LatticeSummary};
 use flock_protocols::Observation;
 
 use crate::error::ScenarioError;
@@ -51,8 +51,21 @@ pub struct RunSummary {
     pub final_energy: f64,
     /// The protocol's own diagnostics at the final time, named.
     pub diagnostics: Vec<(&'static str, f64)>,
+    /// The lattice of the final state (edges near d, triangles, TAC 2006 Theorem 5's bound).
+    pub lattice: LatticeSummary,
+    /// (t, metrics) of every record this run made (after its start, when resumed).
+    pub history: Vec<(f64, FlockMetrics)>,
     /// Wall-clock time of the integration.
     pub elapsed: Duration,
+}
+
+impl RunSummary {
+    /// TAC 2006 Definition 5 judged on [`RunSummary::history`] (`None` when its window holds no
+    /// record): whether the run was an α-flock, and a strict one.
+    #[must_use]
+    pub fn verdict(&self, criteria: &FlockingCriteria) -> Option<FlockingVerdict> {
+        FlockingVerdict::judge(&self.history, criteria)
+    }
 }
 
 /// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
@@ -180,12 +193,14 @@ pub fn resume<R: Recorder + ?Sized>(
     start: Option<&Start>,
     recorder: &mut R,
 ) -> Result<RunSummary, RunError<R::Error>> {
+    let mut history = Vec::new();
     let (mut sim, initial_energy) = match start {
         None => {
             let sim = DynSimulation::new(scenario)?;
             sim.check_health().map_err(RunError::Numerical)?;
-            let energy = record(recorder, &sim)?.energy;
-            (sim, energy)
+            let observation = record(recorder, &sim)?;
+            history.push((sim.time(), observation.metrics));
+            (sim, observation.energy)
         }
         Some(start) => (
             DynSimulation::resume(scenario, start)?,
@@ -201,7 +216,9 @@ pub fn resume<R: Recorder + ?Sized>(
         sim.check_health().map_err(RunError::Numerical)?;
         let steps = sim.steps();
         if steps % scenario.record_every == 0 || steps == total {
-            last = Some(record(recorder, &sim)?);
+            let observation = record(recorder, &sim)?;
+            history.push((sim.time(), observation.metrics));
+            last = Some(observation);
         }
         let stop = steps < total && recorder.stop_requested();
         if stop || (steps < total && recorder.wants_checkpoint(steps)) {
@@ -228,6 +245,8 @@ pub fn resume<R: Recorder + ?Sized>(
         initial_energy,
         final_energy: last.energy,
         diagnostics: last.diagnostics,
+        lattice: sim.lattice(),
+        history,
         elapsed,
     })
 }

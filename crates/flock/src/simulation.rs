@@ -4,7 +4,7 @@
 use std::borrow::Cow;
 
 use flock_graph::Graph;
-use flock_metrics::{FlockMetrics, MetricParams};
+use flock_metrics::{EDGE_TOLERANCE, FlockMetrics, LatticeSummary, MetricParams};
 use flock_obstacles::Space;
 use flock_protocols::{AgentFault, DynProtocol, Observation, Simulation, Swarm};
 use glam::{DVec2, DVec3};
@@ -56,6 +56,7 @@ trait Dynamic: Send {
     fn energy(&self) -> f64;
     fn observe(&self, params: &MetricParams) -> Observation;
     fn component_velocity_mismatch(&self) -> f64;
+    fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary;
     fn check_health(&self) -> Result<(), AgentFault>;
 }
 
@@ -117,6 +118,10 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
 
     fn component_velocity_mismatch(&self) -> f64 {
         Simulation::component_velocity_mismatch(self)
+    }
+
+    fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary {
+        Simulation::lattice(self, d, tolerance)
     }
 
     fn check_health(&self) -> Result<(), AgentFault> {
@@ -320,6 +325,13 @@ impl DynSimulation {
     #[must_use]
     pub fn component_velocity_mismatch(&self) -> f64 {
         self.inner.component_velocity_mismatch()
+    }
+
+    /// The lattice of the current state: edges, those within ±10 % of d, triangles and, in 2D,
+    /// TAC 2006 Theorem 5's bound 3n − 6 and the crossing edges.
+    #[must_use]
+    pub fn lattice(&self) -> LatticeSummary {
+        self.inner.lattice(self.metric_params.d, EDGE_TOLERANCE)
     }
 
     /// Checks the current state: finite, and no agent faster than r/h.

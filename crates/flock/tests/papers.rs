@@ -204,9 +204,63 @@ fn assert_avoids_and_rejoins(name: &str) {
 /// r′ = 1.2 d′ = 0.72 d: an agent closer than this to an obstacle has met it.
 const BETA_RANGE_FACTOR: f64 = 0.72;
 
+/// TAC 2006 Fig. 14–15 (issue 15): the flock splits into groups that pass on either side of the
+/// balls — C* < 0.7 during the pass — then rejoins into one connected lattice, no agent ever
+/// inside.
 #[test]
 fn tac2006_fig14_split_and_rejoin() {
-    assert_avoids_and_rejoins("tac2006_fig14_split_rejoin_n150");
+    let name = "tac2006_fig14_split_rejoin_n150";
+    assert_avoids_and_rejoins(name);
+    let (_, s, trace) = trace_fixture(name);
+    let (t, least) = trace
+        .0
+        .iter()
+        .map(|(t, m, _, _)| (*t, m.giant_component))
+        .fold((0.0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+    assert!(
+        least < 0.7,
+        "{name}: the flock never splits (least C* = {least} at t = {t})"
+    );
+    assert_eq!(s.metrics.connectivity, 1.0, "{name}: it must rejoin");
+}
+
+/// TAC 2006 Fig. 12 and 18(b) (issue 15): Algorithm 1 breaks a connected group into at least three
+/// lattices of three or more agents, each moving rigidly.
+#[test]
+fn tac2006_fig12_algorithm1_fragments_into_multi_agent_lattices() {
+    let scenario = fixture("tac2006_fig12_alg1_n40");
+    let mut sim = flock::DynSimulation::new(&scenario).expect("valid");
+    assert_eq!(
+        sim.metrics().connectivity,
+        1.0,
+        "the group starts connected"
+    );
+    while sim.steps() < scenario.steps() {
+        sim.step();
+    }
+    let components = flock_graph::Components::of(&sim.graph());
+    let lattices = components.sizes().iter().filter(|&&size| size >= 3).count();
+    assert!(lattices >= 3, "{:?}", components.sizes());
+    assert!(
+        sim.component_velocity_mismatch() <= 1e-3,
+        "each component moves rigidly: {}",
+        sim.component_velocity_mismatch()
+    );
+}
+
+/// CDS 03-006 Fig. 9 (issue 15): at rest, the sink's flock is "mostly equilateral triangles" —
+/// nine edges in ten within ±10 % of d, most triangles equilateral, no edge crossing another and
+/// no more edges than TAC 2006 Theorem 5's 3n − 6.
+#[test]
+fn tr2003_fig9_sink_ends_on_a_lattice_of_equilateral_triangles() {
+    let (_, s) = run_fixture("tr2003_fig9_sink_n100");
+    let lattice = &s.lattice;
+    let report = format!("{lattice}: {s:#?}");
+    assert!(lattice.near_fraction() >= 0.9, "{report}");
+    assert!(lattice.equilateral_fraction() >= 0.8, "{report}");
+    assert_eq!(lattice.crossings, Some(0), "{report}");
+    assert_eq!(lattice.within_edge_bound(), Some(true), "{report}");
+    assert!(s.metrics.velocity_mismatch < 1e-6, "at rest: {report}");
 }
 
 #[test]

@@ -29,9 +29,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use super::checkpoint::{CHECKPOINT_FILE, Checkpoint, sync_dir};
 use super::npy::{NpyFile, trajectory_dtype};
 use super::read::trajectory_header;
+use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
 use crate::error::ScenarioError;
 use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
+use flock_metrics::{FlockingCriteria, FlockingVerdict};
 
 /// The header of `metrics.csv`.
 pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy";
@@ -113,6 +115,19 @@ pub struct RunDirectory {
     last_state: Vec<f64>,
     /// The diagnostic columns of the header of `metrics.csv`, once written.
     columns: Option<Vec<String>>,
+    /// The number of agents.
+    agents: usize,
+    /// The criteria of the verdict of [`VERDICT_FILE`].
+    criteria: FlockingCriteria,
+}
+
+/// A complete run directory.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finished {
+    /// `DIR`.
+    pub path: PathBuf,
+    /// TAC 2006 Definition 5 judged on its whole `metrics.csv` (also in [`VERDICT_FILE`]).
+    pub verdict: Option<FlockingVerdict>,
 }
 
 /// Why a run directory cannot be created.
@@ -335,6 +350,8 @@ impl RunDirectory {
             buffer: Vec::new(),
             last_state: Vec::new(),
             columns: None,
+            agents: scenario.agents,
+            criteria: FlockingCriteria::default(),
         })
     }
 
@@ -429,6 +446,8 @@ impl RunDirectory {
             buffer: Vec::new(),
             last_state: Vec::new(),
             columns,
+            agents: scenario.agents,
+            criteria: FlockingCriteria::default(),
         };
         Ok((this, scenario, start))
     }
@@ -440,25 +459,36 @@ impl RunDirectory {
         self
     }
 
+    /// Judges the finished run by `criteria` in [`VERDICT_FILE`] (default: the last quarter,
+    /// ε₁ = ε₂ = 0.01).
+    #[must_use]
+    pub const fn with_criteria(mut self, criteria: FlockingCriteria) -> Self {
+        self.criteria = criteria;
+        self
+    }
+
     /// The directory being written, `DIR.partial`.
     #[must_use]
     pub fn partial(&self) -> &Path {
         &self.partial
     }
 
-    /// Writes `final.csv` and moves the directory into place.
+    /// Writes `final.csv` and [`VERDICT_FILE`] and moves the directory into place.
     ///
     /// # Errors
     /// On any I/O error (the partial directory is then removed).
-    pub fn finish(mut self) -> io::Result<PathBuf> {
+    pub fn finish(mut self) -> io::Result<Finished> {
         let result = self.complete();
         if result.is_err() {
             let _ = fs::remove_dir_all(&self.partial);
         }
-        result.map(|()| self.target)
+        result.map(|verdict| Finished {
+            path: self.target,
+            verdict,
+        })
     }
 
-    fn complete(&mut self) -> io::Result<()> {
+    fn complete(&mut self) -> io::Result<Option<FlockingVerdict>> {
         let mut last = format!("{}\n", trajectory_header(self.dim)[1..].join(",")).into_bytes();
         let coordinates = 2 * self.dim;
         for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
@@ -466,6 +496,13 @@ impl RunDirectory {
         }
         write_durably(&self.partial.join("final.csv"), &last)?;
         self.sync_outputs()?;
+        let verdict = judge_metrics_file(
+            &self.partial.join("metrics.csv"),
+            self.agents,
+            &self.criteria,
+        )?;
+        let text = verdict_text(verdict.as_ref(), &self.criteria);
+        write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
         for name in [CHECKPOINT_FILE, INCOMPLETE_FILE] {
             match fs::remove_file(self.partial.join(name)) {
                 Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
@@ -477,7 +514,8 @@ impl RunDirectory {
             fs::remove_dir_all(&self.target)?;
         }
         fs::rename(&self.partial, &self.target)?;
-        sync_dir(parent_of(&self.target))
+        sync_dir(parent_of(&self.target))?;
+        Ok(verdict)
     }
 
     /// Flushes `metrics.csv` and the trajectory to the disk.

@@ -1,0 +1,104 @@
+//! `flocking.txt`: TAC 2006 Definition 5 judged on a finished run's `metrics.csv` — whether the
+//! run was an α-flock (a quasi-flock, cohesive, Ẽ ≤ ε₁, K̃ ≤ ε₂) and a strict one (connected,
+//! Ẽ ≤ ε₁, K̃ ≤ ε₂) over a window of its records (by default the last quarter).
+
+use std::io;
+use std::path::Path;
+
+use flock_metrics::{Cohesion, FlockMetrics, FlockingCriteria, FlockingVerdict, Window};
+
+use super::read::{TIME, read_metrics};
+
+/// The verdict's file in a finished run directory.
+pub const VERDICT_FILE: &str = "flocking.txt";
+
+/// Definition 5 judged on the `metrics.csv` at `path` of a run of `agents` agents (the number of
+/// components is read back from C = (n − #components)/(n − 1)); `None` when the window holds no
+/// record.
+///
+/// # Errors
+/// A file that cannot be read or lacks a metric column.
+pub fn judge_metrics_file(
+    path: &Path,
+    agents: usize,
+    criteria: &FlockingCriteria,
+) -> io::Result<Option<FlockingVerdict>> {
+    let columns = read_metrics(path).map_err(io::Error::other)?;
+    let column = |name: &str| {
+        columns
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, values)| values.as_slice())
+            .ok_or_else(|| {
+                io::Error::new(
+                    io::ErrorKind::InvalidData,
+                    format!("{} has no {name:?} column", path.display()),
+                )
+            })
+    };
+    let [
+        t,
+        c,
+        giant,
+        radius,
+        deviation,
+        mismatch,
+        distance,
+        collisions,
+    ] = [
+        TIME,
+        "connectivity",
+        "giant_component",
+        "cohesion_radius",
+        "deviation_energy",
+        "velocity_mismatch",
+        "min_distance",
+        "collisions",
+    ]
+    .map(column);
+    let (t, c, giant, radius) = (t?, c?, giant?, radius?);
+    let (deviation, mismatch, distance, collisions) =
+        (deviation?, mismatch?, distance?, collisions?);
+    let n = agents as f64;
+    let records: Vec<(f64, FlockMetrics)> = (0..t.len())
+        .map(|k| {
+            let components = if agents <= 1 {
+                1
+            } else {
+                (n - c[k] * (n - 1.0)).round() as usize
+            };
+            let metrics = FlockMetrics {
+                connectivity: c[k],
+                giant_component: giant[k],
+                components,
+                cohesion_radius: radius[k],
+                deviation_energy: deviation[k],
+                velocity_mismatch: mismatch[k],
+                min_distance: distance[k],
+                collisions: collisions[k] as usize,
+            };
+            (t[k], metrics)
+        })
+        .collect();
+    Ok(FlockingVerdict::judge(&records, criteria))
+}
+
+/// The text of `flocking.txt`: the verdict and the criteria it was judged by.
+#[must_use]
+pub fn verdict_text(verdict: Option<&FlockingVerdict>, criteria: &FlockingCriteria) -> String {
+    let window = match criteria.window {
+        Window::LastFraction(f) => format!("the last {:.0} % of the run", 100.0 * f),
+        Window::Between { from, to } => format!("t in [{from}, {to}]"),
+    };
+    let cohesion = match criteria.cohesion {
+        Cohesion::NonGrowing { growth } => {
+            format!("R growing by at most {:.0} %", 100.0 * growth)
+        }
+        Cohesion::Radius(radius) => format!("R ≤ {radius}"),
+    };
+    let line = verdict.map_or_else(|| "no record in the window".to_owned(), ToString::to_string);
+    format!(
+        "{line}\nTAC 2006 Definition 5 over {window}: C* ≥ {}, {cohesion}, ε₁ = {}, ε₂ = {}\n",
+        criteria.giant_share, criteria.epsilon1, criteria.epsilon2
+    )
+}
