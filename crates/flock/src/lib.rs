@@ -4,7 +4,8 @@
 //! `flock run` writes — without the command line.
 //!
 //! - [`Scenario`]: a RON scenario ([`Scenario::load`], [`str::parse`], [`Scenario::validate`],
-//!   [`Scenario::warnings`]); its protocol in either dimension ([`Scenario::protocol`]).
+//!   [`Scenario::warnings`]); its protocol in either dimension ([`Scenario::protocol`]); any
+//!   parameter read or changed by its path ([`Scenario::value`], [`Scenario::with_values`]).
 //! - [`DynSimulation`]: the simulation of a scenario behind one type, its state as plain `f64`
 //!   rows ([`State`]), agents in original order; metrics, energy, diagnostics, health.
 //! - [`run()`], [`resume()`]: a whole run, every recorded step handed to a [`Recorder`].
@@ -31,6 +32,7 @@ pub mod build;
 pub mod error;
 pub mod health;
 pub mod initial;
+pub mod overrides;
 pub mod run;
 pub mod run_dir;
 pub mod scenario;
@@ -53,6 +55,7 @@ pub use flock_metrics as metrics;
 pub use flock_obstacles as obstacles;
 pub use flock_protocols as protocols;
 pub use glam;
+pub use serde_json;
 
 /// The names most programs use: `use flock::prelude::*;`.
 pub mod prelude {

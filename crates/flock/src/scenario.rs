@@ -262,7 +262,8 @@ fn default_record_every() -> u64 {
 }
 
 impl Scenario {
-    /// Reads and validates a scenario file.
+    /// Reads and validates a scenario file. Defaults left unset stay unset (`alpha.r` is `None`
+    /// and follows `alpha.d`); [`Scenario::resolved`] and [`Scenario::to_ron`] write them out.
     ///
     /// # Errors
     /// When the file cannot be read, is not valid RON for a scenario (the error gives the line and
@@ -283,7 +284,7 @@ impl Scenario {
             .from_str(text)
             .map_err(|e| ScenarioError::syntax(origin, text, &e))?;
         scenario.validate()?;
-        Ok(scenario.resolved())
+        Ok(scenario)
     }
 
     /// The scenario with every default written out (r = 1.2 d, the collision distance d/4, the

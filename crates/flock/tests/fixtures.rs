@@ -25,15 +25,16 @@ fn every_fixture_parses_and_validates() {
     for path in &paths {
         let scenario = Scenario::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(scenario.validate(), Ok(()), "{}", path.display());
-        // `load` resolves the defaults.
+        // `resolved` writes the defaults out, and changes no value the run uses.
+        let resolved = scenario.clone().resolved();
         assert_eq!(
-            scenario.alpha.r,
+            resolved.alpha.r,
             Some(scenario.range()),
             "{}",
             path.display()
         );
         assert_eq!(
-            scenario.collision_distance,
+            resolved.collision_distance,
             Some(scenario.collision_distance()),
             "{}",
             path.display()
@@ -60,7 +61,7 @@ fn resolved_fixtures_round_trip_through_ron() {
         });
         assert_eq!(
             back,
-            scenario,
+            scenario.clone().resolved(),
             "{}: round trip changed the scenario\n{text}",
             path.display()
         );
@@ -79,8 +80,10 @@ fn to_ron_writes_the_defaults_out() {
     let text = "Scenario(dim: 2, agents: 3, algorithm: Algorithm1, \
                 initial: (positions: Box(min: [0.0, 0.0], max: [10.0, 10.0])), duration: 1.0)";
     let scenario = Scenario::parse(text, "defaults.ron").unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scenario.alpha.r, Some(1.2 * 7.0));
-    assert_eq!(scenario.collision_distance, Some(0.25 * 7.0));
+    assert_eq!(scenario.alpha.r, None, "an unset default stays unset");
+    let resolved = scenario.clone().resolved();
+    assert_eq!(resolved.alpha.r, Some(1.2 * 7.0));
+    assert_eq!(resolved.collision_distance, Some(0.25 * 7.0));
     let written = scenario.to_ron().expect("serializes");
     for field in [
         "r: 8.4",
@@ -92,5 +95,5 @@ fn to_ron_writes_the_defaults_out() {
     ] {
         assert!(written.contains(field), "`{field}` missing from\n{written}");
     }
-    assert_eq!(Scenario::parse(&written, "written.ron"), Ok(scenario));
+    assert_eq!(Scenario::parse(&written, "written.ron"), Ok(resolved));
 }

@@ -5,6 +5,7 @@
 mod common;
 mod fixtures;
 mod obstacle_errors;
+mod overrides;
 mod papers;
 mod params;
 mod readme;
