@@ -118,9 +118,8 @@ fn variant_mut(node: &mut Value) -> Option<&mut Value> {
 fn set(tree: &mut Value, path: &str, value: Value) -> Result<(), ScenarioError> {
     let mut node = tree;
     for (depth, segment) in path.split('.').enumerate() {
-        let through_variant = match child(node, segment) {
-            Some((_, through)) => through,
-            None => return Err(unknown(path, depth, node)),
+        let Some((_, through_variant)) = child(node, segment) else {
+            return Err(unknown(path, depth, node));
         };
         if through_variant {
             node = variant_mut(node).expect("child() passed through a variant");
