@@ -3,7 +3,7 @@
 //! The oracle (docs/fuzzing.md):
 //! - nothing panics, aborts, runs out of memory or hangs, whatever the bytes;
 //! - a scenario that [`Scenario::parse`] accepts still validates once resolved, and
-//!   `parse(to_ron(s)) == s` (the resolved scenario round-trips through RON);
+//!   `parse(to_ron(s)) == s.resolved()` (the resolved scenario round-trips through RON);
 //! - a small accepted scenario (at most [`MAX_AGENTS`] agents, [`MAX_OBSTACLES`] obstacles),
 //!   cut to at most [`MAX_STEPS`] steps, either fails with an `Err`, or every value it records and
 //!   summarises is finite: positions, velocities, energies, metrics and the protocol's
@@ -142,10 +142,11 @@ fn check_input(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let Ok(scenario) = Scenario::parse(text, "fuzz") else {
+    let Ok(parsed) = Scenario::parse(text, "fuzz") else {
         return;
     };
-    // `parse` validated, then resolved the defaults: the resolved scenario is still valid…
+    // `parse` validated; with its defaults written out the scenario is still valid…
+    let scenario = parsed.resolved();
     if let Err(e) = scenario.validate() {
         panic!("the resolved scenario no longer validates: {e}\n{scenario:#?}");
     }

@@ -55,14 +55,14 @@ function rgb(hex) {
   return [1, 2, 3].map((k) => parseInt(m[k], 16));
 }
 
-/** The page's colours, read from its script's `const COLOURS = {...}` (flock-viz's style.rs). */
-async function colours(page) {
-  const text = await page.evaluate(() => [...document.scripts].map((s) => s.textContent).join('\n'));
-  const literal = /const COLOURS = \{([^}]*)\}/.exec(text);
-  check(literal, 'the player script defines no COLOURS');
+/** The page's colours, from its data's `colours` (flock-viz's style.rs), as [r, g, b]. */
+function colours(data) {
+  check(data.colours, 'the player data defines no colours');
   const out = {};
-  for (const [, key, hex] of literal[1].matchAll(/(\w+): '(#[0-9A-Fa-f]{6})'/g)) out[key] = rgb(hex);
-  for (const key of ['background', 'agent', 'edge', 'gamma', 'ink']) check(out[key], `COLOURS.${key} missing`);
+  for (const key of ['background', 'agent', 'edge', 'gamma', 'ink']) {
+    check(/^#[0-9A-Fa-f]{6}$/.test(data.colours[key] || ''), `colours.${key} missing`);
+    out[key] = rgb(data.colours[key]);
+  }
   return out;
 }
 
@@ -318,8 +318,8 @@ async function main() {
     await page.waitForFunction(() => window.flockPlayer !== undefined, null, { timeout: 10_000 });
     noProblems('loading the page');
 
-    const colour = await colours(page);
     const data = await page.evaluate(() => JSON.parse(document.getElementById('flock-data').textContent));
+    const colour = colours(data);
     const frames = data.t.length;
     const agents = data.q[0].length / data.dim;
     const size = await page.evaluate(() => {

@@ -21,6 +21,8 @@
 
 use std::fmt::Write as _;
 
+use serde::Serialize;
+
 use crate::drawable::{Drawable, Shape};
 use crate::error::VizError;
 use crate::format;
@@ -141,7 +143,7 @@ pub fn player_html(scene: &Scene, options: &PlayerOptions) -> Result<String, Viz
         "<script id=\"flock-data\" type=\"application/json\">{data}</script>"
     );
     html.push_str("<script>\n");
-    html.push_str(&PLAYER_JS.replace("/*COLOURS*/", &colours_js()));
+    html.push_str(PLAYER_JS);
     html.push_str("</script>\n</body>\n</html>\n");
     Ok(html)
 }
@@ -159,21 +161,6 @@ fn default_speed(duration: f64) -> f64 {
         .unwrap_or(1.0)
 }
 
-/// The colours of [`crate::style`] as a JavaScript object literal.
-fn colours_js() -> String {
-    format!(
-        "const COLOURS = {{ background: '{}', ink: '{}', agent: '{}', edge: '{}', obstacle: '{}', plane: '{}', outline: '{}', gamma: '{}' }};",
-        style::hex(BACKGROUND),
-        style::hex(INK),
-        style::hex(AGENT),
-        style::hex(EDGE),
-        style::hex(OBSTACLE),
-        style::hex(WALL_PLANE),
-        style::hex(OBSTACLE_OUTLINE),
-        style::hex(GAMMA),
-    )
-}
-
 /// Decimals that resolve a thousandth of `extent`.
 fn decimals_for(extent: f64) -> usize {
     if !(extent.is_finite() && extent > 0.0) {
@@ -182,7 +169,85 @@ fn decimals_for(extent: f64) -> usize {
     (3.0 - extent.log10().floor()).clamp(0.0, 8.0) as usize
 }
 
-/// The player's data as compact JSON (numbers rounded to a thousandth of the run's extent).
+/// `x` rounded to `decimals`, `None` (JSON `null`) when not finite. An integer over a power of ten
+/// is the double nearest the decimal, so JSON writes it with at most `decimals` digits.
+fn rounded(x: f64, decimals: usize) -> Option<f64> {
+    let scale = 10f64.powi(decimals as i32);
+    x.is_finite().then(|| (x * scale).round() / scale)
+}
+
+/// The colours of [`crate::style`], named as the script uses them.
+#[derive(Serialize)]
+struct Colours {
+    background: String,
+    ink: String,
+    agent: String,
+    edge: String,
+    obstacle: String,
+    plane: String,
+    outline: String,
+    gamma: String,
+}
+
+impl Colours {
+    fn of_style() -> Self {
+        Self {
+            background: style::hex(BACKGROUND),
+            ink: style::hex(INK),
+            agent: style::hex(AGENT),
+            edge: style::hex(EDGE),
+            obstacle: style::hex(OBSTACLE),
+            plane: style::hex(WALL_PLANE),
+            outline: style::hex(OBSTACLE_OUTLINE),
+            gamma: style::hex(GAMMA),
+        }
+    }
+}
+
+/// The data the script reads: per frame its time `t`, positions `q` and velocities `p` (flat,
+/// `dim` numbers per agent, `null` where not finite) and the γ-agent `g`; the views.
+#[derive(Serialize)]
+struct PlayerData<'a> {
+    title: &'a str,
+    dim: usize,
+    range: Option<f64>,
+    unit: &'a str,
+    colours: Colours,
+    t: Vec<Option<f64>>,
+    q: Vec<Vec<Option<f64>>>,
+    p: Vec<Vec<Option<f64>>>,
+    g: Vec<Option<Vec<Option<f64>>>>,
+    views: Vec<ViewData<'a>>,
+}
+
+/// A view: its projection basis (`u`, `v`), the run's window `[x0, y0, x1, y1]` and the obstacles
+/// drawn in it.
+#[derive(Serialize)]
+struct ViewData<'a> {
+    name: &'a str,
+    u: [Option<f64>; 3],
+    v: [Option<f64>; 3],
+    window: [Option<f64>; 4],
+    obstacles: Vec<ObstacleData>,
+}
+
+/// A projected obstacle: a disc (`c`, `r`) or a polygon (flat `poly`), `plane` for a wall.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum ObstacleData {
+    Disc {
+        c: [Option<f64>; 2],
+        r: Option<f64>,
+    },
+    Polygon {
+        poly: Vec<Option<f64>>,
+        #[serde(skip_serializing_if = "std::ops::Not::not")]
+        plane: bool,
+    },
+}
+
+/// The player's data as compact JSON (numbers rounded to a thousandth of the run's extent), with
+/// `<`, `>` and `&` escaped so that it cannot close the script.
 fn data_json(scene: &Scene, frames: &[usize], options: &PlayerOptions) -> String {
     let dim = scene.dim;
     let views: Vec<(&str, View)> = if dim == 3 {
@@ -203,147 +268,82 @@ fn data_json(scene: &Scene, frames: &[usize], options: &PlayerOptions) -> String
         .filter(|v| v.is_finite())
         .fold(0.0, f64::max);
     let dp = decimals_for(speed);
-    let num = |x: f64, d: usize| {
-        if x.is_finite() {
-            format::number(x, d)
-        } else {
-            "null".to_owned()
-        }
+    let flat = |vectors: &[glam::DVec3], d: usize| -> Vec<Option<f64>> {
+        vectors
+            .iter()
+            .flat_map(|v| (0..dim).map(move |c| rounded(v[c], d)))
+            .collect()
     };
-
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "{{\"title\":{},\"dim\":{dim},\"range\":{},\"unit\":{},",
-        json_string(&scene.title),
-        num(scene.range, 6),
-        json_string(&options.length_unit)
-    );
-    s.push_str("\"t\":[");
-    for (k, &f) in frames.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        s.push_str(&num(scene.frames[f].t, 4));
-    }
-    s.push_str("],\"q\":[");
-    let push_vectors = |s: &mut String, vectors: &[glam::DVec3], d: usize| {
-        s.push('[');
-        for (i, v) in vectors.iter().enumerate() {
-            for c in 0..dim {
-                if i > 0 || c > 0 {
-                    s.push(',');
-                }
-                s.push_str(&num(v[c], d));
+    let views = views
+        .iter()
+        .zip(&framers)
+        .map(|(&(name, view), framer)| {
+            let (u, v, _) = view.basis();
+            let window = framer.run_window();
+            // Walls are cut to the whole run's box, padded by the window so they reach the border.
+            let world = framer.world_for(window.padded(window.size().max_element()));
+            let obstacles = Drawable::project_all(&scene.obstacles, view, dim, world)
+                .into_iter()
+                .map(|shape| match shape {
+                    Shape::Circle { centre, radius } => ObstacleData::Disc {
+                        c: [rounded(centre.x, dq), rounded(centre.y, dq)],
+                        r: rounded(radius, dq),
+                    },
+                    Shape::Polygon(points) => ObstacleData::Polygon {
+                        poly: points
+                            .iter()
+                            .flat_map(|p| [rounded(p.x, dq), rounded(p.y, dq)])
+                            .collect(),
+                        plane: false,
+                    },
+                    Shape::Plane(points) => ObstacleData::Polygon {
+                        poly: points
+                            .iter()
+                            .flat_map(|p| [rounded(p.x, dq), rounded(p.y, dq)])
+                            .collect(),
+                        plane: true,
+                    },
+                })
+                .collect();
+            ViewData {
+                name,
+                u: [u.x, u.y, u.z].map(|x| rounded(x, 9)),
+                v: [v.x, v.y, v.z].map(|x| rounded(x, 9)),
+                window: [window.min.x, window.min.y, window.max.x, window.max.y]
+                    .map(|x| rounded(x, dq)),
+                obstacles,
             }
-        }
-        s.push(']');
+        })
+        .collect();
+    let data = PlayerData {
+        title: &scene.title,
+        dim,
+        range: rounded(scene.range, 6),
+        unit: &options.length_unit,
+        colours: Colours::of_style(),
+        t: frames
+            .iter()
+            .map(|&f| rounded(scene.frames[f].t, 4))
+            .collect(),
+        q: frames
+            .iter()
+            .map(|&f| flat(&scene.frames[f].positions, dq))
+            .collect(),
+        p: frames
+            .iter()
+            .map(|&f| flat(&scene.frames[f].velocities, dp))
+            .collect(),
+        g: frames
+            .iter()
+            .map(|&f| scene.frames[f].gamma.map(|g| flat(&[g], dq)))
+            .collect(),
+        views,
     };
-    for (k, &f) in frames.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        push_vectors(&mut s, &scene.frames[f].positions, dq);
-    }
-    s.push_str("],\"p\":[");
-    for (k, &f) in frames.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        push_vectors(&mut s, &scene.frames[f].velocities, dp);
-    }
-    s.push_str("],\"g\":[");
-    for (k, &f) in frames.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        match scene.frames[f].gamma {
-            Some(g) => push_vectors(&mut s, &[g], dq),
-            None => s.push_str("null"),
-        }
-    }
-    s.push_str("],\"views\":[");
-    for (k, ((name, view), framer)) in views.iter().zip(&framers).enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        let (u, v, _) = view.basis();
-        let window = framer.run_window();
-        let _ = write!(
-            s,
-            "{{\"name\":{},\"u\":[{},{},{}],\"v\":[{},{},{}],\"window\":[{},{},{},{}],\"obstacles\":[",
-            json_string(name),
-            num(u.x, 9),
-            num(u.y, 9),
-            num(u.z, 9),
-            num(v.x, 9),
-            num(v.y, 9),
-            num(v.z, 9),
-            num(window.min.x, dq),
-            num(window.min.y, dq),
-            num(window.max.x, dq),
-            num(window.max.y, dq),
-        );
-        // Walls are cut to the whole run's box, padded by the window so they reach the border.
-        let world = framer.world_for(window.padded(window.size().max_element()));
-        let mut first = true;
-        for shape in Drawable::project_all(&scene.obstacles, *view, dim, world) {
-            if !first {
-                s.push(',');
-            }
-            first = false;
-            let plane = matches!(shape, Shape::Plane(_));
-            match shape {
-                Shape::Circle { centre, radius } => {
-                    let _ = write!(
-                        s,
-                        "{{\"c\":[{},{}],\"r\":{}}}",
-                        num(centre.x, dq),
-                        num(centre.y, dq),
-                        num(radius, dq)
-                    );
-                }
-                Shape::Polygon(points) | Shape::Plane(points) => {
-                    s.push_str(if plane {
-                        "{\"plane\":1,\"poly\":["
-                    } else {
-                        "{\"poly\":["
-                    });
-                    for (i, p) in points.iter().enumerate() {
-                        if i > 0 {
-                            s.push(',');
-                        }
-                        let _ = write!(s, "{},{}", num(p.x, dq), num(p.y, dq));
-                    }
-                    s.push_str("]}");
-                }
-            }
-        }
-        s.push_str("]}");
-    }
-    s.push_str("]}");
-    s
-}
-
-/// A JSON string literal, with `<`, `>` and `&` escaped so that it cannot close the script.
-fn json_string(text: &str) -> String {
-    let mut s = String::with_capacity(text.len() + 2);
-    s.push('"');
-    for c in text.chars() {
-        match c {
-            '"' => s.push_str("\\\""),
-            '\\' => s.push_str("\\\\"),
-            '<' => s.push_str("\\u003c"),
-            '>' => s.push_str("\\u003e"),
-            '&' => s.push_str("\\u0026"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(s, "\\u{:04x}", c as u32);
-            }
-            c => s.push(c),
-        }
-    }
-    s.push('"');
-    s
+    let json = serde_json::to_string(&data).expect("plain data serializes");
+    // In JSON these characters can only stand inside strings, where the escapes mean the same.
+    json.replace('<', "\\u003c")
+        .replace('>', "\\u003e")
+        .replace('&', "\\u0026")
 }
 
 /// Text escaped for HTML content.
@@ -354,242 +354,37 @@ fn escape_html(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The player's script. `/*COLOURS*/` is replaced by the colours of [`crate::style`].
-const PLAYER_JS: &str = r#"'use strict';
-(function () {
-/*COLOURS*/
-const data = JSON.parse(document.getElementById('flock-data').textContent);
-const canvas = document.getElementById('canvas');
-const ctx = canvas.getContext('2d');
-const playButton = document.getElementById('play');
-const scrub = document.getElementById('scrub');
-const speedSelect = document.getElementById('speed');
-const edgesBox = document.getElementById('edges');
-const zoomBox = document.getElementById('zoom');
-const viewSelect = document.getElementById('view');
-const timeLabel = document.getElementById('time');
-const dim = data.dim;
-const frames = data.t.length;
-const r2 = data.range * data.range;
-let current = 0;
-let playing = false;
-let simTime = data.t[0];
-let lastStamp = null;
-
-function fmt(x) {
-  return (Math.round(x * 100) / 100).toString();
-}
-
-// The proximity net: pairs i < j with |q_j - q_i|^2 < r^2, found on a grid of cells of side r.
-function edgesOf(q) {
-  const n = q.length / dim;
-  const out = [];
-  if (!(data.range > 0)) return out;
-  const cells = new Map();
-  const key = (a, b, c) => a + ',' + b + ',' + c;
-  const cellOf = (i) => [0, 1, 2].map((c) => (c < dim ? Math.floor(q[i * dim + c] / data.range) : 0));
-  for (let i = 0; i < n; i++) {
-    if (q[i * dim] === null) continue;
-    const [a, b, c] = cellOf(i);
-    const k = key(a, b, c);
-    if (!cells.has(k)) cells.set(k, []);
-    cells.get(k).push(i);
-  }
-  for (let i = 0; i < n; i++) {
-    if (q[i * dim] === null) continue;
-    const [a, b, c] = cellOf(i);
-    for (let da = -1; da <= 1; da++) for (let db = -1; db <= 1; db++) for (let dc = (dim === 3 ? -1 : 0); dc <= (dim === 3 ? 1 : 0); dc++) {
-      const list = cells.get(key(a + da, b + db, c + dc));
-      if (!list) continue;
-      for (const j of list) {
-        if (j <= i) continue;
-        let d2 = 0;
-        for (let e = 0; e < dim; e++) { const d = q[j * dim + e] - q[i * dim + e]; d2 += d * d; }
-        if (d2 < r2) out.push(i, j);
-      }
-    }
-  }
-  return out;
-}
-
-function currentView() {
-  return data.views[viewSelect ? Number(viewSelect.value) : 0];
-}
-
-function project(view, v, i) {
-  if (dim === 2) return [v[i * 2], v[i * 2 + 1]];
-  const x = v[i * 3], y = v[i * 3 + 1], z = v[i * 3 + 2];
-  return [view.u[0] * x + view.u[1] * y + view.u[2] * z, view.v[0] * x + view.v[1] * y + view.v[2] * z];
-}
-
-// The window around the agents and the gamma-agent of a frame, with a margin of half the range.
-function flockWindow(view, q) {
-  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-  const add = (c) => {
-    if (c[0] === null || !isFinite(c[0]) || !isFinite(c[1])) return;
-    x0 = Math.min(x0, c[0]); x1 = Math.max(x1, c[0]);
-    y0 = Math.min(y0, c[1]); y1 = Math.max(y1, c[1]);
-  };
-  for (let i = 0; i < q.length / dim; i++) add(project(view, q, i));
-  if (data.g[current]) add(project(view, data.g[current], 0));
-  if (!(x0 <= x1)) return view.window;
-  const pad = Math.max(data.range / 2, 0.04 * Math.max(x1 - x0, y1 - y0), 1e-9);
-  return [x0 - pad, y0 - pad, x1 + pad, y1 + pad];
-}
-
-function draw() {
-  const view = currentView();
-  const W = canvas.width, H = canvas.height, pad = 12;
-  const q = data.q[current], p = data.p[current];
-  const n = q.length / dim;
-  const [x0, y0, x1, y1] = zoomBox.checked ? flockWindow(view, q) : view.window;
-  const s = Math.min((W - 2 * pad) / (x1 - x0), (H - 2 * pad) / (y1 - y0));
-  const ox = (W - s * (x1 - x0)) / 2, oy = (H - s * (y1 - y0)) / 2;
-  const X = (x) => ox + (x - x0) * s;
-  const Y = (y) => H - (oy + (y - y0) * s);
-  ctx.fillStyle = COLOURS.background;
-  ctx.fillRect(0, 0, W, H);
-
-  for (const o of view.obstacles) {
-    ctx.beginPath();
-    if (o.poly) {
-      for (let k = 0; k < o.poly.length; k += 2) {
-        if (k === 0) ctx.moveTo(X(o.poly[k]), Y(o.poly[k + 1]));
-        else ctx.lineTo(X(o.poly[k]), Y(o.poly[k + 1]));
-      }
-      ctx.closePath();
-    } else {
-      ctx.arc(X(o.c[0]), Y(o.c[1]), o.r * s, 0, 2 * Math.PI);
-    }
-    ctx.fillStyle = o.plane ? COLOURS.plane : COLOURS.obstacle;
-    ctx.fill();
-    ctx.strokeStyle = COLOURS.outline;
-    ctx.lineWidth = 1;
-    ctx.stroke();
-  }
-
-  if (edgesBox.checked) {
-    const e = edgesOf(q);
-    ctx.strokeStyle = COLOURS.edge;
-    ctx.lineWidth = 1;
-    ctx.beginPath();
-    for (let k = 0; k < e.length; k += 2) {
-      const a = project(view, q, e[k]), b = project(view, q, e[k + 1]);
-      ctx.moveTo(X(a[0]), Y(a[1]));
-      ctx.lineTo(X(b[0]), Y(b[1]));
-    }
-    ctx.stroke();
-  }
-
-  ctx.fillStyle = COLOURS.agent;
-  const L = 10;
-  for (let i = 0; i < n; i++) {
-    if (q[i * dim] === null) continue;
-    const c = project(view, q, i), h = project(view, p, i);
-    const cx = X(c[0]), cy = Y(c[1]);
-    const len = Math.hypot(h[0], h[1]);
-    ctx.beginPath();
-    if (len > 0) {
-      const ex = h[0] / len, ey = -h[1] / len;
-      const sx = -ey * 0.36 * L, sy = ex * 0.36 * L;
-      const bx = cx - ex * L / 3, by = cy - ey * L / 3;
-      ctx.moveTo(cx + ex * 2 * L / 3, cy + ey * 2 * L / 3);
-      ctx.lineTo(bx + sx, by + sy);
-      ctx.lineTo(bx - sx, by - sy);
-      ctx.closePath();
-    } else {
-      ctx.arc(cx, cy, L / 4, 0, 2 * Math.PI);
-    }
-    ctx.fill();
-  }
-
-  const g = data.g[current];
-  if (g) {
-    const c = project(view, g, 0);
-    const gx = X(c[0]), gy = Y(c[1]), R = 0.7 * L;
-    ctx.beginPath();
-    ctx.moveTo(gx + R, gy); ctx.lineTo(gx, gy - R); ctx.lineTo(gx - R, gy); ctx.lineTo(gx, gy + R);
-    ctx.closePath();
-    ctx.fillStyle = COLOURS.gamma;
-    ctx.fill();
-    ctx.strokeStyle = COLOURS.ink;
-    ctx.stroke();
-  }
-
-  // A scale bar of a round length, about a fifth of the window.
-  const target = (x1 - x0) / 5;
-  const pow = Math.pow(10, Math.floor(Math.log10(target)));
-  const bar = [1, 2, 5, 10].map((m) => m * pow).filter((b) => b <= target).pop() || pow;
-  ctx.strokeStyle = COLOURS.ink;
-  ctx.fillStyle = COLOURS.ink;
-  ctx.lineWidth = 2;
-  ctx.beginPath();
-  ctx.moveTo(16, H - 16);
-  ctx.lineTo(16 + bar * s, H - 16);
-  ctx.stroke();
-  ctx.font = '13px sans-serif';
-  ctx.fillText(fmt(bar) + ' ' + data.unit, 16, H - 22);
-
-  timeLabel.textContent = 't = ' + fmt(data.t[current]) + ' s';
-  scrub.value = String(current);
-  canvas.dataset.frame = String(current);
-}
-
-function show(k) {
-  current = Math.max(0, Math.min(frames - 1, k));
-  simTime = data.t[current];
-  draw();
-}
-
-function frameAt(t) {
-  let k = current;
-  while (k + 1 < frames && data.t[k + 1] <= t) k++;
-  while (k > 0 && data.t[k] > t) k--;
-  return k;
-}
-
-function tick(stamp) {
-  if (!playing) return;
-  if (lastStamp !== null) {
-    simTime += (stamp - lastStamp) / 1000 * Number(speedSelect.value);
-  }
-  lastStamp = stamp;
-  const k = frameAt(simTime);
-  if (k !== current) { current = k; draw(); }
-  if (current >= frames - 1) { setPlaying(false); return; }
-  requestAnimationFrame(tick);
-}
-
-function setPlaying(on) {
-  playing = on;
-  playButton.textContent = on ? 'Pause' : 'Play';
-  lastStamp = null;
-  if (on) {
-    if (current >= frames - 1) show(0);
-    requestAnimationFrame(tick);
-  }
-}
-
-playButton.addEventListener('click', () => setPlaying(!playing));
-scrub.addEventListener('input', () => show(Number(scrub.value)));
-edgesBox.addEventListener('change', draw);
-zoomBox.addEventListener('change', draw);
-if (viewSelect) viewSelect.addEventListener('change', draw);
-window.flockPlayer = { frames: frames, frame: () => current, show: show, play: () => setPlaying(true), pause: () => setPlaying(false) };
-draw();
-})();
-"#;
+/// The player's script (`assets/player.js`); its colours come from the data.
+const PLAYER_JS: &str = include_str!("../assets/player.js");
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn json_strings_cannot_close_the_script() {
-        assert_eq!(
-            json_string("a</script>\"\n"),
-            r#""a\u003c/script\u003e\"\u000a""#
+    fn the_data_cannot_close_the_script() {
+        let q = [glam::DVec2::ZERO];
+        let scene = Scene::new(2, 8.4)
+            .with_title("a</script>&\"")
+            .with_frame(crate::Frame::from_vectors(0.0, &q, &q));
+        let json = data_json(&scene, &[0], &PlayerOptions::default());
+        assert!(
+            !json.contains('<') && !json.contains('>') && !json.contains('&'),
+            "{json}"
         );
+        let back: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+        assert_eq!(back["title"], "a</script>&\"");
+        assert_eq!(back["q"][0], serde_json::json!([0.0, 0.0]));
+    }
+
+    #[test]
+    fn numbers_are_rounded_to_their_decimals_and_non_finite_ones_are_null() {
+        assert_eq!(rounded(0.123_456, 3), Some(0.123));
+        assert_eq!(
+            serde_json::to_string(&rounded(2.0 / 3.0, 2)).unwrap(),
+            "0.67"
+        );
+        assert_eq!(rounded(f64::NAN, 3), None);
     }
 
     #[test]
