@@ -20,7 +20,7 @@ use core::f64::consts::PI;
 use flock_graph::ProximityNet;
 use flock_math::{Bump, Potential, UnevenSigmoid, Vector, mean};
 #[cfg(feature = "obstacles")]
-use flock_metrics::ObstacleMetrics;
+use flock_metrics::{DefectFactor, ObstacleMetrics};
 #[cfg(feature = "obstacles")]
 use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
@@ -220,6 +220,20 @@ impl AlphaAlpha {
         half_edge_sum(net, |distance| self.pair_potential(distance))
     }
 
+    /// The defect factor of this form's potential (seed 004 eq. 46–47): the smooth adjacency of
+    /// eq. 30 for (α, α, 2) and its approximation, the 0/1 adjacency of eq. 28 for (α, α, 1).
+    #[must_use]
+    pub fn defect_factor(&self) -> DefectFactor {
+        let AlphaAlphaParams {
+            d_alpha, r, a, b, ..
+        } = self.params;
+        let adjacency = match self.form {
+            AlphaAlphaForm::Nonsmooth => None,
+            AlphaAlphaForm::Smooth | AlphaAlphaForm::Approximate => Some(self.params.bump),
+        };
+        DefectFactor::new(d_alpha, r, a, b, adjacency)
+    }
+
     /// The potential of eq. 28 with the 0/1 adjacency of the net whatever the form:
     /// ½ Σ_i Σ_{j∈N_i} ψ_α(‖q_j − q_i‖ − d_α), the V(q) of the error bound of eq. 37.
     #[must_use]
@@ -357,6 +371,31 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
             .map(|&q| feedback.potential(q, q_d))
             .sum();
         self.alpha.potential(net) + tether + kinetic(&swarm.velocities, p_d)
+    }
+
+    /// `defect_factor` μ and `normalised_defect_factor` μ_n of the net (seed 004 eq. 46–47;
+    /// ~0 on an α-lattice), and with a translational controller `structural_energy` H_s and
+    /// `translational_energy` H_tr (eq. 48–49): by the separation principle (Proposition 6) H_tr
+    /// converges whatever the (α, α) part, and H_s does not rise under (α, α, 2).
+    fn diagnostics(
+        &self,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        let defect = self.alpha.defect_factor().measure(&swarm.positions, net);
+        let mut columns = vec![
+            ("defect_factor", defect.factor),
+            ("normalised_defect_factor", defect.normalised),
+        ];
+        if let Some(h_tr) = self.translational_energy(t, swarm) {
+            columns.push((
+                "structural_energy",
+                self.alpha.structural_energy(swarm, net),
+            ));
+            columns.push(("translational_energy", h_tr));
+        }
+        columns
     }
 }
 
@@ -596,15 +635,17 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
         self.flocking.energy(t, swarm, net)
     }
 
-    /// `obstacle_clearance`, `inside_obstacles` (none without obstacles).
+    /// [`Flocking2003`]'s columns, then `obstacle_clearance`, `inside_obstacles` (none without
+    /// obstacles).
     fn diagnostics(
         &self,
-        _t: f64,
+        t: f64,
         swarm: &Swarm<V>,
-        _net: &ProximityNet,
+        net: &ProximityNet,
     ) -> Vec<(&'static str, f64)> {
+        let mut columns = self.flocking.diagnostics(t, swarm, net);
         if self.obstacles.is_empty() {
-            return Vec::new();
+            return columns;
         }
         let clearance = |q: V| {
             self.obstacles
@@ -612,7 +653,8 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
                 .map(|ball| (q - ball.centre()).length() - ball.radius())
                 .fold(f64::INFINITY, f64::min)
         };
-        ObstacleMetrics::measure(&swarm.positions, clearance).columns()
+        columns.extend(ObstacleMetrics::measure(&swarm.positions, clearance).columns());
+        columns
     }
 }
 

@@ -248,7 +248,8 @@ impl<V: Space> Protocol<V> for CentralisedTracking2003<V> {
     }
 
     /// `structural_energy` H_s and `translational_energy` H_tr (eq. 48–49, the separation of
-    /// Proposition 6), then the obstacle columns of the ball obstacles, if any.
+    /// Proposition 6), then those of the distributed part: its defect factor (eq. 46–47) and the
+    /// obstacle columns of the ball obstacles, if any.
     fn diagnostics(
         &self,
         t: f64,

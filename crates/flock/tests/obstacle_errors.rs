@@ -42,7 +42,7 @@ fn the_base_scenario_is_valid_and_resolves_the_beta_defaults() {
     );
     assert_eq!(
         Scenario::parse(&text, "resolved.ron").expect("resolved parses"),
-        s
+        s.resolved()
     );
 }
 

@@ -3,7 +3,7 @@
 //! velocity; Algorithm 1 from a sparse cloud (Fig. 12) fragments into rigidly moving flocks while its
 //! energy H decreases.
 
-use flock::{Record, Recorder, RunSummary, Scenario};
+use flock::{Algorithm, Record, Recorder, RunSummary, Scenario};
 
 use crate::common::fixture;
 
@@ -76,13 +76,29 @@ fn tac2006_fig12_algorithm1_energy_decreases() {
     );
 }
 
-/// Every recorded instant of a run: (t, metrics, extra columns).
+/// Every recorded instant of a run: (t, metrics, energy, diagnostics), and the diagnostics' names.
 #[derive(Default)]
-struct Trace(Vec<(f64, flock_metrics::FlockMetrics, f64, Vec<f64>)>);
+struct Trace(
+    Vec<(f64, flock_metrics::FlockMetrics, f64, Vec<f64>)>,
+    Vec<&'static str>,
+);
+
+impl Trace {
+    /// The diagnostic `name` at every record.
+    fn column(&self, name: &str) -> Vec<f64> {
+        let k = self
+            .1
+            .iter()
+            .position(|&n| n == name)
+            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.1));
+        self.0.iter().map(|r| r.3[k]).collect()
+    }
+}
 
 impl Recorder for Trace {
     type Error = std::convert::Infallible;
     fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
+        self.1 = record.diagnostics.iter().map(|&(name, _)| name).collect();
         self.0.push((
             record.t,
             record.metrics,
@@ -103,11 +119,10 @@ fn trace_fixture(name: &str) -> (Scenario, RunSummary, Trace) {
 /// No recorded instant has an agent inside an obstacle (column `inside_obstacles`), and every agent
 /// keeps a positive clearance (`obstacle_clearance`).
 fn assert_never_inside(name: &str, trace: &Trace) -> f64 {
+    let clearances = trace.column("obstacle_clearance");
+    let inside = trace.column("inside_obstacles");
     let mut closest = f64::INFINITY;
-    for (t, _, _, extra) in &trace.0 {
-        let [clearance, inside] = extra[..] else {
-            panic!("{name}: obstacle columns expected")
-        };
+    for ((t, ..), (&clearance, &inside)) in trace.0.iter().zip(clearances.iter().zip(&inside)) {
         assert_eq!(
             inside, 0.0,
             "{name}: an agent is inside an obstacle at t = {t}"
@@ -261,6 +276,51 @@ fn tr2003_fig9_sink_ends_on_a_lattice_of_equilateral_triangles() {
     assert_eq!(lattice.crossings, Some(0), "{report}");
     assert_eq!(lattice.within_edge_bound(), Some(true), "{report}");
     assert!(s.metrics.velocity_mismatch < 1e-6, "at rest: {report}");
+}
+
+/// CDS 03-006 § 9–10 on the sink of Fig. 9: the 2003 protocols record the defect factor
+/// (eq. 46–47) and H_s, H_tr (eq. 48–49). With the distributed PD of eq. 50, Σ_i u_i^α = 0 makes
+/// the centre of mass a damped oscillator of its own (Proposition 6): H_tr never rises and decays
+/// as that oscillator's slow mode, e^(−2σt) with σ the slow root of s² + c₂ s + c₁ = 0, whatever the
+/// (α, α) part; the defect factor falls as the net settles into its lattice.
+#[test]
+fn tr2003_fig9_sink_separates_translation_from_structure() {
+    let (scenario, _, trace) = trace_fixture("tr2003_fig9_sink_n100");
+    let Algorithm::Flocking2003 {
+        translation: Some(translation),
+        ..
+    } = &scenario.algorithm
+    else {
+        panic!("a 2003 protocol with a sink")
+    };
+    let (c1, c2) = (translation.c1, translation.c2);
+    assert!(c2 * c2 > 4.0 * c1, "overdamped");
+    let sigma = 0.5 * (c2 - (c2 * c2 - 4.0 * c1).sqrt());
+    let h_tr = trace.column("translational_energy");
+    for (k, pair) in h_tr.windows(2).enumerate() {
+        assert!(
+            pair[1] <= pair[0] * (1.0 + 1e-9) + 1e-15,
+            "H_tr rose from {} to {} at record {}",
+            pair[0],
+            pair[1],
+            k + 1
+        );
+    }
+    let (first, last) = (h_tr[0], h_tr[h_tr.len() - 1]);
+    let slow_mode = (-2.0 * sigma * scenario.duration).exp();
+    assert!(
+        (0.5..2.0).contains(&(last / first / slow_mode)),
+        "H_tr: {first} → {last}, the slow mode alone gives ×{slow_mode}"
+    );
+    let h_s = trace.column("structural_energy");
+    assert!(h_s.iter().all(|&h| h.is_finite() && h >= 0.0), "{h_s:?}");
+    let defect = trace.column("normalised_defect_factor");
+    let settled = defect[defect.len() - 1];
+    let most = defect.iter().copied().fold(0.0, f64::max);
+    assert!(
+        settled >= 0.0 && settled < 0.1 * most,
+        "the defect factor must fall as the lattice forms: max {most}, final {settled}"
+    );
 }
 
 #[test]
