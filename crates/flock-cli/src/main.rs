@@ -9,7 +9,7 @@ use flock::metrics::FlockingCriteria;
 use flock::run_dir::{CreateError, ResumeError};
 use flock::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
 use flock_cli::{Progress, Report};
-use flock_viz::plot_run;
+use flock_viz::{FigureOptions, plot_run_with};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -50,6 +50,9 @@ enum Command {
         /// Also draw the run's figures into DIR/figures (as `flock plot DIR`).
         #[arg(long)]
         plot: bool,
+        /// With --plot: colour each edge by the sign of its stress weight (as `flock plot`).
+        #[arg(long, requires = "plot")]
+        stress_edges: bool,
         /// No progress bar (it is shown only on a terminal, for runs longer than about a second).
         #[arg(long)]
         quiet: bool,
@@ -76,6 +79,10 @@ enum Command {
     Plot {
         /// A run directory written by `flock run`.
         dir: PathBuf,
+        /// Colour each edge by the sign of its stress weight (ACC 2004, Reynolds' rules): orange
+        /// beyond d (attraction, F⁺), purple within (repulsion, F⁻), grey within 1 % of d (F⁰).
+        #[arg(long)]
+        stress_edges: bool,
     },
     /// Check a scenario file and print it with every default filled in.
     Validate {
@@ -144,20 +151,22 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Plot { dir } => match plot_run(&dir) {
-            Ok(files) => {
-                println!(
-                    "{} figure file(s) in {}",
-                    files.len(),
-                    dir.join("figures").display()
-                );
-                ExitCode::SUCCESS
+        Command::Plot { dir, stress_edges } => {
+            match plot_run_with(&dir, &figure_options(stress_edges)) {
+                Ok(files) => {
+                    println!(
+                        "{} figure file(s) in {}",
+                        files.len(),
+                        dir.join("figures").display()
+                    );
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
             }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
-            }
-        },
+        }
         Command::Figures { out, quiet } => {
             match flock_cli::figures(std::path::Path::new("fixtures"), &out, quiet) {
                 Ok(_) => ExitCode::SUCCESS,
@@ -197,6 +206,7 @@ fn main() -> ExitCode {
             checkpoint_every,
             threads,
             plot,
+            stress_edges,
             quiet,
             epsilon1,
             epsilon2,
@@ -231,7 +241,7 @@ fn main() -> ExitCode {
             };
             let dir = dir.with_stop_flag(&STOP).with_criteria(criteria);
             match execute(&scenario, dir, start.as_ref(), quiet) {
-                Ok(out) if plot => match plot_run(&out) {
+                Ok(out) if plot => match plot_run_with(&out, &figure_options(stress_edges)) {
                     Ok(files) => {
                         println!(
                             "  figures               {} file(s) in {}",
@@ -418,4 +428,14 @@ fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
             eprintln!("error: cannot start {threads} threads: {e}");
             ExitCode::FAILURE
         })
+}
+
+/// The figures' options: the defaults, with edges coloured by stress if asked.
+fn figure_options(stress_edges: bool) -> FigureOptions {
+    let mut options = FigureOptions::default();
+    options.snapshot.style.stress_edges = stress_edges;
+    if let Some(animation) = &mut options.animation {
+        animation.style.stress_edges = stress_edges;
+    }
+    options
 }

@@ -561,7 +561,18 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
     let names: Vec<&str> = files.keys().map(String::as_str).collect();
     assert_eq!(
         names,
-        ["final.csv", "metrics.csv", "scenario.ron", "trajectory.csv"]
+        [
+            "final.csv",
+            "flocking.txt",
+            "metrics.csv",
+            "scenario.ron",
+            "trajectory.csv"
+        ]
+    );
+    assert!(
+        files["flocking.txt"].contains("TAC 2006 Definition 5"),
+        "{}",
+        files["flocking.txt"]
     );
 
     let state_header = if dim == 2 {
@@ -624,7 +635,10 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
         "{}",
         files["scenario.ron"]
     );
-    assert_eq!(written, Scenario::parse(text, "tiny.ron").expect("valid"));
+    assert_eq!(
+        written,
+        Scenario::parse(text, "tiny.ron").expect("valid").resolved()
+    );
     files
 }
 

@@ -96,6 +96,18 @@ impl FlockMetrics {
 }
 
 impl FlockMetrics {
+    /// The metrics with C, C* and the number of components of another graph on the same agents
+    /// (a protocol's fixed interaction graph, Tanner et al. 2003), the others unchanged.
+    #[must_use]
+    pub fn with_connectivity_of(self, components: &Components) -> Self {
+        Self {
+            connectivity: relative_connectivity(components),
+            giant_component: components.giant_share(),
+            components: components.count(),
+            ..self
+        }
+    }
+
     /// The real-valued metrics in the order of the columns of `metrics.csv`: C, C*, R, Ẽ, K̃ and
     /// the minimum distance.
     #[must_use]

@@ -224,13 +224,20 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// The flocking metrics of the current state (TAC 2006 Section VIII); `params.collision_distance`
     /// must not exceed the interaction range (every colliding pair is then an edge of the net).
     #[must_use]
+    ///
+    /// For a protocol with an [interaction graph](Protocol::interaction_graph), C, C* and the
+    /// components are those of that graph; the other metrics are of the proximity net.
     pub fn metrics(&self, params: &MetricParams) -> FlockMetrics {
-        FlockMetrics::measure(
+        let metrics = FlockMetrics::measure(
             &self.swarm.positions,
             &self.swarm.velocities,
             &self.net,
             params,
-        )
+        );
+        match self.protocol.interaction_graph() {
+            Some(graph) => metrics.with_connectivity_of(&Components::of(graph)),
+            None => metrics,
+        }
     }
 
     /// The lattice of the current state (CDS 03-006 Fig. 9, TAC 2006 Theorem 5): its edges, those
@@ -267,12 +274,16 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     }
 
     /// The velocity mismatch of each agent against the mean velocity of its own component of the
-    /// net, per agent: ½ Σ_i ‖p_i − p̄_{c(i)}‖² / n (0 when every component moves rigidly).
+    /// net (of the [interaction graph](Protocol::interaction_graph), if any), per agent: ½ Σ_i ‖p_i − p̄_{c(i)}‖² / n (0 when every component moves rigidly).
     #[must_use]
     pub fn component_velocity_mismatch(&self) -> f64 {
+        let graph = self
+            .protocol
+            .interaction_graph()
+            .unwrap_or(self.net.graph());
         component_velocity_mismatch(
             &self.swarm.velocities,
-            &Components::of(self.net.graph()),
+            &Components::of(graph),
             self.net.numbering(),
         )
     }
@@ -317,7 +328,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// re-sort even if still scattered, e.g. thousands in one cell: no sort at every step.)
     fn rebuild_net(&mut self) {
         let r = self.protocol.interaction_range();
-        let sorts = self.protocol.follows_numbering();
+        let sorts =
+            self.protocol.follows_numbering() && self.protocol.interaction_graph().is_none();
         let sorted = !self.net.numbering().is_identity();
         if sorts && sorted && self.steps % RESORT_EVERY == 0 {
             self.sort_by_cell();

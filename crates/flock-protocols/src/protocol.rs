@@ -1,6 +1,6 @@
 //! The [`Protocol`] trait: every flocking algorithm computes all agents' inputs from a read-only state.
 
-use flock_graph::ProximityNet;
+use flock_graph::{Graph, ProximityNet};
 use flock_math::Vector;
 
 use crate::Swarm;
@@ -60,6 +60,15 @@ pub trait Protocol<V: Vector>: Sync {
     fn follows_numbering(&self) -> bool {
         false
     }
+
+    /// The fixed graph the protocol interacts on, node k agent k, for a protocol that does not
+    /// follow the numbering (the Tanner law's neighbouring graph); `None` for the protocols of
+    /// the proximity net. A [`Simulation`](crate::Simulation) measures connectivity on it — C, C*
+    /// and the components — instead of on the proximity net.
+    #[must_use]
+    fn interaction_graph(&self) -> Option<&Graph> {
+        None
+    }
 }
 
 /// A protocol chosen at run time.
@@ -94,5 +103,9 @@ impl<V: Vector, P: Protocol<V> + ?Sized> Protocol<V> for Box<P> {
 
     fn follows_numbering(&self) -> bool {
         (**self).follows_numbering()
+    }
+
+    fn interaction_graph(&self) -> Option<&Graph> {
+        (**self).interaction_graph()
     }
 }

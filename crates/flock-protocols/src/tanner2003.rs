@@ -199,6 +199,12 @@ impl<V: Vector> Protocol<V> for TannerJadbabaiePappas {
         false
     }
 
+    /// The fixed neighbouring graph: C and C* are those of the graph the agents interact on
+    /// (connected, Assumption IV.2), not of the proximity net.
+    fn interaction_graph(&self) -> Option<&Graph> {
+        Some(&self.graph)
+    }
+
     /// `velocity_disagreement` (½ Σ ‖v_i − v̄‖²) and `min_linked_distance`.
     fn diagnostics(
         &self,

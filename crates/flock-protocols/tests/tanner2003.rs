@@ -170,3 +170,40 @@ fn velocities_align_on_a_fixed_graph_2d() {
 fn velocities_align_on_a_fixed_graph_3d() {
     flocking_on_a_fixed_graph::<DVec3>(5);
 }
+
+/// Seed 001's agents interact on the fixed graph, whatever their distances: C, C* and the
+/// components of the simulation's metrics are those of that graph (connected, Assumption IV.2),
+/// not of the proximity net, and so is the per-component velocity mismatch.
+#[test]
+fn connectivity_is_measured_on_the_fixed_graph() {
+    let g = Graph::from_edges(3, &[(0, 1), (1, 2)]).expect("a graph");
+    let law = TannerJadbabaiePappas::new(g, TannerPotential::new(1.0), 2.0).expect("connected");
+    // 1 and 2 are 50 apart: the proximity net (range 2) has two components
+    let r = vec![DVec2::ZERO, DVec2::new(1.5, 0.0), DVec2::new(51.5, 0.0)];
+    let v = vec![DVec2::X, DVec2::ZERO, DVec2::Y];
+    let sim = Simulation::new(law, Integrator::SymplecticEuler, Swarm::new(r, v), 0.01)
+        .expect("a valid simulation");
+    assert_eq!(Components::of(&sim.graph()).count(), 2);
+    let params = flock_metrics::MetricParams {
+        d: 1.0,
+        collision_distance: 0.25,
+    };
+    let metrics = sim.metrics(&params);
+    assert_eq!(
+        (
+            metrics.connectivity,
+            metrics.giant_component,
+            metrics.components
+        ),
+        (1.0, 1.0, 1)
+    );
+    // K̃ over the one component: ½ Σ ‖p_i − p̄‖² / n with p̄ = (1, 1)/3
+    let p_bar = DVec2::new(1.0, 1.0) / 3.0;
+    let mismatch = 0.5
+        * [DVec2::X, DVec2::ZERO, DVec2::Y]
+            .iter()
+            .map(|&p| (p - p_bar).length_squared())
+            .sum::<f64>()
+        / 3.0;
+    assert_abs_diff_eq!(sim.component_velocity_mismatch(), mismatch, epsilon = 1e-15);
+}

@@ -1,6 +1,7 @@
 // The player of `flock run --plot` (crates/flock-viz/src/player.rs embeds this file in the page):
 // draws one frame of the run data in <script id="flock-data"> on the canvas — agents as oriented
-// triangles, the proximity net's edges (|q_j - q_i| < r), obstacles, the gamma-agent, a scale bar —
+// triangles, the proximity net's edges (|q_j - q_i| < r; a fixed graph's `edges` if the data has
+// them), obstacles, the gamma-agent, a scale bar —
 // and plays, scrubs, zooms and (3D) switches views. Colours come from the data (`colours`).
 'use strict';
 (function () {
@@ -116,7 +117,7 @@ function draw() {
   }
 
   if (edgesBox.checked) {
-    const e = edgesOf(q);
+    const e = data.edges || edgesOf(q);
     ctx.strokeStyle = COLOURS.edge;
     ctx.lineWidth = 1;
     ctx.beginPath();

@@ -59,7 +59,7 @@ pub use gallery::{FigureEntry, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
 pub use player::{PlayerOptions, player_html};
-pub use plot::{PlotError, plot_run};
+pub use plot::{PlotError, plot_run, plot_run_with};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
 pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};

@@ -218,6 +218,9 @@ struct PlayerData<'a> {
     p: Vec<Vec<Option<f64>>>,
     g: Vec<Option<Vec<Option<f64>>>>,
     views: Vec<ViewData<'a>>,
+    /// The fixed interaction graph's edges (i, j) flattened, drawn instead of the proximity net.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    edges: Option<Vec<u32>>,
 }
 
 /// A view: its projection basis (`u`, `v`), the run's window `[x0, y0, x1, y1]` and the obstacles
@@ -338,6 +341,10 @@ fn data_json(scene: &Scene, frames: &[usize], options: &PlayerOptions) -> String
             .map(|&f| scene.frames[f].gamma.map(|g| flat(&[g], dq)))
             .collect(),
         views,
+        edges: scene
+            .interaction_graph
+            .as_ref()
+            .map(|edges| edges.iter().flat_map(|&(i, j)| [i, j]).collect()),
     };
     let json = serde_json::to_string(&data).expect("plain data serializes");
     // In JSON these characters can only stand inside strings, where the escapes mean the same.

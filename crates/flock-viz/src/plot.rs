@@ -1,12 +1,13 @@
 //! [`plot_run`] (`flock plot DIR`, `flock run --plot`): the figures of a finished run, with the
-//! obstacles and the γ-agent read back from the run's resolved `scenario.ron`.
+//! obstacles, the γ-agent, the desired distance and the Tanner law's fixed graph read back from the
+//! run's resolved `scenario.ron`; [`plot_run_with`] with options (edges coloured by stress).
 
 use std::path::{Path, PathBuf};
 
-use flock::Scenario;
 use flock::build::gamma_agent;
 use flock::initial::to_vector;
 use flock::obstacles::{ObstacleSpec, Space};
+use flock::{Algorithm, Scenario};
 use flock_math::Vector;
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
@@ -33,39 +34,56 @@ impl std::fmt::Display for PlotError {
 impl std::error::Error for PlotError {}
 
 /// Draws the figures of the run in `dir` (snapshots, metric curves, GIF, HTML player) into
-/// `dir/figures/`, and returns the files written.
+/// `dir/figures/`, and returns the files written. A Tanner run is drawn on its fixed graph with
+/// velocity arrows, as Tanner et al. draw Figs. 3–8.
 ///
 /// # Errors
 /// When `dir` is not a complete run directory, or drawing fails.
 pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    plot_run_with(dir, &FigureOptions::default())
+}
+
+/// [`plot_run`] with `options` (a Tanner run's snapshots get velocity arrows whatever they say).
+///
+/// # Errors
+/// As [`plot_run`].
+pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>, PlotError> {
     let scenario = Scenario::load(dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
     let run = RunData::load(dir).map_err(PlotError::Viz)?;
     let scene = match scenario.dim {
         2 => decorate::<DVec2>(run.scene(scenario.range()), &scenario),
         _ => decorate::<DVec3>(run.scene(scenario.range()), &scenario),
-    };
-    write_figures(
-        &scene,
-        Some(&run.metrics),
-        &dir.join("figures"),
-        &FigureOptions::default(),
-    )
-    .map_err(PlotError::Viz)
+    }
+    .map_err(PlotError::Scenario)?;
+    let mut options = options.clone();
+    if scene.interaction_graph.is_some() {
+        options.snapshot.style.velocity_arrows = true;
+    }
+    write_figures(&scene, Some(&run.metrics), &dir.join("figures"), &options)
+        .map_err(PlotError::Viz)
 }
 
-/// The scene with its title, obstacles and γ-agent.
-fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Scene {
-    let mut scene = scene.with_title(scenario.name.clone());
+/// The scene with its title, desired distance, obstacles, γ-agent and (Tanner) fixed graph.
+fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Result<Scene, flock::ScenarioError> {
+    let mut scene = scene
+        .with_title(scenario.name.clone())
+        .with_desired_distance(scenario.alpha.d);
+    if let Algorithm::Tanner { .. } = scenario.algorithm {
+        let graph = scenario.tanner_graph()?;
+        scene = scene.with_interaction_graph(
+            (0..graph.len()).flat_map(|i| graph.neighbours(i).iter().map(move |&j| (i as u32, j))),
+        );
+    }
     for spec in &scenario.obstacles {
         scene = scene.with_obstacle(drawable::<V>(spec));
     }
-    match scenario.algorithm.gamma() {
+    Ok(match scenario.algorithm.gamma() {
         Some(gamma) => {
             let gamma = gamma_agent::<V>(gamma);
             scene.with_gamma(move |t| lift(gamma.state(t).0))
         }
         None => scene,
-    }
+    })
 }
 
 /// How an obstacle is drawn (a validated spec of dimension `V::DIM`).

@@ -99,6 +99,12 @@ pub struct Scene {
     pub frames: Vec<Frame>,
     /// The obstacles.
     pub obstacles: Vec<Drawable>,
+    /// A fixed interaction graph (pairs (i, j), i < j) drawn instead of the proximity net: the
+    /// neighbouring graph of the Tanner law (Tanner et al. 2003, Figs. 3–8).
+    pub interaction_graph: Option<Vec<(u32, u32)>>,
+    /// The desired distance d of the lattice, by which an edge's stress weight has its sign
+    /// (ACC 2004 eq. 26: attraction beyond d, repulsion within).
+    pub desired_distance: Option<f64>,
 }
 
 impl Scene {
@@ -111,6 +117,8 @@ impl Scene {
             range,
             frames: Vec::new(),
             obstacles: Vec::new(),
+            interaction_graph: None,
+            desired_distance: None,
         }
     }
 
@@ -145,13 +153,39 @@ impl Scene {
         self
     }
 
-    /// The edges of the proximity net of frame `frame`: pairs (i, j), i < j, with
-    /// ‖q_j − q_i‖ < r, in order (built with [`flock_graph::NeighbourSearch`]).
+    /// The scene drawn on the fixed graph of `edges` (pairs of agent indices, any order) instead of
+    /// the proximity net.
+    #[must_use]
+    pub fn with_interaction_graph(mut self, edges: impl IntoIterator<Item = (u32, u32)>) -> Self {
+        let mut edges: Vec<(u32, u32)> = edges
+            .into_iter()
+            .map(|(i, j)| (i.min(j), i.max(j)))
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        self.interaction_graph = Some(edges);
+        self
+    }
+
+    /// The scene with the lattice's desired distance d (for edges coloured by stress).
+    #[must_use]
+    pub fn with_desired_distance(mut self, d: f64) -> Self {
+        self.desired_distance = Some(d);
+        self
+    }
+
+    /// The edges drawn in frame `frame`: those of the [interaction
+    /// graph](Scene::with_interaction_graph) if the scene has one, else of the proximity net —
+    /// pairs (i, j), i < j, with ‖q_j − q_i‖ < r, in order (built with
+    /// [`flock_graph::NeighbourSearch`]).
     ///
     /// # Panics
     /// When `frame` is out of range.
     #[must_use]
     pub fn edges(&self, frame: usize) -> Vec<(u32, u32)> {
+        if let Some(edges) = &self.interaction_graph {
+            return edges.clone();
+        }
         let mut net = ProximityNet::new();
         NeighbourSearch::new().build(&self.frames[frame].positions, self.range, &mut net);
         let graph = net.graph();
@@ -212,6 +246,17 @@ impl Scene {
                     frame.t,
                     frame.positions.len(),
                     frame.velocities.len()
+                )));
+            }
+            if let Some(&(i, j)) = self
+                .interaction_graph
+                .iter()
+                .flatten()
+                .find(|&&(_, j)| j as usize >= frame.positions.len())
+            {
+                return Err(VizError::invalid(format!(
+                    "the interaction graph's edge ({i}, {j}) names an agent beyond the {} of frame {k}",
+                    frame.positions.len()
                 )));
             }
         }

@@ -24,8 +24,15 @@ use crate::framing::{Framer, Framing};
 use crate::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_segment};
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
-use crate::style::{self, AGENT, EDGE, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, TRAIL, WALL_PLANE};
+use crate::style::{
+    self, AGENT, ATTRACTION, EDGE, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, REPULSION, TRAIL,
+    VELOCITY, WALL_PLANE,
+};
 use crate::view::View;
+
+/// Edges within this fraction of d from d are drawn neutral (F⁰) when coloured by stress: s_ij = 0
+/// holds only at exactly d, which round-off never gives.
+pub const NEUTRAL_BAND: f64 = 0.01;
 
 /// Height in pixels of the band that holds a figure's title.
 const TITLE_BAND: u32 = 36;
@@ -70,8 +77,16 @@ pub struct PanelStyle {
     pub framing: Framing,
     /// How many earlier recorded frames each agent's trail goes back (0: no trails).
     pub trail: usize,
-    /// Whether to draw the edges of the proximity net.
+    /// Whether to draw the edges of the proximity net (of the scene's interaction graph, if any).
     pub edges: bool,
+    /// Whether to colour each edge by the sign of its stress weight s_ij (ACC 2004 eq. 26–31,
+    /// Reynolds' rules made visible): [`ATTRACTION`] for ‖q_j − q_i‖ > d (j ∈ F_i⁺, cohesion),
+    /// [`REPULSION`] for ‖q_j − q_i‖ < d (j ∈ F_i⁻, separation), grey for the neutral friends F_i⁰,
+    /// within [`NEUTRAL_BAND`] · d of d. Needs the scene's desired distance; grey edges without.
+    pub stress_edges: bool,
+    /// Whether to draw each agent's velocity as an arrow (Tanner et al. 2003, Figs. 3–8), the
+    /// fastest of the frame three markers long.
+    pub velocity_arrows: bool,
     /// The length of an agent's triangle, in pixels.
     pub marker_size: f64,
     /// The scenario's unit of length, for the axis labels.
@@ -85,6 +100,8 @@ impl Default for PanelStyle {
             framing: Framing::Run,
             trail: 0,
             edges: true,
+            stress_edges: false,
+            velocity_arrows: false,
             marker_size: 9.0,
             length_unit: "m".to_owned(),
         }
@@ -306,10 +323,17 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     let marker = panel.marker_size * per_pixel;
     draw_obstacles(&mut chart, framer, window)?;
     if panel.edges {
-        draw_edges(&mut chart, framer, frame, window)?;
+        let stress = panel
+            .stress_edges
+            .then_some(framer.scene().desired_distance)
+            .flatten();
+        draw_edges(&mut chart, framer, frame, window, stress)?;
     }
     if panel.trail > 0 {
         draw_trails(&mut chart, framer, frame, panel.trail, window)?;
+    }
+    if panel.velocity_arrows {
+        draw_velocities(&mut chart, framer, frame, window, marker)?;
     }
     draw_agents(&mut chart, framer, frame, window, marker, panel.marker_size)?;
     draw_gamma(&mut chart, framer, frame, window, marker)?;
@@ -367,23 +391,92 @@ fn draw_obstacles<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The proximity net: a thin grey line per edge, ‖q_j − q_i‖ < r.
+/// The net: a thin line per edge (grey, or coloured by the sign of its stress weight when `stress`
+/// holds the desired distance d).
 fn draw_edges<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
     frame: usize,
     window: Rect,
+    stress: Option<f64>,
 ) -> Result<(), VizError> {
     let positions = &framer.scene().frames[frame].positions;
     let project = |i: u32| framer.project(positions[i as usize]);
+    let colour = |i: u32, j: u32| match stress {
+        Some(d) => {
+            let stretch = (positions[j as usize] - positions[i as usize]).length() - d;
+            if stretch > NEUTRAL_BAND * d {
+                ATTRACTION
+            } else if stretch < -NEUTRAL_BAND * d {
+                REPULSION
+            } else {
+                EDGE
+            }
+        }
+        None => EDGE,
+    };
     let lines: Vec<PathElement<(f64, f64)>> = framer
         .scene()
         .edges(frame)
         .into_iter()
-        .filter_map(|(i, j)| clip_segment(project(i), project(j), window))
-        .map(|(a, b)| PathElement::new(vec![tuple(a), tuple(b)], style::rgb(EDGE).stroke_width(1)))
+        .filter_map(|(i, j)| {
+            clip_segment(project(i), project(j), window).map(|(a, b)| {
+                PathElement::new(
+                    vec![tuple(a), tuple(b)],
+                    style::rgb(colour(i, j)).stroke_width(1),
+                )
+            })
+        })
         .collect();
     chart.draw_series(lines).map_err(VizError::draw)?;
+    Ok(())
+}
+
+/// Each agent's (projected) velocity as an arrow from the agent, the fastest `3 · length` long.
+fn draw_velocities<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    frame: usize,
+    window: Rect,
+    length: f64,
+) -> Result<(), VizError> {
+    let state = &framer.scene().frames[frame];
+    let velocities: Vec<DVec2> = state
+        .velocities
+        .iter()
+        .map(|&p| framer.project_vector(p))
+        .collect();
+    let fastest = velocities
+        .iter()
+        .map(|v| v.length())
+        .filter(|s| s.is_finite())
+        .fold(0.0, f64::max);
+    if fastest <= 0.0 {
+        return Ok(());
+    }
+    let scale = 3.0 * length / fastest;
+    let colour = style::rgb(VELOCITY).stroke_width(1);
+    let mut paths = Vec::new();
+    for (&q, &v) in state.positions.iter().zip(&velocities) {
+        let tail = framer.project(q);
+        let tip = tail + v * scale;
+        let Some(e) = v.try_normalize() else { continue };
+        if !(window.contains(tail) && window.contains(tip)) {
+            continue;
+        }
+        let head = 0.3 * length;
+        let back = tip - head * e;
+        paths.push(PathElement::new(vec![tuple(tail), tuple(tip)], colour));
+        paths.push(PathElement::new(
+            vec![
+                tuple(back + 0.5 * head * e.perp()),
+                tuple(tip),
+                tuple(back - 0.5 * head * e.perp()),
+            ],
+            colour,
+        ));
+    }
+    chart.draw_series(paths).map_err(VizError::draw)?;
     Ok(())
 }
 

@@ -15,6 +15,12 @@ pub const INK: [u8; 3] = [0x00, 0x00, 0x00];
 pub const AGENT: [u8; 3] = [0x1F, 0x4E, 0x9C];
 /// The edges of the proximity net.
 pub const EDGE: [u8; 3] = [0xB4, 0xB4, 0xB4];
+/// An edge under attraction (stress weight s_ij > 0, ‖q_j − q_i‖ > d: j ∈ F_i⁺, ACC 2004 eq. 28).
+pub const ATTRACTION: [u8; 3] = [0xE0, 0x82, 0x14];
+/// An edge under repulsion (s_ij < 0, ‖q_j − q_i‖ < d: j ∈ F_i⁻).
+pub const REPULSION: [u8; 3] = [0x7B, 0x32, 0x94];
+/// A velocity arrow.
+pub const VELOCITY: [u8; 3] = [0x2C, 0xA0, 0x2C];
 /// The agents' trails.
 pub const TRAIL: [u8; 3] = [0x9D, 0xB9, 0xE0];
 /// The obstacles' fill.

@@ -184,3 +184,66 @@ fn walls_and_capsules_are_drawn_in_2d_and_3d() {
     assert_eq!(count_marks(&svg, "polygon", "fill", WALL_PLANE), 0);
     assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 3);
 }
+
+/// Reynolds' rules made visible (ACC 2004 eq. 26–31): with `stress_edges`, an edge longer than d
+/// (s_ij > 0, F⁺) is drawn in the attraction colour, a shorter one (F⁻) in the repulsion colour,
+/// one within 1 % of d (F⁰) grey; without the option, or without d, every edge is grey.
+#[test]
+fn edges_are_coloured_by_the_sign_of_their_stress_weight() {
+    use flock_viz::style::{ATTRACTION, REPULSION};
+    // d = 7: a pair at 8 (attraction), one at 6 (repulsion), one at 7.01 (neutral)
+    let q = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(8.0, 0.0),
+        DVec2::new(0.0, 50.0),
+        DVec2::new(6.0, 50.0),
+        DVec2::new(50.0, 0.0),
+        DVec2::new(57.01, 0.0),
+    ];
+    let scene = Scene::new(2, 8.4).with_frame(Frame::from_vectors(0.0, &q, &[DVec2::X; 6]));
+    let stress = styled(|style| style.stress_edges = true);
+    let count = |scene: &Scene, options: &SnapshotOptions, colour| {
+        let svg = snapshot_svg(scene, &[0], options).unwrap();
+        count_marks(&svg, "polyline", "stroke", colour)
+    };
+    let with_d = scene.clone().with_desired_distance(7.0);
+    assert_eq!(count(&with_d, &stress, ATTRACTION), 1);
+    assert_eq!(count(&with_d, &stress, REPULSION), 1);
+    assert_eq!(count(&with_d, &stress, EDGE), 1);
+    assert_eq!(count(&with_d, &SnapshotOptions::default(), EDGE), 3);
+    assert_eq!(count(&scene, &stress, EDGE), 3, "no d: no stress colours");
+}
+
+/// Tanner et al. Figs. 3–8: a scene with a fixed interaction graph draws that graph, whatever the
+/// distances, and velocity arrows when asked (one shaft and one head per moving agent).
+#[test]
+fn a_fixed_graph_is_drawn_instead_of_the_net_with_velocity_arrows() {
+    use flock_viz::style::VELOCITY;
+    let q = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(3.0, 0.0),
+        DVec2::new(30.0, 0.0),
+    ];
+    let p = [DVec2::X, DVec2::Y, DVec2::ZERO];
+    let scene = Scene::new(2, 8.4)
+        .with_frame(Frame::from_vectors(0.0, &q, &p))
+        .with_interaction_graph([(2, 0)]);
+    assert_eq!(
+        scene.edges(0),
+        vec![(0, 2)],
+        "the graph, not the net's (0, 1)"
+    );
+    let svg = snapshot_svg(&scene, &[0], &SnapshotOptions::default()).unwrap();
+    assert_eq!(count_marks(&svg, "polyline", "stroke", EDGE), 1);
+    assert_eq!(count_marks(&svg, "polyline", "stroke", VELOCITY), 0);
+    let arrows = styled(|style| style.velocity_arrows = true);
+    let svg = snapshot_svg(&scene, &[0], &arrows).unwrap();
+    assert_eq!(count_marks(&svg, "polyline", "stroke", VELOCITY), 2 * 2);
+    let bad = Scene::new(2, 8.4)
+        .with_frame(Frame::from_vectors(0.0, &q, &p))
+        .with_interaction_graph([(0, 3)]);
+    assert!(matches!(
+        snapshot_svg(&bad, &[0], &SnapshotOptions::default()),
+        Err(VizError::Invalid(_))
+    ));
+}
