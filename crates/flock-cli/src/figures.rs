@@ -7,10 +7,11 @@
 //! | kept | dropped |
 //! | --- | --- |
 //! | `scenario.ron`, `metrics.csv` (small, rerunnable, plottable) | `trajectory.csv`, `final.csv` (large, regenerable) |
-//! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/player.html` | `figures/animation.gif` (the largest file, and the player shows the same motion) |
+//! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/player.html` (unless `--no-player`) | `figures/animation.gif` (the largest file, and the player shows the same motion) |
 //!
-//! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference and
-//! description, the snapshot and metric PNGs and a table of the final metrics.
+//! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference, the
+//! paper's caption and statements beside our measures, its description, the snapshot and metric
+//! PNGs and a table of the final metrics.
 
 use std::fs;
 use std::io::{self, IsTerminal};
@@ -18,7 +19,7 @@ use std::path::{Path, PathBuf};
 
 use flock::run_dir::CreateError;
 use flock::{RunDirectory, RunError, Scenario, ScenarioError};
-use flock_viz::{FigureEntry, PlotError, index_html, paper_reference, plot_run};
+use flock_viz::{FigureEntry, PlotError, index_html, load_metrics, paper_reference, plot_run};
 
 use crate::progress::Progress;
 
@@ -85,7 +86,8 @@ impl std::fmt::Display for FiguresError {
 impl std::error::Error for FiguresError {}
 
 /// Runs and draws every `*.ron` of `fixtures_dir` into `out/<stem>/` and writes `out/index.html`;
-/// prints one line per fixture unless `quiet`. Returns the page's entries, in order.
+/// prints one line per fixture unless `quiet`; keeps each run's `player.html` if `player` (the
+/// players are most of the page's bytes). Returns the page's entries, in order.
 ///
 /// # Errors
 /// [`FiguresError::NoFixtures`] when `fixtures_dir` is missing or holds no `*.ron`; the first
@@ -94,6 +96,7 @@ pub fn figures(
     fixtures_dir: &Path,
     out: &Path,
     quiet: bool,
+    player: bool,
 ) -> Result<Vec<FigureEntry>, FiguresError> {
     let io_err = |path: &Path| {
         let path = path.to_path_buf();
@@ -154,6 +157,9 @@ pub fn figures(
         for name in DROPPED_FIGURES {
             remove_if_present(&dir.join("figures").join(name))?;
         }
+        if !player {
+            remove_if_present(&dir.join("figures").join("player.html"))?;
+        }
         let images: Vec<String> = ["snapshots.png", "snapshots_top.png", "metrics.png"]
             .iter()
             .filter(|name| dir.join("figures").join(name).is_file())
@@ -169,12 +175,19 @@ pub fn figures(
                 dir.display()
             );
         }
+        let metrics =
+            load_metrics(&dir.join("metrics.csv")).map_err(|source| FiguresError::Plot {
+                fixture: stem.clone(),
+                source: PlotError::Viz(source),
+            })?;
         entries.push(FigureEntry {
             reference: paper_reference(&stem),
             description: scenario.description.clone(),
             stem,
             summary,
+            metrics,
             images,
+            player,
         });
     }
     let index = out.join("index.html");

@@ -73,6 +73,9 @@ enum Command {
         /// Print nothing but errors.
         #[arg(long)]
         quiet: bool,
+        /// Drop each run's player.html (most of the bytes; the committed gallery has none).
+        #[arg(long)]
+        no_player: bool,
     },
     /// Draw the figures of a finished run into DIR/figures: snapshots (SVG, PNG), the metric curves
     /// of TAC 2006 Fig. 18, an animated GIF and a self-contained HTML player.
@@ -167,15 +170,17 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Figures { out, quiet } => {
-            match flock_cli::figures(std::path::Path::new("fixtures"), &out, quiet) {
-                Ok(_) => ExitCode::SUCCESS,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
+        Command::Figures {
+            out,
+            quiet,
+            no_player,
+        } => match flock_cli::figures(std::path::Path::new("fixtures"), &out, quiet, !no_player) {
+            Ok(_) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
             }
-        }
+        },
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
                 println!("{}: valid", scenario.display());

@@ -31,7 +31,7 @@ fn figures_writes_an_offline_index_of_every_fixture() {
     fs::write(fixtures.join("notes.txt"), "not a scenario").expect("write a non-fixture");
     let out = tmp.path().join("site");
 
-    let entries = figures(&fixtures, &out, true).unwrap_or_else(|e| panic!("{e}"));
+    let entries = figures(&fixtures, &out, true, true).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(entries.len(), 1);
     assert_eq!(entries[0].reference, "Olfati-Saber, TAC 2006, Fig. 99");
 
@@ -69,14 +69,19 @@ fn figures_writes_an_offline_index_of_every_fixture() {
     assert!(!run.join("figures/animation.gif").exists());
 
     // A second call replaces the runs in place.
-    figures(&fixtures, &out, true).unwrap_or_else(|e| panic!("{e}"));
+    figures(&fixtures, &out, true, true).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]
 fn figures_without_fixtures_is_a_clear_error() {
     let tmp = TempDir::new("figures_none");
-    let err = figures(&tmp.path().join("fixtures"), &tmp.path().join("o"), true)
-        .expect_err("no fixtures directory");
+    let err = figures(
+        &tmp.path().join("fixtures"),
+        &tmp.path().join("o"),
+        true,
+        true,
+    )
+    .expect_err("no fixtures directory");
     assert!(err.to_string().contains("no fixtures"), "{err}");
     let output = Command::new(env!("CARGO_BIN_EXE_flock"))
         .current_dir(tmp.path())
@@ -109,5 +114,80 @@ fn run_quiet_is_accepted_and_writes_the_same_files() {
         let a = fs::read(tmp.path().join("a").join(file)).expect("a");
         let b = fs::read(tmp.path().join("b").join(file)).expect("b");
         assert!(a == b, "{file} differs with --quiet");
+    }
+}
+
+/// The files (not directories) of `dir`, by name.
+fn files_in(dir: &std::path::Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("a directory entry").path())
+        .filter(|path| path.is_file())
+        .map(|path| {
+            let name = path
+                .file_name()
+                .expect("a name")
+                .to_string_lossy()
+                .into_owned();
+            (name, fs::read(&path).expect("a readable file"))
+        })
+        .collect()
+}
+
+/// The `<section>` of `stem` in a gallery page.
+fn section<'a>(index: &'a str, stem: &str) -> &'a str {
+    let start = index
+        .find(&format!("<section id=\"{stem}\">"))
+        .unwrap_or_else(|| panic!("no section for {stem}"));
+    let end = index[start..].find("</section>").expect("a closed section");
+    &index[start..start + end]
+}
+
+/// The gallery committed in `docs/figures` (`flock figures --out docs/figures --no-player`) cannot
+/// go stale silently: the quickest fixture (the Tanner law's) is run and drawn again, and every
+/// file kept for it, and its section of the page, must equal the committed ones byte for byte;
+/// the committed page has a section for every fixture. After changing a fixture, the drawing or
+/// the metrics, regenerate the gallery with that command.
+#[test]
+fn the_committed_gallery_is_what_flock_figures_draws() {
+    let stem = "tanner2003_fig3_fixed_n10";
+    let committed = crate::common::fixtures_dir().join("../docs/figures");
+    let tmp = TempDir::new("figures_gallery");
+    let fixtures = tmp.path().join("fixtures");
+    fs::create_dir_all(&fixtures).expect("create fixtures/");
+    fs::copy(
+        crate::common::fixtures_dir().join(format!("{stem}.ron")),
+        fixtures.join(format!("{stem}.ron")),
+    )
+    .expect("copy the fixture");
+    let out = tmp.path().join("gallery");
+    figures(&fixtures, &out, true, false).unwrap_or_else(|e| panic!("{e}"));
+
+    let stale = "docs/figures is stale: regenerate it with \
+                 `cargo run --release -p flock-cli -- figures --out docs/figures --no-player`";
+    for dir in ["", "figures"] {
+        let drawn = files_in(&out.join(stem).join(dir));
+        let kept = files_in(&committed.join(stem).join(dir));
+        let names = |files: &std::collections::BTreeMap<String, Vec<u8>>| {
+            files.keys().cloned().collect::<Vec<_>>()
+        };
+        assert_eq!(names(&drawn), names(&kept), "{stale}");
+        for (name, bytes) in &drawn {
+            assert!(bytes == &kept[name], "{stem}/{dir}/{name} differs: {stale}");
+        }
+    }
+    let index = fs::read_to_string(committed.join("index.html")).expect("docs/figures/index.html");
+    let drawn = fs::read_to_string(out.join("index.html")).expect("index.html");
+    assert_eq!(section(&drawn, stem), section(&index, stem), "{stale}");
+    for path in crate::common::fixture_paths() {
+        let stem = path.file_stem().expect("a stem").to_string_lossy();
+        section(&index, &stem);
+        assert!(
+            committed
+                .join(&*stem)
+                .join("figures/snapshots.png")
+                .is_file(),
+            "{stale}"
+        );
     }
 }

@@ -1,10 +1,14 @@
-//! The page of the papers' figures that `flock figures` writes: per fixture its paper reference
-//! and description, its snapshot and metric PNGs and a table of its final metrics
-//! ([`index_html`]); one self-contained page, no script, no network.
+//! The page of the papers' figures that `flock figures` writes: per fixture its paper reference,
+//! the paper's caption and statements beside our measures ([`crate::papers`]), its description,
+//! its snapshot and metric PNGs and a table of its final metrics ([`index_html`]); one
+//! self-contained page, no script, no network.
 
 use std::fmt::Write as _;
 
 use flock::RunSummary;
+
+use crate::metrics::Metrics;
+use crate::papers::paper_figure;
 
 /// One fixture on the page.
 #[derive(Clone, Debug)]
@@ -17,8 +21,12 @@ pub struct FigureEntry {
     pub description: String,
     /// The run's summary.
     pub summary: RunSummary,
+    /// The run's `metrics.csv`.
+    pub metrics: Metrics,
     /// The figure files kept, relative to the output directory (`/`-separated).
     pub images: Vec<String>,
+    /// Whether `<stem>/figures/player.html` was kept (the page links to it).
+    pub player: bool,
 }
 
 /// The paper and figure a fixture's stem names: `tac2006_fig11_…` → "TAC 2006 Fig. 11"; stems of
@@ -93,6 +101,8 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
          table { border-collapse: collapse; }\n\
          td { padding: 0.15em 0.8em; border-bottom: 1px solid #eee; }\n\
          td.v { font-family: monospace; text-align: right; }\n\
+         blockquote { font-style: italic; margin: 0.5em 0 0.5em 1.5em; }\n\
+         th { text-align: left; padding: 0.15em 0.8em; border-bottom: 1px solid #ccc; }\n\
          </style>\n</head>\n<body>\n<h1>flock: the papers' figures</h1>\n\
          <p>Written by <code>flock figures</code>: every fixture run and drawn; the tables give the \
          metrics at the final time.</p>\n<ul>\n",
@@ -112,18 +122,42 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
         let _ = writeln!(
             html,
             "<section id=\"{0}\">\n<h2>{1}: <code>{0}</code></h2>\n<p>{2}</p>\n\
-             <p>{3}D, n = {4}, {5} steps to t = {6}; \
-             <a href=\"{0}/figures/player.html\">player</a>, \
+             <p>{3}D, n = {4}, {5} steps to t = {6}; {7}\
              <a href=\"{0}/scenario.ron\">scenario</a>, \
-             <a href=\"{0}/metrics.csv\">metrics.csv</a></p>",
+             <a href=\"{0}/metrics.csv\">metrics.csv</a>, \
+             <a href=\"{0}/flocking.txt\">Definition 5</a></p>",
             escape(&e.stem),
             escape(&e.reference),
             escape(&e.description),
             s.dim,
             s.agents,
             s.steps,
-            s.t
+            s.t,
+            if e.player {
+                format!(
+                    "<a href=\"{}/figures/player.html\">player</a>, ",
+                    escape(&e.stem)
+                )
+            } else {
+                String::new()
+            }
         );
+        if let Some(figure) = paper_figure(&e.stem) {
+            let _ = writeln!(
+                html,
+                "<blockquote>{}</blockquote>\n<table>\n<tr><th>the paper</th><th>ours</th></tr>",
+                escape(figure.caption)
+            );
+            for statement in figure.statements {
+                let _ = writeln!(
+                    html,
+                    "<tr><td>{}</td><td>{}</td></tr>",
+                    escape(statement.paper),
+                    escape(&statement.ours.of(s, &e.metrics))
+                );
+            }
+            html.push_str("</table>\n");
+        }
         for image in &e.images {
             let _ = writeln!(
                 html,

@@ -14,7 +14,8 @@
 //! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
 //! - [`write_figures`]: all of them into a directory, as `flock plot` writes them.
 //! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
-//! - [`index_html`]: the page of every fixture's figures that `flock figures` writes.
+//! - [`index_html`]: the page of every fixture's figures that `flock figures` writes, each beside
+//!   the paper's caption and statements ([`paper_figure`]).
 //!
 //! # Example
 //! ```
@@ -41,6 +42,7 @@ pub mod gallery;
 mod geometry;
 pub mod metrics;
 pub mod metrics_plot;
+pub mod papers;
 pub mod player;
 pub mod plot;
 mod render;
@@ -58,6 +60,7 @@ pub use framing::Framing;
 pub use gallery::{FigureEntry, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
+pub use papers::{Measure, PaperFigure, Statement, paper_figure};
 pub use player::{PlayerOptions, player_html};
 pub use plot::{PlotError, plot_run, plot_run_with};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
