@@ -41,7 +41,7 @@ impl fmt::Display for Report<'_> {
         for (name, value) in &s.diagnostics {
             writeln!(f, "  {name:<22}{value:.6e}")?;
         }
-        writeln!(f, "  {}", s.lattice)?;
+        writeln!(f, "  lattice               {}", s.lattice)?;
         writeln!(
             f,
             "  energy H              {:.6e} -> {:.6e}",

@@ -114,12 +114,12 @@ impl LatticeSummary {
 }
 
 impl fmt::Display for LatticeSummary {
-    /// One line: `lattice: 259 edges (95.4 % within ±10 % of d, bound 3n − 6 = 294), 157 triangles
-    /// (141 equilateral), 0 crossings`.
+    /// One line: `259 edges (95.4 % near d, bound 3n − 6 = 294), 157 triangles (141 equilateral),
+    /// 0 crossings`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "lattice: {} edges ({:.1} % near d",
+            "{} edges ({:.1} % near d",
             self.edges,
             100.0 * self.near_fraction()
         )?;
@@ -351,7 +351,7 @@ mod tests {
         let s = LatticeSummary::measure(&q, &ProximityNet::brute_force(&q, 1.2), 1.0, 0.1);
         assert_eq!(
             s.to_string(),
-            "lattice: 5 edges (100.0 % near d, bound 3n − 6 = 6), 2 triangles (2 equilateral), \
+            "5 edges (100.0 % near d, bound 3n − 6 = 6), 2 triangles (2 equilateral), \
              0 crossings"
         );
     }
