@@ -80,12 +80,13 @@ pub fn write(dir: &Path, name: &str, text: &str) -> String {
     path.to_str().expect("a UTF-8 temporary path").to_owned()
 }
 
-/// The files of a directory by name, with their bytes.
+/// The files of a directory (not its subdirectories) by name, with their bytes.
 pub fn files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     fs::read_dir(dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|entry| {
-            let path = entry.expect("a directory entry").path();
+        .map(|entry| entry.expect("a directory entry").path())
+        .filter(|path| path.is_file())
+        .map(|path| {
             let name = path
                 .file_name()
                 .expect("a name")

@@ -5,7 +5,7 @@ use std::process::Command;
 
 use flock_cli::figures;
 
-use crate::common::TempDir;
+use crate::common::{TempDir, files};
 
 /// A tiny 2D scenario: 8 agents for 0.5 s.
 const TINY: &str = r#"Scenario(
@@ -117,23 +117,6 @@ fn run_quiet_is_accepted_and_writes_the_same_files() {
     }
 }
 
-/// The files (not directories) of `dir`, by name.
-fn files_in(dir: &std::path::Path) -> std::collections::BTreeMap<String, Vec<u8>> {
-    fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|entry| entry.expect("a directory entry").path())
-        .filter(|path| path.is_file())
-        .map(|path| {
-            let name = path
-                .file_name()
-                .expect("a name")
-                .to_string_lossy()
-                .into_owned();
-            (name, fs::read(&path).expect("a readable file"))
-        })
-        .collect()
-}
-
 /// The `<section>` of `stem` in a gallery page.
 fn section<'a>(index: &'a str, stem: &str) -> &'a str {
     let start = index
@@ -166,8 +149,8 @@ fn the_committed_gallery_is_what_flock_figures_draws() {
     let stale = "docs/figures is stale: regenerate it with \
                  `cargo run --release -p flock-cli -- figures --out docs/figures --no-player`";
     for dir in ["", "figures"] {
-        let drawn = files_in(&out.join(stem).join(dir));
-        let kept = files_in(&committed.join(stem).join(dir));
+        let drawn = files(&out.join(stem).join(dir));
+        let kept = files(&committed.join(stem).join(dir));
         let names = |files: &std::collections::BTreeMap<String, Vec<u8>>| {
             files.keys().cloned().collect::<Vec<_>>()
         };
