@@ -19,8 +19,9 @@ use core::f64::consts::PI;
 
 use flock_graph::ProximityNet;
 use flock_math::{Bump, Potential, UnevenSigmoid, Vector, mean};
+use flock_metrics::DefectFactor;
 #[cfg(feature = "obstacles")]
-use flock_metrics::{DefectFactor, ObstacleMetrics};
+use flock_metrics::ObstacleMetrics;
 #[cfg(feature = "obstacles")]
 use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
