@@ -64,10 +64,19 @@ pub fn create_error(py: Python<'_>, error: &CreateError, out: &Path) -> PyErr {
     run_directory_error(py, message, out)
 }
 
-/// A run directory that cannot be resumed (its scenario's errors as `ScenarioError`).
+/// The error of a run directory's `scenario.ron`: an `OSError` when it cannot be read, a
+/// `ScenarioError` when it does not load.
+fn run_scenario_error(py: Python<'_>, error: &ScenarioError) -> PyErr {
+    match error {
+        ScenarioError::Io { path, .. } => run_directory_error(py, error, Path::new(path)),
+        _ => scenario_error(py, error),
+    }
+}
+
+/// A run directory that cannot be resumed.
 pub fn resume_error(py: Python<'_>, error: &ResumeError, dir: &Path) -> PyErr {
     match error {
-        ResumeError::Scenario(e) => scenario_error(py, e),
+        ResumeError::Scenario(e) => run_scenario_error(py, e),
         ResumeError::Nothing {
             partial,
             target,
@@ -85,11 +94,10 @@ pub fn resume_error(py: Python<'_>, error: &ResumeError, dir: &Path) -> PyErr {
     }
 }
 
-/// A run directory that cannot be read (its scenario's errors as `ScenarioError`), `.path` naming
-/// the file at fault.
+/// A run directory that cannot be read, `.path` naming the file at fault.
 pub fn read_error(py: Python<'_>, error: &ReadError) -> PyErr {
     match error {
-        ReadError::Scenario(e) => scenario_error(py, e),
+        ReadError::Scenario(e) => run_scenario_error(py, e),
         ReadError::Io { path, .. } | ReadError::Parse { path, .. } => {
             run_directory_error(py, error, path)
         }

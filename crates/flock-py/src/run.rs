@@ -329,7 +329,7 @@ fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
     for warning in scenario.warnings() {
         let message = std::ffi::CString::new(warning.to_string())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
-        PyErr::warn(py, &category, &message, 1)?;
+        PyErr::warn(py, &category, &message, 2)?;
     }
     Ok(())
 }
