@@ -132,3 +132,26 @@ def test_type_stubs_are_shipped():
     stubs = (package / "__init__.pyi").read_text()
     for name in flock.__all__:
         assert name in stubs, name
+
+
+def test_quickstart_runs(tmp_path, monkeypatch, capsys):
+    path = Path(__file__).resolve().parents[3] / "examples" / "python" / "quickstart.py"
+    namespace = {"__name__": "quickstart", "__file__": str(path)}
+    exec(compile(path.read_text(), str(path), "exec"), namespace)
+    monkeypatch.chdir(tmp_path)
+    namespace["main"]("fig11.png")
+    printed = capsys.readouterr().out
+    assert "connectivity       1\n" in printed
+
+
+def test_readme_example_runs(tmp_path, monkeypatch):
+    root = Path(__file__).resolve().parents[3]
+    readme = (root / "README.md").read_text()
+    section = readme.split("## Use it from Python", 1)[1]
+    code = section.split("```python\n", 1)[1].split("```", 1)[0]
+    (tmp_path / "fixtures").symlink_to(FIXTURES)
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    exec(code, namespace)
+    assert namespace["again"].final.t == 50.0
+    assert namespace["sim"].t == 10.0
