@@ -49,22 +49,26 @@ def compare(cli: str, path: Path, out: Path, fmt: str, repeat: int) -> None:
                "--trajectory-format", fmt]
     py_code = (
         "import time, flock; s = flock.Scenario.load({!r}); start = time.perf_counter(); "
-        "flock.run(s, out={!r}, force=True, trajectory_format={!r}); "
+        "flock.run(s, out={!r}, force=True, trajectory_format={!r}, trajectory={}); "
         "print(time.perf_counter() - start)"
-    ).format(str(path), str(out / "py"), fmt)
-    py_cmd = [sys.executable, "-c", py_code]
-    cli_times, py_times, call_times, import_times = [], [], [], []
+    )
+    py_cmd = [sys.executable, "-c", py_code.format(str(path), str(out / "py"), fmt, True)]
+    lean_cmd = [sys.executable, "-c", py_code.format(str(path), str(out / "lean"), fmt, False)]
+    cli_times, py_times, call_times, lean_times, import_times = [], [], [], [], []
     for _ in range(repeat):
         cli_times.append(timed(cli_cmd)[0])
         wall, printed = timed(py_cmd)
         py_times.append(wall)
         call_times.append(float(printed))
+        lean_times.append(float(timed(lean_cmd)[1]))
         import_times.append(timed([sys.executable, "-c", "import flock"])[0])
     same = all(
         (out / "cli" / f).read_bytes() == (out / "py" / f).read_bytes()
         for f in ("metrics.csv", "final.csv", f"trajectory.{fmt}")
     )
-    c, p, call, imp = (min(x) for x in (cli_times, py_times, call_times, import_times))
+    c, p, call, lean, imp = (
+        min(x) for x in (cli_times, py_times, call_times, lean_times, import_times)
+    )
     median = lambda x: sorted(x)[repeat // 2]  # noqa: E731
     print(f"{path.stem} (best of {repeat}; medians in brackets), identical outputs: {same}")
     print(f"  flock run (process)              {c:.3f} s [{median(cli_times):.3f}]")
@@ -72,6 +76,8 @@ def compare(cli: str, path: Path, out: Path, fmt: str, repeat: int) -> None:
           f"  ratio {p / c:.3f} [{median(py_times) / median(cli_times):.3f}]")
     print(f"  of which `python -c 'import flock'` {imp:.3f} s; flock.run call {call:.3f} s"
           f"  ratio call / CLI process {call / c:.3f} [{median(call_times) / median(cli_times):.3f}]")
+    print(f"  flock.run(..., trajectory=False) call {lean:.3f} s  ratio {lean / c:.3f} "
+          f"[{median(lean_times) / median(cli_times):.3f}] (the trajectory not kept in memory)")
 
 
 def stepping(cli: str, scenario: flock.Scenario, work: Path, repeat: int, steps: int = 1000):

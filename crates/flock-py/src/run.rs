@@ -40,7 +40,8 @@ struct Memory {
     positions: Vec<f64>,
     /// The recorded velocities, when kept.
     velocities: Vec<f64>,
-    /// The last recorded time, positions and velocities.
+    /// The last recorded time, positions and velocities (the positions and velocities only when
+    /// the trajectory is not kept: its last frame holds them).
     last: (f64, Vec<f64>, Vec<f64>),
     /// The dimension and the number of agents.
     dim: usize,
@@ -51,6 +52,24 @@ struct Memory {
 const REAL_COLUMNS: usize = 8;
 
 impl Memory {
+    /// Nothing recorded yet; room for every record of a run of `scenario` from t = 0 (t = 0,
+    /// every `record_every` steps and the last step), the trajectory's only when it is kept.
+    fn new(scenario: &Scenario, keep_trajectory: bool) -> Self {
+        let (steps, every) = (scenario.steps(), scenario.record_every.max(1));
+        let records = 1 + steps / every + u64::from(steps % every != 0);
+        let size = if keep_trajectory {
+            usize::try_from(records).unwrap_or(0) * scenario.agents * scenario.dim
+        } else {
+            0
+        };
+        Self {
+            keep_trajectory,
+            positions: Vec::with_capacity(size),
+            velocities: Vec::with_capacity(size),
+            ..Self::default()
+        }
+    }
+
     fn record(&mut self, record: &Record<'_>) {
         if self.reals.is_empty() {
             self.diagnostics = record.diagnostics.iter().map(|(name, _)| *name).collect();
@@ -68,20 +87,21 @@ impl Memory {
             .push(i64::try_from(m.collisions).unwrap_or(i64::MAX));
         let state = &record.state;
         (self.dim, self.agents) = (state.dim, state.agents());
+        self.last.0 = record.t;
         if self.keep_trajectory {
             self.positions.extend_from_slice(&state.positions);
             self.velocities.extend_from_slice(&state.velocities);
+        } else {
+            self.last.1.clear();
+            self.last.1.extend_from_slice(&state.positions);
+            self.last.2.clear();
+            self.last.2.extend_from_slice(&state.velocities);
         }
-        self.last.0 = record.t;
-        self.last.1.clear();
-        self.last.1.extend_from_slice(&state.positions);
-        self.last.2.clear();
-        self.last.2.extend_from_slice(&state.velocities);
     }
 
     /// The result dict of `flock.Run`.
     fn into_result<'py>(
-        self,
+        mut self,
         py: Python<'py>,
         scenario: &Scenario,
         path: Option<&Path>,
@@ -108,6 +128,12 @@ impl Memory {
             at,
             ("collisions".to_owned(), Column::Integer(self.collisions)),
         );
+        if self.keep_trajectory {
+            let size = self.agents * self.dim;
+            let from = self.positions.len().saturating_sub(size);
+            self.last.1 = self.positions[from..].to_vec();
+            self.last.2 = self.velocities[from..].to_vec();
+        }
         let trajectory = self.keep_trajectory.then(|| {
             let times = match columns.first() {
                 Some((_, Column::Real(t))) => t.clone(),
@@ -228,10 +254,7 @@ fn execute<'py>(
     keep_trajectory: bool,
 ) -> PyResult<(Memory, Option<PathBuf>)> {
     let mut recorder = PyRecorder {
-        memory: Memory {
-            keep_trajectory,
-            ..Memory::default()
-        },
+        memory: Memory::new(scenario, keep_trajectory),
         dir,
         interrupt: Interrupt::new(),
     };
