@@ -1,0 +1,105 @@
+//! flock's errors as Python exceptions (defined in `flock/_errors.py`), each with the message the
+//! CLI prints: `ScenarioError` (a `ValueError`, with the field), `NumericalError` (an
+//! `ArithmeticError`, with the step, time and agent) and `RunDirectoryError` (an `OSError`).
+
+use std::fmt::Display;
+use std::path::Path;
+
+use flock::run_dir::{CreateError, ReadError, ResumeError};
+use flock::{NumericalError, ScenarioError};
+use pyo3::call::PyCallArgs;
+use pyo3::prelude::*;
+
+/// An instance of the exception class `name` of `flock._errors`, called with `args`.
+fn exception<'py>(py: Python<'py>, name: &str, args: impl PyCallArgs<'py>) -> PyErr {
+    let instance = py
+        .import("flock._errors")
+        .and_then(|module| module.getattr(name))
+        .and_then(|class| class.call1(args));
+    match instance {
+        Ok(instance) => PyErr::from_value(instance),
+        Err(error) => error,
+    }
+}
+
+/// `flock.ScenarioError` (a `ValueError`): an invalid scenario, `.field` naming the parameter.
+pub fn scenario_error(py: Python<'_>, error: &ScenarioError) -> PyErr {
+    exception(py, "ScenarioError", (error.to_string(), error.field()))
+}
+
+/// `flock.NumericalError` (an `ArithmeticError`): a blow-up, with `.step`, `.t` and `.agent`.
+pub fn numerical_error(py: Python<'_>, error: &NumericalError) -> PyErr {
+    exception(
+        py,
+        "NumericalError",
+        (error.to_string(), error.steps, error.t, error.fault.agent),
+    )
+}
+
+/// `flock.RunDirectoryError` (an `OSError`): a run directory that cannot be written or read,
+/// `.path` naming it.
+pub fn run_directory_error(py: Python<'_>, message: impl Display, path: &Path) -> PyErr {
+    exception(
+        py,
+        "RunDirectoryError",
+        (message.to_string(), path.display().to_string()),
+    )
+}
+
+/// A run directory that cannot be created: the CLI's messages, with the keyword arguments of
+/// `flock.run` where the CLI names its flags.
+pub fn create_error(py: Python<'_>, error: &CreateError, out: &Path) -> PyErr {
+    let message = match error {
+        CreateError::Occupied { target } => format!(
+            "output directory {} already holds files; choose another `out` or pass force=True to replace it",
+            target.display()
+        ),
+        CreateError::Interrupted { partial, target } => format!(
+            "{} holds an interrupted run; continue it with `flock.resume({:?})`, or pass force=True to start over",
+            partial.display(),
+            target.display().to_string()
+        ),
+        CreateError::Io(e) => e.to_string(),
+    };
+    run_directory_error(py, message, out)
+}
+
+/// The error of a run directory's `scenario.ron`: an `OSError` when it cannot be read, a
+/// `ScenarioError` when it does not load.
+fn run_scenario_error(py: Python<'_>, error: &ScenarioError) -> PyErr {
+    match error {
+        ScenarioError::Io { path, .. } => run_directory_error(py, error, Path::new(path)),
+        _ => scenario_error(py, error),
+    }
+}
+
+/// A run directory that cannot be resumed.
+pub fn resume_error(py: Python<'_>, error: &ResumeError, dir: &Path) -> PyErr {
+    match error {
+        ResumeError::Scenario(e) => run_scenario_error(py, e),
+        ResumeError::Nothing {
+            partial,
+            target,
+            complete: false,
+        } => run_directory_error(
+            py,
+            format!(
+                "there is no interrupted run at {}: start it with `flock.run(scenario, out={:?})`",
+                partial.display(),
+                target.display().to_string()
+            ),
+            dir,
+        ),
+        _ => run_directory_error(py, error, dir),
+    }
+}
+
+/// A run directory that cannot be read, `.path` naming the file at fault.
+pub fn read_error(py: Python<'_>, error: &ReadError) -> PyErr {
+    match error {
+        ReadError::Scenario(e) => run_scenario_error(py, e),
+        ReadError::Io { path, .. } | ReadError::Parse { path, .. } => {
+            run_directory_error(py, error, path)
+        }
+    }
+}

@@ -1,0 +1,30 @@
+//! `flock._flock`, the extension module of the Python package `flock` (`python/flock`): the
+//! [`flock`] crate's scenarios, runs, run directories and simulations, with states and records as
+//! numpy arrays.
+//!
+//! - [`scenario`]: `Scenario` — load, parse, write back, change any parameter by its path,
+//!   explicit initial states.
+//! - [`run`]: `run`, `resume` and `read_run` — whole runs, in memory and in run directories.
+//! - [`simulation`]: `Simulation` — a run driven step by step.
+//! - [`errors`]: flock's errors as the Python exceptions of `flock._errors`, with the CLI's
+//!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
+
+use pyo3::prelude::*;
+
+pub mod errors;
+pub mod interrupt;
+pub mod run;
+pub mod scenario;
+pub mod simulation;
+
+/// The extension module `flock._flock`; the package `flock` re-exports its names.
+#[pymodule]
+fn _flock(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    module.add_class::<scenario::PyScenario>()?;
+    module.add_class::<simulation::PySimulation>()?;
+    module.add_function(wrap_pyfunction!(run::run, module)?)?;
+    module.add_function(wrap_pyfunction!(run::resume, module)?)?;
+    module.add_function(wrap_pyfunction!(run::read_run, module)?)?;
+    module.add("METRICS_HEADER", flock::run_dir::METRICS_HEADER)?;
+    Ok(())
+}

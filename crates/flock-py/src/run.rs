@@ -1,0 +1,459 @@
+//! `flock.run`, `flock.resume` and `flock.read_run`: whole runs of the [`flock`] crate
+//! ([`flock::resume`]) recorded in memory as numpy arrays and, when asked, into the run directory
+//! `flock run --out` writes ([`RunDirectory`]); and any run directory read back ([`read_run`])
+//! into the same arrays.
+//!
+//! Each returns a dict that `flock.Run` wraps: `scenario`, `metrics` (the columns of
+//! `metrics.csv`), `times`, `positions` and `velocities` ((T, n, dim), `None` when the
+//! trajectory is not kept), `final` (t, positions, velocities) and `path`.
+
+use std::io;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use flock::run_dir::{METRICS_HEADER, OutputOptions, RunDirectory, TrajectoryFormat};
+use flock::{Record, Recorder, RunError, Scenario, Start};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyUserWarning, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::{
+    create_error, numerical_error, read_error, resume_error, run_directory_error, scenario_error,
+};
+use crate::interrupt::Interrupt;
+use crate::scenario::PyScenario;
+
+/// The recorded instants of a run, kept as the columns of `metrics.csv` and the trajectory.
+#[derive(Debug, Default)]
+struct Memory {
+    /// Whether to keep every recorded state, or only the last.
+    keep_trajectory: bool,
+    /// The names of the protocol's diagnostic columns (after `energy`).
+    diagnostics: Vec<&'static str>,
+    /// The real-valued columns of `metrics.csv` but `collisions`: t, the six metrics, the energy,
+    /// then the diagnostics.
+    reals: Vec<Vec<f64>>,
+    /// The `collisions` column.
+    collisions: Vec<i64>,
+    /// The recorded positions (frames of n rows of dim), when kept.
+    positions: Vec<f64>,
+    /// The recorded velocities, when kept.
+    velocities: Vec<f64>,
+    /// The last recorded time, positions and velocities (the positions and velocities only when
+    /// the trajectory is not kept: its last frame holds them).
+    last: (f64, Vec<f64>, Vec<f64>),
+    /// The dimension and the number of agents.
+    dim: usize,
+    agents: usize,
+}
+
+/// The columns before the diagnostics: t, the six real metrics, then the energy.
+const REAL_COLUMNS: usize = 8;
+
+impl Memory {
+    /// Nothing recorded yet; room for every record of a run of `scenario` from t = 0 (t = 0,
+    /// every `record_every` steps and the last step), the trajectory's only when it is kept.
+    fn new(scenario: &Scenario, keep_trajectory: bool) -> Self {
+        let (steps, every) = (scenario.steps(), scenario.record_every.max(1));
+        let records = 1 + steps / every + u64::from(steps % every != 0);
+        let size = if keep_trajectory {
+            usize::try_from(records).unwrap_or(0) * scenario.agents * scenario.dim
+        } else {
+            0
+        };
+        Self {
+            keep_trajectory,
+            positions: Vec::with_capacity(size),
+            velocities: Vec::with_capacity(size),
+            ..Self::default()
+        }
+    }
+
+    fn record(&mut self, record: &Record<'_>) {
+        if self.reals.is_empty() {
+            self.diagnostics = record.diagnostics.iter().map(|(name, _)| *name).collect();
+            self.reals = vec![Vec::new(); REAL_COLUMNS + self.diagnostics.len()];
+        }
+        let m = &record.metrics;
+        let values = std::iter::once(record.t)
+            .chain(m.reals())
+            .chain([record.energy])
+            .chain(record.diagnostics.iter().map(|(_, value)| *value));
+        for (column, value) in self.reals.iter_mut().zip(values) {
+            column.push(value);
+        }
+        self.collisions
+            .push(i64::try_from(m.collisions).unwrap_or(i64::MAX));
+        let state = &record.state;
+        (self.dim, self.agents) = (state.dim, state.agents());
+        self.last.0 = record.t;
+        if self.keep_trajectory {
+            self.positions.extend_from_slice(&state.positions);
+            self.velocities.extend_from_slice(&state.velocities);
+        } else {
+            self.last.1.clear();
+            self.last.1.extend_from_slice(&state.positions);
+            self.last.2.clear();
+            self.last.2.extend_from_slice(&state.velocities);
+        }
+    }
+
+    /// The result dict of `flock.Run`.
+    fn into_result<'py>(
+        mut self,
+        py: Python<'py>,
+        scenario: &Scenario,
+        path: Option<&Path>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let mut names = METRICS_HEADER
+            .split(',')
+            .filter(|&name| name != "collisions");
+        let mut columns = Vec::with_capacity(self.reals.len() + 1);
+        for (k, column) in self.reals.into_iter().enumerate() {
+            let name = if k < REAL_COLUMNS {
+                names.next().unwrap_or_default()
+            } else {
+                self.diagnostics[k - REAL_COLUMNS]
+            };
+            columns.push((name.to_owned(), Column::Real(column)));
+        }
+        // `collisions` stands before `energy`, as in metrics.csv
+        let at = if columns.is_empty() {
+            0
+        } else {
+            REAL_COLUMNS - 1
+        };
+        columns.insert(
+            at,
+            ("collisions".to_owned(), Column::Integer(self.collisions)),
+        );
+        if self.keep_trajectory {
+            let size = self.agents * self.dim;
+            let from = self.positions.len().saturating_sub(size);
+            self.last.1 = self.positions[from..].to_vec();
+            self.last.2 = self.velocities[from..].to_vec();
+        }
+        let trajectory = self.keep_trajectory.then(|| {
+            let times = match columns.first() {
+                Some((_, Column::Real(t))) => t.clone(),
+                _ => Vec::new(),
+            };
+            (times, self.positions, self.velocities)
+        });
+        result(
+            py,
+            scenario,
+            columns,
+            trajectory,
+            (self.last, self.agents, self.dim),
+            path,
+        )
+    }
+}
+
+/// A column of `metrics.csv`: `collisions` counts, the others are reals.
+enum Column {
+    Real(Vec<f64>),
+    Integer(Vec<i64>),
+}
+
+/// The dict that `flock.Run` wraps.
+fn result<'py>(
+    py: Python<'py>,
+    scenario: &Scenario,
+    columns: Vec<(String, Column)>,
+    trajectory: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+    ((t, positions, velocities), agents, dim): ((f64, Vec<f64>, Vec<f64>), usize, usize),
+    path: Option<&Path>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item(
+        "scenario",
+        PyScenario {
+            inner: scenario.clone(),
+        },
+    )?;
+    let metrics = PyDict::new(py);
+    for (name, column) in columns {
+        match column {
+            Column::Real(values) => metrics.set_item(name, PyArray1::from_vec(py, values))?,
+            Column::Integer(values) => metrics.set_item(name, PyArray1::from_vec(py, values))?,
+        }
+    }
+    dict.set_item("metrics", metrics)?;
+    match trajectory {
+        Some((times, positions, velocities)) => {
+            let frames = times.len();
+            dict.set_item("times", PyArray1::from_vec(py, times))?;
+            for (key, rows) in [("positions", positions), ("velocities", velocities)] {
+                let array = PyArray1::from_vec(py, rows).reshape([frames, agents, dim])?;
+                dict.set_item(key, array)?;
+            }
+        }
+        None => {
+            for key in ["times", "positions", "velocities"] {
+                dict.set_item(key, py.None())?;
+            }
+        }
+    }
+    let last = PyDict::new(py);
+    last.set_item("t", t)?;
+    for (key, rows) in [("positions", positions), ("velocities", velocities)] {
+        let array = PyArray1::from_vec(py, rows).reshape([agents, dim])?;
+        last.set_item(key, array)?;
+    }
+    dict.set_item("final", last)?;
+    dict.set_item("path", path.map(|p| p.display().to_string()))?;
+    Ok(dict)
+}
+
+/// Records in memory and, when given, into a run directory; stops on Ctrl-C.
+struct PyRecorder {
+    memory: Memory,
+    dir: Option<RunDirectory>,
+    interrupt: Interrupt,
+}
+
+impl Recorder for PyRecorder {
+    type Error = io::Error;
+
+    fn record(&mut self, record: &Record<'_>) -> io::Result<()> {
+        if let Some(dir) = &mut self.dir {
+            dir.record(record)?;
+        }
+        self.memory.record(record);
+        Ok(())
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        self.dir
+            .as_ref()
+            .is_some_and(|dir| dir.wants_checkpoint(steps))
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> io::Result<()> {
+        self.dir
+            .as_mut()
+            .map_or(Ok(()), |dir| dir.checkpoint(start))
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.interrupt.requested()
+    }
+}
+
+/// Runs `scenario` from `start` (t = 0 when `None`) with the GIL released, into `dir` when given;
+/// on failure keeps `dir` as `flock run` does (resumable after Ctrl-C or a failed write, marked
+/// failed after a blow-up) and raises the error.
+fn execute<'py>(
+    py: Python<'py>,
+    scenario: &Scenario,
+    start: Option<&Start>,
+    dir: Option<RunDirectory>,
+    keep_trajectory: bool,
+) -> PyResult<(Memory, Option<PathBuf>)> {
+    let mut recorder = PyRecorder {
+        memory: Memory::new(scenario, keep_trajectory),
+        dir,
+        interrupt: Interrupt::new(),
+    };
+    let (outcome, recorder) = py.detach(move || {
+        let outcome = flock::resume(scenario, start, &mut recorder).map(|_| ());
+        (outcome, recorder)
+    });
+    let PyRecorder {
+        memory,
+        dir,
+        interrupt,
+    } = recorder;
+    let error = match outcome {
+        Ok(()) => {
+            let path = match dir {
+                Some(dir) => {
+                    let partial = dir.partial().to_owned();
+                    let finished = dir
+                        .finish()
+                        .map_err(|e| run_directory_error(py, e, &partial))?;
+                    Some(finished.path)
+                }
+                None => None,
+            };
+            return Ok((memory, path));
+        }
+        Err(error) => error,
+    };
+    let (why, resumable, raised) = match &error {
+        RunError::Scenario(e) => {
+            if let Some(dir) = dir {
+                dir.abandon();
+            }
+            return Err(scenario_error(py, e));
+        }
+        RunError::Numerical(e) => (error.to_string(), false, numerical_error(py, e)),
+        RunError::Record(e) => {
+            let path = dir
+                .as_ref()
+                .map_or_else(PathBuf::new, |d| d.partial().to_owned());
+            (
+                format!("writing failed: {e}"),
+                true,
+                run_directory_error(py, &error, &path),
+            )
+        }
+        RunError::Interrupted { .. } => {
+            let raised = interrupt
+                .into_raised()
+                .unwrap_or_else(|| PyKeyboardInterrupt::new_err(error.to_string()));
+            (format!("{error} by Ctrl-C"), true, raised)
+        }
+    };
+    let Some(dir) = dir else {
+        return Err(interrupted_message(py, raised, &error, None));
+    };
+    match dir.keep_incomplete(&why, resumable) {
+        Ok(partial) => Err(interrupted_message(py, raised, &error, Some(&partial))),
+        Err(e) => Err(run_directory_error(
+            py,
+            format!("{why}; cannot mark the run incomplete: {e}"),
+            Path::new(""),
+        )),
+    }
+}
+
+/// A `KeyboardInterrupt` of a run carries the CLI's message: the step reached and, with a run
+/// directory, where the records are kept and how to continue; other errors stay as they are.
+fn interrupted_message(
+    py: Python<'_>,
+    raised: PyErr,
+    error: &RunError<io::Error>,
+    partial: Option<&Path>,
+) -> PyErr {
+    if !matches!(error, RunError::Interrupted { .. })
+        || !raised.is_instance_of::<PyKeyboardInterrupt>(py)
+    {
+        return raised;
+    }
+    let message = match partial {
+        Some(partial) => format!(
+            "{error}; the records so far are kept in {}; continue with `flock.resume({:?})`",
+            partial.display(),
+            partial.display().to_string()
+        ),
+        None => error.to_string(),
+    };
+    PyKeyboardInterrupt::new_err(message)
+}
+
+/// Warns of each of the scenario's warnings (a step above the largest stable step, agents
+/// starting at one point), as `flock run` prints them.
+fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
+    let category = py.get_type::<PyUserWarning>();
+    for warning in scenario.warnings() {
+        let message = std::ffi::CString::new(warning.to_string())
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        PyErr::warn(py, &category, &message, 2)?;
+    }
+    Ok(())
+}
+
+/// Runs `scenario` to its end and returns its records (wrapped by `flock.run` as a `flock.Run`).
+///
+/// With `out`, also writes the run directory of `flock run --out` (byte for byte the same):
+/// `trajectory_format` `"csv"` or `"npy"`, a checkpoint every `checkpoint_every` steps, an
+/// existing directory replaced only with `force`. `trajectory=False` keeps only the final state in
+/// memory. The GIL is released while the run steps; Ctrl-C raises `KeyboardInterrupt` after the
+/// current step, leaving `out` resumable (`flock.resume(out)`).
+#[pyfunction]
+#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false))]
+pub fn run<'py>(
+    py: Python<'py>,
+    scenario: &PyScenario,
+    out: Option<PathBuf>,
+    trajectory: bool,
+    trajectory_format: &str,
+    checkpoint_every: u64,
+    force: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let format = TrajectoryFormat::from_str(trajectory_format).map_err(PyValueError::new_err)?;
+    let scenario = &scenario.inner;
+    warn(py, scenario)?;
+    let dir = match &out {
+        Some(out) => {
+            let options = OutputOptions {
+                force,
+                format,
+                checkpoint_every,
+            };
+            Some(
+                RunDirectory::create_with(out, scenario, &options)
+                    .map_err(|e| create_error(py, &e, out))?,
+            )
+        }
+        None => None,
+    };
+    let (memory, path) = execute(py, scenario, None, dir, trajectory)?;
+    memory.into_result(py, scenario, path.as_deref())
+}
+
+/// Continues the interrupted or killed run in `dir` (or `dir.partial`) from its last checkpoint,
+/// as `flock run --resume` does (the finished directory is byte-identical to an uninterrupted
+/// run's), and returns the whole run read back from it.
+#[pyfunction]
+#[pyo3(signature = (dir, *, checkpoint_every = 1000))]
+pub fn resume<'py>(
+    py: Python<'py>,
+    dir: PathBuf,
+    checkpoint_every: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (directory, scenario, start) =
+        RunDirectory::resume(&dir, checkpoint_every).map_err(|e| resume_error(py, &e, &dir))?;
+    let (_, path) = execute(py, &scenario, start.as_ref(), Some(directory), false)?;
+    let path = path.unwrap_or(dir);
+    read_run(py, path)
+}
+
+/// Reads the run directory `dir` (complete, or an interrupted `DIR.partial`): its scenario, the
+/// columns of `metrics.csv` and the trajectory (`trajectory.csv` or `trajectory.npy`); the final
+/// state is the last recorded one.
+#[pyfunction]
+pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+    let files = py
+        .detach(|| flock::read_run(&dir))
+        .map_err(|e| read_error(py, &e))?;
+    let trajectory = files.trajectory;
+    let (dim, agents, frames) = (trajectory.dim, trajectory.agents, trajectory.frames());
+    let last = match frames.checked_sub(1) {
+        Some(k) => (
+            trajectory.times[k],
+            trajectory.positions_at(k).to_vec(),
+            trajectory.velocities_at(k).to_vec(),
+        ),
+        None => (f64::NAN, Vec::new(), Vec::new()),
+    };
+    let columns = files
+        .metrics
+        .into_iter()
+        .map(|(name, values)| {
+            let column = if name == "collisions" {
+                // whole numbers, as written
+                Column::Integer(values.iter().map(|&x| x as i64).collect())
+            } else {
+                Column::Real(values)
+            };
+            (name, column)
+        })
+        .collect();
+    result(
+        py,
+        &files.scenario,
+        columns,
+        Some((
+            trajectory.times,
+            trajectory.positions,
+            trajectory.velocities,
+        )),
+        (last, agents, dim),
+        Some(&dir),
+    )
+}

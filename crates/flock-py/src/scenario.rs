@@ -1,0 +1,295 @@
+//! `flock.Scenario`: a scenario of the [`flock`] crate ([`Scenario`]) from Python — loaded from a
+//! RON file or text, written back, any parameter read or changed by its dotted path
+//! ([`Scenario::value`], [`Scenario::with_values`]) and explicit initial states from numpy arrays,
+//! each validated as `flock validate` does.
+
+use std::path::PathBuf;
+
+use flock::serde_json::{Map, Number, Value};
+use flock::{Cloud, Scenario, ScenarioError};
+use numpy::{AllowTypeChange, PyArrayLike2};
+use pyo3::IntoPyObjectExt;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+use crate::errors::scenario_error;
+
+/// A flocking scenario: the dimension, agents, algorithm and its gains, initial condition, step,
+/// duration and recording, as a RON scenario file writes them.
+///
+/// Build one with `Scenario.load(path)` or `Scenario.from_ron(text)`; change it with
+/// `with_values({"algorithm.c1": 0.05, "agents": 400})` or `with_initial(positions, velocities)`
+/// (both return a new scenario, validated). Invalid values raise `flock.ScenarioError` with the
+/// CLI's message and the field in `.field`.
+#[pyclass(name = "Scenario", module = "flock", frozen, eq)]
+#[derive(Clone, Debug, PartialEq)]
+pub struct PyScenario {
+    /// The scenario, validated.
+    pub inner: Scenario,
+}
+
+#[pymethods]
+impl PyScenario {
+    /// Reads and validates the RON scenario file at `path`.
+    ///
+    /// Raises `flock.ScenarioError` when the file cannot be read, is not a scenario (the message
+    /// gives the line and column) or holds a value out of its domain.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        Scenario::load(&path)
+            .map(|inner| Self { inner })
+            .map_err(|e| scenario_error(py, &e))
+    }
+
+    /// Parses and validates scenario text in RON; `origin` names the text in error messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, origin = "<string>"))]
+    fn from_ron(py: Python<'_>, text: &str, origin: &str) -> PyResult<Self> {
+        Scenario::parse(text, origin)
+            .map(|inner| Self { inner })
+            .map_err(|e| scenario_error(py, &e))
+    }
+
+    /// The scenario as RON text with every default filled in (what a run writes to
+    /// `scenario.ron`; `Scenario.from_ron` reads it back).
+    fn to_ron(&self) -> PyResult<String> {
+        self.inner
+            .to_ron()
+            .map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// The value of the parameter at the dotted `path` (`"alpha.d"`, `"algorithm.c1"`,
+    /// `"obstacles.0.radius"`): numbers, strings, lists, dicts (an enum as `{"Variant": ...}`),
+    /// `None` for a default left unset.
+    ///
+    /// Raises `flock.ScenarioError` for a path that names no parameter (the message lists those
+    /// there are).
+    fn value(&self, py: Python<'_>, path: &str) -> PyResult<Py<PyAny>> {
+        let value = self.inner.value(path).map_err(|e| scenario_error(py, &e))?;
+        to_python(py, &value)
+    }
+
+    /// A copy with the parameter at each dotted path of `values` replaced (`{"algorithm.c1":
+    /// 0.05, "agents": 400}`), validated as a loaded scenario: defaults left unset follow the
+    /// values they depend on (r = 1.2 d when only `alpha.d` changes).
+    ///
+    /// Raises `flock.ScenarioError` naming the field: a path that names no parameter, a value of
+    /// the wrong type, or one out of its domain.
+    fn with_values(&self, py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let mut changes = Vec::with_capacity(values.len());
+        for (path, value) in values.iter() {
+            let path: String = path.extract()?;
+            let value = to_json(&value, &path).map_err(|e| scenario_error(py, &e))?;
+            changes.push((path, value));
+        }
+        self.inner
+            .with_values(changes)
+            .map(|inner| Self { inner })
+            .map_err(|e| scenario_error(py, &e))
+    }
+
+    /// A copy that starts from the given state: `positions` and `velocities` are n × dim arrays
+    /// (velocities zero when omitted), agent i on row i. `agents` becomes n; the state is written
+    /// into the scenario (`initial: (positions: Explicit([...]), ...)`), so a run directory's
+    /// `scenario.ron` still reruns it.
+    ///
+    /// Raises `flock.ScenarioError` for rows of another dimension than the scenario's or values
+    /// that are not finite.
+    #[pyo3(signature = (positions, velocities = None))]
+    fn with_initial(
+        &self,
+        py: Python<'_>,
+        positions: PyArrayLike2<'_, f64, AllowTypeChange>,
+        velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+    ) -> PyResult<Self> {
+        let mut inner = self.inner.clone();
+        let rows = |array: &PyArrayLike2<'_, f64, AllowTypeChange>| -> Vec<Vec<f64>> {
+            array
+                .as_array()
+                .outer_iter()
+                .map(|row| row.to_vec())
+                .collect()
+        };
+        let positions = rows(&positions);
+        inner.agents = positions.len();
+        inner.initial.positions = Cloud::Explicit(positions);
+        inner.initial.velocities = velocities.map_or(Cloud::Zero, |v| Cloud::Explicit(rows(&v)));
+        inner.validate().map_err(|e| scenario_error(py, &e))?;
+        Ok(Self { inner })
+    }
+
+    /// The warnings of `flock validate` for this valid scenario (a step above the largest stable
+    /// step, agents starting at the same point).
+    fn warnings(&self) -> Vec<String> {
+        self.inner
+            .warnings()
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+
+    /// The scenario's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.inner.name
+    }
+
+    /// The dimension, 2 or 3.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim
+    }
+
+    /// The number of agents n.
+    #[getter]
+    fn agents(&self) -> usize {
+        self.inner.agents
+    }
+
+    /// The time step h.
+    #[getter]
+    fn step(&self) -> f64 {
+        self.inner.step
+    }
+
+    /// The simulated time T.
+    #[getter]
+    fn duration(&self) -> f64 {
+        self.inner.duration
+    }
+
+    /// The number of steps of a run, ⌈T / h⌉.
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.inner.steps()
+    }
+
+    /// Steps between records (the last step is always recorded).
+    #[getter]
+    fn record_every(&self) -> u64 {
+        self.inner.record_every
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Scenario(name={:?}, dim={}, agents={}, steps={}, step={})",
+            self.inner.name,
+            self.inner.dim,
+            self.inner.agents,
+            self.inner.steps(),
+            self.inner.step
+        )
+    }
+
+    /// Pickles as its RON text.
+    fn __reduce__(slf: &Bound<'_, Self>) -> PyResult<(Py<PyAny>, (String,))> {
+        let from_ron = slf.get_type().getattr("from_ron")?.unbind();
+        Ok((from_ron, (slf.get().to_ron()?,)))
+    }
+}
+
+/// `value` (a Python number, string, bool, `None`, list, tuple or dict) as JSON, for the
+/// parameter at `path`.
+///
+/// # Errors
+/// Any other type, or a float that is not finite, as an invalid value of `path`.
+fn to_json(value: &Bound<'_, PyAny>, path: &str) -> Result<Value, ScenarioError> {
+    let invalid = |why: &str| {
+        ScenarioError::invalid(
+            path,
+            Repr(
+                value
+                    .repr()
+                    .map_or_else(|_| "?".to_owned(), |r| r.to_string()),
+            ),
+            why,
+            "give a number, a string, a bool, None, or a list or dict of them",
+        )
+    };
+    if value.is_none() {
+        Ok(Value::Null)
+    } else if let Ok(flag) = value.cast::<PyBool>() {
+        Ok(Value::Bool(flag.is_true()))
+    } else if value.is_instance_of::<PyInt>() {
+        if let Ok(integer) = value.extract::<i64>() {
+            Ok(Value::from(integer))
+        } else if let Ok(integer) = value.extract::<u64>() {
+            Ok(Value::from(integer))
+        } else {
+            Err(invalid("the integer does not fit in 64 bits"))
+        }
+    } else if let Ok(float) = value.cast::<PyFloat>() {
+        Number::from_f64(float.value())
+            .map(Value::Number)
+            .ok_or_else(|| invalid("the number is not finite"))
+    } else if let Ok(text) = value.cast::<PyString>() {
+        Ok(Value::String(text.to_string()))
+    } else if let Ok(dict) = value.cast::<PyDict>() {
+        let mut map = Map::new();
+        for (key, item) in dict.iter() {
+            let key: String = key
+                .extract()
+                .map_err(|_| invalid("a dict's keys must be strings"))?;
+            let item = to_json(&item, &format!("{path}.{key}"))?;
+            map.insert(key, item);
+        }
+        Ok(Value::Object(map))
+    } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        value
+            .try_iter()
+            .map_err(|_| invalid("the list cannot be read"))?
+            .enumerate()
+            .map(|(k, item)| {
+                let item = item.map_err(|_| invalid("the list cannot be read"))?;
+                to_json(&item, &format!("{path}.{k}"))
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map(Value::Array)
+    } else if let Ok(integer) = value.extract::<i64>() {
+        // numpy's integer scalars
+        Ok(Value::from(integer))
+    } else if let Ok(list) = value.call_method0("tolist") {
+        // numpy's arrays and other scalars
+        to_json(&list, path)
+    } else {
+        Err(invalid("this type is not a parameter value"))
+    }
+}
+
+/// A Python `repr`, shown as it is in an error's value.
+struct Repr(String);
+
+impl std::fmt::Debug for Repr {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// A JSON value as Python: `None`, bool, int, float, str, list or dict.
+fn to_python(py: Python<'_>, value: &Value) -> PyResult<Py<PyAny>> {
+    match value {
+        Value::Null => Ok(py.None()),
+        Value::Bool(flag) => flag.into_py_any(py),
+        Value::Number(number) => match (number.as_i64(), number.as_u64()) {
+            (Some(integer), _) => integer.into_py_any(py),
+            (None, Some(integer)) => integer.into_py_any(py),
+            (None, None) => number.as_f64().unwrap_or(f64::NAN).into_py_any(py),
+        },
+        Value::String(text) => text.into_py_any(py),
+        Value::Array(items) => {
+            let items = items
+                .iter()
+                .map(|item| to_python(py, item))
+                .collect::<PyResult<Vec<_>>>()?;
+            PyList::new(py, items)?.into_py_any(py)
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (key, item) in map {
+                dict.set_item(key, to_python(py, item)?)?;
+            }
+            dict.into_py_any(py)
+        }
+    }
+}

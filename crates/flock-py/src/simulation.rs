@@ -1,0 +1,210 @@
+//! `flock.Simulation`: a scenario's [`DynSimulation`] driven step by step from Python — stepped
+//! with the GIL released, its state as numpy arrays (agents in original order), its metrics and
+//! energy, and its state replaced to perturb it.
+
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use flock::DynSimulation;
+use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike2, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::{numerical_error, scenario_error};
+use crate::interrupt::Interrupt;
+use crate::scenario::PyScenario;
+
+/// The simulation of a scenario, stepped from Python: `step(k)` advances it k steps of h (the GIL
+/// released; Ctrl-C stops it between steps), `q` and `p` are its positions and velocities as
+/// n × dim arrays (copies, agents in original order), `t` its time; `metrics()` and `energy()`
+/// measure it as a run records it. Stepping a fresh `Simulation(scenario)` `scenario.steps`
+/// times gives the bits of `flock.run(scenario).final`.
+///
+/// `positions` and `velocities` (n × dim arrays) start it from an explicit state instead of the
+/// scenario's initial condition (velocities zero when omitted).
+#[pyclass(name = "Simulation", module = "flock", frozen)]
+pub struct PySimulation {
+    /// Locked only with the GIL released, so that a thread stepping it (which takes the GIL back
+    /// between steps to check for Ctrl-C) and one reading it cannot wait on each other.
+    sim: Mutex<DynSimulation>,
+}
+
+impl PySimulation {
+    /// The simulation, for the calling thread alone (call with the GIL released).
+    fn lock(&self) -> MutexGuard<'_, DynSimulation> {
+        self.sim.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// The rows of an n × dim array, row by row.
+fn rows(array: &PyArrayLike2<'_, f64, AllowTypeChange>) -> Vec<f64> {
+    array.as_array().iter().copied().collect()
+}
+
+#[pymethods]
+impl PySimulation {
+    #[new]
+    #[pyo3(signature = (scenario, positions = None, velocities = None))]
+    fn new(
+        py: Python<'_>,
+        scenario: &PyScenario,
+        positions: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+        velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+    ) -> PyResult<Self> {
+        let scenario = &scenario.inner;
+        let sim = if positions.is_none() && velocities.is_none() {
+            DynSimulation::new(scenario)
+        } else {
+            let start = DynSimulation::new(scenario).map_err(|e| scenario_error(py, &e))?;
+            let state = start.state();
+            let q = positions
+                .as_ref()
+                .map_or_else(|| state.positions.to_vec(), rows);
+            let p = velocities
+                .as_ref()
+                .map_or_else(|| state.velocities.to_vec(), rows);
+            DynSimulation::from_state(scenario, &q, &p, 0)
+        }
+        .map_err(|e| scenario_error(py, &e))?;
+        sim.check_health().map_err(|e| numerical_error(py, &e))?;
+        Ok(Self {
+            sim: Mutex::new(sim),
+        })
+    }
+
+    /// Advances the state by `k` steps of h, checking after each step that it is finite and that
+    /// no agent outran the interaction range (as a run does).
+    ///
+    /// Raises `flock.NumericalError` at a blow-up (the state is then the bad one), and
+    /// `KeyboardInterrupt` on Ctrl-C after the current step (the state is that of the steps done).
+    #[pyo3(signature = (k = 1))]
+    fn step(&self, py: Python<'_>, k: u64) -> PyResult<()> {
+        let (health, interrupt) = py.detach(|| {
+            let mut sim = self.lock();
+            let interrupt = Interrupt::new();
+            for _ in 0..k {
+                sim.step();
+                let health = sim.check_health();
+                if health.is_err() {
+                    return (health, interrupt);
+                }
+                if interrupt.requested() {
+                    break;
+                }
+            }
+            (Ok(()), interrupt)
+        });
+        health.map_err(|e| numerical_error(py, &e))?;
+        interrupt.into_raised().map_or(Ok(()), Err)
+    }
+
+    /// Replaces the positions and/or velocities (n × dim arrays) at the current time, e.g. to
+    /// perturb the flock; stepping goes on from the new state.
+    ///
+    /// Raises `flock.ScenarioError` for arrays of another shape or values that are not finite.
+    #[pyo3(signature = (positions = None, velocities = None))]
+    fn set_state(
+        &self,
+        py: Python<'_>,
+        positions: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+        velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+    ) -> PyResult<()> {
+        let q = positions.as_ref().map(rows);
+        let p = velocities.as_ref().map(rows);
+        py.detach(|| {
+            let mut sim = self.lock();
+            let state = sim.state();
+            let q = q.unwrap_or_else(|| state.positions.to_vec());
+            let p = p.unwrap_or_else(|| state.velocities.to_vec());
+            let changed = DynSimulation::from_state(sim.scenario(), &q, &p, sim.steps())?;
+            *sim = changed;
+            Ok(sim.check_health())
+        })
+        .map_err(|e| scenario_error(py, &e))?
+        .map_err(|e| numerical_error(py, &e))
+    }
+
+    /// The positions, an n × dim array (a copy), agent i on row i.
+    #[getter]
+    fn q<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (rows, agents, dim) = py.detach(|| {
+            let state = self.lock().state().into_owned();
+            (state.positions.to_vec(), state.agents(), state.dim)
+        });
+        PyArray1::from_vec(py, rows).reshape([agents, dim])
+    }
+
+    /// The velocities, an n × dim array (a copy), agent i on row i.
+    #[getter]
+    fn p<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (rows, agents, dim) = py.detach(|| {
+            let state = self.lock().state().into_owned();
+            (state.velocities.to_vec(), state.agents(), state.dim)
+        });
+        PyArray1::from_vec(py, rows).reshape([agents, dim])
+    }
+
+    /// The time t = steps · h.
+    #[getter]
+    fn t(&self, py: Python<'_>) -> f64 {
+        py.detach(|| self.lock().time())
+    }
+
+    /// The number of steps taken.
+    #[getter]
+    fn steps(&self, py: Python<'_>) -> u64 {
+        py.detach(|| self.lock().steps())
+    }
+
+    /// The dimension, 2 or 3.
+    #[getter]
+    fn dim(&self, py: Python<'_>) -> usize {
+        py.detach(|| self.lock().dim())
+    }
+
+    /// The number of agents n.
+    #[getter]
+    fn agents(&self, py: Python<'_>) -> usize {
+        py.detach(|| self.lock().agents())
+    }
+
+    /// The scenario simulated.
+    #[getter]
+    fn scenario(&self, py: Python<'_>) -> PyScenario {
+        let inner = py.detach(|| self.lock().scenario().clone());
+        PyScenario { inner }
+    }
+
+    /// The flocking metrics of the current state (TAC 2006 Section VIII), named as the columns of
+    /// `metrics.csv`: connectivity, giant_component, cohesion_radius, deviation_energy,
+    /// velocity_mismatch, min_distance (floats) and collisions (an int).
+    fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let metrics = py.detach(|| self.lock().metrics());
+        let dict = PyDict::new(py);
+        let names = flock::run_dir::METRICS_HEADER.split(',').skip(1);
+        for (name, value) in names.zip(metrics.reals()) {
+            dict.set_item(name, value)?;
+        }
+        dict.set_item("collisions", metrics.collisions)?;
+        Ok(dict)
+    }
+
+    /// The energy H of the current state: the Hamiltonian the algorithm's theorem makes
+    /// non-increasing (the `energy` column of `metrics.csv`).
+    fn energy(&self, py: Python<'_>) -> f64 {
+        py.detach(|| self.lock().energy())
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        py.detach(|| {
+            let sim = self.lock();
+            format!(
+                "Simulation(scenario={:?}, dim={}, agents={}, steps={}, t={})",
+                sim.scenario().name,
+                sim.dim(),
+                sim.agents(),
+                sim.steps(),
+                sim.time()
+            )
+        })
+    }
+}
