@@ -13,6 +13,8 @@
 //!   resumable), [`read_run`] reads it back.
 //! - [`stability`]: the largest stable step, and the warnings of a valid scenario;
 //!   [`NumericalError`]: a blow-up with its step, agent and likely cause.
+//! - [`sweep`]: parameter sweeps and ensembles — a grid of values × seeds, one row of
+//!   `runs.csv` per run, resumable, in shards.
 //! - [`synthetic`]: lattices of any size for benchmarks.
 //! - The member crates, re-exported: [`math`], [`graph`], [`protocols`], [`obstacles`],
 //!   [`metrics`], and [`glam`]; [`prelude`] for a glob import.
@@ -38,6 +40,7 @@ pub mod run_dir;
 pub mod scenario;
 pub mod simulation;
 pub mod stability;
+pub mod sweep;
 pub mod synthetic;
 mod validate;
 

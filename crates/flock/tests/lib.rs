@@ -13,3 +13,4 @@ mod run_dir;
 mod snapshots;
 mod stability;
 mod storage_order;
+mod sweep;

@@ -1,0 +1,185 @@
+//! One run of a sweep reduced to a row of `runs.csv`.
+
+use std::path::Path;
+use std::time::Instant;
+
+use flock_metrics::FlockMetrics;
+use serde_json::Value;
+
+use super::{RunSpec, Sweep};
+use crate::RunDirectory;
+use crate::run::{RunError, RunSummary, run};
+
+/// What a finished run measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// The metrics at the final time (C, C*, R, Ẽ, K̃ of `runs.csv`).
+    pub metrics: FlockMetrics,
+    /// The least distance between two agents at any record.
+    pub min_distance: f64,
+    /// The most pairs closer than the collision distance at any record.
+    pub collisions: usize,
+    /// The time after which the net stays connected (C = 1 at that record and every later one);
+    /// `None` when it is not connected at the end.
+    pub connected_from: Option<f64>,
+    /// TAC 2006 Definition 5 over the last quarter: an α-flock, and a strict one (`None` for a
+    /// run without records in its window).
+    pub alpha_flock: Option<(bool, bool)>,
+}
+
+impl Outcome {
+    /// The outcome of a run's summary, Definition 5 judged with the sweep's criteria.
+    #[must_use]
+    pub fn of(summary: &RunSummary, sweep: &Sweep) -> Self {
+        let history = &summary.history;
+        let min_distance = history
+            .iter()
+            .map(|(_, m)| m.min_distance)
+            .fold(f64::INFINITY, f64::min);
+        let collisions = history.iter().map(|(_, m)| m.collisions).max().unwrap_or(0);
+        let connected_from = match history.iter().rposition(|(_, m)| m.connectivity < 1.0) {
+            None => history.first().map(|(t, _)| *t),
+            Some(k) => history.get(k + 1).map(|(t, _)| *t),
+        };
+        let alpha_flock = summary
+            .verdict(&sweep.criteria())
+            .map(|v| (v.is_alpha_flocking(), v.is_strict()));
+        Self {
+            metrics: summary.metrics,
+            min_distance,
+            collisions,
+            connected_from,
+            alpha_flock,
+        }
+    }
+}
+
+/// One row of `runs.csv`, and the run's wall time (kept in `times.csv`: a wall time is never the
+/// same twice, and `runs.csv` must be).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunRow {
+    /// The run's index in run order.
+    pub index: usize,
+    /// The run's id ([`RunSpec::id`]).
+    pub id: String,
+    /// Its axis values.
+    pub values: Vec<Value>,
+    /// Its seed.
+    pub seed: u64,
+    /// What it measured, or why it has no measures (an invalid value, a numerical blow-up).
+    pub outcome: Result<Outcome, String>,
+    /// Seconds of wall-clock time, from building the scenario to the last record.
+    pub wall_time: f64,
+}
+
+/// The header of `runs.csv` for the sweep's axes.
+#[must_use]
+pub fn header(sweep: &Sweep) -> Vec<String> {
+    let mut header = vec!["run".to_owned(), "id".to_owned()];
+    header.extend(sweep.axes.iter().map(|a| a.path.clone()));
+    header.extend(
+        [
+            "seed",
+            "connectivity",
+            "giant_component",
+            "cohesion_radius",
+            "deviation_energy",
+            "velocity_mismatch",
+            "min_distance",
+            "collisions",
+            "connected_from",
+            "alpha_flock",
+            "strict_alpha_flock",
+            "error",
+        ]
+        .map(str::to_owned),
+    );
+    header
+}
+
+impl RunRow {
+    /// The row's fields, aligned with [`header`]: numbers as Rust prints them (shortest round
+    /// trip), axis values as JSON, empty where a run has no value.
+    #[must_use]
+    pub fn fields(&self) -> Vec<String> {
+        let mut fields = vec![self.index.to_string(), self.id.clone()];
+        fields.extend(self.values.iter().map(|v| match v {
+            Value::String(s) => s.clone(),
+            other => other.to_string(),
+        }));
+        fields.push(self.seed.to_string());
+        match &self.outcome {
+            Ok(o) => {
+                let m = &o.metrics;
+                fields.extend(
+                    [
+                        m.connectivity,
+                        m.giant_component,
+                        m.cohesion_radius,
+                        m.deviation_energy,
+                        m.velocity_mismatch,
+                        o.min_distance,
+                    ]
+                    .map(|x| x.to_string()),
+                );
+                fields.push(o.collisions.to_string());
+                fields.push(o.connected_from.map_or_else(String::new, |t| t.to_string()));
+                let (alpha, strict) = o
+                    .alpha_flock
+                    .map_or((String::new(), String::new()), |(a, s)| {
+                        (a.to_string(), s.to_string())
+                    });
+                fields.extend([alpha, strict, String::new()]);
+            }
+            Err(error) => {
+                fields.extend(std::iter::repeat_n(String::new(), 10));
+                fields.push(error.clone());
+            }
+        }
+        fields
+    }
+}
+
+/// Runs `spec` of `sweep` on the current thread's rayon pool (the sweep's workers give each run a
+/// pool of one thread) and reduces it to its row. With `keep`, the run's directory is written to
+/// `keep/<id>` as `flock run` writes it. Never fails: an invalid value or a numerical blow-up is
+/// the row's error.
+#[must_use]
+pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
+    let start = Instant::now();
+    let id = spec.id(&sweep.axes);
+    let outcome = sweep
+        .scenario(spec)
+        .map_err(|e| e.to_string())
+        .and_then(|scenario| match keep {
+            None => run(&scenario, &mut ()).map_err(|e| e.to_string()),
+            Some(dir) => keep_run(&scenario, &dir.join(&id)),
+        })
+        .map(|summary| Outcome::of(&summary, sweep));
+    RunRow {
+        index: spec.index,
+        id,
+        values: spec.values.clone(),
+        seed: spec.seed,
+        outcome,
+        wall_time: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The run written to `dir` (replaced if present) as `flock run --out dir` writes it.
+fn keep_run(scenario: &crate::Scenario, dir: &Path) -> Result<RunSummary, String> {
+    let mut recorder = RunDirectory::create(dir, scenario, true).map_err(|e| e.to_string())?;
+    match run(scenario, &mut recorder) {
+        Ok(summary) => {
+            recorder.finish().map_err(|e| e.to_string())?;
+            Ok(summary)
+        }
+        Err(error) => {
+            recorder.abandon();
+            Err(match error {
+                RunError::Record(e) => format!("writing {}: {e}", dir.display()),
+                other => other.to_string(),
+            })
+        }
+    }
+}
