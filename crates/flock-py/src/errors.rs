@@ -11,7 +11,7 @@ use pyo3::call::PyCallArgs;
 use pyo3::prelude::*;
 
 /// An instance of the exception class `name` of `flock._errors`, called with `args`.
-fn exception<'py>(py: Python<'py>, name: &str, args: impl PyCallArgs<'py>) -> PyErr {
+pub(crate) fn exception<'py>(py: Python<'py>, name: &str, args: impl PyCallArgs<'py>) -> PyErr {
     let instance = py
         .import("flock._errors")
         .and_then(|module| module.getattr(name))

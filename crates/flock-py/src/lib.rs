@@ -6,6 +6,8 @@
 //!   explicit initial states.
 //! - [`run`]: `run`, `resume` and `read_run` — whole runs, in memory and in run directories.
 //! - [`simulation`]: `Simulation` — a run driven step by step.
+//! - [`sweep`]: the pieces of `flock.sweep` — a run of a sweep in any worker process, the output
+//!   directory of `flock sweep`.
 //! - [`errors`]: flock's errors as the Python exceptions of `flock._errors`, with the CLI's
 //!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
 
@@ -16,6 +18,7 @@ pub mod interrupt;
 pub mod run;
 pub mod scenario;
 pub mod simulation;
+pub mod sweep;
 
 /// The extension module `flock._flock`; the package `flock` re-exports its names.
 #[pymodule]
@@ -25,6 +28,11 @@ fn _flock(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_load, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_run, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_prepare, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_write_row, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_assemble, module)?)?;
     module.add("METRICS_HEADER", flock::run_dir::METRICS_HEADER)?;
     Ok(())
 }

@@ -168,13 +168,15 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
             "connected_from",
             "alpha_flock",
             "strict_alpha_flock",
+            "obstacle_clearance",
+            "inside_obstacles",
             "error"
         ]
     );
     let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
     assert_eq!(rows.len(), 12);
     for row in &rows {
-        let (c1, error) = (&row[2], &row[15]);
+        let (c1, error) = (&row[2], &row[17]);
         match c1 {
             "0.02" => assert!(error.is_empty() && !row[5].is_empty(), "{row:?}"),
             "0.0" => assert!(error.contains("algorithm.c1"), "{row:?}"),

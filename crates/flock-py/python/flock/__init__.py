@@ -8,6 +8,9 @@ and the Tanner-Jadbabaie-Pappas law, in Rust, from Python.
   :func:`read_run` reads any run directory.
 - :class:`Simulation`: a run driven step by step (``step``, ``q``, ``p``, ``t``, ``metrics``,
   ``energy``).
+- :func:`sweep`: a sweep file's runs on any ``concurrent.futures.Executor`` (a local process
+  pool by default, a Dask cluster, Slurm through dask-jobqueue), into the ``runs.csv`` that
+  ``flock sweep`` writes, byte for byte.
 - Errors: :class:`FlockError`, :class:`ScenarioError` (a ``ValueError``, with ``field``),
   :class:`NumericalError`, :class:`RunDirectoryError` (an ``OSError``).
 
@@ -22,7 +25,10 @@ Example::
 
 from dataclasses import dataclass
 from os import PathLike
-from typing import TYPE_CHECKING, Any, Dict, Optional, Union
+import concurrent.futures
+import csv
+import os
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Union
 
 import numpy as np
 
@@ -47,6 +53,8 @@ __all__ = [
     "read_run",
     "resume",
     "run",
+    "sweep",
+    "SweepResult",
 ]
 
 Path = Union[str, "PathLike[str]"]
@@ -159,3 +167,85 @@ def read_run(dir: Path) -> Run:
     interrupted ``DIR.partial``), with a ``trajectory.csv`` or a ``trajectory.npy``; the final
     state is the last recorded one."""
     return Run._from_dict(_flock.read_run(str(dir)))
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """A finished sweep: ``path`` its output directory, ``columns`` the columns of its
+    ``runs.csv`` by name (numbers as float64 arrays, empty fields as NaN; ``id``, ``error`` and
+    non-numeric axis values as lists of str)."""
+
+    path: str
+    columns: Dict[str, Any]
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """``runs.csv`` as a pandas DataFrame, one row per run (needs pandas)."""
+        import pandas
+
+        return pandas.read_csv(os.path.join(self.path, "runs.csv"))
+
+
+def _sweep_run(text: str, index: int):
+    """Runs run ``index`` of the self-contained sweep ``text`` (in a worker process)."""
+    return _flock.sweep_run(text, index)
+
+
+def _read_runs(path: str) -> Dict[str, Any]:
+    with open(os.path.join(path, "runs.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    columns: Dict[str, Any] = {}
+    for k, name in enumerate(header):
+        values: List[str] = [row[k] for row in body]
+        if name in ("alpha_flock", "strict_alpha_flock"):
+            columns[name] = np.array(
+                [{"true": 1.0, "false": 0.0}.get(v, np.nan) for v in values]
+            )
+            continue
+        try:
+            columns[name] = np.array([float(v) if v else np.nan for v in values])
+        except ValueError:
+            columns[name] = values
+    return columns
+
+
+def sweep(
+    spec: Path,
+    out: Path,
+    executor: Optional[concurrent.futures.Executor] = None,
+) -> SweepResult:
+    """Runs the sweep file ``spec`` into the output directory ``out``, as ``flock sweep`` does:
+    the same row files, ``runs.csv`` (byte for byte) and ``times.csv``; runs found finished in
+    ``out`` are skipped, so an interrupted sweep resumes.
+
+    Each run is one call of a worker function submitted to ``executor``: a local process pool
+    with one worker per core by default; a Dask cluster with
+    ``dask.distributed.Client(...).get_executor()``; a Slurm cluster with dask-jobqueue's
+    ``SLURMCluster`` behind such a client. Every worker needs this package installed. Rows are
+    written by this process as their runs finish; ``runs.csv`` is assembled in run order at the
+    end, so it does not depend on the executor or the order of completion.
+
+    Raises :class:`ScenarioError` for a bad sweep file and :class:`RunDirectoryError` for a
+    directory of another sweep; a run that fails is a row with its error, not an exception.
+    """
+    spec_path = os.fspath(spec)
+    with open(spec_path) as f:
+        text, count = _flock.sweep_load(
+            f.read(), spec_path, os.path.dirname(os.path.abspath(spec_path))
+        )
+    out_path = os.fspath(out)
+    finished = set(_flock.sweep_prepare(out_path, text))
+    pending = [k for k in range(count) if k not in finished]
+    own = executor is None
+    if executor is None:
+        executor = concurrent.futures.ProcessPoolExecutor(max_workers=os.cpu_count() or 1)
+    try:
+        futures = [executor.submit(_sweep_run, text, k) for k in pending]
+        for future in concurrent.futures.as_completed(futures):
+            index, run_id, fields, wall_time = future.result()
+            _flock.sweep_write_row(out_path, index, run_id, fields, wall_time)
+    finally:
+        if own:
+            executor.shutdown()
+    _flock.sweep_assemble(out_path, text)
+    return SweepResult(out_path, _read_runs(out_path))

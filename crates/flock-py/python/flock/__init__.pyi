@@ -1,5 +1,6 @@
 """Type stubs of flock: Olfati-Saber's flocking algorithms in Rust, from Python."""
 
+import concurrent.futures
 from os import PathLike
 from typing import Any, Dict, List, Optional, Tuple, Union
 
@@ -178,3 +179,21 @@ def resume(dir: _Path, *, checkpoint_every: int = 1000) -> Run:
 
 def read_run(dir: _Path) -> Run:
     """Reads a run directory (CSV or .npy trajectory)."""
+
+class SweepResult:
+    """A finished sweep: its output directory and the columns of its ``runs.csv``."""
+
+    path: str
+    columns: Dict[str, Any]
+    def __init__(self, path: str, columns: Dict[str, Any]) -> None: ...
+    def to_pandas(self) -> Any:
+        """``runs.csv`` as a pandas DataFrame (needs pandas)."""
+
+def sweep(
+    spec: _Path,
+    out: _Path,
+    executor: Optional[concurrent.futures.Executor] = None,
+) -> SweepResult:
+    """Runs the sweep file ``spec`` into ``out`` on ``executor`` (a local process pool by default,
+    a Dask cluster through ``Client.get_executor()``): ``runs.csv`` byte for byte that of
+    ``flock sweep``; finished runs in ``out`` are skipped."""

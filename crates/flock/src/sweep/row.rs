@@ -8,7 +8,7 @@ use serde_json::Value;
 
 use super::{RunSpec, Sweep};
 use crate::RunDirectory;
-use crate::run::{RunError, RunSummary, run};
+use crate::run::{Record, Recorder, RunError, RunSummary, Start, run};
 
 /// What a finished run measured.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,12 +25,16 @@ pub struct Outcome {
     /// TAC 2006 Definition 5 over the last quarter: an α-flock, and a strict one (`None` for a
     /// run without records in its window).
     pub alpha_flock: Option<(bool, bool)>,
+    /// With obstacles: the least clearance of an agent to an obstacle and the most agents inside
+    /// one, at any record.
+    pub obstacles: Option<(f64, f64)>,
 }
 
 impl Outcome {
-    /// The outcome of a run's summary, Definition 5 judged with the sweep's criteria.
+    /// The outcome of a run's summary and its obstacle columns, Definition 5 judged with the
+    /// sweep's criteria.
     #[must_use]
-    pub fn of(summary: &RunSummary, sweep: &Sweep) -> Self {
+    pub fn of(summary: &RunSummary, obstacles: Option<(f64, f64)>, sweep: &Sweep) -> Self {
         let history = &summary.history;
         let min_distance = history
             .iter()
@@ -50,7 +54,48 @@ impl Outcome {
             collisions,
             connected_from,
             alpha_flock,
+            obstacles,
         }
+    }
+}
+
+/// A recorder that keeps the least `obstacle_clearance` and the most `inside_obstacles` of the
+/// records it hands on to `inner`.
+struct Obstacles<R> {
+    inner: R,
+    extremes: Option<(f64, f64)>,
+}
+
+impl<R: Recorder> Recorder for Obstacles<R> {
+    type Error = R::Error;
+
+    fn record(&mut self, record: &Record<'_>) -> Result<(), R::Error> {
+        let value = |name: &str| {
+            record
+                .diagnostics
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|&(_, v)| v)
+        };
+        if let (Some(clearance), Some(inside)) =
+            (value("obstacle_clearance"), value("inside_obstacles"))
+        {
+            let (least, most) = self.extremes.unwrap_or((f64::INFINITY, 0.0));
+            self.extremes = Some((least.min(clearance), most.max(inside)));
+        }
+        self.inner.record(record)
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        self.inner.wants_checkpoint(steps)
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> Result<(), R::Error> {
+        self.inner.checkpoint(start)
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.inner.stop_requested()
     }
 }
 
@@ -90,6 +135,8 @@ pub fn header(sweep: &Sweep) -> Vec<String> {
             "connected_from",
             "alpha_flock",
             "strict_alpha_flock",
+            "obstacle_clearance",
+            "inside_obstacles",
             "error",
         ]
         .map(str::to_owned),
@@ -129,10 +176,15 @@ impl RunRow {
                     .map_or((String::new(), String::new()), |(a, s)| {
                         (a.to_string(), s.to_string())
                     });
-                fields.extend([alpha, strict, String::new()]);
+                let (clearance, inside) = o
+                    .obstacles
+                    .map_or((String::new(), String::new()), |(c, i)| {
+                        (c.to_string(), i.to_string())
+                    });
+                fields.extend([alpha, strict, clearance, inside, String::new()]);
             }
             Err(error) => {
-                fields.extend(std::iter::repeat_n(String::new(), 10));
+                fields.extend(std::iter::repeat_n(String::new(), 12));
                 fields.push(error.clone());
             }
         }
@@ -152,10 +204,18 @@ pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
         .scenario(spec)
         .map_err(|e| e.to_string())
         .and_then(|scenario| match keep {
-            None => run(&scenario, &mut ()).map_err(|e| e.to_string()),
+            None => {
+                let mut recorder = Obstacles {
+                    inner: (),
+                    extremes: None,
+                };
+                run(&scenario, &mut recorder)
+                    .map(|summary| (summary, recorder.extremes))
+                    .map_err(|e| e.to_string())
+            }
             Some(dir) => keep_run(&scenario, &dir.join(&id)),
         })
-        .map(|summary| Outcome::of(&summary, sweep));
+        .map(|(summary, obstacles)| Outcome::of(&summary, obstacles, sweep));
     RunRow {
         index: spec.index,
         id,
@@ -167,15 +227,21 @@ pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
 }
 
 /// The run written to `dir` (replaced if present) as `flock run --out dir` writes it.
-fn keep_run(scenario: &crate::Scenario, dir: &Path) -> Result<RunSummary, String> {
-    let mut recorder = RunDirectory::create(dir, scenario, true).map_err(|e| e.to_string())?;
+fn keep_run(
+    scenario: &crate::Scenario,
+    dir: &Path,
+) -> Result<(RunSummary, Option<(f64, f64)>), String> {
+    let mut recorder = Obstacles {
+        inner: RunDirectory::create(dir, scenario, true).map_err(|e| e.to_string())?,
+        extremes: None,
+    };
     match run(scenario, &mut recorder) {
         Ok(summary) => {
-            recorder.finish().map_err(|e| e.to_string())?;
-            Ok(summary)
+            recorder.inner.finish().map_err(|e| e.to_string())?;
+            Ok((summary, recorder.extremes))
         }
         Err(error) => {
-            recorder.abandon();
+            recorder.inner.abandon();
             Err(match error {
                 RunError::Record(e) => format!("writing {}: {e}", dir.display()),
                 other => other.to_string(),

@@ -153,9 +153,24 @@ fn row_file(dir: &Path, index: usize, id: &str) -> PathBuf {
 /// # Errors
 /// Any I/O error.
 pub fn write_row(dir: &Path, row: &RunRow) -> Result<(), StoreError> {
-    let mut bytes = csv_line(&row.fields());
-    bytes.extend(format!("{}\n", row.wall_time).as_bytes());
-    write_atomic(&row_file(dir, row.index, &row.id), &bytes)
+    write_fields(dir, row.index, &row.id, &row.fields(), row.wall_time)
+}
+
+/// Records a finished run from its fields ([`RunRow::fields`], as a worker of another process
+/// returns them): its row file, written atomically.
+///
+/// # Errors
+/// Any I/O error.
+pub fn write_fields(
+    dir: &Path,
+    index: usize,
+    id: &str,
+    fields: &[String],
+    wall_time: f64,
+) -> Result<(), StoreError> {
+    let mut bytes = csv_line(fields);
+    bytes.extend(format!("{wall_time}\n").as_bytes());
+    write_atomic(&row_file(dir, index, id), &bytes)
 }
 
 /// A finished run's row file: its id, its `runs.csv` line and its wall time.

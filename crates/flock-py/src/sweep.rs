@@ -1,0 +1,106 @@
+//! The pieces of `flock.sweep` (`python/flock/__init__.py`): a sweep file loaded and made
+//! self-contained, one run of it made in a worker (any process of any machine), and the output
+//! directory of [`flock::sweep::store`] — the same row files and `runs.csv` as `flock sweep`.
+
+use std::path::{Path, PathBuf};
+
+use flock::sweep::store::{self, StoreError};
+use flock::sweep::{Sweep, SweepError, run_one};
+use pyo3::prelude::*;
+
+use crate::errors::{exception, run_directory_error};
+
+/// A sweep error as `flock.ScenarioError` (a `ValueError`) with the message of `flock sweep`.
+fn sweep_error(py: Python<'_>, error: &SweepError) -> PyErr {
+    let field = match error {
+        SweepError::Invalid { field, .. } => Some(field.clone()),
+        SweepError::Base(e) => e.field(),
+        SweepError::Io { .. } | SweepError::Syntax { .. } => None,
+    };
+    exception(py, "ScenarioError", (error.to_string(), field))
+}
+
+fn store_error(py: Python<'_>, error: &StoreError, dir: &Path) -> PyErr {
+    match error {
+        StoreError::Sweep(e) => sweep_error(py, e),
+        other => run_directory_error(py, other, dir),
+    }
+}
+
+/// `(text, runs)`: the sweep in `text` (`Path` bases relative to `base_dir`) as self-contained RON,
+/// and its number of runs.
+#[pyfunction]
+pub fn sweep_load(
+    py: Python<'_>,
+    text: &str,
+    origin: &str,
+    base_dir: PathBuf,
+) -> PyResult<(String, usize)> {
+    let sweep = Sweep::parse(text, origin, &base_dir).map_err(|e| sweep_error(py, &e))?;
+    let resolved = sweep.to_ron().map_err(|e| {
+        sweep_error(
+            py,
+            &SweepError::Invalid {
+                field: "sweep".into(),
+                why: e.to_string(),
+            },
+        )
+    })?;
+    Ok((resolved, sweep.runs().len()))
+}
+
+/// `(index, id, fields, wall_time)` of run `index` of the self-contained sweep `text`, run on one
+/// thread with the GIL released: the row `flock sweep` writes for it.
+#[pyfunction]
+pub fn sweep_run(
+    py: Python<'_>,
+    text: &str,
+    index: usize,
+) -> PyResult<(usize, String, Vec<String>, f64)> {
+    let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
+    let runs = sweep.runs();
+    let Some(spec) = runs.get(index) else {
+        return Err(pyo3::exceptions::PyIndexError::new_err(format!(
+            "the sweep has {} runs, numbered from 0; there is no run {index}",
+            runs.len()
+        )));
+    };
+    let row = py.detach(|| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
+        match pool {
+            Ok(pool) => pool.install(|| run_one(&sweep, spec, None)),
+            Err(_) => run_one(&sweep, spec, None),
+        }
+    });
+    Ok((row.index, row.id.clone(), row.fields(), row.wall_time))
+}
+
+/// Opens (or creates) the output directory `dir` of the self-contained sweep `text` and returns
+/// the indices of the runs already finished in it.
+#[pyfunction]
+pub fn sweep_prepare(py: Python<'_>, dir: PathBuf, text: &str) -> PyResult<Vec<usize>> {
+    let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
+    store::prepare(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
+    let finished = store::finished(&dir).map_err(|e| store_error(py, &e, &dir))?;
+    Ok(finished.into_keys().collect())
+}
+
+/// Records a finished run (as [`sweep_run`] returned it) in `dir`.
+#[pyfunction]
+pub fn sweep_write_row(
+    py: Python<'_>,
+    dir: PathBuf,
+    index: usize,
+    id: &str,
+    fields: Vec<String>,
+    wall_time: f64,
+) -> PyResult<()> {
+    store::write_fields(&dir, index, id, &fields, wall_time).map_err(|e| store_error(py, &e, &dir))
+}
+
+/// Writes `runs.csv` and `times.csv` of `dir` from its rows; returns how many rows they hold.
+#[pyfunction]
+pub fn sweep_assemble(py: Python<'_>, dir: PathBuf, text: &str) -> PyResult<usize> {
+    let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
+    store::assemble(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))
+}

@@ -1,0 +1,80 @@
+"""flock.sweep: a sweep file's runs on any concurrent.futures executor — the default local process
+pool and a real Dask cluster (a scheduler and two worker processes over TCP on loopback) — give
+the runs.csv of ``flock sweep``, byte for byte; a bad sweep file is a ScenarioError."""
+
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flock
+
+from conftest import FIG11, cli
+
+SWEEP = """Sweep(
+    name: "py",
+    base: Path("{base}"),
+    set: {{"duration": 2.0, "agents": 12, "initial.positions.std": 10.0}},
+    axes: [
+        (path: "algorithm.c1", values: List([0.02, 0.0, 0.05])),
+        (path: "agents", values: Linspace(from: 8.0, to: 12.0, count: 2)),
+    ],
+    seeds: 2,
+)
+"""
+
+
+@pytest.fixture
+def spec(tmp_path: Path) -> Path:
+    path = tmp_path / "sweep.ron"
+    path.write_text(SWEEP.format(base=FIG11))
+    return path
+
+
+def cli_sweep(spec: Path, out: Path) -> bytes:
+    cli("sweep", spec, "--out", out, "--jobs", "2", "--quiet")
+    return (out / "runs.csv").read_bytes()
+
+
+def test_the_default_executor_gives_the_cli_runs_csv(spec: Path, tmp_path: Path) -> None:
+    expected = cli_sweep(spec, tmp_path / "cli")
+    result = flock.sweep(spec, tmp_path / "py")
+    assert (tmp_path / "py" / "runs.csv").read_bytes() == expected
+    assert len(result.columns["run"]) == 12
+    assert result.columns["algorithm.c1"][4] == 0.0
+    errors = result.columns["error"]
+    assert all(("algorithm.c1" in e) == (c1 == 0.0) for e, c1 in zip(errors, result.columns["algorithm.c1"]))
+    ok = result.columns["algorithm.c1"] != 0.0
+    assert np.all(np.isfinite(result.columns["connectivity"][ok]))
+    assert np.all(np.isnan(result.columns["connectivity"][~ok]))
+    # run again: every run is found finished, nothing changes
+    again = flock.sweep(spec, tmp_path / "py", executor=ThreadPoolExecutor(2))
+    assert (Path(again.path) / "runs.csv").read_bytes() == expected
+
+
+def test_a_dask_cluster_gives_the_cli_runs_csv(spec: Path, tmp_path: Path) -> None:
+    from dask.distributed import Client, LocalCluster
+
+    expected = cli_sweep(spec, tmp_path / "cli")
+    with LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        protocol="tcp",
+        dashboard_address=None,
+    ) as cluster, Client(cluster) as client:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        assert len(client.scheduler_info()["workers"]) == 2
+        flock.sweep(spec, tmp_path / "dask", executor=client.get_executor())
+    assert (tmp_path / "dask" / "runs.csv").read_bytes() == expected
+
+
+def test_a_bad_sweep_file_is_a_scenario_error(tmp_path: Path) -> None:
+    path = tmp_path / "bad.ron"
+    path.write_text(SWEEP.format(base=FIG11).replace('"agents", values', '"agnets", values'))
+    with pytest.raises(flock.ScenarioError) as raised:
+        flock.sweep(path, tmp_path / "out")
+    assert raised.value.field == "axes[1].path"
+    assert "agents" in str(raised.value)
