@@ -1,12 +1,13 @@
 //! The `flock` command line: what is about the terminal — the progress bar of a run
 //! ([`Progress`]), the printed summary ([`Report`]), `flock figures` ([`figures()`]) and
-//! `flock bench` ([`bench::bench()`]). Scenarios, runs and run directories are the `flock`
+//! `flock bench` ([`bench::bench()`]), `flock sweep` ([`sweep`]). Scenarios, runs and run directories are the `flock`
 //! library's; figures are `flock-viz`'s.
 
 pub mod bench;
 pub mod figures;
 pub mod progress;
 pub mod summary;
+pub mod sweep;
 
 pub use figures::{FiguresError, figures};
 pub use progress::Progress;

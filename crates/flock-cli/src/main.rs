@@ -87,6 +87,9 @@ enum Command {
         #[arg(long)]
         stress_edges: bool,
     },
+    /// Run a sweep file — a scenario over a grid of parameter values × seeds — into DIR/runs.csv,
+    /// one row per run; or merge its shards, or plot its phase diagrams.
+    Sweep(flock_cli::sweep::SweepArgs),
     /// Check a scenario file and print it with every default filled in.
     Validate {
         /// The scenario file (.ron).
@@ -181,6 +184,10 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+        Command::Sweep(args) => {
+            stop_on_ctrl_c();
+            flock_cli::sweep::main(args, &STOP)
+        }
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
                 println!("{}: valid", scenario.display());

@@ -267,3 +267,27 @@ fn keep_runs_writes_each_run_directory() {
         assert!(dir.join("metrics.csv").is_file(), "{}", dir.display());
     }
 }
+
+/// The sweeps shipped in `sweeps/` load, their axes name parameters of their scenarios, and their
+/// grids are the ones `docs/sweeps.md` reads.
+#[test]
+fn the_shipped_sweeps_load() {
+    let dir = crate::common::fixtures_dir().join("../sweeps");
+    let alg2 = Sweep::load(dir.join("alg2_c1_n.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((alg2.runs().len(), alg2.seeds), (5 * 4 * 20, 20));
+    let alg3 = Sweep::load(dir.join("alg3_beta_radius.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(alg3.runs().len(), 5 * 4 * 3);
+    for run in [&alg3.runs()[0], &alg3.runs()[59]] {
+        let scenario = alg3.scenario(run).unwrap_or_else(|e| panic!("{e}"));
+        assert!(scenario.algorithm.uses_obstacles());
+    }
+    let last = alg3.scenario(&alg3.runs()[59]).expect("valid");
+    assert_eq!(
+        last.value("obstacles.0.radius").expect("a path"),
+        json!(40.0)
+    );
+    assert_eq!(
+        last.value("algorithm.beta.c1").expect("a path"),
+        json!(100.0)
+    );
+}
