@@ -30,7 +30,7 @@ pub struct SweepArgs {
     /// Workers, each running one single-threaded run at a time (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
-    /// Keep each run's directory in DIR/runs/<id> (as `flock run` writes it).
+    /// Keep each run's directory in `DIR/runs/<id>` (as `flock run` writes it).
     #[arg(long)]
     keep_runs: bool,
     /// Run only shard i of N (run k belongs to shard k mod N), e.g. `--shard $SLURM_ARRAY_TASK_ID/N`;

@@ -8,4 +8,5 @@ mod common;
 mod errors;
 mod figures_cmd;
 mod plot;
+mod sweep;
 mod trust;
