@@ -213,3 +213,109 @@ fn bad_sweep_commands_are_clear_errors() {
         stderr(&refused)
     );
 }
+
+/// The committed results of the shipped sweeps (`docs/figures/sweeps/<name>/`, read by
+/// docs/sweeps.md) are what flock computes and draws today: Algorithm 3's sweep run again (140
+/// runs) gives its runs.csv byte for byte, shard 0 of 20 of Algorithm 2's (20 of its 400 runs)
+/// gives the same rows, and every committed diagram is drawn again from the committed runs.csv.
+#[test]
+fn the_committed_sweeps_are_what_flock_computes_and_draws() {
+    let tmp = TempDir::new("sweep_committed");
+    let sweeps = fixtures_dir().join("../sweeps");
+    let committed = fixtures_dir().join("../docs/figures/sweeps");
+    let stale = "stale: run the sweep and its plot commands again (docs/sweeps.md)";
+
+    let alg3 = sweeps.join("alg3_beta_radius.ron");
+    sweep(
+        tmp.path(),
+        &[alg3.to_str().expect("UTF-8"), "--out", "alg3", "--quiet"],
+    );
+    for file in ["runs.csv", "sweep.ron"] {
+        assert!(
+            fs::read(tmp.path().join("alg3").join(file)).expect("computed")
+                == fs::read(committed.join("alg3_beta_radius").join(file)).expect("committed"),
+            "docs/figures/sweeps/alg3_beta_radius/{file} is {stale}"
+        );
+    }
+
+    let alg2 = sweeps.join("alg2_c1_n.ron");
+    sweep(
+        tmp.path(),
+        &[
+            alg2.to_str().expect("UTF-8"),
+            "--out",
+            "alg2",
+            "--shard",
+            "0/20",
+            "--quiet",
+        ],
+    );
+    let whole = fs::read_to_string(committed.join("alg2_c1_n/runs.csv")).expect("committed");
+    let whole: Vec<&str> = whole.lines().collect();
+    let shard = fs::read_to_string(tmp.path().join("alg2/runs.csv")).expect("shard");
+    let mut shard = shard.lines();
+    assert_eq!(shard.next(), Some(whole[0]), "the header");
+    let rows: Vec<&str> = shard.collect();
+    assert_eq!(rows.len(), 20);
+    for row in rows {
+        let index: usize = row
+            .split(',')
+            .next()
+            .and_then(|k| k.parse().ok())
+            .expect("run");
+        assert_eq!(index % 20, 0, "shard 0/20 holds runs 0, 20, 40, …");
+        assert!(
+            row == whole[index + 1],
+            "run {index} of docs/figures/sweeps/alg2_c1_n/runs.csv is {stale}"
+        );
+    }
+
+    let diagrams = [
+        ("alg2_c1_n", "algorithm.c1", "agents", "alpha_flock"),
+        (
+            "alg3_beta_radius",
+            "algorithm.beta.c1",
+            "obstacles.0.radius",
+            "obstacle_clearance",
+        ),
+        (
+            "alg3_beta_radius",
+            "algorithm.beta.c1",
+            "obstacles.0.radius",
+            "collisions",
+        ),
+        (
+            "alg3_beta_radius",
+            "algorithm.beta.c1",
+            "obstacles.0.radius",
+            "min_distance",
+        ),
+    ];
+    for (name, x, y, metric) in diagrams {
+        for ext in ["svg", "png"] {
+            let out = tmp.path().join(format!("{name}-{metric}.{ext}"));
+            let dir = committed.join(name);
+            sweep(
+                tmp.path(),
+                &[
+                    "plot",
+                    dir.to_str().expect("UTF-8"),
+                    "--x",
+                    x,
+                    "--y",
+                    y,
+                    "--metric",
+                    metric,
+                    "--log-x",
+                    "--out",
+                    out.to_str().expect("UTF-8"),
+                ],
+            );
+            assert!(
+                fs::read(&out).expect("drawn")
+                    == fs::read(dir.join(format!("{metric}.{ext}"))).expect("committed"),
+                "docs/figures/sweeps/{name}/{metric}.{ext} is {stale}"
+            );
+        }
+    }
+}

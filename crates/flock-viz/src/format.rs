@@ -53,6 +53,17 @@ pub(crate) fn tick(x: f64) -> String {
     }
 }
 
+/// A cell label: `digits` significant digits for moderate magnitudes (`-39.2`, `3.86`, `0.85`),
+/// the exponent form of [`tick`] otherwise, so that a label fits in a heatmap cell.
+pub(crate) fn significant(x: f64, digits: i32) -> String {
+    let a = x.abs();
+    if a == 0.0 || !(1e-3..1e5).contains(&a) {
+        return tick(x);
+    }
+    let decimals = (digits - 1 - a.log10().floor() as i32).max(0);
+    number(x, decimals as usize)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -73,5 +84,15 @@ mod tests {
         assert_eq!(tick(2.5e-7), "2.5e-7");
         assert_eq!(tick(1e6), "1e6");
         assert_eq!(tick(0.0), "0");
+    }
+
+    #[test]
+    fn cell_labels_keep_three_significant_digits() {
+        assert_eq!(significant(-39.2396, 3), "-39.2");
+        assert_eq!(significant(3.8585, 3), "3.86");
+        assert_eq!(significant(0.85, 3), "0.85");
+        assert_eq!(significant(1.0, 3), "1");
+        assert_eq!(significant(1234.6, 3), "1235");
+        assert_eq!(significant(2.5e-7, 3), "2.5e-7");
     }
 }

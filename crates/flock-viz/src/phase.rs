@@ -278,7 +278,7 @@ impl<'a> Diagram<'a> {
                     let position = (SegmentValue::CenterOf(i), SegmentValue::CenterOf(j));
                     chart
                         .draw_series([plotters::element::Text::new(
-                            format::tick(*m),
+                            format::significant(*m, 3),
                             position,
                             text_style(12).color(&ink),
                         )])

@@ -276,18 +276,18 @@ fn the_shipped_sweeps_load() {
     let alg2 = Sweep::load(dir.join("alg2_c1_n.ron")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!((alg2.runs().len(), alg2.seeds), (5 * 4 * 20, 20));
     let alg3 = Sweep::load(dir.join("alg3_beta_radius.ron")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(alg3.runs().len(), 5 * 4 * 3);
-    for run in [&alg3.runs()[0], &alg3.runs()[59]] {
+    assert_eq!((alg3.runs().len(), alg3.seeds), (7 * 4 * 5, 5));
+    for run in [&alg3.runs()[0], &alg3.runs()[139]] {
         let scenario = alg3.scenario(run).unwrap_or_else(|e| panic!("{e}"));
         assert!(scenario.algorithm.uses_obstacles());
     }
-    let last = alg3.scenario(&alg3.runs()[59]).expect("valid");
+    let last = alg3.scenario(&alg3.runs()[139]).expect("valid");
     assert_eq!(
         last.value("obstacles.0.radius").expect("a path"),
         json!(40.0)
     );
     assert_eq!(
         last.value("algorithm.beta.c1").expect("a path"),
-        json!(100.0)
+        json!(1000.0)
     );
 }
