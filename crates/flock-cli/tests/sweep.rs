@@ -205,6 +205,24 @@ fn bad_sweep_commands_are_clear_errors() {
             .replace("seeds: 3", "seeds: 2"),
     )
     .expect("write");
+    fs::create_dir(tmp.path().join("empty")).expect("mkdir");
+    let not_a_sweep = flock(
+        tmp.path(),
+        &[
+            "sweep",
+            "plot",
+            "empty",
+            "--x",
+            "algorithm.c1",
+            "--metric",
+            "seed",
+        ],
+    );
+    assert!(
+        stderr(&not_a_sweep).contains("is not the output directory of a sweep"),
+        "{}",
+        stderr(&not_a_sweep)
+    );
     let refused = flock(tmp.path(), &["sweep", "other.ron", "--out", "o"]);
     assert!(!refused.status.success());
     assert!(

@@ -46,6 +46,8 @@ pub enum StoreError {
     },
     /// The directory holds another sweep.
     OtherSweep(PathBuf),
+    /// The directory is not the output directory of a sweep (it has no `sweep.ron`).
+    NotASweep(PathBuf),
     /// A shard's `sweep.ron` is not a sweep.
     Sweep(SweepError),
     /// Merging shards that do not hold every run.
@@ -63,6 +65,11 @@ impl std::fmt::Display for StoreError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
+            Self::NotASweep(dir) => write!(
+                f,
+                "{} is not the output directory of a sweep (it has no {SWEEP_FILE}); give a directory that flock sweep --out wrote",
+                dir.display()
+            ),
             Self::OtherSweep(dir) => write!(
                 f,
                 "{} holds the results of another sweep ({SWEEP_FILE} differs); choose another output directory",
@@ -129,7 +136,10 @@ pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<(), StoreError> {
 /// A missing or invalid `sweep.ron`.
 pub fn read_sweep(dir: &Path) -> Result<Sweep, StoreError> {
     let file = dir.join(SWEEP_FILE);
-    let text = fs::read_to_string(&file).map_err(io_error(&file))?;
+    let text = fs::read_to_string(&file).map_err(|e| match e.kind() {
+        io::ErrorKind::NotFound => StoreError::NotASweep(dir.to_owned()),
+        _ => io_error(&file)(e),
+    })?;
     Sweep::parse(&text, &file.display().to_string(), dir).map_err(StoreError::Sweep)
 }
 
