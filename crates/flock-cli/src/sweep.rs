@@ -9,7 +9,7 @@ use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
 use flock::sweep::store::{self, RUNS_FILE};
-use flock::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute};
+use flock::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute, share};
 use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -137,15 +137,12 @@ fn run(
     stop: &AtomicBool,
 ) -> Result<(), String> {
     let sweep = Sweep::load(path).map_err(|e| e.to_string())?;
-    let total = sweep
-        .runs()
-        .iter()
-        .filter(|r| options.shard.is_none_or(|s| s.owns(r.index)))
-        .count();
+    let (done, pending) = share(&sweep, out, options.shard).map_err(|e| e.to_string())?;
+    let total = (done + pending.len()) as u64;
     let bar = if quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::hidden())
+        ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
     } else {
-        ProgressBar::new(total as u64)
+        ProgressBar::new(total)
     };
     bar.set_style(
         ProgressStyle::with_template(
@@ -153,11 +150,7 @@ fn run(
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    bar.set_position(store::finished(out).map_or(0, |f| {
-        f.keys()
-            .filter(|&&k| options.shard.is_none_or(|s| s.owns(k)))
-            .count() as u64
-    }));
+    bar.set_position(done as u64);
     bar.reset_eta();
     let failed = std::sync::atomic::AtomicUsize::new(0);
     let done = |row: &RunRow| {

@@ -108,8 +108,19 @@ impl FlockMetrics {
         }
     }
 
-    /// The real-valued metrics in the order of the columns of `metrics.csv`: C, C*, R, Ẽ, K̃ and
-    /// the minimum distance.
+    /// The names of [`FlockMetrics::reals`], in its order: the columns of `metrics.csv` between
+    /// `t` and `collisions`.
+    pub const REAL_COLUMNS: [&'static str; 6] = [
+        "connectivity",
+        "giant_component",
+        "cohesion_radius",
+        "deviation_energy",
+        "velocity_mismatch",
+        "min_distance",
+    ];
+
+    /// The real-valued metrics in the order of the columns of `metrics.csv`
+    /// ([`FlockMetrics::REAL_COLUMNS`]): C, C*, R, Ẽ, K̃ and the minimum distance.
     #[must_use]
     pub fn reals(&self) -> [f64; 6] {
         [
@@ -120,6 +131,30 @@ impl FlockMetrics {
             self.velocity_mismatch,
             self.min_distance,
         ]
+    }
+
+    /// The metrics of [`FlockMetrics::reals`] `reals` (read back from `metrics.csv`, say), with
+    /// the counts that are not among them.
+    #[must_use]
+    pub const fn from_reals(reals: [f64; 6], components: usize, collisions: usize) -> Self {
+        let [
+            connectivity,
+            giant_component,
+            cohesion_radius,
+            deviation_energy,
+            velocity_mismatch,
+            min_distance,
+        ] = reals;
+        Self {
+            connectivity,
+            giant_component,
+            components,
+            cohesion_radius,
+            deviation_energy,
+            velocity_mismatch,
+            min_distance,
+            collisions,
+        }
     }
 }
 
@@ -495,6 +530,9 @@ mod tests {
             component_velocity_mismatch(p, &Components::of(net.graph()), net.numbering()).to_bits()
         };
         assert_eq!(mismatch(&p, &net), mismatch(&p_s, &numbered));
+        let back =
+            FlockMetrics::from_reals(original.reals(), original.components, original.collisions);
+        assert_eq!(back, original, "from_reals inverts reals");
     }
 
     #[test]

@@ -11,7 +11,8 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use flock::run_dir::{METRICS_HEADER, OutputOptions, RunDirectory, TrajectoryFormat};
+use flock::metrics::FlockMetrics;
+use flock::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat};
 use flock::{Record, Recorder, RunError, Scenario, Start};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyUserWarning, PyValueError};
@@ -48,8 +49,8 @@ struct Memory {
     agents: usize,
 }
 
-/// The columns before the diagnostics: t, the six real metrics, then the energy.
-const REAL_COLUMNS: usize = 8;
+/// The columns before the diagnostics: t, the real metrics, then the energy.
+const REAL_COLUMNS: usize = FlockMetrics::REAL_COLUMNS.len() + 2;
 
 impl Memory {
     /// Nothing recorded yet; room for every record of a run of `scenario` from t = 0 (t = 0,
@@ -106,16 +107,12 @@ impl Memory {
         scenario: &Scenario,
         path: Option<&Path>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let mut names = METRICS_HEADER
-            .split(',')
-            .filter(|&name| name != "collisions");
+        let names = std::iter::once(TIME)
+            .chain(FlockMetrics::REAL_COLUMNS)
+            .chain(["energy"])
+            .chain(self.diagnostics.iter().copied());
         let mut columns = Vec::with_capacity(self.reals.len() + 1);
-        for (k, column) in self.reals.into_iter().enumerate() {
-            let name = if k < REAL_COLUMNS {
-                names.next().unwrap_or_default()
-            } else {
-                self.diagnostics[k - REAL_COLUMNS]
-            };
+        for (name, column) in names.zip(self.reals) {
             columns.push((name.to_owned(), Column::Real(column)));
         }
         // `collisions` stands before `energy`, as in metrics.csv

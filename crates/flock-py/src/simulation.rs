@@ -5,6 +5,7 @@
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use flock::DynSimulation;
+use flock::metrics::FlockMetrics;
 use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -180,8 +181,7 @@ impl PySimulation {
     fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let metrics = py.detach(|| self.lock().metrics());
         let dict = PyDict::new(py);
-        let names = flock::run_dir::METRICS_HEADER.split(',').skip(1);
-        for (name, value) in names.zip(metrics.reals()) {
+        for (name, value) in FlockMetrics::REAL_COLUMNS.into_iter().zip(metrics.reals()) {
             dict.set_item(name, value)?;
         }
         dict.set_item("collisions", metrics.collisions)?;

@@ -36,47 +36,19 @@ pub fn judge_metrics_file(
                 )
             })
     };
-    let [
-        t,
-        c,
-        giant,
-        radius,
-        deviation,
-        mismatch,
-        distance,
-        collisions,
-    ] = [
-        TIME,
-        "connectivity",
-        "giant_component",
-        "cohesion_radius",
-        "deviation_energy",
-        "velocity_mismatch",
-        "min_distance",
-        "collisions",
-    ]
-    .map(column);
-    let (t, c, giant, radius) = (t?, c?, giant?, radius?);
-    let (deviation, mismatch, distance, collisions) =
-        (deviation?, mismatch?, distance?, collisions?);
+    let (t, collisions) = (column(TIME)?, column("collisions")?);
+    let reals =
+        (FlockMetrics::REAL_COLUMNS.into_iter().map(column)).collect::<io::Result<Vec<_>>>()?;
     let n = agents as f64;
     let records: Vec<(f64, FlockMetrics)> = (0..t.len())
         .map(|k| {
+            let values: [f64; 6] = std::array::from_fn(|j| reals[j][k]);
             let components = if agents <= 1 {
                 1
             } else {
-                (n - c[k] * (n - 1.0)).round() as usize
+                (n - values[0] * (n - 1.0)).round() as usize
             };
-            let metrics = FlockMetrics {
-                connectivity: c[k],
-                giant_component: giant[k],
-                components,
-                cohesion_radius: radius[k],
-                deviation_energy: deviation[k],
-                velocity_mismatch: mismatch[k],
-                min_distance: distance[k],
-                collisions: collisions[k] as usize,
-            };
+            let metrics = FlockMetrics::from_reals(values, components, collisions[k] as usize);
             (t[k], metrics)
         })
         .collect();

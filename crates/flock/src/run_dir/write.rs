@@ -788,3 +788,22 @@ impl Recorder for RunDirectory {
         self.stop.is_some_and(|flag| flag.load(Ordering::Relaxed))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use flock_metrics::FlockMetrics;
+
+    use super::METRICS_HEADER;
+    use crate::run_dir::TIME;
+
+    /// The header names what a record writes, in its order: t, [`FlockMetrics::reals`], the
+    /// collisions and the energy.
+    #[test]
+    fn the_metrics_header_names_the_recorded_values() {
+        let names: Vec<&str> = std::iter::once(TIME)
+            .chain(FlockMetrics::REAL_COLUMNS)
+            .chain(["collisions", "energy"])
+            .collect();
+        assert_eq!(METRICS_HEADER, names.join(","));
+    }
+}

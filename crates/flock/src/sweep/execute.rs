@@ -94,20 +94,7 @@ pub fn execute(
     done: &(dyn Fn(&RunRow) + Sync),
 ) -> Result<Executed, StoreError> {
     store::prepare(dir, sweep)?;
-    let finished = store::finished(dir)?;
-    let mine: Vec<RunSpec> = sweep
-        .runs()
-        .into_iter()
-        .filter(|run| options.shard.is_none_or(|shard| shard.owns(run.index)))
-        .collect();
-    let skipped = mine
-        .iter()
-        .filter(|r| finished.contains_key(&r.index))
-        .count();
-    let pending: Vec<&RunSpec> = mine
-        .iter()
-        .filter(|r| !finished.contains_key(&r.index))
-        .collect();
+    let (skipped, pending) = share(sweep, dir, options.shard)?;
     let keep = options.keep_runs.then(|| dir.join(RUNS_DIR));
     let next = AtomicUsize::new(0);
     let ran = AtomicUsize::new(0);
@@ -154,6 +141,26 @@ pub fn execute(
         skipped,
         ran,
         rows,
-        stopped: skipped + ran < mine.len(),
+        stopped: ran < pending.len(),
     })
+}
+
+/// This machine's share of the sweep's runs (every run without a shard): how many of them `dir`
+/// holds finished, and the others, in run order.
+///
+/// # Errors
+/// An unreadable directory.
+pub fn share(
+    sweep: &Sweep,
+    dir: &Path,
+    shard: Option<Shard>,
+) -> Result<(usize, Vec<RunSpec>), StoreError> {
+    let finished = store::finished(dir)?;
+    let mine = sweep
+        .runs()
+        .into_iter()
+        .filter(|run| shard.is_none_or(|shard| shard.owns(run.index)));
+    let (done, pending): (Vec<RunSpec>, Vec<RunSpec>) =
+        mine.partition(|run| finished.contains_key(&run.index));
+    Ok((done.len(), pending))
 }

@@ -46,7 +46,7 @@ use serde_json::Value;
 use crate::Scenario;
 use crate::error::ScenarioError;
 
-pub use execute::{ExecuteOptions, Executed, Shard, execute};
+pub use execute::{ExecuteOptions, Executed, Shard, execute, share};
 pub use row::{Outcome, RunRow, header, run_one};
 
 /// A sweep file.
@@ -146,41 +146,24 @@ pub enum Values {
 }
 
 impl Values {
-    /// The values, in order.
+    /// The values, in order; the end points of a spacing exactly as written.
     #[must_use]
     pub fn expand(&self) -> Vec<Value> {
-        let spaced = |from: f64, to: f64, count: usize, f: &dyn Fn(f64) -> f64| -> Vec<Value> {
-            (0..count)
-                .map(|k| {
-                    let x = if k + 1 == count && count > 1 {
-                        to
-                    } else if count == 1 {
-                        from
-                    } else {
-                        from + (to - from) * k as f64 / (count - 1) as f64
-                    };
-                    Value::from(f(x))
-                })
-                .collect()
+        let (from, to, count, log) = match *self {
+            Self::List(ref values) => return values.clone(),
+            Self::Linspace { from, to, count } => (from, to, count, false),
+            Self::Logspace { from, to, count } => (from, to, count, true),
         };
-        match self {
-            Self::List(values) => values.clone(),
-            Self::Linspace { from, to, count } => spaced(*from, *to, *count, &|x| x),
-            Self::Logspace { from, to, count } => {
-                let exact = |x: f64| {
-                    let y = x.exp();
-                    // the end points exactly as written
-                    if (y - *from).abs() <= 1e-12 * from.abs() {
-                        *from
-                    } else if (y - *to).abs() <= 1e-12 * to.abs() {
-                        *to
-                    } else {
-                        y
-                    }
-                };
-                spaced(from.ln(), to.ln(), *count, &exact)
-            }
-        }
+        let between = |a: f64, b: f64, k: usize| a + (b - a) * k as f64 / (count - 1) as f64;
+        (0..count)
+            .map(|k| match k {
+                0 => from,
+                k if k + 1 == count => to,
+                k if log => between(from.ln(), to.ln(), k).exp(),
+                k => between(from, to, k),
+            })
+            .map(Value::from)
+            .collect()
     }
 }
 

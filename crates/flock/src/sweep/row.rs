@@ -13,12 +13,10 @@ use crate::run::{Record, Recorder, RunError, RunSummary, Start, run};
 /// What a finished run measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome {
-    /// The metrics at the final time (C, C*, R, Ẽ, K̃ of `runs.csv`).
+    /// C, C*, R, Ẽ and K̃ at the final time, but `min_distance` the least distance between two
+    /// agents at any record and `collisions` the most pairs closer than the collision distance at
+    /// any record.
     pub metrics: FlockMetrics,
-    /// The least distance between two agents at any record.
-    pub min_distance: f64,
-    /// The most pairs closer than the collision distance at any record.
-    pub collisions: usize,
     /// The time after which the net stays connected (C = 1 at that record and every later one);
     /// `None` when it is not connected at the end.
     pub connected_from: Option<f64>,
@@ -29,6 +27,25 @@ pub struct Outcome {
     /// one, at any record.
     pub obstacles: Option<(f64, f64)>,
 }
+
+/// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`).
+const OUTCOME_COLUMNS: [&str; 12] = {
+    let [c, giant, radius, deviation, mismatch, distance] = FlockMetrics::REAL_COLUMNS;
+    [
+        c,
+        giant,
+        radius,
+        deviation,
+        mismatch,
+        distance,
+        "collisions",
+        "connected_from",
+        "alpha_flock",
+        "strict_alpha_flock",
+        "obstacle_clearance",
+        "inside_obstacles",
+    ]
+};
 
 impl Outcome {
     /// The outcome of a run's summary and its obstacle columns, Definition 5 judged with the
@@ -49,13 +66,37 @@ impl Outcome {
             .verdict(&sweep.criteria())
             .map(|v| (v.is_alpha_flocking(), v.is_strict()));
         Self {
-            metrics: summary.metrics,
-            min_distance,
-            collisions,
+            metrics: FlockMetrics {
+                min_distance,
+                collisions,
+                ..summary.metrics
+            },
             connected_from,
             alpha_flock,
             obstacles,
         }
+    }
+
+    /// The fields of [`OUTCOME_COLUMNS`]: numbers as Rust prints them (shortest round trip),
+    /// empty where the run has no value.
+    fn fields(&self) -> [String; OUTCOME_COLUMNS.len()] {
+        let [c, giant, radius, deviation, mismatch, distance] =
+            self.metrics.reals().map(|x| x.to_string());
+        let or_empty = |x: Option<String>| x.unwrap_or_default();
+        [
+            c,
+            giant,
+            radius,
+            deviation,
+            mismatch,
+            distance,
+            self.metrics.collisions.to_string(),
+            or_empty(self.connected_from.map(|t| t.to_string())),
+            or_empty(self.alpha_flock.map(|(a, _)| a.to_string())),
+            or_empty(self.alpha_flock.map(|(_, s)| s.to_string())),
+            or_empty(self.obstacles.map(|(c, _)| c.to_string())),
+            or_empty(self.obstacles.map(|(_, i)| i.to_string())),
+        ]
     }
 }
 
@@ -122,25 +163,9 @@ pub struct RunRow {
 pub fn header(sweep: &Sweep) -> Vec<String> {
     let mut header = vec!["run".to_owned(), "id".to_owned()];
     header.extend(sweep.axes.iter().map(|a| a.path.clone()));
-    header.extend(
-        [
-            "seed",
-            "connectivity",
-            "giant_component",
-            "cohesion_radius",
-            "deviation_energy",
-            "velocity_mismatch",
-            "min_distance",
-            "collisions",
-            "connected_from",
-            "alpha_flock",
-            "strict_alpha_flock",
-            "obstacle_clearance",
-            "inside_obstacles",
-            "error",
-        ]
-        .map(str::to_owned),
-    );
+    header.push("seed".to_owned());
+    header.extend(OUTCOME_COLUMNS.map(str::to_owned));
+    header.push("error".to_owned());
     header
 }
 
@@ -156,35 +181,12 @@ impl RunRow {
         }));
         fields.push(self.seed.to_string());
         match &self.outcome {
-            Ok(o) => {
-                let m = &o.metrics;
-                fields.extend(
-                    [
-                        m.connectivity,
-                        m.giant_component,
-                        m.cohesion_radius,
-                        m.deviation_energy,
-                        m.velocity_mismatch,
-                        o.min_distance,
-                    ]
-                    .map(|x| x.to_string()),
-                );
-                fields.push(o.collisions.to_string());
-                fields.push(o.connected_from.map_or_else(String::new, |t| t.to_string()));
-                let (alpha, strict) = o
-                    .alpha_flock
-                    .map_or((String::new(), String::new()), |(a, s)| {
-                        (a.to_string(), s.to_string())
-                    });
-                let (clearance, inside) = o
-                    .obstacles
-                    .map_or((String::new(), String::new()), |(c, i)| {
-                        (c.to_string(), i.to_string())
-                    });
-                fields.extend([alpha, strict, clearance, inside, String::new()]);
+            Ok(outcome) => {
+                fields.extend(outcome.fields());
+                fields.push(String::new());
             }
             Err(error) => {
-                fields.extend(std::iter::repeat_n(String::new(), 12));
+                fields.extend(std::iter::repeat_n(String::new(), OUTCOME_COLUMNS.len()));
                 fields.push(error.clone());
             }
         }

@@ -183,22 +183,13 @@ pub fn write_fields(
     write_atomic(&row_file(dir, index, id), &bytes)
 }
 
-/// A finished run's row file: its id, its `runs.csv` line and its wall time.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct RowFile {
-    /// The run's id.
-    pub id: String,
-    /// Its line of `runs.csv`, with the line break.
-    pub line: Vec<u8>,
-    /// Its wall time in seconds, as written.
-    pub wall_time: String,
-}
-
-/// The finished runs of `dir`, by index.
+/// The runs finished in `dir`: the ids of its row files by run index. Only the names are read: a
+/// row file is written whole (under a temporary name, then renamed), so that it exists says that
+/// its run is done.
 ///
 /// # Errors
-/// An unreadable directory or row file.
-pub fn finished(dir: &Path) -> Result<BTreeMap<usize, RowFile>, StoreError> {
+/// An unreadable directory.
+pub fn finished(dir: &Path) -> Result<BTreeMap<usize, String>, StoreError> {
     let rows = dir.join(ROWS_DIR);
     let mut found = BTreeMap::new();
     let entries = match fs::read_dir(&rows) {
@@ -207,35 +198,30 @@ pub fn finished(dir: &Path) -> Result<BTreeMap<usize, RowFile>, StoreError> {
         Err(e) => return Err(io_error(&rows)(e)),
     };
     for entry in entries {
-        let path = entry.map_err(io_error(&rows))?.path();
-        let name = path
-            .file_name()
-            .unwrap_or_default()
-            .to_string_lossy()
-            .into_owned();
-        let Some((index, id)) = name
+        let name = entry.map_err(io_error(&rows))?.file_name();
+        let name = name.to_string_lossy();
+        // the temporary file of a killed write has another suffix
+        let run = name
             .strip_suffix(".csv")
             .and_then(|stem| stem.split_once('-'))
-            .and_then(|(index, id)| Some((index.parse::<usize>().ok()?, id.to_owned())))
-        else {
-            continue; // a temporary file of a killed write
-        };
-        let bytes = fs::read(&path).map_err(io_error(&path))?;
-        let text = String::from_utf8_lossy(&bytes);
-        let body = text.trim_end_matches('\n');
-        let Some((line, time)) = body.rsplit_once('\n') else {
-            continue;
-        };
-        found.insert(
-            index,
-            RowFile {
-                id,
-                line: format!("{line}\n").into_bytes(),
-                wall_time: time.to_owned(),
-            },
-        );
+            .and_then(|(index, id)| Some((index.parse::<usize>().ok()?, id.to_owned())));
+        if let Some((index, id)) = run {
+            found.insert(index, id);
+        }
     }
     Ok(found)
+}
+
+/// The `runs.csv` line (with its line break) and the wall time of a row file.
+fn read_row(path: &Path) -> Result<(String, String), StoreError> {
+    let text = fs::read_to_string(path).map_err(io_error(path))?;
+    match text.trim_end_matches('\n').rsplit_once('\n') {
+        Some((line, time)) => Ok((format!("{line}\n"), time.to_owned())),
+        None => Err(io_error(path)(io::Error::new(
+            io::ErrorKind::InvalidData,
+            "not a row file (a runs.csv line, then a wall time)",
+        ))),
+    }
 }
 
 /// Writes `runs.csv` and `times.csv` of `dir` from its row files, in run order, and returns how
@@ -247,9 +233,10 @@ pub fn assemble(dir: &Path, sweep: &Sweep) -> Result<usize, StoreError> {
     let rows = finished(dir)?;
     let mut runs = csv_line(&header(sweep));
     let mut times = b"run,id,wall_time\n".to_vec();
-    for (index, row) in &rows {
-        runs.extend(&row.line);
-        times.extend(format!("{index},{},{}\n", row.id, row.wall_time).as_bytes());
+    for (&index, id) in &rows {
+        let (line, wall_time) = read_row(&row_file(dir, index, id))?;
+        runs.extend(line.as_bytes());
+        times.extend(format!("{index},{id},{wall_time}\n").as_bytes());
     }
     write_atomic(&dir.join(RUNS_FILE), &runs)?;
     write_atomic(&dir.join(TIMES_FILE), &times)?;
@@ -276,10 +263,10 @@ pub fn merge(out: &Path, shards: &[PathBuf]) -> Result<usize, StoreError> {
         if read_sweep(shard)? != sweep {
             return Err(StoreError::OtherSweep(shard.clone()));
         }
-        for (index, row) in finished(shard)? {
-            let mut bytes = row.line;
-            bytes.extend(format!("{}\n", row.wall_time).as_bytes());
-            write_atomic(&row_file(out, index, &row.id), &bytes)?;
+        for (index, id) in finished(shard)? {
+            let from = row_file(shard, index, &id);
+            let bytes = fs::read(&from).map_err(io_error(&from))?;
+            write_atomic(&row_file(out, index, &id), &bytes)?;
         }
     }
     let total = sweep.runs().len();
