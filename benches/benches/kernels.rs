@@ -1,7 +1,7 @@
 //! The hot kernels of a simulation step on α-lattices of 10⁴ agents, in 2D and 3D.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use flock::synthetic::lattice_swarm;
+use flocking::synthetic::lattice_swarm;
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_metrics::{FlockMetrics, MetricParams};
 use flock_protocols::{

@@ -1,4 +1,4 @@
-"""flock from Python: load TAC 2006 Fig. 11, run it, and plot the four metric panels of TAC 2006
+"""flocking from Python: load TAC 2006 Fig. 11, run it, and plot the four metric panels of TAC 2006
 Fig. 18 (connectivity C, cohesion radius R, deviation energy Ẽ, velocity mismatch K̃).
 
     pip install ./crates/flock-py matplotlib
@@ -10,14 +10,14 @@ matplotlib is optional: without it the script prints the final metrics only.
 import sys
 from pathlib import Path
 
-import flock
+import flocking
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def main(out: str = "fig11_metrics.png") -> None:
-    scenario = flock.Scenario.load(ROOT / "fixtures" / "tac2006_fig11_alg2_n100.ron")
-    result = flock.run(scenario)  # the bits of `flock run`, as numpy arrays
+    scenario = flocking.Scenario.load(ROOT / "fixtures" / "tac2006_fig11_alg2_n100.ron")
+    result = flocking.run(scenario)  # the bits of `flocking run`, as numpy arrays
     m = result.metrics
     print(f"{scenario.name}: {scenario.agents} agents, {scenario.steps} steps")
     for name in ("connectivity", "cohesion_radius", "deviation_energy", "velocity_mismatch"):

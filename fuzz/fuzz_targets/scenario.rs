@@ -11,8 +11,8 @@
 //!   `min_linked_distance` are +∞ for a single agent (no pair, no link). NaN is never accepted.
 #![no_main]
 
-use flock::metrics::FlockMetrics;
-use flock::{Algorithm, Cloud, Record, Recorder, RunSummary, Scenario, TannerGraph};
+use flocking::metrics::FlockMetrics;
+use flocking::{Algorithm, Cloud, Record, Recorder, RunSummary, Scenario, TannerGraph};
 use libfuzzer_sys::fuzz_target;
 
 /// Larger flocks are cut to this many agents (or not run, when the scenario lists every agent).
@@ -164,7 +164,7 @@ fn check_input(data: &[u8]) {
         columns: None,
         records: 0,
     };
-    if let Ok(summary) = flock::run(&small, &mut recorder) {
+    if let Ok(summary) = flocking::run(&small, &mut recorder) {
         assert!(
             recorder.records >= 2,
             "a run records t = 0 and its last step"

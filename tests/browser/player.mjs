@@ -1,4 +1,4 @@
-// Drives flock's HTML player (crates/flock-viz/src/player.rs) in the system's headless Chromium and
+// Drives flocking's HTML player (crates/flock-viz/src/player.rs) in the system's headless Chromium and
 // checks that it loads without errors, draws its agents where the data puts them, and that every
 // control works. Usage:
 //

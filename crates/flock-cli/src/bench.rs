@@ -1,9 +1,9 @@
-//! `flock bench`: throughput of the simulation loop on synthetic scenarios of any size.
+//! `flocking bench`: throughput of the simulation loop on synthetic scenarios of any size.
 //!
 //! [`bench()`] builds n agents on a jittered α-lattice at spacing ≈ d (triangular in 2D,
 //! face-centred cubic in 3D) with small random velocities, runs warm-up steps, then times
 //! `steps` steps of the chosen algorithm with the flocking metrics and the energy recorded every
-//! [`RECORD_EVERY`] steps, as `flock run` records them. The [`BenchReport`] it returns prints
+//! [`RECORD_EVERY`] steps, as `flocking run` records them. The [`BenchReport`] it returns prints
 //! agent-steps per second, ns per agent-step, ms per step, peak memory per agent and the thread
 //! count.
 
@@ -11,14 +11,14 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::{Duration, Instant};
 
-use flock::math::Vector;
-use flock::metrics::{FlockMetrics, MetricParams};
-use flock::obstacles::{ObstacleField, Space};
-use flock::protocols::{
+use flocking::math::Vector;
+use flocking::metrics::{FlockMetrics, MetricParams};
+use flocking::obstacles::{ObstacleField, Space};
+use flocking::protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaInteraction, AlphaParams, BetaInteraction, BetaParams,
     DynProtocol, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
 };
-use flock::synthetic::{D, lattice_swarm, shuffled};
+use flocking::synthetic::{D, lattice_swarm, shuffled};
 
 /// Steps between two recorded steps (metrics and energy), as the targets count them.
 pub const RECORD_EVERY: u64 = 10;
@@ -26,7 +26,7 @@ pub const RECORD_EVERY: u64 = 10;
 /// Obstacles of the Algorithm 3 benchmark.
 pub const BENCH_OBSTACLES: usize = 1000;
 
-/// Which algorithm `flock bench` runs.
+/// Which algorithm `flocking bench` runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum BenchAlgorithm {
     /// Algorithm 1: the α-interaction alone.
@@ -64,7 +64,7 @@ impl fmt::Display for BenchAlgorithm {
     }
 }
 
-/// What `flock bench` runs.
+/// What `flocking bench` runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BenchConfig {
     /// The number of agents n ≥ 2.
@@ -82,7 +82,7 @@ pub struct BenchConfig {
     pub shuffled: bool,
 }
 
-/// The measurements of one `flock bench` run.
+/// The measurements of one `flocking bench` run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BenchReport {
     /// What was run.
@@ -143,7 +143,7 @@ impl fmt::Display for BenchReport {
         let c = &self.config;
         writeln!(
             f,
-            "flock bench: {}, {}D, n = {}, {} steps after {} warm-up, metrics every {} steps",
+            "flocking bench: {}, {}D, n = {}, {} steps after {} warm-up, metrics every {} steps",
             c.algorithm, c.dim, c.n, c.steps, c.warmup, RECORD_EVERY
         )?;
         if self.obstacles > 0 {
@@ -223,8 +223,8 @@ pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
         return Err("--steps must be at least 1".to_owned());
     }
     match config.dim {
-        2 => Ok(bench_in::<flock::glam::DVec2>(config)),
-        3 => Ok(bench_in::<flock::glam::DVec3>(config)),
+        2 => Ok(bench_in::<flocking::glam::DVec2>(config)),
+        3 => Ok(bench_in::<flocking::glam::DVec3>(config)),
         dim => Err(format!("--dim must be 2 or 3, got {dim}")),
     }
 }
@@ -243,7 +243,7 @@ fn bench_in<V: Space>(config: &BenchConfig) -> BenchReport {
     } else {
         swarm
     };
-    // the protocol behind the dynamic type `flock run` uses
+    // the protocol behind the dynamic type `flocking run` uses
     let protocol: DynProtocol<V> = match config.algorithm {
         BenchAlgorithm::Algorithm1 => Box::new(Algorithm1 { alpha }),
         BenchAlgorithm::Algorithm2 => {

@@ -1,4 +1,4 @@
-//! `flock figures`: every fixture run and drawn into one directory, with a static `index.html`.
+//! `flocking figures`: every fixture run and drawn into one directory, with a static `index.html`.
 //!
 //! For each `*.ron` of the fixtures directory (sorted by name), [`figures()`] runs the scenario into
 //! `OUT/<fixture stem>/` (a [`RunDirectory`], replaced if present), draws its figures with
@@ -17,8 +17,8 @@ use std::fs;
 use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 
-use flock::run_dir::CreateError;
-use flock::{RunDirectory, RunError, Scenario, ScenarioError};
+use flocking::run_dir::CreateError;
+use flocking::{RunDirectory, RunError, Scenario, ScenarioError};
 use flock_viz::{FigureEntry, PlotError, index_html, load_metrics, paper_reference, plot_run};
 
 use crate::progress::Progress;
@@ -29,7 +29,7 @@ pub const DROPPED_RUN_FILES: [&str; 2] = ["trajectory.csv", "final.csv"];
 /// The figure files deleted once drawn.
 pub const DROPPED_FIGURES: [&str; 1] = ["animation.gif"];
 
-/// Why `flock figures` stopped.
+/// Why `flocking figures` stopped.
 #[derive(Debug)]
 pub enum FiguresError {
     /// The fixtures directory does not exist or holds no `*.ron`.
@@ -71,7 +71,7 @@ impl std::fmt::Display for FiguresError {
         match self {
             Self::NoFixtures(dir) => write!(
                 f,
-                "no fixtures: {} is not a directory holding *.ron scenarios; run `flock figures` from the workspace root",
+                "no fixtures: {} is not a directory holding *.ron scenarios; run `flocking figures` from the workspace root",
                 dir.display()
             ),
             Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
@@ -136,7 +136,7 @@ pub fn figures(
                 source,
             })?;
         let mut recorder = Progress::new(recorder, &scenario, !quiet && io::stderr().is_terminal());
-        let summary = match flock::run(&scenario, &mut recorder) {
+        let summary = match flocking::run(&scenario, &mut recorder) {
             Ok(summary) => summary,
             Err(e) => {
                 recorder.into_inner().abandon();
@@ -167,7 +167,7 @@ pub fn figures(
             .collect();
         if !quiet {
             println!(
-                "flock figures: {stem:<36} {}D n = {:<4} {:>6} steps  {:>7.2} s  -> {}",
+                "flocking figures: {stem:<36} {}D n = {:<4} {:>6} steps  {:>7.2} s  -> {}",
                 summary.dim,
                 summary.agents,
                 summary.steps,
@@ -194,7 +194,7 @@ pub fn figures(
     fs::write(&index, index_html(&entries)).map_err(io_err(&index))?;
     if !quiet {
         println!(
-            "flock figures: {} fixture(s), {}",
+            "flocking figures: {} fixture(s), {}",
             entries.len(),
             index.display()
         );

@@ -1,6 +1,6 @@
-//! The `flock` command line: what is about the terminal — the progress bar of a run
-//! ([`Progress`]), the printed summary ([`Report`]), `flock figures` ([`figures()`]) and
-//! `flock bench` ([`bench::bench()`]), `flock sweep` ([`sweep`]). Scenarios, runs and run directories are the `flock`
+//! The `flocking` command line: what is about the terminal — the progress bar of a run
+//! ([`Progress`]), the printed summary ([`Report`]), `flocking figures` ([`figures()`]) and
+//! `flocking bench` ([`bench::bench()`]), `flocking sweep` ([`sweep`]). Scenarios, runs and run directories are the `flocking`
 //! library's; figures are `flock-viz`'s.
 
 pub mod bench;

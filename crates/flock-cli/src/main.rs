@@ -1,19 +1,19 @@
-//! `flock`: run flocking scenarios from RON files.
+//! `flocking`: run flocking scenarios from RON files.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
-use flock::metrics::FlockingCriteria;
-use flock::run_dir::{CreateError, ResumeError};
-use flock::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
+use flocking::metrics::FlockingCriteria;
+use flocking::run_dir::{CreateError, ResumeError};
+use flocking::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
 use flock_cli::{Progress, Report};
 use flock_viz::{FigureOptions, plot_run_with};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
-#[command(name = "flock", version, about)]
+#[command(name = "flocking", version, about)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -47,10 +47,10 @@ enum Command {
         /// Worker threads (default: all cores); results are identical for any count.
         #[arg(long)]
         threads: Option<usize>,
-        /// Also draw the run's figures into DIR/figures (as `flock plot DIR`).
+        /// Also draw the run's figures into DIR/figures (as `flocking plot DIR`).
         #[arg(long)]
         plot: bool,
-        /// With --plot: colour each edge by the sign of its stress weight (as `flock plot`).
+        /// With --plot: colour each edge by the sign of its stress weight (as `flocking plot`).
         #[arg(long, requires = "plot")]
         stress_edges: bool,
         /// No progress bar (it is shown only on a terminal, for runs longer than about a second).
@@ -80,7 +80,7 @@ enum Command {
     /// Draw the figures of a finished run into DIR/figures: snapshots (SVG, PNG), the metric curves
     /// of TAC 2006 Fig. 18, an animated GIF and a self-contained HTML player.
     Plot {
-        /// A run directory written by `flock run`.
+        /// A run directory written by `flocking run`.
         dir: PathBuf,
         /// Colour each edge by the sign of its stress weight (ACC 2004, Reynolds' rules): orange
         /// beyond d (attraction, F⁺), purple within (repulsion, F⁻), grey within 1 % of d (F⁰).
@@ -193,7 +193,7 @@ fn main() -> ExitCode {
                 println!("{}: valid", scenario.display());
                 print!("{}", s.to_ron().unwrap_or_default());
                 println!();
-                if let Some(stable) = flock::largest_stable_step(&s) {
+                if let Some(stable) = flocking::largest_stable_step(&s) {
                     println!(
                         "// step {} against the estimated largest stable step {stable:.3e}",
                         s.step
@@ -314,7 +314,7 @@ fn create_directory(
                 target.display()
             ),
             CreateError::Interrupted { partial, target } => eprintln!(
-                "error: {} holds an interrupted run; continue it with `flock run --resume {}`, or pass --force to start over",
+                "error: {} holds an interrupted run; continue it with `flocking run --resume {}`, or pass --force to start over",
                 partial.display(),
                 target.display()
             ),
@@ -337,7 +337,7 @@ fn resume_directory(
                 target,
                 complete: false,
             } => eprintln!(
-                "error: there is no interrupted run at {}: start it with `flock run SCENARIO --out {}`",
+                "error: there is no interrupted run at {}: start it with `flocking run SCENARIO --out {}`",
                 partial.display(),
                 target.display()
             ),
@@ -375,7 +375,7 @@ fn execute(
 ) -> Result<PathBuf, ExitCode> {
     let mut recorder = Progress::for_terminal(dir, scenario, quiet)
         .starting_at(start.map_or(0, |start| start.steps));
-    let result = flock::resume(scenario, start, &mut recorder);
+    let result = flocking::resume(scenario, start, &mut recorder);
     let dir = recorder.into_inner();
     let error = match result {
         Ok(summary) => {
@@ -415,7 +415,7 @@ fn execute(
     };
     match dir.keep_incomplete(&why, resumable) {
         Ok(partial) if resumable => eprintln!(
-            "the records so far are kept in {}; continue with `flock run --resume {}`",
+            "the records so far are kept in {}; continue with `flocking run --resume {}`",
             partial.display(),
             partial.display()
         ),

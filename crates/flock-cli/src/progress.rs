@@ -1,4 +1,4 @@
-//! The progress bar of `flock run`: a [`Recorder`] wrapper that ticks an [`indicatif`] bar on every
+//! The progress bar of `flocking run`: a [`Recorder`] wrapper that ticks an [`indicatif`] bar on every
 //! record and hands the record on unchanged, so the simulation core and the run's outputs are the
 //! same with or without it.
 //!
@@ -9,7 +9,7 @@
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
-use flock::{Record, Recorder, Scenario, Start};
+use flocking::{Record, Recorder, Scenario, Start};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressState, ProgressStyle};
 
 /// How long a run goes before its bar may appear.

@@ -1,8 +1,8 @@
-//! The one-screen summary `flock run` prints.
+//! The one-screen summary `flocking run` prints.
 
 use std::fmt;
 
-use flock::RunSummary;
+use flocking::RunSummary;
 
 /// A run summary with its scenario's name, ready to print.
 #[derive(Debug)]
@@ -20,7 +20,7 @@ impl fmt::Display for Report<'_> {
         let rate = (s.agents as f64 * s.steps as f64) / s.elapsed.as_secs_f64().max(1e-9);
         writeln!(
             f,
-            "flock run: {} ({}D, n = {}, {} steps to t = {})",
+            "flocking run: {} ({}D, n = {}, {} steps to t = {})",
             self.name, s.dim, s.agents, s.steps, s.t
         )?;
         writeln!(

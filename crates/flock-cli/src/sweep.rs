@@ -1,5 +1,5 @@
-//! `flock sweep`: a sweep file run on this machine's cores (or one shard of it), its shards merged,
-//! and its phase diagrams drawn. The sweep itself is the `flock` library's ([`flock::sweep`]).
+//! `flocking sweep`: a sweep file run on this machine's cores (or one shard of it), its shards merged,
+//! and its phase diagrams drawn. The sweep itself is the `flocking` library's ([`flocking::sweep`]).
 
 use std::fs;
 use std::io::IsTerminal;
@@ -8,12 +8,12 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
-use flock::sweep::store::{self, RUNS_FILE};
-use flock::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute, share};
+use flocking::sweep::store::{self, RUNS_FILE};
+use flocking::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute, share};
 use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-/// `flock sweep SWEEP.ron --out DIR [--jobs N] [--keep-runs] [--shard i/N]`, or one of its
+/// `flocking sweep SWEEP.ron --out DIR [--jobs N] [--keep-runs] [--shard i/N]`, or one of its
 /// subcommands.
 #[derive(Debug, Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
@@ -30,11 +30,11 @@ pub struct SweepArgs {
     /// Workers, each running one single-threaded run at a time (default: all cores).
     #[arg(long)]
     jobs: Option<usize>,
-    /// Keep each run's directory in `DIR/runs/<id>` (as `flock run` writes it).
+    /// Keep each run's directory in `DIR/runs/<id>` (as `flocking run` writes it).
     #[arg(long)]
     keep_runs: bool,
     /// Run only shard i of N (run k belongs to shard k mod N), e.g. `--shard $SLURM_ARRAY_TASK_ID/N`;
-    /// join the shards with `flock sweep merge`.
+    /// join the shards with `flocking sweep merge`.
     #[arg(long, value_name = "i/N")]
     shard: Option<Shard>,
     /// No progress bar.
@@ -92,7 +92,7 @@ pub enum BandArg {
     Quantiles,
 }
 
-/// Runs `flock sweep …`.
+/// Runs `flocking sweep …`.
 pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
     let result = match args.action {
         Some(SweepAction::Merge { out, shards }) => merge(&out, &shards),
@@ -163,7 +163,7 @@ fn run(
     let executed = execute(&sweep, out, options, stop, &done).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     println!(
-        "flock sweep: {} run(s) now, {} found done, {} failed; {} row(s) in {}",
+        "flocking sweep: {} run(s) now, {} found done, {} failed; {} row(s) in {}",
         executed.ran,
         executed.skipped,
         failed.into_inner(),
@@ -182,7 +182,7 @@ fn run(
 fn merge(out: &Path, shards: &[PathBuf]) -> Result<(), String> {
     let rows = store::merge(out, shards).map_err(|e| e.to_string())?;
     println!(
-        "flock sweep merge: {} shard(s), {rows} row(s) in {}",
+        "flocking sweep merge: {} shard(s), {rows} row(s) in {}",
         shards.len(),
         out.join(RUNS_FILE).display()
     );
@@ -274,6 +274,6 @@ fn plot(
     }
     .map_err(|e| e.to_string())?;
     fs::write(&out, bytes).map_err(|e| format!("{}: {e}", out.display()))?;
-    println!("flock sweep plot: {}", out.display());
+    println!("flocking sweep plot: {}", out.display());
     Ok(())
 }

@@ -1,9 +1,9 @@
-//! `flock bench` through the binary: the report names every measurement (timings not checked).
+//! `flocking bench` through the binary: the report names every measurement (timings not checked).
 
 use std::process::Command;
 
 fn bench(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_flock"))
+    Command::new(env!("CARGO_BIN_EXE_flocking"))
         .arg("bench")
         .args(args)
         .output()
@@ -16,7 +16,7 @@ fn bench_reports_throughput_memory_and_threads() {
     assert!(out.status.success(), "{out:?}");
     let report = String::from_utf8(out.stdout).expect("UTF-8 report");
     assert!(
-        report.starts_with("flock bench: Algorithm 2, 2D, n = 500, 3 steps after 3 warm-up"),
+        report.starts_with("flocking bench: Algorithm 2, 2D, n = 500, 3 steps after 3 warm-up"),
         "{report}"
     );
     for field in [

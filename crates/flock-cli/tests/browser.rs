@@ -1,5 +1,5 @@
 //! The HTML player in a real browser: short runs of TAC 2006 Figs. 11 (2D) and 13 (3D) plotted by
-//! `flock run --plot`, their `player.html` driven in headless Chromium by `tests/browser/player.mjs`
+//! `flocking run --plot`, their `player.html` driven in headless Chromium by `tests/browser/player.mjs`
 //! (no console errors, agents drawn where the data puts them, play/pause, scrub, speed, edges, zoom
 //! and the 3D view selector). The screenshots are kept in `target/browser-artifacts/`.
 //!
@@ -92,14 +92,14 @@ fn check_player(name: &str, mode: &str, artefact: &str) {
     assert_eq!(scenario.validate(), Ok(()));
     let text = scenario.to_ron().expect("the scenario serialises");
     fs::write(tmp.path().join("s.ron"), text).expect("write the scenario");
-    let run = Command::new(env!("CARGO_BIN_EXE_flock"))
+    let run = Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(tmp.path())
         .args(["run", "s.ron", "--out", "o", "--plot", "--quiet"])
         .output()
-        .expect("flock runs");
+        .expect("flocking runs");
     assert!(
         run.status.success(),
-        "flock run --plot: {}",
+        "flocking run --plot: {}",
         String::from_utf8_lossy(&run.stderr)
     );
     let player = tmp.path().join("o/figures/player.html");

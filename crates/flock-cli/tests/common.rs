@@ -3,7 +3,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use flock::Scenario;
+use flocking::Scenario;
 
 /// The workspace's `fixtures/` directory.
 pub fn fixtures_dir() -> PathBuf {
@@ -59,9 +59,9 @@ impl Drop for TempDir {
     }
 }
 
-/// Runs the `flock` binary in `dir` with `args` and waits for it.
-pub fn flock(dir: &Path, args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_flock"))
+/// Runs the `flocking` binary in `dir` with `args` and waits for it.
+pub fn flocking(dir: &Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(dir)
         .args(args)
         .output()

@@ -1,13 +1,13 @@
-//! Bad scenarios get an error naming the field (from the library and from the `flock` binary),
-//! and `flock run` writes its outputs whole or not at all.
+//! Bad scenarios get an error naming the field (from the library and from the `flocking` binary),
+//! and `flocking run` writes its outputs whole or not at all.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use flock::run_dir::METRICS_HEADER;
-use flock::{Scenario, ScenarioError};
+use flocking::run_dir::METRICS_HEADER;
+use flocking::{Scenario, ScenarioError};
 
-use crate::common::{TempDir, files, flock, stderr, write};
+use crate::common::{TempDir, files, flocking, stderr, write};
 
 /// A valid 2D scenario of 5 agents and 10 steps; each error test breaks one field of it.
 pub const TINY_2D: &str = r#"Scenario(
@@ -271,7 +271,7 @@ fn the_fixtures_and_the_base_scenarios_give_no_warning() {
 #[test]
 fn a_step_the_stiffness_makes_unstable_is_warned_with_the_largest_stable_step() {
     let stiff = edit(TINY_2D, "h: 0.2)", "h: 0.2, c1: 500.0)");
-    let stable = flock::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
+    let stable = flocking::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
         .expect("an estimate for Algorithm 2");
     // The papers' gains leave a wide margin above h = 0.01; c₁^α = 500 takes it below.
     assert!(stable < 0.01, "{stable}");
@@ -304,20 +304,20 @@ fn the_stable_step_estimate_separates_stable_from_unstable_runs() {
         step: 0.01, duration: 6.0, record_every: 100,
     )"#;
     let base = Scenario::parse(text, "test.ron").expect("valid");
-    let stable = flock::largest_stable_step(&base).expect("an estimate");
+    let stable = flocking::largest_stable_step(&base).expect("an estimate");
     let with_step = |h: f64| Scenario {
         step: h,
         ..base.clone()
     };
-    let summary = flock::run(&with_step(0.5 * stable), &mut ())
+    let summary = flocking::run(&with_step(0.5 * stable), &mut ())
         .unwrap_or_else(|e| panic!("half the estimate must run: {e}"));
     assert!(
         summary.metrics.min_distance > 0.8 * 7.0,
         "{:?}",
         summary.metrics
     );
-    match flock::run(&with_step(4.0 * stable), &mut ()) {
-        Err(flock::RunError::Numerical(e)) => {
+    match flocking::run(&with_step(4.0 * stable), &mut ()) {
+        Err(flocking::RunError::Numerical(e)) => {
             assert!(e.cause.contains("largest stable step"), "{e}");
         }
         Ok(summary) => assert!(
@@ -459,7 +459,7 @@ fn explicit_position_of_the_wrong_dimension_is_named_with_its_index() {
     assert!(Scenario::parse(&good, "test.ron").is_ok());
 }
 
-// ---- The `flock` binary ----------------------------------------------------------------------
+// ---- The `flocking` binary ----------------------------------------------------------------------
 
 /// The files of a directory by name, with their contents as text.
 fn contents(dir: &Path) -> BTreeMap<String, String> {
@@ -479,7 +479,7 @@ fn partial(out: &Path) -> std::path::PathBuf {
 fn validate_accepts_a_valid_scenario_and_prints_it_resolved() {
     let tmp = TempDir::new("validate_good");
     let file = write(tmp.path(), "tiny.ron", TINY_2D);
-    let output = flock(tmp.path(), &["validate", &file]);
+    let output = flocking(tmp.path(), &["validate", &file]);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     assert!(stdout.contains("valid"), "{stdout}");
@@ -493,7 +493,7 @@ fn validate_accepts_a_valid_scenario_and_prints_it_resolved() {
 fn validate_rejects_a_bad_scenario_with_exit_code_2() {
     let tmp = TempDir::new("validate_bad");
     let file = write(tmp.path(), "bad.ron", &edit(TINY_2D, "h: 0.2", "h: 1.0"));
-    let output = flock(tmp.path(), &["validate", &file]);
+    let output = flocking(tmp.path(), &["validate", &file]);
     assert_eq!(output.status.code(), Some(2));
     let err = stderr(&output);
     assert!(err.contains("alpha.h"), "{err}");
@@ -507,7 +507,7 @@ fn validate_rejects_a_bad_scenario_with_exit_code_2() {
 fn validate_names_an_unreadable_file_with_exit_code_2() {
     let tmp = TempDir::new("validate_missing");
     let missing = tmp.path().join("no-such-scenario.ron");
-    let output = flock(tmp.path(), &["validate", missing.to_str().expect("UTF-8")]);
+    let output = flocking(tmp.path(), &["validate", missing.to_str().expect("UTF-8")]);
     assert_eq!(output.status.code(), Some(2));
     let err = stderr(&output);
     assert!(err.contains("no-such-scenario.ron"), "{err}");
@@ -522,7 +522,7 @@ fn run_of_a_bad_scenario_exits_2_and_writes_nothing() {
         &edit(TINY_2D, "agents: 5", "agents: 0"),
     );
     let out = tmp.path().join("out");
-    let output = flock(
+    let output = flocking(
         tmp.path(),
         &["run", &file, "--out", out.to_str().expect("UTF-8")],
     );
@@ -537,11 +537,11 @@ fn run_of_a_bad_scenario_exits_2_and_writes_nothing() {
     assert!(!tmp.path().join("out").join("bad").exists());
 }
 
-/// Runs `text` with `flock run --out tmp/out` and checks the four outputs; returns them.
+/// Runs `text` with `flocking run --out tmp/out` and checks the four outputs; returns them.
 fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> {
     let file = write(tmp.path(), "tiny.ron", text);
     let out = tmp.path().join("out");
-    let output = flock(
+    let output = flocking(
         tmp.path(),
         &[
             "run",
@@ -667,7 +667,7 @@ fn run_refuses_an_existing_output_without_force() {
         &edit(TINY_2D, "seed: 1", "seed: 2"),
     );
 
-    let refused = flock(tmp.path(), &["run", &other, "--out", out_arg]);
+    let refused = flocking(tmp.path(), &["run", &other, "--out", out_arg]);
     assert!(!refused.status.success());
     assert_eq!(refused.status.code(), Some(1));
     let err = stderr(&refused);
@@ -675,7 +675,7 @@ fn run_refuses_an_existing_output_without_force() {
     assert_eq!(contents(&out), first, "the first output is left intact");
     assert!(!partial(&out).exists());
 
-    let forced = flock(tmp.path(), &["run", &other, "--out", out_arg, "--force"]);
+    let forced = flocking(tmp.path(), &["run", &other, "--out", out_arg, "--force"]);
     assert_eq!(forced.status.code(), Some(0), "{}", stderr(&forced));
     let second = contents(&out);
     assert_eq!(

@@ -1,4 +1,4 @@
-//! `flock figures`: every fixture run and drawn, with a static `index.html`; and `flock run --quiet`.
+//! `flocking figures`: every fixture run and drawn, with a static `index.html`; and `flocking run --quiet`.
 
 use std::fs;
 use std::process::Command;
@@ -83,11 +83,11 @@ fn figures_without_fixtures_is_a_clear_error() {
     )
     .expect_err("no fixtures directory");
     assert!(err.to_string().contains("no fixtures"), "{err}");
-    let output = Command::new(env!("CARGO_BIN_EXE_flock"))
+    let output = Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(tmp.path())
         .args(["figures", "--out", "o", "--quiet"])
         .output()
-        .expect("flock runs");
+        .expect("flocking runs");
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("no fixtures"));
 }
@@ -96,20 +96,20 @@ fn figures_without_fixtures_is_a_clear_error() {
 fn run_quiet_is_accepted_and_writes_the_same_files() {
     let tmp = TempDir::new("run_quiet");
     fs::write(tmp.path().join("s.ron"), TINY).expect("write the scenario");
-    let flock = |args: &[&str]| {
-        let output = Command::new(env!("CARGO_BIN_EXE_flock"))
+    let flocking = |args: &[&str]| {
+        let output = Command::new(env!("CARGO_BIN_EXE_flocking"))
             .current_dir(tmp.path())
             .args(args)
             .output()
-            .expect("flock runs");
+            .expect("flocking runs");
         assert!(
             output.status.success(),
             "{}",
             String::from_utf8_lossy(&output.stderr)
         );
     };
-    flock(&["run", "s.ron", "--out", "a"]);
-    flock(&["run", "s.ron", "--out", "b", "--quiet"]);
+    flocking(&["run", "s.ron", "--out", "a"]);
+    flocking(&["run", "s.ron", "--out", "b", "--quiet"]);
     for file in ["metrics.csv", "trajectory.csv", "final.csv", "scenario.ron"] {
         let a = fs::read(tmp.path().join("a").join(file)).expect("a");
         let b = fs::read(tmp.path().join("b").join(file)).expect("b");
@@ -126,7 +126,7 @@ fn section<'a>(index: &'a str, stem: &str) -> &'a str {
     &index[start..start + end]
 }
 
-/// The gallery committed in `docs/figures` (`flock figures --out docs/figures --no-player`) cannot
+/// The gallery committed in `docs/figures` (`flocking figures --out docs/figures --no-player`) cannot
 /// go stale silently: the quickest fixture (the Tanner law's) is run and drawn again, and every
 /// file kept for it, and its section of the page, must equal the committed ones byte for byte;
 /// the committed page has a section for every fixture. After changing a fixture, the drawing or

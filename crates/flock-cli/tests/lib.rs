@@ -1,5 +1,5 @@
-//! Integration tests of `flock-cli`, one binary (see STYLE.md): the `flock` binary's commands,
-//! errors and crash safety (kills, Ctrl-C, resume), `flock bench`, `flock plot`, `flock figures`
+//! Integration tests of `flock-cli`, one binary (see STYLE.md): the `flocking` binary's commands,
+//! errors and crash safety (kills, Ctrl-C, resume), `flocking bench`, `flocking plot`, `flocking figures`
 //! and the HTML player in a browser.
 
 mod bench;

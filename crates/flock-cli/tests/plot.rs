@@ -1,8 +1,8 @@
-//! `flock run --plot` and `flock plot DIR`: the figures of a run, with its obstacles and γ-agent.
+//! `flocking run --plot` and `flocking plot DIR`: the figures of a run, with its obstacles and γ-agent.
 
 use std::fs;
 
-use crate::common::{TempDir, flock};
+use crate::common::{TempDir, flocking};
 
 /// A short Algorithm 3 run in 2D with one ball in the way.
 const SCENARIO: &str = r#"Scenario(
@@ -22,7 +22,7 @@ const SCENARIO: &str = r#"Scenario(
 fn run_with_plot_writes_every_figure() {
     let tmp = TempDir::new("plot_run");
     fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
-    let output = flock(tmp.path(), &["run", "s.ron", "--out", "o", "--plot"]);
+    let output = flocking(tmp.path(), &["run", "s.ron", "--out", "o", "--plot"]);
     assert!(
         output.status.success(),
         "{}",
@@ -52,7 +52,7 @@ fn run_with_plot_writes_every_figure() {
     );
     // plotting again from the run directory gives the same files, byte for byte
     let first = fs::read(figures.join("snapshots.svg")).expect("svg");
-    let again = flock(tmp.path(), &["plot", "o"]);
+    let again = flocking(tmp.path(), &["plot", "o"]);
     assert!(
         again.status.success(),
         "{}",
@@ -64,7 +64,7 @@ fn run_with_plot_writes_every_figure() {
 #[test]
 fn plot_of_a_directory_that_is_not_a_run_fails_clearly() {
     let tmp = TempDir::new("plot_missing");
-    let output = flock(tmp.path(), &["plot", "nowhere"]);
+    let output = flocking(tmp.path(), &["plot", "nowhere"]);
     assert!(!output.status.success());
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(message.contains("scenario.ron"), "{message}");
@@ -87,7 +87,7 @@ fn a_run_with_an_npy_trajectory_draws_the_same_figures() {
             "npy",
         ],
     ] {
-        let output = flock(tmp.path(), args);
+        let output = flocking(tmp.path(), args);
         assert!(
             output.status.success(),
             "{}",

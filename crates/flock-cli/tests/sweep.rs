@@ -1,4 +1,4 @@
-//! `flock sweep`: the command line of sweeps — a sweep killed with SIGKILL and run again gives the
+//! `flocking sweep`: the command line of sweeps — a sweep killed with SIGKILL and run again gives the
 //! runs.csv of an uninterrupted one, byte for byte; shards merged; phase diagrams drawn; clear
 //! errors.
 
@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{TempDir, fixtures_dir, flock, stderr};
+use crate::common::{TempDir, fixtures_dir, flocking, stderr};
 
 /// Fig. 11 cut to 30 agents and 20 s (some 10–20 ms a run), over 4 × 2 values × 3 seeds (24 runs).
 fn write_sweep(dir: &Path) -> String {
@@ -32,10 +32,10 @@ fn write_sweep(dir: &Path) -> String {
 fn sweep(dir: &Path, args: &[&str]) -> String {
     let mut all = vec!["sweep"];
     all.extend_from_slice(args);
-    let output = flock(dir, &all);
+    let output = flocking(dir, &all);
     assert!(
         output.status.success(),
-        "flock {all:?}: {}",
+        "flocking {all:?}: {}",
         stderr(&output)
     );
     String::from_utf8_lossy(&output.stdout).into_owned()
@@ -52,13 +52,13 @@ fn a_killed_sweep_resumes_to_the_same_runs_csv() {
     let whole = fs::read(tmp.path().join("whole/runs.csv")).expect("runs.csv");
     assert_eq!(String::from_utf8_lossy(&whole).lines().count(), 25);
 
-    let mut child = Command::new(env!("CARGO_BIN_EXE_flock"))
+    let mut child = Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(tmp.path())
         .args(["sweep", &spec, "--out", "killed", "--jobs", "2", "--quiet"])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
-        .expect("flock sweep starts");
+        .expect("flocking sweep starts");
     let rows = tmp.path().join("killed/rows");
     let deadline = Instant::now() + Duration::from_secs(120);
     let done = || fs::read_dir(&rows).map_or(0, |entries| entries.count());
@@ -114,7 +114,7 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
         fs::read(tmp.path().join("merged/runs.csv")).expect("merged"),
         fs::read(tmp.path().join("all/runs.csv")).expect("all")
     );
-    let missing = flock(tmp.path(), &["sweep", "merge", "--out", "m2", "s0", "s2"]);
+    let missing = flocking(tmp.path(), &["sweep", "merge", "--out", "m2", "s0", "s2"]);
     assert!(!missing.status.success());
     assert!(
         stderr(&missing).contains("8 of 24 runs are in no shard"),
@@ -160,7 +160,7 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
     let png = fs::read(tmp.path().join("line.png")).expect("line.png");
     assert_eq!(&png[1..4], b"PNG");
 
-    let bad = flock(
+    let bad = flocking(
         tmp.path(),
         &[
             "sweep",
@@ -185,16 +185,16 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
 fn bad_sweep_commands_are_clear_errors() {
     let tmp = TempDir::new("sweep_errors_cli");
     let spec = write_sweep(tmp.path());
-    let no_out = flock(tmp.path(), &["sweep", &spec]);
+    let no_out = flocking(tmp.path(), &["sweep", &spec]);
     assert_eq!(no_out.status.code(), Some(2));
     assert!(stderr(&no_out).contains("--out"), "{}", stderr(&no_out));
-    let shard = flock(
+    let shard = flocking(
         tmp.path(),
         &["sweep", &spec, "--out", "o", "--shard", "3/3"],
     );
     assert!(stderr(&shard).contains("0 ≤ i < N"), "{}", stderr(&shard));
     fs::write(tmp.path().join("bad.ron"), "Sweep(seeds: 2)").expect("write");
-    let bad = flock(tmp.path(), &["sweep", "bad.ron", "--out", "o"]);
+    let bad = flocking(tmp.path(), &["sweep", "bad.ron", "--out", "o"]);
     assert!(!bad.status.success());
     assert!(stderr(&bad).contains("bad.ron:1:"), "{}", stderr(&bad));
     sweep(tmp.path(), &[&spec, "--out", "o", "--quiet"]);
@@ -206,7 +206,7 @@ fn bad_sweep_commands_are_clear_errors() {
     )
     .expect("write");
     fs::create_dir(tmp.path().join("empty")).expect("mkdir");
-    let not_a_sweep = flock(
+    let not_a_sweep = flocking(
         tmp.path(),
         &[
             "sweep",
@@ -223,7 +223,7 @@ fn bad_sweep_commands_are_clear_errors() {
         "{}",
         stderr(&not_a_sweep)
     );
-    let refused = flock(tmp.path(), &["sweep", "other.ron", "--out", "o"]);
+    let refused = flocking(tmp.path(), &["sweep", "other.ron", "--out", "o"]);
     assert!(!refused.status.success());
     assert!(
         stderr(&refused).contains("another sweep"),
@@ -233,7 +233,7 @@ fn bad_sweep_commands_are_clear_errors() {
 }
 
 /// The committed results of the shipped sweeps (`docs/figures/sweeps/<name>/`, read by
-/// docs/sweeps.md) are what flock computes and draws today: Algorithm 3's sweep run again (140
+/// docs/sweeps.md) are what flocking computes and draws today: Algorithm 3's sweep run again (140
 /// runs) gives its runs.csv byte for byte, shard 0 of 20 of Algorithm 2's (20 of its 400 runs)
 /// gives the same rows, and every committed diagram is drawn again from the committed runs.csv.
 #[test]

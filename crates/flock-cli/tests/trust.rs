@@ -8,11 +8,11 @@ use std::process::{Child, Command, Stdio};
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
-use flock::health::Fault;
-use flock::run_dir::{Checkpoint, INCOMPLETE_FILE};
-use flock::{Cloud, DynSimulation, Initial, Record, Recorder, RunError, Scenario};
+use flocking::health::Fault;
+use flocking::run_dir::{Checkpoint, INCOMPLETE_FILE};
+use flocking::{Cloud, DynSimulation, Initial, Record, Recorder, RunError, Scenario};
 
-use crate::common::{TempDir, files, flock, stderr, write};
+use crate::common::{TempDir, files, flocking, stderr, write};
 
 /// Algorithm 2, 60 agents, 12,000 steps recorded every 10: long enough (about a second in a
 /// test build) to be interrupted at many points.
@@ -50,18 +50,18 @@ const BLOW_UP: &str = r#"Scenario(
 "#;
 
 fn partial(out: &Path) -> PathBuf {
-    flock::run_dir::partial_path(out)
+    flocking::run_dir::partial_path(out)
 }
 
 /// Runs `args` to completion, asserting success.
 fn complete(dir: &Path, args: &[&str]) {
-    let output = flock(dir, args);
+    let output = flocking(dir, args);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
 }
 
-/// A `flock` process in the background.
+/// A `flocking` process in the background.
 fn spawn(dir: &Path, args: &[&str]) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_flock"))
+    Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(dir)
         .args(args)
         .stdout(Stdio::null())
@@ -108,7 +108,7 @@ fn check_incomplete(out: &Path, agents: usize) {
     let dir = partial(out);
     let note = fs::read_to_string(dir.join(INCOMPLETE_FILE)).expect("an INCOMPLETE note");
     assert!(note.starts_with("incomplete: "), "{note}");
-    assert!(note.contains("flock run --resume"), "{note}");
+    assert!(note.contains("flocking run --resume"), "{note}");
     assert!(!out.exists(), "DIR appears only for complete runs");
     let names = files(&dir);
     for name in names.keys() {
@@ -187,7 +187,7 @@ fn the_health_check_names_the_step_the_agent_and_the_fault() {
 #[test]
 fn a_blow_up_stops_the_run_with_the_step_agent_and_cause() {
     let scenario = Scenario::parse(BLOW_UP, "blow_up.ron").expect("valid (with a warning)");
-    match flock::run(&scenario, &mut ()) {
+    match flocking::run(&scenario, &mut ()) {
         Err(RunError::Numerical(e)) => {
             assert_eq!(e.steps, 1);
             let message = e.to_string();
@@ -211,7 +211,7 @@ fn initial_speeds_beyond_what_the_step_resolves_stop_the_run_at_step_0() {
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1e6])",
     );
     let scenario = Scenario::parse(&text, "fast.ron").expect("valid");
-    match flock::run(&scenario, &mut ()) {
+    match flocking::run(&scenario, &mut ()) {
         Err(RunError::Numerical(e)) => {
             assert_eq!(e.steps, 0);
             assert!(matches!(e.fault.fault, Fault::Runaway { .. }), "{e}");
@@ -225,7 +225,7 @@ fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
     let tmp = TempDir::new("blow_up_cli");
     let file = write(tmp.path(), "blow_up.ron", BLOW_UP);
     let out = tmp.path().join("out");
-    let output = flock(tmp.path(), &["run", &file, "--out", "out", "--quiet"]);
+    let output = flocking(tmp.path(), &["run", &file, "--out", "out", "--quiet"]);
     assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
     let err = stderr(&output);
     assert!(err.contains("warning: `step` = 0.05"), "{err}");
@@ -241,7 +241,7 @@ fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
     // t = 0 was recorded whole; nothing of the bad step was.
     assert_eq!(whole_lines(&dir.join("metrics.csv"), None), 1);
     assert_eq!(whole_lines(&dir.join("trajectory.csv"), None), 30);
-    let resumed = flock(tmp.path(), &["run", "--resume", "out"]);
+    let resumed = flocking(tmp.path(), &["run", "--resume", "out"]);
     assert_eq!(resumed.status.code(), Some(1));
     assert!(
         stderr(&resumed).contains("cannot be resumed, it would fail again"),
@@ -304,17 +304,17 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
         .expect("Ctrl-C keeps a checkpoint even with --checkpoint-every 0");
     assert!(checkpoint.start.steps > 0 && checkpoint.start.steps < 12_000);
     // A new run into the same directory is refused: it would discard the interrupted one.
-    let again = flock(tmp.path(), &["run", &file, "--out", "cut"]);
+    let again = flocking(tmp.path(), &["run", &file, "--out", "cut"]);
     assert_eq!(again.status.code(), Some(1));
     assert!(
-        stderr(&again).contains("flock run --resume"),
+        stderr(&again).contains("flocking run --resume"),
         "{}",
         stderr(&again)
     );
     complete(tmp.path(), &["run", "--resume", "cut", "--quiet"]);
     assert_eq!(files(&out), files(&tmp.path().join("whole")));
     assert!(!partial(&out).exists());
-    let finished = flock(tmp.path(), &["run", "--resume", "cut"]);
+    let finished = flocking(tmp.path(), &["run", "--resume", "cut"]);
     assert!(
         stderr(&finished).contains("holds a complete run"),
         "{}",
@@ -414,7 +414,7 @@ fn a_corrupt_checkpoint_is_refused_with_its_path() {
     fs::create_dir_all(&dir).expect("mkdir");
     fs::write(dir.join("scenario.ron"), LONG_2D).expect("scenario");
     fs::write(dir.join("checkpoint.bin"), b"FLOCKCK1 but cut short").expect("checkpoint");
-    let output = flock(tmp.path(), &["run", "--resume", "cut"]);
+    let output = flocking(tmp.path(), &["run", "--resume", "cut"]);
     assert_eq!(output.status.code(), Some(1));
     let err = stderr(&output);
     assert!(
@@ -570,7 +570,7 @@ fn the_fuzzers_findings_are_rejected_or_run_finite() {
             columns: None,
             agents: short.agents,
         };
-        match flock::run(&short, &mut finite) {
+        match flocking::run(&short, &mut finite) {
             Ok(_) | Err(RunError::Numerical(_)) => {}
             Err(e) => panic!("{}: {e}", path.display()),
         }

@@ -13,7 +13,7 @@
 //! α-lattice patch in the middle of the box instead of the random box).
 //!
 //! The initial state is the fixture's: positions uniform in the box [xmin, xmax] × [ymin, ymax]
-//! drawn from the PCG64 stream of `seed` as `flock run` draws them, at rest. Every record measures the TAC 2006
+//! drawn from the PCG64 stream of `seed` as `flocking run` draws them, at rest. Every record measures the TAC 2006
 //! metrics, the pairs closer than d/4 (collisions), the agents inside a ball, and H_s, H_tr.
 
 use flock_metrics::{FlockMetrics, MetricParams};

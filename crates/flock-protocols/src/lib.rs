@@ -15,7 +15,7 @@
 //!
 //! Features: `parallel` (default; rayon, bit-identical results for any thread count),
 //! `obstacles` (default; Algorithm 3 and the 2003 obstacle protocol, through flock-obstacles and
-//! parry), `serde` (the parameter types read and written as the `flock` crate's scenarios).
+//! parry), `serde` (the parameter types read and written as the `flocking` crate's scenarios).
 
 pub mod alpha;
 #[cfg(feature = "obstacles")]

@@ -1,19 +1,19 @@
-//! flock's errors as Python exceptions (defined in `flock/_errors.py`), each with the message the
+//! flocking's errors as Python exceptions (defined in `flocking/_errors.py`), each with the message the
 //! CLI prints: `ScenarioError` (a `ValueError`, with the field), `NumericalError` (an
 //! `ArithmeticError`, with the step, time and agent) and `RunDirectoryError` (an `OSError`).
 
 use std::fmt::Display;
 use std::path::Path;
 
-use flock::run_dir::{CreateError, ReadError, ResumeError};
-use flock::{NumericalError, ScenarioError};
+use flocking::run_dir::{CreateError, ReadError, ResumeError};
+use flocking::{NumericalError, ScenarioError};
 use pyo3::call::PyCallArgs;
 use pyo3::prelude::*;
 
-/// An instance of the exception class `name` of `flock._errors`, called with `args`.
+/// An instance of the exception class `name` of `flocking._errors`, called with `args`.
 pub(crate) fn exception<'py>(py: Python<'py>, name: &str, args: impl PyCallArgs<'py>) -> PyErr {
     let instance = py
-        .import("flock._errors")
+        .import("flocking._errors")
         .and_then(|module| module.getattr(name))
         .and_then(|class| class.call1(args));
     match instance {
@@ -22,12 +22,12 @@ pub(crate) fn exception<'py>(py: Python<'py>, name: &str, args: impl PyCallArgs<
     }
 }
 
-/// `flock.ScenarioError` (a `ValueError`): an invalid scenario, `.field` naming the parameter.
+/// `flocking.ScenarioError` (a `ValueError`): an invalid scenario, `.field` naming the parameter.
 pub fn scenario_error(py: Python<'_>, error: &ScenarioError) -> PyErr {
     exception(py, "ScenarioError", (error.to_string(), error.field()))
 }
 
-/// `flock.NumericalError` (an `ArithmeticError`): a blow-up, with `.step`, `.t` and `.agent`.
+/// `flocking.NumericalError` (an `ArithmeticError`): a blow-up, with `.step`, `.t` and `.agent`.
 pub fn numerical_error(py: Python<'_>, error: &NumericalError) -> PyErr {
     exception(
         py,
@@ -36,7 +36,7 @@ pub fn numerical_error(py: Python<'_>, error: &NumericalError) -> PyErr {
     )
 }
 
-/// `flock.RunDirectoryError` (an `OSError`): a run directory that cannot be written or read,
+/// `flocking.RunDirectoryError` (an `OSError`): a run directory that cannot be written or read,
 /// `.path` naming it.
 pub fn run_directory_error(py: Python<'_>, message: impl Display, path: &Path) -> PyErr {
     exception(
@@ -47,7 +47,7 @@ pub fn run_directory_error(py: Python<'_>, message: impl Display, path: &Path) -
 }
 
 /// A run directory that cannot be created: the CLI's messages, with the keyword arguments of
-/// `flock.run` where the CLI names its flags.
+/// `flocking.run` where the CLI names its flags.
 pub fn create_error(py: Python<'_>, error: &CreateError, out: &Path) -> PyErr {
     let message = match error {
         CreateError::Occupied { target } => format!(
@@ -55,7 +55,7 @@ pub fn create_error(py: Python<'_>, error: &CreateError, out: &Path) -> PyErr {
             target.display()
         ),
         CreateError::Interrupted { partial, target } => format!(
-            "{} holds an interrupted run; continue it with `flock.resume({:?})`, or pass force=True to start over",
+            "{} holds an interrupted run; continue it with `flocking.resume({:?})`, or pass force=True to start over",
             partial.display(),
             target.display().to_string()
         ),
@@ -84,7 +84,7 @@ pub fn resume_error(py: Python<'_>, error: &ResumeError, dir: &Path) -> PyErr {
         } => run_directory_error(
             py,
             format!(
-                "there is no interrupted run at {}: start it with `flock.run(scenario, out={:?})`",
+                "there is no interrupted run at {}: start it with `flocking.run(scenario, out={:?})`",
                 partial.display(),
                 target.display().to_string()
             ),

@@ -1,7 +1,7 @@
 //! Ctrl-C while Rust runs with the GIL released: Python's SIGINT handler only sets a flag, which
 //! [`Interrupt::requested`] reads between steps by taking the GIL back for
 //! [`Python::check_signals`] (at most every [`CHECK_EVERY`]), so `KeyboardInterrupt` stops a run
-//! or a `Simulation.step` after the current step, as Ctrl-C stops `flock run`.
+//! or a `Simulation.step` after the current step, as Ctrl-C stops `flocking run`.
 
 use std::cell::{Cell, RefCell};
 use std::time::{Duration, Instant};

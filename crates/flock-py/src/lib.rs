@@ -1,14 +1,14 @@
-//! `flock._flock`, the extension module of the Python package `flock` (`python/flock`): the
-//! [`flock`] crate's scenarios, runs, run directories and simulations, with states and records as
+//! `flocking._flocking`, the extension module of the Python package `flocking` (`python/flocking`): the
+//! [`flocking`] crate's scenarios, runs, run directories and simulations, with states and records as
 //! numpy arrays.
 //!
 //! - [`scenario`]: `Scenario` — load, parse, write back, change any parameter by its path,
 //!   explicit initial states.
 //! - [`run`]: `run`, `resume` and `read_run` — whole runs, in memory and in run directories.
 //! - [`simulation`]: `Simulation` — a run driven step by step.
-//! - [`sweep`]: the pieces of `flock.sweep` — a run of a sweep in any worker process, the output
-//!   directory of `flock sweep`.
-//! - [`errors`]: flock's errors as the Python exceptions of `flock._errors`, with the CLI's
+//! - [`sweep`]: the pieces of `flocking.sweep` — a run of a sweep in any worker process, the output
+//!   directory of `flocking sweep`.
+//! - [`errors`]: flocking's errors as the Python exceptions of `flocking._errors`, with the CLI's
 //!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
 
 use pyo3::prelude::*;
@@ -20,7 +20,7 @@ pub mod scenario;
 pub mod simulation;
 pub mod sweep;
 
-/// The extension module `flock._flock`; the package `flock` re-exports its names.
+/// The extension module `flocking._flocking`; the package `flocking` re-exports its names.
 #[pymodule]
 fn _flock(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<scenario::PyScenario>()?;
@@ -33,6 +33,6 @@ fn _flock(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(sweep::sweep_prepare, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_write_row, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_assemble, module)?)?;
-    module.add("METRICS_HEADER", flock::run_dir::METRICS_HEADER)?;
+    module.add("METRICS_HEADER", flocking::run_dir::METRICS_HEADER)?;
     Ok(())
 }

@@ -1,9 +1,9 @@
-//! `flock.run`, `flock.resume` and `flock.read_run`: whole runs of the [`flock`] crate
-//! ([`flock::resume`]) recorded in memory as numpy arrays and, when asked, into the run directory
-//! `flock run --out` writes ([`RunDirectory`]); and any run directory read back ([`read_run`])
+//! `flocking.run`, `flocking.resume` and `flocking.read_run`: whole runs of the [`flocking`] crate
+//! ([`flocking::resume`]) recorded in memory as numpy arrays and, when asked, into the run directory
+//! `flocking run --out` writes ([`RunDirectory`]); and any run directory read back ([`read_run`])
 //! into the same arrays.
 //!
-//! Each returns a dict that `flock.Run` wraps: `scenario`, `metrics` (the columns of
+//! Each returns a dict that `flocking.Run` wraps: `scenario`, `metrics` (the columns of
 //! `metrics.csv`), `times`, `positions` and `velocities` ((T, n, dim), `None` when the
 //! trajectory is not kept), `final` (t, positions, velocities) and `path`.
 
@@ -11,9 +11,9 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use flock::metrics::FlockMetrics;
-use flock::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat};
-use flock::{Record, Recorder, RunError, Scenario, Start};
+use flocking::metrics::FlockMetrics;
+use flocking::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat};
+use flocking::{Record, Recorder, RunError, Scenario, Start};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
@@ -100,7 +100,7 @@ impl Memory {
         }
     }
 
-    /// The result dict of `flock.Run`.
+    /// The result dict of `flocking.Run`.
     fn into_result<'py>(
         mut self,
         py: Python<'py>,
@@ -155,7 +155,7 @@ enum Column {
     Integer(Vec<i64>),
 }
 
-/// The dict that `flock.Run` wraps.
+/// The dict that `flocking.Run` wraps.
 fn result<'py>(
     py: Python<'py>,
     scenario: &Scenario,
@@ -241,7 +241,7 @@ impl Recorder for PyRecorder {
 }
 
 /// Runs `scenario` from `start` (t = 0 when `None`) with the GIL released, into `dir` when given;
-/// on failure keeps `dir` as `flock run` does (resumable after Ctrl-C or a failed write, marked
+/// on failure keeps `dir` as `flocking run` does (resumable after Ctrl-C or a failed write, marked
 /// failed after a blow-up) and raises the error.
 fn execute<'py>(
     py: Python<'py>,
@@ -256,7 +256,7 @@ fn execute<'py>(
         interrupt: Interrupt::new(),
     };
     let (outcome, recorder) = py.detach(move || {
-        let outcome = flock::resume(scenario, start, &mut recorder).map(|_| ());
+        let outcome = flocking::resume(scenario, start, &mut recorder).map(|_| ());
         (outcome, recorder)
     });
     let PyRecorder {
@@ -333,7 +333,7 @@ fn interrupted_message(
     }
     let message = match partial {
         Some(partial) => format!(
-            "{error}; the records so far are kept in {}; continue with `flock.resume({:?})`",
+            "{error}; the records so far are kept in {}; continue with `flocking.resume({:?})`",
             partial.display(),
             partial.display().to_string()
         ),
@@ -343,7 +343,7 @@ fn interrupted_message(
 }
 
 /// Warns of each of the scenario's warnings (a step above the largest stable step, agents
-/// starting at one point), as `flock run` prints them.
+/// starting at one point), as `flocking run` prints them.
 fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
     let category = py.get_type::<PyUserWarning>();
     for warning in scenario.warnings() {
@@ -354,13 +354,13 @@ fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
     Ok(())
 }
 
-/// Runs `scenario` to its end and returns its records (wrapped by `flock.run` as a `flock.Run`).
+/// Runs `scenario` to its end and returns its records (wrapped by `flocking.run` as a `flocking.Run`).
 ///
-/// With `out`, also writes the run directory of `flock run --out` (byte for byte the same):
+/// With `out`, also writes the run directory of `flocking run --out` (byte for byte the same):
 /// `trajectory_format` `"csv"` or `"npy"`, a checkpoint every `checkpoint_every` steps, an
 /// existing directory replaced only with `force`. `trajectory=False` keeps only the final state in
 /// memory. The GIL is released while the run steps; Ctrl-C raises `KeyboardInterrupt` after the
-/// current step, leaving `out` resumable (`flock.resume(out)`).
+/// current step, leaving `out` resumable (`flocking.resume(out)`).
 #[pyfunction]
 #[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false))]
 pub fn run<'py>(
@@ -394,7 +394,7 @@ pub fn run<'py>(
 }
 
 /// Continues the interrupted or killed run in `dir` (or `dir.partial`) from its last checkpoint,
-/// as `flock run --resume` does (the finished directory is byte-identical to an uninterrupted
+/// as `flocking run --resume` does (the finished directory is byte-identical to an uninterrupted
 /// run's), and returns the whole run read back from it.
 #[pyfunction]
 #[pyo3(signature = (dir, *, checkpoint_every = 1000))]
@@ -416,7 +416,7 @@ pub fn resume<'py>(
 #[pyfunction]
 pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let files = py
-        .detach(|| flock::read_run(&dir))
+        .detach(|| flocking::read_run(&dir))
         .map_err(|e| read_error(py, &e))?;
     let trajectory = files.trajectory;
     let (dim, agents, frames) = (trajectory.dim, trajectory.agents, trajectory.frames());

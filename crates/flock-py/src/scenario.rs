@@ -1,12 +1,12 @@
-//! `flock.Scenario`: a scenario of the [`flock`] crate ([`Scenario`]) from Python — loaded from a
+//! `flocking.Scenario`: a scenario of the [`flocking`] crate ([`Scenario`]) from Python — loaded from a
 //! RON file or text, written back, any parameter read or changed by its dotted path
 //! ([`Scenario::value`], [`Scenario::with_values`]) and explicit initial states from numpy arrays,
-//! each validated as `flock validate` does.
+//! each validated as `flocking validate` does.
 
 use std::path::PathBuf;
 
-use flock::serde_json::{Map, Number, Value};
-use flock::{Cloud, Scenario, ScenarioError};
+use flocking::serde_json::{Map, Number, Value};
+use flocking::{Cloud, Scenario, ScenarioError};
 use numpy::{AllowTypeChange, PyArrayLike2};
 use pyo3::IntoPyObjectExt;
 use pyo3::exceptions::PyValueError;
@@ -20,9 +20,9 @@ use crate::errors::scenario_error;
 ///
 /// Build one with `Scenario.load(path)` or `Scenario.from_ron(text)`; change it with
 /// `with_values({"algorithm.c1": 0.05, "agents": 400})` or `with_initial(positions, velocities)`
-/// (both return a new scenario, validated). Invalid values raise `flock.ScenarioError` with the
+/// (both return a new scenario, validated). Invalid values raise `flocking.ScenarioError` with the
 /// CLI's message and the field in `.field`.
-#[pyclass(name = "Scenario", module = "flock", frozen, eq)]
+#[pyclass(name = "Scenario", module = "flocking", frozen, eq)]
 #[derive(Clone, Debug, PartialEq)]
 pub struct PyScenario {
     /// The scenario, validated.
@@ -33,7 +33,7 @@ pub struct PyScenario {
 impl PyScenario {
     /// Reads and validates the RON scenario file at `path`.
     ///
-    /// Raises `flock.ScenarioError` when the file cannot be read, is not a scenario (the message
+    /// Raises `flocking.ScenarioError` when the file cannot be read, is not a scenario (the message
     /// gives the line and column) or holds a value out of its domain.
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
@@ -63,7 +63,7 @@ impl PyScenario {
     /// `"obstacles.0.radius"`): numbers, strings, lists, dicts (an enum as `{"Variant": ...}`),
     /// `None` for a default left unset.
     ///
-    /// Raises `flock.ScenarioError` for a path that names no parameter (the message lists those
+    /// Raises `flocking.ScenarioError` for a path that names no parameter (the message lists those
     /// there are).
     fn value(&self, py: Python<'_>, path: &str) -> PyResult<Py<PyAny>> {
         let value = self.inner.value(path).map_err(|e| scenario_error(py, &e))?;
@@ -74,7 +74,7 @@ impl PyScenario {
     /// 0.05, "agents": 400}`), validated as a loaded scenario: defaults left unset follow the
     /// values they depend on (r = 1.2 d when only `alpha.d` changes).
     ///
-    /// Raises `flock.ScenarioError` naming the field: a path that names no parameter, a value of
+    /// Raises `flocking.ScenarioError` naming the field: a path that names no parameter, a value of
     /// the wrong type, or one out of its domain.
     fn with_values(&self, py: Python<'_>, values: &Bound<'_, PyDict>) -> PyResult<Self> {
         let mut changes = Vec::with_capacity(values.len());
@@ -94,7 +94,7 @@ impl PyScenario {
     /// into the scenario (`initial: (positions: Explicit([...]), ...)`), so a run directory's
     /// `scenario.ron` still reruns it.
     ///
-    /// Raises `flock.ScenarioError` for rows of another dimension than the scenario's or values
+    /// Raises `flocking.ScenarioError` for rows of another dimension than the scenario's or values
     /// that are not finite.
     #[pyo3(signature = (positions, velocities = None))]
     fn with_initial(
@@ -119,7 +119,7 @@ impl PyScenario {
         Ok(Self { inner })
     }
 
-    /// The warnings of `flock validate` for this valid scenario (a step above the largest stable
+    /// The warnings of `flocking validate` for this valid scenario (a step above the largest stable
     /// step, agents starting at the same point).
     fn warnings(&self) -> Vec<String> {
         self.inner

@@ -1,11 +1,11 @@
-//! `flock.Simulation`: a scenario's [`DynSimulation`] driven step by step from Python — stepped
+//! `flocking.Simulation`: a scenario's [`DynSimulation`] driven step by step from Python — stepped
 //! with the GIL released, its state as numpy arrays (agents in original order), its metrics and
 //! energy, and its state replaced to perturb it.
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use flock::DynSimulation;
-use flock::metrics::FlockMetrics;
+use flocking::DynSimulation;
+use flocking::metrics::FlockMetrics;
 use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -18,11 +18,11 @@ use crate::scenario::PyScenario;
 /// released; Ctrl-C stops it between steps), `q` and `p` are its positions and velocities as
 /// n × dim arrays (copies, agents in original order), `t` its time; `metrics()` and `energy()`
 /// measure it as a run records it. Stepping a fresh `Simulation(scenario)` `scenario.steps`
-/// times gives the bits of `flock.run(scenario).final`.
+/// times gives the bits of `flocking.run(scenario).final`.
 ///
 /// `positions` and `velocities` (n × dim arrays) start it from an explicit state instead of the
 /// scenario's initial condition (velocities zero when omitted).
-#[pyclass(name = "Simulation", module = "flock", frozen)]
+#[pyclass(name = "Simulation", module = "flocking", frozen)]
 pub struct PySimulation {
     /// Locked only with the GIL released, so that a thread stepping it (which takes the GIL back
     /// between steps to check for Ctrl-C) and one reading it cannot wait on each other.
@@ -75,7 +75,7 @@ impl PySimulation {
     /// Advances the state by `k` steps of h, checking after each step that it is finite and that
     /// no agent outran the interaction range (as a run does).
     ///
-    /// Raises `flock.NumericalError` at a blow-up (the state is then the bad one), and
+    /// Raises `flocking.NumericalError` at a blow-up (the state is then the bad one), and
     /// `KeyboardInterrupt` on Ctrl-C after the current step (the state is that of the steps done).
     #[pyo3(signature = (k = 1))]
     fn step(&self, py: Python<'_>, k: u64) -> PyResult<()> {
@@ -101,7 +101,7 @@ impl PySimulation {
     /// Replaces the positions and/or velocities (n × dim arrays) at the current time, e.g. to
     /// perturb the flock; stepping goes on from the new state.
     ///
-    /// Raises `flock.ScenarioError` for arrays of another shape or values that are not finite.
+    /// Raises `flocking.ScenarioError` for arrays of another shape or values that are not finite.
     #[pyo3(signature = (positions = None, velocities = None))]
     fn set_state(
         &self,

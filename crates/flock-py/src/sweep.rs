@@ -1,16 +1,16 @@
-//! The pieces of `flock.sweep` (`python/flock/__init__.py`): a sweep file loaded and made
+//! The pieces of `flocking.sweep` (`python/flocking/__init__.py`): a sweep file loaded and made
 //! self-contained, one run of it made in a worker (any process of any machine), and the output
-//! directory of [`flock::sweep::store`] — the same row files and `runs.csv` as `flock sweep`.
+//! directory of [`flocking::sweep::store`] — the same row files and `runs.csv` as `flocking sweep`.
 
 use std::path::{Path, PathBuf};
 
-use flock::sweep::store::{self, StoreError};
-use flock::sweep::{Sweep, SweepError, run_one};
+use flocking::sweep::store::{self, StoreError};
+use flocking::sweep::{Sweep, SweepError, run_one};
 use pyo3::prelude::*;
 
 use crate::errors::{exception, run_directory_error};
 
-/// A sweep error as `flock.ScenarioError` (a `ValueError`) with the message of `flock sweep`.
+/// A sweep error as `flocking.ScenarioError` (a `ValueError`) with the message of `flocking sweep`.
 fn sweep_error(py: Python<'_>, error: &SweepError) -> PyErr {
     let field = match error {
         SweepError::Invalid { field, .. } => Some(field.clone()),
@@ -50,7 +50,7 @@ pub fn sweep_load(
 }
 
 /// `(index, id, fields, wall_time)` of run `index` of the self-contained sweep `text`, run on one
-/// thread with the GIL released: the row `flock sweep` writes for it.
+/// thread with the GIL released: the row `flocking sweep` writes for it.
 #[pyfunction]
 pub fn sweep_run(
     py: Python<'_>,

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import flock
+import flocking
 
 ROOT = Path(__file__).resolve().parents[3]
 FIXTURES = Path(os.environ.get("FLOCK_FIXTURES", ROOT / "fixtures"))
@@ -17,8 +17,8 @@ OUTPUT_FILES = ["metrics.csv", "final.csv", "scenario.ron", "flocking.txt"]
 
 
 def cli_path() -> Path:
-    """The `flock` binary: ``FLOCK_CLI``, else the workspace's release build."""
-    path = Path(os.environ.get("FLOCK_CLI", ROOT / "target" / "release" / "flock"))
+    """The `flocking` binary: ``FLOCK_CLI``, else the workspace's release build."""
+    path = Path(os.environ.get("FLOCK_CLI", ROOT / "target" / "release" / "flocking"))
     if not path.exists():
         pytest.fail(f"the flock CLI is missing at {path}: cargo build --release -p flock-cli")
     return path
@@ -30,26 +30,26 @@ def cli(*args, check=True) -> subprocess.CompletedProcess:
         [str(cli_path()), *map(str, args)], capture_output=True, text=True, timeout=300
     )
     if check and done.returncode != 0:
-        pytest.fail(f"flock {' '.join(map(str, args))} failed: {done.stderr}")
+        pytest.fail(f"flocking {' '.join(map(str, args))} failed: {done.stderr}")
     return done
 
 
-def cli_run(scenario: flock.Scenario, out: Path, *args) -> Path:
-    """``flock run`` of ``scenario`` (written to a file beside ``out``) into ``out``."""
+def cli_run(scenario: flocking.Scenario, out: Path, *args) -> Path:
+    """``flocking run`` of ``scenario`` (written to a file beside ``out``) into ``out``."""
     path = out.parent / f"{out.name}.ron"
     path.write_text(scenario.to_ron())
     cli("run", path, "--out", out, "--quiet", *args)
     return out
 
 
-def short(path: Path, records: int = 4) -> flock.Scenario:
+def short(path: Path, records: int = 4) -> flocking.Scenario:
     """The scenario at ``path`` cut to ``records`` records after t = 0 (and a last one)."""
-    scenario = flock.Scenario.load(path)
+    scenario = flocking.Scenario.load(path)
     steps = records * scenario.record_every + scenario.record_every // 2
     return scenario.with_values({"duration": steps * scenario.step})
 
 
-def assert_runs_equal(a: flock.Run, b: flock.Run) -> None:
+def assert_runs_equal(a: flocking.Run, b: flocking.Run) -> None:
     """Every recorded number of ``a`` and ``b`` is the same, bit for bit."""
     assert list(a.metrics) == list(b.metrics)
     for name in a.metrics:

@@ -8,14 +8,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import flock
+import flocking
 from conftest import FIG11, FIXTURES, assert_runs_equal, short
 
-COLUMNS = flock.METRICS_HEADER.split(",")
+COLUMNS = flocking.METRICS_HEADER.split(",")
 
 
 def test_scenario_round_trips():
-    scenario = flock.Scenario.load(FIG11)
+    scenario = flocking.Scenario.load(FIG11)
     assert (scenario.name, scenario.dim, scenario.agents) == ("tac2006_fig11_alg2_n100", 2, 100)
     assert (scenario.step, scenario.duration, scenario.steps, scenario.record_every) == (
         0.01,
@@ -23,7 +23,7 @@ def test_scenario_round_trips():
         10_000,
         20,
     )
-    again = flock.Scenario.from_ron(scenario.to_ron())
+    again = flocking.Scenario.from_ron(scenario.to_ron())
     assert again.to_ron() == scenario.to_ron()
     assert pickle.loads(pickle.dumps(scenario)).to_ron() == scenario.to_ron()
     assert "agents=100" in repr(scenario)
@@ -31,7 +31,7 @@ def test_scenario_round_trips():
 
 
 def test_values_by_path():
-    scenario = flock.Scenario.load(FIG11)
+    scenario = flocking.Scenario.load(FIG11)
     assert scenario.value("algorithm.c1") == 0.02
     assert scenario.value("alpha.r") is None  # follows d
     assert scenario.value("initial.positions") == {"Gaussian": {"mean": [0.0, 0.0], "std": 50.0}}
@@ -50,7 +50,7 @@ def test_values_by_path():
 
 def test_run_shapes_and_dtypes():
     scenario = short(FIG11)
-    result = flock.run(scenario)
+    result = flocking.run(scenario)
     frames = -(-scenario.steps // scenario.record_every) + 1  # and the last step
     assert list(result.metrics) == COLUMNS
     for name, column in result.metrics.items():
@@ -65,13 +65,13 @@ def test_run_shapes_and_dtypes():
     assert result.final.t == result.metrics["t"][-1] == scenario.steps * scenario.step
     assert result.path is None
     assert result.scenario == scenario
-    kept = flock.run(scenario, trajectory=False)
+    kept = flocking.run(scenario, trajectory=False)
     assert kept.trajectory is None
     assert np.array_equal(kept.final.positions, result.final.positions)
 
 
 def test_diagnostic_columns_follow_energy():
-    result = flock.run(short(FIXTURES / "tr2003_fig9_sink_n100.ron"))
+    result = flocking.run(short(FIXTURES / "tr2003_fig9_sink_n100.ron"))
     names = list(result.metrics)
     assert names[: len(COLUMNS)] == COLUMNS
     for name in names[len(COLUMNS) :]:
@@ -79,7 +79,7 @@ def test_diagnostic_columns_follow_energy():
 
 
 def test_simulation_shapes():
-    sim = flock.Simulation(flock.Scenario.load(FIXTURES / "tac2006_fig13_alg2_3d_n50.ron"))
+    sim = flocking.Simulation(flocking.Scenario.load(FIXTURES / "tac2006_fig13_alg2_3d_n50.ron"))
     assert (sim.dim, sim.agents, sim.steps, sim.t) == (3, 50, 0, 0.0)
     assert sim.q.shape == sim.p.shape == (50, 3)
     assert sim.q.dtype == np.float64
@@ -97,9 +97,9 @@ def test_simulation_shapes():
 @pytest.mark.parametrize("trajectory_format", ["csv", "npy"])
 def test_read_run_round_trips(tmp_path, trajectory_format):
     scenario = short(FIXTURES / "tac2006_fig13_alg2_3d_n50.ron")
-    result = flock.run(scenario, out=tmp_path / "out", trajectory_format=trajectory_format)
+    result = flocking.run(scenario, out=tmp_path / "out", trajectory_format=trajectory_format)
     assert (tmp_path / "out" / f"trajectory.{trajectory_format}").exists()
-    back = flock.read_run(tmp_path / "out")
+    back = flocking.read_run(tmp_path / "out")
     assert_runs_equal(result, back)
     assert back.path == str(tmp_path / "out")
     assert back.scenario.to_ron() == scenario.to_ron()
@@ -110,14 +110,14 @@ def test_read_run_round_trips(tmp_path, trajectory_format):
 
 def test_to_pandas():
     pandas = pytest.importorskip("pandas")
-    frame = flock.run(short(FIG11)).to_pandas()
+    frame = flocking.run(short(FIG11)).to_pandas()
     assert isinstance(frame, pandas.DataFrame)
     assert list(frame.columns) == COLUMNS
 
 
 def test_every_public_name_has_a_docstring():
-    for name in flock.__all__:
-        item = getattr(flock, name)
+    for name in flocking.__all__:
+        item = getattr(flocking, name)
         if name == "METRICS_HEADER":
             continue
         assert inspect.getdoc(item), name
@@ -127,10 +127,10 @@ def test_every_public_name_has_a_docstring():
 
 
 def test_type_stubs_are_shipped():
-    package = Path(flock.__file__).parent
+    package = Path(flocking.__file__).parent
     assert (package / "py.typed").exists()
     stubs = (package / "__init__.pyi").read_text()
-    for name in flock.__all__:
+    for name in flocking.__all__:
         assert name in stubs, name
 
 

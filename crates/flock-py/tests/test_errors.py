@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-import flock
+import flocking
 from conftest import FIG11, cli, cli_run, short
 
 
@@ -19,19 +19,19 @@ def cli_error(*args) -> str:
 
 
 def test_exception_classes():
-    assert issubclass(flock.ScenarioError, flock.FlockError)
-    assert issubclass(flock.ScenarioError, ValueError)
-    assert issubclass(flock.NumericalError, flock.FlockError)
-    assert issubclass(flock.NumericalError, ArithmeticError)
-    assert issubclass(flock.RunDirectoryError, flock.FlockError)
-    assert issubclass(flock.RunDirectoryError, OSError)
-    assert flock.ScenarioError.__module__ == "flock"
+    assert issubclass(flocking.ScenarioError, flocking.FlockError)
+    assert issubclass(flocking.ScenarioError, ValueError)
+    assert issubclass(flocking.NumericalError, flocking.FlockError)
+    assert issubclass(flocking.NumericalError, ArithmeticError)
+    assert issubclass(flocking.RunDirectoryError, flocking.FlockError)
+    assert issubclass(flocking.RunDirectoryError, OSError)
+    assert flocking.ScenarioError.__module__ == "flocking"
 
 
 def test_missing_file(tmp_path):
     path = tmp_path / "missing.ron"
-    with pytest.raises(flock.ScenarioError) as error:
-        flock.Scenario.load(path)
+    with pytest.raises(flocking.ScenarioError) as error:
+        flocking.Scenario.load(path)
     assert error.value.field is None
     assert str(error.value) == cli_error("validate", path)
 
@@ -39,19 +39,19 @@ def test_missing_file(tmp_path):
 def test_syntax_error_names_line_column_and_field(tmp_path):
     path = tmp_path / "bad.ron"
     path.write_text(FIG11.read_text().replace("c2: 0.4", 'c2: "fast"'))
-    with pytest.raises(flock.ScenarioError) as error:
-        flock.Scenario.load(path)
+    with pytest.raises(flocking.ScenarioError) as error:
+        flocking.Scenario.load(path)
     assert str(error.value) == cli_error("validate", path)
     assert f"{path}:" in str(error.value)
-    with pytest.raises(flock.ScenarioError, match=r"^<string>:\d+:\d+: "):
-        flock.Scenario.from_ron(path.read_text())
+    with pytest.raises(flocking.ScenarioError, match=r"^<string>:\d+:\d+: "):
+        flocking.Scenario.from_ron(path.read_text())
 
 
 def test_invalid_value_in_a_file(tmp_path):
     path = tmp_path / "bad.ron"
     path.write_text(FIG11.read_text().replace("dim: 2", "dim: 4"))
-    with pytest.raises(flock.ScenarioError) as error:
-        flock.Scenario.load(path)
+    with pytest.raises(flocking.ScenarioError) as error:
+        flocking.Scenario.load(path)
     assert error.value.field == "dim"
     assert str(error.value) == cli_error("validate", path)
 
@@ -70,8 +70,8 @@ def test_invalid_value_in_a_file(tmp_path):
     ],
 )
 def test_with_values_errors_name_the_field(values, field):
-    scenario = flock.Scenario.load(FIG11)
-    with pytest.raises(flock.ScenarioError) as error:
+    scenario = flocking.Scenario.load(FIG11)
+    with pytest.raises(flocking.ScenarioError) as error:
         scenario.with_values(values)
     assert error.value.field == field, str(error.value)
     assert f"`{field}`" in str(error.value)
@@ -81,38 +81,38 @@ def test_with_values_error_is_the_clis(tmp_path):
     # the same invalid value, written into a file for the CLI
     path = tmp_path / "bad.ron"
     path.write_text(FIG11.read_text().replace("c1: 0.02", "c1: -0.02"))
-    with pytest.raises(flock.ScenarioError) as error:
-        flock.Scenario.load(FIG11).with_values({"algorithm.c1": -0.02})
+    with pytest.raises(flocking.ScenarioError) as error:
+        flocking.Scenario.load(FIG11).with_values({"algorithm.c1": -0.02})
     assert str(error.value) == cli_error("validate", path)
 
 
 def test_explicit_state_errors():
-    scenario = flock.Scenario.load(FIG11)
-    with pytest.raises(flock.ScenarioError) as error:
+    scenario = flocking.Scenario.load(FIG11)
+    with pytest.raises(flocking.ScenarioError) as error:
         scenario.with_initial(np.zeros((5, 3)))
     assert error.value.field is not None and error.value.field.startswith("initial")
-    with pytest.raises(flock.ScenarioError):
+    with pytest.raises(flocking.ScenarioError):
         scenario.with_initial(np.full((5, 2), np.nan))
-    with pytest.raises(flock.ScenarioError) as error:
-        flock.Simulation(scenario, np.zeros((7, 2)))
+    with pytest.raises(flocking.ScenarioError) as error:
+        flocking.Simulation(scenario, np.zeros((7, 2)))
     assert error.value.field == "agents"
-    sim = flock.Simulation(scenario)
-    with pytest.raises(flock.ScenarioError):
+    sim = flocking.Simulation(scenario)
+    with pytest.raises(flocking.ScenarioError):
         sim.set_state(velocities=np.zeros((100, 3)))
-    with pytest.raises(flock.ScenarioError):
+    with pytest.raises(flocking.ScenarioError):
         sim.set_state(positions=np.full((100, 2), np.inf))
     assert np.isfinite(sim.q).all()
 
 
-def blowing_up() -> flock.Scenario:
-    return flock.Scenario.load(FIG11).with_values({"step": 1.0, "duration": 50.0})
+def blowing_up() -> flocking.Scenario:
+    return flocking.Scenario.load(FIG11).with_values({"step": 1.0, "duration": 50.0})
 
 
 def test_blow_up_is_the_clis_numerical_error(tmp_path):
     scenario = blowing_up()
     with pytest.warns(UserWarning, match="largest stable step"):
-        with pytest.raises(flock.NumericalError) as error:
-            flock.run(scenario, out=tmp_path / "py")
+        with pytest.raises(flocking.NumericalError) as error:
+            flocking.run(scenario, out=tmp_path / "py")
     assert (error.value.step, error.value.t, error.value.agent) == (1, 1.0, 2)
     path = tmp_path / "blow.ron"
     path.write_text(scenario.to_ron())
@@ -121,48 +121,48 @@ def test_blow_up_is_the_clis_numerical_error(tmp_path):
     for name in ("py", "cli"):
         note = (tmp_path / f"{name}.partial" / "INCOMPLETE").read_text()
         assert note.startswith("failed: numerical blow-up at step 1")
-    with pytest.raises(flock.RunDirectoryError, match="cannot be resumed"):
-        flock.resume(tmp_path / "py")
+    with pytest.raises(flocking.RunDirectoryError, match="cannot be resumed"):
+        flocking.resume(tmp_path / "py")
 
 
 def test_blow_up_in_a_simulation():
-    sim = flock.Simulation(blowing_up())
-    with pytest.raises(flock.NumericalError, match="numerical blow-up at step 1"):
+    sim = flocking.Simulation(blowing_up())
+    with pytest.raises(flocking.NumericalError, match="numerical blow-up at step 1"):
         sim.step(10)
     assert sim.steps == 1
 
 
 def test_occupied_output_directory(tmp_path):
     scenario = short(FIG11)
-    flock.run(scenario, out=tmp_path / "out")
-    with pytest.raises(flock.RunDirectoryError, match="already holds files") as error:
-        flock.run(scenario, out=tmp_path / "out")
+    flocking.run(scenario, out=tmp_path / "out")
+    with pytest.raises(flocking.RunDirectoryError, match="already holds files") as error:
+        flocking.run(scenario, out=tmp_path / "out")
     assert isinstance(error.value, OSError)
     assert "force=True" in str(error.value)
-    flock.run(scenario, out=tmp_path / "out", force=True)
+    flocking.run(scenario, out=tmp_path / "out", force=True)
 
 
 def test_unknown_trajectory_format(tmp_path):
     with pytest.raises(ValueError, match="unknown trajectory format"):
-        flock.run(short(FIG11), out=tmp_path / "out", trajectory_format="parquet")
+        flocking.run(short(FIG11), out=tmp_path / "out", trajectory_format="parquet")
 
 
 def test_read_run_errors(tmp_path):
-    with pytest.raises(flock.RunDirectoryError) as error:
-        flock.read_run(tmp_path / "nothing")
+    with pytest.raises(flocking.RunDirectoryError) as error:
+        flocking.read_run(tmp_path / "nothing")
     assert isinstance(error.value, OSError)
     out = cli_run(short(FIG11), tmp_path / "cli")
     metrics = out / "metrics.csv"
     lines = metrics.read_text().splitlines()
     metrics.write_text("\n".join(lines[:2] + ["1.0,oops"] + lines[3:]) + "\n")
-    with pytest.raises(flock.RunDirectoryError, match=r"metrics.csv:3: ") as error:
-        flock.read_run(out)
+    with pytest.raises(flocking.RunDirectoryError, match=r"metrics.csv:3: ") as error:
+        flocking.read_run(out)
     assert error.value.path == str(metrics)
 
 
 def test_resume_without_an_interrupted_run(tmp_path):
-    with pytest.raises(flock.RunDirectoryError, match="there is no interrupted run"):
-        flock.resume(tmp_path / "nothing")
+    with pytest.raises(flocking.RunDirectoryError, match="there is no interrupted run"):
+        flocking.resume(tmp_path / "nothing")
     out = cli_run(short(FIG11), tmp_path / "done")
-    with pytest.raises(flock.RunDirectoryError, match="holds a complete run"):
-        flock.resume(out)
+    with pytest.raises(flocking.RunDirectoryError, match="holds a complete run"):
+        flocking.resume(out)

@@ -1,5 +1,5 @@
 """Ctrl-C (KeyboardInterrupt) stops a run or a `Simulation.step` between steps, leaving a run
-directory resumable as `flock run` does; the GIL is released while Rust runs."""
+directory resumable as `flocking run` does; the GIL is released while Rust runs."""
 
 import _thread
 import threading
@@ -7,13 +7,13 @@ import time
 
 import pytest
 
-import flock
+import flocking
 from conftest import FIG11, OUTPUT_FILES, assert_same_files, cli_run
 
 
-def long_fig11(steps: int) -> flock.Scenario:
+def long_fig11(steps: int) -> flocking.Scenario:
     """Fig. 11 for ``steps`` steps, recording rarely."""
-    scenario = flock.Scenario.load(FIG11)
+    scenario = flocking.Scenario.load(FIG11)
     return scenario.with_values({"duration": steps * scenario.step, "record_every": 1000})
 
 
@@ -28,7 +28,7 @@ def test_ctrl_c_stops_a_run_resumably(tmp_path):
     timer = interrupt_after(0.3)
     start = time.monotonic()
     with pytest.raises(KeyboardInterrupt) as error:
-        flock.run(scenario, out=tmp_path / "py", checkpoint_every=0)
+        flocking.run(scenario, out=tmp_path / "py", checkpoint_every=0)
     timer.join()
     assert time.monotonic() - start < 2.0
     partial = tmp_path / "py.partial"
@@ -38,7 +38,7 @@ def test_ctrl_c_stops_a_run_resumably(tmp_path):
     assert note.startswith("incomplete: interrupted after step")
     assert (partial / "checkpoint.bin").exists()
     # resumed, the directory is the uninterrupted run's, byte for byte
-    resumed = flock.resume(tmp_path / "py")
+    resumed = flocking.resume(tmp_path / "py")
     assert resumed.path == str(tmp_path / "py")
     cli_dir = cli_run(scenario, tmp_path / "cli")
     assert_same_files(cli_dir, tmp_path / "py", OUTPUT_FILES + ["trajectory.csv"])
@@ -47,12 +47,12 @@ def test_ctrl_c_stops_a_run_resumably(tmp_path):
 def test_ctrl_c_stops_a_run_in_memory():
     timer = interrupt_after(0.2)
     with pytest.raises(KeyboardInterrupt, match="interrupted after step"):
-        flock.run(long_fig11(100_000), trajectory=False)
+        flocking.run(long_fig11(100_000), trajectory=False)
     timer.join()
 
 
 def test_ctrl_c_stops_a_simulation_between_steps():
-    sim = flock.Simulation(long_fig11(100_000))
+    sim = flocking.Simulation(long_fig11(100_000))
     timer = interrupt_after(0.2)
     with pytest.raises(KeyboardInterrupt):
         sim.step(10**9)
@@ -65,8 +65,8 @@ def test_ctrl_c_stops_a_simulation_between_steps():
 def test_the_gil_is_released_while_rust_runs():
     scenario = long_fig11(30_000)
     done = threading.Event()
-    worker = threading.Thread(target=lambda: (flock.run(scenario, trajectory=False), done.set()))
-    sim = flock.Simulation(scenario)
+    worker = threading.Thread(target=lambda: (flocking.run(scenario, trajectory=False), done.set()))
+    sim = flocking.Simulation(scenario)
     stepper = threading.Thread(target=lambda: sim.step(30_000))
     worker.start()
     stepper.start()

@@ -1,6 +1,6 @@
-"""flock.sweep: a sweep file's runs on any concurrent.futures executor — the default local process
+"""flocking.sweep: a sweep file's runs on any concurrent.futures executor — the default local process
 pool and a real Dask cluster (a scheduler and two worker processes over TCP on loopback) — give
-the runs.csv of ``flock sweep``, byte for byte; a bad sweep file is a ScenarioError."""
+the runs.csv of ``flocking sweep``, byte for byte; a bad sweep file is a ScenarioError."""
 
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import flock
+import flocking
 
 from conftest import FIG11, cli
 
@@ -39,7 +39,7 @@ def cli_sweep(spec: Path, out: Path) -> bytes:
 
 def test_the_default_executor_gives_the_cli_runs_csv(spec: Path, tmp_path: Path) -> None:
     expected = cli_sweep(spec, tmp_path / "cli")
-    result = flock.sweep(spec, tmp_path / "py")
+    result = flocking.sweep(spec, tmp_path / "py")
     assert (tmp_path / "py" / "runs.csv").read_bytes() == expected
     assert len(result.columns["run"]) == 12
     assert result.columns["algorithm.c1"][4] == 0.0
@@ -49,7 +49,7 @@ def test_the_default_executor_gives_the_cli_runs_csv(spec: Path, tmp_path: Path)
     assert np.all(np.isfinite(result.columns["connectivity"][ok]))
     assert np.all(np.isnan(result.columns["connectivity"][~ok]))
     # run again: every run is found finished, nothing changes
-    again = flock.sweep(spec, tmp_path / "py", executor=ThreadPoolExecutor(2))
+    again = flocking.sweep(spec, tmp_path / "py", executor=ThreadPoolExecutor(2))
     assert (Path(again.path) / "runs.csv").read_bytes() == expected
 
 
@@ -67,14 +67,14 @@ def test_a_dask_cluster_gives_the_cli_runs_csv(spec: Path, tmp_path: Path) -> No
     ) as cluster, Client(cluster) as client:
         assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
         assert len(client.scheduler_info()["workers"]) == 2
-        flock.sweep(spec, tmp_path / "dask", executor=client.get_executor())
+        flocking.sweep(spec, tmp_path / "dask", executor=client.get_executor())
     assert (tmp_path / "dask" / "runs.csv").read_bytes() == expected
 
 
 def test_a_bad_sweep_file_is_a_scenario_error(tmp_path: Path) -> None:
     path = tmp_path / "bad.ron"
     path.write_text(SWEEP.format(base=FIG11).replace('"agents", values', '"agnets", values'))
-    with pytest.raises(flock.ScenarioError) as raised:
-        flock.sweep(path, tmp_path / "out")
+    with pytest.raises(flocking.ScenarioError) as raised:
+        flocking.sweep(path, tmp_path / "out")
     assert raised.value.field == "axes[1].path"
     assert "agents" in str(raised.value)

@@ -1,4 +1,4 @@
-// The player of `flock run --plot` (crates/flock-viz/src/player.rs embeds this file in the page):
+// The player of `flocking run --plot` (crates/flock-viz/src/player.rs embeds this file in the page):
 // draws one frame of the run data in <script id="flock-data"> on the canvas — agents as oriented
 // triangles, the proximity net's edges (|q_j - q_i| < r; a fixed graph's `edges` if the data has
 // them), obstacles, the gamma-agent, a scale bar —

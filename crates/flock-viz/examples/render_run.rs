@@ -1,4 +1,4 @@
-//! Renders every figure of a run directory written by `flock run --out DIR` into `DIR/figures/`:
+//! Renders every figure of a run directory written by `flocking run --out DIR` into `DIR/figures/`:
 //! snapshots (TAC 2006 Figs. 10–13; 3D runs also from above), the metric curves (Fig. 18), an
 //! animated GIF and an HTML player.
 //!
@@ -7,7 +7,7 @@
 //! ```
 //!
 //! RANGE is the interaction range r that draws the net's edges (default 8.4 = 1.2 d with the
-//! papers' d = 7). Obstacles and the γ-agent are not in a run's CSV files: the `flock` binary
+//! papers' d = 7). Obstacles and the γ-agent are not in a run's CSV files: the `flocking` binary
 //! adds them from the scenario.
 
 use std::path::PathBuf;

@@ -1,4 +1,4 @@
-//! [`write_figures`]: every figure of a run into one directory, as `flock plot DIR` writes them
+//! [`write_figures`]: every figure of a run into one directory, as `flocking plot DIR` writes them
 //! into `DIR/figures/`.
 
 use std::fs;

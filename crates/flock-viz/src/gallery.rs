@@ -1,11 +1,11 @@
-//! The page of the papers' figures that `flock figures` writes: per fixture its paper reference,
+//! The page of the papers' figures that `flocking figures` writes: per fixture its paper reference,
 //! the paper's caption and statements beside our measures ([`crate::papers`]), its description,
 //! its snapshot and metric PNGs and a table of its final metrics ([`index_html`]); one
 //! self-contained page, no script, no network.
 
 use std::fmt::Write as _;
 
-use flock::RunSummary;
+use flocking::RunSummary;
 
 use crate::metrics::Metrics;
 use crate::papers::paper_figure;
@@ -94,7 +94,7 @@ fn metric_rows(summary: &RunSummary) -> Vec<(String, String)> {
 pub fn index_html(entries: &[FigureEntry]) -> String {
     let mut html = String::from(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>flock: the papers' figures</title>\n<style>\n\
+         <title>flocking: the papers' figures</title>\n<style>\n\
          body { font-family: sans-serif; max-width: 1100px; margin: 2em auto; padding: 0 1em; color: #222; }\n\
          section { border-top: 1px solid #ccc; padding: 1em 0; }\n\
          img { max-width: 100%; display: block; margin: 0.5em 0; }\n\
@@ -103,8 +103,8 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
          td.v { font-family: monospace; text-align: right; }\n\
          blockquote { font-style: italic; margin: 0.5em 0 0.5em 1.5em; }\n\
          th { text-align: left; padding: 0.15em 0.8em; border-bottom: 1px solid #ccc; }\n\
-         </style>\n</head>\n<body>\n<h1>flock: the papers' figures</h1>\n\
-         <p>Written by <code>flock figures</code>: every fixture run and drawn; the tables give the \
+         </style>\n</head>\n<body>\n<h1>flocking: the papers' figures</h1>\n\
+         <p>Written by <code>flocking figures</code>: every fixture run and drawn; the tables give the \
          metrics at the final time.</p>\n<ul>\n",
     );
     for e in entries {

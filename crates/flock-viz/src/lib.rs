@@ -12,10 +12,10 @@
 //!   distances.
 //! - [`animation_gif`]: the whole run as an animated GIF.
 //! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
-//! - [`phase_svg`], [`phase_png`]: the phase diagram of a parameter sweep (`flock sweep plot`).
-//! - [`write_figures`]: all of them into a directory, as `flock plot` writes them.
+//! - [`phase_svg`], [`phase_png`]: the phase diagram of a parameter sweep (`flocking sweep plot`).
+//! - [`write_figures`]: all of them into a directory, as `flocking plot` writes them.
 //! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
-//! - [`index_html`]: the page of every fixture's figures that `flock figures` writes, each beside
+//! - [`index_html`]: the page of every fixture's figures that `flocking figures` writes, each beside
 //!   the paper's caption and statements ([`paper_figure`]).
 //!
 //! # Example

@@ -8,7 +8,7 @@ pub const TIME: &str = "t";
 
 /// The metric time series of a run: named columns of equal length, one of them [`TIME`].
 ///
-/// The columns flock writes (README, "What a run prints and writes"): `t`, `connectivity` (C),
+/// The columns flocking writes (README, "What a run prints and writes"): `t`, `connectivity` (C),
 /// `giant_component` (C*), `cohesion_radius` (R), `deviation_energy` (Ẽ), `velocity_mismatch`
 /// (K̃), `min_distance`, `collisions`, `energy` (H), and with obstacles `obstacle_clearance`,
 /// `inside_obstacles`. Columns the figures do not know are kept and ignored.

@@ -1,8 +1,8 @@
 //! What the papers say of the figures the fixtures reproduce: each figure's caption, as the seed
 //! prints it, and the statements its text makes, each beside the measure of our run that checks it
-//! ([`paper_figure`], shown by the gallery page of `flock figures`).
+//! ([`paper_figure`], shown by the gallery page of `flocking figures`).
 
-use flock::RunSummary;
+use flocking::RunSummary;
 
 use crate::metrics::Metrics;
 

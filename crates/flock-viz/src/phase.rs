@@ -1,4 +1,4 @@
-//! Phase diagrams of parameter sweeps (`flock sweep plot`): a metric over one or two swept
+//! Phase diagrams of parameter sweeps (`flocking sweep plot`): a metric over one or two swept
 //! parameters, each point of the grid summarised over its seeds.
 //!
 //! - Two axes: a heatmap, one cell per (x, y) grid value — the cells in the order of the sorted

@@ -88,7 +88,7 @@ pub fn player_html(scene: &Scene, options: &PlayerOptions) -> Result<String, Viz
     let data = data_json(scene, &frames, options);
     let duration = scene.frames[frames[frames.len() - 1]].t - scene.frames[frames[0]].t;
     let title = if scene.title.is_empty() {
-        "flock run".to_owned()
+        "flocking run".to_owned()
     } else {
         scene.title.clone()
     };

@@ -1,13 +1,13 @@
-//! [`plot_run`] (`flock plot DIR`, `flock run --plot`): the figures of a finished run, with the
+//! [`plot_run`] (`flocking plot DIR`, `flocking run --plot`): the figures of a finished run, with the
 //! obstacles, the γ-agent, the desired distance and the Tanner law's fixed graph read back from the
 //! run's resolved `scenario.ron`; [`plot_run_with`] with options (edges coloured by stress).
 
 use std::path::{Path, PathBuf};
 
-use flock::build::gamma_agent;
-use flock::initial::to_vector;
-use flock::obstacles::{ObstacleSpec, Space};
-use flock::{Algorithm, Scenario};
+use flocking::build::gamma_agent;
+use flocking::initial::to_vector;
+use flocking::obstacles::{ObstacleSpec, Space};
+use flocking::{Algorithm, Scenario};
 use flock_math::Vector;
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
@@ -17,7 +17,7 @@ use crate::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figur
 #[derive(Debug)]
 pub enum PlotError {
     /// The run's `scenario.ron` is missing or invalid.
-    Scenario(flock::ScenarioError),
+    Scenario(flocking::ScenarioError),
     /// Reading the run's CSV files or drawing failed.
     Viz(VizError),
 }
@@ -64,7 +64,7 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
 }
 
 /// The scene with its title, desired distance, obstacles, γ-agent and (Tanner) fixed graph.
-fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Result<Scene, flock::ScenarioError> {
+fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Result<Scene, flocking::ScenarioError> {
     let mut scene = scene
         .with_title(scenario.name.clone())
         .with_desired_distance(scenario.alpha.d);

@@ -1,10 +1,10 @@
-//! [`RunData`]: what `flock run --out DIR` wrote, read back: `metrics.csv` as [`Metrics`] and
+//! [`RunData`]: what `flocking run --out DIR` wrote, read back: `metrics.csv` as [`Metrics`] and
 //! `trajectory.csv` as [`Frame`]s (formats in the workspace README, "What a run prints and
 //! writes").
 
 use std::path::Path;
 
-use flock::run_dir::{self, ReadError, Trajectory};
+use flocking::run_dir::{self, ReadError, Trajectory};
 use glam::DVec3;
 
 use crate::error::VizError;
@@ -24,7 +24,7 @@ pub struct RunData {
 
 impl RunData {
     /// Reads `dir/metrics.csv` and `dir/trajectory.csv` (or `dir/trajectory.npy` when the run
-    /// wrote that instead) with the readers of [`flock::run_dir`].
+    /// wrote that instead) with the readers of [`flocking::run_dir`].
     ///
     /// # Errors
     /// [`VizError::Io`] naming a file that cannot be read, [`VizError::Parse`] naming the file

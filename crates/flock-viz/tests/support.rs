@@ -54,7 +54,7 @@ pub fn cube_scene() -> Scene {
         ))
 }
 
-/// Metrics of a run that flocks: every column flock writes, and obstacle clearance.
+/// Metrics of a run that flocks: every column flocking writes, and obstacle clearance.
 pub fn flocking_metrics(with_clearance: bool) -> Metrics {
     let t: Vec<f64> = (0..50).map(|k| k as f64 * 0.5).collect();
     let map = |f: fn(f64) -> f64| t.iter().map(|&t| f(t)).collect::<Vec<f64>>();

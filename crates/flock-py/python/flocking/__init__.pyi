@@ -1,0 +1,199 @@
+"""Type stubs of flocking: Olfati-Saber's flocking algorithms in Rust, from Python."""
+
+import concurrent.futures
+from os import PathLike
+from typing import Any, Dict, List, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+_Path = Union[str, PathLike[str]]
+_Rows = npt.ArrayLike
+_Value = Union[None, bool, int, float, str, List[Any], Dict[str, Any]]
+
+METRICS_HEADER: str
+"""The header of ``metrics.csv`` before the protocol's diagnostic columns."""
+
+class FlockError(Exception):
+    """Any error of flocking."""
+
+class ScenarioError(FlockError, ValueError):
+    """An invalid scenario; ``field`` is the dotted path of the field at fault, or None."""
+
+    field: Optional[str]
+    def __init__(self, message: str, field: Optional[str] = ...) -> None: ...
+
+class NumericalError(FlockError, ArithmeticError):
+    """A numerical blow-up after ``step`` steps (time ``t``), first at agent ``agent``."""
+
+    step: int
+    t: float
+    agent: int
+    def __init__(self, message: str, step: int, t: float, agent: int) -> None: ...
+
+class RunDirectoryError(FlockError, OSError):
+    """A run directory that cannot be written or read; ``path`` names it or the file at fault."""
+
+    path: Optional[str]
+    def __init__(self, message: str, path: Optional[str] = ...) -> None: ...
+
+class Scenario:
+    """A flocking scenario, as a RON scenario file writes it (immutable: changes return copies)."""
+
+    @staticmethod
+    def load(path: _Path) -> Scenario:
+        """Reads and validates the RON scenario file at ``path``."""
+    @staticmethod
+    def from_ron(text: str, origin: str = "<string>") -> Scenario:
+        """Parses and validates scenario text in RON."""
+    def to_ron(self) -> str:
+        """The scenario as RON text with every default filled in."""
+    def value(self, path: str) -> _Value:
+        """The value of the parameter at the dotted ``path`` (``"alpha.d"``)."""
+    def with_values(self, values: Dict[str, _Value]) -> Scenario:
+        """A copy with the parameters at the dotted paths replaced, validated."""
+    def with_initial(self, positions: _Rows, velocities: Optional[_Rows] = None) -> Scenario:
+        """A copy starting from the given n × dim positions and velocities (zero if omitted)."""
+    def warnings(self) -> List[str]:
+        """The warnings of ``flocking validate`` for this scenario."""
+    @property
+    def name(self) -> str:
+        """The scenario's name."""
+    @property
+    def dim(self) -> int:
+        """The dimension, 2 or 3."""
+    @property
+    def agents(self) -> int:
+        """The number of agents n."""
+    @property
+    def step(self) -> float:
+        """The time step h."""
+    @property
+    def duration(self) -> float:
+        """The simulated time T."""
+    @property
+    def steps(self) -> int:
+        """The number of steps of a run."""
+    @property
+    def record_every(self) -> int:
+        """Steps between records (the last step is always recorded)."""
+    def __eq__(self, other: object) -> bool: ...
+    def __reduce__(self) -> Tuple[Any, Tuple[str]]: ...
+
+class Simulation:
+    """The simulation of a scenario, stepped from Python."""
+
+    def __init__(
+        self,
+        scenario: Scenario,
+        positions: Optional[_Rows] = None,
+        velocities: Optional[_Rows] = None,
+    ) -> None: ...
+    def step(self, k: int = 1) -> None:
+        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps)."""
+    def set_state(
+        self, positions: Optional[_Rows] = None, velocities: Optional[_Rows] = None
+    ) -> None:
+        """Replaces the positions and/or velocities (n × dim) at the current time."""
+    @property
+    def q(self) -> npt.NDArray[np.float64]:
+        """The positions, n × dim (a copy), agents in original order."""
+    @property
+    def p(self) -> npt.NDArray[np.float64]:
+        """The velocities, n × dim (a copy), agents in original order."""
+    @property
+    def t(self) -> float:
+        """The time t = steps · h."""
+    @property
+    def steps(self) -> int:
+        """The number of steps taken."""
+    @property
+    def dim(self) -> int:
+        """The dimension, 2 or 3."""
+    @property
+    def agents(self) -> int:
+        """The number of agents n."""
+    @property
+    def scenario(self) -> Scenario:
+        """The scenario simulated."""
+    def metrics(self) -> Dict[str, Union[float, int]]:
+        """The flocking metrics of the current state, named as the columns of metrics.csv."""
+    def energy(self) -> float:
+        """The energy H of the current state."""
+
+class State:
+    """The state of every agent at time ``t``: (n, dim) positions and velocities."""
+
+    t: float
+    positions: npt.NDArray[np.float64]
+    velocities: npt.NDArray[np.float64]
+    def __init__(
+        self, t: float, positions: npt.NDArray[np.float64], velocities: npt.NDArray[np.float64]
+    ) -> None: ...
+
+class Trajectory:
+    """The recorded states: times (T,), positions and velocities (T, n, dim)."""
+
+    times: npt.NDArray[np.float64]
+    positions: npt.NDArray[np.float64]
+    velocities: npt.NDArray[np.float64]
+    def __init__(
+        self,
+        times: npt.NDArray[np.float64],
+        positions: npt.NDArray[np.float64],
+        velocities: npt.NDArray[np.float64],
+    ) -> None: ...
+
+class Run:
+    """A run's records: scenario, metrics columns, trajectory, final state and directory."""
+
+    scenario: Scenario
+    metrics: Dict[str, npt.NDArray[Any]]
+    trajectory: Optional[Trajectory]
+    final: State
+    path: Optional[str]
+    def __init__(
+        self,
+        scenario: Scenario,
+        metrics: Dict[str, npt.NDArray[Any]],
+        trajectory: Optional[Trajectory],
+        final: State,
+        path: Optional[str],
+    ) -> None: ...
+    def to_pandas(self) -> Any:
+        """The metrics as a pandas DataFrame (needs pandas)."""
+
+def run(
+    scenario: Scenario,
+    out: Optional[_Path] = None,
+    *,
+    trajectory: bool = True,
+    trajectory_format: str = "csv",
+    checkpoint_every: int = 1000,
+    force: bool = False,
+) -> Run:
+    """Runs ``scenario`` to its end (the bits of ``flocking run``), into ``out`` when given."""
+
+def resume(dir: _Path, *, checkpoint_every: int = 1000) -> Run:
+    """Continues the interrupted run in ``dir`` and returns the whole run."""
+
+def read_run(dir: _Path) -> Run:
+    """Reads a run directory (CSV or .npy trajectory)."""
+
+class SweepResult:
+    """A finished sweep: its output directory and the columns of its ``runs.csv``."""
+
+    path: str
+    columns: Dict[str, Any]
+    def __init__(self, path: str, columns: Dict[str, Any]) -> None: ...
+    def to_pandas(self) -> Any:
+        """``runs.csv`` as a pandas DataFrame (needs pandas)."""
+
+def sweep(
+    spec: _Path,
+    out: _Path,
+    executor: Optional[concurrent.futures.Executor] = None,
+) -> SweepResult:
+    """Runs the sweep file ``spec`` into ``out`` on ``executor`` (a local process pool by default,
+    a Dask cluster through ``Client.get_executor()``): ``runs.csv`` byte for byte that of
+    ``flocking sweep``; finished runs in ``out`` are skipped."""

@@ -1,0 +1,72 @@
+//! flocking as a library: the flocking algorithms of Olfati-Saber (IEEE TAC 51(3) 2006, Caltech
+//! CDS 03-006 2003, ACC 2004) and of Tanner, Jadbabaie & Pappas (2003), run from scenarios in 2D
+//! and 3D, with the metrics the papers judge flocking by, checkpoints, and the run directories
+//! `flocking run` writes — without the command line.
+//!
+//! - [`Scenario`]: a RON scenario ([`Scenario::load`], [`str::parse`], [`Scenario::validate`],
+//!   [`Scenario::warnings`]); its protocol in either dimension ([`Scenario::protocol`]); any
+//!   parameter read or changed by its path ([`Scenario::value`], [`Scenario::with_values`]).
+//! - [`DynSimulation`]: the simulation of a scenario behind one type, its state as plain `f64`
+//!   rows ([`State`]), agents in original order; metrics, energy, diagnostics, health.
+//! - [`run()`], [`resume()`]: a whole run, every recorded step handed to a [`Recorder`].
+//! - [`run_dir`]: the run directory — [`RunDirectory`] writes it (crash-safe, checkpointed,
+//!   resumable), [`read_run`] reads it back.
+//! - [`stability`]: the largest stable step, and the warnings of a valid scenario;
+//!   [`NumericalError`]: a blow-up with its step, agent and likely cause.
+//! - [`sweep`]: parameter sweeps and ensembles — a grid of values × seeds, one row of
+//!   `runs.csv` per run, resumable, in shards.
+//! - [`synthetic`]: lattices of any size for benchmarks.
+//! - The member crates, re-exported: [`math`], [`graph`], [`protocols`], [`obstacles`],
+//!   [`metrics`], and [`glam`]; [`prelude`] for a glob import.
+//!
+//! # Example
+//! ```
+//! use flocking::prelude::*;
+//!
+//! let scenario = Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+//! let summary = flocking::run(&scenario, &mut ())?;
+//! println!("final connectivity C = {}", summary.metrics.connectivity);
+//! assert_eq!(summary.metrics.connectivity, 1.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod build;
+pub mod error;
+pub mod health;
+pub mod initial;
+pub mod overrides;
+pub mod run;
+pub mod run_dir;
+pub mod scenario;
+pub mod simulation;
+pub mod stability;
+pub mod sweep;
+pub mod synthetic;
+mod validate;
+
+pub use error::ScenarioError;
+pub use health::NumericalError;
+pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, run};
+pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
+pub use scenario::{Algorithm, Cloud, Initial, Point, Scenario, TannerGraph, Translation};
+pub use simulation::{DynSimulation, State};
+pub use stability::{Warning, largest_stable_step};
+
+pub use flock_graph as graph;
+pub use flock_math as math;
+pub use flock_metrics as metrics;
+pub use flock_obstacles as obstacles;
+pub use flock_protocols as protocols;
+pub use glam;
+pub use serde_json;
+
+/// The names most programs use: `use flocking::prelude::*;`.
+pub mod prelude {
+    pub use crate::metrics::{FlockMetrics, MetricParams};
+    pub use crate::protocols::{GammaAgent, Integrator, Protocol, Simulation, Swarm};
+    pub use crate::{
+        DynSimulation, Record, Recorder, RunDirectory, RunError, RunSummary, Scenario,
+        ScenarioError, State, read_run, resume, run,
+    };
+    pub use glam::{DVec2, DVec3};
+}

@@ -1,0 +1,200 @@
+//! Parameters by path: read or change any value of a scenario by the dotted path of its field
+//! (`algorithm.c1`, `alpha.d`, `initial.positions.std`, `obstacles.0.radius`), as sweeps and the
+//! Python package do.
+//!
+//! A path names fields as the RON file writes them; an enum's variant is passed through (the `c1`
+//! of `algorithm: Algorithm2(c1: …)` is `algorithm.c1`) and a list's elements are numbered from 0.
+//! The changed scenario is validated as a loaded one is, so a bad value gets the same error.
+
+use serde_json::Value;
+
+use crate::Scenario;
+use crate::error::ScenarioError;
+
+impl Scenario {
+    /// The value at `path`, as JSON (numbers, strings, lists, and an enum as `{"Variant": …}`).
+    ///
+    /// # Errors
+    /// A path that names no field of this scenario; the error lists the fields there are.
+    pub fn value(&self, path: &str) -> Result<Value, ScenarioError> {
+        let tree = self.tree();
+        let mut node = &tree;
+        for (depth, segment) in path.split('.').enumerate() {
+            node = child(node, segment)
+                .ok_or_else(|| unknown(path, depth, node))?
+                .0;
+        }
+        Ok(node.clone())
+    }
+
+    /// The scenario with the value at each path replaced, then validated.
+    ///
+    /// A number with no fractional part is accepted where the field takes an integer (`agents:
+    /// 400.0` is 400). Unset defaults follow the values they depend on: changing `alpha.d` of a
+    /// scenario that leaves `alpha.r` unset moves r to 1.2 d.
+    ///
+    /// # Example
+    /// ```
+    /// use flocking::Scenario;
+    /// use serde_json::json;
+    ///
+    /// let scenario = Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+    /// let changed = scenario.with_values([("algorithm.c1", json!(0.05)), ("agents", json!(400))])?;
+    /// assert_eq!(changed.agents, 400);
+    /// assert_eq!(changed.value("algorithm.c1")?, json!(0.05));
+    /// // the errors of a loaded scenario, naming the field
+    /// let error = scenario.with_values([("alpha.d", json!(-1.0))]).unwrap_err();
+    /// assert_eq!(error.field().as_deref(), Some("alpha.d"));
+    /// # Ok::<(), flocking::ScenarioError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// A path that names no field (the error lists those there are), a value of the wrong type
+    /// for its field, or a changed scenario that fails [`Scenario::validate`].
+    pub fn with_values<P: AsRef<str>>(
+        &self,
+        values: impl IntoIterator<Item = (P, Value)>,
+    ) -> Result<Self, ScenarioError> {
+        let mut tree = self.tree();
+        let mut scenario = self.clone();
+        for (path, value) in values {
+            let path = path.as_ref();
+            set(&mut tree, path, value.clone())?;
+            scenario = match serde_json::from_value(tree.clone()) {
+                Ok(scenario) => scenario,
+                Err(error) => {
+                    let Some(integer) = integral(&value) else {
+                        return Err(wrong_type(path, &value, &error));
+                    };
+                    set(&mut tree, path, integer)?;
+                    serde_json::from_value(tree.clone())
+                        .map_err(|_| wrong_type(path, &value, &error))?
+                }
+            };
+        }
+        scenario.validate()?;
+        Ok(scenario)
+    }
+
+    fn tree(&self) -> Value {
+        serde_json::to_value(self).expect("a scenario is plain data and serializes")
+    }
+}
+
+/// The child `segment` of `node`, passing through an enum variant's tag; with whether it did.
+fn child<'a>(node: &'a Value, segment: &str) -> Option<(&'a Value, bool)> {
+    match node {
+        Value::Object(map) => match map.get(segment) {
+            Some(value) => Some((value, false)),
+            None => variant(node).and_then(|inner| child(inner, segment).map(|(v, _)| (v, true))),
+        },
+        Value::Array(items) => items
+            .get(segment.parse::<usize>().ok()?)
+            .map(|v| (v, false)),
+        _ => None,
+    }
+}
+
+/// The content of an externally tagged enum value `{"Variant": content}`.
+fn variant(node: &Value) -> Option<&Value> {
+    match node {
+        Value::Object(map) if map.len() == 1 => {
+            let (tag, inner) = map.iter().next()?;
+            tag.starts_with(|c: char| c.is_ascii_uppercase())
+                .then_some(inner)
+        }
+        _ => None,
+    }
+}
+
+fn variant_mut(node: &mut Value) -> Option<&mut Value> {
+    variant(node)?;
+    match node {
+        Value::Object(map) => map.values_mut().next(),
+        _ => None,
+    }
+}
+
+fn set(tree: &mut Value, path: &str, value: Value) -> Result<(), ScenarioError> {
+    let mut node = tree;
+    for (depth, segment) in path.split('.').enumerate() {
+        let Some((_, through_variant)) = child(node, segment) else {
+            return Err(unknown(path, depth, node));
+        };
+        if through_variant {
+            node = variant_mut(node).expect("child() passed through a variant");
+        }
+        node = match node {
+            Value::Object(map) => map.get_mut(segment),
+            Value::Array(items) => segment.parse::<usize>().ok().and_then(|k| items.get_mut(k)),
+            _ => None,
+        }
+        .expect("child() found it");
+    }
+    *node = value;
+    Ok(())
+}
+
+/// `value` as an integer, when it is a number with no fractional part.
+fn integral(value: &Value) -> Option<Value> {
+    let x = value.as_f64()?;
+    (value.is_f64() && x.fract() == 0.0 && x.abs() < 2f64.powi(53)).then(|| {
+        if x < 0.0 {
+            Value::from(x as i64)
+        } else {
+            Value::from(x as u64)
+        }
+    })
+}
+
+fn unknown(path: &str, depth: usize, node: &Value) -> ScenarioError {
+    let parent: Vec<&str> = path.split('.').take(depth).collect();
+    let node = variant(node).unwrap_or(node);
+    let (why, fix) = match node {
+        Value::Object(map) => (
+            "no such parameter".to_owned(),
+            format!(
+                "the fields {} are {}",
+                if depth == 0 {
+                    "of a scenario".to_owned()
+                } else {
+                    format!("under `{}`", parent.join("."))
+                },
+                map.keys()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ),
+        Value::Array(items) => (
+            "no such element".to_owned(),
+            format!(
+                "`{}` has {} elements, numbered from 0",
+                parent.join("."),
+                items.len()
+            ),
+        ),
+        other => (
+            format!(
+                "`{}` is the value {other}, which has no fields",
+                parent.join(".")
+            ),
+            format!("end the path at `{}`", parent.join(".")),
+        ),
+    };
+    ScenarioError::Invalid {
+        field: path.to_owned(),
+        value: "(no value read)".to_owned(),
+        why,
+        fix,
+    }
+}
+
+fn wrong_type(path: &str, value: &Value, error: &serde_json::Error) -> ScenarioError {
+    ScenarioError::Invalid {
+        field: path.to_owned(),
+        value: value.to_string(),
+        why: error.to_string(),
+        fix: "give a value of the type the field takes, as the scenario file writes it".to_owned(),
+    }
+}

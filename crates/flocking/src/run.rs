@@ -1,0 +1,271 @@
+//! Running a scenario: integrate its [`DynSimulation`] and hand every recorded step to a
+//! [`Recorder`] ([`run`], [`resume`]).
+
+use std::time::{Duration, Instant};
+
+use flock_metrics::{FlockMetrics, FlockingCriteria, FlockingVerdict, LatticeSummary};
+use flock_protocols::Observation;
+
+use crate::error::ScenarioError;
+use crate::health::NumericalError;
+use crate::scenario::Scenario;
+use crate::simulation::{DynSimulation, State};
+
+/// One recorded instant.
+#[derive(Debug)]
+pub struct Record<'a> {
+    /// The time t.
+    pub t: f64,
+    /// The steps taken.
+    pub steps: u64,
+    /// The flocking metrics at t.
+    pub metrics: FlockMetrics,
+    /// The protocol's energy H at t.
+    pub energy: f64,
+    /// The state at t, agents in original order.
+    pub state: State<'a>,
+    /// The protocol's own diagnostics at t, each with its column name (the same names at every
+    /// record of a run).
+    pub diagnostics: &'a [(&'static str, f64)],
+}
+
+/// What a finished run reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSummary {
+    /// The number of agents.
+    pub agents: usize,
+    /// The dimension.
+    pub dim: usize,
+    /// The number of steps taken.
+    pub steps: u64,
+    /// The final time.
+    pub t: f64,
+    /// The metrics at the final time.
+    pub metrics: FlockMetrics,
+    /// The velocity mismatch of each agent against its own component's mean velocity, per agent
+    /// (0 when every component moves rigidly).
+    pub component_velocity_mismatch: f64,
+    /// H at t = 0.
+    pub initial_energy: f64,
+    /// H at the final time.
+    pub final_energy: f64,
+    /// The protocol's own diagnostics at the final time, named.
+    pub diagnostics: Vec<(&'static str, f64)>,
+    /// The lattice of the final state (edges near d, triangles, TAC 2006 Theorem 5's bound).
+    pub lattice: LatticeSummary,
+    /// (t, metrics) of every record this run made (after its start, when resumed).
+    pub history: Vec<(f64, FlockMetrics)>,
+    /// Wall-clock time of the integration.
+    pub elapsed: Duration,
+}
+
+impl RunSummary {
+    /// TAC 2006 Definition 5 judged on [`RunSummary::history`] (`None` when its window holds no
+    /// record): whether the run was an α-flock, and a strict one.
+    #[must_use]
+    pub fn verdict(&self, criteria: &FlockingCriteria) -> Option<FlockingVerdict> {
+        FlockingVerdict::judge(&self.history, criteria)
+    }
+}
+
+/// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
+/// resumed bit-identically (a simulation carries nothing else between steps).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Start {
+    /// The number of steps taken.
+    pub steps: u64,
+    /// H at t = 0 (for the run's summary).
+    pub initial_energy: f64,
+    /// The positions, `dim` coordinates per agent, agents in original order.
+    pub positions: Vec<f64>,
+    /// The velocities, `dim` coordinates per agent.
+    pub velocities: Vec<f64>,
+}
+
+/// Receives the recorded instants of a run, and may keep checkpoints of it or stop it.
+pub trait Recorder {
+    /// Why recording failed.
+    type Error;
+    /// Records one instant.
+    ///
+    /// # Errors
+    /// When the record cannot be kept; the run stops with this error.
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error>;
+
+    /// Whether the run should keep a checkpoint after `steps` steps (never, by default).
+    fn wants_checkpoint(&self, _steps: u64) -> bool {
+        false
+    }
+
+    /// Keeps `start`, the state after its steps, so that the run can be resumed from it.
+    ///
+    /// # Errors
+    /// When the checkpoint cannot be kept; the run stops with this error.
+    fn checkpoint(&mut self, _start: &Start) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    /// Whether the run should stop (after keeping a checkpoint); asked after every step.
+    fn stop_requested(&self) -> bool {
+        false
+    }
+}
+
+/// Keeps nothing: for runs whose summary is all that matters.
+impl Recorder for () {
+    type Error = std::convert::Infallible;
+
+    fn record(&mut self, _record: &Record<'_>) -> Result<(), Self::Error> {
+        Ok(())
+    }
+}
+
+/// Why a run stopped.
+#[derive(Debug)]
+pub enum RunError<E> {
+    /// The scenario is invalid.
+    Scenario(ScenarioError),
+    /// The recorder failed.
+    Record(E),
+    /// The state blew up (NaN, ∞ or a runaway speed); nothing from that step was recorded.
+    Numerical(NumericalError),
+    /// The recorder asked the run to stop (Ctrl-C); a checkpoint of the state was kept.
+    Interrupted {
+        /// The steps taken.
+        steps: u64,
+        /// The time reached.
+        t: f64,
+    },
+}
+
+impl<E: std::fmt::Display> std::fmt::Display for RunError<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Scenario(e) => write!(f, "{e}"),
+            Self::Record(e) => write!(f, "{e}"),
+            Self::Numerical(e) => write!(f, "{e}"),
+            Self::Interrupted { steps, t } => {
+                write!(f, "interrupted after step {steps} (t = {t})")
+            }
+        }
+    }
+}
+
+impl<E: std::error::Error> std::error::Error for RunError<E> {}
+
+impl<E> From<ScenarioError> for RunError<E> {
+    fn from(e: ScenarioError) -> Self {
+        Self::Scenario(e)
+    }
+}
+
+/// Validates a scenario and runs it, recording t = 0, every `record_every` steps and the final
+/// step.
+///
+/// # Example
+/// ```
+/// let mut scenario = flocking::Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+/// scenario.duration = 5.0;
+/// let summary = flocking::run(&scenario, &mut ())?;
+/// assert_eq!(summary.steps, 500);
+/// assert!(summary.final_energy < summary.initial_energy); // TAC 2006 Theorem 3
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// An invalid scenario, a numerical blow-up, an interruption, or the recorder's first error.
+pub fn run<R: Recorder + ?Sized>(
+    scenario: &Scenario,
+    recorder: &mut R,
+) -> Result<RunSummary, RunError<R::Error>> {
+    resume(scenario, None, recorder)
+}
+
+/// Runs a scenario as [`run`] does, or continues it from `start` (a checkpoint of the same
+/// scenario): the records after `start` are then bit-identical to those of the uninterrupted
+/// run, and t = 0 is not recorded again.
+///
+/// # Errors
+/// An invalid scenario, a `start` of another size, a numerical blow-up, an interruption, or the
+/// recorder's first error.
+pub fn resume<R: Recorder + ?Sized>(
+    scenario: &Scenario,
+    start: Option<&Start>,
+    recorder: &mut R,
+) -> Result<RunSummary, RunError<R::Error>> {
+    let mut history = Vec::new();
+    let (mut sim, initial_energy) = match start {
+        None => {
+            let sim = DynSimulation::new(scenario)?;
+            sim.check_health().map_err(RunError::Numerical)?;
+            let observation = record(recorder, &sim)?;
+            history.push((sim.time(), observation.metrics));
+            (sim, observation.energy)
+        }
+        Some(start) => (
+            DynSimulation::resume(scenario, start)?,
+            start.initial_energy,
+        ),
+    };
+    let total = scenario.steps();
+    let clock = Instant::now();
+    // The final step is always recorded: its measurements are the summary's.
+    let mut last = None;
+    while sim.steps() < total {
+        sim.step();
+        sim.check_health().map_err(RunError::Numerical)?;
+        let steps = sim.steps();
+        if steps % scenario.record_every == 0 || steps == total {
+            let observation = record(recorder, &sim)?;
+            history.push((sim.time(), observation.metrics));
+            last = Some(observation);
+        }
+        let stop = steps < total && recorder.stop_requested();
+        if stop || (steps < total && recorder.wants_checkpoint(steps)) {
+            recorder
+                .checkpoint(&sim.start(initial_energy))
+                .map_err(RunError::Record)?;
+        }
+        if stop {
+            return Err(RunError::Interrupted {
+                steps,
+                t: sim.time(),
+            });
+        }
+    }
+    let elapsed = clock.elapsed();
+    let last = last.unwrap_or_else(|| sim.observe());
+    Ok(RunSummary {
+        agents: sim.agents(),
+        dim: sim.dim(),
+        steps: sim.steps(),
+        t: sim.time(),
+        metrics: last.metrics,
+        component_velocity_mismatch: sim.component_velocity_mismatch(),
+        initial_energy,
+        final_energy: last.energy,
+        diagnostics: last.diagnostics,
+        lattice: sim.lattice(),
+        history,
+        elapsed,
+    })
+}
+
+/// Records the state of `sim` and returns what it measured.
+fn record<R: Recorder + ?Sized>(
+    recorder: &mut R,
+    sim: &DynSimulation,
+) -> Result<Observation, RunError<R::Error>> {
+    let observation = sim.observe();
+    recorder
+        .record(&Record {
+            t: sim.time(),
+            steps: sim.steps(),
+            metrics: observation.metrics,
+            energy: observation.energy,
+            state: sim.state(),
+            diagnostics: &observation.diagnostics,
+        })
+        .map_err(RunError::Record)?;
+    Ok(observation)
+}

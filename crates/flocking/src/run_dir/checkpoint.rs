@@ -1,0 +1,146 @@
+//! Checkpoints of a run directory (`checkpoint.bin`): the state after some steps and how much of
+//! the outputs had been written then, so that `flocking run --resume DIR` cuts the outputs back to
+//! that point and continues bit-identically.
+//!
+//! The file is little-endian: the magic `FLOCKCK1`, then as u64 the dimension, the number of
+//! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
+//! trajectory; then the positions and the velocities as f64 (`dim` per agent), and last an FNV-1a
+//! hash of everything before it. It is written to `checkpoint.tmp`, flushed to the disk, and
+//! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
+//! leaves the previous checkpoint intact.
+
+use std::fs;
+use std::io::{self, Write};
+use std::path::Path;
+
+use crate::run::Start;
+
+/// The checkpoint's file name in the run directory.
+pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
+
+const MAGIC: &[u8; 8] = b"FLOCKCK1";
+
+/// A run's state and the lengths of its outputs at that state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Checkpoint {
+    /// The dimension.
+    pub dim: usize,
+    /// The state.
+    pub start: Start,
+    /// The records written.
+    pub records: u64,
+    /// The bytes of `metrics.csv`.
+    pub metrics_bytes: u64,
+    /// The bytes of `trajectory.csv`, or the records of `trajectory.npy`.
+    pub trajectory_bytes: u64,
+}
+
+impl Checkpoint {
+    /// Writes the checkpoint into `dir` atomically (temporary file, then rename).
+    ///
+    /// # Errors
+    /// On any I/O error.
+    pub fn write(&self, dir: &Path) -> io::Result<()> {
+        let s = &self.start;
+        let mut bytes = MAGIC.to_vec();
+        for word in [
+            self.dim as u64,
+            (s.positions.len() / self.dim.max(1)) as u64,
+            s.steps,
+            s.initial_energy.to_bits(),
+            self.records,
+            self.metrics_bytes,
+            self.trajectory_bytes,
+        ] {
+            bytes.extend_from_slice(&word.to_le_bytes());
+        }
+        for x in s.positions.iter().chain(&s.velocities) {
+            bytes.extend_from_slice(&x.to_le_bytes());
+        }
+        let hash = fnv1a(&bytes);
+        bytes.extend_from_slice(&hash.to_le_bytes());
+        let temporary = dir.join("checkpoint.tmp");
+        let mut file = fs::File::create(&temporary)?;
+        file.write_all(&bytes)?;
+        file.sync_all()?;
+        fs::rename(temporary, dir.join(CHECKPOINT_FILE))?;
+        sync_dir(dir)
+    }
+
+    /// Reads the checkpoint of `dir`, if it has one.
+    ///
+    /// # Errors
+    /// A file that is not a whole checkpoint (wrong magic, length or hash), or any I/O error.
+    pub fn read(dir: &Path) -> io::Result<Option<Self>> {
+        let path = dir.join(CHECKPOINT_FILE);
+        let bytes = match fs::read(&path) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(e),
+        };
+        let corrupt = |why: &str| {
+            io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("{} is not a flock checkpoint: {why}", path.display()),
+            )
+        };
+        let (body, hash) = bytes
+            .split_last_chunk::<8>()
+            .ok_or_else(|| corrupt("too short"))?;
+        if !body.starts_with(MAGIC) {
+            return Err(corrupt("wrong magic"));
+        }
+        if fnv1a(body) != u64::from_le_bytes(*hash) {
+            return Err(corrupt("its hash does not match"));
+        }
+        let words: Vec<u64> = body[MAGIC.len()..]
+            .chunks_exact(8)
+            .map(|w| u64::from_le_bytes(w.try_into().unwrap_or_default()))
+            .collect();
+        let [
+            dim,
+            agents,
+            steps,
+            energy,
+            records,
+            metrics_bytes,
+            trajectory_bytes,
+            state @ ..,
+        ] = words.as_slice()
+        else {
+            return Err(corrupt("too short"));
+        };
+        let size = usize::try_from(dim * agents).map_err(|_| corrupt("too large"))?;
+        if state.len() != 2 * size || (body.len() - MAGIC.len()) % 8 != 0 {
+            return Err(corrupt("its length does not match its size"));
+        }
+        let floats = |w: &[u64]| w.iter().map(|&b| f64::from_bits(b)).collect();
+        Ok(Some(Self {
+            dim: usize::try_from(*dim).map_err(|_| corrupt("bad dimension"))?,
+            start: Start {
+                steps: *steps,
+                initial_energy: f64::from_bits(*energy),
+                positions: floats(&state[..size]),
+                velocities: floats(&state[size..]),
+            },
+            records: *records,
+            metrics_bytes: *metrics_bytes,
+            trajectory_bytes: *trajectory_bytes,
+        }))
+    }
+}
+
+/// The 64-bit FNV-1a hash.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| {
+        (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+/// Flushes the entries of directory `dir` (a rename or a new file in it) to the disk.
+///
+/// # Errors
+/// When the directory cannot be opened or flushed.
+pub fn sync_dir(dir: &Path) -> io::Result<()> {
+    fs::File::open(dir)?.sync_all()
+}

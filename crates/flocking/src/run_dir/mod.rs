@@ -1,0 +1,29 @@
+//! Run directories: what `flocking run --out DIR` writes ([`RunDirectory`], crash-safe, with
+//! checkpoints to resume from) and how to read it back ([`read_run`]).
+//!
+//! | file | contents |
+//! | --- | --- |
+//! | `metrics.csv` | `t`, the metrics of [`METRICS_HEADER`], then the protocol's diagnostics |
+//! | `trajectory.csv` | `t,id,x,y[,z],vx,vy[,vz]`, every agent at every recorded step |
+//! | `trajectory.npy` | instead of `trajectory.csv`: records `t`, `q` (n × dim), `p` (n × dim) |
+//! | `final.csv` | `id,x,y[,z],vx,vy[,vz]`, the final state |
+//! | `scenario.ron` | the scenario with every default filled in |
+//! | `flocking.txt` | TAC 2006 Definition 5 judged on `metrics.csv` ([`verdict`]) |
+
+pub mod checkpoint;
+pub mod npy;
+pub mod read;
+mod table;
+pub mod verdict;
+pub mod write;
+
+pub use checkpoint::{CHECKPOINT_FILE, Checkpoint};
+pub use read::{
+    Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv,
+    read_trajectory_npy, trajectory_header,
+};
+pub use verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
+pub use write::{
+    CreateError, Finished, INCOMPLETE_FILE, METRICS_HEADER, OutputOptions, ResumeError,
+    RunDirectory, TrajectoryFormat, partial_path,
+};

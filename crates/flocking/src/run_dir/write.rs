@@ -1,0 +1,809 @@
+//! The output directory of `flocking run`: `metrics.csv`, the trajectory (`trajectory.csv`, or
+//! `trajectory.npy` for large runs), `final.csv` and the resolved `scenario.ron`.
+//!
+//! Crash safety:
+//! - Everything is written into a sibling `DIR.partial`, renamed to `DIR` only when the run
+//!   completes: `DIR` exists only for complete runs.
+//! - `DIR.partial/INCOMPLETE` says why the directory is incomplete (running or killed,
+//!   interrupted, failed) and how to resume it.
+//! - Each record goes to each file in one write of whole lines; a process killed inside that
+//!   write can still leave the record cut (a `.npy` header counts only whole records).
+//!   `checkpoint.bin` ([`Checkpoint`]) is replaced atomically every `checkpoint_every` steps and
+//!   when the run is interrupted, and the note then says up to which byte the records are whole.
+//!   [`RunDirectory::resume`] cuts the files back to the last checkpoint and continues them.
+//! - Durability: before `checkpoint.bin` is replaced, the outputs it counts are flushed to the
+//!   disk (fsync), and so is every file and directory before each rename (the checkpoint, the
+//!   `INCOMPLETE` note, `DIR.partial` to `DIR`), so that a power cut cannot leave a checkpoint
+//!   that counts bytes the disk does not hold.
+//! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
+//!   diagnostics are named by the diagnostics themselves ([`Record::diagnostics`]), and every
+//!   later record must carry the same names.
+
+use std::fmt::Write as _;
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use super::checkpoint::{CHECKPOINT_FILE, Checkpoint, sync_dir};
+use super::npy::{NpyFile, trajectory_dtype};
+use super::read::trajectory_header;
+use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
+use crate::error::ScenarioError;
+use crate::run::{Record, Recorder, Start};
+use crate::scenario::Scenario;
+use flock_metrics::{FlockingCriteria, FlockingVerdict};
+
+/// The header of `metrics.csv`.
+pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy";
+
+/// The file that marks a directory as incomplete, and says why.
+pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
+
+/// The first word of [`INCOMPLETE_FILE`] for a run that cannot be resumed.
+const FAILED: &str = "failed";
+
+/// How a run's trajectory is stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TrajectoryFormat {
+    /// `trajectory.csv`: `t,id,x,y[,z],vx,vy[,vz]`, one line per agent and record.
+    #[default]
+    Csv,
+    /// `trajectory.npy`: one structured record per instant, fields `t`, `q` (n × dim) and
+    /// `p` (n × dim), read by `numpy.load` (see [`super::npy`]).
+    Npy,
+}
+
+impl FromStr for TrajectoryFormat {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "csv" => Ok(Self::Csv),
+            "npy" => Ok(Self::Npy),
+            other => Err(format!(
+                "unknown trajectory format {other:?}: use csv or npy"
+            )),
+        }
+    }
+}
+
+/// How a run directory is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutputOptions {
+    /// Replace an existing `DIR`.
+    pub force: bool,
+    /// The trajectory's format.
+    pub format: TrajectoryFormat,
+    /// Keep a checkpoint every this many steps (0: only when interrupted).
+    pub checkpoint_every: u64,
+}
+
+impl Default for OutputOptions {
+    fn default() -> Self {
+        Self {
+            force: false,
+            format: TrajectoryFormat::Csv,
+            checkpoint_every: 1000,
+        }
+    }
+}
+
+/// The trajectory file being written.
+#[derive(Debug)]
+enum Trajectory {
+    Csv { file: File, bytes: u64 },
+    Npy(NpyFile),
+}
+
+/// An output directory being written.
+#[derive(Debug)]
+pub struct RunDirectory {
+    target: PathBuf,
+    partial: PathBuf,
+    metrics: File,
+    metrics_bytes: u64,
+    trajectory: Trajectory,
+    records: u64,
+    dim: usize,
+    checkpoint_every: u64,
+    stop: Option<&'static AtomicBool>,
+    /// One trajectory record's bytes (CSV text or `.npy` row), reused.
+    buffer: Vec<u8>,
+    /// The last recorded state (dim coordinates of q, then of p, per agent) for `final.csv`.
+    last_state: Vec<f64>,
+    /// The diagnostic columns of the header of `metrics.csv`, once written.
+    columns: Option<Vec<String>>,
+    /// The number of agents.
+    agents: usize,
+    /// The criteria of the verdict of [`VERDICT_FILE`].
+    criteria: FlockingCriteria,
+}
+
+/// A complete run directory.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finished {
+    /// `DIR`.
+    pub path: PathBuf,
+    /// TAC 2006 Definition 5 judged on its whole `metrics.csv` (also in [`VERDICT_FILE`]).
+    pub verdict: Option<FlockingVerdict>,
+}
+
+/// Why a run directory cannot be created.
+#[derive(Debug)]
+pub enum CreateError {
+    /// The target directory already holds files (and `force` was not set).
+    Occupied {
+        /// The target directory.
+        target: PathBuf,
+    },
+    /// `DIR.partial` holds an interrupted run (and `force` was not set).
+    Interrupted {
+        /// `DIR.partial`.
+        partial: PathBuf,
+        /// `DIR`.
+        target: PathBuf,
+    },
+    /// Writing failed.
+    Io(io::Error),
+}
+
+impl std::fmt::Display for CreateError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Occupied { target } => write!(
+                f,
+                "output directory {} already holds files (replace it with `force`)",
+                target.display()
+            ),
+            Self::Interrupted { partial, .. } => write!(
+                f,
+                "{} holds an interrupted run (resume it, or start over with `force`)",
+                partial.display()
+            ),
+            Self::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for CreateError {}
+
+impl From<io::Error> for CreateError {
+    fn from(e: io::Error) -> Self {
+        Self::Io(e)
+    }
+}
+
+/// Why a run directory cannot be resumed.
+#[derive(Debug)]
+pub enum ResumeError {
+    /// There is no interrupted run at `partial`.
+    Nothing {
+        /// `DIR.partial`, which does not exist.
+        partial: PathBuf,
+        /// `DIR`.
+        target: PathBuf,
+        /// Whether `DIR` holds a complete run.
+        complete: bool,
+    },
+    /// The run cannot be resumed; the message says why and what to do.
+    Refused(String),
+    /// The directory's `scenario.ron` no longer loads.
+    Scenario(ScenarioError),
+    /// Reading or cutting back the files failed.
+    Io(io::Error),
+}
+
+impl std::fmt::Display for ResumeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Nothing {
+                partial,
+                target,
+                complete,
+            } => {
+                if *complete {
+                    write!(
+                        f,
+                        "{} holds a complete run: there is nothing to resume",
+                        target.display()
+                    )
+                } else {
+                    write!(f, "there is no interrupted run at {}", partial.display())
+                }
+            }
+            Self::Refused(why) => write!(f, "{why}"),
+            Self::Scenario(e) => write!(f, "{e}"),
+            Self::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for ResumeError {}
+
+impl From<io::Error> for ResumeError {
+    fn from(e: io::Error) -> Self {
+        Self::Io(e)
+    }
+}
+
+/// `DIR.partial`.
+#[must_use]
+pub fn partial_path(target: &Path) -> PathBuf {
+    let mut partial = target.as_os_str().to_owned();
+    partial.push(".partial");
+    PathBuf::from(partial)
+}
+
+impl RunDirectory {
+    /// Starts writing the run of `scenario` to `target` with default options but `force`: CSV,
+    /// a checkpoint every 1,000 steps.
+    ///
+    /// # Errors
+    /// When `target` holds files and `force` is false, or on any I/O error.
+    pub fn create(target: &Path, scenario: &Scenario, force: bool) -> Result<Self, CreateError> {
+        Self::create_with(
+            target,
+            scenario,
+            &OutputOptions {
+                force,
+                ..OutputOptions::default()
+            },
+        )
+    }
+
+    /// Starts writing the run of `scenario` to `target`; refuses an existing non-empty `target`
+    /// unless `options.force`.
+    ///
+    /// # Errors
+    /// When `target` holds files and `force` is false, or on any I/O error.
+    pub fn create_with(
+        target: &Path,
+        scenario: &Scenario,
+        options: &OutputOptions,
+    ) -> Result<Self, CreateError> {
+        let non_empty = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
+        if non_empty && !options.force {
+            return Err(CreateError::Occupied {
+                target: target.to_owned(),
+            });
+        }
+        let partial = partial_path(target);
+        if partial.exists() && !options.force {
+            return Err(CreateError::Interrupted {
+                partial,
+                target: target.to_owned(),
+            });
+        }
+        Ok(Self::create_in(target, partial, scenario, options)?)
+    }
+
+    /// [`RunDirectory::create_with`] once `target` may be written.
+    fn create_in(
+        target: &Path,
+        partial: PathBuf,
+        scenario: &Scenario,
+        options: &OutputOptions,
+    ) -> io::Result<Self> {
+        // The directory is prepared under another name and appears as `DIR.partial` with its
+        // `INCOMPLETE` note and scenario already inside.
+        let mut staging = partial.clone().into_os_string();
+        staging.push(".new");
+        let staging = PathBuf::from(staging);
+        for stale in [&partial, &staging] {
+            if stale.exists() {
+                fs::remove_dir_all(stale)?;
+            }
+        }
+        fs::create_dir_all(&staging)?;
+        write_incomplete(&staging, &running_note(target))?;
+        let text = scenario.to_ron().map_err(io::Error::other)?;
+        write_durably(&staging.join("scenario.ron"), (text + "\n").as_bytes())?;
+        let mut this = Self::start_files(target, staging, scenario, options.format, options)?;
+        sync_dir(&this.partial)?;
+        // The open files follow the directory's rename.
+        fs::rename(&this.partial, &partial)?;
+        sync_dir(parent_of(&partial))?;
+        this.partial = partial;
+        Ok(this)
+    }
+
+    /// Writes the headers of fresh output files into `partial`.
+    fn start_files(
+        target: &Path,
+        partial: PathBuf,
+        scenario: &Scenario,
+        format: TrajectoryFormat,
+        options: &OutputOptions,
+    ) -> io::Result<Self> {
+        let metrics = File::create(partial.join("metrics.csv"))?;
+        let trajectory = match format {
+            TrajectoryFormat::Csv => {
+                let header = trajectory_csv_header(scenario.dim);
+                let mut file = File::create(partial.join("trajectory.csv"))?;
+                file.write_all(header.as_bytes())?;
+                Trajectory::Csv {
+                    file,
+                    bytes: header.len() as u64,
+                }
+            }
+            TrajectoryFormat::Npy => {
+                let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
+                Trajectory::Npy(NpyFile::create(
+                    &partial.join("trajectory.npy"),
+                    descr,
+                    row_bytes,
+                )?)
+            }
+        };
+        Ok(Self {
+            target: target.to_owned(),
+            partial,
+            metrics,
+            metrics_bytes: 0,
+            trajectory,
+            records: 0,
+            dim: scenario.dim,
+            checkpoint_every: options.checkpoint_every,
+            stop: None,
+            buffer: Vec::new(),
+            last_state: Vec::new(),
+            columns: None,
+            agents: scenario.agents,
+            criteria: FlockingCriteria::default(),
+        })
+    }
+
+    /// Reopens the interrupted run `dir` (`DIR` or `DIR.partial`): loads its `scenario.ron`,
+    /// cuts its outputs back to its last checkpoint and returns the directory with the scenario
+    /// and the state to continue from (`None`: no checkpoint yet, the run starts over).
+    ///
+    /// # Errors
+    /// [`ResumeError::Refused`] when there is no interrupted run at `dir`, when the run failed
+    /// numerically (resuming would fail again), or when its files do not match its checkpoint;
+    /// otherwise the scenario's or the I/O error.
+    pub fn resume(
+        dir: &Path,
+        checkpoint_every: u64,
+    ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
+        let dir: PathBuf = dir.components().collect();
+        let (target, partial) = match dir.to_str().and_then(|s| s.strip_suffix(".partial")) {
+            Some(stem) => (PathBuf::from(stem), dir.clone()),
+            None => (dir.clone(), partial_path(&dir)),
+        };
+        if !partial.is_dir() {
+            return Err(ResumeError::Nothing {
+                complete: target.is_dir(),
+                partial,
+                target,
+            });
+        }
+        let note = fs::read_to_string(partial.join(INCOMPLETE_FILE)).unwrap_or_default();
+        if note.starts_with(FAILED) {
+            return Err(ResumeError::Refused(format!(
+                "the run in {} cannot be resumed, it would fail again: {}",
+                partial.display(),
+                note.trim_end()
+            )));
+        }
+        let scenario =
+            Scenario::load(partial.join("scenario.ron")).map_err(ResumeError::Scenario)?;
+        let format = if partial.join("trajectory.npy").exists() {
+            TrajectoryFormat::Npy
+        } else {
+            TrajectoryFormat::Csv
+        };
+        let checkpoint = Checkpoint::read(&partial)?;
+        write_incomplete(&partial, &running_note(&target))?;
+        // With no checkpoint yet the run starts over: its files are cut back to their headers
+        // (the trajectory's was whole before the directory appeared; the metrics' comes with the
+        // first record).
+        let (records, metrics_bytes, trajectory_bytes, start) = match checkpoint {
+            Some(checkpoint) => {
+                check_size(&checkpoint, &scenario, &partial)?;
+                (
+                    checkpoint.records,
+                    checkpoint.metrics_bytes,
+                    checkpoint.trajectory_bytes,
+                    Some(checkpoint.start),
+                )
+            }
+            None => (0, 0, trajectory_csv_header(scenario.dim).len() as u64, None),
+        };
+        let metrics_path = partial.join("metrics.csv");
+        let columns = if records > 0 {
+            Some(diagnostic_columns(&metrics_path)?)
+        } else {
+            None
+        };
+        let metrics = cut(&metrics_path, metrics_bytes)?;
+        let trajectory = match format {
+            TrajectoryFormat::Csv => Trajectory::Csv {
+                file: cut(&partial.join("trajectory.csv"), trajectory_bytes)?,
+                bytes: trajectory_bytes,
+            },
+            TrajectoryFormat::Npy => {
+                let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
+                Trajectory::Npy(NpyFile::truncate_to(
+                    &partial.join("trajectory.npy"),
+                    descr,
+                    row_bytes,
+                    records,
+                )?)
+            }
+        };
+        let this = Self {
+            target,
+            partial,
+            metrics,
+            metrics_bytes,
+            trajectory,
+            records,
+            dim: scenario.dim,
+            checkpoint_every,
+            stop: None,
+            buffer: Vec::new(),
+            last_state: Vec::new(),
+            columns,
+            agents: scenario.agents,
+            criteria: FlockingCriteria::default(),
+        };
+        Ok((this, scenario, start))
+    }
+
+    /// Stops the run (after keeping a checkpoint) once `flag` is set, e.g. by Ctrl-C.
+    #[must_use]
+    pub const fn with_stop_flag(mut self, flag: &'static AtomicBool) -> Self {
+        self.stop = Some(flag);
+        self
+    }
+
+    /// Judges the finished run by `criteria` in [`VERDICT_FILE`] (default: the last quarter,
+    /// ε₁ = ε₂ = 0.01).
+    #[must_use]
+    pub const fn with_criteria(mut self, criteria: FlockingCriteria) -> Self {
+        self.criteria = criteria;
+        self
+    }
+
+    /// The directory being written, `DIR.partial`.
+    #[must_use]
+    pub fn partial(&self) -> &Path {
+        &self.partial
+    }
+
+    /// Writes `final.csv` and [`VERDICT_FILE`] and moves the directory into place.
+    ///
+    /// # Errors
+    /// On any I/O error (the partial directory is then removed).
+    pub fn finish(mut self) -> io::Result<Finished> {
+        let result = self.complete();
+        if result.is_err() {
+            let _ = fs::remove_dir_all(&self.partial);
+        }
+        result.map(|verdict| Finished {
+            path: self.target,
+            verdict,
+        })
+    }
+
+    fn complete(&mut self) -> io::Result<Option<FlockingVerdict>> {
+        let mut last = format!("{}\n", trajectory_header(self.dim)[1..].join(",")).into_bytes();
+        let coordinates = 2 * self.dim;
+        for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
+            write_state(&mut last, i, state);
+        }
+        write_durably(&self.partial.join("final.csv"), &last)?;
+        self.sync_outputs()?;
+        let verdict = judge_metrics_file(
+            &self.partial.join("metrics.csv"),
+            self.agents,
+            &self.criteria,
+        )?;
+        let text = verdict_text(verdict.as_ref(), &self.criteria);
+        write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
+        for name in [CHECKPOINT_FILE, INCOMPLETE_FILE] {
+            match fs::remove_file(self.partial.join(name)) {
+                Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
+                _ => {}
+            }
+        }
+        sync_dir(&self.partial)?;
+        if self.target.exists() {
+            fs::remove_dir_all(&self.target)?;
+        }
+        fs::rename(&self.partial, &self.target)?;
+        sync_dir(parent_of(&self.target))?;
+        Ok(verdict)
+    }
+
+    /// Flushes `metrics.csv` and the trajectory to the disk.
+    fn sync_outputs(&self) -> io::Result<()> {
+        self.metrics.sync_data()?;
+        match &self.trajectory {
+            Trajectory::Csv { file, .. } => file.sync_data(),
+            Trajectory::Npy(file) => file.sync_data(),
+        }
+    }
+
+    /// Abandons the run: removes the partial directory.
+    pub fn abandon(self) {
+        let _ = fs::remove_dir_all(&self.partial);
+    }
+
+    /// Keeps the partial directory, its records and its last checkpoint, and says in its
+    /// `INCOMPLETE` file why the run stopped; `resumable` tells whether `flocking run --resume` may
+    /// continue it. Returns the partial directory.
+    ///
+    /// # Errors
+    /// When the note cannot be written.
+    pub fn keep_incomplete(self, why: &str, resumable: bool) -> io::Result<PathBuf> {
+        let note = if resumable {
+            format!(
+                "incomplete: {why}\nEvery record in this directory is complete up to the last one written.\nResume: flocking run --resume {}\n",
+                self.target.display()
+            )
+        } else {
+            format!(
+                "{FAILED}: {why}\nEvery record in this directory is complete up to the last one written; the run cannot be resumed.\n"
+            )
+        };
+        write_incomplete(&self.partial, &note)?;
+        Ok(self.partial)
+    }
+}
+
+/// The header line of a `trajectory.csv` in `dim` dimensions.
+fn trajectory_csv_header(dim: usize) -> String {
+    format!("{}\n", trajectory_header(dim).join(","))
+}
+
+/// The header line of `metrics.csv` with the diagnostic columns `columns`.
+fn metrics_header(columns: &[String]) -> String {
+    let mut header = String::from(METRICS_HEADER);
+    for column in columns {
+        header.push(',');
+        header.push_str(column);
+    }
+    header.push('\n');
+    header
+}
+
+/// The diagnostic columns of the header of the `metrics.csv` at `path`: the names after those of
+/// [`METRICS_HEADER`].
+fn diagnostic_columns(path: &Path) -> io::Result<Vec<String>> {
+    let text = fs::read_to_string(path)?;
+    let header = text.lines().next().unwrap_or_default();
+    let Some(rest) = header.strip_prefix(METRICS_HEADER) else {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!(
+                "{} does not start with the header {METRICS_HEADER}",
+                path.display()
+            ),
+        ));
+    };
+    Ok(rest
+        .split(',')
+        .filter(|name| !name.is_empty())
+        .map(str::to_owned)
+        .collect())
+}
+
+/// The parent directory of `path` (`.` for a bare name).
+fn parent_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    }
+}
+
+/// Writes `bytes` to `path` and flushes them to the disk.
+fn write_durably(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let mut file = File::create(path)?;
+    file.write_all(bytes)?;
+    file.sync_all()
+}
+
+/// A checkpoint must hold the state of the scenario's agents in its dimension.
+fn check_size(
+    checkpoint: &Checkpoint,
+    scenario: &Scenario,
+    partial: &Path,
+) -> Result<(), ResumeError> {
+    if checkpoint.dim == scenario.dim
+        && checkpoint.start.positions.len() == scenario.agents * scenario.dim
+    {
+        return Ok(());
+    }
+    Err(ResumeError::Refused(format!(
+        "the checkpoint in {} is of {} coordinates in {}D, not of this scenario's {} agents in {}D",
+        partial.display(),
+        checkpoint.start.positions.len(),
+        checkpoint.dim,
+        scenario.agents,
+        scenario.dim
+    )))
+}
+
+/// The note of a directory being written.
+fn running_note(target: &Path) -> String {
+    format!(
+        "incomplete: the run is in progress (flocking process {}), or was killed.\nA process killed while writing may leave its last record cut; `flocking run --resume` removes it.\nResume a killed run: flocking run --resume {}\n",
+        std::process::id(),
+        target.display()
+    )
+}
+
+/// Replaces the `INCOMPLETE` note atomically.
+fn write_incomplete(partial: &Path, note: &str) -> io::Result<()> {
+    let temporary = partial.join("INCOMPLETE.tmp");
+    write_durably(&temporary, note.as_bytes())?;
+    fs::rename(temporary, partial.join(INCOMPLETE_FILE))?;
+    sync_dir(partial)
+}
+
+/// Opens `path` for appending after cutting it to its first `bytes` bytes.
+fn cut(path: &Path, bytes: u64) -> io::Result<File> {
+    let file = OpenOptions::new().append(true).open(path)?;
+    if file.metadata()?.len() < bytes {
+        return Err(io::Error::new(
+            io::ErrorKind::UnexpectedEof,
+            format!(
+                "{} is shorter than its checkpoint says ({bytes} bytes)",
+                path.display()
+            ),
+        ));
+    }
+    file.set_len(bytes)?;
+    Ok(file)
+}
+
+/// Appends `id,x,y[,z],vx,vy[,vz]` of agent `i` (shortest round-trip decimal forms).
+fn write_state(out: &mut Vec<u8>, i: usize, state: &[f64]) {
+    // Writing to a Vec cannot fail.
+    let _ = write!(out, "{i}");
+    for x in state {
+        let _ = write!(out, ",{x}");
+    }
+    out.push(b'\n');
+}
+
+impl RunDirectory {
+    /// Writes the header of `metrics.csv` with the first record's diagnostic columns, or checks
+    /// that a later record names the same columns.
+    fn check_columns(&mut self, record: &Record<'_>) -> io::Result<()> {
+        let names = record.diagnostics.iter().map(|(name, _)| *name);
+        match &self.columns {
+            Some(columns) if names.clone().eq(columns.iter().map(String::as_str)) => Ok(()),
+            Some(columns) => Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "the record at t = {} has the diagnostic columns {:?} where metrics.csv has {columns:?}",
+                    record.t,
+                    names.collect::<Vec<_>>()
+                ),
+            )),
+            None => {
+                let columns: Vec<String> = names.map(str::to_owned).collect();
+                let header = metrics_header(&columns);
+                self.metrics.write_all(header.as_bytes())?;
+                self.metrics_bytes += header.len() as u64;
+                self.columns = Some(columns);
+                Ok(())
+            }
+        }
+    }
+}
+
+impl Recorder for RunDirectory {
+    type Error = io::Error;
+
+    fn record(&mut self, record: &Record<'_>) -> io::Result<()> {
+        self.check_columns(record)?;
+        let m = &record.metrics;
+        let mut line = record.t.to_string();
+        for value in m.reals() {
+            let _ = write!(line, ",{value}");
+        }
+        let _ = write!(line, ",{},{}", m.collisions, record.energy);
+        for (_, value) in record.diagnostics {
+            let _ = write!(line, ",{value}");
+        }
+        line.push('\n');
+        let state = &record.state;
+        let dim = state.dim;
+        self.last_state.clear();
+        for (q, p) in state
+            .positions
+            .chunks_exact(dim)
+            .zip(state.velocities.chunks_exact(dim))
+        {
+            self.last_state.extend_from_slice(q);
+            self.last_state.extend_from_slice(p);
+        }
+        match &mut self.trajectory {
+            Trajectory::Csv { file, bytes } => {
+                self.buffer.clear();
+                for (i, agent) in self.last_state.chunks_exact(2 * dim).enumerate() {
+                    let _ = write!(self.buffer, "{},", record.t);
+                    write_state(&mut self.buffer, i, agent);
+                }
+                file.write_all(&self.buffer)?;
+                *bytes += self.buffer.len() as u64;
+            }
+            Trajectory::Npy(file) => {
+                self.buffer.clear();
+                self.buffer.extend_from_slice(&record.t.to_le_bytes());
+                for rows in [&state.positions, &state.velocities] {
+                    for x in rows.iter() {
+                        self.buffer.extend_from_slice(&x.to_le_bytes());
+                    }
+                }
+                file.append(&self.buffer)?;
+            }
+        }
+        self.metrics.write_all(line.as_bytes())?;
+        self.metrics_bytes += line.len() as u64;
+        self.records += 1;
+        Ok(())
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        self.checkpoint_every > 0 && steps % self.checkpoint_every == 0
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> io::Result<()> {
+        // the records the checkpoint counts are on the disk before it is
+        self.sync_outputs()?;
+        let trajectory_bytes = match &self.trajectory {
+            Trajectory::Csv { bytes, .. } => *bytes,
+            Trajectory::Npy(file) => file.rows(),
+        };
+        Checkpoint {
+            dim: self.dim,
+            start: start.clone(),
+            records: self.records,
+            metrics_bytes: self.metrics_bytes,
+            trajectory_bytes,
+        }
+        .write(&self.partial)?;
+        let whole = format!(
+            "{}Whole records, checkpointed after step {}: {} (the first {} bytes of metrics.csv; of the trajectory, {} {}).\n",
+            running_note(&self.target),
+            start.steps,
+            self.records,
+            self.metrics_bytes,
+            trajectory_bytes,
+            match self.trajectory {
+                Trajectory::Csv { .. } => "bytes",
+                Trajectory::Npy(_) => "records",
+            }
+        );
+        write_incomplete(&self.partial, &whole)
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.stop.is_some_and(|flag| flag.load(Ordering::Relaxed))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use flock_metrics::FlockMetrics;
+
+    use super::METRICS_HEADER;
+    use crate::run_dir::TIME;
+
+    /// The header names what a record writes, in its order: t, [`FlockMetrics::reals`], the
+    /// collisions and the energy.
+    #[test]
+    fn the_metrics_header_names_the_recorded_values() {
+        let names: Vec<&str> = std::iter::once(TIME)
+            .chain(FlockMetrics::REAL_COLUMNS)
+            .chain(["collisions", "energy"])
+            .collect();
+        assert_eq!(METRICS_HEADER, names.join(","));
+    }
+}

@@ -1,0 +1,353 @@
+//! Scenario files: what a run simulates, read from RON, validated, and written back resolved.
+//!
+//! A scenario names the dimension, the algorithm and its parameters, the gains, the γ-agent, the
+//! initial condition, the step, the duration and how often to record. Every parameter with a value in
+//! the papers defaults to it (d = 7, r = 1.2 d, ε = 0.1, a = b = 5, h = 0.2; TAC 2006 Section VIII):
+//! the defaults are those of the parameter types of `flock-protocols` ([`AlphaConfig`],
+//! [`BetaConfig`], [`AvoidanceGains`]), which the scenario composes.
+
+use std::path::Path;
+use std::str::FromStr;
+
+use ron::extensions::Extensions;
+use serde::{Deserialize, Serialize};
+
+use flock_obstacles::ObstacleSpec;
+use flock_protocols::{
+    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, GammaAgent, Integrator,
+    critical_damping,
+};
+
+use crate::error::ScenarioError;
+
+/// The collision distance as a fraction of d, by default (TAC 2006 counts pairs closer than d/4).
+pub const COLLISION_FRACTION: f64 = 0.25;
+
+/// A simulation scenario, as written in a `.ron` file.
+///
+/// # Example
+/// ```
+/// use flocking::Scenario;
+///
+/// let scenario: Scenario = r#"Scenario(
+///     dim: 2,
+///     agents: 20,
+///     algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.05, c2: 0.4),
+///     initial: (positions: Box(min: [-10.0, -10.0], max: [10.0, 10.0])),
+///     duration: 1.0,
+/// )"#.parse()?;
+/// assert_eq!(scenario.range(), 8.4); // r = 1.2 d, d = 7 by default
+/// assert_eq!(scenario.steps(), 100);
+/// assert!(scenario.warnings().is_empty());
+/// // a bad value is refused with its field, its value, why and the fix
+/// let error = "Scenario(dim: 4, agents: 1, algorithm: Algorithm1, initial: (positions: Zero), duration: 1.0)"
+///     .parse::<Scenario>()
+///     .unwrap_err();
+/// assert_eq!(error.field().as_deref(), Some("dim"));
+/// # Ok::<(), flocking::ScenarioError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// A short name, used in summaries.
+    #[serde(default)]
+    pub name: String,
+    /// What the scenario reproduces and why its parameters are what they are.
+    #[serde(default)]
+    pub description: String,
+    /// The dimension m of the space: 2 or 3.
+    pub dim: usize,
+    /// The number of α-agents n ≥ 1.
+    pub agents: usize,
+    /// Seed of the random initial condition (PCG64 stream).
+    #[serde(default)]
+    pub seed: u64,
+    /// The protocol.
+    pub algorithm: Algorithm,
+    /// Parameters and gains of the α-interaction.
+    #[serde(default)]
+    pub alpha: AlphaConfig,
+    /// The initial positions and velocities.
+    pub initial: Initial,
+    /// The integration scheme.
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// The fixed time step h > 0 (the papers use 0.01–0.03 s).
+    #[serde(default = "default_step")]
+    pub step: f64,
+    /// The simulated time T > 0.
+    pub duration: f64,
+    /// Record metrics and trajectory every this many steps (≥ 1); the last step is always recorded.
+    #[serde(default = "default_record_every")]
+    pub record_every: u64,
+    /// Two agents closer than this collide; default d/4, and at most r.
+    #[serde(default)]
+    pub collision_distance: Option<f64>,
+    /// Convex obstacles, seen through β-agents by the algorithms that avoid obstacles.
+    #[serde(default)]
+    pub obstacles: Vec<ObstacleSpec>,
+}
+
+/// A vector as a scenario writes it: a list of `dim` numbers (`[1.0, 2.0]`).
+pub type Point = Vec<f64>;
+
+/// The protocol of a scenario.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Algorithm {
+    /// Algorithm 1 of TAC 2006: α-interaction alone.
+    Algorithm1,
+    /// Algorithm 2 of TAC 2006: α-interaction plus navigational feedback −c₁(q_i − q_r) − c₂(p_i − p_r).
+    Algorithm2 {
+        /// The γ-agent.
+        gamma: GammaAgent<Point>,
+        /// Position gain c₁ > 0.
+        c1: f64,
+        /// Velocity gain c₂ > 0.
+        c2: f64,
+    },
+    /// Algorithm 3 of TAC 2006: α-interaction, β-agents on the scenario's obstacles, and the bounded
+    /// navigational feedback −c₁ σ₁(q_i − q_r) − c₂(p_i − p_r).
+    Algorithm3 {
+        /// The γ-agent.
+        gamma: GammaAgent<Point>,
+        /// Position gain c₁^γ > 0.
+        c1: f64,
+        /// Velocity gain c₂^γ > 0; default 2√c₁^γ (critically damped).
+        #[serde(default)]
+        c2: Option<f64>,
+        /// The β-interaction.
+        #[serde(default)]
+        beta: BetaConfig,
+    },
+    /// The 2003 (α, α) protocols (Caltech CDS 03-006, eq. 34–36) with the potential of eq. 29
+    /// (`alpha.a < alpha.b`), an optional translational controller (sink, eq. 50, or velocity
+    /// tracking) and optional avoidance of the scenario's ball obstacles (eq. 54–58).
+    Flocking2003 {
+        /// Which of the three protocols.
+        form: AlphaAlphaForm,
+        /// The consensus gain c₁ ≥ 0 of Σ_j (p_j − p_i).
+        c1: f64,
+        /// The flat part δ ∈ (0, 1) of the influence map ρ; default d/r.
+        #[serde(default)]
+        delta: Option<f64>,
+        /// The power k ≥ 1 of the influence map (C^k smooth).
+        #[serde(default = "default_power")]
+        power: i32,
+        /// The translational controller −c₁(q_i − q_r) − c₂(p_i − p_r) to a γ-agent.
+        #[serde(default)]
+        translation: Option<Translation>,
+        /// β- and γ-agents on the scenario's obstacles (balls only).
+        #[serde(default)]
+        avoidance: Option<AvoidanceGains>,
+    },
+    /// The Tanner–Jadbabaie–Pappas law on a fixed connected graph (seed 001 eq. 5), with the pair
+    /// potential d²/z² + ln(z²/d²) − 1 of desired distance `alpha.d`.
+    Tanner {
+        /// The neighbouring graph.
+        #[serde(default)]
+        graph: TannerGraph,
+    },
+}
+
+impl Algorithm {
+    /// The γ-agent the algorithm steers towards, if it has one.
+    #[must_use]
+    pub fn gamma(&self) -> Option<&GammaAgent<Point>> {
+        match self {
+            Self::Algorithm2 { gamma, .. } | Self::Algorithm3 { gamma, .. } => Some(gamma),
+            Self::Flocking2003 { translation, .. } => translation.as_ref().map(|t| &t.gamma),
+            Self::Algorithm1 | Self::Tanner { .. } => None,
+        }
+    }
+
+    /// Whether the algorithm sees the scenario's obstacles.
+    #[must_use]
+    pub fn uses_obstacles(&self) -> bool {
+        matches!(
+            self,
+            Self::Algorithm3 { .. }
+                | Self::Flocking2003 {
+                    avoidance: Some(_),
+                    ..
+                }
+        )
+    }
+}
+
+/// A translational controller of the 2003 protocols: a sink (static γ-agent, eq. 50) or velocity
+/// tracking (a γ-agent in uniform motion with c₁ = 0, eq. 65–66).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Translation {
+    /// The γ-agent (q_d, p_d).
+    pub gamma: GammaAgent<Point>,
+    /// Position gain c₁ ≥ 0.
+    pub c1: f64,
+    /// Velocity gain c₂ > 0.
+    pub c2: f64,
+}
+
+/// The fixed graph of the Tanner law.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum TannerGraph {
+    /// A random spanning tree plus every other pair with probability `extra`, from the scenario's seed.
+    Random {
+        /// Probability of each extra edge, in [0, 1].
+        extra: f64,
+    },
+    /// The given undirected edges (i, j); the graph must be connected.
+    Edges(Vec<(usize, usize)>),
+}
+
+impl Default for TannerGraph {
+    fn default() -> Self {
+        Self::Random { extra: 0.2 }
+    }
+}
+
+fn default_power() -> i32 {
+    1
+}
+
+/// The initial condition.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Initial {
+    /// Where the agents start.
+    pub positions: Cloud,
+    /// How fast they start; default at rest.
+    #[serde(default)]
+    pub velocities: Cloud,
+}
+
+/// A set of n vectors: seeded random, or explicit.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Cloud {
+    /// All zero.
+    #[default]
+    Zero,
+    /// Uniform in the box [min, max].
+    Box {
+        /// Lower corner.
+        min: Vec<f64>,
+        /// Upper corner.
+        max: Vec<f64>,
+    },
+    /// Uniform in the ball of `radius` around `centre`.
+    Ball {
+        /// Centre.
+        centre: Vec<f64>,
+        /// Radius > 0.
+        radius: f64,
+    },
+    /// Independent normal components with mean `mean` and standard deviation `std`.
+    Gaussian {
+        /// Mean.
+        mean: Vec<f64>,
+        /// Standard deviation > 0.
+        std: f64,
+    },
+    /// One vector per agent.
+    Explicit(Vec<Vec<f64>>),
+}
+
+fn default_step() -> f64 {
+    0.01
+}
+
+fn default_record_every() -> u64 {
+    10
+}
+
+impl Scenario {
+    /// Reads and validates a scenario file. Defaults left unset stay unset (`alpha.r` is `None`
+    /// and follows `alpha.d`); [`Scenario::resolved`] and [`Scenario::to_ron`] write them out.
+    ///
+    /// # Errors
+    /// When the file cannot be read, is not valid RON for a scenario (the error gives the line and
+    /// column), or fails [`Scenario::validate`].
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::io(path, &e))?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Parses and validates scenario text; `origin` names it in errors.
+    ///
+    /// # Errors
+    /// As [`Scenario::load`].
+    pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
+        let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
+        let scenario: Self = options
+            .from_str(text)
+            .map_err(|e| ScenarioError::syntax(origin, text, &e))?;
+        scenario.validate()?;
+        Ok(scenario)
+    }
+
+    /// The scenario with every default written out (r = 1.2 d, the collision distance d/4, the
+    /// gains and distances of Algorithm 3, the flat part of the 2003 influence map).
+    #[must_use]
+    pub fn resolved(mut self) -> Self {
+        let d = self.alpha.d;
+        let r = self.range();
+        self.alpha.r = Some(r);
+        self.collision_distance = Some(self.collision_distance());
+        match &mut self.algorithm {
+            Algorithm::Algorithm3 { c1, c2, beta, .. } => {
+                c2.get_or_insert(critical_damping(*c1));
+                *beta = beta.resolved(d);
+            }
+            Algorithm::Flocking2003 { delta, .. } => {
+                delta.get_or_insert(d / r);
+            }
+            _ => {}
+        }
+        self
+    }
+
+    /// The interaction range r (default 1.2 d).
+    #[must_use]
+    pub fn range(&self) -> f64 {
+        self.alpha.range()
+    }
+
+    /// The collision distance.
+    #[must_use]
+    pub fn collision_distance(&self) -> f64 {
+        self.collision_distance
+            .unwrap_or(COLLISION_FRACTION * self.alpha.d)
+    }
+
+    /// The number of steps ⌈T / h⌉ (rounded to the nearest when T/h is within round-off of an integer).
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        let ratio = self.duration / self.step;
+        let nearest = ratio.round();
+        if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) {
+            nearest as u64
+        } else {
+            ratio.ceil() as u64
+        }
+    }
+
+    /// The scenario as RON text with every default filled in.
+    ///
+    /// # Errors
+    /// Never for a validated scenario; the RON serializer's error otherwise.
+    pub fn to_ron(&self) -> Result<String, ron::Error> {
+        let config = ron::ser::PrettyConfig::new().extensions(Extensions::IMPLICIT_SOME);
+        ron::ser::to_string_pretty(&self.clone().resolved(), config)
+    }
+}
+
+/// Parses and validates scenario text ([`Scenario::parse`] with the origin `<string>`).
+impl FromStr for Scenario {
+    type Err = ScenarioError;
+
+    fn from_str(text: &str) -> Result<Self, ScenarioError> {
+        Self::parse(text, "<string>")
+    }
+}

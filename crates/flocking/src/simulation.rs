@@ -1,0 +1,364 @@
+//! [`DynSimulation`]: the simulation of a scenario behind one type, whatever its dimension and
+//! protocol (chosen at run time from the scenario), with its state as plain `f64` rows.
+
+use std::borrow::Cow;
+
+use flock_graph::Graph;
+use flock_metrics::{EDGE_TOLERANCE, FlockMetrics, LatticeSummary, MetricParams};
+use flock_obstacles::Space;
+use flock_protocols::{AgentFault, DynProtocol, Observation, Simulation, Swarm};
+use glam::{DVec2, DVec3};
+
+use crate::error::ScenarioError;
+use crate::health::NumericalError;
+use crate::initial::{initial_swarm, to_vector};
+use crate::run::Start;
+use crate::scenario::Scenario;
+
+/// A state as plain numbers: n rows of `dim` coordinates, agents in original order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct State<'a> {
+    /// The dimension, 2 or 3.
+    pub dim: usize,
+    /// The positions: agent i at `positions[i * dim..(i + 1) * dim]`.
+    pub positions: Cow<'a, [f64]>,
+    /// The velocities, as the positions.
+    pub velocities: Cow<'a, [f64]>,
+}
+
+impl State<'_> {
+    /// The number of agents.
+    #[must_use]
+    pub fn agents(&self) -> usize {
+        self.positions.len() / self.dim.max(1)
+    }
+
+    /// The state as owned rows.
+    #[must_use]
+    pub fn into_owned(self) -> State<'static> {
+        State {
+            dim: self.dim,
+            positions: Cow::Owned(self.positions.into_owned()),
+            velocities: Cow::Owned(self.velocities.into_owned()),
+        }
+    }
+}
+
+/// What a [`DynSimulation`] asks of the simulation it holds, in either dimension.
+trait Dynamic: Send {
+    fn step(&mut self);
+    fn steps(&self) -> u64;
+    fn time(&self) -> f64;
+    fn state(&self) -> State<'_>;
+    fn graph(&self) -> Cow<'_, Graph>;
+    fn stored_by_cell(&self) -> bool;
+    fn metrics(&self, params: &MetricParams) -> FlockMetrics;
+    fn energy(&self) -> f64;
+    fn observe(&self, params: &MetricParams) -> Observation;
+    fn component_velocity_mismatch(&self) -> f64;
+    fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary;
+    fn check_health(&self) -> Result<(), AgentFault>;
+}
+
+/// The rows of vectors `V` (each `V::DIM` contiguous `f64`).
+fn rows<V: Space + bytemuck::Pod>(vectors: Cow<'_, [V]>) -> Cow<'_, [f64]> {
+    match vectors {
+        Cow::Borrowed(v) => Cow::Borrowed(bytemuck::cast_slice(v)),
+        Cow::Owned(v) => Cow::Owned(bytemuck::cast_slice(&v).to_vec()),
+    }
+}
+
+impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
+    fn step(&mut self) {
+        Simulation::step(self);
+    }
+
+    fn steps(&self) -> u64 {
+        Simulation::steps(self)
+    }
+
+    fn time(&self) -> f64 {
+        Simulation::time(self)
+    }
+
+    fn state(&self) -> State<'_> {
+        let (positions, velocities) = match self.swarm() {
+            Cow::Borrowed(swarm) => (
+                Cow::Borrowed(&swarm.positions[..]),
+                Cow::Borrowed(&swarm.velocities[..]),
+            ),
+            Cow::Owned(swarm) => (Cow::Owned(swarm.positions), Cow::Owned(swarm.velocities)),
+        };
+        State {
+            dim: V::DIM,
+            positions: rows(positions),
+            velocities: rows(velocities),
+        }
+    }
+
+    fn graph(&self) -> Cow<'_, Graph> {
+        Simulation::graph(self)
+    }
+
+    fn stored_by_cell(&self) -> bool {
+        Simulation::stored_by_cell(self)
+    }
+
+    fn metrics(&self, params: &MetricParams) -> FlockMetrics {
+        Simulation::metrics(self, params)
+    }
+
+    fn energy(&self) -> f64 {
+        Simulation::energy(self)
+    }
+
+    fn observe(&self, params: &MetricParams) -> Observation {
+        Simulation::observe(self, params)
+    }
+
+    fn component_velocity_mismatch(&self) -> f64 {
+        Simulation::component_velocity_mismatch(self)
+    }
+
+    fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary {
+        Simulation::lattice(self, d, tolerance)
+    }
+
+    fn check_health(&self) -> Result<(), AgentFault> {
+        Simulation::check_health(self)
+    }
+}
+
+/// The simulation of a scenario, in its dimension, with its protocol: one type for every scenario,
+/// whose state and measurements are plain numbers, agents always in original order.
+///
+/// # Example
+/// ```
+/// use flocking::{DynSimulation, Scenario};
+///
+/// let scenario = Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+/// let mut sim = DynSimulation::new(&scenario)?;
+/// let h0 = sim.energy();
+/// for _ in 0..200 {
+///     sim.step();
+/// }
+/// assert_eq!(sim.time(), 2.0);
+/// assert!(sim.energy() < h0);
+/// let state = sim.state();
+/// assert_eq!((state.dim, state.agents()), (2, 100));
+/// let metrics = sim.metrics();
+/// assert!(metrics.connectivity > 0.0 && metrics.connectivity <= 1.0);
+/// # Ok::<(), flocking::ScenarioError>(())
+/// ```
+pub struct DynSimulation {
+    inner: Box<dyn Dynamic>,
+    dim: usize,
+    agents: usize,
+    metric_params: MetricParams,
+    scenario: Scenario,
+}
+
+impl std::fmt::Debug for DynSimulation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DynSimulation")
+            .field("scenario", &self.scenario.name)
+            .field("dim", &self.dim)
+            .field("agents", &self.agents)
+            .field("steps", &self.steps())
+            .finish_non_exhaustive()
+    }
+}
+
+impl DynSimulation {
+    /// The simulation of `scenario` at t = 0, from its initial condition.
+    ///
+    /// # Errors
+    /// An invalid scenario.
+    pub fn new(scenario: &Scenario) -> Result<Self, ScenarioError> {
+        scenario.validate()?;
+        match scenario.dim {
+            2 => Self::of(scenario, initial_swarm::<DVec2>(scenario), 0),
+            _ => Self::of(scenario, initial_swarm::<DVec3>(scenario), 0),
+        }
+    }
+
+    /// The simulation of `scenario` after `steps` steps, at t = steps · h, from the state given
+    /// as rows (`dim` coordinates per agent, agents in original order): an explicit initial
+    /// state (`steps` = 0), or one to continue from.
+    ///
+    /// # Errors
+    /// An invalid scenario, rows of another size than the scenario's agents in its dimension
+    /// (field `agents`), or a coordinate that is not finite.
+    pub fn from_state(
+        scenario: &Scenario,
+        positions: &[f64],
+        velocities: &[f64],
+        steps: u64,
+    ) -> Result<Self, ScenarioError> {
+        scenario.validate()?;
+        let size = scenario.agents * scenario.dim;
+        for (name, rows) in [("positions", positions), ("velocities", velocities)] {
+            if rows.len() != size {
+                return Err(ScenarioError::invalid(
+                    "agents",
+                    scenario.agents,
+                    format!(
+                        "the state holds {} coordinates of {name} where {} agents in {}D need {size}",
+                        rows.len(),
+                        scenario.agents,
+                        scenario.dim
+                    ),
+                    "give one row of dim coordinates per agent (or change agents)",
+                ));
+            }
+        }
+        match scenario.dim {
+            2 => Self::of(scenario, swarm_of::<DVec2>(positions, velocities), steps),
+            _ => Self::of(scenario, swarm_of::<DVec3>(positions, velocities), steps),
+        }
+    }
+
+    /// The simulation continued from `start`, a checkpoint of the same scenario: stepping it
+    /// gives the bits of the uninterrupted run.
+    ///
+    /// # Errors
+    /// As [`DynSimulation::from_state`].
+    pub fn resume(scenario: &Scenario, start: &Start) -> Result<Self, ScenarioError> {
+        Self::from_state(scenario, &start.positions, &start.velocities, start.steps)
+    }
+
+    fn of<V: Space + bytemuck::Pod>(
+        scenario: &Scenario,
+        swarm: Swarm<V>,
+        steps: u64,
+    ) -> Result<Self, ScenarioError> {
+        let protocol = scenario.protocol::<V>()?;
+        let agents = swarm.len();
+        let sim = Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?;
+        Ok(Self {
+            inner: Box::new(sim),
+            dim: V::DIM,
+            agents,
+            metric_params: MetricParams {
+                d: scenario.alpha.d,
+                collision_distance: scenario.collision_distance(),
+            },
+            scenario: scenario.clone(),
+        })
+    }
+
+    /// The scenario simulated.
+    #[must_use]
+    pub const fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// The dimension, 2 or 3.
+    #[must_use]
+    pub const fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The number of agents.
+    #[must_use]
+    pub const fn agents(&self) -> usize {
+        self.agents
+    }
+
+    /// Advances the state by one step h.
+    pub fn step(&mut self) {
+        self.inner.step();
+    }
+
+    /// The number of steps taken.
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        self.inner.steps()
+    }
+
+    /// The current time t = steps · h.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.inner.time()
+    }
+
+    /// The current state, agents in original order (borrowed when the simulation stores them so).
+    #[must_use]
+    pub fn state(&self) -> State<'_> {
+        self.inner.state()
+    }
+
+    /// The proximity net's graph of the current state, agents in original order.
+    #[must_use]
+    pub fn graph(&self) -> Cow<'_, Graph> {
+        self.inner.graph()
+    }
+
+    /// Whether the simulation stores the agents by cell (they were numbered at random); the state
+    /// and every measurement are in original order either way.
+    #[must_use]
+    pub fn stored_by_cell(&self) -> bool {
+        self.inner.stored_by_cell()
+    }
+
+    /// The flocking metrics of the current state (TAC 2006 Section VIII) with the scenario's d and
+    /// collision distance.
+    #[must_use]
+    pub fn metrics(&self) -> FlockMetrics {
+        self.inner.metrics(&self.metric_params)
+    }
+
+    /// The protocol's energy H at the current state.
+    #[must_use]
+    pub fn energy(&self) -> f64 {
+        self.inner.energy()
+    }
+
+    /// The metrics, the energy and the protocol's named diagnostics of the current state,
+    /// computed together (what a recorded step measures).
+    #[must_use]
+    pub fn observe(&self) -> Observation {
+        self.inner.observe(&self.metric_params)
+    }
+
+    /// The velocity mismatch against each agent's own component, per agent.
+    #[must_use]
+    pub fn component_velocity_mismatch(&self) -> f64 {
+        self.inner.component_velocity_mismatch()
+    }
+
+    /// The lattice of the current state: edges, those within ±10 % of d, triangles and, in 2D,
+    /// TAC 2006 Theorem 5's bound 3n − 6 and the crossing edges.
+    #[must_use]
+    pub fn lattice(&self) -> LatticeSummary {
+        self.inner.lattice(self.metric_params.d, EDGE_TOLERANCE)
+    }
+
+    /// Checks the current state: finite, and no agent faster than r/h.
+    ///
+    /// # Errors
+    /// The agent at fault of lowest original index, with the step, the time and the likely cause.
+    pub fn check_health(&self) -> Result<(), NumericalError> {
+        self.inner
+            .check_health()
+            .map_err(|fault| NumericalError::new(&self.scenario, self.steps(), self.time(), fault))
+    }
+
+    /// The state after the steps taken, as a checkpoint keeps it (with H(0) = `initial_energy`).
+    #[must_use]
+    pub fn start(&self, initial_energy: f64) -> Start {
+        let state = self.state();
+        Start {
+            steps: self.steps(),
+            initial_energy,
+            positions: state.positions.into_owned(),
+            velocities: state.velocities.into_owned(),
+        }
+    }
+}
+
+/// The swarm of rows (validated lengths).
+fn swarm_of<V: Space>(positions: &[f64], velocities: &[f64]) -> Swarm<V> {
+    let vectors = |rows: &[f64]| rows.chunks_exact(V::DIM).map(to_vector::<V>).collect();
+    Swarm::new(vectors(positions), vectors(velocities))
+}

@@ -1,0 +1,416 @@
+//! Ensembles and parameter sweeps: one scenario run over a grid of parameter values and random
+//! seeds, each run reduced to one row of `runs.csv`.
+//!
+//! A sweep file (RON) names a base scenario, fixed changes to it, axes — a parameter path and its
+//! values — and a number of seeds:
+//!
+//! ```ron
+//! Sweep(
+//!     name: "alg2_c1_n",
+//!     base: Path("../fixtures/tac2006_fig11_alg2_n100.ron"),   // or Inline(Scenario(…))
+//!     set: {"duration": 40.0},
+//!     axes: [
+//!         (path: "algorithm.c1", values: Logspace(from: 0.005, to: 0.5, count: 5)),
+//!         (path: "agents", values: List([25, 50, 100])),
+//!     ],
+//!     seeds: 20,
+//! )
+//! ```
+//!
+//! The runs are the cartesian product of the axes' values (the first axis outermost) times the
+//! seeds 0, 1, …, `seeds` − 1 (innermost), which replace the scenario's `seed`. Each run has an
+//! index in that order and an id derived from its values alone ([`RunSpec::id`]), so that the
+//! rows of `runs.csv` never depend on how, where or in which order the runs were computed.
+//!
+//! - [`Sweep`]: the file ([`Sweep::load`], [`str::parse`]), its runs ([`Sweep::runs`]), the
+//!   scenario of a run ([`Sweep::scenario`]).
+//! - [`run_one`]: one run, reduced to a [`RunRow`].
+//! - [`store`]: the output directory — a row file per finished run (so that a killed sweep
+//!   resumes), `runs.csv` assembled in run order, shards and their merge.
+//! - [`execute`]: every pending run of this machine's share on N workers.
+
+mod execute;
+mod row;
+pub mod store;
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::hash::Hasher;
+use std::path::Path;
+use std::str::FromStr;
+
+use ron::extensions::Extensions;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use crate::Scenario;
+use crate::error::ScenarioError;
+
+pub use execute::{ExecuteOptions, Executed, Shard, execute, share};
+pub use row::{Outcome, RunRow, header, run_one};
+
+/// A sweep file.
+///
+/// # Example
+/// ```
+/// use flocking::sweep::Sweep;
+///
+/// let sweep: Sweep = r#"Sweep(
+///     base: Path("../../fixtures/tac2006_fig11_alg2_n100.ron"),
+///     set: {"duration": 1.0, "agents": 10},
+///     axes: [(path: "algorithm.c1", values: Linspace(from: 0.01, to: 0.03, count: 3))],
+///     seeds: 2,
+/// )"#.parse()?;
+/// let runs = sweep.runs();
+/// assert_eq!(runs.len(), 6);
+/// assert_eq!(runs[1].seed, 1);
+/// let scenario = sweep.scenario(&runs[5])?;
+/// assert_eq!(scenario.value("algorithm.c1")?, serde_json::json!(0.03));
+/// let row = flocking::sweep::run_one(&sweep, &runs[0], None);
+/// assert!(row.outcome.is_ok());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sweep {
+    /// A short name.
+    #[serde(default)]
+    pub name: String,
+    /// What the sweep asks.
+    #[serde(default)]
+    pub description: String,
+    /// The scenario every run starts from.
+    pub base: Base,
+    /// Changes made to the base scenario for every run, by parameter path.
+    #[serde(default)]
+    pub set: BTreeMap<String, Value>,
+    /// The axes: the runs are the cartesian product of their values.
+    #[serde(default)]
+    pub axes: Vec<Axis>,
+    /// The number of seeds (replicates) per point of the grid: seeds 0, 1, …, `seeds` − 1.
+    pub seeds: u64,
+    /// ε₁ of TAC 2006 Definition 5 (Ẽ ≤ ε₁), judged over each run's last quarter.
+    #[serde(default = "default_epsilon")]
+    pub epsilon1: f64,
+    /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
+    #[serde(default = "default_epsilon")]
+    pub epsilon2: f64,
+}
+
+fn default_epsilon() -> f64 {
+    0.01
+}
+
+/// The base scenario of a sweep.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Base {
+    /// A scenario file, relative to the sweep file's directory.
+    Path(String),
+    /// The scenario itself.
+    Inline(Box<Scenario>),
+}
+
+/// An axis: a parameter path and its values.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Axis {
+    /// The parameter, as [`Scenario::with_values`] names it (`algorithm.c1`, `obstacles.0.radius`).
+    pub path: String,
+    /// Its values.
+    pub values: Values,
+}
+
+/// The values of an axis.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Values {
+    /// These values, in order (numbers, or anything the parameter takes).
+    List(Vec<Value>),
+    /// `count` values evenly spaced from `from` to `to`, both included.
+    Linspace {
+        /// The first value.
+        from: f64,
+        /// The last value.
+        to: f64,
+        /// How many (≥ 1; 1 gives `from`).
+        count: usize,
+    },
+    /// `count` values evenly spaced in logarithm from `from` to `to` (both > 0), both included.
+    Logspace {
+        /// The first value.
+        from: f64,
+        /// The last value.
+        to: f64,
+        /// How many (≥ 1).
+        count: usize,
+    },
+}
+
+impl Values {
+    /// The values, in order; the end points of a spacing exactly as written.
+    #[must_use]
+    pub fn expand(&self) -> Vec<Value> {
+        let (from, to, count, log) = match *self {
+            Self::List(ref values) => return values.clone(),
+            Self::Linspace { from, to, count } => (from, to, count, false),
+            Self::Logspace { from, to, count } => (from, to, count, true),
+        };
+        let between = |a: f64, b: f64, k: usize| a + (b - a) * k as f64 / (count - 1) as f64;
+        (0..count)
+            .map(|k| match k {
+                0 => from,
+                k if k + 1 == count => to,
+                k if log => between(from.ln(), to.ln(), k).exp(),
+                k => between(from, to, k),
+            })
+            .map(Value::from)
+            .collect()
+    }
+}
+
+/// One run of a sweep: its index in run order, its axis values (one per axis) and its seed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSpec {
+    /// The position of the run in run order (axes outermost first, seeds innermost).
+    pub index: usize,
+    /// One value per axis.
+    pub values: Vec<Value>,
+    /// The scenario's seed.
+    pub seed: u64,
+}
+
+impl RunSpec {
+    /// The run's id: 16 hexadecimal digits of the 64-bit FNV-1a hash of its axis paths and values
+    /// and its seed, written canonically (`path=value;…;seed=k`). It depends on the values alone,
+    /// never on the index, the worker or the machine.
+    #[must_use]
+    pub fn id(&self, axes: &[Axis]) -> String {
+        let mut hasher = fnv::FnvHasher::default();
+        for (axis, value) in axes.iter().zip(&self.values) {
+            hasher.write(format!("{}={value};", axis.path).as_bytes());
+        }
+        hasher.write(format!("seed={}", self.seed).as_bytes());
+        format!("{:016x}", hasher.finish())
+    }
+}
+
+/// Why a sweep file cannot be used.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SweepError {
+    /// The file could not be read.
+    Io {
+        /// The file.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// The text is not a sweep in RON (line and column 1-based).
+    Syntax {
+        /// Where the text came from.
+        origin: String,
+        /// Line.
+        line: usize,
+        /// Column.
+        col: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// The base scenario, or the base with `set` applied, is invalid.
+    Base(ScenarioError),
+    /// A field of the sweep is out of its domain.
+    Invalid {
+        /// The field (`axes[1].values`, `seeds`).
+        field: String,
+        /// Why, and the fix.
+        why: String,
+    },
+}
+
+impl fmt::Display for SweepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Io { path, message } => write!(f, "cannot read sweep {path}: {message}"),
+            Self::Syntax {
+                origin,
+                line,
+                col,
+                message,
+            } => write!(f, "{origin}:{line}:{col}: {message}"),
+            Self::Base(e) => write!(f, "the base scenario: {e}"),
+            Self::Invalid { field, why } => write!(f, "`{field}`: {why}"),
+        }
+    }
+}
+
+impl std::error::Error for SweepError {}
+
+impl Sweep {
+    /// Reads a sweep file; a `Path` base is read relative to the file's directory and inlined.
+    ///
+    /// # Errors
+    /// As [`Sweep::parse`], and a file that cannot be read.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, SweepError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| SweepError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::parse(
+            &text,
+            &path.display().to_string(),
+            path.parent().unwrap_or(Path::new("")),
+        )
+    }
+
+    /// Parses sweep text from `origin` (named in errors) with `Path` bases relative to `dir`, and
+    /// checks it: the base scenario and `set` valid, every axis path a parameter of the scenario,
+    /// every axis with at least one value, `seeds` ≥ 1. Values that make a run invalid are not
+    /// errors here: that run's row records the error.
+    ///
+    /// # Errors
+    /// The first problem found, with its line and column for syntax errors.
+    pub fn parse(text: &str, origin: &str, dir: &Path) -> Result<Self, SweepError> {
+        let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
+        let mut sweep: Self = options.from_str(text).map_err(|e| SweepError::Syntax {
+            origin: origin.to_owned(),
+            line: e.span.start.line,
+            col: e.span.start.col,
+            message: e.code.to_string(),
+        })?;
+        if let Base::Path(path) = &sweep.base {
+            let scenario = Scenario::load(dir.join(path)).map_err(SweepError::Base)?;
+            sweep.base = Base::Inline(Box::new(scenario));
+        }
+        sweep.check()?;
+        Ok(sweep)
+    }
+
+    fn check(&self) -> Result<(), SweepError> {
+        let invalid = |field: String, why: String| Err(SweepError::Invalid { field, why });
+        let base = self.base_scenario()?;
+        if self.seeds == 0 {
+            return invalid("seeds".into(), "0 seeds give no run; give 1 or more".into());
+        }
+        for (k, axis) in self.axes.iter().enumerate() {
+            if let Err(e) = base.value(&axis.path) {
+                return invalid(format!("axes[{k}].path"), e.to_string());
+            }
+            let field = format!("axes[{k}].values");
+            match axis.values {
+                Values::List(ref values) if values.is_empty() => {
+                    return invalid(field, "an empty list; give at least one value".into());
+                }
+                Values::Linspace { from, to, count } | Values::Logspace { from, to, count }
+                    if count == 0 || !from.is_finite() || !to.is_finite() =>
+                {
+                    return invalid(
+                        field,
+                        format!(
+                            "from {from} to {to} in {count} values: give finite ends and count ≥ 1"
+                        ),
+                    );
+                }
+                Values::Logspace { from, to, .. } if from <= 0.0 || to <= 0.0 => {
+                    return invalid(
+                        field,
+                        format!("Logspace from {from} to {to}: both ends must be > 0"),
+                    );
+                }
+                _ => {}
+            }
+        }
+        for (name, value) in [("epsilon1", self.epsilon1), ("epsilon2", self.epsilon2)] {
+            if !(value.is_finite() && value > 0.0) {
+                return invalid(name.into(), format!("{value}: give a finite value > 0"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The base scenario with `set` applied.
+    ///
+    /// # Errors
+    /// A base given by path that was never loaded, or a `set` that makes it invalid.
+    pub fn base_scenario(&self) -> Result<Scenario, SweepError> {
+        let Base::Inline(base) = &self.base else {
+            return Err(SweepError::Invalid {
+                field: "base".into(),
+                why: "a path base is read by Sweep::load or Sweep::parse".into(),
+            });
+        };
+        base.with_values(self.set.iter().map(|(k, v)| (k.as_str(), v.clone())))
+            .map_err(SweepError::Base)
+    }
+
+    /// Every run, in run order.
+    #[must_use]
+    pub fn runs(&self) -> Vec<RunSpec> {
+        let values: Vec<Vec<Value>> = self.axes.iter().map(|a| a.values.expand()).collect();
+        let points: usize = values.iter().map(Vec::len).product();
+        let mut runs = Vec::with_capacity(points * self.seeds as usize);
+        for point in 0..points {
+            let mut rest = point;
+            let mut chosen = vec![Value::Null; values.len()];
+            for (k, axis) in values.iter().enumerate().rev() {
+                chosen[k] = axis[rest % axis.len()].clone();
+                rest /= axis.len();
+            }
+            for seed in 0..self.seeds {
+                runs.push(RunSpec {
+                    index: runs.len(),
+                    values: chosen.clone(),
+                    seed,
+                });
+            }
+        }
+        runs
+    }
+
+    /// The scenario of a run: the base, `set`, the run's axis values and its seed.
+    ///
+    /// # Errors
+    /// The scenario error of a value the parameter does not take (named by its path).
+    pub fn scenario(&self, run: &RunSpec) -> Result<Scenario, ScenarioError> {
+        let base = self.base_scenario().map_err(|e| match e {
+            SweepError::Base(e) => e,
+            other => ScenarioError::invalid("base", "", other.to_string(), "load the sweep file"),
+        })?;
+        let mut values: Vec<(&str, Value)> = self
+            .axes
+            .iter()
+            .zip(&run.values)
+            .map(|(axis, value)| (axis.path.as_str(), value.clone()))
+            .collect();
+        values.push(("seed", Value::from(run.seed)));
+        base.with_values(values)
+    }
+
+    /// The sweep as RON with its base inlined: self-contained, as `sweep.ron` of an output
+    /// directory and the workers of other processes or machines read it.
+    ///
+    /// # Errors
+    /// The RON serializer's error (never for a loaded sweep).
+    pub fn to_ron(&self) -> Result<String, ron::Error> {
+        let config = ron::ser::PrettyConfig::new().extensions(Extensions::IMPLICIT_SOME);
+        ron::ser::to_string_pretty(self, config)
+    }
+
+    /// The Definition 5 criteria of the sweep's runs (their last quarter, ε₁, ε₂).
+    #[must_use]
+    pub fn criteria(&self) -> flock_metrics::FlockingCriteria {
+        flock_metrics::FlockingCriteria {
+            epsilon1: self.epsilon1,
+            epsilon2: self.epsilon2,
+            ..flock_metrics::FlockingCriteria::default()
+        }
+    }
+}
+
+/// Parses self-contained sweep text (an `Inline` base, or paths relative to the current
+/// directory).
+impl FromStr for Sweep {
+    type Err = SweepError;
+
+    fn from_str(text: &str) -> Result<Self, SweepError> {
+        Self::parse(text, "<string>", Path::new(""))
+    }
+}

@@ -1,0 +1,253 @@
+//! One run of a sweep reduced to a row of `runs.csv`.
+
+use std::path::Path;
+use std::time::Instant;
+
+use flock_metrics::FlockMetrics;
+use serde_json::Value;
+
+use super::{RunSpec, Sweep};
+use crate::RunDirectory;
+use crate::run::{Record, Recorder, RunError, RunSummary, Start, run};
+
+/// What a finished run measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// C, C*, R, Ẽ and K̃ at the final time, but `min_distance` the least distance between two
+    /// agents at any record and `collisions` the most pairs closer than the collision distance at
+    /// any record.
+    pub metrics: FlockMetrics,
+    /// The time after which the net stays connected (C = 1 at that record and every later one);
+    /// `None` when it is not connected at the end.
+    pub connected_from: Option<f64>,
+    /// TAC 2006 Definition 5 over the last quarter: an α-flock, and a strict one (`None` for a
+    /// run without records in its window).
+    pub alpha_flock: Option<(bool, bool)>,
+    /// With obstacles: the least clearance of an agent to an obstacle and the most agents inside
+    /// one, at any record.
+    pub obstacles: Option<(f64, f64)>,
+}
+
+/// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`).
+const OUTCOME_COLUMNS: [&str; 12] = {
+    let [c, giant, radius, deviation, mismatch, distance] = FlockMetrics::REAL_COLUMNS;
+    [
+        c,
+        giant,
+        radius,
+        deviation,
+        mismatch,
+        distance,
+        "collisions",
+        "connected_from",
+        "alpha_flock",
+        "strict_alpha_flock",
+        "obstacle_clearance",
+        "inside_obstacles",
+    ]
+};
+
+impl Outcome {
+    /// The outcome of a run's summary and its obstacle columns, Definition 5 judged with the
+    /// sweep's criteria.
+    #[must_use]
+    pub fn of(summary: &RunSummary, obstacles: Option<(f64, f64)>, sweep: &Sweep) -> Self {
+        let history = &summary.history;
+        let min_distance = history
+            .iter()
+            .map(|(_, m)| m.min_distance)
+            .fold(f64::INFINITY, f64::min);
+        let collisions = history.iter().map(|(_, m)| m.collisions).max().unwrap_or(0);
+        let connected_from = match history.iter().rposition(|(_, m)| m.connectivity < 1.0) {
+            None => history.first().map(|(t, _)| *t),
+            Some(k) => history.get(k + 1).map(|(t, _)| *t),
+        };
+        let alpha_flock = summary
+            .verdict(&sweep.criteria())
+            .map(|v| (v.is_alpha_flocking(), v.is_strict()));
+        Self {
+            metrics: FlockMetrics {
+                min_distance,
+                collisions,
+                ..summary.metrics
+            },
+            connected_from,
+            alpha_flock,
+            obstacles,
+        }
+    }
+
+    /// The fields of [`OUTCOME_COLUMNS`]: numbers as Rust prints them (shortest round trip),
+    /// empty where the run has no value.
+    fn fields(&self) -> [String; OUTCOME_COLUMNS.len()] {
+        let [c, giant, radius, deviation, mismatch, distance] =
+            self.metrics.reals().map(|x| x.to_string());
+        let or_empty = |x: Option<String>| x.unwrap_or_default();
+        [
+            c,
+            giant,
+            radius,
+            deviation,
+            mismatch,
+            distance,
+            self.metrics.collisions.to_string(),
+            or_empty(self.connected_from.map(|t| t.to_string())),
+            or_empty(self.alpha_flock.map(|(a, _)| a.to_string())),
+            or_empty(self.alpha_flock.map(|(_, s)| s.to_string())),
+            or_empty(self.obstacles.map(|(c, _)| c.to_string())),
+            or_empty(self.obstacles.map(|(_, i)| i.to_string())),
+        ]
+    }
+}
+
+/// A recorder that keeps the least `obstacle_clearance` and the most `inside_obstacles` of the
+/// records it hands on to `inner`.
+struct Obstacles<R> {
+    inner: R,
+    extremes: Option<(f64, f64)>,
+}
+
+impl<R: Recorder> Recorder for Obstacles<R> {
+    type Error = R::Error;
+
+    fn record(&mut self, record: &Record<'_>) -> Result<(), R::Error> {
+        let value = |name: &str| {
+            record
+                .diagnostics
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|&(_, v)| v)
+        };
+        if let (Some(clearance), Some(inside)) =
+            (value("obstacle_clearance"), value("inside_obstacles"))
+        {
+            let (least, most) = self.extremes.unwrap_or((f64::INFINITY, 0.0));
+            self.extremes = Some((least.min(clearance), most.max(inside)));
+        }
+        self.inner.record(record)
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        self.inner.wants_checkpoint(steps)
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> Result<(), R::Error> {
+        self.inner.checkpoint(start)
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.inner.stop_requested()
+    }
+}
+
+/// One row of `runs.csv`, and the run's wall time (kept in `times.csv`: a wall time is never the
+/// same twice, and `runs.csv` must be).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunRow {
+    /// The run's index in run order.
+    pub index: usize,
+    /// The run's id ([`RunSpec::id`]).
+    pub id: String,
+    /// Its axis values.
+    pub values: Vec<Value>,
+    /// Its seed.
+    pub seed: u64,
+    /// What it measured, or why it has no measures (an invalid value, a numerical blow-up).
+    pub outcome: Result<Outcome, String>,
+    /// Seconds of wall-clock time, from building the scenario to the last record.
+    pub wall_time: f64,
+}
+
+/// The header of `runs.csv` for the sweep's axes.
+#[must_use]
+pub fn header(sweep: &Sweep) -> Vec<String> {
+    let mut header = vec!["run".to_owned(), "id".to_owned()];
+    header.extend(sweep.axes.iter().map(|a| a.path.clone()));
+    header.push("seed".to_owned());
+    header.extend(OUTCOME_COLUMNS.map(str::to_owned));
+    header.push("error".to_owned());
+    header
+}
+
+impl RunRow {
+    /// The row's fields, aligned with [`header`]: numbers as Rust prints them (shortest round
+    /// trip), axis values as JSON, empty where a run has no value.
+    #[must_use]
+    pub fn fields(&self) -> Vec<String> {
+        let mut fields = vec![self.index.to_string(), self.id.clone()];
+        fields.extend(self.values.iter().map(|v| match v {
+            Value::String(s) => s.clone(),
+            other => other.to_string(),
+        }));
+        fields.push(self.seed.to_string());
+        match &self.outcome {
+            Ok(outcome) => {
+                fields.extend(outcome.fields());
+                fields.push(String::new());
+            }
+            Err(error) => {
+                fields.extend(std::iter::repeat_n(String::new(), OUTCOME_COLUMNS.len()));
+                fields.push(error.clone());
+            }
+        }
+        fields
+    }
+}
+
+/// Runs `spec` of `sweep` on the current thread's rayon pool (the sweep's workers give each run a
+/// pool of one thread) and reduces it to its row. With `keep`, the run's directory is written to
+/// `keep/<id>` as `flocking run` writes it. Never fails: an invalid value or a numerical blow-up is
+/// the row's error.
+#[must_use]
+pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
+    let start = Instant::now();
+    let id = spec.id(&sweep.axes);
+    let outcome = sweep
+        .scenario(spec)
+        .map_err(|e| e.to_string())
+        .and_then(|scenario| match keep {
+            None => {
+                let mut recorder = Obstacles {
+                    inner: (),
+                    extremes: None,
+                };
+                run(&scenario, &mut recorder)
+                    .map(|summary| (summary, recorder.extremes))
+                    .map_err(|e| e.to_string())
+            }
+            Some(dir) => keep_run(&scenario, &dir.join(&id)),
+        })
+        .map(|(summary, obstacles)| Outcome::of(&summary, obstacles, sweep));
+    RunRow {
+        index: spec.index,
+        id,
+        values: spec.values.clone(),
+        seed: spec.seed,
+        outcome,
+        wall_time: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The run written to `dir` (replaced if present) as `flocking run --out dir` writes it.
+fn keep_run(
+    scenario: &crate::Scenario,
+    dir: &Path,
+) -> Result<(RunSummary, Option<(f64, f64)>), String> {
+    let mut recorder = Obstacles {
+        inner: RunDirectory::create(dir, scenario, true).map_err(|e| e.to_string())?,
+        extremes: None,
+    };
+    match run(scenario, &mut recorder) {
+        Ok(summary) => {
+            recorder.inner.finish().map_err(|e| e.to_string())?;
+            Ok((summary, recorder.extremes))
+        }
+        Err(error) => {
+            recorder.inner.abandon();
+            Err(match error {
+                RunError::Record(e) => format!("writing {}: {e}", dir.display()),
+                other => other.to_string(),
+            })
+        }
+    }
+}

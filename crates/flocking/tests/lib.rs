@@ -1,0 +1,16 @@
+//! Integration tests of the `flocking` library, one binary (see STYLE.md): scenario files, the
+//! papers' runs, snapshots and determinism of short runs, agents stored by cell, and the errors
+//! of bad obstacles.
+
+mod common;
+mod fixtures;
+mod obstacle_errors;
+mod overrides;
+mod papers;
+mod params;
+mod readme;
+mod run_dir;
+mod snapshots;
+mod stability;
+mod storage_order;
+mod sweep;

@@ -1,0 +1,104 @@
+//! Parameters by path ([`Scenario::value`], [`Scenario::with_values`]): what sweeps and the Python
+//! package change, with the errors of a loaded scenario.
+
+use flocking::Scenario;
+use flocking::serde_json::{Value, json};
+
+use crate::common::fixture;
+
+fn invalid_field(result: Result<Scenario, flocking::ScenarioError>) -> (String, String) {
+    let error = result.expect_err("refused");
+    (error.field().expect("names its field"), error.to_string())
+}
+
+#[test]
+fn no_change_gives_the_same_scenario_for_every_fixture() {
+    for path in crate::common::fixture_paths() {
+        let scenario = Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let same = scenario
+            .with_values(std::iter::empty::<(&str, Value)>())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(same, scenario, "{}", path.display());
+    }
+}
+
+#[test]
+fn a_path_changes_that_value_only() {
+    let scenario = fixture("tac2006_fig11_alg2_n100");
+    let changed = scenario
+        .with_values([
+            ("algorithm.c1", json!(0.05)),
+            ("agents", json!(400)),
+            ("initial.positions.std", json!(20)),
+        ])
+        .expect("valid");
+    assert_eq!(changed.value("algorithm.c1").expect("a path"), json!(0.05));
+    assert_eq!(changed.agents, 400);
+    let flocking::Algorithm::Algorithm2 { c1, c2, .. } = &changed.algorithm else {
+        panic!("the variant is kept: {:?}", changed.algorithm)
+    };
+    assert_eq!((*c1, *c2), (0.05, 0.4));
+    let back = changed
+        .with_values([
+            ("algorithm.c1", json!(0.02)),
+            ("agents", json!(100)),
+            ("initial.positions.std", json!(50.0)),
+        ])
+        .expect("valid");
+    assert_eq!(back, scenario);
+}
+
+#[test]
+fn unset_defaults_follow_the_values_they_depend_on() {
+    let scenario = fixture("tac2006_fig11_alg2_n100");
+    assert_eq!(scenario.value("alpha.r").expect("a path"), Value::Null);
+    let wider = scenario
+        .with_values([("alpha.d", json!(10.0))])
+        .expect("valid");
+    assert_eq!(wider.range(), 12.0, "r = 1.2 d");
+    assert_eq!(wider.collision_distance(), 2.5, "d/4");
+}
+
+#[test]
+fn list_elements_are_numbered_and_integral_numbers_fill_integer_fields() {
+    let scenario = fixture("tac2006_fig14_split_rejoin_n150");
+    let changed = scenario
+        .with_values([("obstacles.1.radius", json!(20.0)), ("seed", json!(7.0))])
+        .expect("valid");
+    assert_eq!(
+        changed.value("obstacles.1.radius").expect("a path"),
+        json!(20.0)
+    );
+    assert_eq!(changed.seed, 7);
+    assert_eq!(
+        changed.value("obstacles.2").expect("a path"),
+        scenario.value("obstacles.2").expect("a path")
+    );
+}
+
+#[test]
+fn bad_paths_and_values_are_refused_naming_the_field() {
+    let scenario = fixture("tac2006_fig11_alg2_n100");
+    let (field, message) = invalid_field(scenario.with_values([("algorithm.c3", json!(1.0))]));
+    assert_eq!(field, "algorithm.c3");
+    assert!(
+        message.contains("`c1`") && message.contains("`gamma`"),
+        "{message}"
+    );
+    let (field, message) = invalid_field(scenario.with_values([("alpah.d", json!(1.0))]));
+    assert_eq!(field, "alpah.d");
+    assert!(message.contains("`alpha`"), "{message}");
+    let (field, message) = invalid_field(scenario.with_values([("agents", json!("many"))]));
+    assert_eq!(field, "agents");
+    assert!(message.contains("\"many\""), "{message}");
+    let (field, _) = invalid_field(scenario.with_values([("agents", json!(2.5))]));
+    assert_eq!(field, "agents");
+    let (field, _) = invalid_field(scenario.with_values([("obstacles.0", json!(1.0))]));
+    assert_eq!(field, "obstacles.0");
+    // the validation of a loaded scenario
+    let (field, _) = invalid_field(scenario.with_values([("alpha.d", json!(-1.0))]));
+    assert_eq!(field, "alpha.d");
+    let (field, _) = invalid_field(scenario.with_values([("algorithm.c2", json!(0.0))]));
+    assert_eq!(field, "algorithm.c2");
+    assert!(scenario.value("algorithm.c1.x").is_err());
+}

@@ -1,0 +1,135 @@
+//! The library refuses each parameter outside its domain with a typed error naming the field,
+//! as the scenario file does: the protocol crate's parameter types, the interactions and the
+//! simulation.
+
+use flocking::obstacles::ObstacleField;
+use flocking::protocols::{
+    AlphaConfig, AlphaInteraction, AlphaParams, AvoidanceGains, BetaConfig, BetaInteraction,
+    BetaParams, GammaAgent, Integrator, ParamError, Simulation, Swarm,
+};
+use flocking::{DynSimulation, Scenario};
+use glam::DVec2;
+
+use crate::common::fixture;
+
+/// The field of the error of `result`, which must fail.
+fn field<T: std::fmt::Debug>(result: Result<T, ParamError>) -> String {
+    let error = result.expect_err("a parameter outside its domain");
+    assert!(!error.why.is_empty() && !error.fix.is_empty(), "{error}");
+    assert!(
+        error
+            .to_string()
+            .starts_with(&format!("`{}` = ", error.field)),
+        "{error}"
+    );
+    error.field
+}
+
+#[test]
+fn alpha_parameters_outside_their_domain_are_refused() {
+    let papers = AlphaParams::default();
+    for (params, expected) in [
+        (AlphaParams { r: 7.0, ..papers }, "r"),
+        (AlphaParams { r: 5.0, ..papers }, "r"),
+        (AlphaParams { d: 0.0, ..papers }, "d"),
+        (
+            AlphaParams {
+                d: f64::NAN,
+                ..papers
+            },
+            "d",
+        ),
+        (
+            AlphaParams {
+                epsilon: 0.0,
+                ..papers
+            },
+            "epsilon",
+        ),
+        (AlphaParams { h: 1.0, ..papers }, "h"),
+        (AlphaParams { a: 6.0, ..papers }, "a"),
+    ] {
+        assert_eq!(field(params.validate()), expected, "{params:?}");
+        assert_eq!(field(AlphaInteraction::new(params, 1.0, 1.0)), expected);
+    }
+    assert_eq!(field(AlphaInteraction::new(papers, 0.0, 1.0)), "c1");
+    assert_eq!(field(AlphaInteraction::new(papers, 1.0, -1.0)), "c2");
+    let config = AlphaConfig {
+        r: Some(6.0),
+        ..AlphaConfig::default()
+    };
+    assert_eq!(
+        field(config.validate().map_err(|e| e.within("alpha"))),
+        "alpha.r"
+    );
+}
+
+#[test]
+fn beta_and_gamma_parameters_outside_their_domain_are_refused() {
+    let papers = BetaParams::papers(7.0);
+    assert_eq!(
+        field(
+            BetaParams {
+                r: papers.d,
+                ..papers
+            }
+            .validate()
+        ),
+        "r"
+    );
+    assert_eq!(field(BetaParams { h: 0.0, ..papers }.validate()), "h");
+    let obstacles = || ObstacleField::<DVec2>::from_specs(&[]).expect("no obstacle");
+    assert_eq!(
+        field(BetaInteraction::new(obstacles(), papers, 0.1, 0.0, 1.0)),
+        "c1"
+    );
+    assert_eq!(
+        field(BetaInteraction::new(obstacles(), papers, 0.1, 1.0, -1.0)),
+        "c2"
+    );
+    let beta = BetaConfig {
+        h: 1.5,
+        ..BetaConfig::default()
+    };
+    assert_eq!(field(beta.validate(7.0)), "h");
+    let gains = AvoidanceGains {
+        lambda_d: 1.5,
+        ..AvoidanceGains::default()
+    };
+    assert_eq!(field(gains.validate()), "lambda_d");
+    let path = GammaAgent::<DVec2>::Path {
+        waypoints: vec![DVec2::ZERO],
+        speed: 0.0,
+    };
+    assert_eq!(field(path.validate()), "speed");
+    let empty = GammaAgent::<DVec2>::Path {
+        waypoints: Vec::new(),
+        speed: 1.0,
+    };
+    assert_eq!(field(empty.validate()), "waypoints");
+    let nowhere = GammaAgent::Static {
+        position: DVec2::new(f64::INFINITY, 0.0),
+    };
+    assert_eq!(field(nowhere.validate()), "position");
+}
+
+#[test]
+fn a_simulation_refuses_a_bad_step_or_state() {
+    let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0).expect("valid");
+    let protocol = flocking::protocols::Algorithm1 { alpha };
+    let swarm = Swarm::new(vec![DVec2::ZERO, DVec2::X * 7.0], vec![DVec2::ZERO; 2]);
+    for step in [0.0, -0.01, f64::NAN] {
+        let result = Simulation::new(protocol.clone(), Integrator::Rk4, swarm.clone(), step);
+        assert_eq!(field(result.map(|_| ())), "step");
+    }
+    let lost = Swarm::new(vec![DVec2::ZERO, DVec2::NAN], vec![DVec2::ZERO; 2]);
+    let result = Simulation::new(protocol, Integrator::SymplecticEuler, lost, 0.01);
+    assert_eq!(field(result.map(|_| ())), "positions[1]");
+}
+
+#[test]
+fn a_dynamic_simulation_refuses_rows_of_the_wrong_size() {
+    let scenario: Scenario = fixture("tac2006_fig11_alg2_n100");
+    let error = DynSimulation::from_state(&scenario, &[0.0; 10], &[0.0; 200], 0).unwrap_err();
+    assert_eq!(error.field().as_deref(), Some("agents"), "{error}");
+}

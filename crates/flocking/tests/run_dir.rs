@@ -1,0 +1,152 @@
+//! Run directories written by [`RunDirectory`] and read back by [`read_run`]: the same numbers,
+//! whatever the trajectory's format, with a header named by the protocol's diagnostics.
+
+use std::cell::RefCell;
+
+use flocking::run_dir::{METRICS_HEADER, OutputOptions, TrajectoryFormat};
+use flocking::{DynSimulation, Record, Recorder, RunDirectory, Scenario, State, read_run};
+
+use crate::common::{TempDir, fixture};
+
+/// `fixtures/{name}.ron` cut to `duration` seconds.
+fn short(name: &str, duration: f64) -> Scenario {
+    let mut scenario = fixture(name);
+    scenario.duration = duration;
+    scenario
+}
+
+/// Every record's metrics row, as the library hands it to recorders.
+struct Rows<'a>(RunDirectory, &'a RefCell<Vec<Vec<f64>>>);
+
+impl Recorder for Rows<'_> {
+    type Error = std::io::Error;
+
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
+        let m = &record.metrics;
+        let mut row = vec![record.t];
+        row.extend(m.reals());
+        row.push(m.collisions as f64);
+        row.push(record.energy);
+        row.extend(record.diagnostics.iter().map(|&(_, v)| v));
+        self.1.borrow_mut().push(row);
+        self.0.record(record)
+    }
+}
+
+/// Runs `scenario` into `dir/name` in `format`; returns the rows recorded.
+fn write(
+    scenario: &Scenario,
+    dir: &TempDir,
+    name: &str,
+    format: TrajectoryFormat,
+) -> Vec<Vec<f64>> {
+    let options = OutputOptions {
+        format,
+        ..OutputOptions::default()
+    };
+    let out = dir.path().join(name);
+    let rows = RefCell::new(Vec::new());
+    let directory = RunDirectory::create_with(&out, scenario, &options).expect("a new directory");
+    let mut recorder = Rows(directory, &rows);
+    flocking::run(scenario, &mut recorder).expect("the run");
+    recorder.0.finish().expect("the directory completes");
+    rows.into_inner()
+}
+
+#[test]
+fn runs_read_back_as_recorded_from_csv_and_npy() {
+    let tmp = TempDir::new("run_dir_round_trip");
+    let scenario = short("tac2006_fig14_split_rejoin_n150", 1.0);
+    let rows = write(&scenario, &tmp, "csv", TrajectoryFormat::Csv);
+    write(&scenario, &tmp, "npy", TrajectoryFormat::Npy);
+    let csv = read_run(&tmp.path().join("csv")).expect("the CSV run reads back");
+    let npy = read_run(&tmp.path().join("npy")).expect("the .npy run reads back");
+    assert_eq!(csv.scenario, scenario.clone().resolved());
+    // the header: the common metrics, then the names Algorithm 3's diagnostics give
+    let names: Vec<&str> = csv.metrics.iter().map(|(name, _)| name.as_str()).collect();
+    let expected: Vec<&str> = METRICS_HEADER
+        .split(',')
+        .chain(["obstacle_clearance", "inside_obstacles"])
+        .collect();
+    assert_eq!(names, expected);
+    // every number as recorded (shortest round-trip decimals read back to the same bits)
+    for (k, row) in rows.iter().enumerate() {
+        for (c, value) in row.iter().enumerate() {
+            assert_eq!(
+                csv.metrics[c].1[k].to_bits(),
+                value.to_bits(),
+                "row {k}, {}",
+                names[c]
+            );
+        }
+    }
+    assert_eq!(csv.metrics, npy.metrics);
+    assert_eq!(csv.trajectory, npy.trajectory);
+    let trajectory = &csv.trajectory;
+    assert_eq!((trajectory.dim, trajectory.agents), (2, 150));
+    assert_eq!(trajectory.frames(), rows.len());
+    // the last frame is the state of the simulation run as long
+    let mut sim = DynSimulation::new(&scenario).expect("valid");
+    while sim.steps() < scenario.steps() {
+        sim.step();
+    }
+    let State {
+        positions,
+        velocities,
+        ..
+    } = sim.state();
+    let last = trajectory.frames() - 1;
+    assert_eq!(trajectory.positions_at(last), &positions[..]);
+    assert_eq!(trajectory.velocities_at(last), &velocities[..]);
+}
+
+#[test]
+fn the_header_names_the_diagnostics_of_each_protocol() {
+    let tmp = TempDir::new("run_dir_headers");
+    for (name, extra) in [
+        ("tac2006_fig11_alg2_n100", ""),
+        (
+            "tanner2003_fig3_fixed_n10",
+            ",velocity_disagreement,min_linked_distance",
+        ),
+        (
+            "tr2003_fig7_obstacles_n100",
+            ",defect_factor,normalised_defect_factor,structural_energy,translational_energy,\
+             obstacle_clearance,inside_obstacles",
+        ),
+    ] {
+        write(&short(name, 0.1), &tmp, name, TrajectoryFormat::Csv);
+        let text = std::fs::read_to_string(tmp.path().join(name).join("metrics.csv"))
+            .expect("metrics.csv");
+        assert_eq!(
+            text.lines().next(),
+            Some(format!("{METRICS_HEADER}{extra}").as_str()),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn a_record_naming_other_columns_is_refused() {
+    let tmp = TempDir::new("run_dir_drift");
+    let scenario = short("tac2006_fig11_alg2_n100", 0.1);
+    let mut dir =
+        RunDirectory::create(&tmp.path().join("out"), &scenario, false).expect("a new directory");
+    let sim = DynSimulation::new(&scenario).expect("valid");
+    let observation = sim.observe();
+    let record = |diagnostics: &'static [(&'static str, f64)]| Record {
+        t: sim.time(),
+        steps: sim.steps(),
+        metrics: observation.metrics,
+        energy: observation.energy,
+        state: sim.state(),
+        diagnostics,
+    };
+    dir.record(&record(&[("a", 1.0)]))
+        .expect("the first record names the columns");
+    dir.record(&record(&[("a", 2.0)]))
+        .expect("the same columns");
+    let error = dir.record(&record(&[("b", 1.0)])).unwrap_err();
+    assert!(error.to_string().contains("diagnostic columns"), "{error}");
+    dir.abandon();
+}

@@ -1,0 +1,293 @@
+//! Parameter sweeps ([`flocking::sweep`]): the runs and their ids, Linspace and Logspace, bad sweep
+//! files, failing runs recorded, and `runs.csv` the same bytes whatever the workers, the shards
+//! and the interruptions.
+
+use std::fs;
+use std::sync::atomic::AtomicBool;
+
+use flocking::serde_json::json;
+use flocking::sweep::store::{self, RUNS_FILE};
+use flocking::sweep::{ExecuteOptions, Shard, Sweep, SweepError, Values, execute};
+
+use crate::common::TempDir;
+
+/// Fig. 11 cut to 20 agents and 2 s, over c₁ × two agent counts × 2 seeds (12 runs), one value
+/// of c₁ invalid (c₁ = 0 is refused) and one so large that the run blows up.
+const SWEEP: &str = r#"Sweep(
+    name: "tiny",
+    base: Path("../../fixtures/tac2006_fig11_alg2_n100.ron"),
+    set: {"duration": 2.0, "agents": 20, "initial.positions.std": 10.0},
+    axes: [
+        (path: "algorithm.c1", values: List([0.02, 0.0, 1e8])),
+        (path: "agents", values: List([10, 20])),
+    ],
+    seeds: 2,
+)"#;
+
+fn tiny() -> Sweep {
+    SWEEP.parse().unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn runs_are_the_product_of_the_axes_with_seeds_innermost_and_stable_ids() {
+    let sweep = tiny();
+    let runs = sweep.runs();
+    assert_eq!(runs.len(), 3 * 2 * 2);
+    let key: Vec<(f64, u64, u64)> = runs
+        .iter()
+        .map(|r| {
+            (
+                r.values[0].as_f64().expect("a number"),
+                r.values[1].as_u64().expect("an integer"),
+                r.seed,
+            )
+        })
+        .collect();
+    assert_eq!(
+        key[..5],
+        [
+            (0.02, 10, 0),
+            (0.02, 10, 1),
+            (0.02, 20, 0),
+            (0.02, 20, 1),
+            (0.0, 10, 0)
+        ]
+    );
+    assert!(runs.iter().enumerate().all(|(k, r)| r.index == k));
+    let ids: Vec<String> = runs.iter().map(|r| r.id(&sweep.axes)).collect();
+    let mut unique = ids.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), ids.len(), "one id per run");
+    // the id is of the values, not of the position: reversing an axis moves runs, not ids
+    let mut reversed = sweep.clone();
+    reversed.axes[1].values = Values::List(vec![json!(20), json!(10)]);
+    let moved = reversed.runs()[0].id(&reversed.axes);
+    assert_eq!(moved, ids[2], "(0.02, 20, seed 0) keeps its id");
+}
+
+#[test]
+fn linspace_and_logspace_include_both_ends() {
+    let lin = Values::Linspace {
+        from: 0.0,
+        to: 1.0,
+        count: 5,
+    };
+    assert_eq!(lin.expand(), [0.0, 0.25, 0.5, 0.75, 1.0].map(|x| json!(x)));
+    let log = Values::Logspace {
+        from: 0.01,
+        to: 1.0,
+        count: 3,
+    };
+    let values: Vec<f64> = log
+        .expand()
+        .iter()
+        .map(|v| v.as_f64().expect("a number"))
+        .collect();
+    assert_eq!((values[0], values[2]), (0.01, 1.0));
+    approx::assert_relative_eq!(values[1], 0.1, max_relative = 1e-14);
+    let one = Values::Linspace {
+        from: 3.0,
+        to: 9.0,
+        count: 1,
+    };
+    assert_eq!(one.expand(), [json!(3.0)]);
+}
+
+#[test]
+fn bad_sweep_files_are_refused_with_the_field_or_the_line() {
+    let error = |text: &str| text.parse::<Sweep>().expect_err("refused");
+    let e = error(&SWEEP.replace("seeds: 2", "seeds: 0"));
+    assert!(
+        matches!(&e, SweepError::Invalid { field, .. } if field == "seeds"),
+        "{e}"
+    );
+    let e = error(&SWEEP.replace("path: \"agents\"", "path: \"agnets\""));
+    assert!(
+        matches!(&e, SweepError::Invalid { field, why } if field == "axes[1].path" && why.contains("`agents`")),
+        "{e}"
+    );
+    let e = error(&SWEEP.replace("List([10, 20])", "List([])"));
+    assert!(
+        matches!(&e, SweepError::Invalid { field, .. } if field == "axes[1].values"),
+        "{e}"
+    );
+    let e = error(&SWEEP.replace("List([10, 20])", "Logspace(from: 0.0, to: 1.0, count: 3)"));
+    assert!(
+        matches!(&e, SweepError::Invalid { field, .. } if field == "axes[1].values"),
+        "{e}"
+    );
+    let e = error(&SWEEP.replace("seeds: 2", "seeds: 2, sedes: 3"));
+    assert!(matches!(&e, SweepError::Syntax { line: 9, .. }), "{e}");
+    let e = error(&SWEEP.replace("\"duration\": 2.0", "\"duration\": -2.0"));
+    assert!(
+        matches!(&e, SweepError::Base(b) if b.field().as_deref() == Some("duration")),
+        "{e}"
+    );
+}
+
+/// Runs the sweep into `dir` with `jobs` workers (and a shard) and returns `runs.csv`.
+fn sweep_into(sweep: &Sweep, dir: &std::path::Path, jobs: usize, shard: Option<Shard>) -> String {
+    let options = ExecuteOptions {
+        jobs,
+        shard,
+        keep_runs: false,
+    };
+    execute(sweep, dir, &options, &AtomicBool::new(false), &|_| {})
+        .unwrap_or_else(|e| panic!("{e}"));
+    fs::read_to_string(dir.join(RUNS_FILE)).expect("runs.csv")
+}
+
+#[test]
+fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
+    let tmp = TempDir::new("sweep_errors");
+    let sweep = tiny();
+    let text = sweep_into(&sweep, tmp.path(), 2, None);
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .expect("a header")
+        .iter()
+        .map(str::to_owned)
+        .collect();
+    assert_eq!(
+        header,
+        [
+            "run",
+            "id",
+            "algorithm.c1",
+            "agents",
+            "seed",
+            "connectivity",
+            "giant_component",
+            "cohesion_radius",
+            "deviation_energy",
+            "velocity_mismatch",
+            "min_distance",
+            "collisions",
+            "connected_from",
+            "alpha_flock",
+            "strict_alpha_flock",
+            "obstacle_clearance",
+            "inside_obstacles",
+            "error"
+        ]
+    );
+    let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
+    assert_eq!(rows.len(), 12);
+    for row in &rows {
+        let (c1, error) = (&row[2], &row[17]);
+        match c1 {
+            "0.02" => assert!(error.is_empty() && !row[5].is_empty(), "{row:?}"),
+            "0.0" => assert!(error.contains("algorithm.c1"), "{row:?}"),
+            _ => assert!(
+                error.contains("blow-up") || error.contains("blow"),
+                "{row:?}"
+            ),
+        }
+    }
+    let times = fs::read_to_string(tmp.path().join(store::TIMES_FILE)).expect("times.csv");
+    assert_eq!(times.lines().count(), 13);
+}
+
+#[test]
+fn runs_csv_is_the_same_bytes_for_any_workers_shards_and_interruptions() {
+    let sweep = tiny();
+    let tmp = TempDir::new("sweep_identity");
+    let one = sweep_into(&sweep, &tmp.path().join("one"), 1, None);
+    let two = sweep_into(&sweep, &tmp.path().join("two"), 2, None);
+    assert_eq!(one, two, "--jobs 1 and --jobs 2");
+    let shards: Vec<std::path::PathBuf> = (0..3)
+        .map(|i| {
+            let dir = tmp.path().join(format!("shard{i}"));
+            sweep_into(&sweep, &dir, 1, Some(Shard { index: i, count: 3 }));
+            dir
+        })
+        .collect();
+    let merged = tmp.path().join("merged");
+    assert_eq!(store::merge(&merged, &shards).expect("merged"), 12);
+    assert_eq!(
+        fs::read_to_string(merged.join(RUNS_FILE)).expect("runs.csv"),
+        one
+    );
+    let missing =
+        store::merge(&tmp.path().join("partial"), &shards[..2]).expect_err("a shard is missing");
+    assert!(missing.to_string().contains("4 of 12 runs"), "{missing}");
+    // a sweep stopped after some runs, then the same call again
+    let resumed = tmp.path().join("resumed");
+    let stop = AtomicBool::new(false);
+    let options = ExecuteOptions::default();
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let stopped = execute(&sweep, &resumed, &options, &stop, &|_| {
+        if count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) == 4 {
+            stop.store(true, std::sync::atomic::Ordering::SeqCst);
+        }
+    })
+    .expect("stopped cleanly");
+    assert!(stopped.stopped && stopped.ran == 5, "{stopped:?}");
+    let again =
+        execute(&sweep, &resumed, &options, &AtomicBool::new(false), &|_| {}).expect("resumed");
+    assert_eq!((again.skipped, again.ran, again.stopped), (5, 7, false));
+    assert_eq!(
+        fs::read_to_string(resumed.join(RUNS_FILE)).expect("runs.csv"),
+        one
+    );
+    // a directory of another sweep is refused
+    let other = Sweep {
+        seeds: 3,
+        ..sweep.clone()
+    };
+    let refused = execute(&other, &resumed, &options, &AtomicBool::new(false), &|_| {});
+    assert!(refused.is_err_and(|e| e.to_string().contains("another sweep")));
+}
+
+#[test]
+fn keep_runs_writes_each_run_directory() {
+    let tmp = TempDir::new("sweep_keep");
+    let sweep = Sweep {
+        axes: Vec::new(),
+        seeds: 2,
+        ..tiny()
+    };
+    let options = ExecuteOptions {
+        jobs: 2,
+        shard: None,
+        keep_runs: true,
+    };
+    execute(
+        &sweep,
+        tmp.path(),
+        &options,
+        &AtomicBool::new(false),
+        &|_| {},
+    )
+    .expect("runs");
+    for run in sweep.runs() {
+        let dir = tmp.path().join(store::RUNS_DIR).join(run.id(&sweep.axes));
+        assert!(dir.join("metrics.csv").is_file(), "{}", dir.display());
+    }
+}
+
+/// The sweeps shipped in `sweeps/` load, their axes name parameters of their scenarios, and their
+/// grids are the ones `docs/sweeps.md` reads.
+#[test]
+fn the_shipped_sweeps_load() {
+    let dir = crate::common::fixtures_dir().join("../sweeps");
+    let alg2 = Sweep::load(dir.join("alg2_c1_n.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((alg2.runs().len(), alg2.seeds), (5 * 4 * 20, 20));
+    let alg3 = Sweep::load(dir.join("alg3_beta_radius.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((alg3.runs().len(), alg3.seeds), (7 * 4 * 5, 5));
+    for run in [&alg3.runs()[0], &alg3.runs()[139]] {
+        let scenario = alg3.scenario(run).unwrap_or_else(|e| panic!("{e}"));
+        assert!(scenario.algorithm.uses_obstacles());
+    }
+    let last = alg3.scenario(&alg3.runs()[139]).expect("valid");
+    assert_eq!(
+        last.value("obstacles.0.radius").expect("a path"),
+        json!(40.0)
+    );
+    assert_eq!(
+        last.value("algorithm.beta.c1").expect("a path"),
+        json!(1000.0)
+    );
+}
