@@ -5,11 +5,11 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
+use flock_cli::{Progress, Report};
+use flock_viz::{FigureOptions, plot_run_with};
 use flocking::metrics::FlockingCriteria;
 use flocking::run_dir::{CreateError, ResumeError};
 use flocking::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
-use flock_cli::{Progress, Report};
-use flock_viz::{FigureOptions, plot_run_with};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]

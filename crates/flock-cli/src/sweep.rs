@@ -8,9 +8,9 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
+use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
 use flocking::sweep::store::{self, RUNS_FILE};
 use flocking::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute, share};
-use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// `flocking sweep SWEEP.ron --out DIR [--jobs N] [--keep-runs] [--shard i/N]`, or one of its

@@ -66,7 +66,9 @@ fn parse_error(text: &str) -> (ScenarioError, String) {
 /// Parses `text`, which must fail validation on `field`; returns the message, which names it.
 fn invalid_field(text: &str, field: &str) -> String {
     let (error, message) = parse_error(text);
-    match &error {
+    let problems = error.problems();
+    assert_eq!(problems.len(), 1, "one invalid value: {message}");
+    match problems[0] {
         ScenarioError::Invalid {
             field: f, why, fix, ..
         } => {
@@ -88,6 +90,65 @@ fn the_base_scenarios_are_valid() {
     assert_eq!((two.dim, two.agents, two.steps()), (2, 5, 10));
     let three = Scenario::parse(&tiny_3d(), "test.ron").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!((three.dim, three.agents, three.steps()), (3, 5, 10));
+}
+
+/// Switching a scenario to `dim: 3` and nothing else: every 2D vector is named at once, each at
+/// its line and column, in the order of the text — one edit-and-retry round, not four.
+#[test]
+fn every_invalid_value_is_reported_at_once_in_the_order_of_the_text() {
+    let text = edit(TINY_2D, "dim: 2", "dim: 3");
+    let (error, message) = parse_error(&text);
+    let fields: Vec<String> = error.problems().iter().filter_map(|e| e.field()).collect();
+    assert_eq!(
+        fields,
+        [
+            "algorithm.gamma.position",
+            "initial.positions.min",
+            "initial.positions.max",
+            "initial.velocities.min",
+            "initial.velocities.max",
+        ],
+        "{message}"
+    );
+    assert!(message.starts_with("5 invalid values:"), "{message}");
+    let lines: Vec<&str> = message.lines().skip(1).collect();
+    // where each field's name stands in TINY_2D (line 6: `Static(position: …`, line 9: the
+    // positions' box, line 10: the velocities' box)
+    let places: Vec<String> = lines
+        .iter()
+        .map(|l| {
+            l.trim()
+                .splitn(4, ':')
+                .take(3)
+                .collect::<Vec<_>>()
+                .join(":")
+        })
+        .collect();
+    assert_eq!(
+        places,
+        [
+            "test.ron:6:41",
+            "test.ron:9:24",
+            "test.ron:9:45",
+            "test.ron:10:25",
+            "test.ron:10:44"
+        ],
+        "{message}"
+    );
+    for line in &lines {
+        assert!(
+            line.contains("has 2 components but the scenario has dim = 3"),
+            "{line}"
+        );
+        assert!(
+            line.contains("give exactly 3 numbers, e.g. [0.0, 0.0, 0.0]"),
+            "{line}"
+        );
+    }
+    // a wrong dim hides nothing else: it is the one error when the vectors cannot be judged
+    let (error, message) = parse_error(&edit(TINY_2D, "dim: 2", "dim: 4"));
+    assert_eq!(error.field().as_deref(), Some("dim"), "{message}");
+    assert!(message.starts_with("test.ron:3:5: `dim` = 4"), "{message}");
 }
 
 #[test]
@@ -271,8 +332,9 @@ fn the_fixtures_and_the_base_scenarios_give_no_warning() {
 #[test]
 fn a_step_the_stiffness_makes_unstable_is_warned_with_the_largest_stable_step() {
     let stiff = edit(TINY_2D, "h: 0.2)", "h: 0.2, c1: 500.0)");
-    let stable = flocking::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
-        .expect("an estimate for Algorithm 2");
+    let stable =
+        flocking::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
+            .expect("an estimate for Algorithm 2");
     // The papers' gains leave a wide margin above h = 0.01; c₁^α = 500 takes it below.
     assert!(stable < 0.01, "{stable}");
     let found = warnings(&stiff);

@@ -6,6 +6,7 @@ use std::fmt;
 
 use flock_protocols::AgentFault;
 
+use crate::run::time_text;
 use crate::scenario::Scenario;
 use crate::stability::largest_stable_step;
 
@@ -18,6 +19,8 @@ pub struct NumericalError {
     pub steps: u64,
     /// Its time t = steps · h.
     pub t: f64,
+    /// The step h, which fixes how many decimals of t are printed.
+    pub step: f64,
     /// The agent (original index) and what is wrong with it.
     pub fault: AgentFault,
     /// The likely cause and its fix.
@@ -31,6 +34,7 @@ impl NumericalError {
         Self {
             steps,
             t,
+            step: scenario.step,
             fault,
             cause: likely_cause(scenario),
         }
@@ -42,7 +46,10 @@ impl fmt::Display for NumericalError {
         write!(
             f,
             "numerical blow-up at step {} (t = {}): {}. Likely cause: {}",
-            self.steps, self.t, self.fault, self.cause
+            self.steps,
+            time_text(self.t, self.step),
+            self.fault,
+            self.cause
         )
     }
 }

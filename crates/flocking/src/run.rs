@@ -120,6 +120,24 @@ impl Recorder for () {
     }
 }
 
+/// A time t = k·h as people write it: rounded to the decimals of the step h (at most 12), trailing
+/// zeros dropped — `0.6` where the sum of steps gives 0.6000000000000001.
+#[must_use]
+pub fn time_text(t: f64, step: f64) -> String {
+    let decimals = (0..12)
+        .find(|&k| {
+            let scaled = step * 10f64.powi(k);
+            (scaled - scaled.round()).abs() <= 1e-9 * scaled.abs().max(1.0)
+        })
+        .unwrap_or(12) as usize;
+    let text = format!("{t:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    }
+}
+
 /// Why a run stopped.
 #[derive(Debug)]
 pub enum RunError<E> {
@@ -135,6 +153,8 @@ pub enum RunError<E> {
         steps: u64,
         /// The time reached.
         t: f64,
+        /// The step h, which fixes how many decimals of t are printed.
+        step: f64,
     },
 }
 
@@ -144,8 +164,12 @@ impl<E: std::fmt::Display> std::fmt::Display for RunError<E> {
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Record(e) => write!(f, "{e}"),
             Self::Numerical(e) => write!(f, "{e}"),
-            Self::Interrupted { steps, t } => {
-                write!(f, "interrupted after step {steps} (t = {t})")
+            Self::Interrupted { steps, t, step } => {
+                write!(
+                    f,
+                    "interrupted after step {steps} (t = {})",
+                    time_text(*t, *step)
+                )
             }
         }
     }
@@ -230,6 +254,7 @@ pub fn resume<R: Recorder + ?Sized>(
             return Err(RunError::Interrupted {
                 steps,
                 t: sim.time(),
+                step: scenario.step,
             });
         }
     }
@@ -268,4 +293,23 @@ fn record<R: Recorder + ?Sized>(
         })
         .map_err(RunError::Record)?;
     Ok(observation)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::time_text;
+
+    #[test]
+    fn times_are_printed_to_the_decimals_of_the_step() {
+        // 60 steps of 0.01 sum to 0.6000000000000001 in f64
+        let t = 60.0 * 0.01;
+        assert_ne!(t.to_string(), "0.6");
+        assert_eq!(time_text(t, 0.01), "0.6");
+        assert_eq!(time_text(25.0 * 0.025, 0.025), "0.625");
+        assert_eq!(time_text(3.0, 0.5), "3");
+        assert_eq!(time_text(7.0 * 0.1, 0.1), "0.7");
+        assert_eq!(time_text(123.0 * 1e-4, 1e-4), "0.0123");
+        // a step with no short decimal form keeps 12 decimals
+        assert_eq!(time_text(1.0 / 3.0, 1.0 / 3.0), "0.333333333333");
+    }
 }

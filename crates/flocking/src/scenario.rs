@@ -283,7 +283,7 @@ impl Scenario {
         let scenario: Self = options
             .from_str(text)
             .map_err(|e| ScenarioError::syntax(origin, text, &e))?;
-        scenario.validate()?;
+        scenario.validate().map_err(|e| e.placed(origin, text))?;
         Ok(scenario)
     }
 

@@ -39,29 +39,84 @@ fn vector(field: &str, v: &[f64], dim: usize) -> Check {
     check::coordinates(field, v)
 }
 
+/// The problems of a scenario: every independent check runs and records its error, so that one
+/// edit (say `dim: 2` to `dim: 3`) shows every value it invalidates at once.
+#[derive(Default)]
+struct Problems(Vec<ScenarioError>);
+
+impl Problems {
+    /// Records the error of one check, if any.
+    fn check(&mut self, outcome: Result<(), impl Into<ScenarioError>>) {
+        if let Err(e) = outcome {
+            self.0.push(e.into());
+        }
+    }
+}
+
 impl Scenario {
     /// Checks every value against its domain.
     ///
     /// # Errors
-    /// The first invalid value, with its field, why and the fix.
+    /// Every invalid value, each with its field, why and the fix: the one error, or
+    /// [`ScenarioError::Several`] in the order of the checks.
     pub fn validate(&self) -> Result<(), ScenarioError> {
-        self.validate_values().map_err(ScenarioError::from)?;
-        if matches!(self.algorithm, Algorithm::Tanner { .. }) {
-            self.validate_distinct_start()?;
+        let mut problems = Problems::default();
+        self.validate_values(&mut problems);
+        if problems.0.is_empty() {
+            if matches!(self.algorithm, Algorithm::Tanner { .. }) {
+                problems.check(self.validate_distinct_start());
+            }
+            problems.check(self.validate_obstacles());
         }
-        self.validate_obstacles()
+        let mut errors = problems.0;
+        match errors.len() {
+            0 => Ok(()),
+            1 => Err(errors.remove(0)),
+            _ => Err(ScenarioError::Several(errors)),
+        }
     }
 
-    /// Everything but what needs the initial state or the obstacles built.
-    fn validate_values(&self) -> Check {
+    /// Everything but what needs the initial state or the obstacles built; with a wrong `dim`
+    /// nothing else (every vector would be wrong).
+    fn validate_values(&self, problems: &mut Problems) {
         let dim = self.dim;
-        require(
+        problems.check(require(
             dim == 2 || dim == 3,
             "dim",
             dim,
             "flocking simulates the plane or space",
             "set dim: 2 or dim: 3",
-        )?;
+        ));
+        if !problems.0.is_empty() {
+            return;
+        }
+        problems.check(self.validate_agents());
+        problems.check(self.alpha.validate().map_err(|e| e.within("alpha")));
+        problems.check(self.validate_time());
+        problems.check(require(
+            self.record_every >= 1,
+            "record_every",
+            self.record_every,
+            "must be ≥ 1",
+            "record every 1 or more steps",
+        ));
+        if let Some(c) = self.collision_distance {
+            problems.check(positive("collision_distance", c).and_then(|()| {
+                require(
+                    c <= self.range(),
+                    "collision_distance",
+                    c,
+                    &format!("exceeds the interaction range r = {}", self.range()),
+                    "choose a collision distance at most r (default d/4)",
+                )
+            }));
+        }
+        self.validate_algorithm(problems);
+        self.validate_cloud(problems, "initial.positions", &self.initial.positions);
+        self.validate_cloud(problems, "initial.velocities", &self.initial.velocities);
+    }
+
+    fn validate_agents(&self) -> Check {
         require(
             self.agents >= 1,
             "agents",
@@ -78,8 +133,10 @@ impl Scenario {
                 self.agents as f64 * 250e-9
             ),
             "split the swarm into runs of at most 10^8 agents",
-        )?;
-        self.alpha.validate().map_err(|e| e.within("alpha"))?;
+        )
+    }
+
+    fn validate_time(&self) -> Check {
         positive("step", self.step)?;
         positive("duration", self.duration)?;
         require(
@@ -88,37 +145,17 @@ impl Scenario {
             self.step,
             &format!("is longer than the duration {}", self.duration),
             "choose a step smaller than the duration (the papers use 0.01–0.03 s)",
-        )?;
-        require(
-            self.record_every >= 1,
-            "record_every",
-            self.record_every,
-            "must be ≥ 1",
-            "record every 1 or more steps",
-        )?;
-        if let Some(c) = self.collision_distance {
-            positive("collision_distance", c)?;
-            require(
-                c <= self.range(),
-                "collision_distance",
-                c,
-                &format!("exceeds the interaction range r = {}", self.range()),
-                "choose a collision distance at most r (default d/4)",
-            )?;
-        }
-        self.validate_algorithm()?;
-        self.validate_cloud("initial.positions", &self.initial.positions)?;
-        self.validate_cloud("initial.velocities", &self.initial.velocities)
+        )
     }
 
-    fn validate_algorithm(&self) -> Check {
+    fn validate_algorithm(&self, problems: &mut Problems) {
         let within = |prefix: &'static str| move |e: ParamError| e.within(prefix);
         match &self.algorithm {
-            Algorithm::Algorithm1 => Ok(()),
+            Algorithm::Algorithm1 => {}
             Algorithm::Algorithm2 { gamma, c1, c2 } => {
-                positive("algorithm.c1", *c1)?;
-                positive("algorithm.c2", *c2)?;
-                self.validate_gamma("algorithm.gamma", gamma)
+                problems.check(positive("algorithm.c1", *c1));
+                problems.check(positive("algorithm.c2", *c2));
+                self.validate_gamma(problems, "algorithm.gamma", gamma);
             }
             Algorithm::Algorithm3 {
                 gamma,
@@ -126,13 +163,15 @@ impl Scenario {
                 c2,
                 beta,
             } => {
-                positive("algorithm.c1", *c1)?;
+                problems.check(positive("algorithm.c1", *c1));
                 if let Some(c2) = c2 {
-                    positive("algorithm.c2", *c2)?;
+                    problems.check(positive("algorithm.c2", *c2));
                 }
-                self.validate_gamma("algorithm.gamma", gamma)?;
-                beta.validate(self.alpha.d)
-                    .map_err(within("algorithm.beta"))
+                self.validate_gamma(problems, "algorithm.gamma", gamma);
+                problems.check(
+                    beta.validate(self.alpha.d)
+                        .map_err(within("algorithm.beta")),
+                );
             }
             Algorithm::Flocking2003 {
                 c1,
@@ -142,8 +181,8 @@ impl Scenario {
                 avoidance,
                 ..
             } => {
-                non_negative("algorithm.c1", *c1)?;
-                require(
+                problems.check(non_negative("algorithm.c1", *c1));
+                problems.check(require(
                     self.alpha.a < self.alpha.b,
                     "alpha.a",
                     self.alpha.a,
@@ -152,66 +191,69 @@ impl Scenario {
                         self.alpha.b
                     ),
                     "use e.g. a: 1.0, b: 5.0",
-                )?;
+                ));
                 if let Some(delta) = delta {
-                    check::unit_interval("algorithm.delta", *delta)?;
+                    problems.check(check::unit_interval("algorithm.delta", *delta));
                 }
-                require(
+                problems.check(require(
                     *power >= 1,
                     "algorithm.power",
                     power,
                     "the influence map needs k ≥ 1",
                     "use power: 1 (C¹) or more",
-                )?;
+                ));
                 if let Some(t) = translation {
-                    non_negative("algorithm.translation.c1", t.c1)?;
-                    positive("algorithm.translation.c2", t.c2)?;
-                    self.validate_gamma("algorithm.translation.gamma", &t.gamma)?;
+                    problems.check(non_negative("algorithm.translation.c1", t.c1));
+                    problems.check(positive("algorithm.translation.c2", t.c2));
+                    self.validate_gamma(problems, "algorithm.translation.gamma", &t.gamma);
                 }
                 if let Some(a) = avoidance {
-                    a.validate().map_err(within("algorithm.avoidance"))?;
+                    problems.check(a.validate().map_err(within("algorithm.avoidance")));
                     for (k, spec) in self.obstacles.iter().enumerate() {
-                        require(
+                        problems.check(require(
                             matches!(spec, ObstacleSpec::Ball { .. }),
                             &format!("obstacles[{k}]"),
                             spec.kind(),
                             "the 2003 obstacle protocol handles balls only (seed 004 § 11)",
                             "use Ball obstacles, or Algorithm3 for other convex shapes",
-                        )?;
+                        ));
                     }
                 }
-                Ok(())
             }
-            Algorithm::Tanner { graph } => match graph {
-                TannerGraph::Random { extra } => {
-                    check::finite("algorithm.graph.extra", *extra)?;
-                    require(
-                        (0.0..=1.0).contains(extra),
-                        "algorithm.graph.extra",
-                        extra,
-                        "is a probability",
-                        "use a value in [0, 1]",
-                    )
-                }
-                TannerGraph::Edges(edges) => {
-                    let graph = Graph::from_edges(self.agents, edges).map_err(|e| {
-                        ParamError::new(
-                            "algorithm.graph",
-                            edges.len(),
-                            e.to_string(),
-                            "list edges (i, j) with i ≠ j < agents",
-                        )
-                    })?;
-                    let components = Components::of(&graph).count();
-                    require(
-                        components == 1,
+            Algorithm::Tanner { graph } => problems.check(self.validate_tanner_graph(graph)),
+        }
+    }
+
+    fn validate_tanner_graph(&self, graph: &TannerGraph) -> Check {
+        match graph {
+            TannerGraph::Random { extra } => {
+                check::finite("algorithm.graph.extra", *extra)?;
+                require(
+                    (0.0..=1.0).contains(extra),
+                    "algorithm.graph.extra",
+                    extra,
+                    "is a probability",
+                    "use a value in [0, 1]",
+                )
+            }
+            TannerGraph::Edges(edges) => {
+                let graph = Graph::from_edges(self.agents, edges).map_err(|e| {
+                    ParamError::new(
                         "algorithm.graph",
-                        format!("{components} components"),
-                        "the Tanner law needs a connected graph",
-                        "add edges joining the components",
+                        edges.len(),
+                        e.to_string(),
+                        "list edges (i, j) with i ≠ j < agents",
                     )
-                }
-            },
+                })?;
+                let components = Components::of(&graph).count();
+                require(
+                    components == 1,
+                    "algorithm.graph",
+                    format!("{components} components"),
+                    "the Tanner law needs a connected graph",
+                    "add edges joining the components",
+                )
+            }
         }
     }
 
@@ -269,48 +311,59 @@ impl Scenario {
     }
 
     /// The γ-agent's vectors have the scenario's dimension and are finite; a path is well formed.
-    fn validate_gamma(&self, field: &str, gamma: &GammaAgent<Point>) -> Check {
+    fn validate_gamma(&self, problems: &mut Problems, field: &str, gamma: &GammaAgent<Point>) {
         for (name, v) in gamma.vectors() {
-            vector(&format!("{field}.{name}"), v, self.dim)?;
+            problems.check(vector(&format!("{field}.{name}"), v, self.dim));
         }
-        gamma.validate_path().map_err(|e| e.within(field))
+        problems.check(gamma.validate_path().map_err(|e| e.within(field)));
     }
 
-    fn validate_cloud(&self, field: &str, cloud: &Cloud) -> Check {
+    fn validate_cloud(&self, problems: &mut Problems, field: &str, cloud: &Cloud) {
         let dim = self.dim;
         match cloud {
-            Cloud::Zero => Ok(()),
+            Cloud::Zero => {}
             Cloud::Box { min, max } => {
-                vector(&format!("{field}.min"), min, dim)?;
-                vector(&format!("{field}.max"), max, dim)?;
-                require(
-                    min.iter().zip(max).all(|(lo, hi)| lo <= hi),
-                    &format!("{field}.max"),
-                    max,
-                    &format!("is below min = {min:?} in some component"),
-                    "make every component of max ≥ the same component of min",
-                )
+                let (lower, upper) = (
+                    vector(&format!("{field}.min"), min, dim),
+                    vector(&format!("{field}.max"), max, dim),
+                );
+                let both = lower.is_ok() && upper.is_ok();
+                problems.check(lower);
+                problems.check(upper);
+                if both {
+                    problems.check(require(
+                        min.iter().zip(max).all(|(lo, hi)| lo <= hi),
+                        &format!("{field}.max"),
+                        max,
+                        &format!("is below min = {min:?} in some component"),
+                        "make every component of max ≥ the same component of min",
+                    ));
+                }
             }
             Cloud::Ball { centre, radius } => {
-                vector(&format!("{field}.centre"), centre, dim)?;
-                length(&format!("{field}.radius"), *radius)
+                problems.check(vector(&format!("{field}.centre"), centre, dim));
+                problems.check(length(&format!("{field}.radius"), *radius));
             }
             Cloud::Gaussian { mean, std } => {
-                vector(&format!("{field}.mean"), mean, dim)?;
-                length(&format!("{field}.std"), *std)
+                problems.check(vector(&format!("{field}.mean"), mean, dim));
+                problems.check(length(&format!("{field}.std"), *std));
             }
             Cloud::Explicit(rows) => {
-                require(
+                problems.check(require(
                     rows.len() == self.agents,
                     field,
                     format!("{} vectors", rows.len()),
                     &format!("the scenario has agents = {}", self.agents),
                     "give one vector per agent, or change agents",
-                )?;
-                for (i, row) in rows.iter().enumerate() {
-                    vector(&format!("{field}[{i}]"), row, dim)?;
+                ));
+                // the first wrong row of each kind is enough: a list of n rows would repeat itself
+                if let Some(e) = rows
+                    .iter()
+                    .enumerate()
+                    .find_map(|(i, row)| vector(&format!("{field}[{i}]"), row, dim).err())
+                {
+                    problems.0.push(e.into());
                 }
-                Ok(())
             }
         }
     }
