@@ -55,7 +55,7 @@ pub enum FiguresError {
         /// The fixture's stem.
         fixture: String,
         /// The error.
-        source: RunError<io::Error>,
+        source: Box<RunError<io::Error>>,
     },
     /// A fixture's figures failed.
     Plot {
@@ -128,7 +128,7 @@ pub fn figures(
         let dir = out.join(&stem);
         let run_err = |source| FiguresError::Run {
             fixture: stem.clone(),
-            source,
+            source: Box::new(source),
         };
         let recorder =
             RunDirectory::create(&dir, &scenario, true).map_err(|source| FiguresError::Create {

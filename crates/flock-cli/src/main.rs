@@ -23,8 +23,11 @@ struct Cli {
 enum Command {
     /// Run a scenario and write metrics.csv, the trajectory, final.csv and scenario.ron to DIR
     /// (through DIR.partial, which holds a killed or interrupted run until `--resume DIR`).
+    #[command(
+        override_usage = "flocking run [OPTIONS] <SCENARIO>\n       flocking run --resume <DIR> [OPTIONS]"
+    )]
     Run {
-        /// The scenario file (.ron).
+        /// The scenario file (.ron); required unless --resume.
         #[arg(required_unless_present = "resume")]
         scenario: Option<PathBuf>,
         /// The output directory (default: `out/<scenario file stem>`).

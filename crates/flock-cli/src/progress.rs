@@ -9,7 +9,7 @@
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
-use flocking::{Record, Recorder, Scenario, Start};
+use flocking::{Merge, Record, Recorder, Scenario, Start};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressFinish, ProgressState, ProgressStyle};
 
 /// How long a run goes before its bar may appear.
@@ -132,5 +132,14 @@ impl<R: Recorder> Recorder for Progress<R> {
 
     fn stop_requested(&self) -> bool {
         self.inner.stop_requested()
+    }
+
+    /// Prints the warning at once, above the bar, and tells `inner`.
+    fn merged(&mut self, merge: &Merge) {
+        match &self.bar {
+            Some(bar) if self.shown => bar.suspend(|| eprintln!("{merge}")),
+            _ => eprintln!("{merge}"),
+        }
+        self.inner.merged(merge);
     }
 }

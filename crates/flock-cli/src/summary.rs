@@ -38,6 +38,13 @@ impl fmt::Display for Report<'_> {
         )?;
         writeln!(f, "  min distance          {:.4}", m.min_distance)?;
         writeln!(f, "  colliding pairs       {}", m.collisions)?;
+        if s.merged.agents > 0 {
+            writeln!(
+                f,
+                "  merged agents         {}   (closer than 10⁻³ d: the α-force cannot separate them)",
+                s.merged
+            )?;
+        }
         for (name, value) in &s.diagnostics {
             writeln!(f, "  {name:<22}{value:.6e}")?;
         }

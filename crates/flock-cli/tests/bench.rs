@@ -7,7 +7,7 @@ fn bench(args: &[&str]) -> std::process::Output {
         .arg("bench")
         .args(args)
         .output()
-        .expect("the flock binary runs")
+        .expect("the flocking binary runs")
 }
 
 #[test]

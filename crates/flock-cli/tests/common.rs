@@ -65,7 +65,7 @@ pub fn flocking(dir: &Path, args: &[&str]) -> std::process::Output {
         .current_dir(dir)
         .args(args)
         .output()
-        .expect("the flock binary runs")
+        .expect("the flocking binary runs")
 }
 
 /// The standard error of a finished command, as text.

@@ -565,6 +565,32 @@ fn validate_rejects_a_bad_scenario_with_exit_code_2() {
     );
 }
 
+/// `flocking run` needs a scenario unless it resumes: its usage says so, and so does the error.
+#[test]
+fn run_help_shows_the_scenario_as_required_unless_resuming() {
+    let tmp = TempDir::new("run_help");
+    let help = flocking(tmp.path(), &["run", "--help"]);
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(help.status.success(), "{text}");
+    let usage: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("Usage:"))
+        .take(2)
+        .collect();
+    assert_eq!(
+        usage,
+        [
+            "Usage: flocking run [OPTIONS] <SCENARIO>",
+            "       flocking run --resume <DIR> [OPTIONS]"
+        ],
+        "{text}"
+    );
+    assert!(text.contains("required unless --resume"), "{text}");
+    let bare = flocking(tmp.path(), &["run"]);
+    assert_eq!(bare.status.code(), Some(2));
+    assert!(stderr(&bare).contains("<SCENARIO>"), "{}", stderr(&bare));
+}
+
 #[test]
 fn validate_names_an_unreadable_file_with_exit_code_2() {
     let tmp = TempDir::new("validate_missing");

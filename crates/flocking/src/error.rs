@@ -368,13 +368,11 @@ fn field_in(tokens: &[Token], from: usize, to: usize, name: &str) -> Option<usiz
 /// ends it.
 fn value_after(tokens: &[Token], from: usize, to: usize) -> (usize, usize) {
     let mut depth = 0;
-    for k in from..to {
+    let end = (from..to).find(|&k| {
         depth += depth_change(&tokens[k]);
-        if depth < 0 || (depth == 0 && tokens[k].text == ",") {
-            return (from, k);
-        }
-    }
-    (from, to)
+        depth < 0 || (depth == 0 && tokens[k].text == ",")
+    });
+    (from, end.unwrap_or(to))
 }
 
 /// The token range of item `index` of the list that is the value `from..to`.

@@ -12,7 +12,8 @@
 //! - [`run_dir`]: the run directory — [`RunDirectory`] writes it (crash-safe, checkpointed,
 //!   resumable), [`read_run`] reads it back.
 //! - [`stability`]: the largest stable step, and the warnings of a valid scenario;
-//!   [`NumericalError`]: a blow-up with its step, agent and likely cause.
+//!   [`NumericalError`]: a blow-up with its step, agent and likely cause; [`merging`]: agents
+//!   driven onto one point ([`Merge`], [`MergedAgents`]).
 //! - [`sweep`]: parameter sweeps and ensembles — a grid of values × seeds, one row of
 //!   `runs.csv` per run, resumable, in shards.
 //! - [`synthetic`]: lattices of any size for benchmarks.
@@ -23,7 +24,8 @@
 //! ```
 //! use flocking::prelude::*;
 //!
-//! let scenario = Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+//! # std::env::set_current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))?; // the workspace root
+//! let scenario = Scenario::load("fixtures/tac2006_fig11_alg2_n100.ron")?;
 //! let summary = flocking::run(&scenario, &mut ())?;
 //! println!("final connectivity C = {}", summary.metrics.connectivity);
 //! assert_eq!(summary.metrics.connectivity, 1.0);
@@ -34,6 +36,7 @@ pub mod build;
 pub mod error;
 pub mod health;
 pub mod initial;
+pub mod merging;
 pub mod overrides;
 pub mod run;
 pub mod run_dir;
@@ -46,6 +49,7 @@ mod validate;
 
 pub use error::ScenarioError;
 pub use health::NumericalError;
+pub use merging::{Merge, MergedAgents};
 pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, run};
 pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
 pub use scenario::{Algorithm, Cloud, Initial, Point, Scenario, TannerGraph, Translation};

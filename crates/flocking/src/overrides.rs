@@ -38,7 +38,8 @@ impl Scenario {
     /// use flocking::Scenario;
     /// use serde_json::json;
     ///
-    /// let scenario = Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+    /// # std::env::set_current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).unwrap(); // the workspace root
+    /// let scenario = Scenario::load("fixtures/tac2006_fig11_alg2_n100.ron")?;
     /// let changed = scenario.with_values([("algorithm.c1", json!(0.05)), ("agents", json!(400))])?;
     /// assert_eq!(changed.agents, 400);
     /// assert_eq!(changed.value("algorithm.c1")?, json!(0.05));

@@ -8,6 +8,7 @@ use flock_protocols::Observation;
 
 use crate::error::ScenarioError;
 use crate::health::NumericalError;
+use crate::merging::{MERGE_FRACTION, Merge, MergedAgents, closest_pair, merged_agents};
 use crate::scenario::Scenario;
 use crate::simulation::{DynSimulation, State};
 
@@ -55,6 +56,11 @@ pub struct RunSummary {
     pub lattice: LatticeSummary,
     /// (t, metrics) of every record this run made (after its start, when resumed).
     pub history: Vec<(f64, FlockMetrics)>,
+    /// The first pair of agents found merged at a record of this run (after its start, when
+    /// resumed), if any.
+    pub first_merge: Option<Merge>,
+    /// The merged agents of the final state.
+    pub merged: MergedAgents,
     /// Wall-clock time of the integration.
     pub elapsed: Duration,
 }
@@ -109,6 +115,9 @@ pub trait Recorder {
     fn stop_requested(&self) -> bool {
         false
     }
+
+    /// Told at the record where two agents are first found merged (ignored by default).
+    fn merged(&mut self, _merge: &Merge) {}
 }
 
 /// Keeps nothing: for runs whose summary is all that matters.
@@ -188,7 +197,8 @@ impl<E> From<ScenarioError> for RunError<E> {
 ///
 /// # Example
 /// ```
-/// let mut scenario = flocking::Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+/// # std::env::set_current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))?; // the workspace root
+/// let mut scenario = flocking::Scenario::load("fixtures/tac2006_fig11_alg2_n100.ron")?;
 /// scenario.duration = 5.0;
 /// let summary = flocking::run(&scenario, &mut ())?;
 /// assert_eq!(summary.steps, 500);
@@ -218,11 +228,12 @@ pub fn resume<R: Recorder + ?Sized>(
     recorder: &mut R,
 ) -> Result<RunSummary, RunError<R::Error>> {
     let mut history = Vec::new();
+    let mut first_merge = None;
     let (mut sim, initial_energy) = match start {
         None => {
             let sim = DynSimulation::new(scenario)?;
             sim.check_health().map_err(RunError::Numerical)?;
-            let observation = record(recorder, &sim)?;
+            let observation = record(recorder, &sim, &mut first_merge)?;
             history.push((sim.time(), observation.metrics));
             (sim, observation.energy)
         }
@@ -240,7 +251,7 @@ pub fn resume<R: Recorder + ?Sized>(
         sim.check_health().map_err(RunError::Numerical)?;
         let steps = sim.steps();
         if steps % scenario.record_every == 0 || steps == total {
-            let observation = record(recorder, &sim)?;
+            let observation = record(recorder, &sim, &mut first_merge)?;
             history.push((sim.time(), observation.metrics));
             last = Some(observation);
         }
@@ -272,14 +283,23 @@ pub fn resume<R: Recorder + ?Sized>(
         diagnostics: last.diagnostics,
         lattice: sim.lattice(),
         history,
+        first_merge,
+        merged: merged_agents(&sim.state(), merge_tolerance(scenario)),
         elapsed,
     })
 }
 
-/// Records the state of `sim` and returns what it measured.
+/// The distance below which two agents of `scenario` count as merged.
+fn merge_tolerance(scenario: &Scenario) -> f64 {
+    MERGE_FRACTION * scenario.alpha.d
+}
+
+/// Records the state of `sim` and returns what it measured; tells the recorder of the first
+/// merged pair (kept in `first_merge`).
 fn record<R: Recorder + ?Sized>(
     recorder: &mut R,
     sim: &DynSimulation,
+    first_merge: &mut Option<Merge>,
 ) -> Result<Observation, RunError<R::Error>> {
     let observation = sim.observe();
     recorder
@@ -292,6 +312,21 @@ fn record<R: Recorder + ?Sized>(
             diagnostics: &observation.diagnostics,
         })
         .map_err(RunError::Record)?;
+    let tolerance = merge_tolerance(sim.scenario());
+    if first_merge.is_none()
+        && observation.metrics.min_distance < tolerance
+        && let Some((pair, distance)) = closest_pair(&sim.state(), tolerance)
+    {
+        let merge = Merge {
+            t: sim.time(),
+            step: sim.scenario().step,
+            pair,
+            distance,
+            tolerance,
+        };
+        recorder.merged(&merge);
+        *first_merge = Some(merge);
+    }
     Ok(observation)
 }
 

@@ -136,7 +136,8 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
 /// ```
 /// use flocking::{DynSimulation, Scenario};
 ///
-/// let scenario = Scenario::load("../../fixtures/tac2006_fig11_alg2_n100.ron")?;
+/// # std::env::set_current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).unwrap(); // the workspace root
+/// let scenario = Scenario::load("fixtures/tac2006_fig11_alg2_n100.ron")?;
 /// let mut sim = DynSimulation::new(&scenario)?;
 /// let h0 = sim.energy();
 /// for _ in 0..200 {

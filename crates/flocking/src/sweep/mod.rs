@@ -55,8 +55,9 @@ pub use row::{Outcome, RunRow, header, run_one};
 /// ```
 /// use flocking::sweep::Sweep;
 ///
+/// # std::env::set_current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))?; // the workspace root
 /// let sweep: Sweep = r#"Sweep(
-///     base: Path("../../fixtures/tac2006_fig11_alg2_n100.ron"),
+///     base: Path("fixtures/tac2006_fig11_alg2_n100.ron"),
 ///     set: {"duration": 1.0, "agents": 10},
 ///     axes: [(path: "algorithm.c1", values: Linspace(from: 0.01, to: 0.03, count: 3))],
 ///     seeds: 2,
