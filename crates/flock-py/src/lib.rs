@@ -6,15 +6,19 @@
 //!   explicit initial states.
 //! - [`run`]: `run`, `resume` and `read_run` — whole runs, in memory and in run directories.
 //! - [`simulation`]: `Simulation` — a run driven step by step.
+//! - [`controls`]: `controls=`, the inputs u_i computed by a Python function on the proximity net.
 //! - [`sweep`]: the pieces of `flocking.sweep` — a run of a sweep in any worker process, the output
 //!   directory of `flocking sweep`.
+//! - [`player`]: the HTML player of a run held in memory (`Run._repr_html_`).
 //! - [`errors`]: flocking's errors as the Python exceptions of `flocking._errors`, with the CLI's
 //!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
 
 use pyo3::prelude::*;
 
+pub mod controls;
 pub mod errors;
 pub mod interrupt;
+pub mod player;
 pub mod run;
 pub mod scenario;
 pub mod simulation;
@@ -22,12 +26,14 @@ pub mod sweep;
 
 /// The extension module `flocking._flocking`; the package `flocking` re-exports its names.
 #[pymodule]
-fn _flock(module: &Bound<'_, PyModule>) -> PyResult<()> {
+fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<scenario::PyScenario>()?;
     module.add_class::<simulation::PySimulation>()?;
+    module.add_class::<controls::PyNeighbours>()?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;
+    module.add_function(wrap_pyfunction!(player::run_player_html, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_load, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_run, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_prepare, module)?)?;

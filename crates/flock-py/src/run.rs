@@ -11,14 +11,15 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use flocking::metrics::FlockMetrics;
-use flocking::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat};
+use flocking::metrics::{FlockMetrics, FlockingCriteria};
+use flocking::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat, VERDICT_FILE};
 use flocking::{Record, Recorder, RunError, Scenario, Start};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::controls::PythonControls;
 use crate::errors::{
     create_error, numerical_error, read_error, resume_error, run_directory_error, scenario_error,
 };
@@ -106,6 +107,7 @@ impl Memory {
         py: Python<'py>,
         scenario: &Scenario,
         path: Option<&Path>,
+        verdict: Option<String>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let names = std::iter::once(TIME)
             .chain(FlockMetrics::REAL_COLUMNS)
@@ -145,6 +147,7 @@ impl Memory {
             trajectory,
             (self.last, self.agents, self.dim),
             path,
+            verdict,
         )
     }
 }
@@ -155,7 +158,7 @@ enum Column {
     Integer(Vec<i64>),
 }
 
-/// The dict that `flocking.Run` wraps.
+/// The dict that `flocking.Run` wraps; `verdict` is the first line of `flocking.txt`.
 fn result<'py>(
     py: Python<'py>,
     scenario: &Scenario,
@@ -163,6 +166,7 @@ fn result<'py>(
     trajectory: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
     ((t, positions, velocities), agents, dim): ((f64, Vec<f64>, Vec<f64>), usize, usize),
     path: Option<&Path>,
+    verdict: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
     dict.set_item(
@@ -202,6 +206,7 @@ fn result<'py>(
     }
     dict.set_item("final", last)?;
     dict.set_item("path", path.map(|p| p.display().to_string()))?;
+    dict.set_item("verdict", verdict)?;
     Ok(dict)
 }
 
@@ -210,6 +215,8 @@ struct PyRecorder {
     memory: Memory,
     dir: Option<RunDirectory>,
     interrupt: Interrupt,
+    /// H(0), for a checkpoint after `controls` failed: that of the first record, or the start's.
+    initial_energy: Option<f64>,
 }
 
 impl Recorder for PyRecorder {
@@ -219,6 +226,7 @@ impl Recorder for PyRecorder {
         if let Some(dir) = &mut self.dir {
             dir.record(record)?;
         }
+        self.initial_energy.get_or_insert(record.energy);
         self.memory.record(record);
         Ok(())
     }
@@ -240,32 +248,45 @@ impl Recorder for PyRecorder {
     }
 }
 
-/// Runs `scenario` from `start` (t = 0 when `None`) with the GIL released, into `dir` when given;
-/// on failure keeps `dir` as `flocking run` does (resumable after Ctrl-C or a failed write, marked
-/// failed after a blow-up) and raises the error.
+/// Runs `scenario` from `start` (t = 0 when `None`) with the GIL released, into `dir` when given,
+/// its inputs from `controls` when given; on failure keeps `dir` as `flocking run` does
+/// (resumable after Ctrl-C, a failed write or an exception of `controls`, marked failed after a
+/// blow-up) and raises the error. Returns the records, the finished directory and TAC 2006
+/// Definition 5's verdict on the records of this call (the line `flocking.txt` begins with).
 fn execute<'py>(
     py: Python<'py>,
     scenario: &Scenario,
     start: Option<&Start>,
     dir: Option<RunDirectory>,
     keep_trajectory: bool,
-) -> PyResult<(Memory, Option<PathBuf>)> {
+    controls: Option<&PythonControls>,
+) -> PyResult<(Memory, Option<PathBuf>, Option<String>)> {
     let mut recorder = PyRecorder {
         memory: Memory::new(scenario, keep_trajectory),
         dir,
         interrupt: Interrupt::new(),
+        initial_energy: start.map(|s| s.initial_energy),
     };
     let (outcome, recorder) = py.detach(move || {
-        let outcome = flocking::resume(scenario, start, &mut recorder).map(|_| ());
-        (outcome, recorder)
+        let outcome = match controls {
+            Some(controls) => flocking::resume_with(scenario, start, &mut recorder, controls),
+            None => flocking::resume(scenario, start, &mut recorder),
+        };
+        let verdict = outcome.map(|summary| {
+            summary
+                .verdict(&FlockingCriteria::default())
+                .map(|v| v.to_string())
+        });
+        (verdict, recorder)
     });
     let PyRecorder {
         memory,
-        dir,
+        mut dir,
         interrupt,
+        initial_energy,
     } = recorder;
     let error = match outcome {
-        Ok(()) => {
+        Ok(verdict) => {
             let path = match dir {
                 Some(dir) => {
                     let partial = dir.partial().to_owned();
@@ -276,7 +297,7 @@ fn execute<'py>(
                 }
                 None => None,
             };
-            return Ok((memory, path));
+            return Ok((memory, path, verdict));
         }
         Err(error) => error,
     };
@@ -287,7 +308,27 @@ fn execute<'py>(
             }
             return Err(scenario_error(py, e));
         }
-        RunError::Numerical(e) => (error.to_string(), false, numerical_error(py, e)),
+        RunError::Numerical(e) => match controls.and_then(PythonControls::take_failure) {
+            // `controls` failed in step e.steps: the run stops before it, as after Ctrl-C
+            Some(failure) => {
+                let steps = e.steps.saturating_sub(1);
+                if let (Some(dir), Some((positions, velocities)), Some(initial_energy)) =
+                    (dir.as_mut(), failure.start, initial_energy)
+                {
+                    let start = Start {
+                        steps,
+                        initial_energy,
+                        positions,
+                        velocities,
+                    };
+                    dir.checkpoint(&start)
+                        .map_err(|e| run_directory_error(py, e, dir.partial()))?;
+                }
+                let why = format!("controls raised an exception in step {}", steps + 1);
+                (why, true, failure.error)
+            }
+            None => (error.to_string(), false, numerical_error(py, e)),
+        },
         RunError::Record(e) => {
             let path = dir
                 .as_ref()
@@ -361,8 +402,14 @@ fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
 /// existing directory replaced only with `force`. `trajectory=False` keeps only the final state in
 /// memory. The GIL is released while the run steps; Ctrl-C raises `KeyboardInterrupt` after the
 /// current step, leaving `out` resumable (`flocking.resume(out)`).
+///
+/// `controls` (a function `f(t, q, p, neighbours)` returning u as an n × dim array) replaces the
+/// inputs of the scenario's protocol ([`PythonControls`]); an exception it raises stops the run
+/// before the step it was called for, leaves `out` resumable with the same `controls`, and is
+/// raised again.
 #[pyfunction]
-#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false))]
+#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false, controls = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
     scenario: &PyScenario,
@@ -371,6 +418,7 @@ pub fn run<'py>(
     trajectory_format: &str,
     checkpoint_every: u64,
     force: bool,
+    controls: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let format = TrajectoryFormat::from_str(trajectory_format).map_err(PyValueError::new_err)?;
     let scenario = &scenario.inner;
@@ -389,23 +437,34 @@ pub fn run<'py>(
         }
         None => None,
     };
-    let (memory, path) = execute(py, scenario, None, dir, trajectory)?;
-    memory.into_result(py, scenario, path.as_deref())
+    let controls = controls.map(|f| PythonControls::new(f, scenario));
+    let (memory, path, verdict) = execute(py, scenario, None, dir, trajectory, controls.as_ref())?;
+    memory.into_result(py, scenario, path.as_deref(), verdict)
 }
 
 /// Continues the interrupted or killed run in `dir` (or `dir.partial`) from its last checkpoint,
 /// as `flocking run --resume` does (the finished directory is byte-identical to an uninterrupted
-/// run's), and returns the whole run read back from it.
+/// run's), and returns the whole run read back from it. A run made with `controls` needs the same
+/// `controls` to continue as it would have.
 #[pyfunction]
-#[pyo3(signature = (dir, *, checkpoint_every = 1000))]
+#[pyo3(signature = (dir, *, checkpoint_every = 1000, controls = None))]
 pub fn resume<'py>(
     py: Python<'py>,
     dir: PathBuf,
     checkpoint_every: u64,
+    controls: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (directory, scenario, start) =
         RunDirectory::resume(&dir, checkpoint_every).map_err(|e| resume_error(py, &e, &dir))?;
-    let (_, path) = execute(py, &scenario, start.as_ref(), Some(directory), false)?;
+    let controls = controls.map(|f| PythonControls::new(f, &scenario));
+    let (_, path, _) = execute(
+        py,
+        &scenario,
+        start.as_ref(),
+        Some(directory),
+        false,
+        controls.as_ref(),
+    )?;
     let path = path.unwrap_or(dir);
     read_run(py, path)
 }
@@ -418,6 +477,10 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let files = py
         .detach(|| flocking::read_run(&dir))
         .map_err(|e| read_error(py, &e))?;
+    // an interrupted run has no verdict yet
+    let verdict = std::fs::read_to_string(dir.join(VERDICT_FILE))
+        .ok()
+        .and_then(|text| text.lines().next().map(str::to_owned));
     let trajectory = files.trajectory;
     let (dim, agents, frames) = (trajectory.dim, trajectory.agents, trajectory.frames());
     let last = match frames.checked_sub(1) {
@@ -452,5 +515,6 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         )),
         (last, agents, dim),
         Some(&dir),
+        verdict,
     )
 }

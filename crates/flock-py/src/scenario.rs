@@ -159,6 +159,34 @@ impl PyScenario {
         self.inner.duration
     }
 
+    /// The seed of the initial condition's random stream.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.inner.seed
+    }
+
+    /// The α-interaction's parameters with defaults resolved (r = 1.2 d when unset): a dict of
+    /// d, r, epsilon (ε of the σ-norm), a, b, h (of the bump ρ_h), c1 and c2 (c₁^α, c₂^α).
+    #[getter]
+    fn alpha<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let config = &self.inner.alpha;
+        let params = config.params();
+        let dict = PyDict::new(py);
+        for (name, value) in [
+            ("d", params.d),
+            ("r", params.r),
+            ("epsilon", params.epsilon),
+            ("a", params.a),
+            ("b", params.b),
+            ("h", params.h),
+            ("c1", config.c1),
+            ("c2", config.c2),
+        ] {
+            dict.set_item(name, value)?;
+        }
+        Ok(dict)
+    }
+
     /// The number of steps of a run, ⌈T / h⌉.
     #[getter]
     fn steps(&self) -> u64 {
@@ -173,12 +201,13 @@ impl PyScenario {
 
     fn __repr__(&self) -> String {
         format!(
-            "Scenario(name={:?}, dim={}, agents={}, steps={}, step={})",
+            "Scenario(name={:?}, dim={}, agents={}, duration={:?}, step={:?}, steps={})",
             self.inner.name,
             self.inner.dim,
             self.inner.agents,
-            self.inner.steps(),
-            self.inner.step
+            self.inner.duration,
+            self.inner.step,
+            self.inner.steps()
         )
     }
 

@@ -1,15 +1,17 @@
 //! `flocking.Simulation`: a scenario's [`DynSimulation`] driven step by step from Python — stepped
 //! with the GIL released, its state as numpy arrays (agents in original order), its metrics and
-//! energy, and its state replaced to perturb it.
+//! energy, and its state replaced to perturb it; its inputs from a Python function when given
+//! ([`PythonControls`]).
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use flocking::DynSimulation;
 use flocking::metrics::FlockMetrics;
+use flocking::{DynSimulation, Scenario, ScenarioError};
 use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLike2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::controls::PythonControls;
 use crate::errors::{numerical_error, scenario_error};
 use crate::interrupt::Interrupt;
 use crate::scenario::PyScenario;
@@ -21,12 +23,35 @@ use crate::scenario::PyScenario;
 /// times gives the bits of `flocking.run(scenario).final`.
 ///
 /// `positions` and `velocities` (n × dim arrays) start it from an explicit state instead of the
-/// scenario's initial condition (velocities zero when omitted).
+/// scenario's initial condition (velocities zero when omitted). `controls`, a function
+/// `f(t, q, p, neighbours)` returning u as an n × dim array, replaces the inputs of the
+/// scenario's protocol; when it raises, `step` stops before the step it was called for and raises
+/// its exception.
 #[pyclass(name = "Simulation", module = "flocking", frozen)]
 pub struct PySimulation {
     /// Locked only with the GIL released, so that a thread stepping it (which takes the GIL back
-    /// between steps to check for Ctrl-C) and one reading it cannot wait on each other.
+    /// between steps to check for Ctrl-C, and to call `controls`) and one reading it cannot wait
+    /// on each other.
     sim: Mutex<DynSimulation>,
+    /// The inputs' function, if given.
+    controls: Option<PythonControls>,
+}
+
+/// The simulation of `scenario` from the given state after `steps` steps, its inputs from
+/// `controls` when given.
+fn simulation(
+    scenario: &Scenario,
+    positions: &[f64],
+    velocities: &[f64],
+    steps: u64,
+    controls: Option<&PythonControls>,
+) -> Result<DynSimulation, ScenarioError> {
+    match controls {
+        Some(controls) => {
+            DynSimulation::from_state_with(scenario, positions, velocities, steps, controls)
+        }
+        None => DynSimulation::from_state(scenario, positions, velocities, steps),
+    }
 }
 
 impl PySimulation {
@@ -44,39 +69,46 @@ fn rows(array: &PyArrayLike2<'_, f64, AllowTypeChange>) -> Vec<f64> {
 #[pymethods]
 impl PySimulation {
     #[new]
-    #[pyo3(signature = (scenario, positions = None, velocities = None))]
+    #[pyo3(signature = (scenario, positions = None, velocities = None, *, controls = None))]
     fn new(
         py: Python<'_>,
         scenario: &PyScenario,
         positions: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
         velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+        controls: Option<Py<PyAny>>,
     ) -> PyResult<Self> {
         let scenario = &scenario.inner;
-        let sim = if positions.is_none() && velocities.is_none() {
-            DynSimulation::new(scenario)
-        } else {
-            let start = DynSimulation::new(scenario).map_err(|e| scenario_error(py, &e))?;
-            let state = start.state();
-            let q = positions
-                .as_ref()
-                .map_or_else(|| state.positions.to_vec(), rows);
-            let p = velocities
-                .as_ref()
-                .map_or_else(|| state.velocities.to_vec(), rows);
-            DynSimulation::from_state(scenario, &q, &p, 0)
+        let controls = controls.map(|f| PythonControls::new(f, scenario));
+        let sim = match (&positions, &velocities, &controls) {
+            (None, None, None) => DynSimulation::new(scenario),
+            (None, None, Some(controls)) => DynSimulation::new_with(scenario, controls),
+            _ => {
+                let start = DynSimulation::new(scenario).map_err(|e| scenario_error(py, &e))?;
+                let state = start.state();
+                let q = positions
+                    .as_ref()
+                    .map_or_else(|| state.positions.to_vec(), rows);
+                let p = velocities
+                    .as_ref()
+                    .map_or_else(|| state.velocities.to_vec(), rows);
+                simulation(scenario, &q, &p, 0, controls.as_ref())
+            }
         }
         .map_err(|e| scenario_error(py, &e))?;
         sim.check_health().map_err(|e| numerical_error(py, &e))?;
         Ok(Self {
             sim: Mutex::new(sim),
+            controls,
         })
     }
 
     /// Advances the state by `k` steps of h, checking after each step that it is finite and that
     /// no agent outran the interaction range (as a run does).
     ///
-    /// Raises `flocking.NumericalError` at a blow-up (the state is then the bad one), and
-    /// `KeyboardInterrupt` on Ctrl-C after the current step (the state is that of the steps done).
+    /// Raises `flocking.NumericalError` at a blow-up (the state is then the bad one),
+    /// `KeyboardInterrupt` on Ctrl-C after the current step (the state is that of the steps done),
+    /// and the exception of `controls` (or `flocking.ControlsError` for a result of the wrong shape
+    /// or not finite) before the step it was called for (the state is that of the steps done).
     #[pyo3(signature = (k = 1))]
     fn step(&self, py: Python<'_>, k: u64) -> PyResult<()> {
         let (health, interrupt) = py.detach(|| {
@@ -84,18 +116,34 @@ impl PySimulation {
             let interrupt = Interrupt::new();
             for _ in 0..k {
                 sim.step();
+                if let Some(failure) = self
+                    .controls
+                    .as_ref()
+                    .and_then(PythonControls::take_failure)
+                {
+                    if let Some((q, p)) = failure.start {
+                        let steps = sim.steps() - 1;
+                        let back =
+                            simulation(sim.scenario(), &q, &p, steps, self.controls.as_ref());
+                        // the state the step started from was a valid state of this scenario
+                        if let Ok(back) = back {
+                            *sim = back;
+                        }
+                    }
+                    return (Ok(()), Some(failure.error));
+                }
                 let health = sim.check_health();
                 if health.is_err() {
-                    return (health, interrupt);
+                    return (health, interrupt.into_raised());
                 }
                 if interrupt.requested() {
                     break;
                 }
             }
-            (Ok(()), interrupt)
+            (Ok(()), interrupt.into_raised())
         });
         health.map_err(|e| numerical_error(py, &e))?;
-        interrupt.into_raised().map_or(Ok(()), Err)
+        interrupt.map_or(Ok(()), Err)
     }
 
     /// Replaces the positions and/or velocities (n × dim arrays) at the current time, e.g. to
@@ -116,7 +164,7 @@ impl PySimulation {
             let state = sim.state();
             let q = q.unwrap_or_else(|| state.positions.to_vec());
             let p = p.unwrap_or_else(|| state.velocities.to_vec());
-            let changed = DynSimulation::from_state(sim.scenario(), &q, &p, sim.steps())?;
+            let changed = simulation(sim.scenario(), &q, &p, sim.steps(), self.controls.as_ref())?;
             *sim = changed;
             Ok(sim.check_health())
         })
@@ -198,12 +246,17 @@ impl PySimulation {
         py.detach(|| {
             let sim = self.lock();
             format!(
-                "Simulation(scenario={:?}, dim={}, agents={}, steps={}, t={})",
+                "Simulation(scenario={:?}, dim={}, agents={}, steps={}, t={}{})",
                 sim.scenario().name,
                 sim.dim(),
                 sim.agents(),
                 sim.steps(),
-                sim.time()
+                sim.time(),
+                if self.controls.is_some() {
+                    ", controls=python"
+                } else {
+                    ""
+                }
             )
         })
     }

@@ -5,9 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use flocking::sweep::store::{self, StoreError};
-use flocking::sweep::{Sweep, SweepError, run_one};
+use flocking::sweep::{Sweep, SweepError, run_one, run_one_with};
 use pyo3::prelude::*;
 
+use crate::controls::PythonControls;
 use crate::errors::{exception, run_directory_error};
 
 /// A sweep error as `flocking.ScenarioError` (a `ValueError`) with the message of `flocking sweep`.
@@ -50,12 +51,15 @@ pub fn sweep_load(
 }
 
 /// `(index, id, fields, wall_time)` of run `index` of the self-contained sweep `text`, run on one
-/// thread with the GIL released: the row `flocking sweep` writes for it.
+/// thread with the GIL released: the row `flocking sweep` writes for it — its inputs from
+/// `controls` when given ([`PythonControls`]; an exception it raises is raised again, no row).
 #[pyfunction]
+#[pyo3(signature = (text, index, controls = None))]
 pub fn sweep_run(
     py: Python<'_>,
     text: &str,
     index: usize,
+    controls: Option<Py<PyAny>>,
 ) -> PyResult<(usize, String, Vec<String>, f64)> {
     let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
     let runs = sweep.runs();
@@ -65,13 +69,24 @@ pub fn sweep_run(
             runs.len()
         )));
     };
+    let controls = match (controls, sweep.scenario(spec)) {
+        (Some(f), Ok(scenario)) => Some(PythonControls::new(f, &scenario)),
+        _ => None,
+    };
+    let one = || match &controls {
+        Some(controls) => run_one_with(&sweep, spec, None, controls),
+        None => run_one(&sweep, spec, None),
+    };
     let row = py.detach(|| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
         match pool {
-            Ok(pool) => pool.install(|| run_one(&sweep, spec, None)),
-            Err(_) => run_one(&sweep, spec, None),
+            Ok(pool) => pool.install(one),
+            Err(_) => one(),
         }
     });
+    if let Some(failure) = controls.as_ref().and_then(PythonControls::take_failure) {
+        return Err(failure.error);
+    }
     Ok((row.index, row.id.clone(), row.fields(), row.wall_time))
 }
 

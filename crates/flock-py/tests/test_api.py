@@ -155,3 +155,7 @@ def test_readme_example_runs(tmp_path, monkeypatch):
     exec(code, namespace)
     assert namespace["again"].final.t == 50.0
     assert namespace["sim"].t == 10.0
+    assert namespace["data"].attrs["name"] == "tac2006_fig11_alg2_n100"
+    assert namespace["mine"].final.t == 50.0
+    assert (tmp_path / "out" / "py-fig11-damped" / "metrics.csv").exists()
+    exec(code, {})  # again: the example does not collide with itself

@@ -65,7 +65,7 @@ pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
 pub use papers::{Measure, PaperFigure, Statement, paper_figure};
 pub use phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
 pub use player::{PlayerOptions, player_html};
-pub use plot::{PlotError, plot_run, plot_run_with};
+pub use plot::{PlotError, plot_run, plot_run_with, run_scene};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
 pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};

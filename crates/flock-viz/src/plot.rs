@@ -1,6 +1,7 @@
 //! [`plot_run`] (`flocking plot DIR`, `flocking run --plot`): the figures of a finished run, with the
 //! obstacles, the γ-agent, the desired distance and the Tanner law's fixed graph read back from the
-//! run's resolved `scenario.ron`; [`plot_run_with`] with options (edges coloured by stress).
+//! run's resolved `scenario.ron`; [`plot_run_with`] with options (edges coloured by stress);
+//! [`run_scene`] the same scene of frames held in memory.
 
 use std::path::{Path, PathBuf};
 
@@ -50,17 +51,26 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
 pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>, PlotError> {
     let scenario = Scenario::load(dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
     let run = RunData::load(dir).map_err(PlotError::Viz)?;
-    let scene = match scenario.dim {
-        2 => decorate::<DVec2>(run.scene(scenario.range()), &scenario),
-        _ => decorate::<DVec3>(run.scene(scenario.range()), &scenario),
-    }
-    .map_err(PlotError::Scenario)?;
+    let scene = run_scene(&scenario, run.scene(scenario.range())).map_err(PlotError::Scenario)?;
     let mut options = options.clone();
     if scene.interaction_graph.is_some() {
         options.snapshot.style.velocity_arrows = true;
     }
     write_figures(&scene, Some(&run.metrics), &dir.join("figures"), &options)
         .map_err(PlotError::Viz)
+}
+
+/// The scene of a run of `scenario` whose frames `scene` holds: with its title, desired distance,
+/// obstacles, γ-agent and (Tanner) fixed graph, as [`plot_run`] draws it (the Python package's
+/// player of a run held in memory).
+///
+/// # Errors
+/// A Tanner scenario whose fixed graph cannot be built.
+pub fn run_scene(scenario: &Scenario, scene: Scene) -> Result<Scene, flocking::ScenarioError> {
+    match scenario.dim {
+        2 => decorate::<DVec2>(scene, scenario),
+        _ => decorate::<DVec3>(scene, scenario),
+    }
 }
 
 /// The scene with its title, desired distance, obstacles, γ-agent and (Tanner) fixed graph.

@@ -8,7 +8,8 @@
 //!   parameter read or changed by its path ([`Scenario::value`], [`Scenario::with_values`]).
 //! - [`DynSimulation`]: the simulation of a scenario behind one type, its state as plain `f64`
 //!   rows ([`State`]), agents in original order; metrics, energy, diagnostics, health.
-//! - [`run()`], [`resume()`]: a whole run, every recorded step handed to a [`Recorder`].
+//! - [`run()`], [`resume()`]: a whole run, every recorded step handed to a [`Recorder`];
+//!   [`resume_with()`] with the protocol changed by a [`MapProtocol`].
 //! - [`run_dir`]: the run directory — [`RunDirectory`] writes it (crash-safe, checkpointed,
 //!   resumable), [`read_run`] reads it back.
 //! - [`stability`]: the largest stable step, and the warnings of a valid scenario;
@@ -50,10 +51,10 @@ mod validate;
 pub use error::ScenarioError;
 pub use health::NumericalError;
 pub use merging::{Merge, MergedAgents};
-pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, run};
+pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run};
 pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
 pub use scenario::{Algorithm, Cloud, Initial, Point, Scenario, TannerGraph, Translation};
-pub use simulation::{DynSimulation, State};
+pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
 pub use stability::{Warning, largest_stable_step};
 
 pub use flock_graph as graph;

@@ -10,7 +10,7 @@ use crate::error::ScenarioError;
 use crate::health::NumericalError;
 use crate::merging::{MERGE_FRACTION, Merge, MergedAgents, closest_pair, merged_agents};
 use crate::scenario::Scenario;
-use crate::simulation::{DynSimulation, State};
+use crate::simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
 
 /// One recorded instant.
 #[derive(Debug)]
@@ -227,18 +227,39 @@ pub fn resume<R: Recorder + ?Sized>(
     start: Option<&Start>,
     recorder: &mut R,
 ) -> Result<RunSummary, RunError<R::Error>> {
+    resume_with(scenario, start, recorder, &ScenarioProtocol)
+}
+
+/// [`resume`] simulating the protocol `map` makes of the scenario's
+/// ([`DynSimulation::new_with`]); a run continued from `start` needs the same `map` for its
+/// records to be those of the uninterrupted run.
+///
+/// # Errors
+/// As [`resume`].
+pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
+    scenario: &Scenario,
+    start: Option<&Start>,
+    recorder: &mut R,
+    map: &M,
+) -> Result<RunSummary, RunError<R::Error>> {
     let mut history = Vec::new();
     let mut first_merge = None;
     let (mut sim, initial_energy) = match start {
         None => {
-            let sim = DynSimulation::new(scenario)?;
+            let sim = DynSimulation::new_with(scenario, map)?;
             sim.check_health().map_err(RunError::Numerical)?;
             let observation = record(recorder, &sim, &mut first_merge)?;
             history.push((sim.time(), observation.metrics));
             (sim, observation.energy)
         }
         Some(start) => (
-            DynSimulation::resume(scenario, start)?,
+            DynSimulation::from_state_with(
+                scenario,
+                &start.positions,
+                &start.velocities,
+                start.steps,
+                map,
+            )?,
             start.initial_energy,
         ),
     };

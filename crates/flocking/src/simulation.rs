@@ -1,5 +1,7 @@
 //! [`DynSimulation`]: the simulation of a scenario behind one type, whatever its dimension and
-//! protocol (chosen at run time from the scenario), with its state as plain `f64` rows.
+//! protocol (chosen at run time from the scenario), with its state as plain `f64` rows;
+//! [`MapProtocol`]: the scenario's protocol replaced by one built from it (e.g. u_i computed
+//! elsewhere, the range, energy and diagnostics kept), in either dimension.
 
 use std::borrow::Cow;
 
@@ -41,6 +43,25 @@ impl State<'_> {
             positions: Cow::Owned(self.positions.into_owned()),
             velocities: Cow::Owned(self.velocities.into_owned()),
         }
+    }
+}
+
+/// A change of the protocol a [`DynSimulation`] simulates, the same in 2D and 3D: the scenario's
+/// protocol in, the protocol to simulate out — typically a wrapper that computes the inputs u_i
+/// its own way and keeps the scenario's interaction range, energy and diagnostics (the Python
+/// package's `controls=`). [`ScenarioProtocol`] changes nothing.
+pub trait MapProtocol {
+    /// The protocol to simulate in place of `protocol`, the scenario's, in dimension `V::DIM`.
+    fn map<V: Space + bytemuck::Pod>(&self, protocol: DynProtocol<V>) -> DynProtocol<V>;
+}
+
+/// The scenario's own protocol, unchanged: the [`MapProtocol`] of [`DynSimulation::new`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ScenarioProtocol;
+
+impl MapProtocol for ScenarioProtocol {
+    fn map<V: Space + bytemuck::Pod>(&self, protocol: DynProtocol<V>) -> DynProtocol<V> {
+        protocol
     }
 }
 
@@ -176,10 +197,18 @@ impl DynSimulation {
     /// # Errors
     /// An invalid scenario.
     pub fn new(scenario: &Scenario) -> Result<Self, ScenarioError> {
+        Self::new_with(scenario, &ScenarioProtocol)
+    }
+
+    /// [`DynSimulation::new`] simulating the protocol `map` makes of the scenario's.
+    ///
+    /// # Errors
+    /// An invalid scenario.
+    pub fn new_with<M: MapProtocol>(scenario: &Scenario, map: &M) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         match scenario.dim {
-            2 => Self::of(scenario, initial_swarm::<DVec2>(scenario), 0),
-            _ => Self::of(scenario, initial_swarm::<DVec3>(scenario), 0),
+            2 => Self::of(scenario, initial_swarm::<DVec2>(scenario), 0, map),
+            _ => Self::of(scenario, initial_swarm::<DVec3>(scenario), 0, map),
         }
     }
 
@@ -195,6 +224,20 @@ impl DynSimulation {
         positions: &[f64],
         velocities: &[f64],
         steps: u64,
+    ) -> Result<Self, ScenarioError> {
+        Self::from_state_with(scenario, positions, velocities, steps, &ScenarioProtocol)
+    }
+
+    /// [`DynSimulation::from_state`] simulating the protocol `map` makes of the scenario's.
+    ///
+    /// # Errors
+    /// As [`DynSimulation::from_state`].
+    pub fn from_state_with<M: MapProtocol>(
+        scenario: &Scenario,
+        positions: &[f64],
+        velocities: &[f64],
+        steps: u64,
+        map: &M,
     ) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         let size = scenario.agents * scenario.dim;
@@ -214,8 +257,18 @@ impl DynSimulation {
             }
         }
         match scenario.dim {
-            2 => Self::of(scenario, swarm_of::<DVec2>(positions, velocities), steps),
-            _ => Self::of(scenario, swarm_of::<DVec3>(positions, velocities), steps),
+            2 => Self::of(
+                scenario,
+                swarm_of::<DVec2>(positions, velocities),
+                steps,
+                map,
+            ),
+            _ => Self::of(
+                scenario,
+                swarm_of::<DVec3>(positions, velocities),
+                steps,
+                map,
+            ),
         }
     }
 
@@ -228,12 +281,13 @@ impl DynSimulation {
         Self::from_state(scenario, &start.positions, &start.velocities, start.steps)
     }
 
-    fn of<V: Space + bytemuck::Pod>(
+    fn of<V: Space + bytemuck::Pod, M: MapProtocol>(
         scenario: &Scenario,
         swarm: Swarm<V>,
         steps: u64,
+        map: &M,
     ) -> Result<Self, ScenarioError> {
-        let protocol = scenario.protocol::<V>()?;
+        let protocol = map.map(scenario.protocol::<V>()?);
         let agents = swarm.len();
         let sim = Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?;
         Ok(Self {

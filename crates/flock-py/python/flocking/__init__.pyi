@@ -2,7 +2,7 @@
 
 import concurrent.futures
 from os import PathLike
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -10,6 +10,10 @@ import numpy.typing as npt
 _Path = Union[str, PathLike[str]]
 _Rows = npt.ArrayLike
 _Value = Union[None, bool, int, float, str, List[Any], Dict[str, Any]]
+_Controls = Callable[
+    [float, npt.NDArray[np.float64], npt.NDArray[np.float64], "Neighbours"], npt.ArrayLike
+]
+"""``f(t, q, p, neighbours) -> u``: the inputs u (n, dim) of the state q, p (n, dim) at time t."""
 
 METRICS_HEADER: str
 """The header of ``metrics.csv`` before the protocol's diagnostic columns."""
@@ -36,6 +40,33 @@ class RunDirectoryError(FlockError, OSError):
 
     path: Optional[str]
     def __init__(self, message: str, path: Optional[str] = ...) -> None: ...
+
+class ControlsError(FlockError, ValueError):
+    """A ``controls`` function returned something other than (n, dim) finite inputs; ``expected``
+    is (n, dim), ``given`` the shape returned (None when it was not an array)."""
+
+    expected: Tuple[int, int]
+    given: Optional[Tuple[int, ...]]
+    def __init__(
+        self, message: str, expected: Tuple[int, int], given: Optional[Tuple[int, ...]] = ...
+    ) -> None: ...
+
+class Neighbours:
+    """The proximity net handed to a ``controls`` function, as CSR arrays: agent i's neighbours
+    are ``indices[indptr[i]:indptr[i + 1]]`` (ascending) at ``distances[indptr[i]:indptr[i + 1]]``."""
+
+    @property
+    def indptr(self) -> npt.NDArray[np.int64]:
+        """Where each agent's neighbours start in ``indices`` (n + 1 entries)."""
+    @property
+    def indices(self) -> npt.NDArray[np.int64]:
+        """The neighbours j of every agent i in turn."""
+    @property
+    def distances(self) -> npt.NDArray[np.float64]:
+        """‖q_j − q_i‖ for each entry of ``indices``."""
+    def pairs(self) -> npt.NDArray[np.int64]:
+        """The directed edges (i, j) as an (m, 2) array, in the order of ``indices``."""
+    def __len__(self) -> int: ...
 
 class Scenario:
     """A flocking scenario, as a RON scenario file writes it (immutable: changes return copies)."""
@@ -72,6 +103,12 @@ class Scenario:
     def duration(self) -> float:
         """The simulated time T."""
     @property
+    def seed(self) -> int:
+        """The seed of the initial condition's random stream."""
+    @property
+    def alpha(self) -> Dict[str, float]:
+        """The α parameters, defaults resolved: d, r, epsilon, a, b, h, c1, c2."""
+    @property
     def steps(self) -> int:
         """The number of steps of a run."""
     @property
@@ -88,9 +125,12 @@ class Simulation:
         scenario: Scenario,
         positions: Optional[_Rows] = None,
         velocities: Optional[_Rows] = None,
+        *,
+        controls: Optional[_Controls] = None,
     ) -> None: ...
     def step(self, k: int = 1) -> None:
-        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps)."""
+        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps; an
+        exception of ``controls`` stops before the step it was called for)."""
     def set_state(
         self, positions: Optional[_Rows] = None, velocities: Optional[_Rows] = None
     ) -> None:
@@ -152,6 +192,7 @@ class Run:
     trajectory: Optional[Trajectory]
     final: State
     path: Optional[str]
+    verdict: Optional[str]
     def __init__(
         self,
         scenario: Scenario,
@@ -159,9 +200,16 @@ class Run:
         trajectory: Optional[Trajectory],
         final: State,
         path: Optional[str],
+        verdict: Optional[str] = None,
     ) -> None: ...
     def to_pandas(self) -> Any:
-        """The metrics as a pandas DataFrame (needs pandas)."""
+        """The metrics as a pandas DataFrame (needs ``flocking[pandas]``)."""
+    def to_xarray(self) -> Any:
+        """The run as an ``xarray.Dataset``: q, p over time × agent × axis, the metrics over time,
+        the scenario's parameters as attributes (needs ``flocking[xarray]``)."""
+    def player_html(self, *, max_frames: int = 500, size: int = 480) -> str:
+        """The run in the self-contained canvas player of ``flocking plot``."""
+    def _repr_html_(self) -> str: ...
 
 def run(
     scenario: Scenario,
@@ -171,28 +219,36 @@ def run(
     trajectory_format: str = "csv",
     checkpoint_every: int = 1000,
     force: bool = False,
+    controls: Optional[_Controls] = None,
 ) -> Run:
-    """Runs ``scenario`` to its end (the bits of ``flocking run``), into ``out`` when given."""
+    """Runs ``scenario`` to its end (the bits of ``flocking run``), into ``out`` when given; its
+    inputs u from ``controls`` when given."""
 
-def resume(dir: _Path, *, checkpoint_every: int = 1000) -> Run:
-    """Continues the interrupted run in ``dir`` and returns the whole run."""
+def resume(
+    dir: _Path, *, checkpoint_every: int = 1000, controls: Optional[_Controls] = None
+) -> Run:
+    """Continues the interrupted run in ``dir`` (with the same ``controls`` it was made with)."""
 
 def read_run(dir: _Path) -> Run:
     """Reads a run directory (CSV or .npy trajectory)."""
 
 class SweepResult:
-    """A finished sweep: its output directory and the columns of its ``runs.csv``."""
+    """A finished sweep: its output directory and the columns of its ``runs.csv`` (int64, bool,
+    float64 or str arrays; int and bool columns with empty fields masked)."""
 
     path: str
     columns: Dict[str, Any]
     def __init__(self, path: str, columns: Dict[str, Any]) -> None: ...
     def to_pandas(self) -> Any:
-        """``runs.csv`` as a pandas DataFrame (needs pandas)."""
+        """``runs.csv`` as a pandas DataFrame with the dtypes of ``columns`` (needs
+        ``flocking[pandas]``)."""
 
 def sweep(
     spec: _Path,
     out: _Path,
     executor: Optional[concurrent.futures.Executor] = None,
+    *,
+    controls: Optional[_Controls] = None,
 ) -> SweepResult:
     """Runs the sweep file ``spec`` into ``out`` on ``executor`` (a local process pool by default,
     a Dask cluster through ``Client.get_executor()``): ``runs.csv`` byte for byte that of

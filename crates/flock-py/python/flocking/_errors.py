@@ -1,6 +1,6 @@
 """The exceptions of flocking: each message is the one the ``flocking`` CLI prints."""
 
-from typing import Optional
+from typing import Optional, Tuple
 
 
 class FlockError(Exception):
@@ -37,5 +37,16 @@ class RunDirectoryError(FlockError, OSError):
         self.path = path
 
 
-for _error in (FlockError, ScenarioError, NumericalError, RunDirectoryError):
+class ControlsError(FlockError, ValueError):
+    """A ``controls`` function returned something other than the inputs u: not an array of
+    floats, an array of another shape than ``expected`` (n agents × dim), or a value that is not
+    finite. ``given`` is the shape returned (None when it was not an array)."""
+
+    def __init__(self, message: str, expected: Tuple[int, int], given: Optional[Tuple[int, ...]] = None) -> None:
+        super().__init__(message)
+        self.expected = tuple(expected)
+        self.given = None if given is None else tuple(given)
+
+
+for _error in (FlockError, ScenarioError, NumericalError, RunDirectoryError, ControlsError):
     _error.__module__ = "flocking"

@@ -24,7 +24,8 @@
 //!
 //! - [`Sweep`]: the file ([`Sweep::load`], [`str::parse`]), its runs ([`Sweep::runs`]), the
 //!   scenario of a run ([`Sweep::scenario`]).
-//! - [`run_one`]: one run, reduced to a [`RunRow`].
+//! - [`run_one`]: one run, reduced to a [`RunRow`]; [`run_one_with`] with the protocol changed by a
+//!   [`MapProtocol`](crate::MapProtocol).
 //! - [`store`]: the output directory — a row file per finished run (so that a killed sweep
 //!   resumes), `runs.csv` assembled in run order, shards and their merge.
 //! - [`execute`]: every pending run of this machine's share on N workers.
@@ -47,7 +48,7 @@ use crate::Scenario;
 use crate::error::ScenarioError;
 
 pub use execute::{ExecuteOptions, Executed, Shard, execute, share};
-pub use row::{Outcome, RunRow, header, run_one};
+pub use row::{Outcome, RunRow, header, run_one, run_one_with};
 
 /// A sweep file.
 ///

@@ -8,7 +8,8 @@ use serde_json::Value;
 
 use super::{RunSpec, Sweep};
 use crate::RunDirectory;
-use crate::run::{Record, Recorder, RunError, RunSummary, Start, run};
+use crate::run::{Record, Recorder, RunError, RunSummary, Start, resume_with};
+use crate::simulation::{MapProtocol, ScenarioProtocol};
 
 /// What a finished run measured.
 #[derive(Clone, Debug, PartialEq)]
@@ -200,6 +201,18 @@ impl RunRow {
 /// the row's error.
 #[must_use]
 pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
+    run_one_with(sweep, spec, keep, &ScenarioProtocol)
+}
+
+/// [`run_one`] simulating the protocol `map` makes of each run's scenario
+/// ([`resume_with`]).
+#[must_use]
+pub fn run_one_with<M: MapProtocol>(
+    sweep: &Sweep,
+    spec: &RunSpec,
+    keep: Option<&Path>,
+    map: &M,
+) -> RunRow {
     let start = Instant::now();
     let id = spec.id(&sweep.axes);
     let outcome = sweep
@@ -211,11 +224,11 @@ pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
                     inner: (),
                     extremes: None,
                 };
-                run(&scenario, &mut recorder)
+                resume_with(&scenario, None, &mut recorder, map)
                     .map(|summary| (summary, recorder.extremes))
                     .map_err(|e| e.to_string())
             }
-            Some(dir) => keep_run(&scenario, &dir.join(&id)),
+            Some(dir) => keep_run(&scenario, &dir.join(&id), map),
         })
         .map(|(summary, obstacles)| Outcome::of(&summary, obstacles, sweep));
     RunRow {
@@ -229,15 +242,16 @@ pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
 }
 
 /// The run written to `dir` (replaced if present) as `flocking run --out dir` writes it.
-fn keep_run(
+fn keep_run<M: MapProtocol>(
     scenario: &crate::Scenario,
     dir: &Path,
+    map: &M,
 ) -> Result<(RunSummary, Option<(f64, f64)>), String> {
     let mut recorder = Obstacles {
         inner: RunDirectory::create(dir, scenario, true).map_err(|e| e.to_string())?,
         extremes: None,
     };
-    match run(scenario, &mut recorder) {
+    match resume_with(scenario, None, &mut recorder, map) {
         Ok(summary) => {
             recorder.inner.finish().map_err(|e| e.to_string())?;
             Ok((summary, recorder.extremes))

@@ -1,0 +1,278 @@
+"""Runs: :func:`run`, :func:`resume`, :func:`read_run` and their result :class:`Run` (with
+:class:`State` and :class:`Trajectory`), as numpy arrays, pandas, xarray and, in Jupyter, HTML."""
+
+from dataclasses import dataclass as _dataclass
+import html as _html
+import importlib as _importlib
+from os import PathLike as _PathLike
+from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Union
+
+import numpy as _np
+
+from . import _flocking
+from ._flocking import Scenario
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray
+
+Path = Union[str, "_PathLike[str]"]
+Controls = Callable[..., Any]
+
+
+def _require(module: str, extra: str, what: str) -> Any:
+    """Imports the optional dependency ``module`` of ``what``, or says how to install it."""
+    try:
+        return _importlib.import_module(module)
+    except ImportError as error:
+        raise ImportError(
+            f"{what} needs {module}, which is not installed: pip install 'flocking[{extra}]'"
+        ) from error
+
+
+@_dataclass(frozen=True, repr=False)
+class State:
+    """The state of every agent at time ``t``: ``positions`` and ``velocities`` are (n, dim)
+    float64 arrays, agent i on row i (its original index)."""
+
+    t: float
+    positions: _np.ndarray
+    velocities: _np.ndarray
+
+    def __repr__(self) -> str:
+        n, dim = self.positions.shape
+        return f"State(t={self.t}, n={n}, dim={dim})"
+
+
+@_dataclass(frozen=True, repr=False)
+class Trajectory:
+    """The recorded states: ``times`` (T,), ``positions`` and ``velocities`` (T, n, dim) float64
+    arrays; frame k is the state at ``times[k]``."""
+
+    times: _np.ndarray
+    positions: _np.ndarray
+    velocities: _np.ndarray
+
+    def __repr__(self) -> str:
+        frames, n, dim = self.positions.shape
+        span = f", t={self.times[0]}..{self.times[-1]}" if frames else ""
+        return f"Trajectory(frames={frames}, n={n}, dim={dim}{span})"
+
+
+@_dataclass(frozen=True, repr=False)
+class Run:
+    """A run's records, as ``flocking run --out`` writes them.
+
+    - ``scenario``: the scenario run.
+    - ``metrics``: the columns of ``metrics.csv`` by name (``t``, ``connectivity``,
+      ``giant_component``, ``cohesion_radius``, ``deviation_energy``, ``velocity_mismatch``,
+      ``min_distance``, ``collisions`` (int64), ``energy``, then the protocol's diagnostics), one
+      entry per recorded step.
+    - ``trajectory``: the recorded states, or None when the run kept none (``trajectory=False``);
+      recorded at the same instants as the metrics.
+    - ``final``: the final state.
+    - ``path``: the run directory, or None.
+    - ``verdict``: TAC 2006 Definition 5 judged over the last quarter of the run (the first line
+      of ``flocking.txt``), or None (an interrupted run, or no record in the window).
+
+    In Jupyter a run shows a summary table and the HTML player of ``flocking plot``.
+    """
+
+    scenario: Scenario
+    metrics: Dict[str, _np.ndarray]
+    trajectory: Optional[Trajectory]
+    final: State
+    path: Optional[str]
+    verdict: Optional[str] = None
+
+    def __repr__(self) -> str:
+        n, dim = self.final.positions.shape
+        records = len(self.metrics.get("t", ()))
+        connectivity = self.metrics.get("connectivity")
+        final_c = f", C={connectivity[-1]:.4g}" if connectivity is not None and len(connectivity) else ""
+        path = f", path={self.path!r}" if self.path is not None else ""
+        return (
+            f"Run(name={self.scenario.name!r}, dim={dim}, n={n}, duration={self.final.t}, "
+            f"records={records}{final_c}{path})"
+        )
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """The metrics as a pandas DataFrame, one row per recorded step (needs pandas:
+        ``pip install 'flocking[pandas]'``)."""
+        pandas = _require("pandas", "pandas", "Run.to_pandas()")
+        return pandas.DataFrame(self.metrics)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The run as an ``xarray.Dataset`` (needs xarray: ``pip install 'flocking[xarray]'``).
+
+        - Dimensions ``time`` × ``agent`` × ``axis`` (coordinates: the record times, agent
+          indices 0..n−1, and ``"x"``, ``"y"`` (, ``"z"``)).
+        - ``q`` and ``p``: positions and velocities (time, agent, axis), when the run kept its
+          trajectory.
+        - Every column of ``metrics.csv`` but ``t`` as a variable over ``time``: a run records
+          its metrics and its trajectory at the same instants (t = 0, every ``record_every``
+          steps and the last step), so they share the one ``time`` dimension. (A run directory
+          whose files disagree would give the metrics their own ``metrics_time``.)
+        - Attributes: the scenario's ``name``, ``dim``, ``agents``, ``seed``, ``step``,
+          ``duration``, ``record_every``, ``algorithm``, the resolved α parameters as
+          ``alpha_d``, ``alpha_r``, ``alpha_epsilon``, ``alpha_a``, ``alpha_b``, ``alpha_h``,
+          ``alpha_c1``, ``alpha_c2``, the full RON text as ``scenario``, and ``verdict`` and
+          ``path`` when the run has them.
+        """
+        xarray = _require("xarray", "xarray", "Run.to_xarray()")
+        scenario = self.scenario
+        n, dim = self.final.positions.shape
+        metrics = dict(self.metrics)
+        times = metrics.pop("t")
+        coords: Dict[str, Any] = {"agent": _np.arange(n), "axis": ["x", "y", "z"][:dim]}
+        data: Dict[str, Any] = {}
+        trajectory = self.trajectory
+        if trajectory is not None:
+            coords["time"] = trajectory.times
+            data["q"] = (("time", "agent", "axis"), trajectory.positions, {"long_name": "position q_i"})
+            data["p"] = (("time", "agent", "axis"), trajectory.velocities, {"long_name": "velocity p_i"})
+        same = trajectory is None or _np.array_equal(trajectory.times, times)
+        metrics_time = "time" if same else "metrics_time"
+        coords[metrics_time] = times
+        for name, column in metrics.items():
+            data[name] = ((metrics_time,), column)
+        algorithm = scenario.value("algorithm")
+        attrs: Dict[str, Any] = {
+            "name": scenario.name,
+            "dim": scenario.dim,
+            "agents": scenario.agents,
+            "seed": scenario.seed,
+            "step": scenario.step,
+            "duration": scenario.duration,
+            "record_every": scenario.record_every,
+            "algorithm": next(iter(algorithm)) if isinstance(algorithm, dict) else str(algorithm),
+        }
+        attrs.update({f"alpha_{name}": value for name, value in scenario.alpha.items()})
+        attrs["scenario"] = scenario.to_ron()
+        if self.verdict is not None:
+            attrs["verdict"] = self.verdict
+        if self.path is not None:
+            attrs["path"] = self.path
+        return xarray.Dataset(data, coords=coords, attrs=attrs)
+
+    def _summary(self) -> Dict[str, str]:
+        """The rows of the HTML summary: name, dim, n, duration, the final C, C*, Ẽ, K̃, the least
+        distance of the run and the Definition 5 verdict."""
+        n, dim = self.final.positions.shape
+        rows = {"name": self.scenario.name, "dim": str(dim), "n": str(n), "duration": f"{self.final.t:g}"}
+        last = {
+            "final C": "connectivity",
+            "final C*": "giant_component",
+            "final Ẽ": "deviation_energy",
+            "final K̃": "velocity_mismatch",
+        }
+        for label, name in last.items():
+            column = self.metrics.get(name)
+            if column is not None and len(column):
+                rows[label] = f"{column[-1]:.4g}"
+        distances = self.metrics.get("min_distance")
+        if distances is not None and len(distances):
+            rows["least distance"] = f"{_np.nanmin(distances):.4g}"
+        if self.verdict is not None:
+            rows["Definition 5"] = self.verdict
+        return rows
+
+    def player_html(self, *, max_frames: int = 500, size: int = 480) -> str:
+        """The run in the self-contained canvas player of ``flocking plot`` (``player.html``), at
+        most ``max_frames`` frames on a ``size`` × ``size`` canvas. Needs the trajectory."""
+        if self.trajectory is None:
+            raise ValueError("the run kept no trajectory: run it with trajectory=True")
+        t = self.trajectory
+        return _flocking.run_player_html(
+            self.scenario, t.times, t.positions, t.velocities, max_frames=max_frames, size=size
+        )
+
+    def _repr_html_(self) -> str:
+        rows = "".join(
+            f"<tr><th style='text-align:left'>{_html.escape(k)}</th><td style='text-align:left'>{_html.escape(v)}</td></tr>"
+            for k, v in self._summary().items()
+        )
+        table = f"<table>{rows}</table>"
+        if self.trajectory is None or len(self.trajectory.times) == 0:
+            return table
+        player = _html.escape(self.player_html(), quote=True)
+        frame = f'<iframe srcdoc="{player}" style="width:560px;height:640px;border:none"></iframe>'
+        return f"<div>{table}{frame}</div>"
+
+    @classmethod
+    def _from_dict(cls, raw: Dict[str, Any]) -> "Run":
+        trajectory = None
+        if raw["times"] is not None:
+            trajectory = Trajectory(raw["times"], raw["positions"], raw["velocities"])
+        final = raw["final"]
+        return cls(
+            scenario=raw["scenario"],
+            metrics=raw["metrics"],
+            trajectory=trajectory,
+            final=State(final["t"], final["positions"], final["velocities"]),
+            path=raw["path"],
+            verdict=raw["verdict"],
+        )
+
+
+def run(
+    scenario: Scenario,
+    out: Optional[Path] = None,
+    *,
+    trajectory: bool = True,
+    trajectory_format: str = "csv",
+    checkpoint_every: int = 1000,
+    force: bool = False,
+    controls: Optional[Controls] = None,
+) -> Run:
+    """Runs ``scenario`` to its end: the bits of ``flocking run`` of the same scenario.
+
+    With ``out``, also writes its run directory as ``flocking run --out`` does, byte for byte
+    (``trajectory_format`` ``"csv"`` or ``"npy"``; a checkpoint every ``checkpoint_every``
+    steps; an existing directory is replaced only with ``force``). ``trajectory=False`` keeps
+    only the metrics and the final state in memory.
+
+    ``controls``, a function ``f(t, q, p, neighbours)`` (q and p (n, dim) float64 arrays, agents
+    in original order; ``neighbours`` a :class:`Neighbours`, the proximity net built with the
+    scenario protocol's interaction range) returning the inputs u as an (n, dim) array, replaces
+    the inputs u_i of the scenario's protocol — only them: the net's range, the energy H and the
+    diagnostic columns still come from the scenario's algorithm. A result of another shape or not
+    finite raises :class:`ControlsError`. An exception of ``f`` stops the run before the step it
+    was called for, keeps the records so far and a checkpoint in ``out.partial`` (resumable with
+    ``resume(out, controls=f)``, as after Ctrl-C) and is raised again.
+
+    The GIL is released while Rust runs (and taken for each call of ``controls``). Ctrl-C raises
+    ``KeyboardInterrupt`` after the current step; ``out`` is then left resumable with
+    :func:`resume` (or ``flocking run --resume``).
+
+    Raises :class:`ScenarioError`, :class:`NumericalError` (the records up to the last good step
+    stay in ``out.partial``) or :class:`RunDirectoryError`; the scenario's warnings are issued as
+    ``UserWarning``.
+    """
+    raw = _flocking.run(
+        scenario,
+        None if out is None else str(out),
+        trajectory=trajectory,
+        trajectory_format=trajectory_format,
+        checkpoint_every=checkpoint_every,
+        force=force,
+        controls=controls,
+    )
+    return Run._from_dict(raw)
+
+
+def resume(dir: Path, *, checkpoint_every: int = 1000, controls: Optional[Controls] = None) -> Run:
+    """Continues the interrupted or killed run in ``dir`` (or ``dir.partial``) from its last
+    checkpoint, as ``flocking run --resume`` does (the finished directory is byte-identical to that
+    of an uninterrupted run), and returns the whole run read back from it. A run made with
+    ``controls`` must be resumed with the same ``controls`` (the directory does not hold it)."""
+    return Run._from_dict(
+        _flocking.resume(str(dir), checkpoint_every=checkpoint_every, controls=controls)
+    )
+
+
+def read_run(dir: Path) -> Run:
+    """Reads a run directory written by ``flocking run --out`` or :func:`run` (complete, or an
+    interrupted ``DIR.partial``), with a ``trajectory.csv`` or a ``trajectory.npy``; the final
+    state is the last recorded one."""
+    return Run._from_dict(_flocking.read_run(str(dir)))

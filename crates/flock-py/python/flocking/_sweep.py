@@ -1,0 +1,145 @@
+"""Sweeps: :func:`sweep` on any ``concurrent.futures.Executor`` and its result
+:class:`SweepResult`, the columns of ``runs.csv`` with their natural dtypes."""
+
+import concurrent.futures as _futures
+import csv as _csv
+from dataclasses import dataclass as _dataclass
+import os as _os
+import re as _re
+from typing import TYPE_CHECKING, Any, Dict, List, Optional
+
+import numpy as _np
+
+from . import _flocking
+from ._run import Controls, Path, _require
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+
+# Columns of runs.csv that are text whatever they hold: the run's id and its error.
+_TEXT = ("id", "error")
+_INTEGER = _re.compile(r"[+-]?[0-9]+")
+
+
+def _column(name: str, values: List[str]) -> Any:
+    """The column ``name`` of ``runs.csv`` with the dtype its fields show (see
+    :class:`SweepResult`)."""
+    if name in _TEXT:
+        return _np.array(values, dtype=str)
+    present = [v for v in values if v != ""]
+    mask = _np.array([v == "" for v in values], dtype=bool)
+    if present and all(_INTEGER.fullmatch(v) for v in present):
+        numbers = [int(v) if v else 0 for v in values]
+        dtype = _np.int64 if max(numbers) <= _np.iinfo(_np.int64).max else _np.uint64
+        data: Any = _np.array(numbers, dtype=dtype)
+    elif present and all(v in ("true", "false") for v in present):
+        data = _np.array([v == "true" for v in values], dtype=bool)
+    else:
+        try:
+            return _np.array([float(v) if v else _np.nan for v in values], dtype=_np.float64)
+        except ValueError:
+            return _np.array(values, dtype=str)
+    return _np.ma.MaskedArray(data, mask=mask) if mask.any() else data
+
+
+def _read_runs(path: str) -> Dict[str, Any]:
+    """The columns of ``path/runs.csv``, by name, in the order of its header."""
+    with open(_os.path.join(path, "runs.csv"), newline="") as f:
+        rows = list(_csv.reader(f))
+    header, body = rows[0], rows[1:]
+    return {name: _column(name, [row[k] for row in body]) for k, name in enumerate(header)}
+
+
+@_dataclass(frozen=True, repr=False)
+class SweepResult:
+    """A finished sweep: ``path`` its output directory, ``columns`` the columns of its
+    ``runs.csv`` by name, each a numpy array of the kind its fields show, column by column
+    (whatever columns the header of ``runs.csv`` holds):
+
+    - ``id`` and ``error``: str arrays; ``error`` is ``""`` for a run without error.
+    - whole numbers (``run``, ``seed``, ``collisions``, integer axis values): int64;
+    - ``true``/``false`` (``alpha_flock``, ``strict_alpha_flock``): bool;
+    - other numbers: float64, NaN where a run has no value;
+    - anything else (text axis values): str.
+
+    An int or bool column with fields left empty (the runs that failed) is a
+    ``numpy.ma.MaskedArray`` of that dtype, masked there; :meth:`to_pandas` makes it a nullable
+    ``Int64`` or ``boolean`` column.
+    """
+
+    path: str
+    columns: Dict[str, Any]
+
+    def __repr__(self) -> str:
+        runs = len(next(iter(self.columns.values()), ()))
+        errors = int(_np.count_nonzero(self.columns["error"] != "")) if "error" in self.columns else 0
+        return f"SweepResult(path={self.path!r}, runs={runs}, columns={len(self.columns)}, errors={errors})"
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """``runs.csv`` as a pandas DataFrame, one row per run, with the dtypes of ``columns``
+        (masked int and bool columns as pandas' nullable ``Int64``/``UInt64`` and ``boolean``;
+        needs pandas: ``pip install 'flocking[pandas]'``)."""
+        pandas = _require("pandas", "pandas", "SweepResult.to_pandas()")
+        data = {}
+        for name, column in self.columns.items():
+            if _np.ma.isMaskedArray(column):
+                dtype = {"i": "Int64", "u": "UInt64", "b": "boolean"}[column.dtype.kind]
+                data[name] = pandas.array(column.tolist(), dtype=dtype)
+            else:
+                data[name] = column
+        return pandas.DataFrame(data)
+
+
+def _sweep_run(text: str, index: int, controls: Optional[Controls] = None):
+    """Runs run ``index`` of the self-contained sweep ``text`` (in a worker process)."""
+    return _flocking.sweep_run(text, index, controls)
+
+
+def sweep(
+    spec: Path,
+    out: Path,
+    executor: Optional[_futures.Executor] = None,
+    *,
+    controls: Optional[Controls] = None,
+) -> SweepResult:
+    """Runs the sweep file ``spec`` into the output directory ``out``, as ``flocking sweep`` does:
+    the same row files, ``runs.csv`` (byte for byte) and ``times.csv``; runs found finished in
+    ``out`` are skipped, so an interrupted sweep resumes.
+
+    Each run is one call of a worker function submitted to ``executor``: a local process pool
+    with one worker per core by default; a Dask cluster with
+    ``dask.distributed.Client(...).get_executor()``; a Slurm cluster with dask-jobqueue's
+    ``SLURMCluster`` behind such a client. Every worker needs this package installed. Rows are
+    written by this process as their runs finish; ``runs.csv`` is assembled in run order at the
+    end, so it does not depend on the executor or the order of completion.
+
+    ``controls`` computes every run's inputs as in :func:`run`; it is sent to the workers, so it
+    must be picklable: a function defined at the top level of an importable module. An exception
+    it raises is raised here (the rows of the runs finished so far are kept: run the sweep again
+    to continue).
+
+    Raises :class:`ScenarioError` for a bad sweep file and :class:`RunDirectoryError` for a
+    directory of another sweep; a run that fails (an invalid value, a blow-up) is a row with its
+    error, not an exception.
+    """
+    spec_path = _os.fspath(spec)
+    with open(spec_path) as f:
+        text, count = _flocking.sweep_load(
+            f.read(), spec_path, _os.path.dirname(_os.path.abspath(spec_path))
+        )
+    out_path = _os.fspath(out)
+    finished = set(_flocking.sweep_prepare(out_path, text))
+    pending = [k for k in range(count) if k not in finished]
+    own = executor is None
+    if executor is None:
+        executor = _futures.ProcessPoolExecutor(max_workers=_os.cpu_count() or 1)
+    try:
+        futures = [executor.submit(_sweep_run, text, k, controls) for k in pending]
+        for future in _futures.as_completed(futures):
+            index, run_id, fields, wall_time = future.result()
+            _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
+    finally:
+        if own:
+            executor.shutdown()
+    _flocking.sweep_assemble(out_path, text)
+    return SweepResult(out_path, _read_runs(out_path))

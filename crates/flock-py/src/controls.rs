@@ -1,0 +1,344 @@
+//! `controls=`: the inputs u_i computed by a Python function `f(t, q, p, neighbours)` in place of
+//! the scenario protocol's ([`flocking::protocols::Protocol::controls`]), everything else kept:
+//! the proximity net built by Rust with the scenario protocol's interaction range, the obstacles
+//! drawn, the metrics, the energy and the diagnostics of the scenario's algorithm, checkpoints,
+//! run directories and sweeps.
+//!
+//! - [`PythonControls`]: the [`MapProtocol`] that wraps a scenario's protocol around `f`.
+//! - [`PyNeighbours`]: the net handed to `f` — CSR arrays `indptr`, `indices`, `distances`.
+//! - [`Failure`]: an exception raised by `f` (or a result of the wrong shape, or not finite), with
+//!   the state the failed step started from, so that a run stops there as after Ctrl-C.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+use flocking::graph::Graph;
+use flocking::graph::ProximityNet;
+use flocking::math::Vector;
+use flocking::obstacles::Space;
+use flocking::protocols::{DynProtocol, Integrator, Protocol, Swarm};
+use flocking::{MapProtocol, Scenario};
+use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
+use pyo3::prelude::*;
+
+use crate::errors::exception;
+
+/// What `f` failed with, and the state (positions, velocities as rows, agents in original order)
+/// at the start of the step it failed in — `None` when that step began before the simulation was
+/// built with `f`.
+#[derive(Debug)]
+pub struct Failure {
+    /// The exception `f` raised, or a `flocking.ControlsError` for a result of the wrong shape or
+    /// not finite.
+    pub error: PyErr,
+    /// The state the failed step started from.
+    pub start: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+/// The inputs of a scenario's runs computed by the Python function `f(t, q, p, neighbours)`: the
+/// [`MapProtocol`] whose protocols call `f` for u_i and take everything else from the scenario's
+/// protocol.
+///
+/// When `f` fails, the protocol keeps the [`Failure`] ([`PythonControls::take_failure`]) and gives
+/// every agent a NaN input, so that the step fails its health check: a run stops there as at a
+/// blow-up, before recording that step, and `f` is not called again.
+#[derive(Clone, Debug)]
+pub struct PythonControls {
+    f: Arc<Py<PyAny>>,
+    /// Evaluations of u per step: 1 (symplectic Euler) or 4 (Runge–Kutta).
+    evaluations: u64,
+    failure: Arc<Mutex<Option<Failure>>>,
+}
+
+impl PythonControls {
+    /// The controls `f` for runs of `scenario` (its integrator tells which evaluations start a
+    /// step).
+    #[must_use]
+    pub fn new(f: Py<PyAny>, scenario: &Scenario) -> Self {
+        let evaluations = match scenario.integrator {
+            Integrator::SymplecticEuler => 1,
+            Integrator::Rk4 => 4,
+        };
+        Self {
+            f: Arc::new(f),
+            evaluations,
+            failure: Arc::new(Mutex::new(None)),
+        }
+    }
+
+    /// The failure of `f` since the last call, if any (the protocols call `f` again afterwards).
+    #[must_use]
+    pub fn take_failure(&self) -> Option<Failure> {
+        lock(&self.failure).take()
+    }
+}
+
+impl MapProtocol for PythonControls {
+    fn map<V: Space + bytemuck::Pod>(&self, protocol: DynProtocol<V>) -> DynProtocol<V> {
+        Box::new(Controlled {
+            inner: protocol,
+            f: Arc::clone(&self.f),
+            evaluations: self.evaluations,
+            calls: AtomicU64::new(0),
+            step_start: Mutex::new(None),
+            failure: Arc::clone(&self.failure),
+        })
+    }
+}
+
+/// A scenario's protocol whose inputs come from `f`.
+struct Controlled<V> {
+    inner: DynProtocol<V>,
+    f: Arc<Py<PyAny>>,
+    evaluations: u64,
+    /// The evaluations of u so far: those at multiples of `evaluations` start a step.
+    calls: AtomicU64,
+    /// With Runge–Kutta, the state the current step started from (its later stages see others).
+    step_start: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
+    failure: Arc<Mutex<Option<Failure>>>,
+}
+
+/// The coordinates of vectors, `V::DIM` per vector.
+fn rows<V: bytemuck::Pod>(vectors: &[V]) -> Vec<f64> {
+    bytemuck::cast_slice(vectors).to_vec()
+}
+
+/// A shape as Python prints it: `(100, 2)`, `(200,)`.
+fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [single] => format!("({single},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// `flocking.ControlsError`: `f` returned something that is not n × dim finite inputs.
+fn controls_error(
+    py: Python<'_>,
+    message: String,
+    expected: (usize, usize),
+    given: Option<Vec<usize>>,
+) -> PyErr {
+    exception(py, "ControlsError", (message, expected, given))
+}
+
+impl<V: Space + bytemuck::Pod> Controlled<V> {
+    /// Calls `f(t, q, p, neighbours)` and writes its result, validated, into `inputs`.
+    fn call(
+        &self,
+        py: Python<'_>,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+        inputs: &mut [V],
+    ) -> PyResult<()> {
+        let (n, dim) = (swarm.len(), V::DIM);
+        let q = PyArray1::from_vec(py, rows(&swarm.positions)).reshape([n, dim])?;
+        let p = PyArray1::from_vec(py, rows(&swarm.velocities)).reshape([n, dim])?;
+        let neighbours = PyNeighbours::of(py, net)?;
+        let u = self.f.bind(py).call1((t, q, p, neighbours))?;
+        let expected = format!("({n}, {dim}) (n agents × dim)");
+        let array = if u.is_none() {
+            None
+        } else {
+            u.extract::<PyArrayLikeDyn<'_, f64, AllowTypeChange>>().ok()
+        };
+        let Some(u) = array else {
+            let kind = u.get_type().name()?;
+            return Err(controls_error(
+                py,
+                format!("controls returned a {kind}, not an array of floats of shape {expected}"),
+                (n, dim),
+                None,
+            ));
+        };
+        let u = u.as_array();
+        if u.shape() != [n, dim] {
+            return Err(controls_error(
+                py,
+                format!(
+                    "controls returned an array of shape {}; expected {expected} at t = {t}",
+                    shape_text(u.shape())
+                ),
+                (n, dim),
+                Some(u.shape().to_vec()),
+            ));
+        }
+        if let Some(k) = u.iter().position(|x| !x.is_finite()) {
+            let i = k / dim;
+            let row: Vec<f64> = (0..dim).map(|c| u[[i, c]]).collect();
+            return Err(controls_error(
+                py,
+                format!(
+                    "controls returned an input that is not finite at t = {t}: u[{i}] = {row:?}; return finite numbers"
+                ),
+                (n, dim),
+                Some(vec![n, dim]),
+            ));
+        }
+        let out: &mut [f64] = bytemuck::cast_slice_mut(inputs);
+        for (o, &x) in out.iter_mut().zip(u.iter()) {
+            *o = x;
+        }
+        Ok(())
+    }
+}
+
+/// The slot's value, whatever a panicking holder left in it.
+fn lock<T>(slot: &Mutex<T>) -> MutexGuard<'_, T> {
+    slot.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+impl<V: Space + bytemuck::Pod> Protocol<V> for Controlled<V> {
+    fn interaction_range(&self) -> f64 {
+        self.inner.interaction_range()
+    }
+
+    /// u_i from `f`, agents in original order (the protocol does not follow the numbering, so the
+    /// simulation keeps them so); NaN for every agent once `f` has failed.
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
+        let call = self.calls.fetch_add(1, Ordering::Relaxed);
+        let starts_step = call % self.evaluations == 0;
+        if lock(&self.failure).is_some() {
+            inputs_nan(inputs);
+            return;
+        }
+        let state = || (rows(&swarm.positions), rows(&swarm.velocities));
+        if starts_step && self.evaluations > 1 {
+            *lock(&self.step_start) = Some(state());
+        }
+        let called = Python::attach(|py| self.call(py, t, swarm, net, inputs));
+        if let Err(error) = called {
+            let start = if starts_step {
+                Some(state())
+            } else {
+                lock(&self.step_start).take()
+            };
+            *lock(&self.failure) = Some(Failure { error, start });
+            inputs_nan(inputs);
+        }
+    }
+
+    fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        self.inner.energy(t, swarm, net)
+    }
+
+    fn diagnostics(
+        &self,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        self.inner.diagnostics(t, swarm, net)
+    }
+
+    /// `f` is given the distances.
+    fn uses_net_distances(&self) -> bool {
+        true
+    }
+
+    /// `f` sees the agents in original order.
+    fn follows_numbering(&self) -> bool {
+        false
+    }
+
+    fn interaction_graph(&self) -> Option<&Graph> {
+        self.inner.interaction_graph()
+    }
+}
+
+/// NaN for every input.
+fn inputs_nan<V: Vector>(inputs: &mut [V]) {
+    inputs.fill(V::from_fn(|_| f64::NAN));
+}
+
+/// The proximity net N_i = { j ≠ i : ‖q_j − q_i‖ < r } handed to a `controls` function, in
+/// compressed sparse rows: agent i's neighbours are `indices[indptr[i]:indptr[i + 1]]` (in
+/// ascending order) at distances `distances[indptr[i]:indptr[i + 1]]`; every edge appears in
+/// both directions. `scipy.sparse.csr_matrix((distances, indices, indptr))` is its matrix of
+/// distances.
+#[pyclass(name = "Neighbours", module = "flocking", frozen)]
+pub struct PyNeighbours {
+    indptr: Py<PyArray1<i64>>,
+    indices: Py<PyArray1<i64>>,
+    distances: Py<PyArray1<f64>>,
+    /// The number of agents n.
+    agents: usize,
+}
+
+/// An index as numpy's int64 (a net's sizes are far below 2⁶³).
+fn int64(x: usize) -> i64 {
+    i64::try_from(x).unwrap_or(i64::MAX)
+}
+
+impl PyNeighbours {
+    fn of(py: Python<'_>, net: &ProximityNet) -> PyResult<Self> {
+        let graph = net.graph();
+        Ok(Self {
+            indptr: PyArray1::from_iter(py, graph.offsets().iter().map(|&k| int64(k))).unbind(),
+            indices: PyArray1::from_iter(
+                py,
+                graph.neighbour_indices().iter().map(|&j| i64::from(j)),
+            )
+            .unbind(),
+            distances: PyArray1::from_slice(py, net.distances()).unbind(),
+            agents: graph.len(),
+        })
+    }
+}
+
+#[pymethods]
+impl PyNeighbours {
+    /// Where each agent's neighbours start in `indices`: n + 1 int64, `indptr[0] == 0`.
+    #[getter]
+    fn indptr(&self, py: Python<'_>) -> Py<PyArray1<i64>> {
+        self.indptr.clone_ref(py)
+    }
+
+    /// The neighbours j of every agent i in turn, ascending for each i (int64).
+    #[getter]
+    fn indices(&self, py: Python<'_>) -> Py<PyArray1<i64>> {
+        self.indices.clone_ref(py)
+    }
+
+    /// ‖q_j − q_i‖ for each entry of `indices` (float64).
+    #[getter]
+    fn distances(&self, py: Python<'_>) -> Py<PyArray1<f64>> {
+        self.distances.clone_ref(py)
+    }
+
+    /// The directed edges (i, j), one row each in the order of `indices`: an (m, 2) int64 array.
+    fn pairs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let indptr = self.indptr.bind(py).readonly();
+        let indices = self.indices.bind(py).readonly();
+        let (indptr, indices) = (indptr.as_slice()?, indices.as_slice()?);
+        let mut pairs = Vec::with_capacity(2 * indices.len());
+        for (i, bounds) in indptr.windows(2).enumerate() {
+            for &j in &indices
+                [usize::try_from(bounds[0]).unwrap_or(0)..usize::try_from(bounds[1]).unwrap_or(0)]
+            {
+                pairs.extend([int64(i), j]);
+            }
+        }
+        PyArray1::from_vec(py, pairs).reshape([indices.len(), 2])
+    }
+
+    /// The number of agents n.
+    fn __len__(&self) -> usize {
+        self.agents
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let edges = self.indices.bind(py).len()?;
+        Ok(format!(
+            "Neighbours(n={}, directed_edges={edges})",
+            self.agents
+        ))
+    }
+}

@@ -1,0 +1,71 @@
+//! `Run._repr_html_`'s player: the self-contained canvas player of `flocking plot`
+//! ([`flock_viz::player_html`]) of a run held as numpy arrays, drawn as [`flock_viz::run_scene`]
+//! draws a run directory (obstacles, γ-agent, desired distance).
+
+use flock_viz::{Frame, PlayerOptions, Scene, player_html, run_scene};
+use flocking::glam::DVec3;
+use numpy::ndarray::{ArrayView1, Axis};
+use numpy::{PyReadonlyArray1, PyReadonlyArray3};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+use crate::errors::scenario_error;
+use crate::scenario::PyScenario;
+
+/// The player page of a run of `scenario` recorded at `times`, with `positions` and
+/// `velocities` of shape (T, n, dim); at most `max_frames` frames are embedded (a longer run is
+/// subsampled evenly), on a canvas of `size` × `size` pixels.
+///
+/// Raises `ValueError` for arrays of another shape or a run that cannot be drawn.
+#[pyfunction]
+#[pyo3(signature = (scenario, times, positions, velocities, *, max_frames = 500, size = 480))]
+pub fn run_player_html(
+    py: Python<'_>,
+    scenario: &PyScenario,
+    times: PyReadonlyArray1<'_, f64>,
+    positions: PyReadonlyArray3<'_, f64>,
+    velocities: PyReadonlyArray3<'_, f64>,
+    max_frames: usize,
+    size: u32,
+) -> PyResult<String> {
+    let scenario = &scenario.inner;
+    let (times, positions, velocities) = (
+        times.as_array(),
+        positions.as_array(),
+        velocities.as_array(),
+    );
+    let shape = positions.shape();
+    if shape != velocities.shape() || shape[0] != times.len() || shape[2] != scenario.dim {
+        return Err(PyValueError::new_err(format!(
+            "times {:?}, positions {:?} and velocities {:?} are not (T,), (T, n, {}) and (T, n, {})",
+            times.shape(),
+            shape,
+            velocities.shape(),
+            scenario.dim,
+            scenario.dim
+        )));
+    }
+    let lifted = |row: ArrayView1<'_, f64>| {
+        DVec3::new(row[0], row[1], if row.len() > 2 { row[2] } else { 0.0 })
+    };
+    let mut scene = Scene::new(scenario.dim, scenario.range());
+    scene.frames = (0..times.len())
+        .map(|k| {
+            let q = positions.index_axis(Axis(0), k);
+            let p = velocities.index_axis(Axis(0), k);
+            Frame::new(
+                times[k],
+                q.outer_iter().map(lifted).collect(),
+                p.outer_iter().map(lifted).collect(),
+            )
+        })
+        .collect();
+    let scene = run_scene(scenario, scene).map_err(|e| scenario_error(py, &e))?;
+    let options = PlayerOptions {
+        canvas_size: (size, size),
+        max_frames,
+        ..PlayerOptions::default()
+    };
+    py.detach(|| player_html(&scene, &options))
+        .map_err(|e| PyValueError::new_err(e.to_string()))
+}
