@@ -1,13 +1,13 @@
 //! The hot kernels of a simulation step on α-lattices of 10⁴ agents, in 2D and 3D.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use flocking::synthetic::lattice_swarm;
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_metrics::{FlockMetrics, MetricParams};
 use flock_protocols::{
     Algorithm2, AlphaInteraction, AlphaParams, GammaAgent, Integrator, NavigationalFeedback,
     Protocol, Simulation, Swarm,
 };
+use flocking::synthetic::lattice_swarm;
 use glam::{DVec2, DVec3};
 use std::hint::black_box;
 

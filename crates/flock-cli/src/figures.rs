@@ -17,9 +17,9 @@ use std::fs;
 use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 
+use flock_viz::{FigureEntry, PlotError, index_html, load_metrics, paper_reference, plot_run};
 use flocking::run_dir::CreateError;
 use flocking::{RunDirectory, RunError, Scenario, ScenarioError};
-use flock_viz::{FigureEntry, PlotError, index_html, load_metrics, paper_reference, plot_run};
 
 use crate::progress::Progress;
 

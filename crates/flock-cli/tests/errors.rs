@@ -271,8 +271,9 @@ fn the_fixtures_and_the_base_scenarios_give_no_warning() {
 #[test]
 fn a_step_the_stiffness_makes_unstable_is_warned_with_the_largest_stable_step() {
     let stiff = edit(TINY_2D, "h: 0.2)", "h: 0.2, c1: 500.0)");
-    let stable = flocking::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
-        .expect("an estimate for Algorithm 2");
+    let stable =
+        flocking::largest_stable_step(&Scenario::parse(&stiff, "test.ron").expect("valid"))
+            .expect("an estimate for Algorithm 2");
     // The papers' gains leave a wide margin above h = 0.01; c₁^α = 500 takes it below.
     assert!(stable < 0.01, "{stable}");
     let found = warnings(&stiff);

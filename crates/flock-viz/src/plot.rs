@@ -4,11 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
+use flock_math::Vector;
 use flocking::build::gamma_agent;
 use flocking::initial::to_vector;
 use flocking::obstacles::{ObstacleSpec, Space};
 use flocking::{Algorithm, Scenario};
-use flock_math::Vector;
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
 use crate::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figures};

@@ -2,9 +2,9 @@
 //! original order, and a run resumed from a checkpoint (sorted again from the original order, at
 //! another step) records the same bits.
 
+use flock_graph::{NeighbourSearch, ProximityNet};
 use flocking::initial::initial_swarm;
 use flocking::{Record, Recorder, Scenario, Start};
-use flock_graph::{NeighbourSearch, ProximityNet};
 use glam::DVec2;
 
 /// 20,000 agents in a Gaussian cloud, numbered at random as drawn; 24 steps recorded every 6, a
