@@ -7,8 +7,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::{Progress, Report};
 use flock_viz::{FigureOptions, plot_run_with};
-use flocking::metrics::FlockingCriteria;
-use flocking::run_dir::{CreateError, ResumeError};
+use flocking::metrics::{Closest, FlockingCriteria};
+use flocking::run_dir::{CreateError, ResumeError, read_records};
 use flocking::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
@@ -65,6 +65,10 @@ enum Command {
         /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
         #[arg(long, value_name = "E2", default_value_t = 0.01)]
         epsilon2: f64,
+        /// The fraction of the duration after which the run has settled: the summary gives the
+        /// least distance and the most colliding pairs over the whole run and from then on.
+        #[arg(long, value_name = "FRACTION", default_value_t = Closest::SETTLE, value_parser = parse_settle)]
+        settle: f64,
     },
     /// Run every `fixtures/*.ron` (relative to the current directory) into `DIR/<fixture stem>/`,
     /// draw its figures (GIF and trajectory CSVs dropped), and write `DIR/index.html`, a static page
@@ -225,6 +229,7 @@ fn main() -> ExitCode {
             quiet,
             epsilon1,
             epsilon2,
+            settle,
         } => {
             if let Err(code) = use_threads(threads) {
                 return code;
@@ -255,7 +260,7 @@ fn main() -> ExitCode {
                 ..FlockingCriteria::default()
             };
             let dir = dir.with_stop_flag(&STOP).with_criteria(criteria);
-            match execute(&scenario, dir, start.as_ref(), quiet) {
+            match execute(&scenario, dir, start.as_ref(), quiet, settle) {
                 Ok(out) if plot => match plot_run_with(&out, &figure_options(stress_edges)) {
                     Ok(files) => {
                         println!(
@@ -368,13 +373,24 @@ fn resume_directory(
     Ok((dir, scenario, start))
 }
 
-/// Runs into `dir` and reports; on failure keeps what was written, marked incomplete, and
-/// returns the exit code.
+/// `--settle`: a fraction in [0, 1).
+fn parse_settle(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(f) if (0.0..1.0).contains(&f) => Ok(f),
+        _ => Err(format!(
+            "{text:?}: give the fraction of the duration after which the run has settled, in [0, 1)"
+        )),
+    }
+}
+
+/// Runs into `dir` and reports (settled after `settle` of the duration); on failure keeps what
+/// was written, marked incomplete, and returns the exit code.
 fn execute(
     scenario: &Scenario,
     dir: RunDirectory,
     start: Option<&Start>,
     quiet: bool,
+    settle: f64,
 ) -> Result<PathBuf, ExitCode> {
     let mut recorder = Progress::for_terminal(dir, scenario, quiet)
         .starting_at(start.map_or(0, |start| start.steps));
@@ -386,11 +402,18 @@ fn execute(
                 eprintln!("error: {e}");
                 ExitCode::FAILURE
             })?;
+            let metrics = finished.path.join("metrics.csv");
+            let records = read_records(&metrics, summary.agents).map_err(|e| {
+                eprintln!("error: {}: {e}", metrics.display());
+                ExitCode::FAILURE
+            })?;
             println!(
                 "{}",
                 Report {
                     name: &scenario.name,
-                    summary: &summary
+                    summary: &summary,
+                    records: &records,
+                    settled_from: settle * scenario.duration,
                 }
             );
             // judged on the whole metrics.csv, also after a resume

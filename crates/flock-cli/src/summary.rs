@@ -3,14 +3,19 @@
 use std::fmt;
 
 use flocking::RunSummary;
+use flocking::metrics::{Closest, FlockMetrics};
 
-/// A run summary with its scenario's name, ready to print.
+/// A run summary with its scenario's name and its records, ready to print.
 #[derive(Debug)]
 pub struct Report<'a> {
     /// The scenario's name.
     pub name: &'a str,
     /// The run.
     pub summary: &'a RunSummary,
+    /// Every record of the run (its whole `metrics.csv`, also after `--resume`).
+    pub records: &'a [(f64, FlockMetrics)],
+    /// The time from which the run has settled (`--settle` × the duration).
+    pub settled_from: f64,
 }
 
 impl fmt::Display for Report<'_> {
@@ -36,8 +41,20 @@ impl fmt::Display for Report<'_> {
             "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
             m.velocity_mismatch, s.component_velocity_mismatch
         )?;
-        writeln!(f, "  min distance          {:.4}", m.min_distance)?;
-        writeln!(f, "  colliding pairs       {}", m.collisions)?;
+        let from = self.settled_from;
+        let [whole, settled] = [f64::NEG_INFINITY, from].map(|t| Closest::over(self.records, t));
+        let [whole_distance, settled_distance] = [whole, settled]
+            .map(|c| c.map_or_else(|| "–".to_owned(), |c| format!("{:.4}", c.min_distance)));
+        writeln!(
+            f,
+            "  least distance        {whole_distance} over the run, {settled_distance} after settling (t ≥ {from})"
+        )?;
+        let [whole_pairs, settled_pairs] = [whole, settled]
+            .map(|c| c.map_or_else(|| "–".to_owned(), |c| c.collisions.to_string()));
+        writeln!(
+            f,
+            "  most colliding pairs  {whole_pairs} over the run, {settled_pairs} after settling"
+        )?;
         if s.merged.agents > 0 {
             writeln!(
                 f,

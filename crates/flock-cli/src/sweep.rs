@@ -8,9 +8,11 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
-use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
+use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
 use flocking::sweep::store::{self, RUNS_FILE};
-use flocking::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute, share};
+use flocking::sweep::{
+    ExecuteOptions, ParameterLabel, RunRow, Shard, Sweep, execute, metric_label, share, value_field,
+};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// `flocking sweep SWEEP.ron --out DIR [--jobs N] [--keep-runs] [--shard i/N]`, or one of its
@@ -54,7 +56,8 @@ enum SweepAction {
         shards: Vec<PathBuf>,
     },
     /// Draw a phase diagram of a finished sweep: a heatmap of the mean over seeds on two axes, or
-    /// a line with a band on one.
+    /// a line with a band on one; the other axes fixed (--where), one panel per value (--facet)
+    /// or pooled (the title says over what).
     Plot {
         /// The sweep's output directory.
         dir: PathBuf,
@@ -64,11 +67,19 @@ enum SweepAction {
         /// The axis along y (a heatmap).
         #[arg(long)]
         y: Option<String>,
+        /// Only the runs with this value of an axis, as runs.csv writes it (`--where agents=50`);
+        /// repeatable.
+        #[arg(long = "where", value_name = "AXIS=VALUE", value_parser = parse_where)]
+        fixed: Vec<(String, String)>,
+        /// One panel per value of this axis, on shared scales.
+        #[arg(long, value_name = "AXIS")]
+        facet: Option<String>,
         /// The runs.csv column to draw (alpha_flock and strict_alpha_flock count as 1 or 0: their
         /// mean is the fraction of seeds that flock).
         #[arg(long)]
         metric: String,
-        /// The figure (.svg or .png; default DIR/<metric>.svg).
+        /// The figure (.svg or .png; default DIR/<metric>.svg), or .csv for the numbers it draws
+        /// (panel, x, y, runs, mean, band).
         #[arg(long)]
         out: Option<PathBuf>,
         /// The band of a line: min-max or the 25–75 % quantiles.
@@ -92,20 +103,57 @@ pub enum BandArg {
     Quantiles,
 }
 
+/// `AXIS=VALUE` of `--where`.
+fn parse_where(text: &str) -> Result<(String, String), String> {
+    text.split_once('=')
+        .map(|(axis, value)| (axis.trim().to_owned(), value.trim().to_owned()))
+        .ok_or_else(|| format!("{text:?}: give AXIS=VALUE, e.g. agents=50"))
+}
+
+/// Why `flocking sweep` failed: a command that cannot be done as asked (exit code 2, as an
+/// invalid scenario), or a failure while doing it (1).
+enum Failure {
+    Usage(String),
+    Failed(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Self::Failed(message)
+    }
+}
+
+/// Exit code of a command that asks for what the sweep does not have.
+const USAGE: u8 = 2;
+
 /// Runs `flocking sweep …`.
 pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
     let result = match args.action {
-        Some(SweepAction::Merge { out, shards }) => merge(&out, &shards),
+        Some(SweepAction::Merge { out, shards }) => merge(&out, &shards).map_err(Failure::from),
         Some(SweepAction::Plot {
             dir,
             x,
             y,
+            fixed,
+            facet,
             metric,
             out,
             band,
             log_x,
             log_y,
-        }) => plot(&dir, &x, y.as_deref(), &metric, out, band, (log_x, log_y)),
+        }) => {
+            let request = PlotRequest {
+                x,
+                y,
+                fixed,
+                facet,
+                metric,
+                band,
+                log_x,
+                log_y,
+            };
+            plot(&dir, &request, out)
+        }
         None => {
             let (Some(sweep), Some(out)) = (args.sweep, args.out) else {
                 unreachable!("clap requires SWEEP and --out without a subcommand")
@@ -117,12 +165,16 @@ pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
                 shard: args.shard,
                 keep_runs: args.keep_runs,
             };
-            run(&sweep, &out, &options, args.quiet, stop)
+            run(&sweep, &out, &options, args.quiet, stop).map_err(Failure::from)
         }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
+        Err(Failure::Usage(message)) => {
+            eprintln!("error: {message}");
+            ExitCode::from(USAGE)
+        }
+        Err(Failure::Failed(message)) => {
             eprintln!("error: {message}");
             ExitCode::FAILURE
         }
@@ -199,16 +251,70 @@ fn number(field: &str) -> Option<f64> {
     }
 }
 
-fn plot(
-    dir: &Path,
-    x: &str,
-    y: Option<&str>,
-    metric: &str,
-    out: Option<PathBuf>,
+/// What `flocking sweep plot` draws.
+struct PlotRequest {
+    x: String,
+    y: Option<String>,
+    fixed: Vec<(String, String)>,
+    facet: Option<String>,
+    metric: String,
     band: BandArg,
-    (log_x, log_y): (bool, bool),
-) -> Result<(), String> {
+    log_x: bool,
+    log_y: bool,
+}
+
+/// An axis of the sweep as the plot uses it: its column of runs.csv, its values as runs.csv
+/// writes them (in the sweep's order) and its label.
+struct AxisColumn {
+    column: usize,
+    values: Vec<String>,
+    label: ParameterLabel,
+}
+
+impl AxisColumn {
+    /// "n = 50".
+    fn equals(&self, value: &str) -> String {
+        format!("{} = {}", self.label.short(), shown(value))
+    }
+
+    /// "n ∈ {25, 50, 100, 200}".
+    fn among(&self) -> String {
+        let values: Vec<String> = self.values.iter().map(|v| shown(v)).collect();
+        format!("{} ∈ {{{}}}", self.label.short(), values.join(", "))
+    }
+}
+
+/// A value for a title: as written, or to 3 significant digits when that is shorter
+/// (0.006324555320336759 is 0.00632).
+fn shown(field: &str) -> String {
+    let Some(x) = field
+        .parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite() && *x != 0.0)
+    else {
+        return field.to_owned();
+    };
+    let decimals = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    let short = format!("{x:.decimals$}");
+    if short.len() < field.len() {
+        short
+    } else {
+        field.to_owned()
+    }
+}
+
+/// "20 seeds", "1 seed".
+fn seeds(count: u64) -> String {
+    if count == 1 {
+        "1 seed".to_owned()
+    } else {
+        format!("{count} seeds")
+    }
+}
+
+fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), Failure> {
     let sweep = store::read_sweep(dir).map_err(|e| e.to_string())?;
+    let base = sweep.base_scenario().map_err(|e| e.to_string())?;
     let path = dir.join(RUNS_FILE);
     let mut reader =
         csv::Reader::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -218,18 +324,81 @@ fn plot(
         .clone();
     let column = |name: &str, what: &str| {
         header.iter().position(|h| h == name).ok_or_else(|| {
-            format!(
+            Failure::Usage(format!(
                 "--{what} {name:?} is not a column of {}; it has {}",
                 path.display(),
                 header.iter().collect::<Vec<_>>().join(", ")
-            )
+            ))
         })
     };
-    let (cx, cm) = (column(x, "x")?, column(metric, "metric")?);
-    let cy = y.map(|y| column(y, "y")).transpose()?;
+    let axis = |name: &str, what: &str| {
+        let Some(axis) = sweep.axes.iter().find(|a| a.path == name) else {
+            let axes: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
+            return Err(Failure::Usage(format!(
+                "--{what} {name:?} is not an axis of the sweep; its axes are {}",
+                axes.join(", ")
+            )));
+        };
+        Ok(AxisColumn {
+            column: column(name, what)?,
+            values: axis.values.expand().iter().map(value_field).collect(),
+            label: ParameterLabel::of(&base, name),
+        })
+    };
+    let (cx, cm) = (column(&request.x, "x")?, column(&request.metric, "metric")?);
+    let cy = request.y.as_deref().map(|y| column(y, "y")).transpose()?;
+    let mut shown_axes = vec![request.x.as_str()];
+    shown_axes.extend(request.y.as_deref());
+    let facet = match &request.facet {
+        Some(name) if shown_axes.contains(&name.as_str()) => {
+            return Err(Failure::Usage(format!(
+                "--facet {name} is drawn along an axis already; facet another axis"
+            )));
+        }
+        Some(name) => Some(axis(name, "facet")?),
+        None => None,
+    };
+    shown_axes.extend(request.facet.as_deref());
+    let mut fixed = Vec::new();
+    for (name, value) in &request.fixed {
+        if shown_axes.contains(&name.as_str())
+            || fixed
+                .iter()
+                .any(|(a, _): &(AxisColumn, String)| a.label.path == *name)
+        {
+            return Err(Failure::Usage(format!(
+                "--where {name}={value}: {name} is drawn or fixed already; fix another axis"
+            )));
+        }
+        let fixed_axis = axis(name, "where")?;
+        let same = |v: &String| {
+            v == value
+                || matches!((v.parse::<f64>(), value.parse::<f64>()), (Ok(a), Ok(b)) if a == b)
+        };
+        let Some(chosen) = fixed_axis.values.iter().find(|v| same(v)).cloned() else {
+            return Err(Failure::Usage(format!(
+                "--where {name}={value}: no run has {name} = {value}; its values are {}",
+                fixed_axis.values.join(", ")
+            )));
+        };
+        fixed.push((fixed_axis, chosen));
+    }
+    let pooled: Vec<AxisColumn> = sweep
+        .axes
+        .iter()
+        .filter(|a| {
+            !shown_axes.contains(&a.path.as_str())
+                && !fixed.iter().any(|(f, _)| f.label.path == a.path)
+        })
+        .map(|a| axis(&a.path, "x"))
+        .collect::<Result<_, _>>()?;
+
     let mut points = Vec::new();
     for (k, record) in reader.records().enumerate() {
         let record = record.map_err(|e| format!("{}: {e}", path.display()))?;
+        if fixed.iter().any(|(a, value)| record[a.column] != **value) {
+            continue;
+        }
         let value = |c: usize, what: &str| {
             number(&record[c]).ok_or_else(|| {
                 format!(
@@ -240,40 +409,91 @@ fn plot(
                 )
             })
         };
+        let panel = match &facet {
+            Some(a) => a
+                .values
+                .iter()
+                .position(|v| *v == record[a.column])
+                .ok_or_else(|| {
+                    format!(
+                        "{} row {}: {} {:?} is not a value of the sweep",
+                        path.display(),
+                        k + 1,
+                        a.label.path,
+                        &record[a.column]
+                    )
+                })?,
+            None => 0,
+        };
         points.push(PhasePoint {
             x: value(cx, "x")?,
             y: cy.map(|c| value(c, "y")).transpose()?,
             value: value(cm, "the metric")?,
+            panel,
         });
     }
+
+    let metric = metric_label(&request.metric);
+    let per_point = pooled
+        .iter()
+        .map(|a| a.values.len() as u64)
+        .product::<u64>()
+        * sweep.seeds;
+    let mut title = if pooled.is_empty() {
+        format!("{metric}: mean over {}", seeds(sweep.seeds))
+    } else {
+        let over: Vec<String> = pooled.iter().map(AxisColumn::among).collect();
+        format!(
+            "{metric}: mean over {per_point} runs pooled over {} × {}",
+            over.join(" × "),
+            seeds(sweep.seeds)
+        )
+    };
+    for (a, value) in &fixed {
+        title = format!("{title}, {}", a.equals(value));
+    }
+    if !pooled.is_empty() {
+        let names: Vec<&str> = pooled.iter().map(|a| a.label.path.as_str()).collect();
+        eprintln!(
+            "warning: each point pools {per_point} runs over {}: fix {} with --where {}=VALUE, or draw one panel per value with --facet {}",
+            names.join(", "),
+            if names.len() == 1 { "it" } else { "them" },
+            names[0],
+            names[0]
+        );
+    }
+    let label = |name: &str| ParameterLabel::of(&base, name).axis();
     let options = PhaseOptions {
-        title: if sweep.name.is_empty() {
-            format!("{metric}, mean over {} seed(s)", sweep.seeds)
-        } else {
-            format!(
-                "{}: {metric}, mean over {} seed(s)",
-                sweep.name, sweep.seeds
-            )
-        },
-        x_label: x.to_owned(),
-        y_label: y.map(str::to_owned),
+        title,
+        x_label: label(&request.x),
+        y_label: request.y.as_deref().map(label),
         metric: metric.to_owned(),
-        log_x,
-        log_y,
-        band: match band {
+        panels: facet
+            .as_ref()
+            .map_or_else(Vec::new, |a| a.values.iter().map(|v| a.equals(v)).collect()),
+        log_x: request.log_x,
+        log_y: request.log_y,
+        band: match request.band {
             BandArg::Minmax => Band::MinMax,
             BandArg::Quantiles => Band::Quantiles,
         },
-        ..PhaseOptions::default()
+        size: if facet.is_some() {
+            FACET_PANEL
+        } else {
+            PhaseOptions::default().size
+        },
     };
-    let out = out.unwrap_or_else(|| dir.join(format!("{metric}.svg")));
-    let bytes = if out.extension().is_some_and(|e| e == "png") {
-        phase_png(&points, &options)
-    } else {
-        phase_svg(&points, &options).map(String::into_bytes)
+    let out = out.unwrap_or_else(|| dir.join(format!("{}.svg", request.metric)));
+    let bytes = match out.extension().and_then(|e| e.to_str()) {
+        Some("png") => phase_png(&points, &options),
+        Some("csv") => phase_table(&points, &options).map(String::into_bytes),
+        _ => phase_svg(&points, &options).map(String::into_bytes),
     }
     .map_err(|e| e.to_string())?;
     fs::write(&out, bytes).map_err(|e| format!("{}: {e}", out.display()))?;
     println!("flocking sweep plot: {}", out.display());
     Ok(())
 }
+
+/// The size of each panel of a faceted diagram.
+const FACET_PANEL: (u32, u32) = (560, 420);

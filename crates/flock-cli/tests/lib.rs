@@ -1,5 +1,5 @@
 //! Integration tests of `flock-cli`, one binary (see STYLE.md): the `flocking` binary's commands,
-//! errors and crash safety (kills, Ctrl-C, resume), `flocking bench`, `flocking plot`, `flocking figures`
+//! errors and crash safety (kills, Ctrl-C, resume), the printed summary, `flocking bench`, `flocking plot`, `flocking figures`
 //! and the HTML player in a browser.
 
 mod bench;
@@ -9,5 +9,6 @@ mod errors;
 mod figures_cmd;
 mod merging;
 mod plot;
+mod summary;
 mod sweep;
 mod trust;

@@ -138,7 +138,11 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
         ],
     );
     let map = fs::read_to_string(tmp.path().join("map.svg")).expect("map.svg");
-    for text in ["algorithm.c1", "algorithm.c2", "alpha_flock (mean)"] {
+    for text in [
+        "navigational gain c₁^γ (algorithm.c1)",
+        "navigational damping gain c₂^γ (algorithm.c2)",
+        "fraction α-flocking: mean over 3 seeds",
+    ] {
         assert!(map.contains(text), "{text} missing from the heatmap");
     }
     sweep(
@@ -288,52 +292,333 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
         );
     }
 
-    let diagrams = [
-        ("alg2_c1_n", "algorithm.c1", "agents", "alpha_flock"),
-        (
-            "alg3_beta_radius",
-            "algorithm.beta.c1",
-            "obstacles.0.radius",
-            "obstacle_clearance",
-        ),
-        (
-            "alg3_beta_radius",
-            "algorithm.beta.c1",
-            "obstacles.0.radius",
-            "collisions",
-        ),
-        (
-            "alg3_beta_radius",
-            "algorithm.beta.c1",
-            "obstacles.0.radius",
-            "min_distance",
-        ),
-    ];
-    for (name, x, y, metric) in diagrams {
+    // the plot commands of docs/sweeps.md, drawing into the committed files
+    let doc = fs::read_to_string(fixtures_dir().join("../docs/sweeps.md")).expect("docs/sweeps.md");
+    let mut drawn = 0;
+    for (name, metric, options) in COMMITTED_DIAGRAMS {
         for ext in ["svg", "png"] {
+            let file = format!("docs/figures/sweeps/{name}/{metric}.{ext}");
+            let command = format!(
+                "flocking sweep plot docs/figures/sweeps/{name} {} --out {file}",
+                options.join(" ")
+            );
+            if ext == "png" {
+                assert!(doc.contains(&command), "docs/sweeps.md lacks `{command}`");
+            }
             let out = tmp.path().join(format!("{name}-{metric}.{ext}"));
             let dir = committed.join(name);
-            sweep(
-                tmp.path(),
-                &[
-                    "plot",
-                    dir.to_str().expect("UTF-8"),
-                    "--x",
-                    x,
-                    "--y",
-                    y,
-                    "--metric",
-                    metric,
-                    "--log-x",
-                    "--out",
-                    out.to_str().expect("UTF-8"),
-                ],
-            );
+            let mut args = vec!["plot", dir.to_str().expect("UTF-8")];
+            args.extend_from_slice(options);
+            args.extend(["--out", out.to_str().expect("UTF-8")]);
+            sweep(tmp.path(), &args);
             assert!(
                 fs::read(&out).expect("drawn")
                     == fs::read(dir.join(format!("{metric}.{ext}"))).expect("committed"),
-                "docs/figures/sweeps/{name}/{metric}.{ext} is {stale}"
+                "{file} is {stale}"
             );
+            drawn += 1;
         }
     }
+    let files = ["alg2_c1_n", "alg3_beta_radius"].map(|name| {
+        fs::read_dir(committed.join(name))
+            .expect("committed")
+            .filter(|e| {
+                e.as_ref()
+                    .expect("entry")
+                    .path()
+                    .extension()
+                    .is_some_and(|x| x == "svg" || x == "png")
+            })
+            .count()
+    });
+    assert_eq!(
+        files.iter().sum::<usize>(),
+        drawn,
+        "every committed diagram is drawn"
+    );
+}
+
+/// The committed diagrams: the sweep, the metric (the file's stem) and the options of their plot
+/// commands in docs/sweeps.md.
+const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 6] = [
+    (
+        "alg2_c1_n",
+        "alpha_flock",
+        &[
+            "--x",
+            "algorithm.c1",
+            "--y",
+            "agents",
+            "--metric",
+            "alpha_flock",
+            "--log-x",
+        ],
+    ),
+    (
+        "alg2_c1_n",
+        "cohesion_radius",
+        &[
+            "--x",
+            "algorithm.c1",
+            "--facet",
+            "agents",
+            "--metric",
+            "cohesion_radius",
+            "--band",
+            "quantiles",
+            "--log-x",
+        ],
+    ),
+    (
+        "alg2_c1_n",
+        "settled_collisions",
+        &[
+            "--x",
+            "algorithm.c1",
+            "--y",
+            "agents",
+            "--metric",
+            "settled_collisions",
+            "--log-x",
+        ],
+    ),
+    (
+        "alg3_beta_radius",
+        "obstacle_clearance",
+        &[
+            "--x",
+            "algorithm.beta.c1",
+            "--y",
+            "obstacles.0.radius",
+            "--metric",
+            "obstacle_clearance",
+            "--log-x",
+        ],
+    ),
+    (
+        "alg3_beta_radius",
+        "collisions",
+        &[
+            "--x",
+            "algorithm.beta.c1",
+            "--y",
+            "obstacles.0.radius",
+            "--metric",
+            "collisions",
+            "--log-x",
+        ],
+    ),
+    (
+        "alg3_beta_radius",
+        "min_distance",
+        &[
+            "--x",
+            "algorithm.beta.c1",
+            "--y",
+            "obstacles.0.radius",
+            "--metric",
+            "min_distance",
+            "--log-x",
+        ],
+    ),
+];
+
+/// The committed `runs.csv` of Algorithm 2's sweep: its column `name` as text, row by row.
+fn committed_column(name: &str) -> Vec<String> {
+    let path = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n/runs.csv");
+    let mut reader = csv::Reader::from_path(path).expect("runs.csv");
+    let k = reader
+        .headers()
+        .expect("a header")
+        .iter()
+        .position(|h| h == name)
+        .expect("a column");
+    reader
+        .records()
+        .map(|r| r.expect("a row")[k].to_owned())
+        .collect()
+}
+
+/// The rows of a `flocking sweep plot --out X.csv` table: (panel, x, runs, mean).
+fn table(path: &Path) -> Vec<(String, f64, usize, f64)> {
+    let mut reader = csv::Reader::from_path(path).expect("the table");
+    reader
+        .records()
+        .map(|r| {
+            let r = r.expect("a row");
+            (
+                r[0].to_owned(),
+                r[1].parse().expect("x"),
+                r[3].parse().expect("runs"),
+                r[4].parse().expect("mean"),
+            )
+        })
+        .collect()
+}
+
+/// `flocking sweep plot` of the committed Algorithm 2 sweep (c₁^γ × n × 20 seeds) along c₁^γ:
+/// with `--where agents=N` each point is the mean over the 20 runs of that n only, with
+/// `--facet agents` one panel per n holds the same means, and without either the 80 runs are
+/// pooled and the title and a warning say so — each checked against means computed here from
+/// runs.csv.
+#[test]
+fn plot_where_and_facet_draw_only_the_runs_they_name() {
+    let tmp = TempDir::new("sweep_where");
+    let dir = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n");
+    let dir = dir.to_str().expect("UTF-8");
+    let (c1, agents, radius) = (
+        committed_column("algorithm.c1"),
+        committed_column("agents"),
+        committed_column("cohesion_radius"),
+    );
+    let seeds = committed_column("seed")
+        .into_iter()
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
+    let mut ns = agents.clone();
+    ns.sort_by_key(|n| n.parse::<u64>().expect("an integer"));
+    ns.dedup();
+    let mean = |keep: &dyn Fn(usize) -> bool| {
+        let selected: Vec<f64> = (0..radius.len())
+            .filter(|&k| keep(k))
+            .map(|k| radius[k].parse::<f64>().expect("a number"))
+            .collect();
+        (
+            selected.len(),
+            selected.iter().sum::<f64>() / selected.len() as f64,
+        )
+    };
+    let plot = |extra: &[&str], out: &str| {
+        let mut args = vec![
+            "sweep",
+            "plot",
+            dir,
+            "--x",
+            "algorithm.c1",
+            "--metric",
+            "cohesion_radius",
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["--out", out]);
+        let output = flocking(tmp.path(), &args);
+        assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+        stderr(&output)
+    };
+
+    let warning = plot(&[], "pooled.csv");
+    assert!(
+        warning.contains("pools")
+            && warning.contains("--where agents=")
+            && warning.contains("--facet agents"),
+        "{warning}"
+    );
+    plot(&["--facet", "agents"], "facet.csv");
+    let facet = table(&tmp.path().join("facet.csv"));
+    let pooled = table(&tmp.path().join("pooled.csv"));
+    for n in &ns {
+        assert!(plot(&["--where", &format!("agents={n}")], "where.csv").is_empty());
+        let fixed = table(&tmp.path().join("where.csv"));
+        let panel: Vec<_> = facet
+            .iter()
+            .filter(|r| r.0 == format!("n = {n}"))
+            .cloned()
+            .collect();
+        assert_eq!(panel.len(), fixed.len(), "n = {n}: one panel row per c₁");
+        for ((_, x, runs, m), (_, px, pruns, pm)) in fixed.iter().zip(&panel) {
+            let (count, expected) =
+                mean(&|k| agents[k] == *n && c1[k].parse::<f64>().expect("c1") == *x);
+            assert_eq!(*runs, count, "n = {n}, c₁ = {x}: only the runs of this n");
+            assert_eq!(count, seeds);
+            approx::assert_relative_eq!(*m, expected, max_relative = 1e-14);
+            assert_eq!((px, pruns, pm), (x, runs, m), "the panel n = {n}");
+        }
+    }
+    for (_, x, runs, m) in &pooled {
+        let (count, expected) = mean(&|k| c1[k].parse::<f64>().expect("c1") == *x);
+        assert_eq!((*runs, count), (ns.len() * seeds, ns.len() * seeds));
+        approx::assert_relative_eq!(*m, expected, max_relative = 1e-14);
+    }
+
+    let list = ns.join(", ");
+    plot(&[], "pooled.svg");
+    plot(&["--where", &format!("agents={}", ns[1])], "where.svg");
+    let pooled = fs::read_to_string(tmp.path().join("pooled.svg")).expect("svg");
+    let title = format!(
+        "cohesion radius R: mean over {} runs pooled over n ∈ {{{list}}} × {seeds} seeds",
+        ns.len() * seeds
+    );
+    assert!(pooled.contains(&title), "{title}");
+    let fixed = fs::read_to_string(tmp.path().join("where.svg")).expect("svg");
+    let title = format!("cohesion radius R: mean over {seeds} seeds, n = {}", ns[1]);
+    assert!(fixed.contains(&title), "{title}");
+    assert!(fixed.contains("navigational gain c₁^γ (algorithm.c1)"));
+}
+
+#[test]
+fn bad_where_and_facet_are_clear_errors() {
+    let tmp = TempDir::new("sweep_bad_where");
+    let dir = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n");
+    let dir = dir.to_str().expect("UTF-8");
+    let mut ns = committed_column("agents");
+    ns.sort_by_key(|n| n.parse::<u64>().expect("an integer"));
+    ns.dedup();
+    let failing = |extra: &[&str]| {
+        let mut args = vec![
+            "sweep",
+            "plot",
+            dir,
+            "--x",
+            "algorithm.c1",
+            "--metric",
+            "alpha_flock",
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["--out", "never.svg"]);
+        let output = flocking(tmp.path(), &args);
+        assert_eq!(
+            output.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            stderr(&output)
+        );
+        assert!(!tmp.path().join("never.svg").exists());
+        stderr(&output)
+    };
+    let e = failing(&["--where", "agents=60"]);
+    assert!(
+        e.contains("no run has agents = 60")
+            && e.contains(&format!("its values are {}", ns.join(", "))),
+        "{e}"
+    );
+    let e = failing(&["--where", "agnets=50"]);
+    assert!(
+        e.contains("\"agnets\" is not an axis") && e.contains("algorithm.c1, agents"),
+        "{e}"
+    );
+    let e = failing(&["--where", "algorithm.c1=0.2"]);
+    assert!(e.contains("drawn or fixed already"), "{e}");
+    let e = failing(&["--where", "agents=50", "--where", "agents=25"]);
+    assert!(e.contains("drawn or fixed already"), "{e}");
+    let e = failing(&["--facet", "algorithm.c1"]);
+    assert!(e.contains("--facet algorithm.c1"), "{e}");
+    let e = failing(&["--where", "agents"]);
+    assert!(e.contains("AXIS=VALUE"), "{e}");
+    // a number matches as a number: 50.0 is the 50 of runs.csv
+    let output = flocking(
+        tmp.path(),
+        &[
+            "sweep",
+            "plot",
+            dir,
+            "--x",
+            "algorithm.c1",
+            "--metric",
+            "alpha_flock",
+            "--where",
+            "agents=50.0",
+            "--out",
+            "ok.csv",
+        ],
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
 }

@@ -10,8 +10,11 @@
 //! - [`LatticeSummary`]: edges near d, triangles, TAC 2006 Theorem 5's 3n − 6 bound and crossings
 //!   of a (final) net; [`DefectFactor`]: μ and μ_n of CDS 03-006 eq. 46–47;
 //!   [`FlockingVerdict`]: TAC 2006 Definition 5 (α-flocking, strict α-flocking) over a window.
+//! - [`Closest`]: the least distance and the most colliding pairs over the records from a time on
+//!   (the whole run, or after it has settled).
 
 pub mod alpha_flocking;
+pub mod closest;
 pub mod defect;
 pub mod flocking;
 pub mod lattice;
@@ -24,5 +27,6 @@ pub use flocking::{
 pub use obstacles::ObstacleMetrics;
 
 pub use alpha_flocking::{Cohesion, FlockingCriteria, FlockingVerdict, Window};
+pub use closest::Closest;
 pub use defect::{Defect, DefectFactor};
 pub use lattice::{EDGE_TOLERANCE, LatticeSummary};

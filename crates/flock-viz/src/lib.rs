@@ -12,7 +12,7 @@
 //!   distances.
 //! - [`animation_gif`]: the whole run as an animated GIF.
 //! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
-//! - [`phase_svg`], [`phase_png`]: the phase diagram of a parameter sweep (`flocking sweep plot`).
+//! - [`phase_svg`], [`phase_png`], [`phase_table`]: the phase diagram of a parameter sweep (`flocking sweep plot`).
 //! - [`write_figures`]: all of them into a directory, as `flocking plot` writes them.
 //! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
 //! - [`index_html`]: the page of every fixture's figures that `flocking figures` writes, each beside
@@ -63,7 +63,7 @@ pub use gallery::{FigureEntry, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
 pub use papers::{Measure, PaperFigure, Statement, paper_figure};
-pub use phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg};
+pub use phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
 pub use player::{PlayerOptions, player_html};
 pub use plot::{PlotError, plot_run, plot_run_with, run_scene};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};

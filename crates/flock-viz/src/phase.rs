@@ -7,6 +7,11 @@
 //! - One axis: the mean against x (log x on request) inside a band — min to max, or the 25–75 %
 //!   quantiles — with a dot for every run.
 //!
+//! - Panels (small multiples): one diagram per value of a third parameter, on a grid, with the
+//!   same axes and the same colour map in every panel, each titled ("n = 50").
+//!
+//! - [`phase_table`]: the numbers drawn, as CSV.
+//!
 //! NaN values (failed runs, empty fields) are left out of means, bands and dots.
 
 use plotters::coord::Shift;
@@ -23,8 +28,8 @@ use crate::render::{self, Figure, TextMode};
 use crate::snapshot::{below_title, text_style};
 use crate::style::{self, CURVE, INK};
 
-/// One run of a sweep as the phase diagram sees it: its axis values and the metric (NaN when the
-/// run failed or has no value).
+/// One run of a sweep as the phase diagram sees it: its axis values, the metric (NaN when the
+/// run failed or has no value) and its panel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhasePoint {
     /// The value of the x axis.
@@ -33,6 +38,8 @@ pub struct PhasePoint {
     pub y: Option<f64>,
     /// The metric.
     pub value: f64,
+    /// The panel it is drawn in: an index into [`PhaseOptions::panels`] (0 without panels).
+    pub panel: usize,
 }
 
 /// The band of a one-axis diagram.
@@ -50,19 +57,21 @@ pub enum Band {
 pub struct PhaseOptions {
     /// The title (may be empty).
     pub title: String,
-    /// The x axis' label (the parameter path).
+    /// The x axis' label.
     pub x_label: String,
     /// The y axis' label: `Some` for a heatmap.
     pub y_label: Option<String>,
     /// The metric's name (the colour bar's or the y axis' label).
     pub metric: String,
+    /// The titles of the panels, in order; empty for a single untitled diagram.
+    pub panels: Vec<String>,
     /// Logarithmic x axis (one-axis diagrams; a heatmap's cells are evenly spaced anyway).
     pub log_x: bool,
     /// Logarithmic metric axis (one-axis diagrams).
     pub log_y: bool,
     /// The band of a one-axis diagram.
     pub band: Band,
-    /// The figure's size in pixels.
+    /// The size of a panel in pixels (the figure is the grid of its panels).
     pub size: (u32, u32),
 }
 
@@ -73,6 +82,7 @@ impl Default for PhaseOptions {
             x_label: String::new(),
             y_label: None,
             metric: String::new(),
+            panels: Vec::new(),
             log_x: false,
             log_y: false,
             band: Band::MinMax,
@@ -89,14 +99,15 @@ pub const BAND: [u8; 3] = [0xC6, 0xD4, 0xEA];
 /// The phase diagram as SVG.
 ///
 /// # Errors
-/// [`VizError::Invalid`] for no point, no finite value, or points with and without y.
+/// [`VizError::Invalid`] for no point, no finite value, points with and without y, or a point
+/// in a panel that is not there.
 ///
 /// # Example
 /// ```
 /// use flock_viz::phase::{PhaseOptions, PhasePoint, phase_svg};
 ///
 /// let points: Vec<PhasePoint> = [(0.1, 1.0, 0.2), (0.1, 2.0, 0.9), (0.2, 1.0, 0.4), (0.2, 2.0, 1.0)]
-///     .map(|(x, y, value)| PhasePoint { x, y: Some(y), value })
+///     .map(|(x, y, value)| PhasePoint { x, y: Some(y), value, panel: 0 })
 ///     .to_vec();
 /// let options = PhaseOptions {
 ///     x_label: "algorithm.c1".into(),
@@ -119,13 +130,77 @@ pub fn phase_png(points: &[PhasePoint], options: &PhaseOptions) -> Result<Vec<u8
     render::png(&Diagram::new(points, options)?)
 }
 
-/// The values of each grid point: the sorted distinct x (and y) and the finite values there.
+/// The numbers a phase diagram draws, as CSV: `panel,x,y,runs,mean,low,high`, one line per
+/// grid point of each panel (panels in order, then x, then y, ascending) — the panel's title, the
+/// point, how many finite values it has, their mean and the band ([`PhaseOptions::band`]), empty
+/// where it has none. Numbers are written as Rust prints them (shortest round trip).
+///
+/// # Errors
+/// As [`phase_svg`].
+///
+/// # Example
+/// ```
+/// use flock_viz::phase::{PhaseOptions, PhasePoint, phase_table};
+///
+/// let points: Vec<PhasePoint> = [(0.1, 1.0), (0.1, 3.0), (0.2, f64::NAN)]
+///     .map(|(x, value)| PhasePoint { x, y: None, value, panel: 0 })
+///     .to_vec();
+/// let table = phase_table(&points, &PhaseOptions::default()).unwrap();
+/// assert_eq!(table, "panel,x,y,runs,mean,low,high\n,0.1,,2,2,1,3\n,0.2,,0,,,\n");
+/// ```
+pub fn phase_table(points: &[PhasePoint], options: &PhaseOptions) -> Result<String, VizError> {
+    let diagram = Diagram::new(points, options)?;
+    let mut table = String::from("panel,x,y,runs,mean,low,high\n");
+    for (k, cells) in diagram.panels.iter().enumerate() {
+        let title = options.panels.get(k).map_or("", String::as_str);
+        let title = if title.contains([',', '"']) {
+            format!("\"{}\"", title.replace('"', "\"\""))
+        } else {
+            title.to_owned()
+        };
+        for (&x, column) in diagram.xs.iter().zip(cells) {
+            for (&y, cell) in diagram.ys.iter().zip(column) {
+                let y = if options.y_label.is_some() {
+                    y.to_string()
+                } else {
+                    String::new()
+                };
+                let (mean, low, high) = match mean(cell) {
+                    Some(mean) => {
+                        let (low, high) = options.band.of(cell);
+                        (mean.to_string(), low.to_string(), high.to_string())
+                    }
+                    None => Default::default(),
+                };
+                table += &format!("{title},{x},{y},{},{mean},{low},{high}\n", cell.len());
+            }
+        }
+    }
+    Ok(table)
+}
+
+impl Band {
+    /// The band of sorted, non-empty values.
+    fn of(self, sorted: &[f64]) -> (f64, f64) {
+        match self {
+            Self::MinMax => (sorted[0], sorted[sorted.len() - 1]),
+            Self::Quantiles => (quantile(sorted, 0.25), quantile(sorted, 0.75)),
+        }
+    }
+}
+
+/// The finite values of one panel: `cells[i][j]` at (xs[i], ys[j]) (j = 0 without y), sorted.
+type Cells = Vec<Vec<Vec<f64>>>;
+
+/// The values of each grid point of each panel: the sorted distinct x (and y) of every panel and
+/// the finite values there.
 struct Diagram<'a> {
     options: &'a PhaseOptions,
     xs: Vec<f64>,
     ys: Vec<f64>,
-    /// `cells[i][j]`: the finite values at (xs[i], ys[j]) (j = 0 without y).
-    cells: Vec<Vec<Vec<f64>>>,
+    /// One per panel.
+    panels: Vec<Cells>,
+    /// The least and largest finite value of every panel.
     range: (f64, f64),
 }
 
@@ -173,18 +248,23 @@ impl<'a> Diagram<'a> {
                 "an axis value that is not a finite number",
             ));
         }
+        let count = options.panels.len().max(1);
+        if let Some(p) = points.iter().find(|p| p.panel >= count) {
+            return Err(VizError::invalid(format!(
+                "a run in panel {} of {count}",
+                p.panel
+            )));
+        }
         let xs = distinct(points.iter().map(|p| p.x));
         let ys = distinct(points.iter().map(|p| p.y.unwrap_or(0.0)));
-        let mut cells = vec![vec![Vec::new(); ys.len()]; xs.len()];
+        let mut panels = vec![vec![vec![Vec::new(); ys.len()]; xs.len()]; count];
         for p in points.iter().filter(|p| p.value.is_finite()) {
-            cells[index(&xs, p.x)][index(&ys, p.y.unwrap_or(0.0))].push(p.value);
+            panels[p.panel][index(&xs, p.x)][index(&ys, p.y.unwrap_or(0.0))].push(p.value);
         }
-        for column in &mut cells {
-            for cell in column {
-                cell.sort_by(f64::total_cmp);
-            }
+        for cell in panels.iter_mut().flatten().flatten() {
+            cell.sort_by(f64::total_cmp);
         }
-        let finite = || cells.iter().flatten().flatten().copied();
+        let finite = || panels.iter().flatten().flatten().flatten().copied();
         let (lo, hi) = (
             finite().fold(f64::INFINITY, f64::min),
             finite().fold(f64::NEG_INFINITY, f64::max),
@@ -196,9 +276,17 @@ impl<'a> Diagram<'a> {
             options,
             xs,
             ys,
-            cells,
+            panels,
             range: (lo, hi),
         })
+    }
+
+    /// The means of a panel's cells.
+    fn means(cells: &Cells) -> Vec<Vec<Option<f64>>> {
+        cells
+            .iter()
+            .map(|column| column.iter().map(|cell| mean(cell)).collect())
+            .collect()
     }
 
     /// The colour of `value` on the map from the least to the largest mean.
@@ -211,25 +299,17 @@ impl<'a> Diagram<'a> {
         ViridisRGB.get_color_normalized(h.clamp(0.0, 1.0), 0.0, 1.0)
     }
 
+    /// The heatmap of the panel `cells` on the colour map of `range` (the colour bar is drawn
+    /// once for every panel).
     fn heatmap<DB: DrawingBackend>(
         &self,
-        area: &DrawingArea<DB, Shift>,
+        plot: &DrawingArea<DB, Shift>,
+        cells: &Cells,
+        range: (f64, f64),
         text: TextMode,
     ) -> Result<(), VizError> {
         let o = self.options;
-        let means: Vec<Vec<Option<f64>>> = self
-            .cells
-            .iter()
-            .map(|column| column.iter().map(|cell| mean(cell)).collect())
-            .collect();
-        let range = means
-            .iter()
-            .flatten()
-            .flatten()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &m| {
-                (lo.min(m), hi.max(m))
-            });
-        let (plot, bar) = area.split_horizontally(area.dim_in_pixel().0.saturating_sub(130));
+        let means = Self::means(cells);
         let (nx, ny) = (self.xs.len() as i32, self.ys.len() as i32);
         let label = |values: &[f64], v: &SegmentValue<i32>| match v {
             SegmentValue::CenterOf(k) => values
@@ -237,7 +317,7 @@ impl<'a> Diagram<'a> {
                 .map_or_else(String::new, |&x| format::tick(x)),
             _ => String::new(),
         };
-        let mut chart = ChartBuilder::on(&plot)
+        let mut chart = ChartBuilder::on(plot)
             .margin(12)
             .x_label_area_size(48)
             .y_label_area_size(72)
@@ -286,7 +366,7 @@ impl<'a> Diagram<'a> {
                 }
             }
         }
-        self.colour_bar(&bar, range, text)
+        Ok(())
     }
 
     /// A vertical colour bar of the map from `lo` to `hi`, labelled with the metric.
@@ -312,7 +392,7 @@ impl<'a> Diagram<'a> {
             .configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc(text.text(&format!("{} (mean)", self.options.metric)))
+            .y_desc(text.text(&self.options.metric))
             .y_labels(6)
             .y_label_formatter(&|v| {
                 // a tick at round-off from 0 is 0
@@ -340,24 +420,26 @@ impl<'a> Diagram<'a> {
         Ok(())
     }
 
+    /// The line and band of the panel `cells`.
     fn line<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
+        cells: &Cells,
         text: TextMode,
     ) -> Result<(), VizError> {
         let o = self.options;
         let rows: Vec<(f64, &Vec<f64>)> = self
             .xs
             .iter()
-            .zip(&self.cells)
+            .zip(cells)
             .map(|(&x, column)| (x, &column[0]))
             .filter(|(_, cell)| !cell.is_empty())
             .collect();
         let band: Vec<(f64, f64, f64)> = rows
             .iter()
-            .map(|&(x, cell)| match o.band {
-                Band::MinMax => (x, cell[0], cell[cell.len() - 1]),
-                Band::Quantiles => (x, quantile(cell, 0.25), quantile(cell, 0.75)),
+            .map(|&(x, cell)| {
+                let (low, high) = o.band.of(cell);
+                (x, low, high)
             })
             .collect();
         let (x0, x1) = (self.xs[0], self.xs[self.xs.len() - 1]);
@@ -376,7 +458,7 @@ impl<'a> Diagram<'a> {
         let points: Vec<(f64, f64)> = self
             .xs
             .iter()
-            .zip(&self.cells)
+            .zip(cells)
             .flat_map(|(&x, column)| column[0].iter().map(move |&v| (x, v)))
             .collect();
         let means: Vec<(f64, f64)> = rows
@@ -430,9 +512,28 @@ impl<'a> Diagram<'a> {
     }
 }
 
+impl Diagram<'_> {
+    /// The panels' grid: (rows, columns), as near square as the panels allow.
+    fn grid(&self) -> (usize, usize) {
+        let count = self.panels.len();
+        let columns = (1..=count).find(|c| c * c >= count).unwrap_or(1);
+        (count.div_ceil(columns), columns)
+    }
+}
+
+/// The width of a heatmap's colour bar.
+const COLOUR_BAR: u32 = 130;
+
 impl Figure for Diagram<'_> {
     fn size(&self) -> (u32, u32) {
-        self.options.size
+        let (rows, columns) = self.grid();
+        let (width, height) = self.options.size;
+        let bar = if self.options.y_label.is_some() {
+            COLOUR_BAR
+        } else {
+            0
+        };
+        (width * columns as u32 + bar, height * rows as u32)
     }
 
     fn draw<DB: DrawingBackend>(
@@ -441,10 +542,38 @@ impl Figure for Diagram<'_> {
         text: TextMode,
     ) -> Result<(), VizError> {
         let body = below_title(root, &self.options.title, text)?;
-        if self.options.y_label.is_some() {
-            self.heatmap(&body, text)
+        let heatmap = self.options.y_label.is_some();
+        let range = self
+            .panels
+            .iter()
+            .flat_map(Self::means)
+            .flatten()
+            .flatten()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), m| {
+                (lo.min(m), hi.max(m))
+            });
+        let grid = if heatmap {
+            let (grid, bar) =
+                body.split_horizontally(body.dim_in_pixel().0.saturating_sub(COLOUR_BAR));
+            self.colour_bar(&bar, range, text)?;
+            grid
         } else {
-            self.line(&body, text)
+            body
+        };
+        let areas = grid.split_evenly(self.grid());
+        for (k, (cells, area)) in self.panels.iter().zip(&areas).enumerate() {
+            let area = match self.options.panels.get(k) {
+                Some(title) => area
+                    .titled(&text.text(title), text_style(16))
+                    .map_err(VizError::draw)?,
+                None => area.clone(),
+            };
+            if heatmap {
+                self.heatmap(&area, cells, range, text)?;
+            } else {
+                self.line(&area, cells, text)?;
+            }
         }
+        Ok(())
     }
 }

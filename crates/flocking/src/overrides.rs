@@ -77,6 +77,25 @@ impl Scenario {
         Ok(scenario)
     }
 
+    /// `path` with the enum variants it passes through named and list indices as `#`, the key
+    /// under which [`crate::sweep::ParameterLabel`] looks a parameter up: `algorithm.c1` of
+    /// Algorithm 2 is `algorithm.Algorithm2.c1`, `obstacles.0.radius` of a ball
+    /// `obstacles.#.Ball.radius`. `None` for a path this scenario does not have.
+    pub(crate) fn typed_path(&self, path: &str) -> Option<String> {
+        let tree = self.tree();
+        let mut node = &tree;
+        let mut typed = Vec::new();
+        for segment in path.split('.') {
+            let (next, through_variant) = child(node, segment)?;
+            if through_variant {
+                typed.push(tag(node)?);
+            }
+            typed.push(if node.is_array() { "#" } else { segment });
+            node = next;
+        }
+        Some(typed.join("."))
+    }
+
     fn tree(&self) -> Value {
         serde_json::to_value(self).expect("a scenario is plain data and serializes")
     }
@@ -106,6 +125,12 @@ fn variant(node: &Value) -> Option<&Value> {
         }
         _ => None,
     }
+}
+
+/// The variant's name of an externally tagged enum value `{"Variant": content}`.
+fn tag(node: &Value) -> Option<&str> {
+    variant(node)?;
+    node.as_object()?.keys().next().map(String::as_str)
 }
 
 fn variant_mut(node: &mut Value) -> Option<&mut Value> {

@@ -136,7 +136,7 @@ pub fn time_text(t: f64, step: f64) -> String {
     let decimals = (0..12)
         .find(|&k| {
             let scaled = step * 10f64.powi(k);
-            (scaled - scaled.round()).abs() <= 1e-9 * scaled.abs().max(1.0)
+            (scaled - scaled.round()).abs() <= 1e-6
         })
         .unwrap_or(12) as usize;
     let text = format!("{t:.decimals$}");

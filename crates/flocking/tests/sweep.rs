@@ -5,9 +5,12 @@
 use std::fs;
 use std::sync::atomic::AtomicBool;
 
+use flocking::metrics::FlockMetrics;
 use flocking::serde_json::json;
 use flocking::sweep::store::{self, RUNS_FILE};
-use flocking::sweep::{ExecuteOptions, Shard, Sweep, SweepError, Values, execute};
+use flocking::sweep::{
+    ExecuteOptions, ParameterLabel, Shard, Sweep, SweepError, Values, execute, metric_label,
+};
 
 use crate::common::TempDir;
 
@@ -117,6 +120,13 @@ fn bad_sweep_files_are_refused_with_the_field_or_the_line() {
         matches!(&e, SweepError::Invalid { field, .. } if field == "axes[1].values"),
         "{e}"
     );
+    for settle in ["1.0", "-0.1", "NaN"] {
+        let e = error(&SWEEP.replace("seeds: 2", &format!("seeds: 2, settle: {settle}")));
+        assert!(
+            matches!(&e, SweepError::Invalid { field, why } if field == "settle" && why.contains("[0, 1)")),
+            "{e}"
+        );
+    }
     let e = error(&SWEEP.replace("seeds: 2", "seeds: 2, sedes: 3"));
     assert!(matches!(&e, SweepError::Syntax { line: 9, .. }), "{e}");
     let e = error(&SWEEP.replace("\"duration\": 2.0", "\"duration\": -2.0"));
@@ -170,13 +180,15 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
             "strict_alpha_flock",
             "obstacle_clearance",
             "inside_obstacles",
+            "settled_min_distance",
+            "settled_collisions",
             "error"
         ]
     );
     let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
     assert_eq!(rows.len(), 12);
     for row in &rows {
-        let (c1, error) = (&row[2], &row[17]);
+        let (c1, error) = (&row[2], &row[19]);
         match c1 {
             "0.02" => assert!(error.is_empty() && !row[5].is_empty(), "{row:?}"),
             "0.0" => assert!(error.contains("algorithm.c1"), "{row:?}"),
@@ -289,5 +301,140 @@ fn the_shipped_sweeps_load() {
     assert_eq!(
         last.value("algorithm.beta.c1").expect("a path"),
         json!(1000.0)
+    );
+}
+
+/// The column `name` of a CSV text, as numbers.
+fn numbers(text: &str, name: &str) -> Vec<f64> {
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let k = reader
+        .headers()
+        .expect("a header")
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
+    reader
+        .records()
+        .map(|r| r.expect("a row")[k].parse().expect("a number"))
+        .collect()
+}
+
+/// The least distance and the most collisions of a kept run's `metrics.csv` at t ≥ `from`.
+fn closest_in(metrics: &str, from: f64) -> (f64, f64) {
+    let t = numbers(metrics, "t");
+    let pick = |name: &str| -> Vec<f64> {
+        numbers(metrics, name)
+            .into_iter()
+            .zip(&t)
+            .filter(|(_, t)| **t >= from)
+            .map(|(x, _)| x)
+            .collect()
+    };
+    (
+        pick("min_distance")
+            .into_iter()
+            .fold(f64::INFINITY, f64::min),
+        pick("collisions").into_iter().fold(0.0, f64::max),
+    )
+}
+
+/// A random start puts agents close together; the settled columns are the closest approach from
+/// `settle` × the duration on, the whole-run columns from t = 0, both read back independently
+/// from each kept run's metrics.csv.
+#[test]
+fn settled_columns_are_the_closest_approach_after_the_settle_fraction() {
+    let tmp = TempDir::new("sweep_settled");
+    for (settle, dir) in [(None, "default"), (Some(0.5), "half")] {
+        let text = match settle {
+            None => SWEEP.to_owned(),
+            Some(f) => SWEEP.replace("seeds: 2", &format!("seeds: 2, settle: {f}")),
+        };
+        let sweep: Sweep = text
+            .replace("List([0.02, 0.0, 1e8])", "List([0.02])")
+            .parse()
+            .unwrap_or_else(|e| panic!("{e}"));
+        let settle = settle.unwrap_or(0.25);
+        assert_eq!(sweep.settle, settle);
+        let out = tmp.path().join(dir);
+        let options = ExecuteOptions {
+            jobs: 2,
+            shard: None,
+            keep_runs: true,
+        };
+        execute(&sweep, &out, &options, &AtomicBool::new(false), &|_| {})
+            .unwrap_or_else(|e| panic!("{e}"));
+        let runs = fs::read_to_string(out.join(RUNS_FILE)).expect("runs.csv");
+        let ids: Vec<String> = csv::Reader::from_reader(runs.as_bytes())
+            .records()
+            .map(|r| r.expect("a row")[1].to_owned())
+            .collect();
+        let columns = [
+            "min_distance",
+            "collisions",
+            "settled_min_distance",
+            "settled_collisions",
+        ]
+        .map(|name| numbers(&runs, name));
+        for (k, id) in ids.iter().enumerate() {
+            let metrics =
+                fs::read_to_string(out.join(store::RUNS_DIR).join(id).join("metrics.csv"))
+                    .expect("metrics.csv");
+            let duration = sweep.base_scenario().expect("valid").duration;
+            let whole = closest_in(&metrics, f64::NEG_INFINITY);
+            let settled = closest_in(&metrics, settle * duration);
+            assert_eq!(
+                (columns[0][k], columns[1][k]),
+                whole,
+                "run {k}: the whole run"
+            );
+            assert_eq!((columns[2][k], columns[3][k]), settled, "run {k}: settled");
+            assert!(settled.0 >= whole.0 && settled.1 <= whole.1, "run {k}");
+        }
+        assert!(
+            columns[0] != columns[2],
+            "the random start comes closer than the settled flock"
+        );
+    }
+}
+
+/// Figures name parameters by what they are in the scenario's algorithm, and metrics by name and
+/// symbol; unknown ones by themselves.
+#[test]
+fn labels_name_parameters_by_algorithm_and_columns_by_metric() {
+    let dir = crate::common::fixtures_dir().join("../sweeps");
+    let alg3 = Sweep::load(dir.join("alg3_beta_radius.ron")).unwrap_or_else(|e| panic!("{e}"));
+    let base = alg3.base_scenario().expect("valid");
+    let axis =
+        |scenario: &flocking::Scenario, path: &str| ParameterLabel::of(scenario, path).axis();
+    assert_eq!(
+        axis(&base, "algorithm.beta.c1"),
+        "β gain c₁^β (algorithm.beta.c1)"
+    );
+    assert_eq!(
+        axis(&base, "algorithm.c1"),
+        "navigational gain c₁^γ (algorithm.c1)"
+    );
+    assert_eq!(
+        axis(&base, "obstacles.0.radius"),
+        "ball radius (obstacles.0.radius)"
+    );
+    assert_eq!(
+        ParameterLabel::of(&base, "obstacles.0.radius").short(),
+        "ball radius"
+    );
+    let sink = crate::common::fixture("tr2003_fig9_sink_n100");
+    assert_eq!(
+        axis(&sink, "algorithm.c1"),
+        "consensus gain c₁ (algorithm.c1)"
+    );
+    assert_eq!(axis(&sink, "no.such.path"), "no.such.path");
+    assert_eq!(metric_label("alpha_flock"), "fraction α-flocking");
+    assert_eq!(
+        metric_label("settled_collisions"),
+        "most colliding pairs after settling"
+    );
+    assert_eq!(
+        metric_label(FlockMetrics::REAL_COLUMNS[2]),
+        "cohesion radius R"
     );
 }

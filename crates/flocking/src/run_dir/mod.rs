@@ -22,7 +22,7 @@ pub use read::{
     Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv,
     read_trajectory_npy, trajectory_header,
 };
-pub use verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
+pub use verdict::{VERDICT_FILE, judge_metrics_file, read_records, verdict_text};
 pub use write::{
     CreateError, Finished, INCOMPLETE_FILE, METRICS_HEADER, OutputOptions, ResumeError,
     RunDirectory, TrajectoryFormat, partial_path,

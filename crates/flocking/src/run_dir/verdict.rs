@@ -1,6 +1,7 @@
 //! `flocking.txt`: TAC 2006 Definition 5 judged on a finished run's `metrics.csv` — whether the
 //! run was an α-flock (a quasi-flock, cohesive, Ẽ ≤ ε₁, K̃ ≤ ε₂) and a strict one (connected,
-//! Ẽ ≤ ε₁, K̃ ≤ ε₂) over a window of its records (by default the last quarter).
+//! Ẽ ≤ ε₁, K̃ ≤ ε₂) over a window of its records (by default the last quarter); the records of a
+//! `metrics.csv` read back ([`read_records`]).
 
 use std::io;
 use std::path::Path;
@@ -12,17 +13,29 @@ use super::read::{TIME, read_metrics};
 /// The verdict's file in a finished run directory.
 pub const VERDICT_FILE: &str = "flocking.txt";
 
-/// Definition 5 judged on the `metrics.csv` at `path` of a run of `agents` agents (the number of
-/// components is read back from C = (n − #components)/(n − 1)); `None` when the window holds no
-/// record.
+/// Definition 5 judged on the `metrics.csv` at `path` of a run of `agents` agents; `None` when
+/// the window holds no record.
 ///
 /// # Errors
-/// A file that cannot be read or lacks a metric column.
+/// As [`read_records`].
 pub fn judge_metrics_file(
     path: &Path,
     agents: usize,
     criteria: &FlockingCriteria,
 ) -> io::Result<Option<FlockingVerdict>> {
+    Ok(FlockingVerdict::judge(
+        &read_records(path, agents)?,
+        criteria,
+    ))
+}
+
+/// The records of the `metrics.csv` at `path` of a run of `agents` agents, as a run's
+/// [`RunSummary::history`](crate::RunSummary::history) holds them: every row, also those before a
+/// `--resume` (the number of components is read back from C = (n − #components)/(n − 1)).
+///
+/// # Errors
+/// A file that cannot be read or lacks a metric column.
+pub fn read_records(path: &Path, agents: usize) -> io::Result<Vec<(f64, FlockMetrics)>> {
     let columns = read_metrics(path).map_err(io::Error::other)?;
     let column = |name: &str| {
         columns
@@ -40,7 +53,7 @@ pub fn judge_metrics_file(
     let reals =
         (FlockMetrics::REAL_COLUMNS.into_iter().map(column)).collect::<io::Result<Vec<_>>>()?;
     let n = agents as f64;
-    let records: Vec<(f64, FlockMetrics)> = (0..t.len())
+    Ok((0..t.len())
         .map(|k| {
             let values: [f64; 6] = std::array::from_fn(|j| reals[j][k]);
             let components = if agents <= 1 {
@@ -51,8 +64,7 @@ pub fn judge_metrics_file(
             let metrics = FlockMetrics::from_reals(values, components, collisions[k] as usize);
             (t[k], metrics)
         })
-        .collect();
-    Ok(FlockingVerdict::judge(&records, criteria))
+        .collect())
 }
 
 /// The text of `flocking.txt`: the verdict and the criteria it was judged by.

@@ -29,8 +29,10 @@
 //! - [`store`]: the output directory — a row file per finished run (so that a killed sweep
 //!   resumes), `runs.csv` assembled in run order, shards and their merge.
 //! - [`execute`]: every pending run of this machine's share on N workers.
+//! - [`ParameterLabel`], [`metric_label`]: what figures call the parameters and the columns.
 
 mod execute;
+mod labels;
 mod row;
 pub mod store;
 
@@ -48,7 +50,8 @@ use crate::Scenario;
 use crate::error::ScenarioError;
 
 pub use execute::{ExecuteOptions, Executed, Shard, execute, share};
-pub use row::{Outcome, RunRow, header, run_one, run_one_with};
+pub use labels::ParameterLabel;
+pub use row::{Outcome, RunRow, header, metric_label, run_one, run_one_with, value_field};
 
 /// A sweep file.
 ///
@@ -97,10 +100,18 @@ pub struct Sweep {
     /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
     #[serde(default = "default_epsilon")]
     pub epsilon2: f64,
+    /// The fraction of each run's duration after which it has settled: the `settled_*` columns
+    /// of `runs.csv` are over the records at t ≥ `settle` × duration (default 0.25, in [0, 1)).
+    #[serde(default = "default_settle")]
+    pub settle: f64,
 }
 
 fn default_epsilon() -> f64 {
     0.01
+}
+
+fn default_settle() -> f64 {
+    flock_metrics::Closest::SETTLE
 }
 
 /// The base scenario of a sweep.
@@ -319,6 +330,15 @@ impl Sweep {
                 }
                 _ => {}
             }
+        }
+        if !(0.0..1.0).contains(&self.settle) {
+            return invalid(
+                "settle".into(),
+                format!(
+                    "{}: give the fraction of the duration after which a run has settled, in [0, 1)",
+                    self.settle
+                ),
+            );
         }
         for (name, value) in [("epsilon1", self.epsilon1), ("epsilon2", self.epsilon2)] {
             if !(value.is_finite() && value > 0.0) {

@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use flock_metrics::FlockMetrics;
+use flock_metrics::{Closest, FlockMetrics};
 use serde_json::Value;
 
 use super::{RunSpec, Sweep};
@@ -18,6 +18,9 @@ pub struct Outcome {
     /// agents at any record and `collisions` the most pairs closer than the collision distance at
     /// any record.
     pub metrics: FlockMetrics,
+    /// The least distance and the most colliding pairs after the run has settled: over the
+    /// records at t ≥ the sweep's `settle` × the duration (`None` without such a record).
+    pub settled: Option<Closest>,
     /// The time after which the net stays connected (C = 1 at that record and every later one);
     /// `None` when it is not connected at the end.
     pub connected_from: Option<f64>,
@@ -29,36 +32,61 @@ pub struct Outcome {
     pub obstacles: Option<(f64, f64)>,
 }
 
-/// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`).
-const OUTCOME_COLUMNS: [&str; 12] = {
+/// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`), each with what a
+/// figure calls it ([`metric_label`]).
+const OUTCOME_COLUMNS: [(&str, &str); 14] = {
     let [c, giant, radius, deviation, mismatch, distance] = FlockMetrics::REAL_COLUMNS;
     [
-        c,
-        giant,
-        radius,
-        deviation,
-        mismatch,
-        distance,
-        "collisions",
-        "connected_from",
-        "alpha_flock",
-        "strict_alpha_flock",
-        "obstacle_clearance",
-        "inside_obstacles",
+        (c, "connectivity C"),
+        (giant, "giant component C*"),
+        (radius, "cohesion radius R"),
+        (deviation, "deviation energy Ẽ"),
+        (mismatch, "velocity mismatch K̃"),
+        (distance, "least distance over the run"),
+        ("collisions", "most colliding pairs over the run"),
+        ("connected_from", "connected from t"),
+        ("alpha_flock", "fraction α-flocking"),
+        ("strict_alpha_flock", "fraction strictly α-flocking"),
+        ("obstacle_clearance", "least obstacle clearance"),
+        ("inside_obstacles", "most agents inside obstacles"),
+        ("settled_min_distance", "least distance after settling"),
+        ("settled_collisions", "most colliding pairs after settling"),
     ]
 };
 
+/// What a figure calls the `runs.csv` column `column` (`cohesion_radius` is "cohesion radius R",
+/// `alpha_flock`, averaged, "fraction α-flocking"); an unknown column by its name.
+///
+/// # Example
+/// ```
+/// use flocking::sweep::metric_label;
+///
+/// assert_eq!(metric_label("cohesion_radius"), "cohesion radius R");
+/// assert_eq!(metric_label("seed"), "seed");
+/// ```
+#[must_use]
+pub fn metric_label(column: &str) -> &str {
+    OUTCOME_COLUMNS
+        .iter()
+        .find(|(name, _)| *name == column)
+        .map_or(column, |(_, label)| label)
+}
+
 impl Outcome {
     /// The outcome of a run's summary and its obstacle columns, Definition 5 judged with the
-    /// sweep's criteria.
+    /// sweep's criteria, settled from the sweep's `settle` × `duration` on.
     #[must_use]
-    pub fn of(summary: &RunSummary, obstacles: Option<(f64, f64)>, sweep: &Sweep) -> Self {
+    pub fn of(
+        summary: &RunSummary,
+        obstacles: Option<(f64, f64)>,
+        sweep: &Sweep,
+        duration: f64,
+    ) -> Self {
         let history = &summary.history;
-        let min_distance = history
-            .iter()
-            .map(|(_, m)| m.min_distance)
-            .fold(f64::INFINITY, f64::min);
-        let collisions = history.iter().map(|(_, m)| m.collisions).max().unwrap_or(0);
+        let whole = Closest::over(history, f64::NEG_INFINITY).unwrap_or(Closest {
+            min_distance: f64::INFINITY,
+            collisions: 0,
+        });
         let connected_from = match history.iter().rposition(|(_, m)| m.connectivity < 1.0) {
             None => history.first().map(|(t, _)| *t),
             Some(k) => history.get(k + 1).map(|(t, _)| *t),
@@ -68,10 +96,11 @@ impl Outcome {
             .map(|v| (v.is_alpha_flocking(), v.is_strict()));
         Self {
             metrics: FlockMetrics {
-                min_distance,
-                collisions,
+                min_distance: whole.min_distance,
+                collisions: whole.collisions,
                 ..summary.metrics
             },
+            settled: Closest::over(history, sweep.settle * duration),
             connected_from,
             alpha_flock,
             obstacles,
@@ -97,6 +126,8 @@ impl Outcome {
             or_empty(self.alpha_flock.map(|(_, s)| s.to_string())),
             or_empty(self.obstacles.map(|(c, _)| c.to_string())),
             or_empty(self.obstacles.map(|(_, i)| i.to_string())),
+            or_empty(self.settled.map(|s| s.min_distance.to_string())),
+            or_empty(self.settled.map(|s| s.collisions.to_string())),
         ]
     }
 }
@@ -159,13 +190,23 @@ pub struct RunRow {
     pub wall_time: f64,
 }
 
+/// An axis value as `runs.csv` writes it: a string as itself, anything else as JSON (`0.2`, `50`,
+/// `20.0`).
+#[must_use]
+pub fn value_field(value: &Value) -> String {
+    match value {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
 /// The header of `runs.csv` for the sweep's axes.
 #[must_use]
 pub fn header(sweep: &Sweep) -> Vec<String> {
     let mut header = vec!["run".to_owned(), "id".to_owned()];
     header.extend(sweep.axes.iter().map(|a| a.path.clone()));
     header.push("seed".to_owned());
-    header.extend(OUTCOME_COLUMNS.map(str::to_owned));
+    header.extend(OUTCOME_COLUMNS.map(|(name, _)| name.to_owned()));
     header.push("error".to_owned());
     header
 }
@@ -176,10 +217,7 @@ impl RunRow {
     #[must_use]
     pub fn fields(&self) -> Vec<String> {
         let mut fields = vec![self.index.to_string(), self.id.clone()];
-        fields.extend(self.values.iter().map(|v| match v {
-            Value::String(s) => s.clone(),
-            other => other.to_string(),
-        }));
+        fields.extend(self.values.iter().map(value_field));
         fields.push(self.seed.to_string());
         match &self.outcome {
             Ok(outcome) => {
@@ -218,19 +256,23 @@ pub fn run_one_with<M: MapProtocol>(
     let outcome = sweep
         .scenario(spec)
         .map_err(|e| e.to_string())
-        .and_then(|scenario| match keep {
-            None => {
-                let mut recorder = Obstacles {
-                    inner: (),
-                    extremes: None,
-                };
-                resume_with(&scenario, None, &mut recorder, map)
-                    .map(|summary| (summary, recorder.extremes))
-                    .map_err(|e| e.to_string())
-            }
-            Some(dir) => keep_run(&scenario, &dir.join(&id), map),
-        })
-        .map(|(summary, obstacles)| Outcome::of(&summary, obstacles, sweep));
+        .and_then(|scenario| {
+            let ran = match keep {
+                None => {
+                    let mut recorder = Obstacles {
+                        inner: (),
+                        extremes: None,
+                    };
+                    resume_with(&scenario, None, &mut recorder, map)
+                        .map(|summary| (summary, recorder.extremes))
+                        .map_err(|e| e.to_string())
+                }
+                Some(dir) => keep_run(&scenario, &dir.join(&id), map),
+            };
+            ran.map(|(summary, obstacles)| {
+                Outcome::of(&summary, obstacles, sweep, scenario.duration)
+            })
+        });
     RunRow {
         index: spec.index,
         id,

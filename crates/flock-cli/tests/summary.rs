@@ -1,0 +1,102 @@
+//! The summary `flocking run` prints: the least distance and the most colliding pairs over the
+//! whole run and after it has settled (`--settle`), read back independently from metrics.csv.
+
+use std::fs;
+
+use flocking::serde_json::json;
+
+use crate::common::{TempDir, fixture, flocking, stderr};
+
+/// The column `name` of a metrics.csv.
+fn column(metrics: &str, name: &str) -> Vec<f64> {
+    let mut reader = csv::Reader::from_reader(metrics.as_bytes());
+    let k = reader
+        .headers()
+        .expect("a header")
+        .iter()
+        .position(|h| h == name)
+        .expect("a column");
+    reader
+        .records()
+        .map(|r| r.expect("a row")[k].parse().expect("a number"))
+        .collect()
+}
+
+#[test]
+fn the_summary_gives_the_closest_approach_over_the_run_and_after_settling() {
+    let tmp = TempDir::new("summary_settle");
+    let scenario = fixture("tac2006_fig11_alg2_n100")
+        .with_values([
+            ("agents", json!(30)),
+            ("duration", json!(20.0)),
+            ("initial.positions.std", json!(8.0)),
+        ])
+        .expect("valid");
+    let path = tmp.path().join("scenario.ron");
+    fs::write(&path, scenario.to_ron().expect("RON")).expect("write");
+    let output = flocking(
+        tmp.path(),
+        &[
+            "run",
+            "scenario.ron",
+            "--out",
+            "run",
+            "--settle",
+            "0.5",
+            "--quiet",
+        ],
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    let summary = String::from_utf8_lossy(&output.stdout);
+
+    let metrics = fs::read_to_string(tmp.path().join("run/metrics.csv")).expect("metrics.csv");
+    let (t, distance, pairs) = (
+        column(&metrics, "t"),
+        column(&metrics, "min_distance"),
+        column(&metrics, "collisions"),
+    );
+    let from = 0.5 * scenario.duration;
+    let after = |values: &[f64], settled: bool| -> Vec<f64> {
+        values
+            .iter()
+            .zip(&t)
+            .filter(|(_, t)| !settled || **t >= from)
+            .map(|(x, _)| *x)
+            .collect()
+    };
+    let least = |settled| {
+        after(&distance, settled)
+            .into_iter()
+            .fold(f64::INFINITY, f64::min)
+    };
+    let most = |settled| after(&pairs, settled).into_iter().fold(0.0, f64::max);
+    let expected = [
+        format!(
+            "  least distance        {:.4} over the run, {:.4} after settling (t ≥ {from})",
+            least(false),
+            least(true)
+        ),
+        format!(
+            "  most colliding pairs  {} over the run, {} after settling",
+            most(false),
+            most(true)
+        ),
+    ];
+    for line in &expected {
+        assert!(
+            summary.lines().any(|l| l == line),
+            "{line:?} not in\n{summary}"
+        );
+    }
+    assert!(
+        least(false) < least(true),
+        "the start comes closer than the settled flock: {summary}"
+    );
+
+    let bad = flocking(
+        tmp.path(),
+        &["run", "scenario.ron", "--out", "o", "--settle", "1"],
+    );
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("[0, 1)"), "{}", stderr(&bad));
+}
