@@ -8,6 +8,7 @@ mod common;
 mod errors;
 mod figures_cmd;
 mod merging;
+mod names;
 mod plot;
 mod summary;
 mod sweep;
