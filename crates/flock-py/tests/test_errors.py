@@ -80,10 +80,14 @@ def test_with_values_errors_name_the_field(values, field):
 def test_with_values_error_is_the_clis(tmp_path):
     # the same invalid value, written into a file for the CLI
     path = tmp_path / "bad.ron"
-    path.write_text(FIG11.read_text().replace("c1: 0.02", "c1: -0.02"))
+    text = FIG11.read_text().replace("c1: 0.02", "c1: -0.02")
+    path.write_text(text)
     with pytest.raises(flocking.ScenarioError) as error:
         flocking.Scenario.load(FIG11).with_values({"algorithm.c1": -0.02})
-    assert str(error.value) == cli_error("validate", path)
+    # the CLI places it in the file: the line and column of `c1:`
+    line, row = next((k, l) for k, l in enumerate(text.splitlines(), 1) if "c1: -0.02" in l)
+    place = f"{path}:{line}:{row.index('c1') + 1}: "
+    assert cli_error("validate", path) == place + str(error.value)
 
 
 def test_explicit_state_errors():
