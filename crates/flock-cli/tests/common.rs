@@ -96,3 +96,18 @@ pub fn files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
         })
         .collect()
 }
+
+/// The column `name` of CSV `text` (a header line, then rows), as text, row by row.
+pub fn csv_column(text: &str, name: &str) -> Vec<String> {
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let k = reader
+        .headers()
+        .expect("a header")
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
+    reader
+        .records()
+        .map(|r| r.expect("a row")[k].to_owned())
+        .collect()
+}

@@ -5,20 +5,13 @@ use std::fs;
 
 use flocking::serde_json::json;
 
-use crate::common::{TempDir, fixture, flocking, stderr};
+use crate::common::{TempDir, csv_column, fixture, flocking, stderr};
 
-/// The column `name` of a metrics.csv.
+/// The column `name` of a metrics.csv, as numbers.
 fn column(metrics: &str, name: &str) -> Vec<f64> {
-    let mut reader = csv::Reader::from_reader(metrics.as_bytes());
-    let k = reader
-        .headers()
-        .expect("a header")
+    csv_column(metrics, name)
         .iter()
-        .position(|h| h == name)
-        .expect("a column");
-    reader
-        .records()
-        .map(|r| r.expect("a row")[k].parse().expect("a number"))
+        .map(|v| v.parse().expect("a number"))
         .collect()
 }
 

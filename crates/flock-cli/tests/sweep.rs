@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{TempDir, fixtures_dir, flocking, stderr};
+use crate::common::{TempDir, csv_column, fixtures_dir, flocking, stderr};
 
 /// Fig. 11 cut to 30 agents and 20 s (some 10–20 ms a run), over 4 × 2 values × 3 seeds (24 runs).
 fn write_sweep(dir: &Path) -> String {
@@ -426,17 +426,23 @@ const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 6] = [
 /// The committed `runs.csv` of Algorithm 2's sweep: its column `name` as text, row by row.
 fn committed_column(name: &str) -> Vec<String> {
     let path = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n/runs.csv");
-    let mut reader = csv::Reader::from_path(path).expect("runs.csv");
-    let k = reader
-        .headers()
-        .expect("a header")
-        .iter()
-        .position(|h| h == name)
-        .expect("a column");
-    reader
-        .records()
-        .map(|r| r.expect("a row")[k].to_owned())
-        .collect()
+    csv_column(&fs::read_to_string(path).expect("runs.csv"), name)
+}
+
+/// `flocking sweep plot DIR --x algorithm.c1 --metric METRIC`, then `extra`, then `--out OUT`.
+fn plot_args<'a>(dir: &'a str, metric: &'a str, extra: &[&'a str], out: &'a str) -> Vec<&'a str> {
+    let mut args = vec![
+        "sweep",
+        "plot",
+        dir,
+        "--x",
+        "algorithm.c1",
+        "--metric",
+        metric,
+    ];
+    args.extend_from_slice(extra);
+    args.extend(["--out", out]);
+    args
 }
 
 /// The rows of a `flocking sweep plot --out X.csv` table: (panel, x, runs, mean).
@@ -489,17 +495,7 @@ fn plot_where_and_facet_draw_only_the_runs_they_name() {
         )
     };
     let plot = |extra: &[&str], out: &str| {
-        let mut args = vec![
-            "sweep",
-            "plot",
-            dir,
-            "--x",
-            "algorithm.c1",
-            "--metric",
-            "cohesion_radius",
-        ];
-        args.extend_from_slice(extra);
-        args.extend(["--out", out]);
+        let args = plot_args(dir, "cohesion_radius", extra, out);
         let output = flocking(tmp.path(), &args);
         assert!(output.status.success(), "{args:?}: {}", stderr(&output));
         stderr(&output)
@@ -563,17 +559,7 @@ fn bad_where_and_facet_are_clear_errors() {
     ns.sort_by_key(|n| n.parse::<u64>().expect("an integer"));
     ns.dedup();
     let failing = |extra: &[&str]| {
-        let mut args = vec![
-            "sweep",
-            "plot",
-            dir,
-            "--x",
-            "algorithm.c1",
-            "--metric",
-            "alpha_flock",
-        ];
-        args.extend_from_slice(extra);
-        args.extend(["--out", "never.svg"]);
+        let args = plot_args(dir, "alpha_flock", extra, "never.svg");
         let output = flocking(tmp.path(), &args);
         assert_eq!(
             output.status.code(),
