@@ -1002,7 +1002,7 @@ impl Recorder for RunDirectory {
     }
 
     fn wants_checkpoint(&self, steps: u64) -> bool {
-        self.checkpoint_every > 0 && steps % self.checkpoint_every == 0
+        self.checkpoint_every > 0 && steps.is_multiple_of(self.checkpoint_every)
     }
 
     fn checkpoint(&mut self, start: &Start) -> io::Result<()> {
