@@ -930,3 +930,28 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
     }
     assert!(failures > 3, "only {failures} runs hit the full disk");
 }
+
+#[test]
+fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
+    let tmp = TempDir::new("sweep_stopped");
+    write(tmp.path(), "long.ron", LONG_2D);
+    let sweep = write(
+        tmp.path(),
+        "sweep.ron",
+        r#"Sweep(name: "stopped", base: Path("long.ron"), axes: [], seeds: 40)"#,
+    );
+    let mut child = spawn(
+        tmp.path(),
+        &["sweep", &sweep, "--out", "sw", "--jobs", "1", "--quiet"],
+    );
+    wait_for(&tmp.path().join("sw/sweep.ron"), &mut child);
+    let signalled = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(signalled.success());
+    let output = child.wait_with_output().expect("the sweep ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{err}");
+    assert!(err.contains("the same command resumes"), "{err}");
+}
