@@ -650,6 +650,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
     assert_eq!(
         names,
         [
+            ".flocking",
             "final.csv",
             "flocking.txt",
             "metrics.csv",
