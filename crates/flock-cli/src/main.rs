@@ -33,7 +33,8 @@ enum Command {
         /// The output directory (default: `out/<scenario file stem>`).
         #[arg(long, conflicts_with = "resume")]
         out: Option<PathBuf>,
-        /// Replace an existing output directory.
+        /// Replace an existing output directory that flocking wrote (never one holding anything
+        /// else, the working directory, its parents or a mount point).
         #[arg(long, conflicts_with = "resume")]
         force: bool,
         /// Continue the interrupted or killed run DIR (or DIR.partial) from its last checkpoint;
@@ -315,20 +316,30 @@ fn create_directory(
     for warning in scenario.warnings() {
         eprintln!("{warning}");
     }
-    let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| {
-        match e {
-            CreateError::Occupied { target } => eprintln!(
-                "error: output directory {} already holds files; choose another --out or pass --force to replace it",
+    let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
+        CreateError::Occupied { target } => {
+            eprintln!(
+                "error: output directory {} holds an earlier run; choose another --out or pass --force to replace it",
                 target.display()
-            ),
-            CreateError::Interrupted { partial, target } => eprintln!(
+            );
+            ExitCode::from(INVALID)
+        }
+        CreateError::Interrupted { partial, target } => {
+            eprintln!(
                 "error: {} holds an interrupted run; continue it with `flocking run --resume {}`, or pass --force to start over",
                 partial.display(),
                 target.display()
-            ),
-            CreateError::Io(e) => eprintln!("error: {e}"),
+            );
+            ExitCode::from(INVALID)
         }
-        ExitCode::FAILURE
+        CreateError::Dir(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(INVALID)
+        }
+        CreateError::Io(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
     })?;
     Ok((dir, scenario, None))
 }
@@ -352,10 +363,11 @@ fn resume_directory(
             _ => eprintln!("error: {e}"),
         }
         match e {
-            ResumeError::Scenario(_) => ExitCode::from(INVALID),
-            ResumeError::Nothing { .. } | ResumeError::Refused(_) | ResumeError::Io(_) => {
-                ExitCode::FAILURE
-            }
+            ResumeError::Scenario(_)
+            | ResumeError::Nothing { .. }
+            | ResumeError::Refused(_)
+            | ResumeError::Dir(_) => ExitCode::from(INVALID),
+            ResumeError::Io(_) => ExitCode::FAILURE,
         }
     })?;
     match &start {
@@ -439,6 +451,7 @@ fn execute(
             ExitCode::from(INTERRUPTED),
         ),
     };
+    let partial_path = dir.partial().to_owned();
     match dir.keep_incomplete(&why, resumable) {
         Ok(partial) if resumable => eprintln!(
             "the records so far are kept in {}; continue with `flocking run --resume {}`",
@@ -448,6 +461,11 @@ fn execute(
         Ok(partial) => eprintln!(
             "the records up to the last good step are kept in {}, marked incomplete",
             partial.display()
+        ),
+        Err(e) if resumable => eprintln!(
+            "error: cannot mark the run incomplete: {e}\nthe records so far are kept in {}; continue with `flocking run --resume {}`",
+            partial_path.display(),
+            partial_path.display()
         ),
         Err(e) => eprintln!("error: cannot mark the run incomplete: {e}"),
     }

@@ -115,6 +115,8 @@ fn parse_where(text: &str) -> Result<(String, String), String> {
 enum Failure {
     Usage(String),
     Failed(String),
+    /// Stopped by Ctrl-C before every run finished.
+    Interrupted(String),
 }
 
 impl From<String> for Failure {
@@ -122,6 +124,9 @@ impl From<String> for Failure {
         Self::Failed(message)
     }
 }
+
+/// Exit code of a sweep stopped by Ctrl-C (128 + SIGINT), as `flocking run`'s.
+const INTERRUPTED: u8 = 130;
 
 /// Exit code of a command that asks for what the sweep does not have.
 const USAGE: u8 = 2;
@@ -165,7 +170,7 @@ pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
                 shard: args.shard,
                 keep_runs: args.keep_runs,
             };
-            run(&sweep, &out, &options, args.quiet, stop).map_err(Failure::from)
+            run(&sweep, &out, &options, args.quiet, stop)
         }
     };
     match result {
@@ -178,6 +183,10 @@ pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
             eprintln!("error: {message}");
             ExitCode::FAILURE
         }
+        Err(Failure::Interrupted(message)) => {
+            eprintln!("{message}");
+            ExitCode::from(INTERRUPTED)
+        }
     }
 }
 
@@ -187,7 +196,7 @@ fn run(
     options: &ExecuteOptions,
     quiet: bool,
     stop: &AtomicBool,
-) -> Result<(), String> {
+) -> Result<(), Failure> {
     let sweep = Sweep::load(path).map_err(|e| e.to_string())?;
     let (done, pending) = share(&sweep, out, options.shard).map_err(|e| e.to_string())?;
     let total = (done + pending.len()) as u64;
@@ -223,10 +232,10 @@ fn run(
         out.join(RUNS_FILE).display()
     );
     if executed.stopped {
-        return Err(format!(
+        return Err(Failure::Interrupted(format!(
             "stopped before every run finished; the same command resumes from {}",
             out.display()
-        ));
+        )));
     }
     Ok(())
 }

@@ -650,6 +650,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
     assert_eq!(
         names,
         [
+            ".flocking",
             "final.csv",
             "flocking.txt",
             "metrics.csv",
@@ -757,7 +758,7 @@ fn run_refuses_an_existing_output_without_force() {
 
     let refused = flocking(tmp.path(), &["run", &other, "--out", out_arg]);
     assert!(!refused.status.success());
-    assert_eq!(refused.status.code(), Some(1));
+    assert_eq!(refused.status.code(), Some(2));
     let err = stderr(&refused);
     assert!(err.contains("--force"), "{err}");
     assert_eq!(contents(&out), first, "the first output is left intact");

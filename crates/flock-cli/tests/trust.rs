@@ -114,6 +114,8 @@ fn check_incomplete(out: &Path, agents: usize) {
     for name in names.keys() {
         assert!(
             [
+                ".flocking",
+                ".flocking.lock",
                 "INCOMPLETE",
                 "INCOMPLETE.tmp",
                 "scenario.ron",
@@ -242,7 +244,7 @@ fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
     assert_eq!(whole_lines(&dir.join("metrics.csv"), None), 1);
     assert_eq!(whole_lines(&dir.join("trajectory.csv"), None), 30);
     let resumed = flocking(tmp.path(), &["run", "--resume", "out"]);
-    assert_eq!(resumed.status.code(), Some(1));
+    assert_eq!(resumed.status.code(), Some(2));
     assert!(
         stderr(&resumed).contains("cannot be resumed, it would fail again"),
         "{}",
@@ -305,7 +307,7 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
     assert!(checkpoint.start.steps > 0 && checkpoint.start.steps < 12_000);
     // A new run into the same directory is refused: it would discard the interrupted one.
     let again = flocking(tmp.path(), &["run", &file, "--out", "cut"]);
-    assert_eq!(again.status.code(), Some(1));
+    assert_eq!(again.status.code(), Some(2));
     assert!(
         stderr(&again).contains("flocking run --resume"),
         "{}",
@@ -413,7 +415,8 @@ fn a_corrupt_checkpoint_is_refused_with_its_path() {
     let dir = partial(&out);
     fs::create_dir_all(&dir).expect("mkdir");
     fs::write(dir.join("scenario.ron"), LONG_2D).expect("scenario");
-    fs::write(dir.join("checkpoint.bin"), b"FLOCKCK1 but cut short").expect("checkpoint");
+    fs::write(dir.join(INCOMPLETE_FILE), "incomplete: killed\n").expect("note");
+    fs::write(dir.join("checkpoint.bin"), b"FLOCKCK2 but cut short").expect("checkpoint");
     let output = flocking(tmp.path(), &["run", "--resume", "cut"]);
     assert_eq!(output.status.code(), Some(1));
     let err = stderr(&output);
@@ -575,4 +578,380 @@ fn the_fuzzers_findings_are_rejected_or_run_finite() {
             Err(e) => panic!("{}: {e}", path.display()),
         }
     }
+}
+
+/// A short run (2D, 20 agents, 400 steps recorded every 10) for the ownership tests.
+const SHORT_2D: &str = r#"Scenario(
+    name: "short",
+    dim: 2,
+    agents: 20,
+    seed: 5,
+    algorithm: Algorithm2(
+        gamma: ConstantVelocity(position: [0.0, 0.0], velocity: [1.0, 0.5]),
+        c1: 0.02,
+        c2: 0.4,
+    ),
+    initial: (positions: Box(min: [-15.0, -15.0], max: [15.0, 15.0])),
+    step: 0.01,
+    duration: 4.0,
+    record_every: 10,
+)
+"#;
+
+/// Asserts that `output` exited with code 2 and that its stderr holds every one of `words`.
+fn refused(output: &std::process::Output, words: &[&str]) {
+    let err = stderr(output);
+    assert_eq!(output.status.code(), Some(2), "{err}");
+    for word in words {
+        assert!(err.contains(word), "{word:?} missing from: {err}");
+    }
+}
+
+#[test]
+fn issue_20_force_never_replaces_a_users_directory() {
+    let tmp = TempDir::new("force_user_dir");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    let d = tmp.path().join("d");
+    fs::create_dir(&d).expect("mkdir");
+    fs::write(d.join("thesis.tex"), "x\n").expect("a user's file");
+    let output = flocking(tmp.path(), &["run", &file, "--out", "d", "--force"]);
+    refused(
+        &output,
+        &["d holds thesis.tex, which flocking did not write"],
+    );
+    assert_eq!(fs::read(d.join("thesis.tex")).expect("kept"), b"x\n");
+    assert!(!partial(&d).exists());
+    // A user's file added to a run directory protects it too.
+    complete(tmp.path(), &["run", &file, "--out", "r", "--quiet"]);
+    fs::write(tmp.path().join("r/notes.txt"), "mine\n").expect("a user's file");
+    let output = flocking(tmp.path(), &["run", &file, "--out", "r", "--force"]);
+    refused(&output, &["holds notes.txt"]);
+    assert_eq!(
+        fs::read(tmp.path().join("r/notes.txt")).expect("kept"),
+        b"mine\n"
+    );
+    // ...and a run directory of flocking's alone is replaced.
+    fs::remove_file(tmp.path().join("r/notes.txt")).expect("rm");
+    complete(
+        tmp.path(),
+        &["run", &file, "--out", "r", "--force", "--quiet"],
+    );
+}
+
+#[test]
+fn issue_20_force_never_replaces_the_working_directory_or_its_parents() {
+    let tmp = TempDir::new("force_cwd");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    // p/c and p look like flocking's run directories, and are still refused.
+    let c = tmp.path().join("p/c");
+    complete(tmp.path(), &["run", &file, "--out", "p/c", "--quiet"]);
+    for dir in [tmp.path().join("p"), c.clone()] {
+        fs::write(dir.join(".flocking"), "written by flocking run\n").expect("marker");
+    }
+    let before = files(&c);
+    for out in [".", "..", c.parent().and_then(Path::to_str).expect("UTF-8")] {
+        let output = flocking(&c, &["run", &file, "--out", out, "--force"]);
+        refused(
+            &output,
+            &[
+                "the working directory or one of its parents",
+                "flocking never replaces it",
+            ],
+        );
+        assert_eq!(files(&c), before, "--out {out}");
+    }
+    // The default output of a scenario named `..ron` is `out/.`, the directory of every run.
+    let dots = write(tmp.path(), "..ron", SHORT_2D);
+    complete(
+        tmp.path(),
+        &["run", &file, "--out", "out/earlier", "--quiet"],
+    );
+    let earlier = files(&tmp.path().join("out/earlier"));
+    let output = flocking(tmp.path(), &["run", &dots, "--force"]);
+    refused(&output, &["holds earlier, which flocking did not write"]);
+    assert_eq!(files(&tmp.path().join("out/earlier")), earlier);
+}
+
+/// A tmpfs of `size` mounted at `dir` (as root), unmounted when dropped; `None` (with the
+/// reason printed) where this process cannot mount.
+struct Tmpfs(PathBuf);
+
+impl Tmpfs {
+    fn mount(dir: &Path, size: &str) -> Option<Self> {
+        fs::create_dir_all(dir).expect("mkdir");
+        let status = Command::new("mount")
+            .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
+            .arg(dir)
+            .stderr(Stdio::null())
+            .status();
+        if status.is_ok_and(|s| s.success()) {
+            Some(Self(dir.to_owned()))
+        } else {
+            eprintln!("SKIPPED: cannot mount a tmpfs (needs root): the test checks nothing here");
+            None
+        }
+    }
+}
+
+impl Drop for Tmpfs {
+    fn drop(&mut self) {
+        let _ = Command::new("umount").arg(&self.0).status();
+    }
+}
+
+#[test]
+fn issue_20_force_never_replaces_a_mount_point() {
+    let tmp = TempDir::new("force_mount");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    let Some(_mount) = Tmpfs::mount(&tmp.path().join("m"), "1m") else {
+        return;
+    };
+    let m = tmp.path().join("m");
+    fs::write(m.join(".flocking"), "written by flocking run\n").expect("marker");
+    fs::write(m.join("metrics.csv"), "t\n").expect("a file");
+    let before = files(&m);
+    let output = flocking(tmp.path(), &["run", &file, "--out", "m", "--force"]);
+    refused(&output, &["m is a mount point"]);
+    assert_eq!(files(&m), before);
+}
+
+/// Waits until `path` exists (or the child exits), polling.
+fn wait_for(path: &Path, child: &mut Child) {
+    while !path.exists() {
+        assert!(
+            child.try_wait().expect("poll").is_none(),
+            "the run ended before {} appeared",
+            path.display()
+        );
+        sleep(Duration::from_millis(2));
+    }
+}
+
+#[test]
+fn issue_20_a_directory_appearing_during_the_run_is_kept_and_the_run_stays_resumable() {
+    let tmp = TempDir::new("appearing");
+    let file = write(tmp.path(), "long.ron", LONG_2D);
+    complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
+    let out = tmp.path().join("cut");
+    let mut child = spawn(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "cut",
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ],
+    );
+    wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+    fs::create_dir(&out).expect("mkdir");
+    fs::write(out.join("thesis.tex"), "x\n").expect("a user's file");
+    let output = child.wait_with_output().expect("the run ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{err}");
+    assert!(err.contains("appeared during the run"), "{err}");
+    assert!(err.contains("flocking run --resume"), "{err}");
+    assert_eq!(fs::read(out.join("thesis.tex")).expect("kept"), b"x\n");
+    fs::rename(&out, tmp.path().join("moved")).expect("the user moves it away");
+    complete(tmp.path(), &["run", "--resume", "cut", "--quiet"]);
+    assert_eq!(files(&out), files(&tmp.path().join("whole")));
+}
+
+#[test]
+fn issue_20_a_second_writer_is_refused_with_the_first_ones_pid() {
+    let tmp = TempDir::new("two_writers");
+    let file = write(tmp.path(), "long.ron", LONG_2D);
+    complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
+    let out = tmp.path().join("cut");
+    let mut child = spawn(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "cut",
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ],
+    );
+    let pid = format!("process {}", child.id());
+    wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+    let resumed = flocking(tmp.path(), &["run", "--resume", "cut"]);
+    refused(
+        &resumed,
+        &["cut.partial is being written by", &pid, "started"],
+    );
+    let forced = flocking(tmp.path(), &["run", &file, "--out", "cut", "--force"]);
+    refused(&forced, &["is being written by", &pid]);
+    let output = child.wait_with_output().expect("the first run ends");
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert_eq!(files(&out), files(&tmp.path().join("whole")));
+    // A killed writer's lock goes with it: the next one takes over.
+    let mut child = spawn(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "again",
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ],
+    );
+    wait_for(
+        &partial(&tmp.path().join("again")).join("checkpoint.bin"),
+        &mut child,
+    );
+    child.kill().expect("SIGKILL");
+    child.wait().expect("reaped");
+    complete(tmp.path(), &["run", "--resume", "again", "--quiet"]);
+    assert_eq!(
+        files(&tmp.path().join("again")),
+        files(&tmp.path().join("whole"))
+    );
+}
+
+#[test]
+fn issue_20_resume_refuses_an_edited_scenario_naming_the_field() {
+    let tmp = TempDir::new("edited_scenario");
+    let file = write(tmp.path(), "long.ron", LONG_2D);
+    let out = tmp.path().join("cut");
+    let mut child = spawn(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "cut",
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ],
+    );
+    wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+    child.kill().expect("SIGKILL");
+    child.wait().expect("reaped");
+    let scenario = partial(&out).join("scenario.ron");
+    let text = fs::read_to_string(&scenario).expect("scenario");
+    let edited = text.replacen("c1: 0.02", "c1: 0.05", 1);
+    assert_ne!(edited, text, "the resolved scenario writes c1: 0.02");
+    fs::write(&scenario, &edited).expect("edit");
+    let before = files(&partial(&out));
+    let output = flocking(tmp.path(), &["run", "--resume", "cut"]);
+    refused(&output, &["scenario.ron was edited", "algorithm.c1"]);
+    let mut after = files(&partial(&out));
+    after.remove(".flocking.lock");
+    let mut before = before;
+    before.remove(".flocking.lock");
+    assert_eq!(after, before, "the refused resume changes nothing");
+}
+
+/// The free space of the filesystem of `dir` is cut to `pages` pages by a filler file.
+fn fill(dir: &Path, pages: u64) -> PathBuf {
+    use std::io::Write as _;
+    let filler = dir.join("filler");
+    let mut file = fs::File::create(&filler).expect("filler");
+    let page = vec![0u8; 4096];
+    while file.write_all(&page).is_ok() {}
+    let len = file.metadata().expect("len").len();
+    file.set_len(len.saturating_sub(pages * 4096))
+        .expect("free pages");
+    filler
+}
+
+#[test]
+fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
+    let tmp = TempDir::new("full_disk");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
+    let whole = files(&tmp.path().join("whole"));
+    let bytes: u64 = whole.values().map(|b| b.len() as u64).sum();
+    let disk = tmp.path().join("disk");
+    let Some(_mount) = Tmpfs::mount(&disk, "4m") else {
+        return;
+    };
+    fs::write(disk.join("thesis.tex"), "x\n").expect("a user's file");
+    let mut failures = 0;
+    // From no free page to enough for every file (each file takes whole pages).
+    for pages in 0..=bytes / 4096 + 12 {
+        let out = disk.join(format!("run{pages}"));
+        let out_arg = out.to_str().expect("UTF-8");
+        let filler = fill(&disk, pages);
+        let output = flocking(
+            tmp.path(),
+            &[
+                "run",
+                &file,
+                "--out",
+                out_arg,
+                "--quiet",
+                "--checkpoint-every",
+                "40",
+            ],
+        );
+        fs::remove_file(&filler).expect("free the space");
+        let err = stderr(&output);
+        assert_eq!(fs::read(disk.join("thesis.tex")).expect("kept"), b"x\n");
+        match output.status.code() {
+            Some(0) => {}
+            Some(1) => {
+                failures += 1;
+                assert!(
+                    err.contains("No space left on device") && err.contains("cannot "),
+                    "{err}"
+                );
+                if partial(&out).exists() {
+                    assert!(err.contains("flocking run --resume"), "{err}");
+                    complete(tmp.path(), &["run", "--resume", out_arg, "--quiet"]);
+                } else {
+                    assert!(!out.exists(), "{pages} pages: {err}");
+                    complete(tmp.path(), &["run", &file, "--out", out_arg, "--quiet"]);
+                }
+            }
+            code => panic!("{pages} free pages: exit {code:?}: {err}"),
+        }
+        let written = files(&out);
+        assert_eq!(
+            written.keys().collect::<Vec<_>>(),
+            whole.keys().collect::<Vec<_>>(),
+            "{pages} free pages: {err}"
+        );
+        assert!(written == whole, "{pages} free pages: {err}");
+        fs::remove_dir_all(&out).expect("clean");
+    }
+    assert!(failures > 3, "only {failures} runs hit the full disk");
+}
+
+#[test]
+fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
+    let tmp = TempDir::new("sweep_stopped");
+    write(tmp.path(), "long.ron", LONG_2D);
+    let sweep = write(
+        tmp.path(),
+        "sweep.ron",
+        r#"Sweep(name: "stopped", base: Path("long.ron"), axes: [], seeds: 40)"#,
+    );
+    let mut child = spawn(
+        tmp.path(),
+        &["sweep", &sweep, "--out", "sw", "--jobs", "1", "--quiet"],
+    );
+    wait_for(&tmp.path().join("sw/sweep.ron"), &mut child);
+    let signalled = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(signalled.success());
+    let output = child.wait_with_output().expect("the sweep ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{err}");
+    assert!(err.contains("the same command resumes"), "{err}");
 }

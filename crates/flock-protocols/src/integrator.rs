@@ -331,7 +331,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let sorts =
             self.protocol.follows_numbering() && self.protocol.interaction_graph().is_none();
         let sorted = !self.net.numbering().is_identity();
-        if sorts && sorted && self.steps % RESORT_EVERY == 0 {
+        if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {
             self.sort_by_cell();
         }
         self.search.build(&self.swarm.positions, r, &mut self.net);

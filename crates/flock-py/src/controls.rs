@@ -204,7 +204,7 @@ impl<V: Space + bytemuck::Pod> Protocol<V> for Controlled<V> {
     /// simulation keeps them so); NaN for every agent once `f` has failed.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let call = self.calls.fetch_add(1, Ordering::Relaxed);
-        let starts_step = call % self.evaluations == 0;
+        let starts_step = call.is_multiple_of(self.evaluations);
         if lock(&self.failure).is_some() {
             inputs_nan(inputs);
             return;

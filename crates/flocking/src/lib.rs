@@ -17,6 +17,8 @@
 //!   driven onto one point ([`Merge`], [`MergedAgents`]).
 //! - [`sweep`]: parameter sweeps and ensembles — a grid of values × seeds, one row of
 //!   `runs.csv` per run, resumable, in shards.
+//! - [`owned`]: the marker, the checks and the lock that keep flocking from removing or
+//!   overwriting anything it did not write.
 //! - [`synthetic`]: lattices of any size for benchmarks.
 //! - The member crates, re-exported: [`math`], [`graph`], [`protocols`], [`obstacles`],
 //!   [`metrics`], and [`glam`]; [`prelude`] for a glob import.
@@ -39,6 +41,7 @@ pub mod health;
 pub mod initial;
 pub mod merging;
 pub mod overrides;
+pub mod owned;
 pub mod run;
 pub mod run_dir;
 pub mod scenario;

@@ -4,8 +4,9 @@
 //!
 //! The file is little-endian: the magic `FLOCKCK1`, then as u64 the dimension, the number of
 //! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
-//! trajectory; then the positions and the velocities as f64 (`dim` per agent), and last an FNV-1a
-//! hash of everything before it. It is written to `checkpoint.tmp`, flushed to the disk, and
+//! trajectory; then the positions and the velocities as f64 (`dim` per agent), the resolved
+//! scenario as RON text (so that a resume can refuse a `scenario.ron` edited since), and last an
+//! FNV-1a hash of everything before it. It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
 
@@ -13,12 +14,16 @@ use std::fs;
 use std::io::{self, Write};
 use std::path::Path;
 
+use crate::owned::at;
 use crate::run::Start;
 
 /// The checkpoint's file name in the run directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 
-const MAGIC: &[u8; 8] = b"FLOCKCK1";
+/// The temporary file a checkpoint is written to before its rename.
+pub const CHECKPOINT_TMP: &str = "checkpoint.tmp";
+
+const MAGIC: &[u8; 8] = b"FLOCKCK2";
 
 /// A run's state and the lengths of its outputs at that state.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,6 +38,8 @@ pub struct Checkpoint {
     pub metrics_bytes: u64,
     /// The bytes of `trajectory.csv`, or the records of `trajectory.npy`.
     pub trajectory_bytes: u64,
+    /// The resolved scenario of the run, as RON.
+    pub scenario: String,
 }
 
 impl Checkpoint {
@@ -57,14 +64,23 @@ impl Checkpoint {
         for x in s.positions.iter().chain(&s.velocities) {
             bytes.extend_from_slice(&x.to_le_bytes());
         }
+        bytes.extend_from_slice(self.scenario.as_bytes());
         let hash = fnv1a(&bytes);
         bytes.extend_from_slice(&hash.to_le_bytes());
-        let temporary = dir.join("checkpoint.tmp");
-        let mut file = fs::File::create(&temporary)?;
-        file.write_all(&bytes)?;
-        file.sync_all()?;
-        fs::rename(temporary, dir.join(CHECKPOINT_FILE))?;
-        sync_dir(dir)
+        let temporary = dir.join(CHECKPOINT_TMP);
+        let write = || {
+            let mut file = fs::File::create(&temporary)?;
+            file.write_all(&bytes)?;
+            file.sync_all()
+        };
+        write().map_err(at(format_args!("write {}", temporary.display())))?;
+        let path = dir.join(CHECKPOINT_FILE);
+        fs::rename(&temporary, &path).map_err(at(format_args!(
+            "rename {} to {}",
+            temporary.display(),
+            path.display()
+        )))?;
+        sync_dir(dir).map_err(at(format_args!("flush {}", dir.display())))
     }
 
     /// Reads the checkpoint of `dir`, if it has one.
@@ -76,7 +92,7 @@ impl Checkpoint {
         let bytes = match fs::read(&path) {
             Ok(bytes) => bytes,
             Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => return Err(e),
+            Err(e) => return Err(at(format_args!("read {}", path.display()))(e)),
         };
         let corrupt = |why: &str| {
             io::Error::new(
@@ -93,27 +109,31 @@ impl Checkpoint {
         if fnv1a(body) != u64::from_le_bytes(*hash) {
             return Err(corrupt("its hash does not match"));
         }
-        let words: Vec<u64> = body[MAGIC.len()..]
-            .chunks_exact(8)
-            .map(|w| u64::from_le_bytes(w.try_into().unwrap_or_default()))
-            .collect();
-        let [
-            dim,
-            agents,
-            steps,
-            energy,
-            records,
-            metrics_bytes,
-            trajectory_bytes,
-            state @ ..,
-        ] = words.as_slice()
+        let word = |k: usize| {
+            body.get(MAGIC.len() + 8 * k..MAGIC.len() + 8 * (k + 1))
+                .map(|w| u64::from_le_bytes(w.try_into().unwrap_or_default()))
+        };
+        let header: Option<Vec<u64>> = (0..7).map(word).collect();
+        let Some(
+            [
+                dim,
+                agents,
+                steps,
+                energy,
+                records,
+                metrics_bytes,
+                trajectory_bytes,
+            ],
+        ) = header.as_deref()
         else {
             return Err(corrupt("too short"));
         };
         let size = usize::try_from(dim * agents).map_err(|_| corrupt("too large"))?;
-        if state.len() != 2 * size || (body.len() - MAGIC.len()) % 8 != 0 {
-            return Err(corrupt("its length does not match its size"));
-        }
+        let state: Option<Vec<u64>> = (7..7 + 2 * size).map(word).collect();
+        let state = state.ok_or_else(|| corrupt("its length does not match its size"))?;
+        let scenario = std::str::from_utf8(&body[MAGIC.len() + 8 * (7 + 2 * size)..])
+            .map_err(|_| corrupt("its scenario is not text"))?
+            .to_owned();
         let floats = |w: &[u64]| w.iter().map(|&b| f64::from_bits(b)).collect();
         Ok(Some(Self {
             dim: usize::try_from(*dim).map_err(|_| corrupt("bad dimension"))?,
@@ -126,6 +146,7 @@ impl Checkpoint {
             records: *records,
             metrics_bytes: *metrics_bytes,
             trajectory_bytes: *trajectory_bytes,
+            scenario,
         }))
     }
 }

@@ -15,6 +15,12 @@
 //!   disk (fsync), and so is every file and directory before each rename (the checkpoint, the
 //!   `INCOMPLETE` note, `DIR.partial` to `DIR`), so that a power cut cannot leave a checkpoint
 //!   that counts bytes the disk does not hold.
+//! - Ownership ([`crate::owned`]): the directory carries flocking's marker; `force` replaces only
+//!   a `DIR` that flocking wrote; `DIR.partial` is locked for the whole run, so that a second
+//!   writer is refused; finishing never removes `DIR.partial` (an error leaves it resumable) nor
+//!   renames over a `DIR` that appeared during the run.
+//! - The checkpoint holds the resolved scenario: `--resume` refuses a `scenario.ron` edited
+//!   since, naming the fields that changed.
 //! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
 //!   diagnostics are named by the diagnostics themselves ([`Record::diagnostics`]), and every
 //!   later record must carry the same names.
@@ -26,11 +32,12 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::checkpoint::{CHECKPOINT_FILE, Checkpoint, sync_dir};
+use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, sync_dir};
 use super::npy::{NpyFile, trajectory_dtype};
 use super::read::trajectory_header;
 use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
 use crate::error::ScenarioError;
+use crate::owned::{self, DirError, DirLock, Kind, at, parent_of};
 use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
 use flock_metrics::{FlockingCriteria, FlockingVerdict};
@@ -40,6 +47,9 @@ pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius
 
 /// The file that marks a directory as incomplete, and says why.
 pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
+
+/// The temporary file [`INCOMPLETE_FILE`] is written to before its rename.
+const INCOMPLETE_TMP: &str = "INCOMPLETE.tmp";
 
 /// The first word of [`INCOMPLETE_FILE`] for a run that cannot be resumed.
 const FAILED: &str = "failed";
@@ -72,7 +82,7 @@ impl FromStr for TrajectoryFormat {
 /// How a run directory is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct OutputOptions {
-    /// Replace an existing `DIR`.
+    /// Replace an existing `DIR` that flocking wrote (never a directory holding anything else).
     pub force: bool,
     /// The trajectory's format.
     pub format: TrajectoryFormat,
@@ -119,6 +129,12 @@ pub struct RunDirectory {
     agents: usize,
     /// The criteria of the verdict of [`VERDICT_FILE`].
     criteria: FlockingCriteria,
+    /// The resolved scenario as RON, kept in every checkpoint.
+    scenario: String,
+    /// Whether `DIR` may be replaced at the end (it carried flocking's marker at the start).
+    force: bool,
+    /// The lock on `DIR.partial`, held until the directory is dropped.
+    lock: DirLock,
 }
 
 /// A complete run directory.
@@ -145,6 +161,8 @@ pub enum CreateError {
         /// `DIR`.
         target: PathBuf,
     },
+    /// The directory is not flocking's to replace, or another process is writing it.
+    Dir(DirError),
     /// Writing failed.
     Io(io::Error),
 }
@@ -162,12 +180,22 @@ impl std::fmt::Display for CreateError {
                 "{} holds an interrupted run (resume it, or start over with `force`)",
                 partial.display()
             ),
+            Self::Dir(e) => write!(f, "{e}"),
             Self::Io(e) => write!(f, "{e}"),
         }
     }
 }
 
 impl std::error::Error for CreateError {}
+
+impl From<DirError> for CreateError {
+    fn from(e: DirError) -> Self {
+        match e {
+            DirError::Io(e) => Self::Io(e),
+            e => Self::Dir(e),
+        }
+    }
+}
 
 impl From<io::Error> for CreateError {
     fn from(e: io::Error) -> Self {
@@ -191,6 +219,8 @@ pub enum ResumeError {
     Refused(String),
     /// The directory's `scenario.ron` no longer loads.
     Scenario(ScenarioError),
+    /// Another process is writing the directory.
+    Dir(DirError),
     /// Reading or cutting back the files failed.
     Io(io::Error),
 }
@@ -215,12 +245,22 @@ impl std::fmt::Display for ResumeError {
             }
             Self::Refused(why) => write!(f, "{why}"),
             Self::Scenario(e) => write!(f, "{e}"),
+            Self::Dir(e) => write!(f, "{e}"),
             Self::Io(e) => write!(f, "{e}"),
         }
     }
 }
 
 impl std::error::Error for ResumeError {}
+
+impl From<DirError> for ResumeError {
+    fn from(e: DirError) -> Self {
+        match e {
+            DirError::Io(e) => Self::Io(e),
+            e => Self::Dir(e),
+        }
+    }
+}
 
 impl From<io::Error> for ResumeError {
     fn from(e: io::Error) -> Self {
@@ -253,28 +293,43 @@ impl RunDirectory {
         )
     }
 
-    /// Starts writing the run of `scenario` to `target`; refuses an existing non-empty `target`
-    /// unless `options.force`.
+    /// Starts writing the run of `scenario` to `target`. An existing non-empty `target` is
+    /// refused unless it carries flocking's marker and `options.force` is set (it is then
+    /// replaced when the run finishes); `DIR.partial` is refused while another process writes
+    /// it, and replaced only with `options.force` and only if flocking wrote it. Nothing is
+    /// removed that flocking did not write ([`owned::remove`]).
     ///
     /// # Errors
-    /// When `target` holds files and `force` is false, or on any I/O error.
+    /// [`CreateError::Occupied`], [`CreateError::Interrupted`], [`CreateError::Dir`] (not
+    /// flocking's, or being written), or an I/O error naming its path (the new directory is then
+    /// removed, everything else left as it was).
     pub fn create_with(
         target: &Path,
         scenario: &Scenario,
         options: &OutputOptions,
     ) -> Result<Self, CreateError> {
         let non_empty = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
-        if non_empty && !options.force {
-            return Err(CreateError::Occupied {
-                target: target.to_owned(),
-            });
+        if non_empty {
+            owned::check_owned(target, Kind::Run)?;
+            if !options.force {
+                return Err(CreateError::Occupied {
+                    target: target.to_owned(),
+                });
+            }
+            owned::check_removable(target, Kind::Run)?;
         }
         let partial = partial_path(target);
-        if partial.exists() && !options.force {
-            return Err(CreateError::Interrupted {
-                partial,
-                target: target.to_owned(),
-            });
+        if partial.exists() {
+            owned::check_owned(&partial, Kind::Run)?;
+            let lock = DirLock::acquire(&partial)?;
+            if !options.force {
+                return Err(CreateError::Interrupted {
+                    partial,
+                    target: target.to_owned(),
+                });
+            }
+            owned::remove(&partial, Kind::Run)?;
+            drop(lock);
         }
         Ok(Self::create_in(target, partial, scenario, options)?)
     }
@@ -285,27 +340,61 @@ impl RunDirectory {
         partial: PathBuf,
         scenario: &Scenario,
         options: &OutputOptions,
-    ) -> io::Result<Self> {
+    ) -> Result<Self, DirError> {
         // The directory is prepared under another name and appears as `DIR.partial` with its
-        // `INCOMPLETE` note and scenario already inside.
+        // marker, lock, `INCOMPLETE` note and scenario already inside.
         let mut staging = partial.clone().into_os_string();
         staging.push(".new");
         let staging = PathBuf::from(staging);
-        for stale in [&partial, &staging] {
-            if stale.exists() {
-                fs::remove_dir_all(stale)?;
-            }
+        if staging.exists() {
+            let _lock = DirLock::acquire(&staging)?;
+            owned::remove(&staging, Kind::Run)?;
         }
-        fs::create_dir_all(&staging)?;
-        write_incomplete(&staging, &running_note(target))?;
-        let text = scenario.to_ron().map_err(io::Error::other)?;
-        write_durably(&staging.join("scenario.ron"), (text + "\n").as_bytes())?;
-        let mut this = Self::start_files(target, staging, scenario, options.format, options)?;
-        sync_dir(&this.partial)?;
-        // The open files follow the directory's rename.
-        fs::rename(&this.partial, &partial)?;
-        sync_dir(parent_of(&partial))?;
-        this.partial = partial;
+        fs::create_dir_all(parent_of(&staging))
+            .map_err(at(format_args!("create {}", parent_of(&staging).display())))?;
+        fs::create_dir(&staging).map_err(at(format_args!("create {}", staging.display())))?;
+        let prepared = Self::prepare(target, &staging, &partial, scenario, options);
+        if prepared.is_err() {
+            // only what this call created: the marker makes it removable
+            let _ = owned::remove(&staging, Kind::Run);
+        }
+        prepared
+    }
+
+    /// Fills the new directory `staging` and renames it to `partial`.
+    fn prepare(
+        target: &Path,
+        staging: &Path,
+        partial: &Path,
+        scenario: &Scenario,
+        options: &OutputOptions,
+    ) -> Result<Self, DirError> {
+        owned::mark(staging, Kind::Run)?;
+        let lock = DirLock::acquire(staging)?;
+        write_incomplete(staging, &running_note(target))?;
+        let text = scenario.to_ron().map_err(io::Error::other)? + "\n";
+        write_durably(&staging.join("scenario.ron"), text.as_bytes())?;
+        let mut this = Self::start_files(
+            target,
+            staging.to_owned(),
+            scenario,
+            options.format,
+            options,
+            lock,
+        )?;
+        this.force = options.force;
+        sync_dir(staging).map_err(at(format_args!("flush {}", staging.display())))?;
+        // The open files follow the directory's rename; a `DIR.partial` that another process
+        // created meanwhile makes it fail.
+        fs::rename(staging, partial).map_err(at(format_args!(
+            "rename {} to {}",
+            staging.display(),
+            partial.display()
+        )))?;
+        this.partial = partial.to_owned();
+        this.lock.moved_to(partial);
+        sync_dir(parent_of(partial))
+            .map_err(at(format_args!("flush {}", parent_of(partial).display())))?;
         Ok(this)
     }
 
@@ -316,13 +405,18 @@ impl RunDirectory {
         scenario: &Scenario,
         format: TrajectoryFormat,
         options: &OutputOptions,
+        lock: DirLock,
     ) -> io::Result<Self> {
-        let metrics = File::create(partial.join("metrics.csv"))?;
+        let metrics_path = partial.join("metrics.csv");
+        let metrics = File::create(&metrics_path)
+            .map_err(at(format_args!("create {}", metrics_path.display())))?;
         let trajectory = match format {
             TrajectoryFormat::Csv => {
                 let header = trajectory_csv_header(scenario.dim);
-                let mut file = File::create(partial.join("trajectory.csv"))?;
-                file.write_all(header.as_bytes())?;
+                let path = partial.join("trajectory.csv");
+                let file = File::create(&path)
+                    .and_then(|mut file| file.write_all(header.as_bytes()).map(|()| file))
+                    .map_err(at(format_args!("write {}", path.display())))?;
                 Trajectory::Csv {
                     file,
                     bytes: header.len() as u64,
@@ -330,11 +424,11 @@ impl RunDirectory {
             }
             TrajectoryFormat::Npy => {
                 let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
-                Trajectory::Npy(NpyFile::create(
-                    &partial.join("trajectory.npy"),
-                    descr,
-                    row_bytes,
-                )?)
+                let path = partial.join("trajectory.npy");
+                Trajectory::Npy(
+                    NpyFile::create(&path, descr, row_bytes)
+                        .map_err(at(format_args!("write {}", path.display())))?,
+                )
             }
         };
         Ok(Self {
@@ -352,17 +446,23 @@ impl RunDirectory {
             columns: None,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
+            scenario: scenario.to_ron().map_err(io::Error::other)?,
+            force: false,
+            lock,
         })
     }
 
-    /// Reopens the interrupted run `dir` (`DIR` or `DIR.partial`): loads its `scenario.ron`,
-    /// cuts its outputs back to its last checkpoint and returns the directory with the scenario
-    /// and the state to continue from (`None`: no checkpoint yet, the run starts over).
+    /// Reopens the interrupted run `dir` (`DIR` or `DIR.partial`), locked for this process:
+    /// loads its `scenario.ron`, cuts its outputs back to its last checkpoint and returns the
+    /// directory with the scenario and the state to continue from (`None`: no checkpoint yet,
+    /// the run starts over with fresh files).
     ///
     /// # Errors
     /// [`ResumeError::Refused`] when there is no interrupted run at `dir`, when the run failed
-    /// numerically (resuming would fail again), or when its files do not match its checkpoint;
-    /// otherwise the scenario's or the I/O error.
+    /// numerically (resuming would fail again), when `scenario.ron` differs from the scenario
+    /// of the checkpoint (naming the fields that changed) or when its files do not match its
+    /// checkpoint; [`ResumeError::Dir`] while another process writes it; otherwise the
+    /// scenario's or the I/O error, naming its path.
     pub fn resume(
         dir: &Path,
         checkpoint_every: u64,
@@ -379,7 +479,18 @@ impl RunDirectory {
                 target,
             });
         }
-        let note = fs::read_to_string(partial.join(INCOMPLETE_FILE)).unwrap_or_default();
+        let note_path = partial.join(INCOMPLETE_FILE);
+        let note = match fs::read_to_string(&note_path) {
+            Ok(note) => note,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                return Err(ResumeError::Refused(format!(
+                    "{} has no {INCOMPLETE_FILE} note: it is not an interrupted run of flocking",
+                    partial.display()
+                )));
+            }
+            Err(e) => return Err(at(format_args!("read {}", note_path.display()))(e).into()),
+        };
+        let lock = DirLock::acquire(&partial)?;
         if note.starts_with(FAILED) {
             return Err(ResumeError::Refused(format!(
                 "the run in {} cannot be resumed, it would fail again: {}",
@@ -394,52 +505,49 @@ impl RunDirectory {
         } else {
             TrajectoryFormat::Csv
         };
-        let checkpoint = Checkpoint::read(&partial)?;
-        write_incomplete(&partial, &running_note(&target))?;
-        // With no checkpoint yet the run starts over: its files are cut back to their headers
-        // (the trajectory's was whole before the directory appeared; the metrics' comes with the
-        // first record).
-        let (records, metrics_bytes, trajectory_bytes, start) = match checkpoint {
-            Some(checkpoint) => {
-                check_size(&checkpoint, &scenario, &partial)?;
-                (
-                    checkpoint.records,
-                    checkpoint.metrics_bytes,
-                    checkpoint.trajectory_bytes,
-                    Some(checkpoint.start),
-                )
-            }
-            None => (0, 0, trajectory_csv_header(scenario.dim).len() as u64, None),
+        let Some(checkpoint) = Checkpoint::read(&partial)? else {
+            // No checkpoint yet: the run starts over, in fresh files.
+            owned::mark(&partial, Kind::Run)?;
+            write_incomplete(&partial, &running_note(&target))?;
+            let options = OutputOptions {
+                force: false,
+                format,
+                checkpoint_every,
+            };
+            let this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
+            return Ok((this, scenario, None));
         };
+        check_scenario(&checkpoint, &scenario, &partial)?;
+        owned::mark(&partial, Kind::Run)?;
+        write_incomplete(&partial, &running_note(&target))?;
         let metrics_path = partial.join("metrics.csv");
-        let columns = if records > 0 {
+        let columns = if checkpoint.records > 0 {
             Some(diagnostic_columns(&metrics_path)?)
         } else {
             None
         };
-        let metrics = cut(&metrics_path, metrics_bytes)?;
+        let metrics = cut(&metrics_path, checkpoint.metrics_bytes)?;
         let trajectory = match format {
             TrajectoryFormat::Csv => Trajectory::Csv {
-                file: cut(&partial.join("trajectory.csv"), trajectory_bytes)?,
-                bytes: trajectory_bytes,
+                file: cut(&partial.join("trajectory.csv"), checkpoint.trajectory_bytes)?,
+                bytes: checkpoint.trajectory_bytes,
             },
             TrajectoryFormat::Npy => {
                 let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
-                Trajectory::Npy(NpyFile::truncate_to(
-                    &partial.join("trajectory.npy"),
-                    descr,
-                    row_bytes,
-                    records,
-                )?)
+                let path = partial.join("trajectory.npy");
+                Trajectory::Npy(
+                    NpyFile::truncate_to(&path, descr, row_bytes, checkpoint.records)
+                        .map_err(at(format_args!("cut {} back", path.display())))?,
+                )
             }
         };
         let this = Self {
             target,
             partial,
             metrics,
-            metrics_bytes,
+            metrics_bytes: checkpoint.metrics_bytes,
             trajectory,
-            records,
+            records: checkpoint.records,
             dim: scenario.dim,
             checkpoint_every,
             stop: None,
@@ -448,8 +556,11 @@ impl RunDirectory {
             columns,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
+            scenario: checkpoint.scenario,
+            force: false,
+            lock,
         };
-        Ok((this, scenario, start))
+        Ok((this, scenario, Some(checkpoint.start)))
     }
 
     /// Stops the run (after keeping a checkpoint) once `flag` is set, e.g. by Ctrl-C.
@@ -473,17 +584,27 @@ impl RunDirectory {
         &self.partial
     }
 
-    /// Writes `final.csv` and [`VERDICT_FILE`] and moves the directory into place.
+    /// Writes `final.csv` and [`VERDICT_FILE`] and moves the directory into place: renames
+    /// `DIR.partial` to `DIR`, then removes its checkpoint and `INCOMPLETE` note. A `DIR` is
+    /// replaced only if it is empty, or if `force` was set and it is flocking's
+    /// ([`owned::remove`]); a `DIR` that appeared during the run is never renamed over.
     ///
     /// # Errors
-    /// On any I/O error (the partial directory is then removed).
+    /// Any I/O error, naming the operation and the path; `DIR.partial` is then kept with its
+    /// records, its checkpoint and its note, resumable (the message says how).
     pub fn finish(mut self) -> io::Result<Finished> {
-        let result = self.complete();
-        if result.is_err() {
-            let _ = fs::remove_dir_all(&self.partial);
-        }
-        result.map(|verdict| Finished {
-            path: self.target,
+        let verdict = self.complete().map_err(|e| {
+            io::Error::new(
+                e.kind(),
+                format!(
+                    "{e}\nthe run is kept in {}; once that is fixed, finish it with `flocking run --resume {}`",
+                    self.partial.display(),
+                    self.target.display()
+                ),
+            )
+        })?;
+        Ok(Finished {
+            path: self.target.clone(),
             verdict,
         })
     }
@@ -503,33 +624,84 @@ impl RunDirectory {
         )?;
         let text = verdict_text(verdict.as_ref(), &self.criteria);
         write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
-        for name in [CHECKPOINT_FILE, INCOMPLETE_FILE] {
-            match fs::remove_file(self.partial.join(name)) {
-                Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
+        self.clear_target()?;
+        fs::rename(&self.partial, &self.target).map_err(at(format_args!(
+            "rename {} to {}",
+            self.partial.display(),
+            self.target.display()
+        )))?;
+        self.lock.moved_to(&self.target);
+        let parent = parent_of(&self.target);
+        sync_dir(parent).map_err(at(format_args!("flush {}", parent.display())))?;
+        // with the temporary files a failed write (a full disk) may have left
+        for name in [
+            CHECKPOINT_FILE,
+            CHECKPOINT_TMP,
+            INCOMPLETE_FILE,
+            INCOMPLETE_TMP,
+        ] {
+            let path = self.target.join(name);
+            match fs::remove_file(&path) {
+                Err(e) if e.kind() != io::ErrorKind::NotFound => {
+                    return Err(at(format_args!("remove {}", path.display()))(e));
+                }
                 _ => {}
             }
         }
-        sync_dir(&self.partial)?;
-        if self.target.exists() {
-            fs::remove_dir_all(&self.target)?;
-        }
-        fs::rename(&self.partial, &self.target)?;
-        sync_dir(parent_of(&self.target))?;
+        sync_dir(&self.target).map_err(at(format_args!("flush {}", self.target.display())))?;
         Ok(verdict)
+    }
+
+    /// Makes way for the rename to `DIR`: removes an empty `DIR`, or with `force` one that
+    /// flocking wrote; refuses any other.
+    fn clear_target(&self) -> io::Result<()> {
+        let target = &self.target;
+        if !target.exists() {
+            return Ok(());
+        }
+        // `remove_dir` removes only an empty directory, atomically.
+        if fs::remove_dir(target).is_ok() {
+            return Ok(());
+        }
+        let refused = |why: String| {
+            io::Error::new(
+                io::ErrorKind::AlreadyExists,
+                format!(
+                    "cannot rename {} to {}: {why}",
+                    self.partial.display(),
+                    target.display()
+                ),
+            )
+        };
+        if !self.force {
+            return Err(refused(format!(
+                "{} appeared during the run; move it away",
+                target.display()
+            )));
+        }
+        owned::remove(target, Kind::Run).map_err(|e| match e {
+            DirError::Io(e) => e,
+            e => refused(e.to_string()),
+        })
     }
 
     /// Flushes `metrics.csv` and the trajectory to the disk.
     fn sync_outputs(&self) -> io::Result<()> {
-        self.metrics.sync_data()?;
-        match &self.trajectory {
-            Trajectory::Csv { file, .. } => file.sync_data(),
-            Trajectory::Npy(file) => file.sync_data(),
-        }
+        self.metrics
+            .sync_data()
+            .and_then(|()| match &self.trajectory {
+                Trajectory::Csv { file, .. } => file.sync_data(),
+                Trajectory::Npy(file) => file.sync_data(),
+            })
+            .map_err(at(format_args!(
+                "flush the records in {}",
+                self.partial.display()
+            )))
     }
 
-    /// Abandons the run: removes the partial directory.
+    /// Abandons the run: removes the partial directory (flocking's, [`owned::remove`]).
     pub fn abandon(self) {
-        let _ = fs::remove_dir_all(&self.partial);
+        let _ = owned::remove(&self.partial, Kind::Run);
     }
 
     /// Keeps the partial directory, its records and its last checkpoint, and says in its
@@ -591,27 +763,31 @@ fn diagnostic_columns(path: &Path) -> io::Result<Vec<String>> {
         .collect())
 }
 
-/// The parent directory of `path` (`.` for a bare name).
-fn parent_of(path: &Path) -> &Path {
-    match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    }
-}
-
 /// Writes `bytes` to `path` and flushes them to the disk.
 fn write_durably(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    let mut file = File::create(path)?;
-    file.write_all(bytes)?;
-    file.sync_all()
+    let write = || {
+        let mut file = File::create(path)?;
+        file.write_all(bytes)?;
+        file.sync_all()
+    };
+    write().map_err(at(format_args!("write {}", path.display())))
 }
 
-/// A checkpoint must hold the state of the scenario's agents in its dimension.
-fn check_size(
+/// The checkpoint must be of `scenario` (the run's `scenario.ron`): the same resolved scenario,
+/// and a state of its agents in its dimension.
+fn check_scenario(
     checkpoint: &Checkpoint,
     scenario: &Scenario,
     partial: &Path,
 ) -> Result<(), ResumeError> {
+    let started: Scenario = checkpoint.scenario.parse().map_err(ResumeError::Scenario)?;
+    if started != *scenario {
+        return Err(ResumeError::Refused(format!(
+            "{} was edited after the run started (changed: {}); resuming would continue one scenario with another. Undo the edit, or start a new run with --out elsewhere",
+            partial.join("scenario.ron").display(),
+            changed_fields(&started, scenario).join(", ")
+        )));
+    }
     if checkpoint.dim == scenario.dim
         && checkpoint.start.positions.len() == scenario.agents * scenario.dim
     {
@@ -627,6 +803,56 @@ fn check_size(
     )))
 }
 
+/// The dotted paths of the fields whose values differ between `a` and `b`, as
+/// [`Scenario::value`] names them (an enum's variant passed through; a changed variant is named
+/// by the field that holds it).
+fn changed_fields(a: &Scenario, b: &Scenario) -> Vec<String> {
+    use serde_json::Value;
+    /// The tag and content of an externally tagged enum value `{"Variant": content}`.
+    fn variant(map: &serde_json::Map<String, Value>) -> Option<(&String, &Value)> {
+        (map.len() == 1)
+            .then(|| map.iter().next())
+            .flatten()
+            .filter(|(tag, _)| tag.starts_with(|c: char| c.is_ascii_uppercase()))
+    }
+    fn walk(path: &str, a: &Value, b: &Value, out: &mut Vec<String>) {
+        let join = |key: &str| {
+            if path.is_empty() {
+                key.to_owned()
+            } else {
+                format!("{path}.{key}")
+            }
+        };
+        match (a, b) {
+            _ if a == b => {}
+            (Value::Object(x), Value::Object(y)) => match (variant(x), variant(y)) {
+                (Some((tx, vx)), Some((ty, vy))) if tx == ty => walk(path, vx, vy, out),
+                (Some(_), _) | (_, Some(_)) => out.push(path.to_owned()),
+                (None, None) => {
+                    let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
+                    keys.sort();
+                    keys.dedup();
+                    for key in keys {
+                        let null = Value::Null;
+                        let (u, v) = (x.get(key).unwrap_or(&null), y.get(key).unwrap_or(&null));
+                        walk(&join(key), u, v, out);
+                    }
+                }
+            },
+            (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+                for (i, (u, v)) in x.iter().zip(y).enumerate() {
+                    walk(&join(&i.to_string()), u, v, out);
+                }
+            }
+            _ => out.push(path.to_owned()),
+        }
+    }
+    let tree = |s: &Scenario| serde_json::to_value(s).expect("a scenario serializes");
+    let mut out = Vec::new();
+    walk("", &tree(a), &tree(b), &mut out);
+    out
+}
+
 /// The note of a directory being written.
 fn running_note(target: &Path) -> String {
     format!(
@@ -638,15 +864,23 @@ fn running_note(target: &Path) -> String {
 
 /// Replaces the `INCOMPLETE` note atomically.
 fn write_incomplete(partial: &Path, note: &str) -> io::Result<()> {
-    let temporary = partial.join("INCOMPLETE.tmp");
+    let temporary = partial.join(INCOMPLETE_TMP);
     write_durably(&temporary, note.as_bytes())?;
-    fs::rename(temporary, partial.join(INCOMPLETE_FILE))?;
-    sync_dir(partial)
+    let note = partial.join(INCOMPLETE_FILE);
+    fs::rename(&temporary, &note).map_err(at(format_args!(
+        "rename {} to {}",
+        temporary.display(),
+        note.display()
+    )))?;
+    sync_dir(partial).map_err(at(format_args!("flush {}", partial.display())))
 }
 
 /// Opens `path` for appending after cutting it to its first `bytes` bytes.
 fn cut(path: &Path, bytes: u64) -> io::Result<File> {
-    let file = OpenOptions::new().append(true).open(path)?;
+    let file = OpenOptions::new()
+        .append(true)
+        .open(path)
+        .map_err(at(format_args!("open {}", path.display())))?;
     if file.metadata()?.len() < bytes {
         return Err(io::Error::new(
             io::ErrorKind::UnexpectedEof,
@@ -656,7 +890,8 @@ fn cut(path: &Path, bytes: u64) -> io::Result<File> {
             ),
         ));
     }
-    file.set_len(bytes)?;
+    file.set_len(bytes)
+        .map_err(at(format_args!("cut {} back", path.display())))?;
     Ok(file)
 }
 
@@ -688,7 +923,12 @@ impl RunDirectory {
             None => {
                 let columns: Vec<String> = names.map(str::to_owned).collect();
                 let header = metrics_header(&columns);
-                self.metrics.write_all(header.as_bytes())?;
+                self.metrics
+                    .write_all(header.as_bytes())
+                    .map_err(at(format_args!(
+                        "write {}",
+                        self.partial.join("metrics.csv").display()
+                    )))?;
                 self.metrics_bytes += header.len() as u64;
                 self.columns = Some(columns);
                 Ok(())
@@ -730,7 +970,10 @@ impl Recorder for RunDirectory {
                     let _ = write!(self.buffer, "{},", record.t);
                     write_state(&mut self.buffer, i, agent);
                 }
-                file.write_all(&self.buffer)?;
+                file.write_all(&self.buffer).map_err(at(format_args!(
+                    "write {}",
+                    self.partial.join("trajectory.csv").display()
+                )))?;
                 *bytes += self.buffer.len() as u64;
             }
             Trajectory::Npy(file) => {
@@ -741,17 +984,25 @@ impl Recorder for RunDirectory {
                         self.buffer.extend_from_slice(&x.to_le_bytes());
                     }
                 }
-                file.append(&self.buffer)?;
+                file.append(&self.buffer).map_err(at(format_args!(
+                    "write {}",
+                    self.partial.join("trajectory.npy").display()
+                )))?;
             }
         }
-        self.metrics.write_all(line.as_bytes())?;
+        self.metrics
+            .write_all(line.as_bytes())
+            .map_err(at(format_args!(
+                "write {}",
+                self.partial.join("metrics.csv").display()
+            )))?;
         self.metrics_bytes += line.len() as u64;
         self.records += 1;
         Ok(())
     }
 
     fn wants_checkpoint(&self, steps: u64) -> bool {
-        self.checkpoint_every > 0 && steps % self.checkpoint_every == 0
+        self.checkpoint_every > 0 && steps.is_multiple_of(self.checkpoint_every)
     }
 
     fn checkpoint(&mut self, start: &Start) -> io::Result<()> {
@@ -767,6 +1018,7 @@ impl Recorder for RunDirectory {
             records: self.records,
             metrics_bytes: self.metrics_bytes,
             trajectory_bytes,
+            scenario: self.scenario.clone(),
         }
         .write(&self.partial)?;
         let whole = format!(

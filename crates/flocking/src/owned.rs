@@ -1,0 +1,423 @@
+//! The directories flocking writes, and the guards that keep it from touching anything else.
+//!
+//! - [`mark`]: every directory flocking writes (a run's, a sweep's, the figures') carries a
+//!   marker file, [`MARKER_FILE`], naming what wrote it ([`Kind`]).
+//! - [`check_owned`]: a directory may be written into only when it is missing, empty or marked
+//!   by the same [`Kind`]; otherwise [`DirError::Foreign`] names a file in it that flocking did
+//!   not write.
+//! - [`remove`] ([`check_removable`]): the only way flocking removes a directory. It refuses the filesystem root, the
+//!   working directory and its ancestors, mount points ([`DirError::Special`]), and any directory
+//!   without the marker or holding a file that its [`Kind`] does not write
+//!   ([`DirError::Foreign`]).
+//! - [`DirLock`]: an exclusive advisory lock ([`File::try_lock`]) on [`LOCK_FILE`] held by the
+//!   writer for as long as it writes; a second writer gets [`DirError::Busy`] with the holder's
+//!   process id and start time. The operating system releases the lock when the process dies, so
+//!   a stale lock file is simply taken over.
+//! - [`at`]: every I/O error of these paths says what was being done to which path.
+
+use std::fmt;
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, Read as _, Seek as _, Write as _};
+use std::os::unix::fs::MetadataExt as _;
+use std::path::{Path, PathBuf};
+use std::time::{SystemTime, UNIX_EPOCH};
+
+/// The marker file of every directory flocking writes.
+pub const MARKER_FILE: &str = ".flocking";
+
+/// The lock file of a directory being written: it holds the writer's process id and start time
+/// while it writes, and is removed when the writer is done.
+pub const LOCK_FILE: &str = ".flocking.lock";
+
+/// What wrote a directory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// A run directory (`flocking run`, `DIR` and `DIR.partial`).
+    Run,
+    /// A sweep's output directory (`flocking sweep`, `sweep merge`, Python's `sweep`).
+    Sweep,
+    /// The gallery of `flocking figures`.
+    Figures,
+}
+
+impl Kind {
+    /// The marker's text.
+    fn marker(self) -> String {
+        format!("written by flocking {}\n", self.command())
+    }
+
+    fn command(self) -> &'static str {
+        match self {
+            Self::Run => "run",
+            Self::Sweep => "sweep",
+            Self::Figures => "figures",
+        }
+    }
+
+    /// The entries a directory of this kind may hold when [`remove`] removes it.
+    fn entries(self) -> &'static [&'static str] {
+        match self {
+            Self::Run => &[
+                MARKER_FILE,
+                LOCK_FILE,
+                "metrics.csv",
+                "trajectory.csv",
+                "trajectory.npy",
+                "final.csv",
+                "scenario.ron",
+                "flocking.txt",
+                "figures",
+                "checkpoint.bin",
+                "checkpoint.tmp",
+                "INCOMPLETE",
+                "INCOMPLETE.tmp",
+            ],
+            // Sweeps and galleries are written into, never removed.
+            Self::Sweep | Self::Figures => &[],
+        }
+    }
+}
+
+/// Why flocking refuses a directory.
+#[derive(Debug)]
+pub enum DirError {
+    /// The directory holds something flocking did not write.
+    Foreign {
+        /// The directory.
+        dir: PathBuf,
+        /// An entry of it that flocking did not write.
+        entry: String,
+    },
+    /// The directory is one flocking never removes.
+    Special {
+        /// The directory.
+        dir: PathBuf,
+        /// What it is.
+        what: &'static str,
+    },
+    /// Another process is writing the directory.
+    Busy {
+        /// The directory.
+        dir: PathBuf,
+        /// The holder, as its lock file says (`process N, started …`).
+        holder: String,
+    },
+    /// An I/O error, naming the operation and the path ([`at`]).
+    Io(io::Error),
+}
+
+impl fmt::Display for DirError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Foreign { dir, entry } => write!(
+                f,
+                "{} holds {entry}, which flocking did not write; choose another output directory or move it",
+                dir.display()
+            ),
+            Self::Special { dir, what } => write!(
+                f,
+                "{} is {what}: flocking never replaces it; choose another output directory",
+                dir.display()
+            ),
+            Self::Busy { dir, holder } => {
+                write!(f, "{} is being written by {holder}", dir.display())
+            }
+            Self::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for DirError {}
+
+impl From<io::Error> for DirError {
+    fn from(e: io::Error) -> Self {
+        Self::Io(e)
+    }
+}
+
+/// Wraps an I/O error with the operation and the path: `cannot {what}: {error}`, of the same
+/// kind.
+pub fn at(what: impl fmt::Display) -> impl FnOnce(io::Error) -> io::Error {
+    move |e| io::Error::new(e.kind(), format!("cannot {what}: {e}"))
+}
+
+/// Writes the marker of `kind` into `dir` (flushed to the disk); on error no marker is left.
+///
+/// # Errors
+/// Any I/O error, with its path.
+pub fn mark(dir: &Path, kind: Kind) -> io::Result<()> {
+    let path = dir.join(MARKER_FILE);
+    let write = || {
+        let mut file = File::create(&path)?;
+        file.write_all(kind.marker().as_bytes())?;
+        file.sync_all()
+    };
+    write().map_err(|e| {
+        // a marker cut short (a full disk) is removed: it would make the directory unremovable
+        let _ = fs::remove_file(&path);
+        at(format_args!("write {}", path.display()))(e)
+    })
+}
+
+/// Whether `dir` carries the marker of `kind`.
+fn marked(dir: &Path, kind: Kind) -> bool {
+    fs::read_to_string(dir.join(MARKER_FILE)).is_ok_and(|text| text == kind.marker())
+}
+
+/// The names in `dir`, sorted (none when it does not exist).
+fn entries(dir: &Path) -> io::Result<Vec<String>> {
+    let mut names = match fs::read_dir(dir) {
+        Ok(entries) => entries
+            .map(|entry| entry.map(|e| e.file_name().to_string_lossy().into_owned()))
+            .collect::<io::Result<Vec<_>>>()?,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Vec::new(),
+        Err(e) => return Err(e),
+    };
+    names.sort();
+    Ok(names)
+}
+
+/// Checks that flocking may write into `dir` as `kind`: it is missing, empty, or carries the
+/// marker of `kind`.
+///
+/// # Errors
+/// [`DirError::Foreign`] naming the first entry of a directory without the marker; a path that
+/// is not a directory; any I/O error.
+pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(DirError::Foreign {
+            dir: parent_of(dir).to_owned(),
+            entry: dir.file_name().map_or_else(
+                || dir.display().to_string(),
+                |name| name.to_string_lossy().into_owned(),
+            ),
+        });
+    }
+    let names = entries(dir).map_err(at(format_args!("list {}", dir.display())))?;
+    match names.first() {
+        Some(entry) if !marked(dir, kind) => Err(DirError::Foreign {
+            dir: dir.to_owned(),
+            entry: entry.clone(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Checks that [`remove`] may remove `dir`: it carries the marker of `kind`, holds only entries
+/// that `kind` writes, and is not the filesystem root, the working directory or one of its
+/// ancestors, or a mount point.
+///
+/// # Errors
+/// [`DirError::Special`], [`DirError::Foreign`], or an I/O error naming its path.
+pub fn check_removable(dir: &Path, kind: Kind) -> Result<(), DirError> {
+    check_special(dir)?;
+    check_owned(dir, kind)?;
+    let names = entries(dir).map_err(at(format_args!("list {}", dir.display())))?;
+    match names
+        .iter()
+        .find(|name| !kind.entries().contains(&name.as_str()))
+    {
+        Some(entry) => Err(DirError::Foreign {
+            dir: dir.to_owned(),
+            entry: entry.clone(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Removes the directory `dir` that flocking wrote as `kind`, and nothing else
+/// ([`check_removable`] first).
+///
+/// # Errors
+/// [`DirError::Special`], [`DirError::Foreign`] (nothing is removed), or the I/O error of the
+/// removal, with its path.
+pub fn remove(dir: &Path, kind: Kind) -> Result<(), DirError> {
+    check_removable(dir, kind)?;
+    fs::remove_dir_all(dir).map_err(|e| at(format_args!("remove {}", dir.display()))(e).into())
+}
+
+/// Refuses the filesystem root, the working directory and its ancestors, and mount points.
+fn check_special(dir: &Path) -> Result<(), DirError> {
+    let special = |what| {
+        Err(DirError::Special {
+            dir: dir.to_owned(),
+            what,
+        })
+    };
+    let real = fs::canonicalize(dir).map_err(at(format_args!("resolve {}", dir.display())))?;
+    let Some(parent) = real.parent() else {
+        return special("the filesystem root");
+    };
+    let cwd = std::env::current_dir().map_err(at("read the working directory"))?;
+    if fs::canonicalize(&cwd).is_ok_and(|cwd| cwd.starts_with(&real)) {
+        return special("the working directory or one of its parents");
+    }
+    let device = |path: &Path| {
+        fs::metadata(path)
+            .map(|m| m.dev())
+            .map_err(at(format_args!("read {}", path.display())))
+    };
+    if device(&real)? != device(parent)? || is_mount_point(&real) {
+        return special("a mount point");
+    }
+    Ok(())
+}
+
+/// Whether `/proc/self/mountinfo` lists `dir` (a canonical path) as a mount point (a bind mount
+/// shares its parent's device).
+fn is_mount_point(dir: &Path) -> bool {
+    let Ok(table) = fs::read_to_string("/proc/self/mountinfo") else {
+        return false;
+    };
+    table
+        .lines()
+        .filter_map(|line| line.split(' ').nth(4))
+        .any(|point| Path::new(&unescape_mount_point(point)) == dir)
+}
+
+/// A mount point as `/proc/self/mountinfo` writes it, with `\ooo` octal escapes undone.
+fn unescape_mount_point(text: &str) -> String {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let octal = bytes.get(i + 1..i + 4).and_then(|digits| {
+            std::str::from_utf8(digits)
+                .ok()
+                .and_then(|d| u8::from_str_radix(d, 8).ok())
+        });
+        match (bytes[i], octal) {
+            (b'\\', Some(byte)) => {
+                out.push(byte);
+                i += 4;
+            }
+            (byte, _) => {
+                out.push(byte);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// The parent directory of `path` (`.` for a bare name).
+#[must_use]
+pub fn parent_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    }
+}
+
+/// An exclusive lock on a directory being written, held until dropped (or until the process
+/// dies: the operating system then releases it). Dropping it removes its [`LOCK_FILE`].
+#[derive(Debug)]
+pub struct DirLock {
+    file: File,
+    path: PathBuf,
+}
+
+impl DirLock {
+    /// Locks the existing directory `dir` and writes this process's id and start time into its
+    /// [`LOCK_FILE`].
+    ///
+    /// # Errors
+    /// [`DirError::Busy`] when another process holds the lock; any I/O error, with its path.
+    pub fn acquire(dir: &Path) -> Result<Self, DirError> {
+        let path = dir.join(LOCK_FILE);
+        loop {
+            let mut file = OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+                .map_err(at(format_args!("open {}", path.display())))?;
+            match file.try_lock() {
+                Ok(()) => {}
+                Err(fs::TryLockError::WouldBlock) => {
+                    let mut holder = String::new();
+                    let _ = file.read_to_string(&mut holder);
+                    let holder = holder.trim();
+                    return Err(DirError::Busy {
+                        dir: dir.to_owned(),
+                        holder: if holder.is_empty() {
+                            "another process".into()
+                        } else {
+                            holder.to_owned()
+                        },
+                    });
+                }
+                Err(fs::TryLockError::Error(e)) => {
+                    return Err(at(format_args!("lock {}", path.display()))(e).into());
+                }
+            }
+            // The holder before us may have removed the file between our open and our lock: the
+            // lock is ours only if the path still names the file we locked.
+            let same = |m: fs::Metadata| {
+                file.metadata()
+                    .is_ok_and(|ours| ours.ino() == m.ino() && ours.dev() == m.dev())
+            };
+            if !fs::metadata(&path).is_ok_and(same) {
+                continue;
+            }
+            let holder = format!("process {}, started {}\n", std::process::id(), utc_now());
+            let write = |file: &mut File| {
+                file.set_len(0)?;
+                file.rewind()?;
+                file.write_all(holder.as_bytes())
+            };
+            write(&mut file).map_err(at(format_args!("write {}", path.display())))?;
+            return Ok(Self { file, path });
+        }
+    }
+
+    /// Follows the directory after it was renamed to `dir`.
+    pub fn moved_to(&mut self, dir: &Path) {
+        self.path = dir.join(LOCK_FILE);
+    }
+}
+
+impl Drop for DirLock {
+    fn drop(&mut self) {
+        // Removed while still locked, so that no other writer can lock this file afterwards
+        // believing it holds the directory.
+        let _ = fs::remove_file(&self.path);
+        let _ = self.file.unlock();
+    }
+}
+
+/// The current time in UTC, `YYYY-MM-DD HH:MM:SS UTC`.
+fn utc_now() -> String {
+    let seconds = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, time) = (seconds / 86_400, seconds % 86_400);
+    // Howard Hinnant's days-to-civil algorithm.
+    let z = days.cast_signed() + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02}:{:02} UTC",
+        time / 3600,
+        time / 60 % 60,
+        time % 60
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unescape_mount_point;
+
+    #[test]
+    fn mount_points_are_unescaped() {
+        assert_eq!(unescape_mount_point(r"/mnt/a\040b"), "/mnt/a b");
+        assert_eq!(unescape_mount_point("/plain"), "/plain");
+    }
+}
