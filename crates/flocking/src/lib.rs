@@ -35,8 +35,10 @@
 
 pub mod build;
 pub mod error;
+pub mod estimate;
 pub mod health;
 pub mod initial;
+pub mod input;
 pub mod merging;
 pub mod overrides;
 pub mod run;
