@@ -102,7 +102,9 @@ impl Scenario {
         let n = self.agents as f64;
         let dim = self.dim.clamp(2, 3);
         let steps = self.steps();
-        let records = steps / self.record_every.max(1) + 2;
+        let every = self.record_every.max(1);
+        // t = 0, every `record_every` steps, and the last step
+        let records = steps / every + 1 + u64::from(steps % every != 0);
         let state_values = n * 2.0 * dim as f64;
         let trajectory = match outputs.trajectory_csv {
             // t, agent, position, velocity per row

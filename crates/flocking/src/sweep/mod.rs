@@ -272,6 +272,18 @@ pub enum SweepError {
 }
 
 impl SweepError {
+    /// The field at fault (`seeds`, `axes[1].path`, or the scenario's field of a base or run error).
+    #[must_use]
+    pub fn field(&self) -> Option<String> {
+        match self {
+            Self::Invalid { field, .. } => Some(field.clone()),
+            Self::Base(e) => e.field(),
+            Self::Run { error, .. } => error.field(),
+            Self::At { error, .. } => error.field(),
+            Self::Io { .. } | Self::Syntax { .. } => None,
+        }
+    }
+
     /// The error without its place in the text.
     #[must_use]
     pub fn problem(&self) -> &Self {
