@@ -3,7 +3,7 @@
 //! The oracle (docs/fuzzing.md):
 //! - nothing panics, aborts, runs out of memory or hangs, whatever the bytes;
 //! - a scenario that [`Scenario::parse`] accepts still validates once resolved, and
-//!   `parse(to_ron(s)) == s.resolved()` (the resolved scenario round-trips through RON);
+//!   `parse(to_ron(s)) == s` for the parsed and the resolved scenario (both round-trip through RON);
 //! - a small accepted scenario (at most [`MAX_AGENTS`] agents, [`MAX_OBSTACLES`] obstacles),
 //!   cut to at most [`MAX_STEPS`] steps, either fails with an `Err`, or every value it records and
 //!   summarises is finite: positions, velocities, energies, metrics and the protocol's
@@ -150,11 +150,13 @@ fn check_input(data: &[u8]) {
     if let Err(e) = scenario.validate() {
         panic!("the resolved scenario no longer validates: {e}\n{scenario:#?}");
     }
-    // …and round-trips through RON.
-    let ron = scenario.to_ron().expect("a valid scenario serializes");
-    match Scenario::parse(&ron, "round-trip") {
-        Ok(back) => assert_eq!(back, scenario, "to_ron changed the scenario\n{ron}"),
-        Err(e) => panic!("to_ron output does not parse back: {e}\n{ron}"),
+    // …and both it and the scenario as parsed (defaults unset) round-trip through RON.
+    for scenario in [&parsed, &scenario] {
+        let ron = scenario.to_ron().expect("a valid scenario serializes");
+        match Scenario::parse(&ron, "round-trip") {
+            Ok(back) => assert_eq!(&back, scenario, "to_ron changed the scenario\n{ron}"),
+            Err(e) => panic!("to_ron output does not parse back: {e}\n{ron}"),
+        }
     }
     let Some(small) = small(&scenario) else {
         return;

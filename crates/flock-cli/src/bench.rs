@@ -214,10 +214,17 @@ impl fmt::Display for BenchReport {
 /// Runs the benchmark `config` describes on the current rayon pool.
 ///
 /// # Errors
-/// When `n < 2`, the dimension is not 2 or 3, or `steps` is 0.
+/// When `n < 2` or above [`flocking::MAX_AGENTS`], the dimension is not 2 or 3, or `steps` is 0.
 pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
     if config.n < 2 {
         return Err(format!("--n must be at least 2, got {}", config.n));
+    }
+    if config.n > flocking::MAX_AGENTS {
+        return Err(format!(
+            "--n {} exceeds the {} agents a scenario may have (about 250 bytes each); give a smaller --n",
+            config.n,
+            flocking::MAX_AGENTS
+        ));
     }
     if config.steps == 0 {
         return Err("--steps must be at least 1".to_owned());

@@ -7,6 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::{Progress, Report};
 use flock_viz::{FigureOptions, plot_run_with};
+use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
 use flocking::run_dir::{CreateError, ResumeError, read_records};
 use flocking::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
@@ -48,9 +49,12 @@ enum Command {
         /// Keep a checkpoint every N steps for `--resume` (0: only on Ctrl-C).
         #[arg(long, value_name = "N", default_value_t = 1000)]
         checkpoint_every: u64,
-        /// Worker threads (default: all cores); results are identical for any count.
-        #[arg(long)]
+        /// Worker threads (default: all cores; at most 4 per core); results are identical for any count.
+        #[arg(long, value_parser = flock_cli::resources::parse_threads)]
         threads: Option<usize>,
+        /// Start even when the estimated memory or disk exceeds what this machine has free.
+        #[arg(long)]
+        no_resource_check: bool,
         /// Also draw the run's figures into DIR/figures (as `flocking plot DIR`).
         #[arg(long)]
         plot: bool,
@@ -61,10 +65,10 @@ enum Command {
         #[arg(long)]
         quiet: bool,
         /// ε₁ of TAC 2006 Definition 5 (Ẽ ≤ ε₁), judged over the last quarter in flocking.txt.
-        #[arg(long, value_name = "E1", default_value_t = 0.01)]
+        #[arg(long, value_name = "E1", default_value_t = 0.01, value_parser = flock_cli::resources::parse_epsilon)]
         epsilon1: f64,
         /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
-        #[arg(long, value_name = "E2", default_value_t = 0.01)]
+        #[arg(long, value_name = "E2", default_value_t = 0.01, value_parser = flock_cli::resources::parse_epsilon)]
         epsilon2: f64,
         /// The fraction of the duration after which the run has settled: the summary gives the
         /// least distance and the most colliding pairs over the whole run and from then on.
@@ -117,8 +121,8 @@ enum Command {
         /// The algorithm: 1, 2 or 3 (3 adds 1,000 obstacles).
         #[arg(long, default_value = "2")]
         algorithm: flock_cli::bench::BenchAlgorithm,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
+        /// Worker threads (default: all cores; at most 4 per core).
+        #[arg(long, value_parser = flock_cli::resources::parse_threads)]
         threads: Option<usize>,
         /// Untimed steps before the timed ones.
         #[arg(long, default_value_t = 3)]
@@ -133,7 +137,10 @@ enum Command {
 const INVALID: u8 = 2;
 
 fn main() -> ExitCode {
-    match Cli::parse().command {
+    let command = Cli::parse().command;
+    // reading and checking can be interrupted at once: nothing is written yet
+    stop_on_ctrl_c();
+    match command {
         Command::Bench {
             n,
             dim,
@@ -192,15 +199,16 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
-        Command::Sweep(args) => {
-            stop_on_ctrl_c();
-            flock_cli::sweep::main(args, &STOP)
-        }
+        Command::Sweep(args) => flock_cli::sweep::main(args, &STOP, &WRITING),
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
                 println!("{}: valid", scenario.display());
                 print!("{}", s.to_ron().unwrap_or_default());
                 println!();
+                let estimate = s.estimate(&Outputs::RUN);
+                if let Err(e) = flock_cli::resources::announce(&estimate, None, false) {
+                    eprintln!("warning: {e}");
+                }
                 if let Some(stable) = flocking::largest_stable_step(&s) {
                     println!(
                         "// step {} against the estimated largest stable step {stable:.3e}",
@@ -225,6 +233,7 @@ fn main() -> ExitCode {
             trajectory_format,
             checkpoint_every,
             threads,
+            no_resource_check,
             plot,
             stress_edges,
             quiet,
@@ -236,7 +245,10 @@ fn main() -> ExitCode {
                 return code;
             }
             let opened = match (resume, scenario) {
-                (Some(dir), _) => resume_directory(&dir, checkpoint_every),
+                (Some(dir), _) => {
+                    WRITING.store(true, Ordering::SeqCst);
+                    resume_directory(&dir, checkpoint_every)
+                }
                 (None, Some(scenario)) => {
                     let out = out.unwrap_or_else(|| {
                         PathBuf::from("out").join(scenario.file_stem().unwrap_or_default())
@@ -246,7 +258,7 @@ fn main() -> ExitCode {
                         format: trajectory_format,
                         checkpoint_every,
                     };
-                    create_directory(&scenario, &out, &options)
+                    create_directory(&scenario, &out, &options, no_resource_check)
                 }
                 (None, None) => unreachable!("clap requires a scenario unless --resume is given"),
             };
@@ -254,7 +266,6 @@ fn main() -> ExitCode {
                 Ok(opened) => opened,
                 Err(code) => return code,
             };
-            stop_on_ctrl_c();
             let criteria = FlockingCriteria {
                 epsilon1,
                 epsilon2,
@@ -286,14 +297,18 @@ fn main() -> ExitCode {
 /// Set by Ctrl-C (or SIGTERM): the run stops after the current step.
 static STOP: AtomicBool = AtomicBool::new(false);
 
+/// Set once outputs are being written; before, Ctrl-C (or SIGTERM) quits at once.
+static WRITING: AtomicBool = AtomicBool::new(false);
+
 /// Exit code of a run stopped by Ctrl-C (128 + SIGINT).
 const INTERRUPTED: u8 = 130;
 
-/// The first Ctrl-C stops the run cleanly after the current step; a second one quits at once
+/// Before anything is written (reading, validating, estimating) Ctrl-C quits at once; then the
+/// first Ctrl-C stops the run cleanly after the current step and a second one quits at once
 /// (the partial directory then still holds whole records and the last checkpoint).
 fn stop_on_ctrl_c() {
     let installed = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::SeqCst) {
+        if !WRITING.load(Ordering::SeqCst) || STOP.swap(true, Ordering::SeqCst) {
             std::process::exit(i32::from(INTERRUPTED));
         }
         eprintln!("\nstopping after the current step (Ctrl-C again to quit at once)");
@@ -303,11 +318,13 @@ fn stop_on_ctrl_c() {
     }
 }
 
-/// Loads and checks a scenario, prints its warnings and starts its output directory.
+/// Loads and checks a scenario, prints its warnings and estimate, refuses it when it does not
+/// fit (unless `unchecked`) and starts its output directory.
 fn create_directory(
     path: &Path,
     out: &Path,
     options: &OutputOptions,
+    unchecked: bool,
 ) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
     let scenario = Scenario::load(path).map_err(|e| {
         eprintln!("error: {e}");
@@ -316,6 +333,17 @@ fn create_directory(
     for warning in scenario.warnings() {
         eprintln!("{warning}");
     }
+    let outputs = Outputs {
+        trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
+        ..Outputs::RUN
+    };
+    flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), unchecked).map_err(
+        |e| {
+            eprintln!("error: {e}");
+            ExitCode::from(INVALID)
+        },
+    )?;
+    WRITING.store(true, Ordering::SeqCst);
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
         CreateError::Occupied { target } => {
             eprintln!(

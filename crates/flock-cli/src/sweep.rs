@@ -9,6 +9,7 @@ use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
 use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
+use flocking::estimate::{Estimate, Outputs};
 use flocking::sweep::store::{self, RUNS_FILE};
 use flocking::sweep::{
     ExecuteOptions, ParameterLabel, RunRow, Shard, Sweep, execute, metric_label, share, value_field,
@@ -29,9 +30,13 @@ pub struct SweepArgs {
     /// killed sweep from it).
     #[arg(long, required = true)]
     out: Option<PathBuf>,
-    /// Workers, each running one single-threaded run at a time (default: all cores).
-    #[arg(long)]
+    /// Workers, each running one single-threaded run at a time (default: all cores; at most 4
+    /// per core).
+    #[arg(long, value_parser = crate::resources::parse_threads)]
     jobs: Option<usize>,
+    /// Start even when the estimated memory or disk exceeds what this machine has free.
+    #[arg(long)]
+    no_resource_check: bool,
     /// Keep each run's directory in `DIR/runs/<id>` (as `flocking run` writes it).
     #[arg(long)]
     keep_runs: bool,
@@ -131,8 +136,9 @@ const INTERRUPTED: u8 = 130;
 /// Exit code of a command that asks for what the sweep does not have.
 const USAGE: u8 = 2;
 
-/// Runs `flocking sweep …`.
-pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
+/// Runs `flocking sweep …`; `writing` is set once the output directory is about to be written
+/// (until then an interrupt may quit at once).
+pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCode {
     let result = match args.action {
         Some(SweepAction::Merge { out, shards }) => merge(&out, &shards).map_err(Failure::from),
         Some(SweepAction::Plot {
@@ -170,7 +176,13 @@ pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
                 shard: args.shard,
                 keep_runs: args.keep_runs,
             };
-            run(&sweep, &out, &options, args.quiet, stop)
+            run(
+                &sweep,
+                &out,
+                &options,
+                (args.quiet, args.no_resource_check),
+                (stop, writing),
+            )
         }
     };
     match result {
@@ -190,15 +202,46 @@ pub fn main(args: SweepArgs, stop: &AtomicBool) -> ExitCode {
     }
 }
 
+/// Loads, checks and estimates the sweep (an invalid one is a usage error, exit 2), then runs it.
 fn run(
     path: &Path,
+    out: &Path,
+    options: &ExecuteOptions,
+    (quiet, unchecked): (bool, bool),
+    (stop, writing): (&AtomicBool, &AtomicBool),
+) -> Result<(), Failure> {
+    let sweep = Sweep::load(path).map_err(|e| Failure::Usage(e.to_string()))?;
+    let outputs = if options.keep_runs {
+        Outputs::RUN
+    } else {
+        Outputs::NONE
+    };
+    let runs = sweep.runs();
+    let estimate = runs
+        .iter()
+        .filter_map(|run| sweep.scenario(run).ok())
+        .map(|scenario| scenario.estimate(&outputs))
+        .reduce(Estimate::and)
+        .ok_or_else(|| Failure::Usage("the sweep has no runs".into()))?;
+    // the workers run at once: each needs its run's memory
+    let workers = options.jobs.min(runs.len()).max(1) as f64;
+    let estimate = Estimate {
+        memory_bytes: estimate.memory_bytes * workers,
+        ..estimate
+    };
+    crate::resources::announce(&estimate, Some(out), unchecked).map_err(Failure::Usage)?;
+    writing.store(true, std::sync::atomic::Ordering::SeqCst);
+    run_checked(&sweep, out, options, quiet, stop)
+}
+
+fn run_checked(
+    sweep: &Sweep,
     out: &Path,
     options: &ExecuteOptions,
     quiet: bool,
     stop: &AtomicBool,
 ) -> Result<(), Failure> {
-    let sweep = Sweep::load(path).map_err(|e| e.to_string())?;
-    let (done, pending) = share(&sweep, out, options.shard).map_err(|e| e.to_string())?;
+    let (done, pending) = share(sweep, out, options.shard).map_err(|e| e.to_string())?;
     let total = (done + pending.len()) as u64;
     let bar = if quiet || !std::io::stderr().is_terminal() {
         ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
@@ -221,7 +264,7 @@ fn run(
         }
         bar.inc(1);
     };
-    let executed = execute(&sweep, out, options, stop, &done).map_err(|e| e.to_string())?;
+    let executed = execute(sweep, out, options, stop, &done).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     println!(
         "flocking sweep: {} run(s) now, {} found done, {} failed; {} row(s) in {}",

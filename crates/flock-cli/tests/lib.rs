@@ -7,6 +7,7 @@ mod browser;
 mod common;
 mod errors;
 mod figures_cmd;
+mod hostile;
 mod merging;
 mod names;
 mod plot;

@@ -14,6 +14,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
 use crate::errors::scenario_error;
+use flocking::input::MAX_NESTING;
 
 /// A flocking scenario: the dimension, agents, algorithm and its gains, initial condition, step,
 /// duration and recording, as a RON scenario file writes them.
@@ -80,7 +81,8 @@ impl PyScenario {
         let mut changes = Vec::with_capacity(values.len());
         for (path, value) in values.iter() {
             let path: String = path.extract()?;
-            let value = to_json(&value, &path).map_err(|e| scenario_error(py, &e))?;
+            let value =
+                to_json(&value, &path, &mut Vec::new()).map_err(|e| scenario_error(py, &e))?;
             changes.push((path, value));
         }
         self.inner
@@ -219,11 +221,16 @@ impl PyScenario {
 }
 
 /// `value` (a Python number, string, bool, `None`, list, tuple or dict) as JSON, for the
-/// parameter at `path`.
+/// parameter at `path`; `within` holds the lists and dicts being converted around it.
 ///
 /// # Errors
-/// Any other type, or a float that is not finite, as an invalid value of `path`.
-fn to_json(value: &Bound<'_, PyAny>, path: &str) -> Result<Value, ScenarioError> {
+/// Any other type, a float that is not finite, a list or dict that contains itself, or nesting
+/// deeper than [`MAX_NESTING`], as an invalid value of `path`.
+fn to_json(
+    value: &Bound<'_, PyAny>,
+    path: &str,
+    within: &mut Vec<usize>,
+) -> Result<Value, ScenarioError> {
     let invalid = |why: &str| {
         ScenarioError::invalid(
             path,
@@ -236,6 +243,24 @@ fn to_json(value: &Bound<'_, PyAny>, path: &str) -> Result<Value, ScenarioError>
             "give a number, a string, a bool, None, or a list or dict of them",
         )
     };
+    let container = value.is_instance_of::<PyList>()
+        || value.is_instance_of::<PyTuple>()
+        || value.is_instance_of::<PyDict>();
+    if container {
+        let id = value.as_ptr() as usize;
+        if within.contains(&id) {
+            return Err(invalid("the list or dict contains itself"));
+        }
+        if within.len() >= MAX_NESTING {
+            return Err(invalid(&format!(
+                "lists or dicts are nested more than {MAX_NESTING} levels deep"
+            )));
+        }
+        within.push(id);
+        let converted = container_to_json(value, path, within, &invalid);
+        within.pop();
+        return converted;
+    }
     if value.is_none() {
         Ok(Value::Null)
     } else if let Ok(flag) = value.cast::<PyBool>() {
@@ -254,36 +279,45 @@ fn to_json(value: &Bound<'_, PyAny>, path: &str) -> Result<Value, ScenarioError>
             .ok_or_else(|| invalid("the number is not finite"))
     } else if let Ok(text) = value.cast::<PyString>() {
         Ok(Value::String(text.to_string()))
-    } else if let Ok(dict) = value.cast::<PyDict>() {
-        let mut map = Map::new();
-        for (key, item) in dict.iter() {
-            let key: String = key
-                .extract()
-                .map_err(|_| invalid("a dict's keys must be strings"))?;
-            let item = to_json(&item, &format!("{path}.{key}"))?;
-            map.insert(key, item);
-        }
-        Ok(Value::Object(map))
-    } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
-        value
-            .try_iter()
-            .map_err(|_| invalid("the list cannot be read"))?
-            .enumerate()
-            .map(|(k, item)| {
-                let item = item.map_err(|_| invalid("the list cannot be read"))?;
-                to_json(&item, &format!("{path}.{k}"))
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .map(Value::Array)
     } else if let Ok(integer) = value.extract::<i64>() {
         // numpy's integer scalars
         Ok(Value::from(integer))
     } else if let Ok(list) = value.call_method0("tolist") {
         // numpy's arrays and other scalars
-        to_json(&list, path)
+        to_json(&list, path, within)
     } else {
         Err(invalid("this type is not a parameter value"))
     }
+}
+
+/// A list, tuple or dict as JSON (see [`to_json`]).
+fn container_to_json(
+    value: &Bound<'_, PyAny>,
+    path: &str,
+    within: &mut Vec<usize>,
+    invalid: &dyn Fn(&str) -> ScenarioError,
+) -> Result<Value, ScenarioError> {
+    if let Ok(dict) = value.cast::<PyDict>() {
+        let mut map = Map::new();
+        for (key, item) in dict.iter() {
+            let key: String = key
+                .extract()
+                .map_err(|_| invalid("a dict's keys must be strings"))?;
+            let item = to_json(&item, &format!("{path}.{key}"), within)?;
+            map.insert(key, item);
+        }
+        return Ok(Value::Object(map));
+    }
+    value
+        .try_iter()
+        .map_err(|_| invalid("the list cannot be read"))?
+        .enumerate()
+        .map(|(k, item)| {
+            let item = item.map_err(|_| invalid("the list cannot be read"))?;
+            to_json(&item, &format!("{path}.{k}"), within)
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Value::Array)
 }
 
 /// A Python `repr`, shown as it is in an error's value.

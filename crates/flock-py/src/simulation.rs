@@ -62,8 +62,40 @@ impl PySimulation {
 }
 
 /// The rows of an n × dim array, row by row.
-fn rows(array: &PyArrayLike2<'_, f64, AllowTypeChange>) -> Vec<f64> {
-    array.as_array().iter().copied().collect()
+/// The `name` array (`positions` or `velocities`) in row order, checked to be exactly
+/// (`agents`, `dim`): a (dim, agents) array is refused, not read scrambled.
+fn rows(
+    array: &PyArrayLike2<'_, f64, AllowTypeChange>,
+    name: &str,
+    (agents, dim): (usize, usize),
+) -> Result<Vec<f64>, ScenarioError> {
+    let array = array.as_array();
+    let shape = array.shape();
+    if shape != [agents, dim] {
+        let fix = if shape == [dim, agents] {
+            "the array is transposed: pass its transpose (`array.T`), one row per agent"
+        } else {
+            "give one row of dim coordinates per agent"
+        };
+        return Err(ScenarioError::invalid(
+            name,
+            Shape(shape[0], shape[1]),
+            format!(
+                "the scenario has {agents} agents in {dim}D, so the shape must be ({agents}, {dim})"
+            ),
+            fix,
+        ));
+    }
+    Ok(array.iter().copied().collect())
+}
+
+/// An array's shape, shown as Python shows it: `(2, 100)`.
+struct Shape(usize, usize);
+
+impl std::fmt::Debug for Shape {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "an array of shape ({}, {})", self.0, self.1)
+    }
 }
 
 #[pymethods]
@@ -85,13 +117,17 @@ impl PySimulation {
             _ => {
                 let start = DynSimulation::new(scenario).map_err(|e| scenario_error(py, &e))?;
                 let state = start.state();
-                let q = positions
-                    .as_ref()
-                    .map_or_else(|| state.positions.to_vec(), rows);
-                let p = velocities
-                    .as_ref()
-                    .map_or_else(|| state.velocities.to_vec(), rows);
-                simulation(scenario, &q, &p, 0, controls.as_ref())
+                let size = (scenario.agents, scenario.dim);
+                let q = positions.as_ref().map_or_else(
+                    || Ok(state.positions.to_vec()),
+                    |a| rows(a, "positions", size),
+                );
+                let p = velocities.as_ref().map_or_else(
+                    || Ok(state.velocities.to_vec()),
+                    |a| rows(a, "velocities", size),
+                );
+                q.and_then(|q| p.map(|p| (q, p)))
+                    .and_then(|(q, p)| simulation(scenario, &q, &p, 0, controls.as_ref()))
             }
         }
         .map_err(|e| scenario_error(py, &e))?;
@@ -157,8 +193,18 @@ impl PySimulation {
         positions: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
         velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
     ) -> PyResult<()> {
-        let q = positions.as_ref().map(rows);
-        let p = velocities.as_ref().map(rows);
+        let size = {
+            let sim = self.lock();
+            (sim.scenario().agents, sim.scenario().dim)
+        };
+        let checked = |array: Option<&PyArrayLike2<'_, f64, AllowTypeChange>>, name| {
+            array
+                .map(|a| rows(a, name, size))
+                .transpose()
+                .map_err(|e| scenario_error(py, &e))
+        };
+        let q = checked(positions.as_ref(), "positions")?;
+        let p = checked(velocities.as_ref(), "velocities")?;
         py.detach(|| {
             let mut sim = self.lock();
             let state = sim.state();

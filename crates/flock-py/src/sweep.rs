@@ -13,12 +13,7 @@ use crate::errors::{exception, run_directory_error};
 
 /// A sweep error as `flocking.ScenarioError` (a `ValueError`) with the message of `flocking sweep`.
 fn sweep_error(py: Python<'_>, error: &SweepError) -> PyErr {
-    let field = match error {
-        SweepError::Invalid { field, .. } => Some(field.clone()),
-        SweepError::Base(e) => e.field(),
-        SweepError::Io { .. } | SweepError::Syntax { .. } => None,
-    };
-    exception(py, "ScenarioError", (error.to_string(), field))
+    exception(py, "ScenarioError", (error.to_string(), error.field()))
 }
 
 fn store_error(py: Python<'_>, error: &StoreError, dir: &Path) -> PyErr {

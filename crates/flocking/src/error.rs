@@ -1,7 +1,6 @@
 //! Errors of scenario files and runs: each names the field, the bad value, why it is wrong and the fix.
 
 use std::fmt;
-use std::path::Path;
 
 /// Why a scenario cannot be run.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,21 +54,15 @@ pub enum ScenarioError {
 }
 
 impl ScenarioError {
-    /// The file at `path` could not be read.
-    #[must_use]
-    pub fn io(path: &Path, error: &std::io::Error) -> Self {
-        Self::Io {
-            path: path.display().to_string(),
-            message: error.to_string(),
-        }
-    }
-
     /// A RON error in `text` at its position.
     #[must_use]
     pub fn syntax(origin: &str, text: &str, error: &ron::error::SpannedError) -> Self {
         let (line, col) = (error.span.start.line, error.span.start.col);
-        let message = error.code.to_string();
-        let field = enclosing_field(text, line, col)
+        let message = crate::input::ron_message(&error.code);
+        // a missing field is found at the closing bracket, after the last field given
+        let field = (!matches!(error.code, ron::Error::MissingStructField { .. }))
+            .then(|| enclosing_field(text, line, col))
+            .flatten()
             .filter(|field| !message.contains(&format!("`{field}`")));
         Self::Syntax {
             origin: origin.to_owned(),

@@ -37,8 +37,10 @@
 
 pub mod build;
 pub mod error;
+pub mod estimate;
 pub mod health;
 pub mod initial;
+pub mod input;
 pub mod merging;
 pub mod overrides;
 pub mod owned;
@@ -59,6 +61,7 @@ pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_
 pub use scenario::{Algorithm, Cloud, Initial, Point, Scenario, TannerGraph, Translation};
 pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
 pub use stability::{Warning, largest_stable_step};
+pub use validate::{MAX_AGENTS, MAX_STEPS};
 
 pub use flock_graph as graph;
 pub use flock_math as math;

@@ -10,6 +10,7 @@ use serde_json::Value;
 
 use crate::Scenario;
 use crate::error::ScenarioError;
+use crate::input::MAX_NESTING;
 
 impl Scenario {
     /// The value at `path`, as JSON (numbers, strings, lists, and an enum as `{"Variant": …}`).
@@ -60,6 +61,7 @@ impl Scenario {
         let mut scenario = self.clone();
         for (path, value) in values {
             let path = path.as_ref();
+            check_depth(path, &value)?;
             set(&mut tree, path, value.clone())?;
             scenario = match serde_json::from_value(tree.clone()) {
                 Ok(scenario) => scenario,
@@ -159,6 +161,31 @@ fn set(tree: &mut Value, path: &str, value: Value) -> Result<(), ScenarioError> 
     }
     *node = value;
     Ok(())
+}
+
+/// `value` nested at most [`MAX_NESTING`] levels deep (a scenario's values need about 6), so
+/// that nothing recursing over it can overflow the stack.
+fn check_depth(path: &str, value: &Value) -> Result<(), ScenarioError> {
+    let mut level = vec![value];
+    for _ in 0..=MAX_NESTING {
+        level = level
+            .into_iter()
+            .flat_map(|v| match v {
+                Value::Array(items) => items.iter().collect(),
+                Value::Object(map) => map.values().collect(),
+                _ => Vec::new(),
+            })
+            .collect();
+        if level.is_empty() {
+            return Ok(());
+        }
+    }
+    Err(ScenarioError::invalid(
+        path,
+        "(a value nested too deep to show)",
+        format!("lists or dicts are nested more than {MAX_NESTING} levels deep"),
+        "give the value as the scenario file writes it (a scenario nests about 6 levels)",
+    ))
 }
 
 /// `value` as an integer, when it is a number with no fractional part.

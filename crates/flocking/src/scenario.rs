@@ -263,14 +263,18 @@ fn default_record_every() -> u64 {
 
 impl Scenario {
     /// Reads and validates a scenario file. Defaults left unset stay unset (`alpha.r` is `None`
-    /// and follows `alpha.d`); [`Scenario::resolved`] and [`Scenario::to_ron`] write them out.
+    /// and follows `alpha.d`); [`Scenario::resolved`] fills them in, [`Scenario::to_ron`] keeps them
+    /// unset and writes their values in comments.
     ///
     /// # Errors
     /// When the file cannot be read, is not valid RON for a scenario (the error gives the line and
     /// column), or fails [`Scenario::validate`].
     pub fn load(path: impl AsRef<Path>) -> Result<Self, ScenarioError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::io(path, &e))?;
+        let text = crate::input::read_text(path).map_err(|message| ScenarioError::Io {
+            path: path.display().to_string(),
+            message,
+        })?;
         Self::parse(&text, &path.display().to_string())
     }
 
@@ -279,8 +283,8 @@ impl Scenario {
     /// # Errors
     /// As [`Scenario::load`].
     pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
-        let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
-        let scenario: Self = options
+        let text = crate::input::without_bom(text);
+        let scenario: Self = crate::input::ron_options()
             .from_str(text)
             .map_err(|e| ScenarioError::syntax(origin, text, &e))?;
         scenario.validate().map_err(|e| e.placed(origin, text))?;
@@ -333,13 +337,75 @@ impl Scenario {
         }
     }
 
-    /// The scenario as RON text with every default filled in.
+    /// The scenario as RON text. Defaults left unset stay unset, so that a scenario read back
+    /// from it still moves them with the values they follow (r with d); each is written resolved in
+    /// a comment at the top (`// alpha.r: 8.4 (default 1.2 d)`). Reading the text back gives this
+    /// scenario, and writing that gives the same text.
     ///
     /// # Errors
     /// Never for a validated scenario; the RON serializer's error otherwise.
     pub fn to_ron(&self) -> Result<String, ron::Error> {
         let config = ron::ser::PrettyConfig::new().extensions(Extensions::IMPLICIT_SOME);
-        ron::ser::to_string_pretty(&self.clone().resolved(), config)
+        let text = ron::ser::to_string_pretty(self, config)?;
+        let defaults = self.unset_defaults();
+        if defaults.is_empty() {
+            return Ok(text);
+        }
+        let (first, rest) = text.split_once('\n').unwrap_or((&text, ""));
+        let mut out = format!(
+            "{first}\n// Defaults left unset, which follow the values they depend on; resolved:\n"
+        );
+        for (path, value) in defaults {
+            let rule = match path.as_str() {
+                "alpha.r" => "default 1.2 d",
+                "collision_distance" => "default d/4",
+                "algorithm.c2" => "default 2 √c1, critically damped",
+                "algorithm.delta" => "default d/r",
+                _ => "default from alpha.d",
+            };
+            out.push_str(&format!("// {path}: {value} ({rule})\n"));
+        }
+        out.push_str(rest);
+        Ok(out)
+    }
+
+    /// The defaults this scenario leaves unset, by path, with the values [`Scenario::resolved`]
+    /// gives them.
+    #[must_use]
+    pub fn unset_defaults(&self) -> Vec<(String, serde_json::Value)> {
+        fn walk(
+            path: &str,
+            unset: &serde_json::Value,
+            resolved: &serde_json::Value,
+            out: &mut Vec<(String, serde_json::Value)>,
+        ) {
+            use serde_json::Value;
+            match (unset, resolved) {
+                (Value::Null, value) if !value.is_null() => {
+                    out.push((path.to_owned(), value.clone()));
+                }
+                (Value::Object(a), Value::Object(b)) => {
+                    for (key, value) in a {
+                        let inner =
+                            if key.starts_with(|c: char| c.is_ascii_uppercase()) && a.len() == 1 {
+                                path.to_owned()
+                            } else if path.is_empty() {
+                                key.clone()
+                            } else {
+                                format!("{path}.{key}")
+                            };
+                        if let Some(other) = b.get(key) {
+                            walk(&inner, value, other, out);
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        let tree = |s: &Self| serde_json::to_value(s).unwrap_or_default();
+        let mut out = Vec::new();
+        walk("", &tree(self), &tree(&self.clone().resolved()), &mut out);
+        out
     }
 }
 

@@ -21,6 +21,9 @@ use crate::stability::coincident_start;
 /// The most agents accepted: flocking keeps about 250 bytes per agent (docs/performance.md).
 pub const MAX_AGENTS: usize = 100_000_000;
 
+/// The most steps a run may take (duration / step): 10¹² steps of one agent take days.
+pub const MAX_STEPS: f64 = 1e12;
+
 /// `v` has `dim` finite coordinates within ±10⁹.
 fn vector(field: &str, v: &[f64], dim: usize) -> Check {
     require(
@@ -145,6 +148,17 @@ impl Scenario {
             self.step,
             &format!("is longer than the duration {}", self.duration),
             "choose a step smaller than the duration (the papers use 0.01–0.03 s)",
+        )?;
+        require(
+            self.duration / self.step <= MAX_STEPS,
+            "step",
+            self.step,
+            &format!(
+                "gives {:e} steps over the duration {}, more than the {MAX_STEPS:e} a run may take",
+                self.duration / self.step,
+                self.duration
+            ),
+            "choose a larger step or a shorter duration (the papers use steps of 0.01–0.03 s)",
         )
     }
 
@@ -298,7 +312,10 @@ impl Scenario {
             if let Some(k) = field.containing(q) {
                 return Err(ScenarioError::invalid(
                     "initial.positions",
-                    format!("agent {i} at {q:?}"),
+                    format!(
+                        "agent {i} at {:?}",
+                        (0..V::DIM).map(|k| q.coord(k)).collect::<Vec<_>>()
+                    ),
                     format!(
                         "starts inside obstacles[{k}] ({})",
                         self.obstacles[k].kind()

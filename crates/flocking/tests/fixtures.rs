@@ -61,7 +61,7 @@ fn resolved_fixtures_round_trip_through_ron() {
         });
         assert_eq!(
             back,
-            scenario.clone().resolved(),
+            scenario,
             "{}: round trip changed the scenario\n{text}",
             path.display()
         );
@@ -76,7 +76,7 @@ fn resolved_fixtures_round_trip_through_ron() {
 }
 
 #[test]
-fn to_ron_writes_the_defaults_out() {
+fn to_ron_writes_the_defaults_in_comments_and_keeps_them_derived() {
     let text = "Scenario(dim: 2, agents: 3, algorithm: Algorithm1, \
                 initial: (positions: Box(min: [0.0, 0.0], max: [10.0, 10.0])), duration: 1.0)";
     let scenario = Scenario::parse(text, "defaults.ron").unwrap_or_else(|e| panic!("{e}"));
@@ -95,5 +95,15 @@ fn to_ron_writes_the_defaults_out() {
     ] {
         assert!(written.contains(field), "`{field}` missing from\n{written}");
     }
-    assert_eq!(Scenario::parse(&written, "written.ron"), Ok(resolved));
+    assert!(
+        written.contains("// alpha.r: 8.4 (default 1.2 d)"),
+        "{written}"
+    );
+    // read back, the defaults still follow d (r = 1.2 d), as in the original
+    let back = Scenario::parse(&written, "written.ron").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back, scenario);
+    let moved = back
+        .with_values([("alpha.d", flocking::serde_json::json!(5.0))])
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(moved.range(), 6.0);
 }

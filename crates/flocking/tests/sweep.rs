@@ -15,13 +15,13 @@ use flocking::sweep::{
 use crate::common::TempDir;
 
 /// Fig. 11 cut to 20 agents and 2 s, over c₁ × two agent counts × 2 seeds (12 runs), one value
-/// of c₁ invalid (c₁ = 0 is refused) and one so large that the run blows up.
+/// of c₁ so large that the run blows up.
 const SWEEP: &str = r#"Sweep(
     name: "tiny",
     base: Path("../../fixtures/tac2006_fig11_alg2_n100.ron"),
-    set: {"duration": 2.0, "agents": 20, "initial.positions.std": 10.0},
+    set: {"duration": 2.0, "initial.positions.std": 10.0},
     axes: [
-        (path: "algorithm.c1", values: List([0.02, 0.0, 1e8])),
+        (path: "algorithm.c1", values: List([0.02, 0.03, 1e8])),
         (path: "agents", values: List([10, 20])),
     ],
     seeds: 2,
@@ -53,7 +53,7 @@ fn runs_are_the_product_of_the_axes_with_seeds_innermost_and_stable_ids() {
             (0.02, 10, 1),
             (0.02, 20, 0),
             (0.02, 20, 1),
-            (0.0, 10, 0)
+            (0.03, 10, 0)
         ]
     );
     assert!(runs.iter().enumerate().all(|(k, r)| r.index == k));
@@ -99,7 +99,8 @@ fn linspace_and_logspace_include_both_ends() {
 
 #[test]
 fn bad_sweep_files_are_refused_with_the_field_or_the_line() {
-    let error = |text: &str| text.parse::<Sweep>().expect_err("refused");
+    let placed = |text: &str| text.parse::<Sweep>().expect_err("refused");
+    let error = |text: &str| placed(text).problem().clone();
     let e = error(&SWEEP.replace("seeds: 2", "seeds: 0"));
     assert!(
         matches!(&e, SweepError::Invalid { field, .. } if field == "seeds"),
@@ -134,6 +135,67 @@ fn bad_sweep_files_are_refused_with_the_field_or_the_line() {
         matches!(&e, SweepError::Base(b) if b.field().as_deref() == Some("duration")),
         "{e}"
     );
+}
+
+#[test]
+fn duplicate_and_set_axes_are_refused_at_their_line() {
+    let duplicate = SWEEP.replace(
+        "(path: \"agents\", values: List([10, 20])),",
+        "(path: \"agents\", values: List([10, 20])),\n        (path: \"agents\", values: List([30])),",
+    );
+    let e = duplicate.parse::<Sweep>().expect_err("refused");
+    assert!(e.to_string().starts_with("<string>:8:10:"), "{e}");
+    assert!(e.to_string().contains("already the path of axes[1]"), "{e}");
+    let overlap = SWEEP.replace("\"duration\": 2.0,", "\"duration\": 2.0, \"agents\": 20,");
+    let e = overlap.parse::<Sweep>().expect_err("refused");
+    assert!(e.to_string().contains("also in `set`"), "{e}");
+    assert!(
+        matches!(
+            &e,
+            SweepError::At {
+                line: 7,
+                col: 10,
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn an_invalid_run_is_refused_before_any_run_with_its_values_and_line() {
+    let e = SWEEP
+        .replace("List([0.02, 0.03, 1e8])", "List([0.02, 0.0])")
+        .parse::<Sweep>()
+        .expect_err("c1 = 0 is refused");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("<string>:6:32:"),
+        "the values of axes[0]: {text}"
+    );
+    assert!(
+        text.contains("run 4 (algorithm.c1 = 0.0, agents = 10, seed = 0)")
+            && text.contains("`algorithm.c1`"),
+        "{text}"
+    );
+}
+
+#[test]
+fn huge_grids_and_seed_counts_are_refused_without_allocating() {
+    for (from, to) in [
+        ("seeds: 2", "seeds: 18446744073709551615"),
+        (
+            "List([10, 20])",
+            "Linspace(from: 10.0, to: 20.0, count: 10000000000000)",
+        ),
+        ("seeds: 2", "seeds: 300000"),
+    ] {
+        let e = SWEEP
+            .replace(from, to)
+            .parse::<Sweep>()
+            .expect_err("refused");
+        assert!(e.to_string().contains("1000000"), "{e}");
+    }
 }
 
 /// Runs the sweep into `dir` with `jobs` workers (and a shard) and returns `runs.csv`.
@@ -191,7 +253,7 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
         let (c1, error) = (&row[2], &row[19]);
         match c1 {
             "0.02" => assert!(error.is_empty() && !row[5].is_empty(), "{row:?}"),
-            "0.0" => assert!(error.contains("algorithm.c1"), "{row:?}"),
+            "0.03" => assert!(error.is_empty(), "{row:?}"),
             _ => assert!(
                 error.contains("blow-up") || error.contains("blow"),
                 "{row:?}"
@@ -350,7 +412,7 @@ fn settled_columns_are_the_closest_approach_after_the_settle_fraction() {
             Some(f) => SWEEP.replace("seeds: 2", &format!("seeds: 2, settle: {f}")),
         };
         let sweep: Sweep = text
-            .replace("List([0.02, 0.0, 1e8])", "List([0.02])")
+            .replace("List([0.02, 0.03, 1e8])", "List([0.02])")
             .parse()
             .unwrap_or_else(|e| panic!("{e}"));
         let settle = settle.unwrap_or(0.25);

@@ -53,6 +53,10 @@ pub use execute::{ExecuteOptions, Executed, Shard, execute, share};
 pub use labels::ParameterLabel;
 pub use row::{Outcome, RunRow, header, metric_label, run_one, run_one_with, value_field};
 
+/// The most runs a sweep may have (grid points × seeds): each run's scenario is checked before
+/// the first starts, and each leaves a row.
+pub const MAX_RUNS: usize = 1_000_000;
+
 /// A sweep file.
 ///
 /// # Example
@@ -159,6 +163,15 @@ pub enum Values {
 }
 
 impl Values {
+    /// How many values.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        match self {
+            Self::List(values) => values.len(),
+            Self::Linspace { count, .. } | Self::Logspace { count, .. } => *count,
+        }
+    }
+
     /// The values, in order; the end points of a spacing exactly as written.
     #[must_use]
     pub fn expand(&self) -> Vec<Value> {
@@ -236,6 +249,75 @@ pub enum SweepError {
         /// Why, and the fix.
         why: String,
     },
+    /// A run's scenario is invalid: the base with `set` and the run's axis values.
+    Run {
+        /// The run's index in run order.
+        index: usize,
+        /// The run's values, as `path = value, …, seed = k`.
+        values: String,
+        /// The scenario's error.
+        error: Box<ScenarioError>,
+    },
+    /// An error of the value written at `line`:`col` of the sweep's text.
+    At {
+        /// Where the text came from.
+        origin: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        col: usize,
+        /// The error.
+        error: Box<SweepError>,
+    },
+}
+
+impl SweepError {
+    /// The field at fault (`seeds`, `axes[1].path`, or the scenario's field of a base or run error).
+    #[must_use]
+    pub fn field(&self) -> Option<String> {
+        match self {
+            Self::Invalid { field, .. } => Some(field.clone()),
+            Self::Base(e) => e.field(),
+            Self::Run { error, .. } => error.field(),
+            Self::At { error, .. } => error.field(),
+            Self::Io { .. } | Self::Syntax { .. } => None,
+        }
+    }
+
+    /// The error without its place in the text.
+    #[must_use]
+    pub fn problem(&self) -> &Self {
+        match self {
+            Self::At { error, .. } => error.problem(),
+            other => other,
+        }
+    }
+
+    /// The error at the line and column of its field in `text` (the axis whose value a run's
+    /// error names, or the axes).
+    fn placed(self, origin: &str, text: &str, axes: &[Axis]) -> Self {
+        let field = match &self {
+            Self::Invalid { field, .. } => field.clone(),
+            Self::Run { error, .. } => {
+                let named = error.field().unwrap_or_default();
+                axes.iter()
+                    .position(|axis| {
+                        named == axis.path || named.starts_with(&format!("{}.", axis.path))
+                    })
+                    .map_or_else(|| "axes".to_owned(), |k| format!("axes[{k}].values"))
+            }
+            _ => return self,
+        };
+        match crate::error::locate(text, &field) {
+            Some((line, col)) => Self::At {
+                origin: origin.to_owned(),
+                line,
+                col,
+                error: Box::new(self),
+            },
+            None => self,
+        }
+    }
 }
 
 impl fmt::Display for SweepError {
@@ -250,6 +332,20 @@ impl fmt::Display for SweepError {
             } => write!(f, "{origin}:{line}:{col}: {message}"),
             Self::Base(e) => write!(f, "the base scenario: {e}"),
             Self::Invalid { field, why } => write!(f, "`{field}`: {why}"),
+            Self::Run {
+                index,
+                values,
+                error,
+            } => write!(
+                f,
+                "run {index} ({values}) is invalid: {error}; change the axis values or `set` so that every run is valid"
+            ),
+            Self::At {
+                origin,
+                line,
+                col,
+                error,
+            } => write!(f, "{origin}:{line}:{col}: {error}"),
         }
     }
 }
@@ -263,9 +359,9 @@ impl Sweep {
     /// As [`Sweep::parse`], and a file that cannot be read.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, SweepError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| SweepError::Io {
+        let text = crate::input::read_text(path).map_err(|message| SweepError::Io {
             path: path.display().to_string(),
-            message: e.to_string(),
+            message,
         })?;
         Self::parse(
             &text,
@@ -275,26 +371,74 @@ impl Sweep {
     }
 
     /// Parses sweep text from `origin` (named in errors) with `Path` bases relative to `dir`, and
-    /// checks it: the base scenario and `set` valid, every axis path a parameter of the scenario,
-    /// every axis with at least one value, `seeds` ≥ 1. Values that make a run invalid are not
-    /// errors here: that run's row records the error.
+    /// checks it: the base scenario and `set` valid, every axis path a parameter of the scenario
+    /// given once and not in `set`, every axis with at least one value, `seeds` ≥ 1, at most
+    /// [`MAX_RUNS`] runs, and every run's scenario valid (an invalid one is an error naming its
+    /// values, at the line of its axis).
     ///
     /// # Errors
     /// The first problem found, with its line and column for syntax errors.
     pub fn parse(text: &str, origin: &str, dir: &Path) -> Result<Self, SweepError> {
-        let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
-        let mut sweep: Self = options.from_str(text).map_err(|e| SweepError::Syntax {
-            origin: origin.to_owned(),
-            line: e.span.start.line,
-            col: e.span.start.col,
-            message: e.code.to_string(),
-        })?;
+        let text = crate::input::without_bom(text);
+        let mut sweep: Self =
+            crate::input::ron_options()
+                .from_str(text)
+                .map_err(|e| SweepError::Syntax {
+                    origin: origin.to_owned(),
+                    line: e.span.start.line,
+                    col: e.span.start.col,
+                    message: crate::input::ron_message(&e.code),
+                })?;
         if let Base::Path(path) = &sweep.base {
             let scenario = Scenario::load(dir.join(path)).map_err(SweepError::Base)?;
             sweep.base = Base::Inline(Box::new(scenario));
         }
-        sweep.check()?;
+        sweep
+            .check()
+            .and_then(|()| sweep.check_runs())
+            .map_err(|e| e.placed(origin, text, &sweep.axes))?;
         Ok(sweep)
+    }
+
+    /// The number of runs, the grid's points times the seeds.
+    ///
+    /// # Errors
+    /// More than [`MAX_RUNS`] (checked without overflow).
+    pub fn run_count(&self) -> Result<usize, SweepError> {
+        let too_many = || SweepError::Invalid {
+            field: "seeds".into(),
+            why: format!(
+                "the axes' values times {} seeds exceed {MAX_RUNS} runs; give fewer values or seeds, \
+                 or split the sweep",
+                self.seeds
+            ),
+        };
+        let seeds = usize::try_from(self.seeds).map_err(|_| too_many())?;
+        self.axes
+            .iter()
+            .map(|axis| axis.values.count())
+            .try_fold(seeds, usize::checked_mul)
+            .filter(|&runs| runs <= MAX_RUNS)
+            .ok_or_else(too_many)
+    }
+
+    /// Every run's scenario valid: the first invalid one, with its values.
+    fn check_runs(&self) -> Result<(), SweepError> {
+        for run in self.runs() {
+            self.scenario(&run).map_err(|error| SweepError::Run {
+                index: run.index,
+                values: self
+                    .axes
+                    .iter()
+                    .zip(&run.values)
+                    .map(|(axis, value)| format!("{} = {value}", axis.path))
+                    .chain([format!("seed = {}", run.seed)])
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                error: Box::new(error),
+            })?;
+        }
+        Ok(())
     }
 
     fn check(&self) -> Result<(), SweepError> {
@@ -306,6 +450,25 @@ impl Sweep {
         for (k, axis) in self.axes.iter().enumerate() {
             if let Err(e) = base.value(&axis.path) {
                 return invalid(format!("axes[{k}].path"), e.to_string());
+            }
+            if let Some(first) = self.axes[..k].iter().position(|a| a.path == axis.path) {
+                return invalid(
+                    format!("axes[{k}].path"),
+                    format!(
+                        "`{}` is already the path of axes[{first}]; give each parameter one axis \
+                         (put all its values in one list)",
+                        axis.path
+                    ),
+                );
+            }
+            if self.set.contains_key(&axis.path) {
+                return invalid(
+                    format!("axes[{k}].path"),
+                    format!(
+                        "`{}` is also in `set`, which the axis would override; remove it from `set`",
+                        axis.path
+                    ),
+                );
             }
             let field = format!("axes[{k}].values");
             match axis.values {
@@ -322,6 +485,14 @@ impl Sweep {
                         ),
                     );
                 }
+                Values::Linspace { count, .. } | Values::Logspace { count, .. }
+                    if count > MAX_RUNS =>
+                {
+                    return invalid(
+                        field,
+                        format!("{count} values: more than the {MAX_RUNS} runs a sweep may have"),
+                    );
+                }
                 Values::Logspace { from, to, .. } if from <= 0.0 || to <= 0.0 => {
                     return invalid(
                         field,
@@ -331,6 +502,7 @@ impl Sweep {
                 _ => {}
             }
         }
+        self.run_count()?;
         if !(0.0..1.0).contains(&self.settle) {
             return invalid(
                 "settle".into(),
@@ -368,7 +540,7 @@ impl Sweep {
     pub fn runs(&self) -> Vec<RunSpec> {
         let values: Vec<Vec<Value>> = self.axes.iter().map(|a| a.values.expand()).collect();
         let points: usize = values.iter().map(Vec::len).product();
-        let mut runs = Vec::with_capacity(points * self.seeds as usize);
+        let mut runs = Vec::with_capacity(points.saturating_mul(self.seeds as usize).min(MAX_RUNS));
         for point in 0..points {
             let mut rest = point;
             let mut chosen = vec![Value::Null; values.len()];

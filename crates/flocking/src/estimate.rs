@@ -1,0 +1,397 @@
+//! What a run will cost before it starts: steps, memory, disk and time, from the figures measured
+//! in `docs/performance.md`, and whether this machine can afford it.
+//!
+//! - [`Scenario::estimate`]: the [`Estimate`] of one run with the chosen outputs ([`Outputs`]).
+//! - [`Estimate::times`]: a sweep's runs together (disk and time add up; memory is per worker).
+//! - [`Resources::of_machine`]: the memory available (`MemAvailable` of `/proc/meminfo`, or a
+//!   cgroup's `memory.max` if lower) and the free space of an output directory's disk;
+//!   [`Estimate::check`] refuses what does not fit.
+//!
+//! # Example
+//! ```
+//! use flocking::estimate::Outputs;
+//! use flocking::Scenario;
+//!
+//! # std::env::set_current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).unwrap(); // the workspace root
+//! let scenario = Scenario::load("fixtures/tac2006_fig11_alg2_n100.ron")?;
+//! let estimate = scenario.estimate(&Outputs::RUN);
+//! assert_eq!(estimate.steps, 10_000);
+//! assert_eq!(estimate.records, 501);
+//! assert!(estimate.seconds < 10.0 && estimate.memory_bytes < 100e6);
+//! # Ok::<(), flocking::ScenarioError>(())
+//! ```
+
+use std::fmt;
+use std::path::Path;
+
+use crate::Scenario;
+
+/// Memory of the process without agents (docs/performance.md: ≈ 4–5 MB).
+pub const FIXED_BYTES: f64 = 5e6;
+
+/// Memory per agent in 2D and 3D, the largest measured in docs/performance.md (n = 10⁵: 224 B
+/// in 2D, 308 B in 3D) with a margin: state, neighbour lists, cells and metrics.
+pub const BYTES_PER_AGENT: [f64; 2] = [250.0, 320.0];
+
+/// Agent-steps per second of one thread in 2D and 3D (docs/performance.md, `flocking bench`,
+/// n = 10⁶, Algorithm 2, the slower of the measured rates): time is estimated from these.
+pub const AGENT_STEPS_PER_SECOND: [f64; 2] = [3.4e6, 1.13e6];
+
+/// Bytes of a `metrics.csv` row (nine columns, shortest round-trip f64: ≈ 115 B in the gallery)
+/// with room for a protocol's diagnostics.
+pub const METRICS_ROW_BYTES: f64 = 200.0;
+
+/// Bytes of one f64 written as CSV text (shortest round trip, sign, separator).
+pub const CSV_NUMBER_BYTES: f64 = 21.0;
+
+/// A warning is printed above this much time, in seconds (one hour).
+pub const LONG_SECONDS: f64 = 3600.0;
+
+/// A warning is printed above this much disk, in bytes (one gigabyte).
+pub const LARGE_BYTES: f64 = 1e9;
+
+/// What a run writes, which sizes its disk use.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outputs {
+    /// `metrics.csv`: one row per record.
+    pub metrics: bool,
+    /// The trajectory: `Some(true)` for CSV text, `Some(false)` for binary `.npy`, `None` for none.
+    pub trajectory_csv: Option<bool>,
+    /// `checkpoint.bin` (the state, twice while it is replaced) and `final.csv`.
+    pub checkpoint: bool,
+}
+
+impl Outputs {
+    /// What `flocking run` writes by default: metrics, the CSV trajectory, checkpoint and final state.
+    pub const RUN: Self = Self {
+        metrics: true,
+        trajectory_csv: Some(true),
+        checkpoint: true,
+    };
+    /// What a sweep run keeps: nothing but its row (the run is in memory).
+    pub const NONE: Self = Self {
+        metrics: false,
+        trajectory_csv: None,
+        checkpoint: false,
+    };
+}
+
+/// The estimated cost of a run (or of several, [`Estimate::times`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    /// How many runs it covers.
+    pub runs: u64,
+    /// Steps of one run, ⌈T / h⌉.
+    pub steps: u64,
+    /// Records of one run (every `record_every` steps, t = 0 and the last step).
+    pub records: u64,
+    /// Agent-steps in all, n × steps × runs.
+    pub agent_steps: f64,
+    /// Peak memory of one run, in bytes.
+    pub memory_bytes: f64,
+    /// Disk written by all the runs, in bytes.
+    pub disk_bytes: f64,
+    /// Time on one thread, in seconds.
+    pub seconds: f64,
+}
+
+impl Scenario {
+    /// The cost of running this scenario with `outputs`.
+    #[must_use]
+    pub fn estimate(&self, outputs: &Outputs) -> Estimate {
+        let n = self.agents as f64;
+        let dim = self.dim.clamp(2, 3);
+        let steps = self.steps();
+        let every = self.record_every.max(1);
+        // t = 0, every `record_every` steps, and the last step
+        let records = steps / every + 1 + u64::from(steps % every != 0);
+        let state_values = n * 2.0 * dim as f64;
+        let trajectory = match outputs.trajectory_csv {
+            // t, agent, position, velocity per row
+            Some(true) => records as f64 * n * (2.0 + 2.0 * dim as f64) * CSV_NUMBER_BYTES,
+            Some(false) => records as f64 * state_values * 8.0,
+            None => 0.0,
+        };
+        let metrics = if outputs.metrics {
+            records as f64 * METRICS_ROW_BYTES
+        } else {
+            0.0
+        };
+        let checkpoint = if outputs.checkpoint {
+            2.0 * state_values * 8.0 + state_values * CSV_NUMBER_BYTES
+        } else {
+            0.0
+        };
+        let agent_steps = n * steps as f64;
+        Estimate {
+            runs: 1,
+            steps,
+            records,
+            agent_steps,
+            memory_bytes: FIXED_BYTES + n * BYTES_PER_AGENT[dim - 2],
+            disk_bytes: trajectory + metrics + checkpoint,
+            seconds: agent_steps / AGENT_STEPS_PER_SECOND[dim - 2],
+        }
+    }
+}
+
+impl Estimate {
+    /// `runs` runs of this cost one after the other: disk and time add up, memory is that of one.
+    #[must_use]
+    pub fn times(self, runs: u64) -> Self {
+        let k = runs as f64;
+        Self {
+            runs: self.runs.saturating_mul(runs),
+            agent_steps: self.agent_steps * k,
+            disk_bytes: self.disk_bytes * k,
+            seconds: self.seconds * k,
+            ..self
+        }
+    }
+
+    /// The two runs together: the larger memory, the sums of the rest.
+    #[must_use]
+    pub fn and(self, other: Self) -> Self {
+        Self {
+            runs: self.runs.saturating_add(other.runs),
+            steps: self.steps.max(other.steps),
+            records: self.records.max(other.records),
+            agent_steps: self.agent_steps + other.agent_steps,
+            memory_bytes: self.memory_bytes.max(other.memory_bytes),
+            disk_bytes: self.disk_bytes + other.disk_bytes,
+            seconds: self.seconds + other.seconds,
+        }
+    }
+
+    /// Warnings for a run longer than an hour or writing more than a gigabyte.
+    #[must_use]
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        if self.seconds > LONG_SECONDS {
+            warnings.push(format!(
+                "warning: this will take about {} on one thread (more than an hour); \
+                 a larger step, a shorter duration or fewer agents shorten it",
+                duration(self.seconds)
+            ));
+        }
+        if self.disk_bytes > LARGE_BYTES {
+            warnings.push(format!(
+                "warning: this will write about {} (more than a gigabyte); a larger \
+                 record_every or --trajectory-format npy write less",
+                bytes(self.disk_bytes)
+            ));
+        }
+        warnings
+    }
+
+    /// Whether the estimate fits in `resources`.
+    ///
+    /// # Errors
+    /// What does not fit, with the figures and the fix.
+    pub fn check(&self, resources: &Resources) -> Result<(), String> {
+        if let Some(memory) = resources.memory_bytes
+            && self.memory_bytes > memory
+        {
+            return Err(format!(
+                "a run needs about {} of memory but {} is available; use fewer agents \
+                 (about {:.0} bytes per agent), or --no-resource-check to try anyway",
+                bytes(self.memory_bytes),
+                bytes(memory),
+                (self.memory_bytes - FIXED_BYTES) / self.agent_steps.max(1.0)
+                    * self.steps.max(1) as f64
+                    * self.runs.max(1) as f64
+            ));
+        }
+        if let Some(disk) = resources.disk_bytes
+            && self.disk_bytes > disk
+        {
+            return Err(format!(
+                "the outputs need about {} of disk but {} is free there; record less often \
+                 (record_every), choose --trajectory-format npy or another --out, or \
+                 --no-resource-check to try anyway",
+                bytes(self.disk_bytes),
+                bytes(disk)
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One line: `estimate: 10000 steps, 501 records, memory 5.0 MB, disk 4.3 MB, about 0.3 s`.
+impl fmt::Display for Estimate {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "estimate: ")?;
+        if self.runs > 1 {
+            write!(f, "{} runs of ", self.runs)?;
+        }
+        write!(
+            f,
+            "{} steps, {} records; memory {}{}, disk {}, about {} on one thread ({:.2e} agent-steps)",
+            self.steps,
+            self.records,
+            bytes(self.memory_bytes),
+            if self.runs > 1 { " per worker" } else { "" },
+            bytes(self.disk_bytes),
+            duration(self.seconds),
+            self.agent_steps
+        )
+    }
+}
+
+/// What this machine offers: memory for a run and disk for its outputs (`None`: unknown).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Resources {
+    /// Memory available, in bytes.
+    pub memory_bytes: Option<f64>,
+    /// Free space where the outputs go, in bytes.
+    pub disk_bytes: Option<f64>,
+}
+
+impl Resources {
+    /// The memory available to this process (`MemAvailable`, or the cgroup's `memory.max` less
+    /// its `memory.current` when lower) and the free space of the disk holding `out` (or its
+    /// nearest existing ancestor).
+    #[must_use]
+    pub fn of_machine(out: &Path) -> Self {
+        Self {
+            memory_bytes: available_memory(),
+            disk_bytes: free_space(out),
+        }
+    }
+}
+
+fn available_memory() -> Option<f64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
+    let available = meminfo.as_deref().and_then(|text| {
+        text.lines()
+            .find_map(|line| line.strip_prefix("MemAvailable:"))
+            .and_then(|rest| {
+                rest.trim()
+                    .trim_end_matches("kB")
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+            })
+            .map(|kb| kb * 1024.0)
+    });
+    let read = |name: &str| -> Option<f64> {
+        std::fs::read_to_string(Path::new("/sys/fs/cgroup").join(name))
+            .ok()?
+            .trim()
+            .parse()
+            .ok()
+    };
+    let cgroup = read("memory.max").map(|max| max - read("memory.current").unwrap_or(0.0));
+    match (available, cgroup) {
+        (Some(a), Some(c)) => Some(a.min(c)),
+        (a, c) => a.or(c),
+    }
+}
+
+#[cfg(unix)]
+fn free_space(out: &Path) -> Option<f64> {
+    let existing = out
+        .ancestors()
+        .find(|p| p.exists())
+        .unwrap_or(Path::new("."));
+    let existing = if existing.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        existing
+    };
+    let stat = rustix::fs::statvfs(existing).ok()?;
+    Some(stat.f_bavail as f64 * stat.f_frsize as f64)
+}
+
+#[cfg(not(unix))]
+fn free_space(_out: &Path) -> Option<f64> {
+    None
+}
+
+/// `bytes` in B, kB, MB, GB or TB (powers of 10).
+fn bytes(bytes: f64) -> String {
+    let units = ["B", "kB", "MB", "GB", "TB", "PB"];
+    let mut value = bytes;
+    let mut unit = 0;
+    while value >= 1000.0 && unit + 1 < units.len() {
+        value /= 1000.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{value:.0} B")
+    } else {
+        format!("{value:.1} {}", units[unit])
+    }
+}
+
+/// `seconds` in s, min, h, days or years.
+fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s < 60.0 => format!("{s:.1} s"),
+        s if s < 3600.0 => format!("{:.1} min", s / 60.0),
+        s if s < 86400.0 => format!("{:.1} h", s / 3600.0),
+        s if s < 3.156e7 => format!("{:.1} days", s / 86400.0),
+        s => format!("{:.1e} years", s / 3.156e7),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scenario(agents: usize, duration: f64) -> Scenario {
+        let mut s: Scenario = "Scenario(dim: 2, agents: 10, algorithm: Algorithm1, \
+             initial: (positions: Box(min: [0.0, 0.0], max: [100.0, 100.0])), duration: 1.0)"
+            .parse()
+            .unwrap();
+        s.agents = agents;
+        s.duration = duration;
+        s
+    }
+
+    #[test]
+    fn ten_million_agents_need_gigabytes_and_are_refused_under_two() {
+        let estimate = scenario(10_000_000, 1.0).estimate(&Outputs::RUN);
+        assert_eq!(estimate.steps, 100);
+        assert!(
+            (2.5e9..2.6e9).contains(&estimate.memory_bytes),
+            "{estimate}"
+        );
+        let small = Resources {
+            memory_bytes: Some(2e9),
+            disk_bytes: None,
+        };
+        let error = estimate.check(&small).unwrap_err();
+        assert!(
+            error.contains("2.5 GB") && error.contains("2.0 GB"),
+            "{error}"
+        );
+        assert!(estimate.check(&Resources::default()).is_ok());
+        assert!(
+            estimate.warnings().iter().any(|w| w.contains("gigabyte")),
+            "{estimate}"
+        );
+    }
+
+    #[test]
+    fn a_long_run_is_warned_and_a_sweep_adds_up() {
+        let estimate = scenario(1000, 1e6).estimate(&Outputs::NONE);
+        assert_eq!(estimate.disk_bytes, 0.0);
+        assert!(
+            estimate.warnings()[0].contains("more than an hour"),
+            "{estimate}"
+        );
+        let one = scenario(10, 1.0).estimate(&Outputs::RUN);
+        let sweep = one.times(4);
+        assert_eq!((sweep.runs, sweep.memory_bytes), (4, one.memory_bytes));
+        assert_eq!(sweep.disk_bytes, 4.0 * one.disk_bytes);
+        assert!(sweep.to_string().contains("4 runs of 100 steps"), "{sweep}");
+    }
+
+    #[test]
+    fn this_machine_reports_memory_and_disk() {
+        let resources = Resources::of_machine(Path::new("no/such/dir"));
+        assert!(resources.memory_bytes.is_some_and(|m| m > 0.0));
+        assert!(resources.disk_bytes.is_some_and(|d| d > 0.0));
+    }
+}
