@@ -880,6 +880,27 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
         return;
     };
     fs::write(disk.join("thesis.tex"), "x\n").expect("a user's file");
+    // The resource check refuses a full disk before writing anything, with the figures...
+    let filler = fill(&disk, 0);
+    let refused = flocking(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            disk.join("refused").to_str().expect("UTF-8"),
+            "--quiet",
+        ],
+    );
+    fs::remove_file(&filler).expect("free the space");
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    assert!(
+        stderr(&refused).contains("of disk but 0 B is free"),
+        "{}",
+        stderr(&refused)
+    );
+    assert!(!disk.join("refused").exists() && !disk.join("refused.partial").exists());
+    // ...and with it overridden, every write phase may meet the full disk.
     let mut failures = 0;
     // From no free page to enough for every file (each file takes whole pages).
     for pages in 0..=bytes / 4096 + 12 {
@@ -896,6 +917,7 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
                 "--quiet",
                 "--checkpoint-every",
                 "40",
+                "--no-resource-check",
             ],
         );
         fs::remove_file(&filler).expect("free the space");
