@@ -287,12 +287,30 @@ impl AlphaInteraction {
     /// cost.
     #[must_use]
     pub fn input<V: Vector>(&self, i: usize, q: &[V], p: &[V], net: &ProximityNet) -> V {
-        let (qi, pi) = (q[i], p[i]);
+        let neighbours = net.graph().neighbours(i).iter().map(|&j| j as usize);
+        self.sum(q[i], p[i], neighbours.map(|j| (q[j], p[j])))
+    }
+
+    /// u_i^α of an agent at (q_i, p_i) from the states `others` = (q_j, p_j) it perceives, summed
+    /// in their order; agents beyond r add exactly zero (a_ij = φ_α = 0 there). With the exact
+    /// states of its neighbours in list order, the bits of [`AlphaInteraction::input`].
+    #[must_use]
+    pub fn local_input<V: Vector>(
+        &self,
+        own: &crate::Perceived<V>,
+        others: &[crate::Perceived<V>],
+    ) -> V {
+        let others = others.iter().map(|o| (o.position, o.velocity));
+        self.sum(own.position, own.velocity, others)
+    }
+
+    /// c₁ Σ_j φ_α(‖q_j − q_i‖_σ) n_ij + c₂ Σ_j a_ij (p_j − p_i) over `others` in their order.
+    #[inline]
+    fn sum<V: Vector>(&self, qi: V, pi: V, others: impl Iterator<Item = (V, V)>) -> V {
         let mut gradient = V::ZERO;
         let mut consensus = V::ZERO;
-        for &j in net.graph().neighbours(i) {
-            let j = j as usize;
-            let (g, c) = self.pair(qi, pi, q[j], p[j]);
+        for (qj, pj) in others {
+            let (g, c) = self.pair(qi, pi, qj, pj);
             gradient += g;
             consensus += c;
         }

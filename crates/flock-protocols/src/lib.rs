@@ -6,6 +6,7 @@
 //! - [`AlphaAlpha`] ((α,α,1), (α,α,2) and its approximation, CDS 03-006 2003 eq. 34–36),
 //!   [`StressForm`] (ACC 2004 eq. 39), [`Flocking2003`] with a sink, [`ObstacleFlocking2003`]
 //!   (eq. 54–58) and [`TannerJadbabaiePappas`] (Tanner, Jadbabaie & Pappas 2003, eq. 5).
+//! - [`Consensus`]: velocity matching (seed 000 eq. 9) on a fixed graph or the proximity net.
 //! - [`Simulation`]: fixed-step [`Integrator`]s (symplectic Euler by default, RK4) that rebuild the
 //!   proximity net at every evaluation, with the metrics, energy, diagnostics and health of the
 //!   state in the agents' original order.
@@ -20,6 +21,7 @@
 pub mod alpha;
 #[cfg(feature = "obstacles")]
 pub mod beta;
+pub mod consensus;
 pub mod error;
 pub mod gamma;
 pub mod health;
@@ -36,6 +38,7 @@ pub mod tanner2003;
 pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 #[cfg(feature = "obstacles")]
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
+pub use consensus::Consensus;
 pub use error::{ParamError, check};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
 pub use health::{AgentFault, Fault};
@@ -52,7 +55,7 @@ pub use olfati_saber2004::StressForm;
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2006::Algorithm3;
 pub use olfati_saber2006::{Algorithm1, Algorithm2};
-pub use protocol::{DynProtocol, Protocol};
+pub use protocol::{DynProtocol, LocalForm, Perceived, Protocol};
 pub use swarm::Swarm;
 pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,

@@ -1,7 +1,7 @@
 //! Algorithms 1, 2 and 3 of Olfati-Saber, *Flocking for multi-agent dynamic systems: algorithms and
 //! theory*, IEEE TAC 51(3), 2006.
 
-use flock_graph::{Numbering, ProximityNet};
+use flock_graph::ProximityNet;
 use flock_math::{Vector, mean_of};
 #[cfg(feature = "obstacles")]
 use flock_metrics::ObstacleMetrics;
@@ -10,7 +10,8 @@ use flock_obstacles::Space;
 
 #[cfg(feature = "obstacles")]
 use crate::BetaInteraction;
-use crate::{AlphaInteraction, NavigationalFeedback, Protocol, Swarm};
+use crate::swarm::kinetic;
+use crate::{AlphaInteraction, LocalForm, NavigationalFeedback, Perceived, Protocol, Swarm};
 
 /// Algorithm 1 (eq. 24): u_i = u_i^α, the α-interaction alone. Total momentum is preserved
 /// (Σ_i u_i = 0) and, in the frame of the centre of mass, H = V(q) + ½ Σ ‖p_i − p_c‖² is
@@ -38,6 +39,10 @@ impl<V: Vector> Protocol<V> for Algorithm1 {
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         self.alpha.inputs(q, p, net, inputs, |_, u| u);
+    }
+
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
     }
 
     /// H = c₁^α V(q) + ½ Σ ‖p_i − p_c‖² (Theorem 1, moving frame).
@@ -97,6 +102,10 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
         });
     }
 
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
+    }
+
     /// H = c₁^α V(q) + Σ V_γ(q_i) + ½ Σ ‖p_i − p_r‖² with V_γ the feedback potential ((c₁/2)‖q_i − q_r‖²
     /// for the linear form), the energy of the frame moving with
     /// the γ-agent; Ḣ = −c₂^α pᵀL̂p − c₂ Σ ‖p_i − p_r‖² ≤ 0 when p_r is constant (Theorem 3).
@@ -143,6 +152,10 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
         });
     }
 
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
+    }
+
     /// H = c₁^α V_α + c₁^β V_β + c₁^γ V_γ + ½ Σ ‖p_i‖² (Theorem 6): non-increasing once
     /// (n/2)⟨p_c, p_d⟩ ≤ T (eq. 76), e.g. always for a static γ-agent.
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
@@ -167,8 +180,32 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
     }
 }
 
-/// ½ Σ ‖p_i − p_ref‖², summed in ascending original index ([`Numbering::ordered_sum`]).
-fn kinetic<V: Vector>(velocities: &[V], numbering: &Numbering, reference: V) -> f64 {
-    let p = velocities;
-    0.5 * numbering.ordered_sum(p.len(), |i| (p[i] - reference).length_squared())
+/// u_i = u_i^α (eq. 24) from agent i's perception.
+impl<V: Vector> LocalForm<V> for Algorithm1 {
+    fn local_input(&self, _t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        self.alpha.local_input(own, heard)
+    }
+}
+
+/// u_i = u_i^α + f_i^γ (eq. 25–26) from agent i's perception; the γ-agent's state at t is known
+/// to every agent.
+impl<V: Vector> LocalForm<V> for Algorithm2<V> {
+    fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        let reference = self.navigation.gamma.state(t);
+        self.alpha.local_input(own, heard)
+            + self.navigation.input(own.position, own.velocity, reference)
+    }
+}
+
+/// u_i = u_i^α + u_i^γ + u_i^β (eq. 67) from agent i's perception; the β-agents are computed from
+/// its own perceived state (it senses the obstacles from where it believes it is).
+#[cfg(feature = "obstacles")]
+impl<V: Space> LocalForm<V> for Algorithm3<V> {
+    fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        let (q, p) = (own.position, own.velocity);
+        let reference = self.flock.navigation.gamma.state(t);
+        self.flock.alpha.local_input(own, heard)
+            + self.flock.navigation.input(q, p, reference)
+            + self.beta.input(q, p)
+    }
 }

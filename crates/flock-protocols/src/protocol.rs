@@ -1,4 +1,5 @@
-//! The [`Protocol`] trait: every flocking algorithm computes all agents' inputs from a read-only state.
+//! The [`Protocol`] trait: every flocking algorithm computes all agents' inputs from a read-only
+//! state; a distributed one also has a [`LocalForm`], u_i from what agent i alone perceives.
 
 use flock_graph::{Graph, ProximityNet};
 use flock_math::Vector;
@@ -69,6 +70,45 @@ pub trait Protocol<V: Vector>: Sync {
     fn interaction_graph(&self) -> Option<&Graph> {
         None
     }
+
+    /// The protocol's [`LocalForm`]: u_i from agent i's own perceived state and what it received
+    /// from the agents it hears. `None` (the default) for a protocol that is not distributed, or
+    /// whose form is only known for the whole swarm (a centralised controller, a protocol given
+    /// as a function of all states): conditions that make agents perceive different worlds
+    /// (delay of the neighbours only, packet loss, a communication range, silent faults) are
+    /// then refused for it.
+    #[must_use]
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        None
+    }
+}
+
+/// An agent's state as the agent computing its input perceives it: its own, as it measures it,
+/// or a neighbour's, as it received it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Perceived<V> {
+    /// The agent's index (in original order).
+    pub agent: u32,
+    /// Its position q_j as perceived.
+    pub position: V,
+    /// Its velocity p_j as perceived.
+    pub velocity: V,
+}
+
+/// A distributed protocol's input of one agent from what that agent perceives, and nothing else:
+/// the form in which the protocols stay unaware of how the perception came about (delayed,
+/// noisy, lossy).
+///
+/// Given the exact state (`own` the agent's true state, `heard` its neighbours in the net or the
+/// fixed graph with their true states, in ascending agent index), [`LocalForm::local_input`] is
+/// u_i of [`Protocol::controls`], bit for bit unless the protocol says otherwise.
+pub trait LocalForm<V: Vector>: Sync {
+    /// u_i at time `t` of agent `own.agent` from its perceived state and the states it received
+    /// from the agents it hears, `heard`, in ascending agent index. For a protocol of the
+    /// proximity net `heard` may hold agents beyond the interaction range r (every agent within
+    /// the communication range): the protocol keeps those within r by their perceived distance.
+    /// For a protocol of a fixed graph it holds the graph neighbours whose messages arrived.
+    fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V;
 }
 
 /// A protocol chosen at run time.
@@ -107,5 +147,9 @@ impl<V: Vector, P: Protocol<V> + ?Sized> Protocol<V> for Box<P> {
 
     fn interaction_graph(&self) -> Option<&Graph> {
         (**self).interaction_graph()
+    }
+
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        (**self).local_form()
     }
 }

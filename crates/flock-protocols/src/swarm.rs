@@ -1,5 +1,6 @@
 //! The state of a group of double-integrator agents.
 
+use flock_graph::Numbering;
 use flock_math::{Vector, mean};
 
 /// Positions q and velocities p of n agents with dynamics q̇_i = p_i, ṗ_i = u_i (TAC 2006 eq. 1).
@@ -52,4 +53,10 @@ impl<V: Vector> Swarm<V> {
     pub fn mean_velocity(&self) -> V {
         mean(&self.velocities)
     }
+}
+
+/// ½ Σ ‖p_i − p_ref‖², summed in ascending original index ([`Numbering::ordered_sum`]).
+pub(crate) fn kinetic<V: Vector>(velocities: &[V], numbering: &Numbering, reference: V) -> f64 {
+    let p = velocities;
+    0.5 * numbering.ordered_sum(p.len(), |i| (p[i] - reference).length_squared())
 }

@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3};
 
 use crate::common::{energy_along, papers_alpha, random_swarm};
 
-fn lifted<V: Space>(v: &[f64]) -> Vec<f64> {
+pub(crate) fn lifted<V: Space>(v: &[f64]) -> Vec<f64> {
     (0..V::DIM)
         .map(|k| v.get(k).copied().unwrap_or(0.0))
         .collect()

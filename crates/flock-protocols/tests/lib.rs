@@ -4,6 +4,7 @@ mod algorithm3;
 mod common;
 mod determinism;
 mod invariance;
+mod local_form;
 mod long_run;
 mod olfati_saber2003;
 mod olfati_saber2003_tracking;
