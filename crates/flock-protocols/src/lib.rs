@@ -21,6 +21,7 @@
 pub mod alpha;
 #[cfg(feature = "obstacles")]
 pub mod beta;
+pub mod conditions;
 pub mod consensus;
 pub mod error;
 pub mod gamma;
@@ -38,6 +39,7 @@ pub mod tanner2003;
 pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 #[cfg(feature = "obstacles")]
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
+pub use conditions::Conditions;
 pub use consensus::Consensus;
 pub use error::{ParamError, check};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};

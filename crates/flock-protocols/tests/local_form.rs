@@ -42,7 +42,11 @@ fn local_is_controls<V: Vector, P: Protocol<V>>(protocol: &P, swarm: &Swarm<V>, 
             .map(|&j| exact(swarm, j as usize))
             .collect();
         let own = exact(swarm, i);
-        let bits = |v: V| (0..V::DIM).map(|k| v.coord(k).to_bits()).collect::<Vec<_>>();
+        let bits = |v: V| {
+            (0..V::DIM)
+                .map(|k| v.coord(k).to_bits())
+                .collect::<Vec<_>>()
+        };
         assert_eq!(
             bits(local.local_input(t, &own, &heard)),
             bits(u),
