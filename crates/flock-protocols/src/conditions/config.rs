@@ -276,8 +276,8 @@ pub fn whole_steps(field: &str, seconds: f64, h: f64) -> Result<u64, ParamError>
         return Err(ParamError::new(
             field,
             seconds,
-            &format!("is not a whole number of steps of {h} s"),
-            &format!("write {below} or {} (or change `step`)", below + h),
+            format!("is not a whole number of steps of {h} s"),
+            format!("write {below} or {} (or change `step`)", below + h),
         ));
     }
     Ok(steps as u64)
