@@ -13,6 +13,8 @@
 //!   writer for as long as it writes; a second writer gets [`DirError::Busy`] with the holder's
 //!   process id and start time. The operating system releases the lock when the process dies, so
 //!   a stale lock file is simply taken over.
+//! - [`write_file`]: a file written where a user names it (a figure, a table) never replaces a
+//!   file that flocking did not write.
 //! - [`at`]: every I/O error of these paths says what was being done to which path.
 
 use std::fmt;
@@ -160,8 +162,50 @@ pub fn mark(dir: &Path, kind: Kind) -> io::Result<()> {
 }
 
 /// Whether `dir` carries the marker of `kind`.
-fn marked(dir: &Path, kind: Kind) -> bool {
+#[must_use]
+pub fn marked(dir: &Path, kind: Kind) -> bool {
     fs::read_to_string(dir.join(MARKER_FILE)).is_ok_and(|text| text == kind.marker())
+}
+
+/// Whether `dir` carries a marker of flocking, of any [`Kind`].
+#[must_use]
+pub fn marked_by_flocking(dir: &Path) -> bool {
+    [Kind::Run, Kind::Sweep, Kind::Figures]
+        .into_iter()
+        .any(|kind| marked(dir, kind))
+}
+
+/// Writes `bytes` to the file `path`, never over a file that flocking did not write: in a
+/// directory that carries flocking's marker an existing `path` is replaced; anywhere else `path`
+/// is created new, and an existing one is refused (atomically: `O_EXCL`).
+///
+/// # Errors
+/// [`DirError::Foreign`] naming the existing file (nothing is written); any I/O error, with its
+/// path.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
+    let dir = parent_of(path);
+    let mut options = OpenOptions::new();
+    options.write(true);
+    if marked_by_flocking(dir) {
+        options.create(true).truncate(true);
+    } else {
+        options.create_new(true);
+    }
+    let mut file = match options.open(path) {
+        Ok(file) => file,
+        Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {
+            return Err(DirError::Foreign {
+                dir: dir.to_owned(),
+                entry: path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |name| name.to_string_lossy().into_owned(),
+                ),
+            });
+        }
+        Err(e) => return Err(at(format_args!("create {}", path.display()))(e).into()),
+    };
+    file.write_all(bytes)
+        .map_err(|e| at(format_args!("write {}", path.display()))(e).into())
 }
 
 /// The names in `dir`, sorted (none when it does not exist).

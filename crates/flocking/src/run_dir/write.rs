@@ -48,6 +48,29 @@ pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius
 /// The file that marks a directory as incomplete, and says why.
 pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
 
+/// Renames `from` to `to` only if `to` does not exist, atomically (`renameat2` with
+/// `RENAME_NOREPLACE`): an existing `to` is an [`io::ErrorKind::AlreadyExists`] error and is kept.
+/// Where the filesystem cannot (`EINVAL`, `ENOSYS`), `to` is checked first and the rename is the
+/// ordinary one.
+///
+/// # Errors
+/// [`io::ErrorKind::AlreadyExists`] for an existing `to`; any other I/O error of the rename.
+pub(crate) fn rename_no_replace(from: &Path, to: &Path) -> io::Result<()> {
+    use rustix::fs::{CWD, RenameFlags, renameat_with};
+    use rustix::io::Errno;
+    match renameat_with(CWD, from, CWD, to, RenameFlags::NOREPLACE) {
+        Ok(()) => Ok(()),
+        Err(Errno::INVAL | Errno::NOSYS) => {
+            if fs::symlink_metadata(to).is_ok() {
+                Err(io::Error::from(io::ErrorKind::AlreadyExists))
+            } else {
+                fs::rename(from, to)
+            }
+        }
+        Err(e) => Err(e.into()),
+    }
+}
+
 /// The temporary file [`INCOMPLETE_FILE`] is written to before its rename.
 const INCOMPLETE_TMP: &str = "INCOMPLETE.tmp";
 
@@ -386,7 +409,7 @@ impl RunDirectory {
         sync_dir(staging).map_err(at(format_args!("flush {}", staging.display())))?;
         // The open files follow the directory's rename; a `DIR.partial` that another process
         // created meanwhile makes it fail.
-        fs::rename(staging, partial).map_err(at(format_args!(
+        rename_no_replace(staging, partial).map_err(at(format_args!(
             "rename {} to {}",
             staging.display(),
             partial.display()
@@ -625,11 +648,26 @@ impl RunDirectory {
         let text = verdict_text(verdict.as_ref(), &self.criteria);
         write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
         self.clear_target()?;
-        fs::rename(&self.partial, &self.target).map_err(at(format_args!(
-            "rename {} to {}",
-            self.partial.display(),
-            self.target.display()
-        )))?;
+        // a `DIR` that appears between the check and the rename is not renamed over
+        rename_no_replace(&self.partial, &self.target).map_err(|e| {
+            if e.kind() == io::ErrorKind::AlreadyExists {
+                io::Error::new(
+                    e.kind(),
+                    format!(
+                        "cannot rename {} to {}: {} appeared during the run; move it away",
+                        self.partial.display(),
+                        self.target.display(),
+                        self.target.display()
+                    ),
+                )
+            } else {
+                at(format_args!(
+                    "rename {} to {}",
+                    self.partial.display(),
+                    self.target.display()
+                ))(e)
+            }
+        })?;
         self.lock.moved_to(&self.target);
         let parent = parent_of(&self.target);
         sync_dir(parent).map_err(at(format_args!("flush {}", parent.display())))?;
@@ -1057,5 +1095,27 @@ mod tests {
             .chain(["collisions", "energy"])
             .collect();
         assert_eq!(METRICS_HEADER, names.join(","));
+    }
+
+    /// Issue 20: a `DIR` that appears between the last check and the rename of `DIR.partial`
+    /// to it, even an empty one, is kept, and so is `DIR.partial`.
+    #[test]
+    fn issue_20_the_finishing_rename_never_replaces_a_directory_that_appeared() {
+        let tmp = std::env::temp_dir().join(format!("flocking-noreplace-{}", std::process::id()));
+        let (partial, target) = (tmp.join("d.partial"), tmp.join("d"));
+        std::fs::create_dir_all(&partial).expect("mkdir");
+        std::fs::write(partial.join("metrics.csv"), "t\n").expect("a record");
+        std::fs::create_dir(&target).expect("an empty DIR appears");
+        let error = super::rename_no_replace(&partial, &target).expect_err("refused");
+        assert_eq!(error.kind(), std::io::ErrorKind::AlreadyExists, "{error}");
+        assert!(target.is_dir() && std::fs::read_dir(&target).expect("ls").next().is_none());
+        assert_eq!(
+            std::fs::read(partial.join("metrics.csv")).expect("kept"),
+            b"t\n"
+        );
+        std::fs::remove_dir(&target).expect("the user moves it away");
+        super::rename_no_replace(&partial, &target).expect("renamed");
+        assert!(target.join("metrics.csv").is_file() && !partial.exists());
+        std::fs::remove_dir_all(&tmp).expect("clean");
     }
 }
