@@ -1098,32 +1098,7 @@ fn issue_20_figures_never_replaces_a_users_directory() {
     let fixtures = tmp.path().join("fixtures");
     fs::create_dir(&fixtures).expect("mkdir");
     write(&fixtures, "short.ron", SHORT_2D);
-    // a user's G/<stem>
-    let stem = tmp.path().join("g/short");
-    fs::create_dir_all(&stem).expect("mkdir");
-    fs::write(stem.join("thesis.tex"), "x\n").expect("a user's file");
-    let output = flocking(tmp.path(), &["figures", "--out", "g", "--quiet"]);
-    refused(
-        &output,
-        &["short: g/short holds thesis.tex, which flocking did not write"],
-    );
-    assert_eq!(fs::read(stem.join("thesis.tex")).expect("kept"), b"x\n");
-    // a user's G: refused before anything is written
-    let mine = tmp.path().join("mine");
-    fs::create_dir(&mine).expect("mkdir");
-    fs::write(mine.join("index.html"), "<p>mine</p>\n").expect("a user's page");
-    let output = flocking(tmp.path(), &["figures", "--out", "mine", "--quiet"]);
-    refused(
-        &output,
-        &["mine holds index.html, which flocking did not write"],
-    );
-    assert_eq!(
-        fs::read_dir(&mine).expect("ls").count(),
-        1,
-        "nothing written"
-    );
-    // a gallery of flocking's is replaced, twice
-    fs::remove_dir_all(&stem).expect("the user moves it away");
+    // a gallery of flocking's is marked, and replaced
     complete(tmp.path(), &["figures", "--out", "g", "--quiet"]);
     complete(tmp.path(), &["figures", "--out", "g", "--quiet"]);
     assert_eq!(
@@ -1131,6 +1106,28 @@ fn issue_20_figures_never_replaces_a_users_directory() {
         "written by flocking figures\n"
     );
     assert!(tmp.path().join("g/short/figures/metrics.svg").is_file());
+    // a user's file in G/<stem>, or a user's G/<stem>: refused, untouched
+    let stem = tmp.path().join("g/short");
+    fs::write(stem.join("thesis.tex"), "x\n").expect("a user's file");
+    let before = files(&stem);
+    let output = flocking(tmp.path(), &["figures", "--out", "g", "--quiet"]);
+    refused(
+        &output,
+        &["short: g/short holds thesis.tex, which flocking did not write"],
+    );
+    assert_eq!(files(&stem), before);
+    fs::remove_file(stem.join(".flocking")).expect("no longer flocking's");
+    let before = files(&stem);
+    let output = flocking(tmp.path(), &["figures", "--out", "g", "--quiet"]);
+    refused(&output, &["g/short holds"]);
+    assert_eq!(files(&stem), before);
+    // a user's G: refused before anything is written
+    let mine = tmp.path().join("mine");
+    fs::create_dir(&mine).expect("mkdir");
+    fs::write(mine.join("short"), "mine\n").expect("a user's file");
+    let output = flocking(tmp.path(), &["figures", "--out", "mine", "--quiet"]);
+    refused(&output, &["mine holds short, which flocking did not write"]);
+    assert_eq!(fs::read_dir(&mine).expect("ls").count(), 1, "nothing written");
     // no fixtures: a usage error
     let output = flocking(&fixtures, &["figures", "--out", "g", "--quiet"]);
     refused(&output, &["no fixtures"]);
