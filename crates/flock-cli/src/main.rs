@@ -531,7 +531,7 @@ fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
 fn check_plot_dir(dir: &Path) -> Result<(), String> {
     if !dir.is_dir() {
         return Err(format!(
-            "{} is not a directory; give a run directory written by `flocking run`",
+            "{} is not a directory; give a run directory written by `flocking run` (with its scenario.ron and metrics.csv)",
             dir.display()
         ));
     }

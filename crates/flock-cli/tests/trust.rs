@@ -1127,7 +1127,11 @@ fn issue_20_figures_never_replaces_a_users_directory() {
     fs::write(mine.join("short"), "mine\n").expect("a user's file");
     let output = flocking(tmp.path(), &["figures", "--out", "mine", "--quiet"]);
     refused(&output, &["mine holds short, which flocking did not write"]);
-    assert_eq!(fs::read_dir(&mine).expect("ls").count(), 1, "nothing written");
+    assert_eq!(
+        fs::read_dir(&mine).expect("ls").count(),
+        1,
+        "nothing written"
+    );
     // no fixtures: a usage error
     let output = flocking(&fixtures, &["figures", "--out", "g", "--quiet"]);
     refused(&output, &["no fixtures"]);
@@ -1159,7 +1163,15 @@ fn issue_20_plot_never_overwrites_a_file_flocking_did_not_write() {
     write(tmp.path(), "short.ron", SHORT_2D);
     let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
     complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
-    let plot = ["sweep", "plot", "sw", "--x", "seed", "--metric", "alpha_flock"];
+    let plot = [
+        "sweep",
+        "plot",
+        "sw",
+        "--x",
+        "seed",
+        "--metric",
+        "alpha_flock",
+    ];
     complete(tmp.path(), &plot);
     complete(tmp.path(), &plot);
     assert!(tmp.path().join("sw/alpha_flock.svg").is_file());
@@ -1179,7 +1191,15 @@ fn issue_20_plot_never_overwrites_a_file_flocking_did_not_write() {
     // a sweep plot of a directory that is not a sweep's: exit 2
     let output = flocking(
         tmp.path(),
-        &["sweep", "plot", "r", "--x", "seed", "--metric", "alpha_flock"],
+        &[
+            "sweep",
+            "plot",
+            "r",
+            "--x",
+            "seed",
+            "--metric",
+            "alpha_flock",
+        ],
     );
     refused(&output, &["is not the output directory of a sweep"]);
 }
