@@ -18,7 +18,9 @@
 //! - Ownership ([`crate::owned`]): the directory carries flocking's marker; `force` replaces only
 //!   a `DIR` that flocking wrote; `DIR.partial` is locked for the whole run, so that a second
 //!   writer is refused; finishing never removes `DIR.partial` (an error leaves it resumable) nor
-//!   renames over a `DIR` that appeared during the run.
+//!   renames over a `DIR` that appeared during the run, even an empty one: the rename is atomic
+//!   and refuses an existing `DIR` (`RENAME_NOREPLACE`), so nothing appearing between the last
+//!   check and the rename is replaced either.
 //! - The checkpoint holds the resolved scenario: `--resume` refuses a `scenario.ron` edited
 //!   since, naming the fields that changed.
 //! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
@@ -69,6 +71,11 @@ pub(crate) fn rename_no_replace(from: &Path, to: &Path) -> io::Result<()> {
         }
         Err(e) => Err(e.into()),
     }
+}
+
+/// Whether `path` is a directory with no entries.
+fn is_empty_dir(path: &Path) -> bool {
+    fs::read_dir(path).is_ok_and(|mut entries| entries.next().is_none())
 }
 
 /// The temporary file [`INCOMPLETE_FILE`] is written to before its rename.
@@ -156,6 +163,9 @@ pub struct RunDirectory {
     scenario: String,
     /// Whether `DIR` may be replaced at the end (it carried flocking's marker at the start).
     force: bool,
+    /// Whether `DIR` was an empty directory when this writer started: it is then replaced at the
+    /// end, while an empty `DIR` that appears during the run is kept.
+    empty_target: bool,
     /// The lock on `DIR.partial`, held until the directory is dropped.
     lock: DirLock,
 }
@@ -471,6 +481,7 @@ impl RunDirectory {
             criteria: FlockingCriteria::default(),
             scenario: scenario.to_ron().map_err(io::Error::other)?,
             force: false,
+            empty_target: is_empty_dir(target),
             lock,
         })
     }
@@ -564,6 +575,7 @@ impl RunDirectory {
                 )
             }
         };
+        let empty_target = is_empty_dir(&target);
         let this = Self {
             target,
             partial,
@@ -581,6 +593,7 @@ impl RunDirectory {
             criteria: FlockingCriteria::default(),
             scenario: checkpoint.scenario,
             force: false,
+            empty_target,
             lock,
         };
         Ok((this, scenario, Some(checkpoint.start)))
@@ -609,8 +622,9 @@ impl RunDirectory {
 
     /// Writes `final.csv` and [`VERDICT_FILE`] and moves the directory into place: renames
     /// `DIR.partial` to `DIR`, then removes its checkpoint and `INCOMPLETE` note. A `DIR` is
-    /// replaced only if it is empty, or if `force` was set and it is flocking's
-    /// ([`owned::remove`]); a `DIR` that appeared during the run is never renamed over.
+    /// replaced only if it was empty when the run started and still is, or if `force` was set
+    /// and it is flocking's ([`owned::remove`]); a `DIR` that appeared during the run is never
+    /// renamed over (the rename itself refuses an existing `DIR`, [`rename_no_replace`]).
     ///
     /// # Errors
     /// Any I/O error, naming the operation and the path; `DIR.partial` is then kept with its
@@ -690,15 +704,16 @@ impl RunDirectory {
         Ok(verdict)
     }
 
-    /// Makes way for the rename to `DIR`: removes an empty `DIR`, or with `force` one that
-    /// flocking wrote; refuses any other.
+    /// Makes way for the rename to `DIR`: removes a `DIR` that was empty when the run started
+    /// and still is, or with `force` one that flocking wrote; refuses any other, even an empty
+    /// one that appeared during the run.
     fn clear_target(&self) -> io::Result<()> {
         let target = &self.target;
-        if !target.exists() {
+        if fs::symlink_metadata(target).is_err() {
             return Ok(());
         }
         // `remove_dir` removes only an empty directory, atomically.
-        if fs::remove_dir(target).is_ok() {
+        if self.empty_target && fs::remove_dir(target).is_ok() {
             return Ok(());
         }
         let refused = |why: String| {
