@@ -755,28 +755,25 @@ fn issue_20_a_directory_appearing_during_the_run_is_kept_and_the_run_stays_resum
     assert!(err.contains("flocking run --resume"), "{err}");
     assert_eq!(fs::read(out.join("thesis.tex")).expect("kept"), b"x\n");
     fs::rename(&out, tmp.path().join("moved")).expect("the user moves it away");
+    complete(tmp.path(), &["run", "--resume", "cut", "--quiet"]);
+    assert_eq!(files(&out), files(&tmp.path().join("whole")));
     // An empty directory appearing is kept too (only a `DIR` empty from the start is replaced):
     // the finishing rename refuses any existing `DIR` (RENAME_NOREPLACE), so that nothing
     // appearing between the last check and the rename is replaced either.
+    let out = tmp.path().join("cut2");
     let mut child = spawn(
         tmp.path(),
         &[
             "run",
-            "--resume",
-            "cut",
+            &file,
+            "--out",
+            "cut2",
             "--quiet",
             "--checkpoint-every",
             "50",
         ],
     );
-    // once the resumed run holds the lock, and has looked at `DIR` (a moment later)
-    let holder = format!("process {}", child.id());
-    let lock = partial(&out).join(".flocking.lock");
-    while !fs::read_to_string(&lock).is_ok_and(|text| text.contains(&holder)) {
-        assert!(child.try_wait().expect("poll").is_none(), "the run ended");
-        sleep(Duration::from_millis(1));
-    }
-    sleep(Duration::from_millis(30));
+    wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
     fs::create_dir(&out).expect("an empty directory appears");
     let output = child.wait_with_output().expect("the run ends");
     let err = String::from_utf8_lossy(&output.stderr);
@@ -784,7 +781,7 @@ fn issue_20_a_directory_appearing_during_the_run_is_kept_and_the_run_stays_resum
     assert!(err.contains("appeared during the run"), "{err}");
     assert!(out.is_dir() && fs::read_dir(&out).expect("ls").next().is_none());
     fs::remove_dir(&out).expect("the user removes it");
-    complete(tmp.path(), &["run", "--resume", "cut", "--quiet"]);
+    complete(tmp.path(), &["run", "--resume", "cut2", "--quiet"]);
     assert_eq!(files(&out), files(&tmp.path().join("whole")));
     // An empty `DIR` that was there from the start is the run's to fill.
     let empty = tmp.path().join("empty");
