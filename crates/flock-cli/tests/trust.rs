@@ -1033,6 +1033,15 @@ fn issue_20_sweep_and_merge_never_replace_a_users_files() {
         &["mine holds runs.csv, which flocking did not write"],
     );
     assert_eq!(files(&mine), before);
+    // a run directory of flocking's is not a sweep's
+    complete(tmp.path(), &["run", "short.ron", "--out", "r", "--quiet"]);
+    let run = files(&tmp.path().join("r"));
+    let output = flocking(tmp.path(), &["sweep", &sweep, "--out", "r", "--quiet"]);
+    refused(
+        &output,
+        &["r is a run directory of flocking's, not a sweep's output directory"],
+    );
+    assert_eq!(files(&tmp.path().join("r")), run);
     // a sweep's directory is marked, unlocked when done, and the same command resumes it
     complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
     let sw = tmp.path().join("sw");

@@ -80,7 +80,11 @@ def test_a_bad_sweep_file_is_a_scenario_error(tmp_path: Path) -> None:
     assert "agents" in str(raised.value)
 
 
-def test_issue_20_sweep_never_replaces_a_users_runs_csv(spec: Path, tmp_path: Path) -> None:
+def test_issue_20_sweep_never_replaces_a_users_runs_csv(tmp_path: Path) -> None:
+    spec = tmp_path / "seeds.ron"
+    spec.write_text(
+        f'Sweep(name: "seeds", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}}, axes: [], seeds: 2)'
+    )
     out = tmp_path / "mine"
     out.mkdir()
     (out / "runs.csv").write_bytes(b"my,own\n1,2\n")

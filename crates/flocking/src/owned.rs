@@ -48,6 +48,15 @@ impl Kind {
         format!("written by flocking {}\n", self.command())
     }
 
+    /// What a directory of this kind is, for messages.
+    const fn what(self) -> &'static str {
+        match self {
+            Self::Run => "a run directory",
+            Self::Sweep => "a sweep's output directory",
+            Self::Figures => "a gallery of flocking figures",
+        }
+    }
+
     fn command(self) -> &'static str {
         match self {
             Self::Run => "run",
@@ -90,6 +99,15 @@ pub enum DirError {
         /// An entry of it that flocking did not write.
         entry: String,
     },
+    /// The directory is flocking's, but of another kind (a run directory given as a sweep's).
+    OtherKind {
+        /// The directory.
+        dir: PathBuf,
+        /// What it is.
+        is: &'static str,
+        /// What was asked for.
+        wanted: &'static str,
+    },
     /// The directory is one flocking never removes.
     Special {
         /// The directory.
@@ -114,6 +132,11 @@ impl fmt::Display for DirError {
             Self::Foreign { dir, entry } => write!(
                 f,
                 "{} holds {entry}, which flocking did not write; choose another output directory or move it",
+                dir.display()
+            ),
+            Self::OtherKind { dir, is, wanted } => write!(
+                f,
+                "{} is {is} of flocking's, not {wanted}; choose another output directory",
                 dir.display()
             ),
             Self::Special { dir, what } => write!(
@@ -225,8 +248,9 @@ fn entries(dir: &Path) -> io::Result<Vec<String>> {
 /// marker of `kind`.
 ///
 /// # Errors
-/// [`DirError::Foreign`] naming the first entry of a directory without the marker; a path that
-/// is not a directory; any I/O error.
+/// [`DirError::OtherKind`] for a directory marked by another [`Kind`];
+/// [`DirError::Foreign`] naming an entry of a directory without the marker; a path that is not a
+/// directory; any I/O error.
 pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
     if dir.exists() && !dir.is_dir() {
         return Err(DirError::Foreign {
@@ -238,13 +262,28 @@ pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
         });
     }
     let names = entries(dir).map_err(at(format_args!("list {}", dir.display())))?;
-    match names.first() {
-        Some(entry) if !marked(dir, kind) => Err(DirError::Foreign {
-            dir: dir.to_owned(),
-            entry: entry.clone(),
-        }),
-        _ => Ok(()),
+    if names.is_empty() || marked(dir, kind) {
+        return Ok(());
     }
+    let other = [Kind::Run, Kind::Sweep, Kind::Figures]
+        .into_iter()
+        .find(|&other| marked(dir, other));
+    if let Some(other) = other {
+        return Err(DirError::OtherKind {
+            dir: dir.to_owned(),
+            is: other.what(),
+            wanted: kind.what(),
+        });
+    }
+    // a file of the user's rather than a stale marker or lock, when there is one
+    let entry = names
+        .iter()
+        .find(|name| ![MARKER_FILE, LOCK_FILE].contains(&name.as_str()))
+        .unwrap_or(&names[0]);
+    Err(DirError::Foreign {
+        dir: dir.to_owned(),
+        entry: entry.clone(),
+    })
 }
 
 /// Checks that [`remove`] may remove `dir`: it carries the marker of `kind`, holds only entries
