@@ -1,8 +1,9 @@
 //! `flocking figures`: every fixture run and drawn into one directory, with a static `index.html`.
 //!
 //! For each `*.ron` of the fixtures directory (sorted by name), [`figures()`] runs the scenario into
-//! `OUT/<fixture stem>/` (a [`RunDirectory`], replaced if present), draws its figures with
-//! [`plot_run`], then keeps only what the page and a reader need:
+//! `OUT/<fixture stem>/` (a [`RunDirectory`], replaced if present and flocking's: a directory
+//! there holding anything else is refused, untouched), draws its figures with [`plot_run`], then
+//! keeps only what the page and a reader need:
 //!
 //! | kept | dropped |
 //! | --- | --- |
@@ -12,12 +13,16 @@
 //! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference, the
 //! paper's caption and statements beside our measures, its description, the snapshot and metric
 //! PNGs and a table of the final metrics.
+//!
+//! `OUT` itself must be new, empty or a gallery flocking wrote (its `.flocking` marker says
+//! `figures`; files of other names in it are left alone), and is locked while it is written.
 
 use std::fs;
 use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 
 use flock_viz::{FigureEntry, PlotError, index_html, load_metrics, paper_reference, plot_run};
+use flocking::owned::{self, DirError, DirLock, Kind};
 use flocking::run_dir::CreateError;
 use flocking::{RunDirectory, RunError, Scenario, ScenarioError};
 
@@ -41,6 +46,8 @@ pub enum FiguresError {
         /// The error.
         source: io::Error,
     },
+    /// The output directory is not flocking's gallery, or is being written.
+    Dir(DirError),
     /// A fixture is invalid.
     Scenario(ScenarioError),
     /// A fixture's run directory could not be created.
@@ -75,6 +82,7 @@ impl std::fmt::Display for FiguresError {
                 dir.display()
             ),
             Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
+            Self::Dir(e) => write!(f, "{e}"),
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Create { fixture, source } => write!(f, "{fixture}: {source}"),
             Self::Run { fixture, source } => write!(f, "{fixture}: run failed: {source}"),
@@ -85,12 +93,32 @@ impl std::fmt::Display for FiguresError {
 
 impl std::error::Error for FiguresError {}
 
+impl FiguresError {
+    /// Whether the command was refused as asked (no fixtures, an invalid one, a directory that is
+    /// not flocking's or is being written: exit code 2), rather than failed while doing it (1).
+    #[must_use]
+    pub const fn is_refusal(&self) -> bool {
+        match self {
+            Self::NoFixtures(_) | Self::Scenario(_) => true,
+            Self::Dir(e)
+            | Self::Create {
+                source: CreateError::Dir(e),
+                ..
+            } => !matches!(e, DirError::Io(_)),
+            Self::Create { source, .. } => !matches!(source, CreateError::Io(_)),
+            Self::Io { .. } | Self::Run { .. } | Self::Plot { .. } => false,
+        }
+    }
+}
+
 /// Runs and draws every `*.ron` of `fixtures_dir` into `out/<stem>/` and writes `out/index.html`;
 /// prints one line per fixture unless `quiet`; keeps each run's `player.html` if `player` (the
 /// players are most of the page's bytes). Returns the page's entries, in order.
 ///
 /// # Errors
-/// [`FiguresError::NoFixtures`] when `fixtures_dir` is missing or holds no `*.ron`; the first
+/// [`FiguresError::NoFixtures`] when `fixtures_dir` is missing or holds no `*.ron`;
+/// [`FiguresError::Dir`] when `out` holds files but no gallery marker, or is being written;
+/// [`FiguresError::Create`] for an `out/<stem>` that flocking did not write; the first
 /// fixture that fails to load, run or draw; any I/O error.
 pub fn figures(
     fixtures_dir: &Path,
@@ -115,7 +143,12 @@ pub fn figures(
     if paths.is_empty() {
         return Err(FiguresError::NoFixtures(fixtures_dir.to_path_buf()));
     }
+    owned::check_owned(out, Kind::Figures).map_err(FiguresError::Dir)?;
     fs::create_dir_all(out).map_err(io_err(out))?;
+    if !owned::marked(out, Kind::Figures) {
+        owned::mark(out, Kind::Figures).map_err(io_err(out))?;
+    }
+    let _lock = DirLock::acquire(out).map_err(FiguresError::Dir)?;
 
     let mut entries = Vec::with_capacity(paths.len());
     for path in &paths {

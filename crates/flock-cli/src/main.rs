@@ -173,6 +173,10 @@ fn main() -> ExitCode {
             }
         }
         Command::Plot { dir, stress_edges } => {
+            if let Err(e) = check_plot_dir(&dir) {
+                eprintln!("error: {e}");
+                return ExitCode::from(INVALID);
+            }
             match plot_run_with(&dir, &figure_options(stress_edges)) {
                 Ok(files) => {
                     println!(
@@ -184,7 +188,10 @@ fn main() -> ExitCode {
                 }
                 Err(e) => {
                     eprintln!("error: {e}");
-                    ExitCode::FAILURE
+                    match e {
+                        flock_viz::PlotError::Scenario(_) => ExitCode::from(INVALID),
+                        flock_viz::PlotError::Viz(_) => ExitCode::FAILURE,
+                    }
                 }
             }
         }
@@ -196,7 +203,11 @@ fn main() -> ExitCode {
             Ok(_) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("error: {e}");
-                ExitCode::FAILURE
+                if e.is_refusal() {
+                    ExitCode::from(INVALID)
+                } else {
+                    ExitCode::FAILURE
+                }
             }
         },
         Command::Sweep(args) => flock_cli::sweep::main(args, &STOP, &WRITING),
@@ -512,6 +523,45 @@ fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
             eprintln!("error: cannot start {threads} threads: {e}");
             ExitCode::FAILURE
         })
+}
+
+/// Checks that `flocking plot DIR` may draw into `DIR/figures`: `DIR` is a complete run directory,
+/// and its `figures` is flocking's (`DIR` carries flocking's marker) or does not exist yet, so
+/// that no file flocking did not write is replaced.
+fn check_plot_dir(dir: &Path) -> Result<(), String> {
+    if !dir.is_dir() {
+        return Err(format!(
+            "{} is not a directory; give a run directory written by `flocking run` (with its scenario.ron and metrics.csv)",
+            dir.display()
+        ));
+    }
+    for name in ["scenario.ron", "metrics.csv"] {
+        if !dir.join(name).is_file() {
+            let partial = flocking::run_dir::partial_path(dir);
+            let hint = if partial.is_dir() {
+                format!(
+                    "; the run is still in {} (finish it with `flocking run --resume {}`)",
+                    partial.display(),
+                    dir.display()
+                )
+            } else {
+                String::new()
+            };
+            return Err(format!(
+                "{} is not a complete run directory: it has no {name}{hint}",
+                dir.display()
+            ));
+        }
+    }
+    let figures = dir.join("figures");
+    if figures.exists() && !flocking::owned::marked(dir, flocking::owned::Kind::Run) {
+        return Err(flocking::owned::DirError::Foreign {
+            dir: dir.to_owned(),
+            entry: "figures".into(),
+        }
+        .to_string());
+    }
+    Ok(())
 }
 
 /// The figures' options: the defaults, with edges coloured by stress if asked.

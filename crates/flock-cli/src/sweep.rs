@@ -1,7 +1,6 @@
 //! `flocking sweep`: a sweep file run on this machine's cores (or one shard of it), its shards merged,
 //! and its phase diagrams drawn. The sweep itself is the `flocking` library's ([`flocking::sweep`]).
 
-use std::fs;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -10,7 +9,8 @@ use std::sync::atomic::AtomicBool;
 use clap::{Args, Subcommand, ValueEnum};
 use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
 use flocking::estimate::{Estimate, Outputs};
-use flocking::sweep::store::{self, RUNS_FILE};
+use flocking::owned::{self, DirError};
+use flocking::sweep::store::{self, RUNS_FILE, StoreError};
 use flocking::sweep::{
     ExecuteOptions, ParameterLabel, RunRow, Shard, Sweep, execute, metric_label, share, value_field,
 };
@@ -130,6 +130,18 @@ impl From<String> for Failure {
     }
 }
 
+impl From<StoreError> for Failure {
+    /// A refusal (a directory not flocking's or being written, another sweep) is exit code 2,
+    /// an I/O error 1.
+    fn from(error: StoreError) -> Self {
+        if error.is_refusal() {
+            Self::Usage(error.to_string())
+        } else {
+            Self::Failed(error.to_string())
+        }
+    }
+}
+
 /// Exit code of a sweep stopped by Ctrl-C (128 + SIGINT), as `flocking run`'s.
 const INTERRUPTED: u8 = 130;
 
@@ -140,7 +152,7 @@ const USAGE: u8 = 2;
 /// (until then an interrupt may quit at once).
 pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCode {
     let result = match args.action {
-        Some(SweepAction::Merge { out, shards }) => merge(&out, &shards).map_err(Failure::from),
+        Some(SweepAction::Merge { out, shards }) => merge(&out, &shards),
         Some(SweepAction::Plot {
             dir,
             x,
@@ -241,7 +253,7 @@ fn run_checked(
     quiet: bool,
     stop: &AtomicBool,
 ) -> Result<(), Failure> {
-    let (done, pending) = share(sweep, out, options.shard).map_err(|e| e.to_string())?;
+    let (done, pending) = share(sweep, out, options.shard)?;
     let total = (done + pending.len()) as u64;
     let bar = if quiet || !std::io::stderr().is_terminal() {
         ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
@@ -264,7 +276,7 @@ fn run_checked(
         }
         bar.inc(1);
     };
-    let executed = execute(sweep, out, options, stop, &done).map_err(|e| e.to_string())?;
+    let executed = execute(sweep, out, options, stop, &done)?;
     bar.finish_and_clear();
     println!(
         "flocking sweep: {} run(s) now, {} found done, {} failed; {} row(s) in {}",
@@ -283,8 +295,8 @@ fn run_checked(
     Ok(())
 }
 
-fn merge(out: &Path, shards: &[PathBuf]) -> Result<(), String> {
-    let rows = store::merge(out, shards).map_err(|e| e.to_string())?;
+fn merge(out: &Path, shards: &[PathBuf]) -> Result<(), Failure> {
+    let rows = store::merge(out, shards)?;
     println!(
         "flocking sweep merge: {} shard(s), {rows} row(s) in {}",
         shards.len(),
@@ -365,8 +377,10 @@ fn seeds(count: u64) -> String {
 }
 
 fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), Failure> {
-    let sweep = store::read_sweep(dir).map_err(|e| e.to_string())?;
-    let base = sweep.base_scenario().map_err(|e| e.to_string())?;
+    let sweep = store::read_sweep(dir)?;
+    let base = sweep
+        .base_scenario()
+        .map_err(|e| Failure::Usage(e.to_string()))?;
     let path = dir.join(RUNS_FILE);
     let mut reader =
         csv::Reader::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -542,7 +556,11 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
         _ => phase_svg(&points, &options).map(String::into_bytes),
     }
     .map_err(|e| e.to_string())?;
-    fs::write(&out, bytes).map_err(|e| format!("{}: {e}", out.display()))?;
+    // never over a file that flocking did not write
+    owned::write_file(&out, &bytes).map_err(|e| match e {
+        DirError::Io(e) => Failure::Failed(e.to_string()),
+        refused => Failure::Usage(refused.to_string()),
+    })?;
     println!("flocking sweep plot: {}", out.display());
     Ok(())
 }

@@ -512,8 +512,10 @@ fn plot_where_and_facet_draw_only_the_runs_they_name() {
     let facet = table(&tmp.path().join("facet.csv"));
     let pooled = table(&tmp.path().join("pooled.csv"));
     for n in &ns {
-        assert!(plot(&["--where", &format!("agents={n}")], "where.csv").is_empty());
-        let fixed = table(&tmp.path().join("where.csv"));
+        // one file per n: `--out` never replaces a file outside a directory of flocking's
+        let out = format!("where-{n}.csv");
+        assert!(plot(&["--where", &format!("agents={n}")], &out).is_empty());
+        let fixed = table(&tmp.path().join(&out));
         let panel: Vec<_> = facet
             .iter()
             .filter(|r| r.0 == format!("n = {n}"))

@@ -757,6 +757,37 @@ fn issue_20_a_directory_appearing_during_the_run_is_kept_and_the_run_stays_resum
     fs::rename(&out, tmp.path().join("moved")).expect("the user moves it away");
     complete(tmp.path(), &["run", "--resume", "cut", "--quiet"]);
     assert_eq!(files(&out), files(&tmp.path().join("whole")));
+    // An empty directory appearing is kept too (only a `DIR` empty from the start is replaced):
+    // the finishing rename refuses any existing `DIR` (RENAME_NOREPLACE), so that nothing
+    // appearing between the last check and the rename is replaced either.
+    let out = tmp.path().join("cut2");
+    let mut child = spawn(
+        tmp.path(),
+        &[
+            "run",
+            &file,
+            "--out",
+            "cut2",
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ],
+    );
+    wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+    fs::create_dir(&out).expect("an empty directory appears");
+    let output = child.wait_with_output().expect("the run ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{err}");
+    assert!(err.contains("appeared during the run"), "{err}");
+    assert!(out.is_dir() && fs::read_dir(&out).expect("ls").next().is_none());
+    fs::remove_dir(&out).expect("the user removes it");
+    complete(tmp.path(), &["run", "--resume", "cut2", "--quiet"]);
+    assert_eq!(files(&out), files(&tmp.path().join("whole")));
+    // An empty `DIR` that was there from the start is the run's to fill.
+    let empty = tmp.path().join("empty");
+    fs::create_dir(&empty).expect("mkdir");
+    complete(tmp.path(), &["run", &file, "--out", "empty", "--quiet"]);
+    assert_eq!(files(&empty), files(&tmp.path().join("whole")));
 }
 
 #[test]
@@ -976,4 +1007,239 @@ fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
     let err = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(130), "{err}");
     assert!(err.contains("the same command resumes"), "{err}");
+}
+
+/// A sweep of `seeds` runs of `base` (a file in the same directory), no axes.
+fn seeds_sweep(dir: &Path, base: &str, seeds: usize) -> String {
+    write(
+        dir,
+        "sweep.ron",
+        &format!(r#"Sweep(name: "seeds", base: Path("{base}"), axes: [], seeds: {seeds})"#),
+    )
+}
+
+#[test]
+fn issue_20_sweep_and_merge_never_replace_a_users_files() {
+    let tmp = TempDir::new("sweep_user_dir");
+    write(tmp.path(), "short.ron", SHORT_2D);
+    let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
+    let mine = tmp.path().join("mine");
+    fs::create_dir(&mine).expect("mkdir");
+    fs::write(mine.join("runs.csv"), "my,own\n1,2\n").expect("a user's file");
+    let before = files(&mine);
+    let output = flocking(tmp.path(), &["sweep", &sweep, "--out", "mine", "--quiet"]);
+    refused(
+        &output,
+        &["mine holds runs.csv, which flocking did not write"],
+    );
+    assert_eq!(files(&mine), before);
+    // a run directory of flocking's is not a sweep's
+    complete(tmp.path(), &["run", "short.ron", "--out", "r", "--quiet"]);
+    let run = files(&tmp.path().join("r"));
+    let output = flocking(tmp.path(), &["sweep", &sweep, "--out", "r", "--quiet"]);
+    refused(
+        &output,
+        &["r is a run directory of flocking's, not a sweep's output directory"],
+    );
+    assert_eq!(files(&tmp.path().join("r")), run);
+    // a sweep's directory is marked, unlocked when done, and the same command resumes it
+    complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
+    let sw = tmp.path().join("sw");
+    assert_eq!(
+        fs::read_to_string(sw.join(".flocking")).expect("marker"),
+        "written by flocking sweep\n"
+    );
+    assert!(!sw.join(".flocking.lock").exists());
+    let runs = fs::read(sw.join("runs.csv")).expect("runs.csv");
+    let again = flocking(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
+    assert_eq!(again.status.code(), Some(0), "{}", stderr(&again));
+    assert!(String::from_utf8_lossy(&again.stdout).contains("2 found done"));
+    assert_eq!(fs::read(sw.join("runs.csv")).expect("runs.csv"), runs);
+    // merge: into a user's directory refused, into a new one done
+    let output = flocking(tmp.path(), &["sweep", "merge", "--out", "mine", "sw"]);
+    refused(
+        &output,
+        &["mine holds runs.csv, which flocking did not write"],
+    );
+    assert_eq!(files(&mine), before);
+    complete(tmp.path(), &["sweep", "merge", "--out", "merged", "sw"]);
+    assert_eq!(
+        fs::read(tmp.path().join("merged/runs.csv")).expect("merged"),
+        runs
+    );
+}
+
+#[test]
+fn issue_20_a_kept_run_never_replaces_a_users_directory() {
+    let tmp = TempDir::new("sweep_keep_user");
+    write(tmp.path(), "short.ron", SHORT_2D);
+    let sweep = seeds_sweep(tmp.path(), "short.ron", 1);
+    let args = ["sweep", &sweep, "--out", "sw", "--keep-runs", "--quiet"];
+    complete(tmp.path(), &args);
+    let sw = tmp.path().join("sw");
+    let id = fs::read_dir(sw.join("runs"))
+        .expect("runs/")
+        .next()
+        .expect("one run")
+        .expect("entry")
+        .file_name();
+    let run = sw.join("runs").join(&id);
+    // the run's row is lost, and a user's file is in its directory: it is run again, and refused
+    for row in fs::read_dir(sw.join("rows")).expect("rows/") {
+        fs::remove_file(row.expect("entry").path()).expect("rm");
+    }
+    fs::write(run.join("thesis.tex"), "x\n").expect("a user's file");
+    let output = flocking(tmp.path(), &args);
+    let err = stderr(&output);
+    assert!(
+        err.contains("holds thesis.tex, which flocking did not write"),
+        "{err}"
+    );
+    assert_eq!(fs::read(run.join("thesis.tex")).expect("kept"), b"x\n");
+    assert!(run.join("metrics.csv").is_file(), "the earlier run is kept");
+}
+
+#[test]
+fn issue_20_a_second_sweep_writer_is_refused_with_the_first_ones_pid() {
+    let tmp = TempDir::new("two_sweeps");
+    write(tmp.path(), "long.ron", LONG_2D);
+    let sweep = seeds_sweep(tmp.path(), "long.ron", 2);
+    let args = [
+        "sweep",
+        &sweep,
+        "--out",
+        "sw",
+        "--keep-runs",
+        "--jobs",
+        "1",
+        "--quiet",
+    ];
+    let mut child = spawn(tmp.path(), &args);
+    let pid = format!("process {}", child.id());
+    wait_for(&tmp.path().join("sw/runs"), &mut child);
+    let second = flocking(tmp.path(), &args);
+    refused(&second, &["sw is being written by", &pid, "started"]);
+    let merged = flocking(tmp.path(), &["sweep", "merge", "--out", "sw", "sw"]);
+    refused(&merged, &["sw is being written by", &pid]);
+    let output = child.wait_with_output().expect("the first sweep ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{err}");
+    assert!(!err.contains("run 0") && !err.contains("run 1"), "{err}");
+    let runs = fs::read_to_string(tmp.path().join("sw/runs.csv")).expect("runs.csv");
+    assert_eq!(runs.lines().count(), 3, "{runs}");
+    // no failure recorded: the error column, the last, is empty in every row
+    assert!(runs.lines().skip(1).all(|row| row.ends_with(',')), "{runs}");
+    assert!(!tmp.path().join("sw/.flocking.lock").exists());
+}
+
+#[test]
+fn issue_20_figures_never_replaces_a_users_directory() {
+    let tmp = TempDir::new("figures_user_dir");
+    let fixtures = tmp.path().join("fixtures");
+    fs::create_dir(&fixtures).expect("mkdir");
+    write(&fixtures, "short.ron", SHORT_2D);
+    // a gallery of flocking's is marked, and replaced
+    complete(tmp.path(), &["figures", "--out", "g", "--quiet"]);
+    complete(tmp.path(), &["figures", "--out", "g", "--quiet"]);
+    assert_eq!(
+        fs::read_to_string(tmp.path().join("g/.flocking")).expect("marker"),
+        "written by flocking figures\n"
+    );
+    assert!(tmp.path().join("g/short/figures/metrics.svg").is_file());
+    // a user's file in G/<stem>, or a user's G/<stem>: refused, untouched
+    let stem = tmp.path().join("g/short");
+    fs::write(stem.join("thesis.tex"), "x\n").expect("a user's file");
+    let before = files(&stem);
+    let output = flocking(tmp.path(), &["figures", "--out", "g", "--quiet"]);
+    refused(
+        &output,
+        &["short: g/short holds thesis.tex, which flocking did not write"],
+    );
+    assert_eq!(files(&stem), before);
+    fs::remove_file(stem.join(".flocking")).expect("no longer flocking's");
+    let before = files(&stem);
+    let output = flocking(tmp.path(), &["figures", "--out", "g", "--quiet"]);
+    refused(&output, &["g/short holds"]);
+    assert_eq!(files(&stem), before);
+    // a user's G: refused before anything is written
+    let mine = tmp.path().join("mine");
+    fs::create_dir(&mine).expect("mkdir");
+    fs::write(mine.join("short"), "mine\n").expect("a user's file");
+    let output = flocking(tmp.path(), &["figures", "--out", "mine", "--quiet"]);
+    refused(&output, &["mine holds short, which flocking did not write"]);
+    assert_eq!(
+        fs::read_dir(&mine).expect("ls").count(),
+        1,
+        "nothing written"
+    );
+    // no fixtures: a usage error
+    let output = flocking(&fixtures, &["figures", "--out", "g", "--quiet"]);
+    refused(&output, &["no fixtures"]);
+}
+
+#[test]
+fn issue_20_plot_never_overwrites_a_file_flocking_did_not_write() {
+    let tmp = TempDir::new("plot_user_files");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    // `flocking plot`: bad input is exit 2
+    let output = flocking(tmp.path(), &["plot", "nowhere"]);
+    refused(&output, &["nowhere is not a directory"]);
+    fs::create_dir(tmp.path().join("empty")).expect("mkdir");
+    let output = flocking(tmp.path(), &["plot", "empty"]);
+    refused(&output, &["empty is not a complete run directory"]);
+    // a run directory without flocking's marker whose figures/ may be a user's
+    complete(tmp.path(), &["run", &file, "--out", "r", "--quiet"]);
+    complete(tmp.path(), &["plot", "r"]);
+    complete(tmp.path(), &["plot", "r"]);
+    fs::remove_file(tmp.path().join("r/.flocking")).expect("rm marker");
+    fs::write(tmp.path().join("r/figures/metrics.svg"), "mine\n").expect("a user's figure");
+    let output = flocking(tmp.path(), &["plot", "r"]);
+    refused(&output, &["r holds figures, which flocking did not write"]);
+    assert_eq!(
+        fs::read(tmp.path().join("r/figures/metrics.svg")).expect("kept"),
+        b"mine\n"
+    );
+    // `flocking sweep plot --out`: a user's file is refused, the sweep's own replaced
+    write(tmp.path(), "short.ron", SHORT_2D);
+    let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
+    complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
+    let plot = [
+        "sweep",
+        "plot",
+        "sw",
+        "--x",
+        "seed",
+        "--metric",
+        "alpha_flock",
+    ];
+    complete(tmp.path(), &plot);
+    complete(tmp.path(), &plot);
+    assert!(tmp.path().join("sw/alpha_flock.svg").is_file());
+    fs::write(tmp.path().join("mine.svg"), "mine\n").expect("a user's file");
+    let mut args = plot.to_vec();
+    args.extend(["--out", "mine.svg"]);
+    let output = flocking(tmp.path(), &args);
+    refused(&output, &["holds mine.svg, which flocking did not write"]);
+    assert_eq!(
+        fs::read(tmp.path().join("mine.svg")).expect("kept"),
+        b"mine\n"
+    );
+    let mut args = plot.to_vec();
+    args.extend(["--out", "new.csv"]);
+    complete(tmp.path(), &args);
+    assert!(tmp.path().join("new.csv").is_file());
+    // a sweep plot of a directory that is not a sweep's: exit 2
+    let output = flocking(
+        tmp.path(),
+        &[
+            "sweep",
+            "plot",
+            "r",
+            "--x",
+            "seed",
+            "--metric",
+            "alpha_flock",
+        ],
+    );
+    refused(&output, &["is not the output directory of a sweep"]);
 }

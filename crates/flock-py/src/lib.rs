@@ -30,6 +30,7 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<scenario::PyScenario>()?;
     module.add_class::<simulation::PySimulation>()?;
     module.add_class::<controls::PyNeighbours>()?;
+    module.add_class::<sweep::SweepLock>()?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;

@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use flocking::owned::DirLock;
 use flocking::sweep::store::{self, StoreError};
 use flocking::sweep::{Sweep, SweepError, run_one, run_one_with};
 use pyo3::prelude::*;
@@ -85,14 +86,34 @@ pub fn sweep_run(
     Ok((row.index, row.id.clone(), row.fields(), row.wall_time))
 }
 
-/// Opens (or creates) the output directory `dir` of the self-contained sweep `text` and returns
-/// the indices of the runs already finished in it.
+/// The lock of a sweep's output directory ([`store::prepare`]), held until
+/// [`SweepLock::release`] (or until the process ends): another writer of the directory is
+/// refused meanwhile.
+#[pyclass(module = "flocking._flocking")]
+pub struct SweepLock(Option<DirLock>);
+
+#[pymethods]
+impl SweepLock {
+    /// Releases the lock (again: nothing).
+    fn release(&mut self) {
+        self.0 = None;
+    }
+}
+
+/// Opens (or creates) the output directory `dir` of the self-contained sweep `text`, locked for
+/// this process, and returns the indices of the runs already finished in it, with the lock
+/// (to be released once the sweep is assembled). A directory holding files flocking did not
+/// write, or being written by another process, raises `RunDirectoryError`.
 #[pyfunction]
-pub fn sweep_prepare(py: Python<'_>, dir: PathBuf, text: &str) -> PyResult<Vec<usize>> {
+pub fn sweep_prepare(
+    py: Python<'_>,
+    dir: PathBuf,
+    text: &str,
+) -> PyResult<(Vec<usize>, SweepLock)> {
     let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
-    store::prepare(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
+    let lock = store::prepare(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
     let finished = store::finished(&dir).map_err(|e| store_error(py, &e, &dir))?;
-    Ok(finished.into_keys().collect())
+    Ok((finished.into_keys().collect(), SweepLock(Some(lock))))
 }
 
 /// Records a finished run (as [`sweep_run`] returned it) in `dir`.

@@ -78,3 +78,22 @@ def test_a_bad_sweep_file_is_a_scenario_error(tmp_path: Path) -> None:
         flocking.sweep(path, tmp_path / "out")
     assert raised.value.field == "axes[1].path"
     assert "agents" in str(raised.value)
+
+
+def test_issue_20_sweep_never_replaces_a_users_runs_csv(tmp_path: Path) -> None:
+    spec = tmp_path / "seeds.ron"
+    spec.write_text(
+        f'Sweep(name: "seeds", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}}, axes: [], seeds: 2)'
+    )
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "runs.csv").write_bytes(b"my,own\n1,2\n")
+    with pytest.raises(flocking.RunDirectoryError, match="holds runs.csv, which flocking did not write"):
+        flocking.sweep(spec, out)
+    assert (out / "runs.csv").read_bytes() == b"my,own\n1,2\n"
+    assert sorted(p.name for p in out.iterdir()) == ["runs.csv"]
+    # a sweep's own directory is marked, unlocked when done, and resumed
+    flocking.sweep(spec, tmp_path / "py", executor=ThreadPoolExecutor(2))
+    assert (tmp_path / "py" / ".flocking").read_text() == "written by flocking sweep\n"
+    assert not (tmp_path / "py" / ".flocking.lock").exists()
+    flocking.sweep(spec, tmp_path / "py", executor=ThreadPoolExecutor(2))

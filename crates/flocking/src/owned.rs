@@ -13,6 +13,8 @@
 //!   writer for as long as it writes; a second writer gets [`DirError::Busy`] with the holder's
 //!   process id and start time. The operating system releases the lock when the process dies, so
 //!   a stale lock file is simply taken over.
+//! - [`write_file`]: a file written where a user names it (a figure, a table) never replaces a
+//!   file that flocking did not write.
 //! - [`at`]: every I/O error of these paths says what was being done to which path.
 
 use std::fmt;
@@ -44,6 +46,15 @@ impl Kind {
     /// The marker's text.
     fn marker(self) -> String {
         format!("written by flocking {}\n", self.command())
+    }
+
+    /// What a directory of this kind is, for messages.
+    const fn what(self) -> &'static str {
+        match self {
+            Self::Run => "a run directory",
+            Self::Sweep => "a sweep's output directory",
+            Self::Figures => "a gallery of flocking figures",
+        }
     }
 
     fn command(self) -> &'static str {
@@ -88,6 +99,15 @@ pub enum DirError {
         /// An entry of it that flocking did not write.
         entry: String,
     },
+    /// The directory is flocking's, but of another kind (a run directory given as a sweep's).
+    OtherKind {
+        /// The directory.
+        dir: PathBuf,
+        /// What it is.
+        is: &'static str,
+        /// What was asked for.
+        wanted: &'static str,
+    },
     /// The directory is one flocking never removes.
     Special {
         /// The directory.
@@ -112,6 +132,11 @@ impl fmt::Display for DirError {
             Self::Foreign { dir, entry } => write!(
                 f,
                 "{} holds {entry}, which flocking did not write; choose another output directory or move it",
+                dir.display()
+            ),
+            Self::OtherKind { dir, is, wanted } => write!(
+                f,
+                "{} is {is} of flocking's, not {wanted}; choose another output directory",
                 dir.display()
             ),
             Self::Special { dir, what } => write!(
@@ -160,8 +185,50 @@ pub fn mark(dir: &Path, kind: Kind) -> io::Result<()> {
 }
 
 /// Whether `dir` carries the marker of `kind`.
-fn marked(dir: &Path, kind: Kind) -> bool {
+#[must_use]
+pub fn marked(dir: &Path, kind: Kind) -> bool {
     fs::read_to_string(dir.join(MARKER_FILE)).is_ok_and(|text| text == kind.marker())
+}
+
+/// Whether `dir` carries a marker of flocking, of any [`Kind`].
+#[must_use]
+pub fn marked_by_flocking(dir: &Path) -> bool {
+    [Kind::Run, Kind::Sweep, Kind::Figures]
+        .into_iter()
+        .any(|kind| marked(dir, kind))
+}
+
+/// Writes `bytes` to the file `path`, never over a file that flocking did not write: in a
+/// directory that carries flocking's marker an existing `path` is replaced; anywhere else `path`
+/// is created new, and an existing one is refused (atomically: `O_EXCL`).
+///
+/// # Errors
+/// [`DirError::Foreign`] naming the existing file (nothing is written); any I/O error, with its
+/// path.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
+    let dir = parent_of(path);
+    let mut options = OpenOptions::new();
+    options.write(true);
+    if marked_by_flocking(dir) {
+        options.create(true).truncate(true);
+    } else {
+        options.create_new(true);
+    }
+    let mut file = match options.open(path) {
+        Ok(file) => file,
+        Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {
+            return Err(DirError::Foreign {
+                dir: dir.to_owned(),
+                entry: path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |name| name.to_string_lossy().into_owned(),
+                ),
+            });
+        }
+        Err(e) => return Err(at(format_args!("create {}", path.display()))(e).into()),
+    };
+    file.write_all(bytes)
+        .map_err(|e| at(format_args!("write {}", path.display()))(e).into())
 }
 
 /// The names in `dir`, sorted (none when it does not exist).
@@ -181,8 +248,9 @@ fn entries(dir: &Path) -> io::Result<Vec<String>> {
 /// marker of `kind`.
 ///
 /// # Errors
-/// [`DirError::Foreign`] naming the first entry of a directory without the marker; a path that
-/// is not a directory; any I/O error.
+/// [`DirError::OtherKind`] for a directory marked by another [`Kind`];
+/// [`DirError::Foreign`] naming an entry of a directory without the marker; a path that is not a
+/// directory; any I/O error.
 pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
     if dir.exists() && !dir.is_dir() {
         return Err(DirError::Foreign {
@@ -194,13 +262,28 @@ pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
         });
     }
     let names = entries(dir).map_err(at(format_args!("list {}", dir.display())))?;
-    match names.first() {
-        Some(entry) if !marked(dir, kind) => Err(DirError::Foreign {
-            dir: dir.to_owned(),
-            entry: entry.clone(),
-        }),
-        _ => Ok(()),
+    if names.is_empty() || marked(dir, kind) {
+        return Ok(());
     }
+    let other = [Kind::Run, Kind::Sweep, Kind::Figures]
+        .into_iter()
+        .find(|&other| marked(dir, other));
+    if let Some(other) = other {
+        return Err(DirError::OtherKind {
+            dir: dir.to_owned(),
+            is: other.what(),
+            wanted: kind.what(),
+        });
+    }
+    // a file of the user's rather than a stale marker or lock, when there is one
+    let entry = names
+        .iter()
+        .find(|name| ![MARKER_FILE, LOCK_FILE].contains(&name.as_str()))
+        .unwrap_or(&names[0]);
+    Err(DirError::Foreign {
+        dir: dir.to_owned(),
+        entry: entry.clone(),
+    })
 }
 
 /// Checks that [`remove`] may remove `dir`: it carries the marker of `kind`, holds only entries

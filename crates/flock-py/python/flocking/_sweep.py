@@ -118,9 +118,13 @@ def sweep(
     it raises is raised here (the rows of the runs finished so far are kept: run the sweep again
     to continue).
 
+    ``out`` must be new, empty or a sweep's output directory (flocking marks it with a
+    ``.flocking`` file); one holding files flocking did not write is refused, and so is one that
+    another process is writing (its lock is held until ``runs.csv`` is written).
+
     Raises :class:`ScenarioError` for a bad sweep file and :class:`RunDirectoryError` for a
-    directory of another sweep; a run that fails (an invalid value, a blow-up) is a row with its
-    error, not an exception.
+    directory of another sweep, of files flocking did not write, or being written; a run that
+    fails (an invalid value, a blow-up) is a row with its error, not an exception.
     """
     spec_path = _os.fspath(spec)
     with open(spec_path) as f:
@@ -128,18 +132,23 @@ def sweep(
             f.read(), spec_path, _os.path.dirname(_os.path.abspath(spec_path))
         )
     out_path = _os.fspath(out)
-    finished = set(_flocking.sweep_prepare(out_path, text))
-    pending = [k for k in range(count) if k not in finished]
-    own = executor is None
-    if executor is None:
-        executor = _futures.ProcessPoolExecutor(max_workers=_os.cpu_count() or 1)
+    # the lock of ``out`` is held until runs.csv is written: a second writer is refused
+    finished, lock = _flocking.sweep_prepare(out_path, text)
     try:
-        futures = [executor.submit(_sweep_run, text, k, controls) for k in pending]
-        for future in _futures.as_completed(futures):
-            index, run_id, fields, wall_time = future.result()
-            _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
+        finished = set(finished)
+        pending = [k for k in range(count) if k not in finished]
+        own = executor is None
+        if executor is None:
+            executor = _futures.ProcessPoolExecutor(max_workers=_os.cpu_count() or 1)
+        try:
+            futures = [executor.submit(_sweep_run, text, k, controls) for k in pending]
+            for future in _futures.as_completed(futures):
+                index, run_id, fields, wall_time = future.result()
+                _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
+        finally:
+            if own:
+                executor.shutdown()
+        _flocking.sweep_assemble(out_path, text)
     finally:
-        if own:
-            executor.shutdown()
-    _flocking.sweep_assemble(out_path, text)
+        lock.release()
     return SweepResult(out_path, _read_runs(out_path))

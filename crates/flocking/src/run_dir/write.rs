@@ -18,7 +18,9 @@
 //! - Ownership ([`crate::owned`]): the directory carries flocking's marker; `force` replaces only
 //!   a `DIR` that flocking wrote; `DIR.partial` is locked for the whole run, so that a second
 //!   writer is refused; finishing never removes `DIR.partial` (an error leaves it resumable) nor
-//!   renames over a `DIR` that appeared during the run.
+//!   renames over a `DIR` that appeared during the run, even an empty one: the rename is atomic
+//!   and refuses an existing `DIR` (`RENAME_NOREPLACE`), so nothing appearing between the last
+//!   check and the rename is replaced either.
 //! - The checkpoint holds the resolved scenario: `--resume` refuses a `scenario.ron` edited
 //!   since, naming the fields that changed.
 //! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
@@ -47,6 +49,34 @@ pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius
 
 /// The file that marks a directory as incomplete, and says why.
 pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
+
+/// Renames `from` to `to` only if `to` does not exist, atomically (`renameat2` with
+/// `RENAME_NOREPLACE`): an existing `to` is an [`io::ErrorKind::AlreadyExists`] error and is kept.
+/// Where the filesystem cannot (`EINVAL`, `ENOSYS`), `to` is checked first and the rename is the
+/// ordinary one.
+///
+/// # Errors
+/// [`io::ErrorKind::AlreadyExists`] for an existing `to`; any other I/O error of the rename.
+pub(crate) fn rename_no_replace(from: &Path, to: &Path) -> io::Result<()> {
+    use rustix::fs::{CWD, RenameFlags, renameat_with};
+    use rustix::io::Errno;
+    match renameat_with(CWD, from, CWD, to, RenameFlags::NOREPLACE) {
+        Ok(()) => Ok(()),
+        Err(Errno::INVAL | Errno::NOSYS) => {
+            if fs::symlink_metadata(to).is_ok() {
+                Err(io::Error::from(io::ErrorKind::AlreadyExists))
+            } else {
+                fs::rename(from, to)
+            }
+        }
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// Whether `path` is a directory with no entries.
+fn is_empty_dir(path: &Path) -> bool {
+    fs::read_dir(path).is_ok_and(|mut entries| entries.next().is_none())
+}
 
 /// The temporary file [`INCOMPLETE_FILE`] is written to before its rename.
 const INCOMPLETE_TMP: &str = "INCOMPLETE.tmp";
@@ -133,6 +163,9 @@ pub struct RunDirectory {
     scenario: String,
     /// Whether `DIR` may be replaced at the end (it carried flocking's marker at the start).
     force: bool,
+    /// Whether `DIR` was an empty directory when this writer started: it is then replaced at the
+    /// end, while an empty `DIR` that appears during the run is kept.
+    empty_target: bool,
     /// The lock on `DIR.partial`, held until the directory is dropped.
     lock: DirLock,
 }
@@ -386,7 +419,7 @@ impl RunDirectory {
         sync_dir(staging).map_err(at(format_args!("flush {}", staging.display())))?;
         // The open files follow the directory's rename; a `DIR.partial` that another process
         // created meanwhile makes it fail.
-        fs::rename(staging, partial).map_err(at(format_args!(
+        rename_no_replace(staging, partial).map_err(at(format_args!(
             "rename {} to {}",
             staging.display(),
             partial.display()
@@ -448,6 +481,7 @@ impl RunDirectory {
             criteria: FlockingCriteria::default(),
             scenario: scenario.to_ron().map_err(io::Error::other)?,
             force: false,
+            empty_target: is_empty_dir(target),
             lock,
         })
     }
@@ -541,6 +575,7 @@ impl RunDirectory {
                 )
             }
         };
+        let empty_target = is_empty_dir(&target);
         let this = Self {
             target,
             partial,
@@ -558,6 +593,7 @@ impl RunDirectory {
             criteria: FlockingCriteria::default(),
             scenario: checkpoint.scenario,
             force: false,
+            empty_target,
             lock,
         };
         Ok((this, scenario, Some(checkpoint.start)))
@@ -586,8 +622,9 @@ impl RunDirectory {
 
     /// Writes `final.csv` and [`VERDICT_FILE`] and moves the directory into place: renames
     /// `DIR.partial` to `DIR`, then removes its checkpoint and `INCOMPLETE` note. A `DIR` is
-    /// replaced only if it is empty, or if `force` was set and it is flocking's
-    /// ([`owned::remove`]); a `DIR` that appeared during the run is never renamed over.
+    /// replaced only if it was empty when the run started and still is, or if `force` was set
+    /// and it is flocking's ([`owned::remove`]); a `DIR` that appeared during the run is never
+    /// renamed over (the rename itself refuses an existing `DIR`, [`rename_no_replace`]).
     ///
     /// # Errors
     /// Any I/O error, naming the operation and the path; `DIR.partial` is then kept with its
@@ -625,11 +662,26 @@ impl RunDirectory {
         let text = verdict_text(verdict.as_ref(), &self.criteria);
         write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
         self.clear_target()?;
-        fs::rename(&self.partial, &self.target).map_err(at(format_args!(
-            "rename {} to {}",
-            self.partial.display(),
-            self.target.display()
-        )))?;
+        // a `DIR` that appears between the check and the rename is not renamed over
+        rename_no_replace(&self.partial, &self.target).map_err(|e| {
+            if e.kind() == io::ErrorKind::AlreadyExists {
+                io::Error::new(
+                    e.kind(),
+                    format!(
+                        "cannot rename {} to {}: {} appeared during the run; move it away",
+                        self.partial.display(),
+                        self.target.display(),
+                        self.target.display()
+                    ),
+                )
+            } else {
+                at(format_args!(
+                    "rename {} to {}",
+                    self.partial.display(),
+                    self.target.display()
+                ))(e)
+            }
+        })?;
         self.lock.moved_to(&self.target);
         let parent = parent_of(&self.target);
         sync_dir(parent).map_err(at(format_args!("flush {}", parent.display())))?;
@@ -652,15 +704,16 @@ impl RunDirectory {
         Ok(verdict)
     }
 
-    /// Makes way for the rename to `DIR`: removes an empty `DIR`, or with `force` one that
-    /// flocking wrote; refuses any other.
+    /// Makes way for the rename to `DIR`: removes a `DIR` that was empty when the run started
+    /// and still is, or with `force` one that flocking wrote; refuses any other, even an empty
+    /// one that appeared during the run.
     fn clear_target(&self) -> io::Result<()> {
         let target = &self.target;
-        if !target.exists() {
+        if fs::symlink_metadata(target).is_err() {
             return Ok(());
         }
         // `remove_dir` removes only an empty directory, atomically.
-        if fs::remove_dir(target).is_ok() {
+        if self.empty_target && fs::remove_dir(target).is_ok() {
             return Ok(());
         }
         let refused = |why: String| {
@@ -1057,5 +1110,27 @@ mod tests {
             .chain(["collisions", "energy"])
             .collect();
         assert_eq!(METRICS_HEADER, names.join(","));
+    }
+
+    /// Issue 20: a `DIR` that appears between the last check and the rename of `DIR.partial`
+    /// to it, even an empty one, is kept, and so is `DIR.partial`.
+    #[test]
+    fn issue_20_the_finishing_rename_never_replaces_a_directory_that_appeared() {
+        let tmp = std::env::temp_dir().join(format!("flocking-noreplace-{}", std::process::id()));
+        let (partial, target) = (tmp.join("d.partial"), tmp.join("d"));
+        std::fs::create_dir_all(&partial).expect("mkdir");
+        std::fs::write(partial.join("metrics.csv"), "t\n").expect("a record");
+        std::fs::create_dir(&target).expect("an empty DIR appears");
+        let error = super::rename_no_replace(&partial, &target).expect_err("refused");
+        assert_eq!(error.kind(), std::io::ErrorKind::AlreadyExists, "{error}");
+        assert!(target.is_dir() && std::fs::read_dir(&target).expect("ls").next().is_none());
+        assert_eq!(
+            std::fs::read(partial.join("metrics.csv")).expect("kept"),
+            b"t\n"
+        );
+        std::fs::remove_dir(&target).expect("the user moves it away");
+        super::rename_no_replace(&partial, &target).expect("renamed");
+        assert!(target.join("metrics.csv").is_file() && !partial.exists());
+        std::fs::remove_dir_all(&tmp).expect("clean");
     }
 }

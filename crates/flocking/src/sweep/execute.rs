@@ -84,7 +84,8 @@ pub struct Executed {
 /// written at the end ([`store`]).
 ///
 /// # Errors
-/// A directory that holds another sweep, a worker pool that cannot be built, any I/O error. A run
+/// A directory that is not flocking's or is being written ([`store::prepare`]), a directory
+/// that holds another sweep, a worker pool that cannot be built, any I/O error. A run
 /// that fails is not an error: its row says why.
 pub fn execute(
     sweep: &Sweep,
@@ -93,7 +94,8 @@ pub fn execute(
     stop: &AtomicBool,
     done: &(dyn Fn(&RunRow) + Sync),
 ) -> Result<Executed, StoreError> {
-    store::prepare(dir, sweep)?;
+    // held until the sweep returns: a second writer of `dir` is refused meanwhile
+    let _lock = store::prepare(dir, sweep)?;
     let (skipped, pending) = share(sweep, dir, options.shard)?;
     let keep = options.keep_runs.then(|| dir.join(RUNS_DIR));
     let next = AtomicUsize::new(0);

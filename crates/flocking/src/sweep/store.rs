@@ -7,6 +7,12 @@
 //! | `runs.csv` | the header and every finished run's line, in run order |
 //! | `times.csv` | `run,id,wall_time` of every finished run, in run order |
 //! | `runs/<id>/` | with `--keep-runs`, each run's directory as `flocking run` writes it |
+//! | `.flocking`, `.flocking.lock` | flocking's marker, and the lock of the process writing it ([`crate::owned`]) |
+//!
+//! A directory is written only when it is new, empty or marked as a sweep's (or, written before
+//! markers, holds this very sweep's `sweep.ron`): a user's `runs.csv` is never replaced. The
+//! writer holds the directory's lock from [`prepare`] to its end, so that a second sweep or merge
+//! into it is refused while the first one writes.
 //!
 //! A row file is written to a temporary name, synced and renamed, so that a sweep killed at any
 //! moment leaves whole rows only; the same command then skips the runs it finds and assembles
@@ -21,6 +27,7 @@ use std::path::{Path, PathBuf};
 
 use super::row::{RunRow, header};
 use super::{Sweep, SweepError};
+use crate::owned::{self, DirError, DirLock, Kind};
 use crate::run_dir::checkpoint::sync_dir;
 
 /// The sweep's file in an output directory.
@@ -44,6 +51,9 @@ pub enum StoreError {
         /// The error.
         source: io::Error,
     },
+    /// The directory holds files flocking did not write, is being written by another process,
+    /// or is one flocking never writes.
+    Dir(DirError),
     /// The directory holds another sweep.
     OtherSweep(PathBuf),
     /// The directory is not the output directory of a sweep (it has no `sweep.ron`).
@@ -65,6 +75,7 @@ impl std::fmt::Display for StoreError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Io { path, source } => write!(f, "{}: {source}", path.display()),
+            Self::Dir(e) => write!(f, "{e}"),
             Self::NotASweep(dir) => write!(
                 f,
                 "{} is not the output directory of a sweep (it has no {SWEEP_FILE}); give a directory that flocking sweep --out wrote",
@@ -90,6 +101,22 @@ impl std::fmt::Display for StoreError {
 
 impl std::error::Error for StoreError {}
 
+impl From<DirError> for StoreError {
+    fn from(e: DirError) -> Self {
+        Self::Dir(e)
+    }
+}
+
+impl StoreError {
+    /// Whether the command was refused as asked (a directory that is not flocking's or is being
+    /// written, another sweep, shards that do not make a sweep: exit code 2), rather than failed
+    /// while doing it (an I/O error: exit code 1).
+    #[must_use]
+    pub const fn is_refusal(&self) -> bool {
+        !matches!(self, Self::Io { .. } | Self::Dir(DirError::Io(_)))
+    }
+}
+
 fn io_error(path: &Path) -> impl FnOnce(io::Error) -> StoreError + '_ {
     move |source| StoreError::Io {
         path: path.to_path_buf(),
@@ -106,25 +133,43 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), StoreError> {
     fs::rename(&tmp, path).map_err(io_error(path))
 }
 
-/// Creates `dir` for `sweep`, or opens it again when it holds the same sweep (to resume).
+/// Creates `dir` for `sweep`, or opens it again when it holds the same sweep (to resume), and
+/// locks it: the returned lock is to be held until the sweep is written.
+///
+/// `dir` must be new, empty, or marked as a sweep's ([`owned::check_owned`]); a directory
+/// written before markers existed is accepted when it holds this sweep's `sweep.ron`, and
+/// marked.
 ///
 /// # Errors
-/// A directory that holds another sweep, or any I/O error.
-pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<(), StoreError> {
+/// [`StoreError::Dir`] for a directory holding files flocking did not write or being written by
+/// another process; a directory that holds another sweep; any I/O error.
+pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<DirLock, StoreError> {
     let text = sweep.to_ron().map_err(|e| {
         StoreError::Sweep(SweepError::Invalid {
             field: "sweep".into(),
             why: e.to_string(),
         })
     })?;
-    fs::create_dir_all(dir.join(ROWS_DIR)).map_err(io_error(dir))?;
     let file = dir.join(SWEEP_FILE);
+    let earlier = !owned::marked(dir, Kind::Sweep)
+        && fs::read_to_string(&file).is_ok_and(|existing| existing == text);
+    if !earlier {
+        owned::check_owned(dir, Kind::Sweep)?;
+    }
+    fs::create_dir_all(dir).map_err(io_error(dir))?;
+    // marked before it is locked, so that a second writer meets the lock, not a stranger's file
+    if !owned::marked(dir, Kind::Sweep) {
+        owned::mark(dir, Kind::Sweep).map_err(io_error(dir))?;
+    }
+    let lock = DirLock::acquire(dir)?;
+    fs::create_dir_all(dir.join(ROWS_DIR)).map_err(io_error(dir))?;
     match fs::read_to_string(&file) {
-        Ok(existing) if existing == text => Ok(()),
+        Ok(existing) if existing == text => Ok(lock),
         Ok(_) => Err(StoreError::OtherSweep(dir.to_path_buf())),
         Err(e) if e.kind() == io::ErrorKind::NotFound => {
             write_atomic(&file, text.as_bytes())?;
-            sync_dir(dir).map_err(io_error(dir))
+            sync_dir(dir).map_err(io_error(dir))?;
+            Ok(lock)
         }
         Err(e) => Err(io_error(&file)(e)),
     }
@@ -245,10 +290,12 @@ pub fn assemble(dir: &Path, sweep: &Sweep) -> Result<usize, StoreError> {
 }
 
 /// Joins the shards' output directories into `out`: their row files copied, `runs.csv` and
-/// `times.csv` assembled. Every shard must hold the same sweep, and together every run.
+/// `times.csv` assembled. Every shard must hold the same sweep, and together every run. `out` is
+/// prepared and locked as a sweep's ([`prepare`]).
 ///
 /// # Errors
-/// Shards of different sweeps, runs in no shard, any I/O error.
+/// An `out` that is not flocking's or is being written, shards of different sweeps, runs in no
+/// shard, any I/O error.
 pub fn merge(out: &Path, shards: &[PathBuf]) -> Result<usize, StoreError> {
     let Some(first) = shards.first() else {
         return Err(StoreError::Missing {
@@ -258,7 +305,7 @@ pub fn merge(out: &Path, shards: &[PathBuf]) -> Result<usize, StoreError> {
         });
     };
     let sweep = read_sweep(first)?;
-    prepare(out, &sweep)?;
+    let _lock = prepare(out, &sweep)?;
     for shard in shards {
         if read_sweep(shard)? != sweep {
             return Err(StoreError::OtherSweep(shard.clone()));
