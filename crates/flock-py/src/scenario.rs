@@ -321,11 +321,27 @@ fn to_json(
         || value.is_instance_of::<PyDict>();
     if container {
         let id = value.as_ptr() as usize;
+        // Both errors name the parameter (the path given, not the path down to the culprit,
+        // which can be 64 segments long) and do not show the value (its repr could be huge).
+        let root = path.split('.').count().saturating_sub(within.len());
+        let root = path
+            .split('.')
+            .take(root.max(1))
+            .collect::<Vec<_>>()
+            .join(".");
+        let nested = |why: String| {
+            ScenarioError::invalid(
+                root.clone(),
+                Repr(format!("(a list or dict at `{path}`)")),
+                why,
+                "give the value as the scenario file writes it (a scenario nests about 6 levels)",
+            )
+        };
         if within.contains(&id) {
-            return Err(invalid("the list or dict contains itself"));
+            return Err(nested("the list or dict contains itself".to_owned()));
         }
         if within.len() >= MAX_NESTING {
-            return Err(invalid(&format!(
+            return Err(nested(format!(
                 "lists or dicts are nested more than {MAX_NESTING} levels deep"
             )));
         }
