@@ -84,7 +84,8 @@ class Scenario:
     def with_values(self, values: Dict[str, _Value]) -> Scenario:
         """A copy with the parameters at the dotted paths replaced, validated."""
     def with_initial(self, positions: _Rows, velocities: Optional[_Rows] = None) -> Scenario:
-        """A copy starting from the given n × dim positions and velocities (zero if omitted)."""
+        """A copy starting from the given n × dim positions and velocities (zero if omitted);
+        another shape (a transposed (dim, n) array) raises :class:`ScenarioError` naming both."""
     def estimate(
         self, *, out: bool = False, trajectory: bool = True, trajectory_format: str = "csv"
     ) -> Dict[str, float]:
