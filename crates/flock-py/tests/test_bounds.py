@@ -13,7 +13,7 @@ import flocking
 from conftest import FIG11, short
 
 SWEEP = """Sweep(
-    base: Path({base!r}),
+    base: Path("{base}"),
     set: {{"duration": 0.5}},
     axes: [(path: "agents", values: {values})],
     seeds: {seeds},
