@@ -24,6 +24,8 @@ const BASES: [&str; 4] = [
 
 /// The generated structure's depth; deeper values come from `Nest`, built without recursion.
 const MAX_DEPTH: usize = 8;
+/// The most agents a change may ask for (see `check_input`).
+const MAX_FUZZ_AGENTS: f64 = 1e5;
 /// The deepest `Nest`: as deep as the list that crashed Python (issue 20).
 const MAX_NEST: usize = 10_000;
 
@@ -153,6 +155,25 @@ fn check_input(data: &[u8]) -> Result<()> {
             u.arbitrary::<String>()?
         };
         changes.push((path, value(&mut u, 0)?));
+    }
+    // Validation is linear in the number of agents (each is drawn and checked against the
+    // obstacles; 10⁸, the most allowed, take tens of seconds by design): larger flocks are
+    // left to the unit tests of `MAX_AGENTS`, so that a timeout here means a real hang.
+    let huge = |(path, value): &(String, Value)| {
+        path == "agents" && value.as_f64().is_some_and(|n| n > MAX_FUZZ_AGENTS)
+    };
+    if changes.iter().any(huge) {
+        for (_, value) in changes {
+            drop_flat(value);
+        }
+        return Ok(());
+    }
+    if std::env::var_os("FLOCK_FUZZ_SHOW").is_some() {
+        // What a reproducer asks, shown shallowly (`FLOCK_FUZZ_SHOW=1 cargo fuzz run … FILE`).
+        for (path, value) in &changes {
+            let text = value.to_string();
+            eprintln!("{}: {path} = {}", base.name, &text[..text.len().min(300)]);
+        }
     }
     let result = base.with_values(changes.iter().map(|(p, v)| (p.as_str(), v.clone())));
     for (_, value) in changes {

@@ -26,32 +26,47 @@ pub fn to_vector<V: Vector>(v: &[f64]) -> V {
 }
 
 fn sample<V: Vector>(cloud: &Cloud, n: usize, rng: &mut Pcg64) -> Vec<V> {
+    samples(cloud, n, rng).collect()
+}
+
+/// The initial positions of `scenario`, drawn one at a time: the positions of
+/// [`initial_swarm`], in order, without holding them (validation checks 10⁸ agents against
+/// the obstacles in constant memory).
+pub fn initial_positions<V: Vector>(scenario: &Scenario) -> impl Iterator<Item = V> + '_ {
+    let mut rng = Pcg64::seed_from_u64(scenario.seed);
+    let cloud = &scenario.initial.positions;
+    (0..scenario.agents).map(move |k| draw(cloud, k, &mut rng))
+}
+
+/// `n` draws of `cloud` from `rng`, in order.
+fn samples<'a, V: Vector>(
+    cloud: &'a Cloud,
+    n: usize,
+    rng: &'a mut Pcg64,
+) -> impl Iterator<Item = V> + 'a {
+    (0..n).map(move |k| draw(cloud, k, rng))
+}
+
+/// Agent `k`'s draw of `cloud` (its row of an explicit cloud).
+fn draw<V: Vector>(cloud: &Cloud, k: usize, rng: &mut Pcg64) -> V {
     match cloud {
-        Cloud::Zero => vec![V::ZERO; n],
-        Cloud::Box { min, max } => (0..n)
-            .map(|_| V::from_fn(|k| min[k] + (max[k] - min[k]) * rng.random::<f64>()))
-            .collect(),
+        Cloud::Zero => V::ZERO,
+        Cloud::Box { min, max } => V::from_fn(|i| min[i] + (max[i] - min[i]) * rng.random::<f64>()),
         Cloud::Ball { centre, radius } => {
             let centre: V = to_vector(centre);
-            (0..n)
-                .map(|_| {
-                    loop {
-                        // rejection from the cube [−1, 1]^m: uniform in the unit ball
-                        let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
-                        if x.length_squared() <= 1.0 {
-                            break centre + x * *radius;
-                        }
-                    }
-                })
-                .collect()
+            loop {
+                // rejection from the cube [−1, 1]^m: uniform in the unit ball
+                let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
+                if x.length_squared() <= 1.0 {
+                    break centre + x * *radius;
+                }
+            }
         }
         Cloud::Gaussian { mean, std } => {
             let mean: V = to_vector(mean);
-            (0..n)
-                .map(|_| mean + V::from_fn(|_| standard_normal(rng)) * *std)
-                .collect()
+            mean + V::from_fn(|_| standard_normal(rng)) * *std
         }
-        Cloud::Explicit(rows) => rows.iter().map(|row| to_vector(row)).collect(),
+        Cloud::Explicit(rows) => to_vector(&rows[k]),
     }
 }
 
