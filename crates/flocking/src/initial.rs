@@ -76,3 +76,48 @@ fn standard_normal(rng: &mut Pcg64) -> f64 {
     let u2 = rng.random::<f64>();
     (-2.0 * u1.ln()).sqrt() * (core::f64::consts::TAU * u2).cos()
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3};
+
+    use super::*;
+
+    /// The streamed positions that validation checks are the swarm's, bit for bit, for every
+    /// kind of cloud.
+    #[test]
+    fn initial_positions_are_the_swarms() {
+        fn check<V: Vector + PartialEq + std::fmt::Debug>(scenario: &Scenario) {
+            let streamed: Vec<V> = initial_positions(scenario).collect();
+            assert_eq!(streamed, initial_swarm::<V>(scenario).positions);
+        }
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/");
+        let mut scenario =
+            Scenario::load(format!("{root}tac2006_fig11_alg2_n100.ron")).expect("a fixture");
+        let clouds = [
+            Cloud::Zero,
+            Cloud::Box {
+                min: vec![-1.0, -2.0],
+                max: vec![3.0, 4.0],
+            },
+            Cloud::Ball {
+                centre: vec![1.0, 2.0],
+                radius: 5.0,
+            },
+            Cloud::Gaussian {
+                mean: vec![0.0, 1.0],
+                std: 10.0,
+            },
+        ];
+        for cloud in clouds {
+            scenario.initial.positions = cloud;
+            check::<DVec2>(&scenario);
+        }
+        let three =
+            Scenario::load(format!("{root}alg3_3d_mixed_obstacles_n100.ron")).expect("a fixture");
+        check::<DVec3>(&three);
+        scenario.initial.positions = Cloud::Explicit(vec![vec![1.0, 2.0], vec![3.0, 4.0]]);
+        scenario.agents = 2;
+        check::<DVec2>(&scenario);
+    }
+}
