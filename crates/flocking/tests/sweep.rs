@@ -592,3 +592,21 @@ fn an_invalid_whole_value_is_refused_at_its_line_and_column() {
         );
     }
 }
+
+#[test]
+fn a_checked_sweep_reads_back_without_checking_every_run_again() {
+    let sweep = tiny();
+    let ron = sweep.to_ron().expect("serializes");
+    assert_eq!(Sweep::parse_checked(&ron, "sweep.ron"), Ok(sweep.clone()));
+    // An invalid run is refused by `parse`, left to its row by `parse_checked`…
+    let invalid = ron.replace("100000000.0", "-1.0");
+    assert_ne!(invalid, ron);
+    assert!(invalid.parse::<Sweep>().is_err());
+    assert!(Sweep::parse_checked(&invalid, "sweep.ron").is_ok());
+    // …but the counts, the axes and the base are still checked.
+    let huge = ron.replace("seeds: 2", "seeds: 18446744073709551615");
+    let e = Sweep::parse_checked(&huge, "sweep.ron").expect_err("refused");
+    assert!(e.to_string().contains("1000000"), "{e}");
+    let e = Sweep::parse_checked(SWEEP, "sweep.ron").expect_err("a path base");
+    assert!(e.to_string().contains("base"), "{e}");
+}

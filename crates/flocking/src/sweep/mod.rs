@@ -428,6 +428,32 @@ impl Sweep {
         Ok(sweep)
     }
 
+    /// Parses a self-contained sweep that [`Sweep::parse`] has already checked and
+    /// [`Sweep::to_ron`] wrote (`sweep.ron` of an output directory, the text a worker of
+    /// Python's `flocking.sweep` gets with each run): the sweep is checked again — base, `set`,
+    /// axes, the run count — but not every run's scenario, which would make each of N workers'
+    /// calls cost N validations. A run whose scenario is invalid is still refused when it runs
+    /// ([`run_one`] gives its error row).
+    ///
+    /// # Errors
+    /// As [`Sweep::parse`], less the runs' checks; a `Path` base (the text is not self-contained).
+    pub fn parse_checked(text: &str, origin: &str) -> Result<Self, SweepError> {
+        let text = crate::input::without_bom(text);
+        let sweep: Self =
+            crate::input::ron_options()
+                .from_str(text)
+                .map_err(|e| SweepError::Syntax {
+                    origin: origin.to_owned(),
+                    line: e.span.start.line,
+                    col: e.span.start.col,
+                    message: crate::input::ron_message(&e.code),
+                })?;
+        sweep
+            .check()
+            .map_err(|e| e.placed(origin, text, &sweep.axes))?;
+        Ok(sweep)
+    }
+
     /// The number of runs, the grid's points times the seeds.
     ///
     /// # Errors
