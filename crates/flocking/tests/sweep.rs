@@ -558,6 +558,18 @@ fn whole_ron_values_in_an_axis_keep_their_variants() {
         )
         .parse()
         .unwrap_or_else(|e| panic!("{e}"));
+    // A unit variant by its name.
+    let integrators: Sweep = SWEEP
+        .replace(
+            "(path: \"agents\", values: List([10, 20])),",
+            "(path: \"integrator\", values: List([Rk4, SymplecticEuler])),",
+        )
+        .parse()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let run = &integrators.runs()[0];
+    assert_eq!(run.values[1], json!("Rk4"));
+    let scenario = integrators.scenario(run).expect("valid");
+    assert_eq!(scenario.value("integrator").expect("a field"), json!("Rk4"));
     let scenario = one.scenario(&one.runs()[1]).expect("valid");
     assert_eq!(
         scenario.value("obstacles.0").expect("a field"),
