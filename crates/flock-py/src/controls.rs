@@ -19,6 +19,7 @@ use flocking::obstacles::Space;
 use flocking::protocols::{DynProtocol, Integrator, Protocol, Swarm};
 use flocking::{MapProtocol, Scenario};
 use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::errors::exception;
@@ -320,9 +321,21 @@ impl PyNeighbours {
         let (indptr, indices) = (indptr.as_slice()?, indices.as_slice()?);
         let mut pairs = Vec::with_capacity(2 * indices.len());
         for (i, bounds) in indptr.windows(2).enumerate() {
-            for &j in &indices
-                [usize::try_from(bounds[0]).unwrap_or(0)..usize::try_from(bounds[1]).unwrap_or(0)]
-            {
+            // `indptr` and `indices` are writable numpy arrays: bounds a caller changed are an
+            // error, never a panic.
+            let neighbours = usize::try_from(bounds[0])
+                .ok()
+                .zip(usize::try_from(bounds[1]).ok())
+                .and_then(|(from, to)| indices.get(from..to))
+                .ok_or_else(|| {
+                    PyValueError::new_err(format!(
+                        "indptr[{i}:{}] = {bounds:?} is not a range of the {} indices; the net's \
+                         arrays were changed",
+                        i + 2,
+                        indices.len()
+                    ))
+                })?;
+            for &j in neighbours {
                 pairs.extend([int64(i), j]);
             }
         }

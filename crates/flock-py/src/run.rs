@@ -58,9 +58,14 @@ impl Memory {
     /// every `record_every` steps and the last step), the trajectory's only when it is kept.
     fn new(scenario: &Scenario, keep_trajectory: bool) -> Self {
         let (steps, every) = (scenario.steps(), scenario.record_every.max(1));
-        let records = 1 + steps / every + u64::from(steps % every != 0);
+        let records = 1 + steps / every + u64::from(!steps.is_multiple_of(every));
         let size = if keep_trajectory {
-            usize::try_from(records).unwrap_or(0) * scenario.agents * scenario.dim
+            // Room reserved up front only up to 2²⁴ values (128 MiB each): a larger trajectory
+            // grows as it is recorded, and an overflowing size reserves nothing.
+            usize::try_from(records)
+                .ok()
+                .and_then(|r| r.checked_mul(scenario.agents)?.checked_mul(scenario.dim))
+                .map_or(0, |size| size.min(1 << 24))
         } else {
             0
         };

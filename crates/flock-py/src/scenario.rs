@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use flocking::estimate::Outputs;
 use flocking::serde_json::{Map, Number, Value};
 use flocking::{Cloud, Scenario, ScenarioError};
 use numpy::{AllowTypeChange, PyArrayLike2};
@@ -106,19 +107,63 @@ impl PyScenario {
         velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
     ) -> PyResult<Self> {
         let mut inner = self.inner.clone();
-        let rows = |array: &PyArrayLike2<'_, f64, AllowTypeChange>| -> Vec<Vec<f64>> {
-            array
-                .as_array()
-                .outer_iter()
-                .map(|row| row.to_vec())
-                .collect()
-        };
-        let positions = rows(&positions);
-        inner.agents = positions.len();
+        let dim = inner.dim;
+        let positions =
+            rows(&positions, "positions", None, dim).map_err(|e| scenario_error(py, &e))?;
+        let agents = positions.len();
+        let velocities = velocities
+            .map(|v| rows(&v, "velocities", Some(agents), dim))
+            .transpose()
+            .map_err(|e| scenario_error(py, &e))?;
+        inner.agents = agents;
         inner.initial.positions = Cloud::Explicit(positions);
-        inner.initial.velocities = velocities.map_or(Cloud::Zero, |v| Cloud::Explicit(rows(&v)));
+        inner.initial.velocities = velocities.map_or(Cloud::Zero, Cloud::Explicit);
         inner.validate().map_err(|e| scenario_error(py, &e))?;
         Ok(Self { inner })
+    }
+
+    /// The estimated cost of one run of this scenario, before it starts (what `flocking run`
+    /// prints): a dict of `steps`, `records`, `agent_steps`, `memory_bytes` (peak, one run),
+    /// `disk_bytes` (what the chosen outputs write into `out`; 0 for a run in memory) and
+    /// `seconds` (on one thread, from the rates measured in docs/performance.md).
+    ///
+    /// `out` says whether the run writes a directory (`flocking.run(scenario, out=...)`), with
+    /// `trajectory` and `trajectory_format` as `flocking.run` takes them.
+    #[pyo3(signature = (*, out = false, trajectory = true, trajectory_format = "csv"))]
+    fn estimate<'py>(
+        &self,
+        py: Python<'py>,
+        out: bool,
+        trajectory: bool,
+        trajectory_format: &str,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let csv = match trajectory_format {
+            "csv" => true,
+            "npy" => false,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown trajectory_format {other:?}: give \"csv\" or \"npy\""
+                )));
+            }
+        };
+        let outputs = if out {
+            Outputs {
+                metrics: true,
+                trajectory_csv: trajectory.then_some(csv),
+                checkpoint: true,
+            }
+        } else {
+            Outputs::NONE
+        };
+        let estimate = self.inner.estimate(&outputs);
+        let dict = PyDict::new(py);
+        dict.set_item("steps", estimate.steps)?;
+        dict.set_item("records", estimate.records)?;
+        dict.set_item("agent_steps", estimate.agent_steps)?;
+        dict.set_item("memory_bytes", estimate.memory_bytes)?;
+        dict.set_item("disk_bytes", estimate.disk_bytes)?;
+        dict.set_item("seconds", estimate.seconds)?;
+        Ok(dict)
     }
 
     /// The warnings of `flocking validate` for this valid scenario (a step above the largest stable
@@ -220,6 +265,34 @@ impl PyScenario {
     }
 }
 
+/// The rows of the `name` array, checked to be (n, `dim`) — (`agents`, `dim`) when `agents` is
+/// given: a transposed (dim, n) array is refused with both shapes, not read as dim agents.
+fn rows(
+    array: &PyArrayLike2<'_, f64, AllowTypeChange>,
+    name: &str,
+    agents: Option<usize>,
+    dim: usize,
+) -> Result<Vec<Vec<f64>>, ScenarioError> {
+    let array = array.as_array();
+    let (given_rows, given_cols) = array.dim();
+    let rows_ok = agents.is_none_or(|n| n == given_rows);
+    if given_cols != dim || !rows_ok {
+        let n = agents.map_or_else(|| "n".to_owned(), |n| n.to_string());
+        let fix = if given_rows == dim && agents.is_none_or(|n| n == given_cols) {
+            "the array is transposed: pass its transpose (`array.T`), one row per agent"
+        } else {
+            "give one row of dim coordinates per agent"
+        };
+        return Err(ScenarioError::invalid(
+            format!("initial.{name}"),
+            Repr(format!("an array of shape ({given_rows}, {given_cols})")),
+            format!("the scenario is {dim}D, so the shape must be ({n}, {dim})"),
+            fix,
+        ));
+    }
+    Ok(array.outer_iter().map(|row| row.to_vec()).collect())
+}
+
 /// `value` (a Python number, string, bool, `None`, list, tuple or dict) as JSON, for the
 /// parameter at `path`; `within` holds the lists and dicts being converted around it.
 ///
@@ -248,11 +321,27 @@ fn to_json(
         || value.is_instance_of::<PyDict>();
     if container {
         let id = value.as_ptr() as usize;
+        // Both errors name the parameter (the path given, not the path down to the culprit,
+        // which can be 64 segments long) and do not show the value (its repr could be huge).
+        let root = path.split('.').count().saturating_sub(within.len());
+        let root = path
+            .split('.')
+            .take(root.max(1))
+            .collect::<Vec<_>>()
+            .join(".");
+        let nested = |why: String| {
+            ScenarioError::invalid(
+                root.clone(),
+                Repr(format!("(a list or dict at `{path}`)")),
+                why,
+                "give the value as the scenario file writes it (a scenario nests about 6 levels)",
+            )
+        };
         if within.contains(&id) {
-            return Err(invalid("the list or dict contains itself"));
+            return Err(nested("the list or dict contains itself".to_owned()));
         }
         if within.len() >= MAX_NESTING {
-            return Err(invalid(&format!(
+            return Err(nested(format!(
                 "lists or dicts are nested more than {MAX_NESTING} levels deep"
             )));
         }

@@ -57,7 +57,7 @@ pub fn sweep_run(
     index: usize,
     controls: Option<Py<PyAny>>,
 ) -> PyResult<(usize, String, Vec<String>, f64)> {
-    let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
+    let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     let runs = sweep.runs();
     let Some(spec) = runs.get(index) else {
         return Err(pyo3::exceptions::PyIndexError::new_err(format!(
@@ -110,7 +110,7 @@ pub fn sweep_prepare(
     dir: PathBuf,
     text: &str,
 ) -> PyResult<(Vec<usize>, SweepLock)> {
-    let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
+    let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     let lock = store::prepare(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
     let finished = store::finished(&dir).map_err(|e| store_error(py, &e, &dir))?;
     Ok((finished.into_keys().collect(), SweepLock(Some(lock))))
@@ -132,6 +132,6 @@ pub fn sweep_write_row(
 /// Writes `runs.csv` and `times.csv` of `dir` from its rows; returns how many rows they hold.
 #[pyfunction]
 pub fn sweep_assemble(py: Python<'_>, dir: PathBuf, text: &str) -> PyResult<usize> {
-    let sweep: Sweep = text.parse().map_err(|e| sweep_error(py, &e))?;
+    let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     store::assemble(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))
 }

@@ -99,7 +99,8 @@ def test_explicit_state_errors():
         scenario.with_initial(np.full((5, 2), np.nan))
     with pytest.raises(flocking.ScenarioError) as error:
         flocking.Simulation(scenario, np.zeros((7, 2)))
-    assert error.value.field == "agents"
+    assert error.value.field == "positions"
+    assert "(7, 2)" in str(error.value) and "(100, 2)" in str(error.value)
     sim = flocking.Simulation(scenario)
     with pytest.raises(flocking.ScenarioError):
         sim.set_state(velocities=np.zeros((100, 3)))

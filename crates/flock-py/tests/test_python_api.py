@@ -125,7 +125,7 @@ def test_sweep_columns_have_natural_dtypes(tmp_path):
     spec = tmp_path / "sweep.ron"
     spec.write_text(
         f"""Sweep(name: "dtypes", base: Path("{FIG11}"),
-        set: {{"duration": 2.0, "agents": 12, "initial.positions.std": 10.0}},
+        set: {{"duration": 2.0, "initial.positions.std": 10.0}},
         axes: [(path: "algorithm.c1", values: List([0.02, 0.0])), (path: "agents", values: List([8, 12]))],
         seeds: 1)"""
     )

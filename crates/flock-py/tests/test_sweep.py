@@ -15,7 +15,7 @@ from conftest import FIG11, cli
 SWEEP = """Sweep(
     name: "py",
     base: Path("{base}"),
-    set: {{"duration": 2.0, "agents": 12, "initial.positions.std": 10.0}},
+    set: {{"duration": 2.0, "initial.positions.std": 10.0}},
     axes: [
         (path: "algorithm.c1", values: List([0.02, 0.0, 0.05])),
         (path: "agents", values: Linspace(from: 8.0, to: 12.0, count: 2)),

@@ -26,32 +26,47 @@ pub fn to_vector<V: Vector>(v: &[f64]) -> V {
 }
 
 fn sample<V: Vector>(cloud: &Cloud, n: usize, rng: &mut Pcg64) -> Vec<V> {
+    samples(cloud, n, rng).collect()
+}
+
+/// The initial positions of `scenario`, drawn one at a time: the positions of
+/// [`initial_swarm`], in order, without holding them (validation checks 10⁸ agents against
+/// the obstacles in constant memory).
+pub fn initial_positions<V: Vector>(scenario: &Scenario) -> impl Iterator<Item = V> + '_ {
+    let mut rng = Pcg64::seed_from_u64(scenario.seed);
+    let cloud = &scenario.initial.positions;
+    (0..scenario.agents).map(move |k| draw(cloud, k, &mut rng))
+}
+
+/// `n` draws of `cloud` from `rng`, in order.
+fn samples<'a, V: Vector>(
+    cloud: &'a Cloud,
+    n: usize,
+    rng: &'a mut Pcg64,
+) -> impl Iterator<Item = V> + 'a {
+    (0..n).map(move |k| draw(cloud, k, rng))
+}
+
+/// Agent `k`'s draw of `cloud` (its row of an explicit cloud).
+fn draw<V: Vector>(cloud: &Cloud, k: usize, rng: &mut Pcg64) -> V {
     match cloud {
-        Cloud::Zero => vec![V::ZERO; n],
-        Cloud::Box { min, max } => (0..n)
-            .map(|_| V::from_fn(|k| min[k] + (max[k] - min[k]) * rng.random::<f64>()))
-            .collect(),
+        Cloud::Zero => V::ZERO,
+        Cloud::Box { min, max } => V::from_fn(|i| min[i] + (max[i] - min[i]) * rng.random::<f64>()),
         Cloud::Ball { centre, radius } => {
             let centre: V = to_vector(centre);
-            (0..n)
-                .map(|_| {
-                    loop {
-                        // rejection from the cube [−1, 1]^m: uniform in the unit ball
-                        let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
-                        if x.length_squared() <= 1.0 {
-                            break centre + x * *radius;
-                        }
-                    }
-                })
-                .collect()
+            loop {
+                // rejection from the cube [−1, 1]^m: uniform in the unit ball
+                let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
+                if x.length_squared() <= 1.0 {
+                    break centre + x * *radius;
+                }
+            }
         }
         Cloud::Gaussian { mean, std } => {
             let mean: V = to_vector(mean);
-            (0..n)
-                .map(|_| mean + V::from_fn(|_| standard_normal(rng)) * *std)
-                .collect()
+            mean + V::from_fn(|_| standard_normal(rng)) * *std
         }
-        Cloud::Explicit(rows) => rows.iter().map(|row| to_vector(row)).collect(),
+        Cloud::Explicit(rows) => to_vector(&rows[k]),
     }
 }
 
@@ -60,4 +75,49 @@ fn standard_normal(rng: &mut Pcg64) -> f64 {
     let u1 = 1.0 - rng.random::<f64>(); // (0, 1]
     let u2 = rng.random::<f64>();
     (-2.0 * u1.ln()).sqrt() * (core::f64::consts::TAU * u2).cos()
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3};
+
+    use super::*;
+
+    /// The streamed positions that validation checks are the swarm's, bit for bit, for every
+    /// kind of cloud.
+    #[test]
+    fn initial_positions_are_the_swarms() {
+        fn check<V: Vector + PartialEq + std::fmt::Debug>(scenario: &Scenario) {
+            let streamed: Vec<V> = initial_positions(scenario).collect();
+            assert_eq!(streamed, initial_swarm::<V>(scenario).positions);
+        }
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/");
+        let mut scenario =
+            Scenario::load(format!("{root}tac2006_fig11_alg2_n100.ron")).expect("a fixture");
+        let clouds = [
+            Cloud::Zero,
+            Cloud::Box {
+                min: vec![-1.0, -2.0],
+                max: vec![3.0, 4.0],
+            },
+            Cloud::Ball {
+                centre: vec![1.0, 2.0],
+                radius: 5.0,
+            },
+            Cloud::Gaussian {
+                mean: vec![0.0, 1.0],
+                std: 10.0,
+            },
+        ];
+        for cloud in clouds {
+            scenario.initial.positions = cloud;
+            check::<DVec2>(&scenario);
+        }
+        let three =
+            Scenario::load(format!("{root}alg3_3d_mixed_obstacles_n100.ron")).expect("a fixture");
+        check::<DVec3>(&three);
+        scenario.initial.positions = Cloud::Explicit(vec![vec![1.0, 2.0], vec![3.0, 4.0]]);
+        scenario.agents = 2;
+        check::<DVec2>(&scenario);
+    }
 }

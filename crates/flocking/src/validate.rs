@@ -14,7 +14,7 @@ use flock_protocols::{GammaAgent, ParamError};
 use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
-use crate::initial::initial_swarm;
+use crate::initial::initial_positions;
 use crate::scenario::{Algorithm, Cloud, Point, Scenario, TannerGraph};
 use crate::stability::coincident_start;
 
@@ -307,8 +307,8 @@ impl Scenario {
     fn validate_start_outside<V: Space>(&self) -> Result<(), ScenarioError> {
         let field =
             ObstacleField::<V>::from_specs(&self.obstacles).map_err(ScenarioError::Obstacle)?;
-        let swarm = initial_swarm::<V>(self);
-        for (i, &q) in swarm.positions.iter().enumerate() {
+        // One position at a time: 10⁸ agents are checked without holding them.
+        for (i, q) in initial_positions::<V>(self).enumerate() {
             if let Some(k) = field.containing(q) {
                 return Err(ScenarioError::invalid(
                     "initial.positions",

@@ -500,3 +500,125 @@ fn labels_name_parameters_by_algorithm_and_columns_by_metric() {
         "cohesion radius R"
     );
 }
+
+/// Fig. 14's obstacles, as a sweep over whole lists of them (docs/sweeps.md: "even whole RON
+/// values"): `List([Ball(…)])` once lost the variant's name and no run could read it.
+const OBSTACLE_SWEEP: &str = r#"Sweep(
+    base: Path("../../fixtures/tac2006_fig14_split_rejoin_n150.ron"),
+    set: {"duration": 1.0, "agents": 10},
+    axes: [
+        (path: "obstacles", values: List([
+            [Ball(centre: [150.0, 0.0], radius: 12.0)],
+            [Ball(centre: [160.0, 5.0], radius: 3.0), Ball(centre: [200.0, 0.0], radius: 15.0)],
+        ])),
+        (path: "obstacles.0.radius", values: List([4.0])),
+    ],
+    seeds: 1,
+)"#;
+
+#[test]
+fn whole_ron_values_in_an_axis_keep_their_variants() {
+    let sweep: Sweep = OBSTACLE_SWEEP.parse().unwrap_or_else(|e| panic!("{e}"));
+    let runs = sweep.runs();
+    assert_eq!(runs.len(), 2);
+    let obstacles = |k: usize| {
+        sweep
+            .scenario(&runs[k])
+            .unwrap_or_else(|e| panic!("{e}"))
+            .value("obstacles")
+            .expect("a field")
+    };
+    assert_eq!(
+        obstacles(0),
+        json!([{"Ball": {"centre": [150.0, 0.0], "radius": 4.0}}])
+    );
+    assert_eq!(
+        obstacles(1),
+        json!([
+            {"Ball": {"centre": [160.0, 5.0], "radius": 4.0}},
+            {"Ball": {"centre": [200.0, 0.0], "radius": 15.0}}
+        ])
+    );
+    // The ids differ, and the sweep written to `sweep.ron` reads back the same.
+    assert_ne!(runs[0].id(&sweep.axes), runs[1].id(&sweep.axes));
+    let ron = sweep.to_ron().expect("serializes");
+    let back: Sweep = ron.parse().unwrap_or_else(|e| panic!("{e}\n{ron}"));
+    assert_eq!(back, sweep);
+    // One element of a list, by its index.
+    let one: Sweep = OBSTACLE_SWEEP
+        .replace("(path: \"obstacles.0.radius\", values: List([4.0])),", "")
+        .replace("path: \"obstacles\"", "path: \"obstacles.0\"")
+        .replace(
+            "[Ball(centre: [150.0, 0.0], radius: 12.0)]",
+            "Ball(centre: [150.0, 0.0], radius: 12.0)",
+        )
+        .replace(
+            "[Ball(centre: [160.0, 5.0], radius: 3.0), Ball(centre: [200.0, 0.0], radius: 15.0)]",
+            "Ball(centre: [160.0, 5.0], radius: 3.0)",
+        )
+        .parse()
+        .unwrap_or_else(|e| panic!("{e}"));
+    // A unit variant by its name.
+    let integrators: Sweep = SWEEP
+        .replace(
+            "(path: \"agents\", values: List([10, 20])),",
+            "(path: \"integrator\", values: List([Rk4, SymplecticEuler])),",
+        )
+        .parse()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let run = &integrators.runs()[0];
+    assert_eq!(run.values[1], json!("Rk4"));
+    let scenario = integrators.scenario(run).expect("valid");
+    assert_eq!(scenario.value("integrator").expect("a field"), json!("Rk4"));
+    let scenario = one.scenario(&one.runs()[1]).expect("valid");
+    assert_eq!(
+        scenario.value("obstacles.0").expect("a field"),
+        json!({"Ball": {"centre": [160.0, 5.0], "radius": 3.0}})
+    );
+}
+
+#[test]
+fn an_invalid_whole_value_is_refused_at_its_line_and_column() {
+    for (from, to, why) in [
+        (
+            "radius: 3.0)",
+            "radius: -3.0)",
+            "`obstacles[0].radius` is -3.0",
+        ),
+        (
+            "Ball(centre: [160.0, 5.0]",
+            "Bal(centre: [160.0, 5.0]",
+            "Bal",
+        ),
+    ] {
+        let e = OBSTACLE_SWEEP
+            .replace(from, to)
+            .replace("(path: \"obstacles.0.radius\", values: List([4.0])),", "")
+            .parse::<Sweep>()
+            .expect_err("refused");
+        let text = e.to_string();
+        assert!(text.starts_with("<string>:5:29:"), "{text}");
+        assert!(
+            text.contains("run 1 (obstacles = ") && text.contains(why),
+            "{text}"
+        );
+    }
+}
+
+#[test]
+fn a_checked_sweep_reads_back_without_checking_every_run_again() {
+    let sweep = tiny();
+    let ron = sweep.to_ron().expect("serializes");
+    assert_eq!(Sweep::parse_checked(&ron, "sweep.ron"), Ok(sweep.clone()));
+    // An invalid run is refused by `parse`, left to its row by `parse_checked`…
+    let invalid = ron.replace("100000000.0", "-1.0");
+    assert_ne!(invalid, ron);
+    assert!(invalid.parse::<Sweep>().is_err());
+    assert!(Sweep::parse_checked(&invalid, "sweep.ron").is_ok());
+    // …but the counts, the axes and the base are still checked.
+    let huge = ron.replace("seeds: 2", "seeds: 18446744073709551615");
+    let e = Sweep::parse_checked(&huge, "sweep.ron").expect_err("refused");
+    assert!(e.to_string().contains("1000000"), "{e}");
+    let e = Sweep::parse_checked(SWEEP, "sweep.ron").expect_err("a path base");
+    assert!(e.to_string().contains("base"), "{e}");
+}

@@ -84,7 +84,15 @@ class Scenario:
     def with_values(self, values: Dict[str, _Value]) -> Scenario:
         """A copy with the parameters at the dotted paths replaced, validated."""
     def with_initial(self, positions: _Rows, velocities: Optional[_Rows] = None) -> Scenario:
-        """A copy starting from the given n × dim positions and velocities (zero if omitted)."""
+        """A copy starting from the given n × dim positions and velocities (zero if omitted);
+        another shape (a transposed (dim, n) array) raises :class:`ScenarioError` naming both."""
+    def estimate(
+        self, *, out: bool = False, trajectory: bool = True, trajectory_format: str = "csv"
+    ) -> Dict[str, float]:
+        """The estimated cost of one run: ``steps``, ``records``, ``agent_steps``,
+        ``memory_bytes`` (peak), ``disk_bytes`` (written into ``out`` when ``out`` is True, with
+        ``trajectory`` and ``trajectory_format`` as :func:`run` takes them) and ``seconds`` (one
+        thread)."""
     def warnings(self) -> List[str]:
         """The warnings of ``flocking validate`` for this scenario."""
     @property

@@ -140,8 +140,10 @@ pub struct Axis {
 /// The values of an axis.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Values {
-    /// These values, in order (numbers, or anything the parameter takes).
-    List(Vec<Value>),
+    /// These values, in order (numbers, or anything the parameter takes: whole RON values such
+    /// as `[Ball(centre: [150.0, 0.0], radius: 12.0)]` keep their enum variant's name, as the
+    /// externally tagged `{"Ball": {…}}` that [`Scenario::with_values`] reads).
+    List(#[serde(deserialize_with = "tagged_values")] Vec<Value>),
     /// `count` values evenly spaced from `from` to `to`, both included.
     Linspace {
         /// The first value.
@@ -160,6 +162,27 @@ pub enum Values {
         /// How many (≥ 1).
         count: usize,
     },
+}
+
+/// A value of any shape, read through serde's buffered content so that a RON enum variant keeps
+/// its name (`Ball(…)` → `{"Ball": {…}}`, a unit variant `Line` → `"Line"`): read directly as a
+/// [`Value`], RON drops the names of structs and variants, and `Ball(…)` became an untagged map
+/// that no obstacle field takes.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum Tagged {
+    /// The value, its variants tagged.
+    Value(Value),
+}
+
+fn tagged_values<'de, D: serde::Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Vec<Value>, D::Error> {
+    let values: Vec<Tagged> = Deserialize::deserialize(deserializer)?;
+    Ok(values
+        .into_iter()
+        .map(|Tagged::Value(value)| value)
+        .collect())
 }
 
 impl Values {
@@ -299,7 +322,12 @@ impl SweepError {
         let field = match &self {
             Self::Invalid { field, .. } => field.clone(),
             Self::Run { error, .. } => {
-                let named = error.field().unwrap_or_default();
+                // `obstacles[0].radius` as a path: `obstacles.0.radius`.
+                let named = error
+                    .field()
+                    .unwrap_or_default()
+                    .replace('[', ".")
+                    .replace(']', "");
                 axes.iter()
                     .position(|axis| {
                         named == axis.path || named.starts_with(&format!("{}.", axis.path))
@@ -396,6 +424,32 @@ impl Sweep {
         sweep
             .check()
             .and_then(|()| sweep.check_runs())
+            .map_err(|e| e.placed(origin, text, &sweep.axes))?;
+        Ok(sweep)
+    }
+
+    /// Parses a self-contained sweep that [`Sweep::parse`] has already checked and
+    /// [`Sweep::to_ron`] wrote (`sweep.ron` of an output directory, the text a worker of
+    /// Python's `flocking.sweep` gets with each run): the sweep is checked again — base, `set`,
+    /// axes, the run count — but not every run's scenario, which would make each of N workers'
+    /// calls cost N validations. A run whose scenario is invalid is still refused when it runs
+    /// ([`run_one`] gives its error row).
+    ///
+    /// # Errors
+    /// As [`Sweep::parse`], less the runs' checks; a `Path` base (the text is not self-contained).
+    pub fn parse_checked(text: &str, origin: &str) -> Result<Self, SweepError> {
+        let text = crate::input::without_bom(text);
+        let sweep: Self =
+            crate::input::ron_options()
+                .from_str(text)
+                .map_err(|e| SweepError::Syntax {
+                    origin: origin.to_owned(),
+                    line: e.span.start.line,
+                    col: e.span.start.col,
+                    message: crate::input::ron_message(&e.code),
+                })?;
+        sweep
+            .check()
             .map_err(|e| e.placed(origin, text, &sweep.axes))?;
         Ok(sweep)
     }
