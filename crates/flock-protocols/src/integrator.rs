@@ -328,7 +328,11 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// # Errors
     /// A parameter outside its domain ([`Conditions::validate`]), or a condition that changes
     /// perception for a protocol without a local form (named by that condition's field).
-    pub fn with_conditions(mut self, conditions: &Conditions, seed: u64) -> Result<Self, ParamError> {
+    pub fn with_conditions(
+        mut self,
+        conditions: &Conditions,
+        seed: u64,
+    ) -> Result<Self, ParamError> {
         let n = self.swarm.len();
         let range = self.protocol.interaction_range();
         let stage = Stage::new(conditions, seed, n, self.step, range)?;

@@ -91,13 +91,33 @@ fn delay_all_converges_below_the_bound_and_diverges_above() {
     let gain = PI / (2.0 * lambda_max); // τ* = 1 s
     let h = 0.01;
     let steps = 40_000; // 400 s
-    let below = decay(&consensus_run(gain, cycle(6), h, &delayed(0.9, Delayed::All), steps));
-    let above = decay(&consensus_run(gain, cycle(6), h, &delayed(1.1, Delayed::All), steps));
-    println!("delay all: τ* = 1 s, disagreement ratio after 400 s: 0.9τ* {below:.3e}, 1.1τ* {above:.3e}");
+    let below = decay(&consensus_run(
+        gain,
+        cycle(6),
+        h,
+        &delayed(0.9, Delayed::All),
+        steps,
+    ));
+    let above = decay(&consensus_run(
+        gain,
+        cycle(6),
+        h,
+        &delayed(1.1, Delayed::All),
+        steps,
+    ));
+    println!(
+        "delay all: τ* = 1 s, disagreement ratio after 400 s: 0.9τ* {below:.3e}, 1.1τ* {above:.3e}"
+    );
     assert!(below < 1e-6, "{below}");
     assert!(above > 1e6, "{above}");
     // the neighbours-only semantics converges far beyond the bound
-    let five = decay(&consensus_run(gain, cycle(6), h, &delayed(5.0, Delayed::Neighbours), steps));
+    let five = decay(&consensus_run(
+        gain,
+        cycle(6),
+        h,
+        &delayed(5.0, Delayed::Neighbours),
+        steps,
+    ));
     println!("delay neighbours at 5τ*: {five:.3e}");
     assert!(five < 1e-6, "{five}");
 }
@@ -112,7 +132,9 @@ fn sampled_control_converges_iff_c_t_lambda_max_below_two() {
     };
     let below = decay(&consensus_run(1.0, cycle(6), 0.05, &sampled(0.45), 4000));
     let above = decay(&consensus_run(1.0, cycle(6), 0.05, &sampled(0.55), 4000));
-    println!("sampled: T* = 0.5 s, disagreement ratio after 200 s: 0.9T* {below:.3e}, 1.1T* {above:.3e}");
+    println!(
+        "sampled: T* = 0.5 s, disagreement ratio after 200 s: 0.9T* {below:.3e}, 1.1T* {above:.3e}"
+    );
     assert!(below < 1e-12, "{below}");
     assert!(above > 1e12, "{above}");
 }
@@ -158,7 +180,10 @@ fn process_noise_gives_the_stationary_disagreement() {
         .collect();
     let (mean, error) = batch_means(&samples, 40);
     println!("noise: predicted {predicted:.5}, measured {mean:.5} ± {error:.5}");
-    assert!((mean - predicted).abs() < 4.0 * error, "{mean} ± {error} vs {predicted}");
+    assert!(
+        (mean - predicted).abs() < 4.0 * error,
+        "{mean} ± {error} vs {predicted}"
+    );
     assert!(error < 0.03 * predicted, "{error}");
 }
 
@@ -239,7 +264,10 @@ fn gilbert_elliott_loses_its_stationary_fraction() {
 fn the_lag_has_the_first_order_step_response() {
     let (h, tau) = (0.01, 0.5);
     let graph = Graph::from_edges(2, &[(0, 1)]).expect("an edge");
-    let swarm = Swarm::new(vec![DVec2::ZERO; 2], vec![DVec2::new(1.0, 0.5), DVec2::ZERO]);
+    let swarm = Swarm::new(
+        vec![DVec2::ZERO; 2],
+        vec![DVec2::new(1.0, 0.5), DVec2::ZERO],
+    );
     let conditions = Conditions {
         control: Some(SampledControl { rate: 0.1 }),
         actuation: Some(Actuation {
@@ -322,7 +350,9 @@ fn wind_offsets_the_centre_by_w_over_c1() {
         alpha: papers_alpha(),
         navigation: NavigationalFeedback::linear(GammaAgent::Static { position: gamma }, c1, c2),
     };
-    let q = (0..5).map(|i| DVec2::new(6.0 * f64::from(i), f64::from(i % 2))).collect();
+    let q = (0..5)
+        .map(|i| DVec2::new(6.0 * f64::from(i), f64::from(i % 2)))
+        .collect();
     let swarm = Swarm::new(q, vec![DVec2::ZERO; 5]);
     let conditions = Conditions {
         disturbance: Some(Disturbance {
@@ -345,7 +375,10 @@ fn wind_offsets_the_centre_by_w_over_c1() {
     }
     let offset = sim.swarm().centre() - gamma;
     let error = (offset - w / c1).length();
-    println!("wind: offset {offset:?}, w/c1 {:?}, error {error:.2e}", w / c1);
+    println!(
+        "wind: offset {offset:?}, w/c1 {:?}, error {error:.2e}",
+        w / c1
+    );
     assert!(error < 1e-6, "{error}");
 }
 
@@ -359,20 +392,30 @@ fn removing_a_cut_vertex_splits_the_consensus() {
         .into_iter()
         .map(|x| DVec2::new(x, 0.5 * x))
         .collect();
-    let q = (0..5).map(|i| DVec2::new(f64::from(i) * 0.5, 0.0)).collect();
+    let q = (0..5)
+        .map(|i| DVec2::new(f64::from(i) * 0.5, 0.0))
+        .collect();
     let conditions = Conditions {
         faults: Some(Faults {
-            at: vec![Failure { agent: 2, time: 0.0 }],
+            at: vec![Failure {
+                agent: 2,
+                time: 0.0,
+            }],
             rate: 0.0,
             mode: FaultMode::Removed,
         }),
         ..Conditions::default()
     };
     let protocol = Consensus::fixed(1.0, graph, 1.0).expect("valid");
-    let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, Swarm::new(q, p.clone()), 0.01)
-        .expect("valid")
-        .with_conditions(&conditions, 0)
-        .expect("valid");
+    let mut sim = Simulation::new(
+        protocol,
+        Integrator::SymplecticEuler,
+        Swarm::new(q, p.clone()),
+        0.01,
+    )
+    .expect("valid")
+    .with_conditions(&conditions, 0)
+    .expect("valid");
     for _ in 0..3000 {
         sim.step();
     }
@@ -380,7 +423,11 @@ fn removing_a_cut_vertex_splits_the_consensus() {
     let left = (p[0] + p[1]) / 2.0;
     let right = (p[3] + p[4]) / 2.0;
     for (i, target) in [(0, left), (1, left), (3, right), (4, right)] {
-        assert!((v[i] - target).length() < 1e-9, "agent {i}: {:?} vs {target:?}", v[i]);
+        assert!(
+            (v[i] - target).length() < 1e-9,
+            "agent {i}: {:?} vs {target:?}",
+            v[i]
+        );
     }
     assert_eq!(v[2], DVec2::ZERO);
     let metrics = sim.metrics(&MetricParams {
@@ -522,7 +569,11 @@ fn a_resumed_run_with_every_condition_is_bit_identical() {
             whole.step();
             resumed.step();
         }
-        assert_eq!(bits(&whole.swarm()), bits(&resumed.swarm()), "{integrator:?}");
+        assert_eq!(
+            bits(&whole.swarm()),
+            bits(&resumed.swarm()),
+            "{integrator:?}"
+        );
         assert_eq!(whole.diagnostics(), resumed.diagnostics());
     }
 }
@@ -603,8 +654,13 @@ impl Protocol<DVec2> for Global {
 fn perception_needs_a_local_form() {
     let sim = || {
         let protocol = Global(Consensus::proximity(1.0, 2.0).expect("valid"));
-        Simulation::new(protocol, Integrator::SymplecticEuler, six_velocities(), 0.01)
-            .expect("valid")
+        Simulation::new(
+            protocol,
+            Integrator::SymplecticEuler,
+            six_velocities(),
+            0.01,
+        )
+        .expect("valid")
     };
     let error = sim()
         .with_conditions(&delayed(0.1, Delayed::All), 0)

@@ -60,7 +60,11 @@ fn vectors<V: Vector>(field: &str, x: &[f64], len: usize) -> Result<Vec<V>, Para
         return Err(ParamError::new(
             field,
             x.len(),
-            format!("holds {} numbers where {len} vectors of {} are expected", x.len(), V::DIM),
+            format!(
+                "holds {} numbers where {len} vectors of {} are expected",
+                x.len(),
+                V::DIM
+            ),
             "restore the state of a run of the same agents, dimension and conditions",
         ));
     }
@@ -98,9 +102,9 @@ impl<V: Vector> Stage<V> {
                         .map(|l| LinkState {
                             sender: l.sender,
                             channel: l.channel,
-                            held: l.held.map(|h| {
-                                (flat(&[h.position]), flat(&[h.velocity]), h.stamp)
-                            }),
+                            held: l
+                                .held
+                                .map(|h| (flat(&[h.position]), flat(&[h.velocity]), h.stamp)),
                         })
                         .collect()
                 })
@@ -179,7 +183,12 @@ impl<V: Vector> Stage<V> {
         self.failed = s.failed;
         self.started = s.started;
         self.streams = super::stream::Streams::new(s.seed);
-        let [links_lost, information_age, at_acceleration_limit, at_speed_limit] = s.readings;
+        let [
+            links_lost,
+            information_age,
+            at_acceleration_limit,
+            at_speed_limit,
+        ] = s.readings;
         self.readings = Readings {
             links_lost,
             information_age,

@@ -27,4 +27,4 @@ pub use config::{
     Actuation, Communication, Conditions, Delayed, Disturbance, Failure, FaultMode, Faults, Loss,
     Noise, SampledControl, Sensing, WhenLost, Wind,
 };
-pub use stage::{bytes_per_agent, Stage};
+pub use stage::{Stage, bytes_per_agent};

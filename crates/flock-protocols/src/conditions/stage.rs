@@ -125,7 +125,10 @@ impl<V: Vector> Stage<V> {
         conditions.validate(n, V::DIM, h)?;
         let c = conditions;
         let (delay, jitter) = match &c.communication {
-            Some(m) => (whole_steps("delay", m.delay, h)?, whole_steps("jitter", m.jitter, h)?),
+            Some(m) => (
+                whole_steps("delay", m.delay, h)?,
+                whole_steps("jitter", m.jitter, h)?,
+            ),
             None => (0, 0),
         };
         let sensor_period = match c.sensing.as_ref().and_then(|s| s.rate) {
@@ -168,10 +171,7 @@ impl<V: Vector> Stage<V> {
             sensor: c
                 .sensing
                 .map(|s| SensorNoise::new(&s.noise, sensor_period as f64 * h)),
-            lag: c
-                .actuation
-                .and_then(|a| a.lag)
-                .map(|tau| Lag::new(tau, h)),
+            lag: c.actuation.and_then(|a| a.lag).map(|tau| Lag::new(tau, h)),
             gusts,
             started: false,
             measured: Swarm::new(vec![V::ZERO; n], vec![V::ZERO; n]),
@@ -311,14 +311,19 @@ impl<V: Vector> Stage<V> {
         k: u64,
     ) {
         let n = swarm.len();
-        if let Some(range) = self.own_range.filter(|_| protocol.interaction_graph().is_none()) {
+        if let Some(range) = self
+            .own_range
+            .filter(|_| protocol.interaction_graph().is_none())
+        {
             self.search.build(&swarm.positions, range, &mut self.net);
         }
-        let candidates = protocol.interaction_graph().unwrap_or(if self.own_range.is_some() {
-            self.net.graph()
-        } else {
-            net.graph()
-        });
+        let candidates = protocol
+            .interaction_graph()
+            .unwrap_or(if self.own_range.is_some() {
+                self.net.graph()
+            } else {
+                net.graph()
+            });
         let comm = self.conditions.communication.unwrap_or_default();
         let keeps_links = matches!(comm.loss, Loss::GilbertElliott { .. })
             || matches!(comm.when_lost, WhenLost::Hold { .. });
@@ -460,7 +465,10 @@ impl<V: Vector> Stage<V> {
         let disturbance = self.conditions.disturbance.clone().unwrap_or_default();
         if let Some(gusts) = self.gusts {
             for (g, x) in self.gust.iter_mut().enumerate() {
-                let xi = self.streams.draws(Purpose::Wind, g as u64, k).normal_vector();
+                let xi = self
+                    .streams
+                    .draws(Purpose::Wind, g as u64, k)
+                    .normal_vector();
                 *x = if self.started {
                     gusts.advance(*x, xi)
                 } else {

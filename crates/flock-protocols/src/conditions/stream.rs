@@ -105,10 +105,29 @@ mod tests {
         let s = Streams::new(7);
         let a = s.draws(Purpose::Loss, 3, 10).normal();
         let _ = s.draws(Purpose::Loss, 4, 10).normal();
-        assert_eq!(a.to_bits(), s.draws(Purpose::Loss, 3, 10).normal().to_bits());
+        assert_eq!(
+            a.to_bits(),
+            s.draws(Purpose::Loss, 3, 10).normal().to_bits()
+        );
         assert_ne!(a, s.draws(Purpose::Loss, 3, 11).normal());
         assert_ne!(a, s.draws(Purpose::Jitter, 3, 10).normal());
         assert_ne!(a, Streams::new(8).draws(Purpose::Loss, 3, 10).normal());
+    }
+
+    #[test]
+    fn uniforms_across_keys_are_uniform() {
+        // the per-agent, per-step draws of random failures: P(u < p) = p
+        let s = Streams::new(42);
+        let (agents, steps, p) = (500u64, 400u64, 0.01);
+        let hits = (0..agents)
+            .flat_map(|i| (0..steps).map(move |k| (i, k)))
+            .filter(|&(i, k)| s.draws(Purpose::Failure, i, k).uniform() < p)
+            .count() as f64;
+        let expected = (agents * steps) as f64 * p;
+        assert!(
+            (hits - expected).abs() < 4.0 * expected.sqrt(),
+            "{hits} vs {expected}"
+        );
     }
 
     #[test]
