@@ -339,15 +339,15 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         if conditions.is_ideal() {
             return Ok(self);
         }
-        if let Some(field) = perception_field(conditions) {
-            if self.protocol.local_form().is_none() {
-                return Err(ParamError::new(
-                    field,
-                    "set",
-                    "changes what each agent perceives, and this protocol has no local form (u_i from what agent i perceives)",
-                    "remove this condition, or use a distributed protocol (Algorithms 1-3, Consensus)",
-                ));
-            }
+        if let Some(field) = perception_field(conditions)
+            && self.protocol.local_form().is_none()
+        {
+            return Err(ParamError::new(
+                field,
+                "set",
+                "changes what each agent perceives, and this protocol has no local form (u_i from what agent i perceives)",
+                "remove this condition, or use a distributed protocol (Algorithms 1-3, Consensus)",
+            ));
         }
         if self.stored_by_cell() {
             self.swarm = self.swarm().into_owned();

@@ -21,15 +21,15 @@ impl<V: Vector> History<V> {
         }
     }
 
-    /// The number of steps held, D + 1.
+    /// The number of steps held, D + 1 (never 0).
     #[must_use]
-    pub fn len(&self) -> u64 {
+    pub fn depth(&self) -> u64 {
         self.slots.len() as u64
     }
 
     /// Records the state of step `k`; at the first step, every slot.
     pub fn record(&mut self, k: u64, first: bool, positions: &[V], velocities: &[V]) {
-        let len = self.len();
+        let len = self.depth();
         for (s, slot) in self.slots.iter_mut().enumerate() {
             if first || s as u64 == k % len {
                 slot.0.copy_from_slice(positions);
@@ -42,7 +42,7 @@ impl<V: Vector> History<V> {
     #[inline]
     #[must_use]
     pub fn at(&self, k: u64, lag: u64, j: usize) -> (V, V) {
-        let slot = &self.slots[(k.saturating_sub(lag) % self.len()) as usize];
+        let slot = &self.slots[(k.saturating_sub(lag) % self.depth()) as usize];
         (slot.0[j], slot.1[j])
     }
 }
