@@ -439,6 +439,50 @@ fn removing_a_cut_vertex_splits_the_consensus() {
     assert_eq!(failed, Some(("failed", 1.0)));
 }
 
+/// A frozen cut vertex (p = 0, still heard) pulls the whole path to rest; a silent one (flying
+/// on, heard by nobody) splits it like a removed one, while it follows its neighbours.
+#[test]
+fn frozen_and_silent_faults() {
+    let graph = Graph::from_edges(5, &[(0, 1), (1, 2), (2, 3), (3, 4)]).expect("a path");
+    let p: Vec<DVec2> = [1.0, 3.0, 10.0, -2.0, 0.0]
+        .into_iter()
+        .map(|x| DVec2::new(x, -x))
+        .collect();
+    let run = |mode| {
+        let conditions = Conditions {
+            faults: Some(Faults {
+                at: vec![Failure {
+                    agent: 2,
+                    time: 0.0,
+                }],
+                rate: 0.0,
+                mode,
+            }),
+            ..Conditions::default()
+        };
+        let protocol = Consensus::fixed(1.0, graph.clone(), 1.0).expect("valid");
+        let swarm = Swarm::new(vec![DVec2::ZERO; 5], p.clone());
+        let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01)
+            .expect("valid")
+            .with_conditions(&conditions, 0)
+            .expect("valid");
+        for _ in 0..10_000 {
+            sim.step();
+        }
+        sim.swarm().into_owned()
+    };
+    let frozen = run(FaultMode::Frozen);
+    assert_eq!(frozen.positions[2], DVec2::ZERO);
+    assert!(frozen.velocities.iter().all(|v| v.length() < 1e-9));
+    let silent = run(FaultMode::Silent);
+    let (left, right) = ((p[0] + p[1]) / 2.0, (p[3] + p[4]) / 2.0);
+    for (i, target) in [(0, left), (1, left), (3, right), (4, right)] {
+        assert!((silent.velocities[i] - target).length() < 1e-9, "{i}");
+    }
+    // agent 2 still hears 1 and 3: it settles at their mean
+    assert!((silent.velocities[2] - (left + right) / 2.0).length() < 1e-9);
+}
+
 /// Every condition on at once.
 fn everything() -> Conditions {
     Conditions {
@@ -694,4 +738,64 @@ fn bytes_per_agent_counts_the_delay_line() {
     let ten = bytes_per_agent(&delayed(0.1, Delayed::All), 2, 0.01);
     let none = bytes_per_agent(&delayed(0.0, Delayed::All), 2, 0.01);
     assert_eq!(ten - none, 10 * 32);
+}
+
+/// Every condition in 3D: the limits hold and a resumed run keeps the bits.
+#[test]
+fn every_condition_in_3d() {
+    use glam::DVec3;
+    let mut conditions = everything();
+    if let Some(wind) = conditions
+        .disturbance
+        .as_mut()
+        .and_then(|d| d.wind.as_mut())
+    {
+        wind.mean = vec![0.1, 0.0, -0.05];
+    }
+    let new = || {
+        let protocol = Algorithm1 {
+            alpha: papers_alpha(),
+        };
+        Simulation::new(
+            protocol,
+            Integrator::SymplecticEuler,
+            random_swarm::<DVec3>(150, 15.0, 1.0, 11),
+            0.01,
+        )
+        .expect("valid")
+        .with_conditions(&conditions, 3)
+        .expect("valid")
+    };
+    let (mut whole, mut first) = (new(), new());
+    for _ in 0..20 {
+        whole.step();
+        first.step();
+    }
+    let mut resumed = Simulation::resume(
+        Algorithm1 {
+            alpha: papers_alpha(),
+        },
+        Integrator::SymplecticEuler,
+        first.swarm().into_owned(),
+        0.01,
+        20,
+    )
+    .expect("valid")
+    .with_conditions(&conditions, 3)
+    .expect("valid");
+    resumed
+        .restore_conditions(first.conditions_state().expect("conditions"))
+        .expect("same run");
+    for _ in 0..30 {
+        whole.step();
+        resumed.step();
+        assert!(
+            whole
+                .swarm()
+                .velocities
+                .iter()
+                .all(|p| p.length() <= 4.0 * (1.0 + 1e-12))
+        );
+    }
+    assert_eq!(whole.swarm().into_owned(), resumed.swarm().into_owned());
 }

@@ -86,3 +86,38 @@ pub fn lost(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fraction(loss: &Loss, length: f64, gap: u64) -> f64 {
+        let streams = Streams::new(3);
+        let mut channel = None;
+        let n = 20_000u64;
+        let lost_count = (0..n)
+            .filter(|&k| lost(loss, &streams, 5, k * gap, 0.1, length, &mut channel))
+            .count();
+        lost_count as f64 / n as f64
+    }
+
+    #[test]
+    fn distance_loss_grows_as_the_square_and_is_capped() {
+        let loss = Loss::Distance { p0: 0.1, l0: 2.0 };
+        assert!((fraction(&loss, 2.0, 1) - 0.1).abs() < 0.01);
+        assert!((fraction(&loss, 4.0, 1) - 0.4).abs() < 0.02);
+        assert_eq!(fraction(&loss, 7.0, 1), 1.0);
+    }
+
+    #[test]
+    fn gilbert_elliott_keeps_its_stationary_fraction_at_any_update_interval() {
+        let loss = Loss::GilbertElliott {
+            p_fail: 1.0,
+            p_recover: 3.0,
+        };
+        for gap in [1, 7, 100] {
+            let f = fraction(&loss, 1.0, gap);
+            assert!((f - 0.25).abs() < 0.03, "{gap}: {f}");
+        }
+    }
+}
