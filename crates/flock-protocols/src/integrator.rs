@@ -41,6 +41,12 @@ const RESORT_EVERY: u64 = 16;
 /// and diagnostic the simulation gives is of the agents in original order, with the bits of a
 /// simulation that kept them in that order.
 ///
+/// Under real conditions ([`Simulation::with_conditions`]) each step is the conditioned stage
+/// ([`Stage::step`]), and the agents stay in original order. An agent *removed* by a fault
+/// stays in the state at the position where it failed, with zero velocity; the metrics leave it
+/// out (they are those of the other agents, of their proximity net and of the interaction graph
+/// without it), while the protocol's energy and diagnostics still see the whole state.
+///
 /// # Example
 /// ```
 /// use flock_metrics::MetricParams;

@@ -799,3 +799,64 @@ fn every_condition_in_3d() {
     }
     assert_eq!(whole.swarm().into_owned(), resumed.swarm().into_owned());
 }
+
+/// An explicit communication range cuts the links of a fixed graph longer than it: agents 1 m
+/// apart with a 0.5 m range hear nobody and keep their velocities.
+#[test]
+fn a_communication_range_cuts_fixed_links() {
+    let conditions = Conditions {
+        communication: Some(Communication {
+            range: Some(0.5),
+            ..Communication::default()
+        }),
+        ..Conditions::default()
+    };
+    let start = six_velocities();
+    let swarm = Swarm::new(
+        (0..6).map(|i| DVec2::new(f64::from(i), 0.0)).collect(),
+        start.velocities.clone(),
+    );
+    let protocol = Consensus::fixed(1.0, cycle(6), 1.0).expect("valid");
+    let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01)
+        .expect("valid")
+        .with_conditions(&conditions, 0)
+        .expect("valid");
+    // moving apart, so no link ever comes within the range
+    for _ in 0..10 {
+        sim.step();
+    }
+    assert_eq!(sim.swarm().velocities, start.velocities);
+}
+
+/// With half the packets lost and `Hold`, agents use the last value received (information older
+/// than one step on average); with `Drop` every state used is current.
+#[test]
+fn hold_uses_the_last_value_received() {
+    let run = |when_lost| {
+        let conditions = Conditions {
+            communication: Some(Communication {
+                loss: Loss::Bernoulli { p: 0.5 },
+                when_lost,
+                ..Communication::default()
+            }),
+            ..Conditions::default()
+        };
+        let mut sim = consensus_run(0.5, cycle(6), 0.01, &conditions, 0);
+        let (mut lost, mut age) = (0.0, 0.0);
+        for _ in 0..2000 {
+            sim.step();
+            let d = sim.diagnostics();
+            lost += d[0].1 / 2000.0;
+            age += d[1].1 / 2000.0;
+        }
+        (lost, age)
+    };
+    let (lost_drop, age_drop) = run(WhenLost::Drop);
+    let (lost_hold, age_hold) = run(WhenLost::Hold { max_age: 1.0 });
+    println!("hold: lost {lost_hold:.3}, mean information age {age_hold:.4} s; drop: {age_drop}");
+    assert!((lost_drop - 0.5).abs() < 0.02 && (lost_hold - 0.5).abs() < 0.02);
+    assert_eq!(age_drop, 0.0);
+    // half the states used are fresh (age 0); a held one is k ≥ 1 steps old with probability
+    // 2^-k, 2 steps on average: the mean age is ½ · 2 h = h = 0.01 s
+    assert!((age_hold - 0.01).abs() < 0.0005, "{age_hold}");
+}

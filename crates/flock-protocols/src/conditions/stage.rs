@@ -299,8 +299,9 @@ impl<V: Vector> Stage<V> {
     }
 
     /// Communicate and control: each moving agent i hears its candidates (fixed graph
-    /// neighbours, or the agents within the communication range at their true positions, less
-    /// those not heard), each packet delayed by τ (+ jitter), lost by the loss model, dropped or
+    /// neighbours, within the communication range if one is given; or, for a protocol of the
+    /// proximity net, the agents within the communication range, by default the interaction
+    /// range, at their true positions; less the failed agents not heard), each packet delayed by τ (+ jitter), lost by the loss model, dropped or
     /// replaced by the last value received; u_i = local_input(t, own, heard).
     fn communicate_and_control<P: Protocol<V> + ?Sized>(
         &mut self,
@@ -325,6 +326,9 @@ impl<V: Vector> Stage<V> {
                 net.graph()
             });
         let comm = self.conditions.communication.unwrap_or_default();
+        let graph_range = comm
+            .range
+            .filter(|_| protocol.interaction_graph().is_some());
         let keeps_links = matches!(comm.loss, Loss::GilbertElliott { .. })
             || matches!(comm.when_lost, WhenLost::Hold { .. });
         let t = k as f64 * self.h;
@@ -351,6 +355,13 @@ impl<V: Vector> Stage<V> {
                 .iter()
                 .copied()
                 .filter(|&j| j as usize != i && this.is_heard(j as usize))
+                .filter(|&j| {
+                    // a fixed graph's link is cut beyond an explicit communication range
+                    graph_range.is_none_or(|rc| {
+                        (swarm.positions[j as usize] - swarm.positions[i]).length_squared()
+                            < rc * rc
+                    })
+                })
                 .collect();
             js.sort_unstable();
             let old = core::mem::take(links_i);
