@@ -8,6 +8,8 @@ use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::Vector;
 use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
 
+use crate::conditions::stage::{Stage, perception_field};
+use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
 use crate::{Protocol, Swarm};
@@ -38,6 +40,12 @@ const RESORT_EVERY: u64 = 16;
 /// ([`Simulation::stored_by_cell`]). That storage is internal: every state, graph, energy, metric
 /// and diagnostic the simulation gives is of the agents in original order, with the bits of a
 /// simulation that kept them in that order.
+///
+/// Under real conditions ([`Simulation::with_conditions`]) each step is the conditioned stage
+/// ([`Stage::step`]), and the agents stay in original order. An agent *removed* by a fault
+/// stays in the state at the position where it failed, with zero velocity; the metrics leave it
+/// out (they are those of the other agents, of their proximity net and of the interaction graph
+/// without it), while the protocol's energy and diagnostics still see the whole state.
 ///
 /// # Example
 /// ```
@@ -77,6 +85,8 @@ pub struct Simulation<V, P> {
     net: ProximityNet,
     inputs: Vec<V>,
     rk: Option<RungeKuttaScratch<V>>,
+    /// The real conditions of the run, `None` for the ideal run ([`Simulation::with_conditions`]).
+    conditions: Option<Box<Stage<V>>>,
 }
 
 /// What [`Simulation::observe`] measures of a state.
@@ -153,6 +163,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             search: NeighbourSearch::new(),
             inputs: vec![V::ZERO; n],
             rk,
+            conditions: None,
         };
         simulation.rebuild_net();
         Ok(simulation)
@@ -228,6 +239,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// For a protocol with an [interaction graph](Protocol::interaction_graph), C, C* and the
     /// components are those of that graph; the other metrics are of the proximity net.
     pub fn metrics(&self, params: &MetricParams) -> FlockMetrics {
+        if let Some(removed) = self.conditions.as_ref().and_then(|c| c.removed()) {
+            return self.metrics_without(removed, params);
+        }
         let metrics = FlockMetrics::measure(
             &self.swarm.positions,
             &self.swarm.velocities,
@@ -256,9 +270,18 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
 
     /// The protocol's own diagnostics of the current state ([`Protocol::diagnostics`]).
     #[must_use]
+    ///
+    /// With [conditions](Simulation::with_conditions), their columns follow: `links_lost` and
+    /// `information_age` (communication), `at_acceleration_limit`, `at_speed_limit` (actuation
+    /// limits) and `failed` (faults).
     pub fn diagnostics(&self) -> Vec<(&'static str, f64)> {
-        self.protocol
-            .diagnostics(self.time(), &self.swarm, &self.net)
+        let mut columns = self
+            .protocol
+            .diagnostics(self.time(), &self.swarm, &self.net);
+        if let Some(stage) = &self.conditions {
+            columns.extend(stage.diagnostics());
+        }
+        columns
     }
 
     /// Everything a recorded step measures: the metrics, the energy (computed concurrently, each
@@ -300,6 +323,105 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         }
     }
 
+    /// The simulation under real `conditions` (validated for its agents, dimension and step),
+    /// every random draw keyed from `seed`. With `Conditions::default()` it is the ideal
+    /// simulation, unchanged. Otherwise agents are kept in original order (not stored by cell).
+    ///
+    /// When no condition changes what agents perceive (no communication or sensing section, no
+    /// silent or removed faults), inputs are [`Protocol::controls`] of the true state; otherwise
+    /// each agent's input is its protocol's [`LocalForm`](crate::LocalForm) of what it perceives.
+    ///
+    /// # Errors
+    /// A parameter outside its domain ([`Conditions::validate`]), or a condition that changes
+    /// perception for a protocol without a local form (named by that condition's field).
+    pub fn with_conditions(
+        mut self,
+        conditions: &Conditions,
+        seed: u64,
+    ) -> Result<Self, ParamError> {
+        let n = self.swarm.len();
+        let range = self.protocol.interaction_range();
+        let stage = Stage::new(conditions, seed, n, self.step, range)?;
+        if conditions.is_ideal() {
+            return Ok(self);
+        }
+        if let Some(field) = perception_field(conditions)
+            && self.protocol.local_form().is_none()
+        {
+            return Err(ParamError::new(
+                field,
+                "set",
+                "changes what each agent perceives, and this protocol has no local form (u_i from what agent i perceives)",
+                "remove this condition, or use a distributed protocol (Algorithms 1-3, Consensus)",
+            ));
+        }
+        if self.stored_by_cell() {
+            self.swarm = self.swarm().into_owned();
+        }
+        self.net = empty_net(&self.protocol);
+        if let Some(rk) = self.rk.as_mut() {
+            rk.net = empty_net(&self.protocol);
+        }
+        self.conditions = Some(Box::new(stage));
+        let r = self.protocol.interaction_range();
+        self.search.build(&self.swarm.positions, r, &mut self.net);
+        Ok(self)
+    }
+
+    /// The state of the conditions to checkpoint (`None` for the ideal run): with the swarm and
+    /// the step count, all a resumed run needs to continue with the same bits.
+    #[must_use]
+    pub fn conditions_state(&self) -> Option<ConditionsState> {
+        self.conditions.as_ref().map(|c| c.state())
+    }
+
+    /// Restores the checkpointed state of the conditions into a simulation resumed with the same
+    /// conditions ([`Simulation::resume`], then [`Simulation::with_conditions`]).
+    ///
+    /// # Errors
+    /// A simulation without conditions (field `conditions`), or a state of another run.
+    pub fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError> {
+        match self.conditions.as_mut() {
+            Some(stage) => stage.restore(state),
+            None => Err(ParamError::new(
+                "conditions",
+                "none",
+                "are not set on this simulation",
+                "call with_conditions with the run's conditions first",
+            )),
+        }
+    }
+
+    /// The metrics of the agents not removed (removed agents stay in the state, at the
+    /// position where they failed, with zero velocity, but leave every metric).
+    fn metrics_without(&self, removed: &[bool], params: &MetricParams) -> FlockMetrics {
+        let kept: Vec<usize> = (0..removed.len()).filter(|&i| !removed[i]).collect();
+        let pick = |x: &[V]| kept.iter().map(|&i| x[i]).collect::<Vec<V>>();
+        let (q, p) = (pick(&self.swarm.positions), pick(&self.swarm.velocities));
+        let mut net = empty_net(&self.protocol);
+        NeighbourSearch::new().build(&q, self.protocol.interaction_range(), &mut net);
+        let metrics = FlockMetrics::measure(&q, &p, &net, params);
+        match self.protocol.interaction_graph() {
+            Some(graph) => {
+                let mut index = vec![usize::MAX; removed.len()];
+                for (new, &old) in kept.iter().enumerate() {
+                    index[old] = new;
+                }
+                let edges: Vec<(usize, usize)> = kept
+                    .iter()
+                    .flat_map(|&i| graph.neighbours(i).iter().map(move |&j| (i, j as usize)))
+                    .filter(|&(i, j)| i < j && !removed[j])
+                    .map(|(i, j)| (index[i], index[j]))
+                    .collect();
+                match Graph::from_edges(kept.len(), &edges) {
+                    Ok(sub) => metrics.with_connectivity_of(&Components::of(&sub)),
+                    Err(_) => metrics,
+                }
+            }
+            None => metrics,
+        }
+    }
+
     /// The number of steps taken.
     #[must_use]
     pub const fn steps(&self) -> u64 {
@@ -312,8 +434,22 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         self.steps as f64 * self.step
     }
 
-    /// Advances the state by one step h.
+    /// Advances the state by one step h: the ideal step, or with
+    /// [conditions](Simulation::with_conditions) the conditioned one (fail → sense → communicate
+    /// → control → actuate → disturb and integrate, [`Stage::step`]).
     pub fn step(&mut self) {
+        if let Some(stage) = self.conditions.as_mut() {
+            stage.step(
+                &self.protocol,
+                &mut self.swarm,
+                &self.net,
+                self.steps,
+                self.integrator,
+            );
+            self.steps += 1;
+            self.rebuild_net();
+            return;
+        }
         match self.integrator {
             Integrator::SymplecticEuler => self.symplectic_euler(),
             Integrator::Rk4 => self.runge_kutta(),
@@ -328,8 +464,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// re-sort even if still scattered, e.g. thousands in one cell: no sort at every step.)
     fn rebuild_net(&mut self) {
         let r = self.protocol.interaction_range();
-        let sorts =
-            self.protocol.follows_numbering() && self.protocol.interaction_graph().is_none();
+        let sorts = self.protocol.follows_numbering()
+            && self.protocol.interaction_graph().is_none()
+            && self.conditions.is_none();
         let sorted = !self.net.numbering().is_identity();
         if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {
             self.sort_by_cell();

@@ -10,6 +10,8 @@
 //! - [`Simulation`]: fixed-step [`Integrator`]s (symplectic Euler by default, RK4) that rebuild the
 //!   proximity net at every evaluation, with the metrics, energy, diagnostics and health of the
 //!   state in the agents' original order.
+//! - [`Conditions`]: delay, loss, noise, sampled control, actuator limits, wind and faults, run
+//!   by [`Simulation::with_conditions`] in one stage ([`conditions`]).
 //! - [`Swarm`]: positions and velocities of n double integrators.
 //! - [`AlphaConfig`], [`BetaConfig`], [`AvoidanceGains`]: parameters as a scenario writes them,
 //!   with the papers' defaults; [`ParamError`] names a parameter outside its domain.
@@ -39,7 +41,7 @@ pub mod tanner2003;
 pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 #[cfg(feature = "obstacles")]
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
-pub use conditions::Conditions;
+pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
 pub use error::{ParamError, check};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};

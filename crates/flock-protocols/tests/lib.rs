@@ -2,6 +2,7 @@
 
 mod algorithm3;
 mod common;
+mod conditions;
 mod determinism;
 mod invariance;
 mod local_form;

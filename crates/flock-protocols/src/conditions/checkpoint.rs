@@ -1,0 +1,200 @@
+//! What a checkpoint keeps of the conditions ([`ConditionsState`]): with it, a resumed run
+//! continues with the bits of the uninterrupted one, since every random draw is keyed by step
+//! ([`stream`](super::stream)) and this is all the state the conditions carry between steps.
+
+use flock_math::Vector;
+
+use super::links::{Held, Link};
+use super::stage::{Readings, Stage};
+use crate::error::ParamError;
+
+/// One link kept by a receiver: the sender, the Gilbert–Elliott state (bad, step drawn) and
+/// the last state received (position, velocity, step measured).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[allow(missing_docs)]
+pub struct LinkState {
+    pub sender: u32,
+    pub channel: Option<(bool, u64)>,
+    pub held: Option<(Vec<f64>, Vec<f64>, u64)>,
+}
+
+/// The state of the conditions between two steps, vectors flattened (`dim` coordinates each).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ConditionsState {
+    /// The scenario seed.
+    pub seed: u64,
+    /// The dimension of the vectors.
+    pub dim: usize,
+    /// Whether a step has been taken (the noise, gusts and history are initialised).
+    pub started: bool,
+    /// The measured positions and velocities (held between sensor updates).
+    pub measured: (Vec<f64>, Vec<f64>),
+    /// The sensor noise offsets (position, velocity) per agent.
+    pub noise: (Vec<f64>, Vec<f64>),
+    /// The delay line, slot by slot (positions, velocities).
+    pub history: Vec<(Vec<f64>, Vec<f64>)>,
+    /// The links each receiver keeps, by receiver.
+    pub links: Vec<Vec<LinkState>>,
+    /// The held commanded inputs.
+    pub inputs: Vec<f64>,
+    /// The delivered (lagged) accelerations.
+    pub delivered: Vec<f64>,
+    /// The wind gusts (one shared, or one per agent).
+    pub gust: Vec<f64>,
+    /// The failed agents.
+    pub failed: Vec<bool>,
+    /// The last readings: links lost, information age, at acceleration limit, at speed limit.
+    pub readings: [f64; 4],
+}
+
+fn flat<V: Vector>(v: &[V]) -> Vec<f64> {
+    v.iter()
+        .flat_map(|x| (0..V::DIM).map(move |d| x.coord(d)))
+        .collect()
+}
+
+fn vectors<V: Vector>(field: &str, x: &[f64], len: usize) -> Result<Vec<V>, ParamError> {
+    if x.len() != len * V::DIM {
+        return Err(ParamError::new(
+            field,
+            x.len(),
+            format!(
+                "holds {} numbers where {len} vectors of {} are expected",
+                x.len(),
+                V::DIM
+            ),
+            "restore the state of a run of the same agents, dimension and conditions",
+        ));
+    }
+    Ok(x.chunks_exact(V::DIM)
+        .map(|c| V::from_fn(|d| c[d]))
+        .collect())
+}
+
+impl<V: Vector> Stage<V> {
+    /// The state to checkpoint.
+    #[must_use]
+    pub fn state(&self) -> ConditionsState {
+        let (nq, np): (Vec<V>, Vec<V>) = self.noise.iter().copied().unzip();
+        let r = self.readings;
+        ConditionsState {
+            seed: self.streams.seed(),
+            dim: V::DIM,
+            started: self.started,
+            measured: (
+                flat(&self.measured.positions),
+                flat(&self.measured.velocities),
+            ),
+            noise: (flat(&nq), flat(&np)),
+            history: self
+                .history
+                .slots
+                .iter()
+                .map(|(q, p)| (flat(q), flat(p)))
+                .collect(),
+            links: self
+                .links
+                .iter()
+                .map(|ls| {
+                    ls.iter()
+                        .map(|l| LinkState {
+                            sender: l.sender,
+                            channel: l.channel,
+                            held: l
+                                .held
+                                .map(|h| (flat(&[h.position]), flat(&[h.velocity]), h.stamp)),
+                        })
+                        .collect()
+                })
+                .collect(),
+            inputs: flat(&self.inputs),
+            delivered: flat(&self.delivered),
+            gust: flat(&self.gust),
+            failed: self.failed.clone(),
+            readings: [
+                r.links_lost,
+                r.information_age,
+                r.at_acceleration_limit,
+                r.at_speed_limit,
+            ],
+        }
+    }
+
+    /// Restores a checkpointed state into this stage (built from the same conditions).
+    ///
+    /// # Errors
+    /// A state of another dimension, number of agents, delay or wind (field `conditions_state.…`).
+    pub fn restore(&mut self, s: ConditionsState) -> Result<(), ParamError> {
+        let n = self.failed.len();
+        let within = |e: ParamError| e.within("conditions_state");
+        let check_len = |field: &str, got: usize, want: usize| {
+            if got == want {
+                Ok(())
+            } else {
+                Err(ParamError::new(
+                    field,
+                    got,
+                    format!("has {got} entries where this run has {want}"),
+                    "restore the state of a run of the same agents and conditions",
+                )
+                .within("conditions_state"))
+            }
+        };
+        check_len("dim", s.dim, V::DIM)?;
+        check_len("failed", s.failed.len(), n)?;
+        check_len("links", s.links.len(), n)?;
+        check_len("history", s.history.len(), self.history.slots.len())?;
+        self.measured.positions = vectors("measured", &s.measured.0, n).map_err(within)?;
+        self.measured.velocities = vectors("measured", &s.measured.1, n).map_err(within)?;
+        let noise_len = self.noise.len();
+        let nq: Vec<V> = vectors("noise", &s.noise.0, noise_len).map_err(within)?;
+        let np: Vec<V> = vectors("noise", &s.noise.1, noise_len).map_err(within)?;
+        self.noise = nq.into_iter().zip(np).collect();
+        for (slot, (q, p)) in self.history.slots.iter_mut().zip(&s.history) {
+            slot.0 = vectors("history", q, n).map_err(within)?;
+            slot.1 = vectors("history", p, n).map_err(within)?;
+        }
+        let mut links = Vec::with_capacity(n);
+        for ls in &s.links {
+            let mut kept = Vec::with_capacity(ls.len());
+            for l in ls {
+                let held = match &l.held {
+                    Some((q, p, stamp)) => Some(Held {
+                        position: vectors::<V>("links", q, 1).map_err(within)?[0],
+                        velocity: vectors::<V>("links", p, 1).map_err(within)?[0],
+                        stamp: *stamp,
+                    }),
+                    None => None,
+                };
+                kept.push(Link {
+                    sender: l.sender,
+                    channel: l.channel,
+                    held,
+                });
+            }
+            links.push(kept);
+        }
+        self.links = links;
+        self.inputs = vectors("inputs", &s.inputs, n).map_err(within)?;
+        self.delivered = vectors("delivered", &s.delivered, n).map_err(within)?;
+        self.gust = vectors("gust", &s.gust, self.gust.len()).map_err(within)?;
+        self.failed = s.failed;
+        self.started = s.started;
+        self.streams = super::stream::Streams::new(s.seed);
+        let [
+            links_lost,
+            information_age,
+            at_acceleration_limit,
+            at_speed_limit,
+        ] = s.readings;
+        self.readings = Readings {
+            links_lost,
+            information_age,
+            at_acceleration_limit,
+            at_speed_limit,
+        };
+        Ok(())
+    }
+}

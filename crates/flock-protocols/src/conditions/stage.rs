@@ -1,0 +1,572 @@
+//! The conditioned step, in the order a vehicle lives it: **fail → sense → communicate →
+//! control → actuate → disturb and integrate** ([`Stage::step`]). The protocols take no part but
+//! to compute u_i from what agent i perceives ([`LocalForm`]), or, when no condition changes
+//! what agents perceive, from the true state ([`Protocol::controls`]).
+
+use flock_graph::{NeighbourSearch, ProximityNet};
+use flock_math::Vector;
+
+use super::actuation::{Lag, clip};
+use super::config::{Conditions, Delayed, FaultMode, Loss, WhenLost, period_steps, whole_steps};
+use super::faults;
+use super::history::History;
+use super::links::{Held, Link, lost};
+use super::noise::{OrnsteinUhlenbeck, SensorNoise};
+use super::stream::{Purpose, Streams};
+use crate::error::ParamError;
+use crate::{Integrator, LocalForm, Perceived, Protocol, Swarm};
+
+/// The readings of the last step, for the diagnostics columns.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Readings {
+    /// The fraction of candidate links lost at the last control update.
+    pub links_lost: f64,
+    /// The mean age (s) of the neighbour states used at the last control update.
+    pub information_age: f64,
+    /// Agents whose commanded acceleration was clipped at the last step.
+    pub at_acceleration_limit: f64,
+    /// Agents whose speed was clipped at the last step.
+    pub at_speed_limit: f64,
+}
+
+/// The conditions of a run and everything they carry from step to step. Agents are in original
+/// order (a simulation with conditions does not store them by cell).
+#[derive(Debug)]
+pub struct Stage<V> {
+    pub(crate) conditions: Conditions,
+    pub(crate) streams: Streams,
+    h: f64,
+    delay: u64,
+    jitter: u64,
+    sensor_period: u64,
+    control_period: u64,
+    /// Whether a condition changes what agents perceive: the local path.
+    perceives: bool,
+    /// A communication range other than the interaction range, for which a net is built.
+    own_range: Option<f64>,
+    sensor: Option<SensorNoise>,
+    lag: Option<Lag>,
+    gusts: Option<OrnsteinUhlenbeck>,
+    // the state carried between steps (checkpointed)
+    pub(crate) started: bool,
+    pub(crate) measured: Swarm<V>,
+    pub(crate) noise: Vec<(V, V)>,
+    pub(crate) history: History<V>,
+    pub(crate) links: Vec<Vec<Link<V>>>,
+    pub(crate) inputs: Vec<V>,
+    pub(crate) delivered: Vec<V>,
+    pub(crate) gust: Vec<V>,
+    pub(crate) failed: Vec<bool>,
+    pub(crate) readings: Readings,
+    // scratch
+    search: NeighbourSearch,
+    net: ProximityNet,
+}
+
+/// Whether `conditions` change what agents perceive (their own or others' states), and the
+/// field that does.
+#[must_use]
+pub fn perception_field(conditions: &Conditions) -> Option<&'static str> {
+    if conditions.communication.is_some() {
+        Some("conditions.communication")
+    } else if conditions.sensing.is_some() {
+        Some("conditions.sensing")
+    } else {
+        match &conditions.faults {
+            Some(f) if f.mode != FaultMode::Frozen => Some("conditions.faults.mode"),
+            _ => None,
+        }
+    }
+}
+
+/// The longest delay D (delay + jitter) in steps of `conditions` at step `h` (0 without
+/// communication).
+///
+/// # Errors
+/// A delay or jitter that is not a whole number of steps.
+pub fn depth(conditions: &Conditions, h: f64) -> Result<u64, ParamError> {
+    Ok(match &conditions.communication {
+        Some(c) => whole_steps("delay", c.delay, h)? + whole_steps("jitter", c.jitter, h)?,
+        None => 0,
+    })
+}
+
+/// The bytes per agent that `conditions` keep in a `dim`-dimensional run at step `h`: the
+/// delay line (D + 1 measured states of 2·dim f64 when a condition changes perception) and the
+/// per-agent vectors (measured state, noise, held input, delivered acceleration, gust), links
+/// not counted (≤ one per neighbour, only for Gilbert–Elliott loss or `Hold`).
+#[must_use]
+pub fn bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
+    if conditions.is_ideal() {
+        return 0;
+    }
+    let state = 2 * dim * 8;
+    let history = if perception_field(conditions).is_some() {
+        (depth(conditions, h).unwrap_or(0) as usize + 1) * state
+    } else {
+        0
+    };
+    history + 5 * state + 1
+}
+
+impl<V: Vector> Stage<V> {
+    /// The stage of `conditions` (validated) for `n` agents at step `h`, with `seed`; `range` is
+    /// the protocol's interaction range.
+    ///
+    /// # Errors
+    /// As [`Conditions::validate`].
+    pub fn new(
+        conditions: &Conditions,
+        seed: u64,
+        n: usize,
+        h: f64,
+        range: f64,
+    ) -> Result<Self, ParamError> {
+        conditions.validate(n, V::DIM, h)?;
+        let c = conditions;
+        let (delay, jitter) = match &c.communication {
+            Some(m) => (
+                whole_steps("delay", m.delay, h)?,
+                whole_steps("jitter", m.jitter, h)?,
+            ),
+            None => (0, 0),
+        };
+        let sensor_period = match c.sensing.as_ref().and_then(|s| s.rate) {
+            Some(rate) => period_steps("rate", rate, h)?,
+            None => 1,
+        };
+        let control_period = match &c.control {
+            Some(s) => period_steps("rate", s.rate, h)?,
+            None => 1,
+        };
+        let own_range = c
+            .communication
+            .and_then(|m| m.range)
+            .filter(|&r| r != range);
+        let wind = c.disturbance.as_ref().and_then(|d| d.wind.as_ref());
+        let gusts = wind
+            .filter(|w| w.gust > 0.0)
+            .map(|w| OrnsteinUhlenbeck::new(w.gust, w.correlation_time, h));
+        let gust_count = match wind {
+            Some(w) if w.gust > 0.0 => {
+                if w.per_agent {
+                    n
+                } else {
+                    1
+                }
+            }
+            _ => 0,
+        };
+        let perceives = perception_field(c).is_some();
+        Ok(Self {
+            conditions: c.clone(),
+            streams: Streams::new(seed),
+            h,
+            delay,
+            jitter,
+            sensor_period,
+            control_period,
+            perceives,
+            own_range,
+            sensor: c
+                .sensing
+                .map(|s| SensorNoise::new(&s.noise, sensor_period as f64 * h)),
+            lag: c.actuation.and_then(|a| a.lag).map(|tau| Lag::new(tau, h)),
+            gusts,
+            started: false,
+            measured: Swarm::new(vec![V::ZERO; n], vec![V::ZERO; n]),
+            noise: vec![(V::ZERO, V::ZERO); if c.sensing.is_some() { n } else { 0 }],
+            history: History::new(if perceives { delay + jitter } else { 0 }, n),
+            links: vec![Vec::new(); n],
+            inputs: vec![V::ZERO; n],
+            delivered: vec![V::ZERO; n],
+            gust: vec![V::ZERO; gust_count],
+            failed: vec![false; n],
+            readings: Readings::default(),
+            search: NeighbourSearch::new(),
+            net: ProximityNet::without_distances(),
+        })
+    }
+
+    fn mode(&self) -> FaultMode {
+        self.conditions
+            .faults
+            .as_ref()
+            .map_or(FaultMode::Removed, |f| f.mode)
+    }
+
+    /// Whether agent `i` computes and receives an input (working, or failed silent).
+    fn moves(&self, i: usize) -> bool {
+        !self.failed[i] || faults::moves(self.mode())
+    }
+
+    /// Whether the others hear agent `j` (working, or failed frozen).
+    fn is_heard(&self, j: usize) -> bool {
+        !self.failed[j] || faults::heard(self.mode())
+    }
+
+    /// The agents removed from the run (failed in mode `Removed`), if any.
+    #[must_use]
+    pub fn removed(&self) -> Option<&[bool]> {
+        (self.mode() == FaultMode::Removed && self.failed.iter().any(|&f| f))
+            .then_some(&self.failed[..])
+    }
+
+    /// The diagnostics columns of the conditions that are on, the same at every record.
+    #[must_use]
+    pub fn diagnostics(&self) -> Vec<(&'static str, f64)> {
+        let c = &self.conditions;
+        let r = &self.readings;
+        let mut columns = Vec::new();
+        if c.communication.is_some() {
+            columns.push(("links_lost", r.links_lost));
+            columns.push(("information_age", r.information_age));
+        }
+        if let Some(a) = &c.actuation {
+            if a.max_acceleration.is_some() {
+                columns.push(("at_acceleration_limit", r.at_acceleration_limit));
+            }
+            if a.max_speed.is_some() {
+                columns.push(("at_speed_limit", r.at_speed_limit));
+            }
+        }
+        if c.faults.is_some() {
+            let failed = self.failed.iter().filter(|&&f| f).count();
+            columns.push(("failed", failed as f64));
+        }
+        columns
+    }
+
+    /// One step h from step `k` of the true state `swarm` (original order) whose proximity net
+    /// is `net`: fail → sense → communicate → control → actuate → disturb and integrate.
+    pub fn step<P: Protocol<V> + ?Sized>(
+        &mut self,
+        protocol: &P,
+        swarm: &mut Swarm<V>,
+        net: &ProximityNet,
+        k: u64,
+        integrator: Integrator,
+    ) {
+        if let Some(f) = &self.conditions.faults {
+            faults::update(f, &self.streams, k, self.h, &mut self.failed);
+        }
+        if self.perceives {
+            self.sense(swarm, k);
+            let first = !self.started;
+            let m = &self.measured;
+            self.history.record(k, first, &m.positions, &m.velocities);
+        }
+        if k.is_multiple_of(self.control_period) {
+            match protocol.local_form().filter(|_| self.perceives) {
+                Some(local) => self.communicate_and_control(protocol, local, swarm, net, k),
+                None => {
+                    let t = k as f64 * self.h;
+                    protocol.controls(t, swarm, net, &mut self.inputs);
+                }
+            }
+            for i in 0..self.inputs.len() {
+                if !self.moves(i) {
+                    self.inputs[i] = V::ZERO;
+                }
+            }
+        }
+        self.actuate();
+        self.disturb_and_integrate(swarm, k, integrator);
+        self.started = true;
+    }
+
+    /// Sense: each agent's measured state is its true state plus the sensor noise, refreshed
+    /// every sensor period and held between (the true state at every step without sensing).
+    fn sense(&mut self, swarm: &Swarm<V>, k: u64) {
+        let Some(sensor) = self.sensor else {
+            self.measured.clone_from(swarm);
+            return;
+        };
+        if self.started && !k.is_multiple_of(self.sensor_period) {
+            return;
+        }
+        let (started, streams, noise) = (self.started, &self.streams, &self.noise);
+        let fresh = map_agents(swarm.len(), |i| {
+            let mut draws = streams.draws(Purpose::Sensing, i as u64, k);
+            let (xi_q, xi_p) = (draws.normal_vector(), draws.normal_vector());
+            sensor.update(started.then_some(noise[i]), xi_q, xi_p)
+        });
+        for (i, offsets) in fresh.into_iter().enumerate() {
+            self.noise[i] = offsets;
+            self.measured.positions[i] = swarm.positions[i] + offsets.0;
+            self.measured.velocities[i] = swarm.velocities[i] + offsets.1;
+        }
+    }
+
+    /// Communicate and control: each moving agent i hears its candidates (fixed graph
+    /// neighbours, within the communication range if one is given; or, for a protocol of the
+    /// proximity net, the agents within the communication range, by default the interaction
+    /// range, at their true positions; less the failed agents not heard), each packet delayed by τ (+ jitter), lost by the loss model, dropped or
+    /// replaced by the last value received; u_i = local_input(t, own, heard).
+    fn communicate_and_control<P: Protocol<V> + ?Sized>(
+        &mut self,
+        protocol: &P,
+        local: &dyn LocalForm<V>,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+        k: u64,
+    ) {
+        let n = swarm.len();
+        if let Some(range) = self
+            .own_range
+            .filter(|_| protocol.interaction_graph().is_none())
+        {
+            self.search.build(&swarm.positions, range, &mut self.net);
+        }
+        let candidates = protocol
+            .interaction_graph()
+            .unwrap_or(if self.own_range.is_some() {
+                self.net.graph()
+            } else {
+                net.graph()
+            });
+        let comm = self.conditions.communication.unwrap_or_default();
+        let graph_range = comm
+            .range
+            .filter(|_| protocol.interaction_graph().is_some());
+        let keeps_links = matches!(comm.loss, Loss::GilbertElliott { .. })
+            || matches!(comm.when_lost, WhenLost::Hold { .. });
+        let t = k as f64 * self.h;
+        let mut links = core::mem::take(&mut self.links);
+        let this = &*self;
+        let results = map_agents_mut(&mut links, |i, links_i| {
+            if !this.moves(i) {
+                links_i.clear();
+                return (V::ZERO, 0, 0, 0, 0);
+            }
+            let own_lag = if comm.delayed == Delayed::All {
+                this.delay
+            } else {
+                0
+            };
+            let (q, p) = this.history.at(k, own_lag, i);
+            let own = Perceived {
+                agent: i as u32,
+                position: q,
+                velocity: p,
+            };
+            let mut js: Vec<u32> = candidates
+                .neighbours(i)
+                .iter()
+                .copied()
+                .filter(|&j| j as usize != i && this.is_heard(j as usize))
+                .filter(|&j| {
+                    // a fixed graph's link is cut beyond an explicit communication range
+                    graph_range.is_none_or(|rc| {
+                        (swarm.positions[j as usize] - swarm.positions[i]).length_squared()
+                            < rc * rc
+                    })
+                })
+                .collect();
+            js.sort_unstable();
+            let old = core::mem::take(links_i);
+            let mut heard = Vec::with_capacity(js.len());
+            let (mut lost_count, mut age_sum) = (0usize, 0u64);
+            for &j in &js {
+                let ju = j as usize;
+                let mut link = old
+                    .binary_search_by_key(&j, |l| l.sender)
+                    .map_or(Link::new(j), |s| old[s]);
+                let directed = (i * n + ju) as u64;
+                let lag = if this.jitter > 0 {
+                    this.delay
+                        + this
+                            .streams
+                            .draws(Purpose::Jitter, directed, k)
+                            .up_to(this.jitter)
+                } else {
+                    this.delay
+                };
+                let key = if comm.symmetric {
+                    (i.min(ju) * n + i.max(ju)) as u64
+                } else {
+                    directed
+                };
+                let length = (swarm.positions[ju] - swarm.positions[i]).length();
+                let dropped = lost(
+                    &comm.loss,
+                    &this.streams,
+                    key,
+                    k,
+                    this.h,
+                    length,
+                    &mut link.channel,
+                );
+                let stamp = k.saturating_sub(lag);
+                let used = if dropped {
+                    lost_count += 1;
+                    match (comm.when_lost, link.held) {
+                        (WhenLost::Hold { max_age }, Some(held))
+                            if (k - held.stamp) as f64 * this.h <= max_age * (1.0 + 1e-12) =>
+                        {
+                            Some(held)
+                        }
+                        _ => None,
+                    }
+                } else {
+                    let (position, velocity) = this.history.at(k, lag, ju);
+                    let held = Held {
+                        position,
+                        velocity,
+                        stamp,
+                    };
+                    link.held = Some(held);
+                    Some(held)
+                };
+                if let Some(held) = used {
+                    age_sum += k - held.stamp.min(k);
+                    heard.push(Perceived {
+                        agent: j,
+                        position: held.position,
+                        velocity: held.velocity,
+                    });
+                }
+                if keeps_links {
+                    links_i.push(link);
+                }
+            }
+            let used = heard.len();
+            let u = local.local_input(t, &own, &heard);
+            (u, js.len(), lost_count, age_sum, used)
+        });
+        self.links = links;
+        let (mut candidates, mut lost_total, mut age, mut used) = (0usize, 0usize, 0u64, 0usize);
+        for (i, (u, c, l, a, s)) in results.into_iter().enumerate() {
+            self.inputs[i] = u;
+            candidates += c;
+            lost_total += l;
+            age += a;
+            used += s;
+        }
+        self.readings.links_lost = ratio(lost_total as f64, candidates);
+        self.readings.information_age = ratio(age as f64 * self.h, used);
+    }
+
+    /// Actuate: the commanded acceleration clipped to a_max, then the first-order lag.
+    fn actuate(&mut self) {
+        let actuation = self.conditions.actuation.unwrap_or_default();
+        let mut clipped = 0usize;
+        for i in 0..self.inputs.len() {
+            let (u, at_limit) = clip(self.inputs[i], actuation.max_acceleration);
+            clipped += usize::from(at_limit);
+            self.delivered[i] = match self.lag {
+                Some(lag) => lag.advance(self.delivered[i], u),
+                None => u,
+            };
+            if !self.moves(i) {
+                self.delivered[i] = V::ZERO;
+            }
+        }
+        self.readings.at_acceleration_limit = clipped as f64;
+    }
+
+    /// Disturb and integrate: wind w_i = mean + gusts, and with the process noise σ √h ξ
+    /// (Euler–Maruyama), symplectic Euler p ← p + h (a + w) + σ √h ξ, ‖p‖ clipped to v_max,
+    /// q ← q + h p. With [`Integrator::Rk4`] the held acceleration is integrated exactly,
+    /// q ← q + h p + ½ h² (a + w), p ← p + h (a + w) + σ √h ξ (the delivered acceleration is
+    /// constant over the step: Runge–Kutta stages would re-evaluate nothing). Agents that do not
+    /// move (failed, frozen or removed) keep their position with zero velocity.
+    fn disturb_and_integrate(&mut self, swarm: &mut Swarm<V>, k: u64, integrator: Integrator) {
+        let h = self.h;
+        let disturbance = self.conditions.disturbance.clone().unwrap_or_default();
+        if let Some(gusts) = self.gusts {
+            for (g, x) in self.gust.iter_mut().enumerate() {
+                let xi = self
+                    .streams
+                    .draws(Purpose::Wind, g as u64, k)
+                    .normal_vector();
+                *x = if self.started {
+                    gusts.advance(*x, xi)
+                } else {
+                    gusts.stationary(xi)
+                };
+            }
+        }
+        let mean = disturbance
+            .wind
+            .as_ref()
+            .map_or(V::ZERO, |w| V::from_fn(|d| w.mean[d]));
+        let kick = disturbance.process_noise * h.sqrt();
+        let max_speed = self.conditions.actuation.and_then(|a| a.max_speed);
+        let this = &*self;
+        let next = map_agents(swarm.len(), |i| {
+            let (q, p) = (swarm.positions[i], swarm.velocities[i]);
+            if !this.moves(i) {
+                return (q, V::ZERO, false);
+            }
+            let wind = match this.gust.len() {
+                0 => mean,
+                1 => mean + this.gust[0],
+                _ => mean + this.gust[i],
+            };
+            let a = this.delivered[i] + wind;
+            let noise = if kick > 0.0 {
+                let xi: V = this
+                    .streams
+                    .draws(Purpose::ProcessNoise, i as u64, k)
+                    .normal_vector();
+                xi * kick
+            } else {
+                V::ZERO
+            };
+            match integrator {
+                Integrator::SymplecticEuler => {
+                    let (p, clipped) = clip(p + a * h + noise, max_speed);
+                    (q + p * h, p, clipped)
+                }
+                Integrator::Rk4 => {
+                    let q = q + p * h + a * (0.5 * h * h);
+                    let (p, clipped) = clip(p + a * h + noise, max_speed);
+                    (q, p, clipped)
+                }
+            }
+        });
+        let mut clipped = 0usize;
+        for (i, (q, p, c)) in next.into_iter().enumerate() {
+            swarm.positions[i] = q;
+            swarm.velocities[i] = p;
+            clipped += usize::from(c);
+        }
+        self.readings.at_speed_limit = clipped as f64;
+    }
+}
+
+/// `x / n`, 0 when `n` is 0.
+fn ratio(x: f64, n: usize) -> f64 {
+    if n == 0 { 0.0 } else { x / n as f64 }
+}
+
+/// `f(i)` for every agent i < n, in parallel with the `parallel` feature; in index order.
+fn map_agents<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().with_min_len(1024).map(f).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    (0..n).map(f).collect()
+}
+
+/// `f(i, &mut items[i])` for every item, in parallel with the `parallel` feature; in index order.
+fn map_agents_mut<S: Send, T: Send>(
+    items: &mut [S],
+    f: impl Fn(usize, &mut S) -> T + Sync + Send,
+) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        items
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(256)
+            .map(|(i, s)| f(i, s))
+            .collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    items.iter_mut().enumerate().map(|(i, s)| f(i, s)).collect()
+}
