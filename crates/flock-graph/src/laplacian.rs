@@ -36,13 +36,27 @@ pub fn laplacian_apply<V: Vector>(graph: &Graph, weights: &[f64], z: &[V], out: 
     check_lengths(graph, weights, z);
     assert_eq!(out.len(), graph.len(), "one output per node");
     fill_indexed(out, |i| {
-        let zi = z[i];
-        graph
-            .neighbours(i)
-            .iter()
-            .zip(&weights[graph.edge_range(i)])
-            .fold(V::ZERO, |acc, (&j, &a)| acc + (zi - z[j as usize]) * a)
+        let row = graph.neighbours(i).iter().map(|&j| z[j as usize]);
+        laplacian_row(z[i], row.zip(weights[graph.edge_range(i)].iter().copied()))
     });
+}
+
+/// Row i of L̂z from node i's value and its neighbours' (z_j, a_ij) in their order:
+/// Σ_j a_ij (z_i − z_j), summed left to right. The one sum of [`laplacian_apply`], for a node
+/// that knows only its own row (a distributed controller).
+///
+/// # Example
+/// ```
+/// use flock_graph::laplacian_row;
+/// use glam::DVec2;
+///
+/// let row = [(DVec2::new(1.0, 0.0), 2.0), (DVec2::new(0.0, 1.0), 1.0)];
+/// assert_eq!(laplacian_row(DVec2::ZERO, row.into_iter()), DVec2::new(-2.0, -1.0));
+/// ```
+#[inline]
+#[must_use]
+pub fn laplacian_row<V: Vector>(zi: V, neighbours: impl Iterator<Item = (V, f64)>) -> V {
+    neighbours.fold(V::ZERO, |acc, (zj, a)| acc + (zi - zj) * a)
 }
 
 /// The quadratic form zᵀL̂z = ½ Σ_i Σ_{j∈N_i} a_ij ‖z_j − z_i‖² (each undirected edge counted once
