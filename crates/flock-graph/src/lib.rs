@@ -29,7 +29,9 @@ pub mod stress;
 pub use adjacency::{binary_weights, weights_from_distances};
 pub use components::Components;
 pub use graph::{Graph, GraphError};
-pub use laplacian::{laplacian_apply, laplacian_quadratic_form, laplacian_row};
+pub use laplacian::{
+    laplacian_apply, laplacian_eigenvalues, laplacian_quadratic_form, laplacian_row,
+};
 pub use net::ProximityNet;
 pub use numbering::Numbering;
 pub use search::{NeighbourSearch, nearest_pair_distance};
