@@ -53,6 +53,7 @@ pub mod sweep;
 pub mod synthetic;
 mod validate;
 
+pub use build::{check_local_form, perception_condition};
 pub use error::ScenarioError;
 pub use health::NumericalError;
 pub use merging::{Merge, MergedAgents};
@@ -62,7 +63,7 @@ pub use scenario::{
     Algorithm, Cloud, FixedGraph, Initial, Point, Scenario, TannerGraph, Translation,
 };
 pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
-pub use stability::{Warning, largest_stable_step};
+pub use stability::{Warning, consensus_laplacian_max, largest_stable_step};
 pub use validate::{MAX_AGENTS, MAX_STEPS};
 
 pub use flock_graph as graph;
