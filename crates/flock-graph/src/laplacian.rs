@@ -36,13 +36,27 @@ pub fn laplacian_apply<V: Vector>(graph: &Graph, weights: &[f64], z: &[V], out: 
     check_lengths(graph, weights, z);
     assert_eq!(out.len(), graph.len(), "one output per node");
     fill_indexed(out, |i| {
-        let zi = z[i];
-        graph
-            .neighbours(i)
-            .iter()
-            .zip(&weights[graph.edge_range(i)])
-            .fold(V::ZERO, |acc, (&j, &a)| acc + (zi - z[j as usize]) * a)
+        let row = graph.neighbours(i).iter().map(|&j| z[j as usize]);
+        laplacian_row(z[i], row.zip(weights[graph.edge_range(i)].iter().copied()))
     });
+}
+
+/// Row i of L̂z from node i's value and its neighbours' (z_j, a_ij) in their order:
+/// Σ_j a_ij (z_i − z_j), summed left to right. The one sum of [`laplacian_apply`], for a node
+/// that knows only its own row (a distributed controller).
+///
+/// # Example
+/// ```
+/// use flock_graph::laplacian_row;
+/// use glam::DVec2;
+///
+/// let row = [(DVec2::new(1.0, 0.0), 2.0), (DVec2::new(0.0, 1.0), 1.0)];
+/// assert_eq!(laplacian_row(DVec2::ZERO, row.into_iter()), DVec2::new(-2.0, -1.0));
+/// ```
+#[inline]
+#[must_use]
+pub fn laplacian_row<V: Vector>(zi: V, neighbours: impl Iterator<Item = (V, f64)>) -> V {
+    neighbours.fold(V::ZERO, |acc, (zj, a)| acc + (zi - zj) * a)
 }
 
 /// The quadratic form zᵀL̂z = ½ Σ_i Σ_{j∈N_i} a_ij ‖z_j − z_i‖² (each undirected edge counted once
@@ -85,6 +99,72 @@ fn check_lengths<V>(graph: &Graph, weights: &[f64], z: &[V]) {
         "one weight per directed edge"
     );
     assert_eq!(z.len(), graph.len(), "one vector per node");
+}
+
+/// The eigenvalues 0 = λ₁ ≤ λ₂ ≤ … ≤ λ_n of the 0/1 Laplacian L = Δ − A of `graph`, ascending,
+/// by the cyclic Jacobi method on the dense n × n matrix (O(n³) per sweep: meant for graphs of a
+/// few hundred nodes, such as the fixed graphs of the consensus theorems, where λ_max bounds
+/// the delay τ < π/(2cλ_max) and the sampled period cTλ_max < 2, and the λ_k give the stationary
+/// disagreement under noise).
+///
+/// # Example
+/// ```
+/// use flock_graph::{Graph, laplacian_eigenvalues};
+///
+/// // the cycle C₄: 2 − 2 cos(2πk/4) = 0, 2, 2, 4
+/// let c4 = Graph::from_edges(4, &[(0, 1), (1, 2), (2, 3), (3, 0)]).unwrap();
+/// let lambda = laplacian_eigenvalues(&c4);
+/// for (got, want) in lambda.iter().zip([0.0, 2.0, 2.0, 4.0]) {
+///     assert!((got - want).abs() < 1e-12);
+/// }
+/// ```
+#[must_use]
+pub fn laplacian_eigenvalues(graph: &Graph) -> Vec<f64> {
+    let n = graph.len();
+    let mut a = vec![0.0; n * n];
+    for i in 0..n {
+        a[i * n + i] = graph.degree(i) as f64;
+        for &j in graph.neighbours(i) {
+            a[i * n + j as usize] -= 1.0;
+        }
+    }
+    let scale: f64 = a.iter().map(|x| x * x).sum::<f64>().max(1.0);
+    for _sweep in 0..100 {
+        let off: f64 = (0..n)
+            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i * n + j] * a[i * n + j])
+            .sum();
+        if off <= 1e-30 * scale {
+            break;
+        }
+        for p in 0..n {
+            for q in p + 1..n {
+                let apq = a[p * n + q];
+                if apq == 0.0 {
+                    continue;
+                }
+                // the rotation that zeroes a_pq (Golub & Van Loan, Algorithm 8.5.2)
+                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
+                let t = theta.signum() / (theta.abs() + theta.hypot(1.0));
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / t.hypot(1.0);
+                let s = t * c;
+                for k in 0..n {
+                    let (akp, akq) = (a[k * n + p], a[k * n + q]);
+                    a[k * n + p] = c * akp - s * akq;
+                    a[k * n + q] = s * akp + c * akq;
+                }
+                for k in 0..n {
+                    let (apk, aqk) = (a[p * n + k], a[q * n + k]);
+                    a[p * n + k] = c * apk - s * aqk;
+                    a[q * n + k] = s * apk + c * aqk;
+                }
+            }
+        }
+    }
+    let mut lambda: Vec<f64> = (0..n).map(|i| a[i * n + i]).collect();
+    lambda.sort_by(f64::total_cmp);
+    lambda
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 //!   expected O(n) by [`NeighbourSearch`] (a uniform cell grid), exactly as
 //!   [`ProximityNet::brute_force`]; [`nearest_pair_distance`] for the closest pair.
 //! - [`binary_weights`], [`weights_from_distances`]: adjacency weights a_ij per directed edge.
-//! - [`laplacian_apply`], [`laplacian_quadratic_form`]: L̂ = (Δ(A) − A) ⊗ I_m without matrices.
+//! - [`laplacian_apply`], [`laplacian_row`], [`laplacian_quadratic_form`]: L̂ = (Δ(A) − A) ⊗ I_m without matrices.
 //! - [`StressWeights`], [`Friends`]: stress weights, local stress, signed friends and centres.
 //! - [`Components`]: connected components (flocks) and the density δ₀.
 //! - [`Numbering`]: agents stored out of their original order (sorted in space), with nets and
@@ -29,7 +29,9 @@ pub mod stress;
 pub use adjacency::{binary_weights, weights_from_distances};
 pub use components::Components;
 pub use graph::{Graph, GraphError};
-pub use laplacian::{laplacian_apply, laplacian_quadratic_form};
+pub use laplacian::{
+    laplacian_apply, laplacian_eigenvalues, laplacian_quadratic_form, laplacian_row,
+};
 pub use net::ProximityNet;
 pub use numbering::Numbering;
 pub use search::{NeighbourSearch, nearest_pair_distance};

@@ -26,7 +26,7 @@ use flock_metrics::ObstacleMetrics;
 use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
 use crate::error::{ParamError, check};
-use crate::{NavigationalFeedback, Protocol, Swarm};
+use crate::{LocalForm, NavigationalFeedback, Perceived, Protocol, Swarm};
 use flock_graph::parallel::fill_indexed;
 
 /// Parameters of the 2003 (α, α) protocols.
@@ -195,16 +195,47 @@ impl AlphaAlpha {
     pub fn input<V: Vector>(&self, i: usize, q: &[V], p: &[V], net: &ProximityNet) -> V {
         let graph = net.graph();
         let distances = &net.distances()[graph.edge_range(i)];
-        let (qi, pi) = (q[i], p[i]);
+        let neighbours = graph.neighbours(i).iter().map(|&j| j as usize);
+        let others = neighbours.zip(distances).map(|(j, &d)| (q[j], p[j], d));
+        self.sum(q[i], p[i], others)
+    }
+
+    /// u_i (eq. 34, 35 or 36) of an agent perceiving itself at `own` = (q_i, p_i) and the states
+    /// `others` = (q_j, p_j), in their order: those within r by their perceived distance
+    /// √‖q_j − q_i‖² (the net's predicate and edge length, so with the exact states of its
+    /// neighbours in list order, the bits of [`AlphaAlpha::input`]).
+    #[must_use]
+    pub fn local_input<V: Vector>(&self, own: &Perceived<V>, others: &[Perceived<V>]) -> V {
+        let (qi, pi) = (own.position, own.velocity);
+        self.sum(qi, pi, self.within_range(qi, others))
+    }
+
+    /// The perceived states (q_j, p_j, ‖q_j − q_i‖) of `others` within r of `qi`, in their order,
+    /// by the net's predicate ‖q_j − q_i‖² < r² and its edge length √‖q_j − q_i‖².
+    pub(crate) fn within_range<'a, V: Vector>(
+        &self,
+        qi: V,
+        others: &'a [Perceived<V>],
+    ) -> impl Iterator<Item = (V, V, f64)> + 'a {
+        let r2 = self.params.r * self.params.r;
+        others.iter().filter_map(move |o| {
+            let d2 = (o.position - qi).length_squared();
+            (d2 < r2).then(|| (o.position, o.velocity, d2.sqrt()))
+        })
+    }
+
+    /// Σ_j g(‖q_j − q_i‖) n_ij + c₁ Σ_j (p_j − p_i) over `others` = (q_j, p_j, ‖q_j − q_i‖), in
+    /// their order: the one sum of [`AlphaAlpha::input`] and [`AlphaAlpha::local_input`].
+    #[inline]
+    fn sum<V: Vector>(&self, qi: V, pi: V, others: impl Iterator<Item = (V, V, f64)>) -> V {
         let mut gradient = V::ZERO;
         let mut consensus = V::ZERO;
-        for (&j, &distance) in graph.neighbours(i).iter().zip(distances) {
-            let j = j as usize;
+        for (qj, pj, distance) in others {
             // n(z) = z/‖z‖ for z ≠ 0 (seed 004 eq. 54); coincident agents exert no gradient force
             if distance > 0.0 {
-                gradient += (q[j] - qi) * (self.pair_action(distance) / distance);
+                gradient += (qj - qi) * (self.pair_action(distance) / distance);
             }
-            consensus += p[j] - pi;
+            consensus += pj - pi;
         }
         gradient + consensus * self.c1
     }
@@ -274,6 +305,10 @@ impl<V: Vector> Protocol<V> for AlphaAlpha {
         fill_indexed(inputs, |i| self.input(i, q, p, net));
     }
 
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
+    }
+
     /// H_s = V + K_r (seed 004 eq. 27): Ḣ_s = −(c₁/2) Σ_{(i,j)∈E} ‖p̃_j − p̃_i‖² ≤ 0 for (α, α, 2)
     /// (Proposition 5); for (α, α, 1) only between switches of the net (Proposition 4).
     fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
@@ -318,9 +353,20 @@ impl<V: Vector> Flocking2003<V> {
     /// u_i^α + f_i for agent `i`, given the destination state (q_d, p_d) at the current time.
     fn input(&self, i: usize, swarm: &Swarm<V>, net: &ProximityNet, destination: (V, V)) -> V {
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        let alpha = self.alpha.input(i, q, p, net);
+        self.finish(self.alpha.input(i, q, p, net), q[i], p[i], destination)
+    }
+
+    /// u_i^α + f_i from agent i's perceived state and the states it heard.
+    fn local(&self, own: &Perceived<V>, heard: &[Perceived<V>], destination: (V, V)) -> V {
+        let alpha = self.alpha.local_input(own, heard);
+        self.finish(alpha, own.position, own.velocity, destination)
+    }
+
+    /// u_i^α + f_i(q_i, p_i) (eq. 50), the one place the translational controller is added.
+    #[inline]
+    fn finish(&self, alpha: V, qi: V, pi: V, destination: (V, V)) -> V {
         match &self.translation {
-            Some(feedback) => alpha + feedback.input(q[i], p[i], destination),
+            Some(feedback) => alpha + feedback.input(qi, pi, destination),
             None => alpha,
         }
     }
@@ -354,6 +400,10 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let destination = self.destination(t);
         fill_indexed(inputs, |i| self.input(i, swarm, net, destination));
+    }
+
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
     }
 
     /// Without a translational controller, H_s = V + K_r (seed 004 eq. 27). With one,
@@ -631,6 +681,10 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
         });
     }
 
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
+    }
+
     /// The energy of the obstacle-free part, [`Flocking2003`]'s (no theorem covers obstacles).
     fn energy(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
         self.flocking.energy(t, swarm, net)
@@ -656,6 +710,34 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
         };
         columns.extend(ObstacleMetrics::measure(&swarm.positions, clearance).columns());
         columns
+    }
+}
+
+/// u_i of eq. 34–36 from agent i's perception: the agents heard within r by their perceived
+/// distance.
+impl<V: Vector> LocalForm<V> for AlphaAlpha {
+    fn local_input(&self, _t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        AlphaAlpha::local_input(self, own, heard)
+    }
+}
+
+/// u_i = u_i^α + f_i (seed 004 eq. 50) from agent i's perception; the destination (q_d(t), p_d(t))
+/// is known to every agent.
+impl<V: Vector> LocalForm<V> for Flocking2003<V> {
+    fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        self.local(own, heard, self.destination(t))
+    }
+}
+
+/// u_i of eq. 58 from agent i's perception; the β- and γ-agents of the balls are computed from its
+/// own perceived state (it senses the obstacles from where it believes it is).
+#[cfg(feature = "obstacles")]
+impl<V: Space> LocalForm<V> for ObstacleFlocking2003<V> {
+    fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        let destination = self.flocking.destination(t);
+        let direction = destination.1.normalize_or_zero();
+        self.flocking.local(own, heard, destination)
+            + self.obstacle_input(own.position, own.velocity, direction)
     }
 }
 

@@ -7,7 +7,7 @@ use core::fmt;
 use flock_graph::{Components, Graph, ProximityNet};
 use flock_math::{Potential, TannerPotential, Vector, mean};
 
-use crate::{Protocol, Swarm};
+use crate::{LocalForm, Perceived, Protocol, Swarm};
 use flock_graph::parallel::fill_indexed;
 
 /// The Tanner–Jadbabaie–Pappas law on a fixed connected neighbouring graph G (seed 001 eq. 5):
@@ -89,13 +89,19 @@ impl TannerJadbabaiePappas {
     /// is undefined there (V_ij = ∞).
     #[must_use]
     pub fn input<V: Vector>(&self, i: usize, r: &[V], v: &[V]) -> V {
-        let (ri, vi) = (r[i], v[i]);
+        let neighbours = self.graph.neighbours(i).iter().map(|&j| j as usize);
+        self.sum(r[i], v[i], neighbours.map(|j| (r[j], v[j])))
+    }
+
+    /// −Σ_j (v_i − v_j) + ∇_{r_i} V_ij over the states `others` = (r_j, v_j), in their order: the
+    /// one sum of [`TannerJadbabaiePappas::input`] and of the [`LocalForm`].
+    #[inline]
+    fn sum<V: Vector>(&self, ri: V, vi: V, others: impl Iterator<Item = (V, V)>) -> V {
         let mut total = V::ZERO;
-        for &j in self.graph.neighbours(i) {
-            let j = j as usize;
-            let r_ij = ri - r[j];
+        for (rj, vj) in others {
+            let r_ij = ri - rj;
             let distance = r_ij.length();
-            total -= (vi - v[j]) + r_ij * (self.potential.action(distance) / distance);
+            total -= (vi - vj) + r_ij * (self.potential.action(distance) / distance);
         }
         total
     }
@@ -205,6 +211,10 @@ impl<V: Vector> Protocol<V> for TannerJadbabaiePappas {
         Some(&self.graph)
     }
 
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
+    }
+
     /// `velocity_disagreement` (½ Σ ‖v_i − v̄‖²) and `min_linked_distance`.
     fn diagnostics(
         &self,
@@ -222,6 +232,15 @@ impl<V: Vector> Protocol<V> for TannerJadbabaiePappas {
                 self.min_linked_distance(&swarm.positions),
             ),
         ]
+    }
+}
+
+/// u_i of eq. 5 from agent i's perception: `heard` are the graph neighbours whose messages
+/// arrived (a neighbour not heard adds nothing; the graph itself never changes).
+impl<V: Vector> LocalForm<V> for TannerJadbabaiePappas {
+    fn local_input(&self, _t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        let others = heard.iter().map(|o| (o.position, o.velocity));
+        self.sum(own.position, own.velocity, others)
     }
 }
 

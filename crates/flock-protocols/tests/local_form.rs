@@ -3,10 +3,13 @@
 //! and 3D; and agents heard beyond the interaction range change nothing.
 
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::Vector;
+use flock_math::{TannerPotential, Vector};
 use flock_obstacles::{ObstacleSpec, Space};
 use flock_protocols::{
-    Algorithm1, Consensus, GammaAgent, Perceived, Protocol, Swarm, random_connected_graph,
+    Algorithm1, AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, BallObstacle,
+    CentralisedTracking2003, Consensus, Flocking2003, GammaAgent, NavigationalFeedback,
+    ObstacleFlocking2003, ObstacleParams, Perceived, Protocol, StressForm, Swarm,
+    TannerJadbabaiePappas, TranslationalController, random_connected_graph,
 };
 use glam::{DVec2, DVec3};
 
@@ -92,10 +95,54 @@ fn every_protocol<V: Space>() {
     );
     let graph = random_connected_graph(120, 0.02, 3);
     local_is_controls(
-        &Consensus::fixed(0.7, graph, 8.4).expect("valid"),
+        &Consensus::fixed(0.7, graph.clone(), 8.4).expect("valid"),
         &swarm,
         0.0,
     );
+    let tanner = TannerJadbabaiePappas::new(graph, TannerPotential::new(3.0), 8.4);
+    local_is_controls(&tanner.expect("connected"), &swarm, 0.0);
+    for form in [
+        AlphaAlphaForm::Nonsmooth,
+        AlphaAlphaForm::Smooth,
+        AlphaAlphaForm::Approximate,
+    ] {
+        let alpha = AlphaAlpha::new(AlphaAlphaParams::default(), form, 0.8);
+        local_is_controls(&alpha, &swarm, 20.0);
+        local_is_controls(&StressForm(alpha.clone()), &swarm, 20.0);
+        let sink = NavigationalFeedback::linear(
+            GammaAgent::ConstantVelocity {
+                position: V::ZERO,
+                velocity: V::from_fn(|k| [0.5, -1.0, 0.25][k]),
+            },
+            0.1,
+            0.5,
+        );
+        for translation in [None, Some(sink)] {
+            let flocking = Flocking2003 {
+                alpha: alpha.clone(),
+                translation,
+            };
+            local_is_controls(&flocking, &swarm, 20.0);
+            let ball = BallObstacle::new(V::from_fn(|k| [5.0, -3.0, 0.0][k]), 4.0).expect("a ball");
+            let obstacles = ObstacleFlocking2003 {
+                params: ObstacleParams::for_alpha(alpha.params()),
+                flocking,
+                obstacles: vec![ball],
+            };
+            local_is_controls(&obstacles, &swarm, 20.0);
+        }
+    }
+}
+
+/// The 2003 centralised tracking needs the flock's centre of mass: it has no local form.
+#[test]
+fn centralised_tracking_has_no_local_form() {
+    let alpha = AlphaAlpha::new(AlphaAlphaParams::default(), AlphaAlphaForm::Smooth, 1.0);
+    let tracking = CentralisedTracking2003::<DVec2>::new(
+        alpha,
+        TranslationalController::sink(DVec2::ZERO, 1.0),
+    );
+    assert!(Protocol::<DVec2>::local_form(&tracking).is_none());
 }
 
 #[test]

@@ -6,10 +6,10 @@
 use std::path::{Path, PathBuf};
 
 use flock_math::Vector;
+use flocking::Scenario;
 use flocking::build::gamma_agent;
 use flocking::initial::to_vector;
 use flocking::obstacles::{ObstacleSpec, Space};
-use flocking::{Algorithm, Scenario};
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
 use crate::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figures};
@@ -73,12 +73,13 @@ pub fn run_scene(scenario: &Scenario, scene: Scene) -> Result<Scene, flocking::S
     }
 }
 
-/// The scene with its title, desired distance, obstacles, γ-agent and (Tanner) fixed graph.
+/// The scene with its title, desired distance, obstacles, γ-agent and fixed graph (Tanner,
+/// consensus on a fixed graph).
 fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Result<Scene, flocking::ScenarioError> {
     let mut scene = scene
         .with_title(scenario.name.clone())
         .with_desired_distance(scenario.alpha.d);
-    if let Algorithm::Tanner { .. } = scenario.algorithm {
+    if scenario.fixed_graph().is_some() {
         let graph = scenario.tanner_graph()?;
         scene = scene.with_interaction_graph(
             (0..graph.len()).flat_map(|i| graph.neighbours(i).iter().map(move |&j| (i as u32, j))),

@@ -4,16 +4,17 @@
 use flock_graph::Graph;
 use flock_math::{Bump, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
+use flock_protocols::conditions::FaultMode;
 use flock_protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
-    BetaInteraction, DynProtocol, Flocking2003, GammaAgent, NavigationalFeedback,
-    ObstacleFlocking2003, ObstacleParams, ParamError, TannerJadbabaiePappas,
-    random_connected_graph,
+    BetaInteraction, Conditions, Consensus, DynProtocol, Flocking2003, GammaAgent,
+    NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
+    TannerJadbabaiePappas, random_connected_graph,
 };
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;
-use crate::scenario::{Algorithm, Point, Scenario, TannerGraph};
+use crate::scenario::{Algorithm, FixedGraph, Point, Scenario};
 
 /// The γ-agent of a validated scenario in vectors `V`.
 #[must_use]
@@ -29,6 +30,13 @@ impl Scenario {
     /// A parameter, obstacle or graph the protocol refuses (which [`Scenario::validate`] reports
     /// first), with its field.
     pub fn protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
+        let protocol = self.ideal_protocol::<V>()?;
+        check_local_form(&self.conditions, protocol.as_ref())?;
+        Ok(protocol)
+    }
+
+    /// The protocol of the algorithm, whatever the conditions.
+    fn ideal_protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
         let alpha_config = &self.alpha;
         let within =
             |prefix: &'static str| move |e: ParamError| ScenarioError::from(e.within(prefix));
@@ -97,24 +105,43 @@ impl Scenario {
                         .map_err(|e| tanner_graph_error(e.to_string()))?;
                 Box::new(law)
             }
+            Algorithm::Consensus { gain, graph } => {
+                let consensus = match graph {
+                    None => Consensus::proximity(*gain, r),
+                    Some(_) => Consensus::fixed(*gain, self.tanner_graph()?, r),
+                };
+                Box::new(consensus.map_err(within("algorithm"))?)
+            }
         })
     }
 
-    /// The fixed graph of a Tanner scenario (the empty graph on the agents for other algorithms).
+    /// The fixed graph of a scenario: the Tanner law's, or that of [`Algorithm::Consensus`] on a
+    /// fixed graph (the empty graph on the agents for other algorithms).
     ///
     /// # Errors
     /// Edges that do not form a graph on the agents.
     pub fn tanner_graph(&self) -> Result<Graph, ScenarioError> {
-        match &self.algorithm {
-            Algorithm::Tanner {
-                graph: TannerGraph::Random { extra },
-            } => Ok(random_connected_graph(self.agents, *extra, self.seed)),
-            Algorithm::Tanner {
-                graph: TannerGraph::Edges(edges),
-            } => {
+        match self.fixed_graph() {
+            Some(FixedGraph::Random { extra }) => {
+                Ok(random_connected_graph(self.agents, *extra, self.seed))
+            }
+            Some(FixedGraph::Edges(edges)) => {
                 Graph::from_edges(self.agents, edges).map_err(|e| tanner_graph_error(e.to_string()))
             }
-            _ => Ok(Graph::empty(self.agents)),
+            None => Ok(Graph::empty(self.agents)),
+        }
+    }
+
+    /// The fixed graph the scenario's algorithm interacts on, if it has one (the Tanner law;
+    /// consensus on a fixed graph).
+    #[must_use]
+    pub fn fixed_graph(&self) -> Option<&FixedGraph> {
+        match &self.algorithm {
+            Algorithm::Tanner { graph }
+            | Algorithm::Consensus {
+                graph: Some(graph), ..
+            } => Some(graph),
+            _ => None,
         }
     }
 
@@ -136,6 +163,41 @@ impl Scenario {
                 )),
             })
             .collect()
+    }
+}
+
+/// The first condition of `conditions` that makes agents perceive different worlds, by path: a
+/// communication section (delay, range, loss), sensing noise, or faults whose failed agents go
+/// unheard (`Silent`, `Removed`); `None` when every agent could be given the same world.
+#[must_use]
+pub fn perception_condition(conditions: &Conditions) -> Option<&'static str> {
+    if conditions.communication.is_some() {
+        Some("conditions.communication")
+    } else if conditions.sensing.is_some() {
+        Some("conditions.sensing")
+    } else {
+        conditions
+            .faults
+            .as_ref()
+            .filter(|f| f.mode != FaultMode::Frozen)
+            .map(|_| "conditions.faults")
+    }
+}
+
+/// Refuses a protocol with no [`LocalForm`](flock_protocols::LocalForm) under a perception
+/// condition ([`perception_condition`]), naming the condition.
+///
+/// # Errors
+/// The condition, why (the protocol needs the whole flock's state) and the fix.
+pub fn check_local_form<V: Space>(
+    conditions: &Conditions,
+    protocol: &dyn Protocol<V>,
+) -> Result<(), ScenarioError> {
+    match perception_condition(conditions) {
+        Some(part) if protocol.local_form().is_none() => {
+            Err(crate::validate::no_local_form(part).into())
+        }
+        _ => Ok(()),
     }
 }
 

@@ -53,14 +53,17 @@ pub mod sweep;
 pub mod synthetic;
 mod validate;
 
+pub use build::{check_local_form, perception_condition};
 pub use error::ScenarioError;
 pub use health::NumericalError;
 pub use merging::{Merge, MergedAgents};
 pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run};
 pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
-pub use scenario::{Algorithm, Cloud, Initial, Point, Scenario, TannerGraph, Translation};
+pub use scenario::{
+    Algorithm, Cloud, FixedGraph, Initial, Point, Scenario, TannerGraph, Translation,
+};
 pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
-pub use stability::{Warning, largest_stable_step};
+pub use stability::{Warning, consensus_laplacian_max, largest_stable_step};
 pub use validate::{MAX_AGENTS, MAX_STEPS};
 
 pub use flock_graph as graph;

@@ -5,8 +5,18 @@
 //! A path names fields as the RON file writes them; an enum's variant is passed through (the `c1`
 //! of `algorithm: Algorithm2(c1: …)` is `algorithm.c1`) and a list's elements are numbered from 0.
 //! The changed scenario is validated as a loaded one is, so a bad value gets the same error.
+//!
+//! The `conditions` section is reachable whether the scenario writes it or not: its parts that
+//! have defaults (`communication`, `actuation`, `disturbance`, `faults`) read as their defaults
+//! (`conditions.communication.delay` is 0 on an ideal scenario), a field left unset in it (such as
+//! `conditions.communication.range`, or `conditions.control.rate` with no `control`) can be set,
+//! and a part that a change leaves at its default stays unwritten. An enum value is given whole,
+//! as JSON's externally tagged form: `{"Bernoulli": {"p": 0.1}}` for `Bernoulli(p: 0.1)` (the
+//! same map in a RON sweep file), `"None"` for a unit variant.
 
 use serde_json::Value;
+
+use flock_protocols::Conditions;
 
 use crate::Scenario;
 use crate::error::ScenarioError;
@@ -75,8 +85,25 @@ impl Scenario {
                 }
             };
         }
+        scenario.conditions = self.unwritten_defaults(scenario.conditions);
         scenario.validate()?;
         Ok(scenario)
+    }
+
+    /// `changed` with each part of the conditions that this scenario leaves unset and that the
+    /// expanded tree ([`Scenario::tree`]) gave its default unset again.
+    fn unwritten_defaults(&self, mut changed: Conditions) -> Conditions {
+        fn unset<T: Default + PartialEq>(was: &Option<T>, now: &mut Option<T>) {
+            if was.is_none() && now.as_ref() == Some(&T::default()) {
+                *now = None;
+            }
+        }
+        let was = &self.conditions;
+        unset(&was.communication, &mut changed.communication);
+        unset(&was.actuation, &mut changed.actuation);
+        unset(&was.disturbance, &mut changed.disturbance);
+        unset(&was.faults, &mut changed.faults);
+        changed
     }
 
     /// `path` with the enum variants it passes through named and list indices as `#`, the key
@@ -98,9 +125,44 @@ impl Scenario {
         Some(typed.join("."))
     }
 
+    /// The scenario as JSON, its `conditions` expanded: present, with every part that has a
+    /// default written (its default when unset).
     fn tree(&self) -> Value {
-        serde_json::to_value(self).expect("a scenario is plain data and serializes")
+        let mut tree = serde_json::to_value(self).expect("a scenario is plain data and serializes");
+        let c = &self.conditions;
+        let defaults = [
+            (
+                "communication",
+                to_json(&c.communication.unwrap_or_default()),
+            ),
+            ("actuation", to_json(&c.actuation.unwrap_or_default())),
+            (
+                "disturbance",
+                to_json(&c.disturbance.clone().unwrap_or_default()),
+            ),
+            ("faults", to_json(&c.faults.clone().unwrap_or_default())),
+        ];
+        if let Value::Object(map) = &mut tree {
+            let conditions = map
+                .entry("conditions")
+                .or_insert_with(|| Value::Object(serde_json::Map::new()));
+            if let Value::Object(parts) = conditions {
+                for (part, value) in defaults {
+                    parts.entry(part).or_insert(value);
+                }
+            }
+        }
+        tree
     }
+}
+
+fn to_json<T: serde::Serialize>(value: &T) -> Value {
+    serde_json::to_value(value).expect("conditions are plain data and serialize")
+}
+
+/// Whether `path` lies in the `conditions` section, where a field left unset may be set.
+fn in_conditions(path: &str) -> bool {
+    path == "conditions" || path.starts_with("conditions.")
 }
 
 /// The child `segment` of `node`, passing through an enum variant's tag; with whether it did.
@@ -146,6 +208,16 @@ fn variant_mut(node: &mut Value) -> Option<&mut Value> {
 fn set(tree: &mut Value, path: &str, value: Value) -> Result<(), ScenarioError> {
     let mut node = tree;
     for (depth, segment) in path.split('.').enumerate() {
+        // a field of the conditions left unset (skipped when written): create it
+        if in_conditions(path) && child(node, segment).is_none() && variant(node).is_none() {
+            if node.is_null() {
+                *node = Value::Object(serde_json::Map::new());
+            }
+            if let Value::Object(map) = node {
+                node = map.entry(segment).or_insert(Value::Null);
+                continue;
+            }
+        }
         let Some((_, through_variant)) = child(node, segment) else {
             return Err(unknown(path, depth, node));
         };

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
-    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, GammaAgent, Integrator,
+    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, Conditions, GammaAgent, Integrator,
     critical_damping,
 };
 
@@ -86,6 +86,11 @@ pub struct Scenario {
     /// Convex obstacles, seen through β-agents by the algorithms that avoid obstacles.
     #[serde(default)]
     pub obstacles: Vec<ObstacleSpec>,
+    /// The real conditions of the run (delay, loss, noise, sampled control, actuation limits,
+    /// wind, faults; docs/conditions.md), every part optional; absent (and not written) for the
+    /// ideal run.
+    #[serde(default, skip_serializing_if = "Conditions::is_ideal")]
+    pub conditions: Conditions,
 }
 
 /// A vector as a scenario writes it: a list of `dim` numbers (`[1.0, 2.0]`).
@@ -146,7 +151,17 @@ pub enum Algorithm {
     Tanner {
         /// The neighbouring graph.
         #[serde(default)]
-        graph: TannerGraph,
+        graph: FixedGraph,
+    },
+    /// Velocity consensus u_i = c Σ_{j∈N_i} (p_j − p_i) (CDS 03-006, seed 000 eq. 9): on the
+    /// proximity net of range r by default, or on a fixed graph. The protocol of the delay and
+    /// sampled-data theorems of Olfati-Saber & Murray (IEEE TAC 49(9), 2004).
+    Consensus {
+        /// The gain c > 0.
+        gain: f64,
+        /// A fixed graph (node k agent k, connected or not); `None`: the proximity net.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        graph: Option<FixedGraph>,
     },
 }
 
@@ -157,7 +172,23 @@ impl Algorithm {
         match self {
             Self::Algorithm2 { gamma, .. } | Self::Algorithm3 { gamma, .. } => Some(gamma),
             Self::Flocking2003 { translation, .. } => translation.as_ref().map(|t| &t.gamma),
-            Self::Algorithm1 | Self::Tanner { .. } => None,
+            Self::Algorithm1 | Self::Tanner { .. } | Self::Consensus { .. } => None,
+        }
+    }
+
+    /// Whether the algorithm's protocol has a local form (u_i from what agent i perceives,
+    /// [`LocalForm`](flock_protocols::LocalForm)), as the conditions that make agents perceive
+    /// different worlds need: every algorithm a scenario can name is distributed. A centralised
+    /// one (such as `CentralisedTracking2003`, which needs the centre of mass) would answer false.
+    #[must_use]
+    pub fn has_local_form(&self) -> bool {
+        match self {
+            Self::Algorithm1
+            | Self::Algorithm2 { .. }
+            | Self::Algorithm3 { .. }
+            | Self::Flocking2003 { .. }
+            | Self::Tanner { .. }
+            | Self::Consensus { .. } => true,
         }
     }
 
@@ -188,19 +219,23 @@ pub struct Translation {
     pub c2: f64,
 }
 
-/// The fixed graph of the Tanner law.
+/// A fixed graph on the agents (node k agent k): the neighbouring graph of the Tanner law, or the
+/// graph of [`Algorithm::Consensus`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub enum TannerGraph {
+pub enum FixedGraph {
     /// A random spanning tree plus every other pair with probability `extra`, from the scenario's seed.
     Random {
         /// Probability of each extra edge, in [0, 1].
         extra: f64,
     },
-    /// The given undirected edges (i, j); the graph must be connected.
+    /// The given undirected edges (i, j); the Tanner law needs a connected graph.
     Edges(Vec<(usize, usize)>),
 }
 
-impl Default for TannerGraph {
+/// The fixed graph's former name, when only the Tanner law had one.
+pub type TannerGraph = FixedGraph;
+
+impl Default for FixedGraph {
     fn default() -> Self {
         Self::Random { extra: 0.2 }
     }

@@ -26,13 +26,31 @@
 //! the distance of linked agents below by z* with V(z*) = W(0) (W is non-increasing); its pair
 //! stiffness is sampled on [z*, 3 d] (beyond, |V″| < 2/z² is small), `deg` is the largest degree
 //! of its fixed graph, and the velocity consensus −Σ_{j∼i}(v_i − v_j) gives λ_max(Γ) ≤ 2 deg.
+//!
+//! Consensus (seed 000 eq. 9) is first order in the velocities, ṗ = −c (L ⊗ I) p: explicit
+//! (symplectic) Euler is stable iff h c λ_max(L) < 2, RK4 for h c λ_max ≲ 2.5. λ_max is that of
+//! the fixed graph's Laplacian, computed exactly ([`laplacian_eigenvalues`]) up to
+//! [`EXACT_SPECTRUM_NODES`] agents and bounded by 2 · max degree beyond; on the proximity net it
+//! is bounded by 2 deg with `deg` as above.
+//!
+//! # The conditions' warnings
+//! - Sampled control with period T = 1/rate (zero-order hold): for consensus the input is
+//!   constant over a period, so p_{k+1} = (I − c T L) p_k exactly, which converges iff
+//!   c T λ_max(L) < 2; for the other protocols T must stay below the largest stable step above
+//!   (the step estimate with T in place of h).
+//! - Delay τ with [`Delayed::All`]: consensus ṗ = −c L p(t − τ) converges iff
+//!   τ < π / (2 c λ_max(L)) (Olfati-Saber & Murray, IEEE TAC 49(9), 2004, Theorem 10); the
+//!   largest delay, τ + jitter, is checked.
 
 use std::fmt;
 
-use flock_graph::{NeighbourSearch, ProximityNet};
+use core::f64::consts::PI;
+
+use flock_graph::{NeighbourSearch, ProximityNet, laplacian_eigenvalues};
 use flock_math::{
     Bump, BumpedAction, Potential, SigmaNorm, TannerPotential, UnevenSigmoid, Vector,
 };
+use flock_protocols::conditions::Delayed;
 use glam::{DVec2, DVec3};
 
 use flock_protocols::{
@@ -78,6 +96,40 @@ pub fn largest_stable_step(scenario: &Scenario) -> Option<f64> {
     stable_step(scenario, || StartNet::of(scenario).degree)
 }
 
+/// The most agents whose fixed graph's Laplacian spectrum is computed exactly (dense Jacobi,
+/// O(n³)); beyond, λ_max is bounded by 2 · max degree.
+pub const EXACT_SPECTRUM_NODES: usize = 200;
+
+/// λ_max(L) of the graph a consensus scenario runs on, and whether it is exact: the fixed graph's
+/// ([`EXACT_SPECTRUM_NODES`]), else 2 · its max degree; on the proximity net 2 `deg` (the larger
+/// of the lattice's kissing number and the initial net's largest degree). `None` for the other
+/// algorithms.
+fn consensus_lambda_max(scenario: &Scenario, deg: impl FnOnce() -> f64) -> Option<(f64, bool)> {
+    let Algorithm::Consensus { graph, .. } = &scenario.algorithm else {
+        return None;
+    };
+    if graph.is_none() {
+        return Some((2.0 * deg(), false));
+    }
+    let graph = scenario.tanner_graph().ok()?;
+    if graph.len() <= EXACT_SPECTRUM_NODES {
+        let lambda = laplacian_eigenvalues(&graph);
+        return Some((lambda.last().copied().unwrap_or(0.0), true));
+    }
+    let max_degree = (0..graph.len()).map(|i| graph.degree(i)).max();
+    Some((2.0 * max_degree.unwrap_or(0) as f64, false))
+}
+
+/// λ_max(L) of a consensus scenario, as [`largest_stable_step`] estimates it, and whether it
+/// is exact (the Laplacian of a fixed graph of at most [`EXACT_SPECTRUM_NODES`] agents).
+#[must_use]
+pub fn consensus_laplacian_max(scenario: &Scenario) -> Option<(f64, bool)> {
+    let kissing = if scenario.dim == 2 { 6 } else { 12 };
+    consensus_lambda_max(scenario, || {
+        StartNet::of(scenario).degree.max(kissing) as f64
+    })
+}
+
 /// The stiffness ω² and damping γ bounds of the linearised closed loop.
 struct Stiffness {
     omega2: f64,
@@ -89,6 +141,15 @@ struct Stiffness {
 fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f64> {
     let kissing = if scenario.dim == 2 { 6 } else { 12 };
     let deg = || degree().max(kissing) as f64;
+    if let Algorithm::Consensus { gain, .. } = &scenario.algorithm {
+        let (lambda, _) = consensus_lambda_max(scenario, deg)?;
+        let radius = match scenario.integrator {
+            Integrator::SymplecticEuler => 2.0,
+            Integrator::Rk4 => RK4_RADIUS,
+        };
+        let step = radius / (gain * lambda);
+        return (step.is_finite() && step > 0.0).then_some(step);
+    }
     let Stiffness { omega2, damping } = match &scenario.algorithm {
         Algorithm::Flocking2003 { .. } => stiffness_2003(scenario, deg()),
         Algorithm::Tanner { .. } => stiffness_tanner(scenario)?,
@@ -298,6 +359,7 @@ impl Scenario {
                 fix: format!("set `step` to at most {stable:.3e} (the papers use 0.01)"),
             });
         }
+        warnings.extend(self.condition_warnings(|| start.degree));
         let pair = start.coincident;
         if let Some((i, j)) = pair {
             warnings.push(Warning {
@@ -306,6 +368,88 @@ impl Scenario {
                 why: "start at the same point, where n_ij = σ_ε(q_j − q_i) vanishes: the α-force cannot separate them".to_owned(),
                 fix: "give distinct positions (or a Box/Ball/Gaussian cloud, whose points are distinct)".to_owned(),
             });
+        }
+        warnings
+    }
+}
+
+impl Scenario {
+    /// The warnings of the conditions (module documentation): a control period too long for the
+    /// gains, and a delay of every state beyond the consensus bound.
+    fn condition_warnings(&self, degree: impl Fn() -> usize) -> Vec<Warning> {
+        let mut warnings = Vec::new();
+        let kissing = if self.dim == 2 { 6 } else { 12 };
+        let deg = || degree().max(kissing) as f64;
+        let consensus = match &self.algorithm {
+            Algorithm::Consensus { gain, .. } => {
+                consensus_lambda_max(self, deg).map(|(lambda, exact)| (*gain, lambda, exact))
+            }
+            _ => None,
+        };
+        let of_lambda = |exact: bool| {
+            if exact {
+                "λ_max(L) of the fixed graph"
+            } else {
+                "the bound 2 · max degree on λ_max(L)"
+            }
+        };
+        if let Some(control) = &self.conditions.control {
+            let period = 1.0 / control.rate;
+            let limit = match consensus {
+                Some((c, lambda, exact)) => Some((
+                    2.0 / (c * lambda),
+                    format!(
+                        "gives a control period T = {period} s with c T λ_max(L) = {:.3} ≥ 2 \
+                         (c = {c}, {} = {lambda:.4}): sampled consensus p_(k+1) = (I − c T L) p_k \
+                         diverges",
+                        c * period * lambda,
+                        of_lambda(exact)
+                    ),
+                )),
+                None => stable_step(self, &degree).map(|stable| {
+                    (
+                        stable,
+                        format!(
+                            "gives a control period T = {period} s above the largest stable \
+                             step ≈ {stable:.3e} estimated from the stiffness of the potential \
+                             and the gains: the input held over T is likely to blow the run up"
+                        ),
+                    )
+                }),
+            };
+            if let Some((limit, why)) = limit
+                && period >= limit
+            {
+                warnings.push(Warning {
+                    field: "conditions.control.rate".to_owned(),
+                    value: control.rate.to_string(),
+                    why,
+                    fix: format!(
+                        "use a rate above {:.4} Hz (a period below {limit:.4e} s)",
+                        1.0 / limit
+                    ),
+                });
+            }
+        }
+        if let (Some(communication), Some((c, lambda, exact))) =
+            (&self.conditions.communication, consensus)
+            && communication.delayed == Delayed::All
+        {
+            let tau = communication.delay + communication.jitter;
+            let bound = PI / (2.0 * c * lambda);
+            if tau >= bound {
+                warnings.push(Warning {
+                    field: "conditions.communication.delay".to_owned(),
+                    value: communication.delay.to_string(),
+                    why: format!(
+                        "with jitter, delays every state by up to τ = {tau} s ≥ π/(2 c λ_max) = \
+                         {bound:.4} s (c = {c}, {} = {lambda:.4}): consensus with delay \
+                         (Olfati-Saber & Murray 2004, Theorem 10) diverges",
+                        of_lambda(exact)
+                    ),
+                    fix: format!("keep delay + jitter below {bound:.4} s, or lower the gain"),
+                });
+            }
         }
         warnings
     }

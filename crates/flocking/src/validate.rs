@@ -15,7 +15,7 @@ use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
 use crate::initial::initial_positions;
-use crate::scenario::{Algorithm, Cloud, Point, Scenario, TannerGraph};
+use crate::scenario::{Algorithm, Cloud, FixedGraph, Point, Scenario};
 use crate::stability::coincident_start;
 
 /// The most agents accepted: flocking keeps about 250 bytes per agent (docs/performance.md).
@@ -117,6 +117,24 @@ impl Scenario {
         self.validate_algorithm(problems);
         self.validate_cloud(problems, "initial.positions", &self.initial.positions);
         self.validate_cloud(problems, "initial.velocities", &self.initial.velocities);
+        self.validate_conditions(problems);
+    }
+
+    /// The conditions' own domains ([`Conditions::validate`](flock_protocols::Conditions::validate),
+    /// whose delays and periods are whole numbers of a valid step), and a protocol able to compute
+    /// u_i from one agent's perception when a condition makes agents perceive different worlds.
+    fn validate_conditions(&self, problems: &mut Problems) {
+        if self.conditions.is_ideal() {
+            return;
+        }
+        if self.validate_time().is_ok() {
+            problems.check(self.conditions.validate(self.agents, self.dim, self.step));
+        }
+        if let Some(part) = crate::build::perception_condition(&self.conditions)
+            && !self.algorithm.has_local_form()
+        {
+            problems.check(Err::<(), _>(no_local_form(part)));
+        }
     }
 
     fn validate_agents(&self) -> Check {
@@ -234,13 +252,20 @@ impl Scenario {
                     }
                 }
             }
-            Algorithm::Tanner { graph } => problems.check(self.validate_tanner_graph(graph)),
+            Algorithm::Tanner { graph } => problems.check(self.validate_fixed_graph(graph, true)),
+            Algorithm::Consensus { gain, graph } => {
+                problems.check(positive("algorithm.gain", *gain));
+                if let Some(graph) = graph {
+                    problems.check(self.validate_fixed_graph(graph, false));
+                }
+            }
         }
     }
 
-    fn validate_tanner_graph(&self, graph: &TannerGraph) -> Check {
+    /// A fixed graph on the agents; `connected` for the Tanner law (Assumption IV.2).
+    fn validate_fixed_graph(&self, graph: &FixedGraph, connected: bool) -> Check {
         match graph {
-            TannerGraph::Random { extra } => {
+            FixedGraph::Random { extra } => {
                 check::finite("algorithm.graph.extra", *extra)?;
                 require(
                     (0.0..=1.0).contains(extra),
@@ -250,7 +275,7 @@ impl Scenario {
                     "use a value in [0, 1]",
                 )
             }
-            TannerGraph::Edges(edges) => {
+            FixedGraph::Edges(edges) => {
                 let graph = Graph::from_edges(self.agents, edges).map_err(|e| {
                     ParamError::new(
                         "algorithm.graph",
@@ -261,7 +286,7 @@ impl Scenario {
                 })?;
                 let components = Components::of(&graph).count();
                 require(
-                    components == 1,
+                    components == 1 || !connected,
                     "algorithm.graph",
                     format!("{components} components"),
                     "the Tanner law needs a connected graph",
@@ -384,4 +409,17 @@ impl Scenario {
             }
         }
     }
+}
+
+/// The refusal of a perception condition (`part`) for a protocol with no local form.
+pub(crate) fn no_local_form(part: &str) -> ParamError {
+    ParamError::new(
+        part,
+        "set",
+        "makes each agent perceive its own world (delayed, lost, noisy or missing neighbours), \
+         but this algorithm has no local form: it needs the whole flock's state (a centralised \
+         controller), which no agent perceives",
+        "remove this condition, or choose a distributed algorithm (Algorithm1-3, Flocking2003, \
+         Tanner, Consensus)",
+    )
 }

@@ -3,6 +3,7 @@
 //! of bad obstacles.
 
 mod common;
+mod conditions;
 mod fixtures;
 mod obstacle_errors;
 mod overrides;

@@ -1,0 +1,284 @@
+//! The `conditions` section of a scenario: absent when ideal (every fixture's text unchanged),
+//! written back and read again, validated with the RON line and column of the field, reachable
+//! by dotted path in sweeps, refused for a protocol with no local form; and the warnings of a
+//! control period and a delay beyond the consensus bounds, bracketed at 0.9× and 1.1×.
+
+use core::f64::consts::PI;
+
+use flocking::glam::DVec2;
+use flocking::protocols::conditions::{Communication, Delayed, Loss};
+use flocking::protocols::{
+    AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, CentralisedTracking2003, Conditions,
+    TranslationalController,
+};
+use flocking::serde_json::json;
+use flocking::sweep::Sweep;
+use flocking::{Scenario, check_local_form, consensus_laplacian_max};
+
+/// Consensus with gain `gain` on the cycle C₂₀ (λ_max(L) = 4), with `conditions` (RON, may be
+/// empty).
+fn cycle(gain: f64, conditions: &str) -> String {
+    let edges: Vec<String> = (0..20)
+        .map(|i| format!("({i}, {})", (i + 1) % 20))
+        .collect();
+    format!(
+        "Scenario(
+    name: \"cycle\",
+    dim: 2,
+    agents: 20,
+    algorithm: Consensus(gain: {gain:?}, graph: Edges([{}])),
+    initial: (positions: Box(min: [-20.0, -20.0], max: [20.0, 20.0]), velocities: Ball(centre: [1.0, 0.0], radius: 2.0)),
+    step: 0.01,
+    duration: 2.0,{conditions}
+)",
+        edges.join(", ")
+    )
+}
+
+fn parse(text: &str) -> Scenario {
+    Scenario::parse(text, "test.ron").unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+#[test]
+fn the_cycle_has_the_exact_largest_laplacian_eigenvalue() {
+    let (lambda, exact) = consensus_laplacian_max(&parse(&cycle(1.0, ""))).expect("consensus");
+    assert!(exact);
+    assert!((lambda - 4.0).abs() < 1e-12, "{lambda}");
+}
+
+#[test]
+fn conditions_round_trip_through_to_ron_and_stay_unwritten_when_ideal() {
+    let ideal = parse(&cycle(1.0, ""));
+    assert!(ideal.conditions.is_ideal());
+    assert!(!ideal.to_ron().expect("ron").contains("conditions"));
+    let text = cycle(
+        1.0,
+        "
+    conditions: (
+        communication: (delay: 0.1, delayed: All, loss: Bernoulli(p: 0.2), symmetric: true, when_lost: Hold(max_age: 0.5)),
+        sensing: (noise: OrnsteinUhlenbeck(sigma_q: 0.5, sigma_p: 0.1, correlation_time: 2.0), rate: 5.0),
+        control: (rate: 20.0),
+        actuation: (max_acceleration: 6.0, max_speed: 8.0, lag: 1.0),
+        disturbance: (wind: (mean: [0.5, 0.0], gust: 0.2), process_noise: 0.05),
+        faults: (at: [(agent: 3, time: 1.0)], mode: Frozen),
+    ),",
+    );
+    let scenario = parse(&text);
+    let communication = scenario.conditions.communication.expect("communication");
+    assert_eq!(communication.loss, Loss::Bernoulli { p: 0.2 });
+    assert_eq!(communication.delayed, Delayed::All);
+    let written = scenario.to_ron().expect("ron");
+    let back =
+        Scenario::parse(&written, "written.ron").unwrap_or_else(|e| panic!("{e}\n{written}"));
+    assert_eq!(back, scenario);
+    assert_eq!(back.to_ron().expect("ron"), written);
+}
+
+#[test]
+fn a_bad_probability_is_named_with_its_value_line_and_column() {
+    let text = cycle(
+        1.0,
+        "
+    conditions: (
+        communication: (loss: Bernoulli(p: 1.5)),
+    ),",
+    );
+    let error = Scenario::parse(&text, "test.ron").expect_err("p > 1");
+    assert_eq!(
+        error.field().as_deref(),
+        Some("conditions.communication.loss.p")
+    );
+    let message = error.to_string();
+    let line = text
+        .lines()
+        .position(|l| l.contains("Bernoulli"))
+        .expect("the line")
+        + 1;
+    let col = text
+        .lines()
+        .nth(line - 1)
+        .expect("line")
+        .find("p: 1.5")
+        .expect("p")
+        + 1;
+    assert!(
+        message.starts_with(&format!("test.ron:{line}:{col}:")),
+        "{message}"
+    );
+    assert!(message.contains("1.5"), "{message}");
+}
+
+#[test]
+fn conditions_are_reachable_by_dotted_path() {
+    let ideal = parse(&cycle(1.0, ""));
+    // unset parts read as their defaults
+    assert_eq!(
+        ideal.value("conditions.communication.delay").expect("path"),
+        json!(0.0)
+    );
+    // an untouched default part stays unwritten
+    let same = ideal
+        .with_values([("duration", json!(3.0))])
+        .expect("valid");
+    assert!(same.conditions.is_ideal());
+    let delayed = ideal
+        .with_values([
+            ("conditions.communication.delay", json!(0.05)),
+            (
+                "conditions.communication.loss",
+                json!({"Bernoulli": {"p": 0.1}}),
+            ),
+            ("conditions.communication.range", json!(12.0)),
+            ("conditions.control.rate", json!(10.0)),
+        ])
+        .expect("valid");
+    let expected = Communication {
+        delay: 0.05,
+        loss: Loss::Bernoulli { p: 0.1 },
+        range: Some(12.0),
+        ..Communication::default()
+    };
+    assert_eq!(delayed.conditions.communication, Some(expected));
+    assert_eq!(delayed.conditions.control.map(|c| c.rate), Some(10.0));
+    assert_eq!(delayed.conditions.actuation, None);
+    let error = ideal
+        .with_values([("conditions.communication.loss.p", json!(2.0))])
+        .expect_err("no Bernoulli loss to change");
+    assert!(
+        error.to_string().contains("conditions.communication.loss"),
+        "{error}"
+    );
+    let error = ideal
+        .with_values([(
+            "conditions.communication.loss",
+            json!({"Bernoulli": {"p": -0.5}}),
+        )])
+        .expect_err("p < 0");
+    assert_eq!(
+        error.field().as_deref(),
+        Some("conditions.communication.loss.p")
+    );
+}
+
+#[test]
+fn a_sweep_over_the_delay_gives_one_scenario_per_value() {
+    let dir = std::env::temp_dir().join(format!("flocking_conditions_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let base = dir.join("cycle.ron");
+    std::fs::write(&base, cycle(1.0, "")).expect("write the base");
+    let sweep: Sweep = format!(
+        r#"Sweep(
+    name: "delay",
+    base: Path("{}"),
+    axes: [
+        (path: "conditions.communication.delay", values: List([0.0, 0.05, 0.1])),
+        (path: "conditions.communication.loss", values: List(["None", {{"Bernoulli": {{"p": 0.1}}}}])),
+    ],
+    seeds: 1,
+)"#,
+        base.display()
+    )
+    .parse()
+    .unwrap_or_else(|e| panic!("{e}"));
+    let runs = sweep.runs();
+    assert_eq!(runs.len(), 6);
+    let mut delays = Vec::new();
+    for run in &runs {
+        let scenario = sweep.scenario(run).unwrap_or_else(|e| panic!("{e}"));
+        let delay = scenario
+            .value("conditions.communication.delay")
+            .expect("a path");
+        delays.push(delay.as_f64().expect("a number"));
+        // no delay and no loss is the ideal run, written without conditions
+        let written = scenario.to_ron().expect("ron");
+        assert_eq!(
+            written.contains("conditions"),
+            !scenario.conditions.is_ideal(),
+            "{written}"
+        );
+    }
+    assert!(
+        sweep
+            .scenario(&runs[0])
+            .expect("valid")
+            .conditions
+            .is_ideal()
+    );
+    assert_eq!(delays, [0.0, 0.0, 0.05, 0.05, 0.1, 0.1]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_protocol_without_a_local_form_is_refused_under_a_perception_condition() {
+    let alpha = AlphaAlpha::new(AlphaAlphaParams::default(), AlphaAlphaForm::Smooth, 1.0);
+    let tracking: CentralisedTracking2003<DVec2> =
+        CentralisedTracking2003::new(alpha, TranslationalController::sink(DVec2::ZERO, 1.0));
+    let lossy = Conditions {
+        communication: Some(Communication {
+            loss: Loss::Bernoulli { p: 0.1 },
+            ..Communication::default()
+        }),
+        ..Conditions::default()
+    };
+    let error = check_local_form(&lossy, &tracking).expect_err("no local form");
+    assert_eq!(error.field().as_deref(), Some("conditions.communication"));
+    assert!(error.to_string().contains("no local form"), "{error}");
+    // the ideal run and a frozen fault need no perception of one's own
+    assert!(check_local_form(&Conditions::default(), &tracking).is_ok());
+}
+
+/// The warnings of `text` on `field`.
+fn warned(text: &str, field: &str) -> bool {
+    parse(text).warnings().iter().any(|w| w.field == field)
+}
+
+#[test]
+fn a_control_period_beyond_the_sampled_consensus_bound_is_warned() {
+    // c T λ_max < 2 with c = 1, λ_max = 4: T* = 0.5 s
+    let at = |period: f64| {
+        cycle(
+            1.0,
+            &format!("\n    conditions: (control: (rate: {:?})),", 1.0 / period),
+        )
+    };
+    assert!(warned(&at(0.55), "conditions.control.rate"));
+    assert!(!warned(&at(0.45), "conditions.control.rate"));
+    assert!(parse(&at(0.45)).warnings().is_empty());
+}
+
+#[test]
+fn a_delay_of_every_state_beyond_the_consensus_bound_is_warned() {
+    // τ < π/(2 c λ_max) with λ_max = 4 and c = π/8: τ* = 1 s
+    let gain = PI / 8.0;
+    let at = |delay: f64, delayed: &str| {
+        cycle(
+            gain,
+            &format!("\n    conditions: (communication: (delay: {delay:?}, delayed: {delayed})),"),
+        )
+    };
+    assert!(warned(&at(1.1, "All"), "conditions.communication.delay"));
+    assert!(!warned(&at(0.9, "All"), "conditions.communication.delay"));
+    // the theorem is for a delay of every state; the neighbours-only delay is not warned
+    assert!(!warned(
+        &at(1.1, "Neighbours"),
+        "conditions.communication.delay"
+    ));
+}
+
+#[test]
+fn a_control_period_beyond_the_stable_step_of_another_protocol_is_warned() {
+    let text = |rate: f64| {
+        format!(
+            "Scenario(dim: 2, agents: 20, algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.05, c2: 0.4),
+    initial: (positions: Box(min: [-10.0, -10.0], max: [10.0, 10.0])), duration: 2.0,
+    conditions: (control: (rate: {rate:?})))"
+        )
+    };
+    let stable = flocking::largest_stable_step(&parse(&text(10.0))).expect("an estimate");
+    // the periods whole numbers of steps of 0.01 just above 1.1 × and below 0.9 × the estimate
+    let above = (1.1 * stable / 0.01).ceil() * 0.01;
+    let below = (0.9 * stable / 0.01).floor() * 0.01;
+    assert!(below >= 0.01, "{stable}");
+    assert!(warned(&text(1.0 / above), "conditions.control.rate"));
+    assert!(!warned(&text(1.0 / below), "conditions.control.rate"));
+}
