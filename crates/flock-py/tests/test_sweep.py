@@ -17,7 +17,7 @@ SWEEP = """Sweep(
     base: Path("{base}"),
     set: {{"duration": 2.0, "initial.positions.std": 10.0}},
     axes: [
-        (path: "algorithm.c1", values: List([0.02, 0.0, 0.05])),
+        (path: "algorithm.c1", values: List([0.02, 1e8, 0.05])),  // 1e8 blows up: an error row
         (path: "agents", values: Linspace(from: 8.0, to: 12.0, count: 2)),
     ],
     seeds: 2,
@@ -42,10 +42,10 @@ def test_the_default_executor_gives_the_cli_runs_csv(spec: Path, tmp_path: Path)
     result = flocking.sweep(spec, tmp_path / "py")
     assert (tmp_path / "py" / "runs.csv").read_bytes() == expected
     assert len(result.columns["run"]) == 12
-    assert result.columns["algorithm.c1"][4] == 0.0
+    assert result.columns["algorithm.c1"][4] == 1e8
     errors = result.columns["error"]
-    assert all(("algorithm.c1" in e) == (c1 == 0.0) for e, c1 in zip(errors, result.columns["algorithm.c1"]))
-    ok = result.columns["algorithm.c1"] != 0.0
+    assert all(("blow-up" in e) == (c1 == 1e8) for e, c1 in zip(errors, result.columns["algorithm.c1"]))
+    ok = result.columns["algorithm.c1"] != 1e8
     assert np.all(np.isfinite(result.columns["connectivity"][ok]))
     assert np.all(np.isnan(result.columns["connectivity"][~ok]))
     # run again: every run is found finished, nothing changes
