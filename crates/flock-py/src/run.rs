@@ -317,14 +317,18 @@ fn execute<'py>(
             // `controls` failed in step e.steps: the run stops before it, as after Ctrl-C
             Some(failure) => {
                 let steps = e.steps.saturating_sub(1);
-                if let (Some(dir), Some((positions, velocities)), Some(initial_energy)) =
-                    (dir.as_mut(), failure.start, initial_energy)
+                // with conditions, the state before the failed step is not all a resume needs
+                // (their delay line and noise moved on): the last regular checkpoint stays
+                let ideal = scenario.conditions.is_ideal();
+                if let (true, Some(dir), Some((positions, velocities)), Some(initial_energy)) =
+                    (ideal, dir.as_mut(), failure.start, initial_energy)
                 {
                     let start = Start {
                         steps,
                         initial_energy,
                         positions,
                         velocities,
+                        conditions: String::new(),
                     };
                     dir.checkpoint(&start)
                         .map_err(|e| run_directory_error(py, e, dir.partial()))?;

@@ -4,7 +4,7 @@
 use flock_graph::Graph;
 use flock_math::{Bump, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
-use flock_protocols::conditions::FaultMode;
+use flock_protocols::conditions::stage::perception_field;
 use flock_protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
     BetaInteraction, Conditions, Consensus, DynProtocol, Flocking2003, GammaAgent,
@@ -166,26 +166,8 @@ impl Scenario {
     }
 }
 
-/// The first condition of `conditions` that makes agents perceive different worlds, by path: a
-/// communication section (delay, range, loss), sensing noise, or faults whose failed agents go
-/// unheard (`Silent`, `Removed`); `None` when every agent could be given the same world.
-#[must_use]
-pub fn perception_condition(conditions: &Conditions) -> Option<&'static str> {
-    if conditions.communication.is_some() {
-        Some("conditions.communication")
-    } else if conditions.sensing.is_some() {
-        Some("conditions.sensing")
-    } else {
-        conditions
-            .faults
-            .as_ref()
-            .filter(|f| f.mode != FaultMode::Frozen)
-            .map(|_| "conditions.faults")
-    }
-}
-
 /// Refuses a protocol with no [`LocalForm`](flock_protocols::LocalForm) under a perception
-/// condition ([`perception_condition`]), naming the condition.
+/// condition ([`perception_field`]), naming the condition.
 ///
 /// # Errors
 /// The condition, why (the protocol needs the whole flock's state) and the fix.
@@ -193,7 +175,7 @@ pub fn check_local_form<V: Space>(
     conditions: &Conditions,
     protocol: &dyn Protocol<V>,
 ) -> Result<(), ScenarioError> {
-    match perception_condition(conditions) {
+    match perception_field(conditions) {
         Some(part) if protocol.local_form().is_none() => {
             Err(crate::validate::no_local_form(part).into())
         }

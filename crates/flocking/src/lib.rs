@@ -53,7 +53,7 @@ pub mod sweep;
 pub mod synthetic;
 mod validate;
 
-pub use build::{check_local_form, perception_condition};
+pub use build::check_local_form;
 pub use error::ScenarioError;
 pub use health::NumericalError;
 pub use merging::{Merge, MergedAgents};

@@ -86,6 +86,9 @@ pub struct Start {
     pub positions: Vec<f64>,
     /// The velocities, `dim` coordinates per agent.
     pub velocities: Vec<f64>,
+    /// The state of the run's conditions (delay line, links, noise, lag, faults) as RON, empty
+    /// for an ideal run ([`flock_protocols::conditions::ConditionsState`]).
+    pub conditions: String,
 }
 
 /// Receives the recorded instants of a run, and may keep checkpoints of it or stop it.
@@ -253,13 +256,7 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
             (sim, observation.energy)
         }
         Some(start) => (
-            DynSimulation::from_state_with(
-                scenario,
-                &start.positions,
-                &start.velocities,
-                start.steps,
-                map,
-            )?,
+            DynSimulation::resume_with(scenario, start, map)?,
             start.initial_energy,
         ),
     };

@@ -8,7 +8,8 @@ use std::borrow::Cow;
 use flock_graph::Graph;
 use flock_metrics::{EDGE_TOLERANCE, FlockMetrics, LatticeSummary, MetricParams};
 use flock_obstacles::Space;
-use flock_protocols::{AgentFault, DynProtocol, Observation, Simulation, Swarm};
+use flock_protocols::conditions::ConditionsState;
+use flock_protocols::{AgentFault, DynProtocol, Observation, ParamError, Simulation, Swarm};
 use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
@@ -79,6 +80,8 @@ trait Dynamic: Send {
     fn component_velocity_mismatch(&self) -> f64;
     fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary;
     fn check_health(&self) -> Result<(), AgentFault>;
+    fn conditions_state(&self) -> Option<ConditionsState>;
+    fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError>;
 }
 
 /// The rows of vectors `V` (each `V::DIM` contiguous `f64`).
@@ -147,6 +150,14 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
 
     fn check_health(&self) -> Result<(), AgentFault> {
         Simulation::check_health(self)
+    }
+
+    fn conditions_state(&self) -> Option<ConditionsState> {
+        Simulation::conditions_state(self)
+    }
+
+    fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError> {
+        Simulation::restore_conditions(self, state)
     }
 }
 
@@ -277,8 +288,43 @@ impl DynSimulation {
     ///
     /// # Errors
     /// As [`DynSimulation::from_state`].
+    ///
+    /// A run with conditions continues from the state of its conditions the checkpoint keeps
+    /// (delay line, links, noise, lag, faults), so the random conditions keep their bits too.
     pub fn resume(scenario: &Scenario, start: &Start) -> Result<Self, ScenarioError> {
-        Self::from_state(scenario, &start.positions, &start.velocities, start.steps)
+        Self::resume_with(scenario, start, &ScenarioProtocol)
+    }
+
+    /// [`DynSimulation::resume`] simulating the protocol `map` makes of the scenario's.
+    ///
+    /// # Errors
+    /// As [`DynSimulation::from_state`], or a checkpoint without the state of the scenario's
+    /// conditions (field `conditions`).
+    pub fn resume_with<M: MapProtocol>(
+        scenario: &Scenario,
+        start: &Start,
+        map: &M,
+    ) -> Result<Self, ScenarioError> {
+        let (q, p) = (&start.positions, &start.velocities);
+        let mut sim = Self::from_state_with(scenario, q, p, start.steps, map)?;
+        if scenario.conditions.is_ideal() {
+            return Ok(sim);
+        }
+        let refused = |why: String| {
+            ScenarioError::invalid(
+                "conditions",
+                "(the checkpoint's state)",
+                why,
+                "start the run again without --resume",
+            )
+        };
+        let state: ConditionsState = ron::from_str(&start.conditions).map_err(|e| {
+            refused(format!(
+                "the checkpoint holds no readable state of the conditions ({e})"
+            ))
+        })?;
+        sim.inner.restore_conditions(state)?;
+        Ok(sim)
     }
 
     fn of<V: Space + bytemuck::Pod, M: MapProtocol>(
@@ -289,7 +335,8 @@ impl DynSimulation {
     ) -> Result<Self, ScenarioError> {
         let protocol = map.map(scenario.protocol::<V>()?);
         let agents = swarm.len();
-        let sim = Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?;
+        let sim = Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?
+            .with_conditions(&scenario.conditions, scenario.seed)?;
         Ok(Self {
             inner: Box::new(sim),
             dim: V::DIM,
@@ -408,6 +455,11 @@ impl DynSimulation {
             initial_energy,
             positions: state.positions.into_owned(),
             velocities: state.velocities.into_owned(),
+            conditions: self
+                .inner
+                .conditions_state()
+                .map(|c| ron::to_string(&c).unwrap_or_default())
+                .unwrap_or_default(),
         }
     }
 }

@@ -130,7 +130,7 @@ impl Scenario {
         if self.validate_time().is_ok() {
             problems.check(self.conditions.validate(self.agents, self.dim, self.step));
         }
-        if let Some(part) = crate::build::perception_condition(&self.conditions)
+        if let Some(part) = flock_protocols::conditions::stage::perception_field(&self.conditions)
             && !self.algorithm.has_local_form()
         {
             problems.check(Err::<(), _>(no_local_form(part)));

@@ -2,10 +2,12 @@
 //! the outputs had been written then, so that `flocking run --resume DIR` cuts the outputs back to
 //! that point and continues bit-identically.
 //!
-//! The file is little-endian: the magic `FLOCKCK1`, then as u64 the dimension, the number of
+//! The file is little-endian: the magic `FLOCKCK2`, then as u64 the dimension, the number of
 //! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
-//! trajectory; then the positions and the velocities as f64 (`dim` per agent), the resolved
-//! scenario as RON text (so that a resume can refuse a `scenario.ron` edited since), and last an
+//! trajectory and the bytes of the scenario's text; then the positions and the velocities as f64
+//! (`dim` per agent), the resolved scenario as RON text (so that a resume can refuse a
+//! `scenario.ron` edited since), the state of the run's conditions as RON text (empty for an
+//! ideal run), and last an
 //! FNV-1a hash of everything before it. It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
@@ -58,6 +60,7 @@ impl Checkpoint {
             self.records,
             self.metrics_bytes,
             self.trajectory_bytes,
+            self.scenario.len() as u64,
         ] {
             bytes.extend_from_slice(&word.to_le_bytes());
         }
@@ -65,6 +68,7 @@ impl Checkpoint {
             bytes.extend_from_slice(&x.to_le_bytes());
         }
         bytes.extend_from_slice(self.scenario.as_bytes());
+        bytes.extend_from_slice(s.conditions.as_bytes());
         let hash = fnv1a(&bytes);
         bytes.extend_from_slice(&hash.to_le_bytes());
         let temporary = dir.join(CHECKPOINT_TMP);
@@ -113,7 +117,7 @@ impl Checkpoint {
             body.get(MAGIC.len() + 8 * k..MAGIC.len() + 8 * (k + 1))
                 .map(|w| u64::from_le_bytes(w.try_into().unwrap_or_default()))
         };
-        let header: Option<Vec<u64>> = (0..7).map(word).collect();
+        let header: Option<Vec<u64>> = (0..8).map(word).collect();
         let Some(
             [
                 dim,
@@ -123,17 +127,25 @@ impl Checkpoint {
                 records,
                 metrics_bytes,
                 trajectory_bytes,
+                scenario_bytes,
             ],
         ) = header.as_deref()
         else {
             return Err(corrupt("too short"));
         };
         let size = usize::try_from(dim * agents).map_err(|_| corrupt("too large"))?;
-        let state: Option<Vec<u64>> = (7..7 + 2 * size).map(word).collect();
+        let state: Option<Vec<u64>> = (8..8 + 2 * size).map(word).collect();
         let state = state.ok_or_else(|| corrupt("its length does not match its size"))?;
-        let scenario = std::str::from_utf8(&body[MAGIC.len() + 8 * (7 + 2 * size)..])
-            .map_err(|_| corrupt("its scenario is not text"))?
-            .to_owned();
+        let texts = &body[MAGIC.len() + 8 * (8 + 2 * size)..];
+        let (scenario, conditions) = usize::try_from(*scenario_bytes)
+            .ok()
+            .and_then(|n| texts.split_at_checked(n))
+            .ok_or_else(|| corrupt("its scenario's length does not match"))?;
+        let text = |bytes: &[u8], what: &str| {
+            std::str::from_utf8(bytes)
+                .map(str::to_owned)
+                .map_err(|_| corrupt(&format!("its {what} is not text")))
+        };
         let floats = |w: &[u64]| w.iter().map(|&b| f64::from_bits(b)).collect();
         Ok(Some(Self {
             dim: usize::try_from(*dim).map_err(|_| corrupt("bad dimension"))?,
@@ -142,11 +154,12 @@ impl Checkpoint {
                 initial_energy: f64::from_bits(*energy),
                 positions: floats(&state[..size]),
                 velocities: floats(&state[size..]),
+                conditions: text(conditions, "state of the conditions")?,
             },
             records: *records,
             metrics_bytes: *metrics_bytes,
             trajectory_bytes: *trajectory_bytes,
-            scenario,
+            scenario: text(scenario, "scenario")?,
         }))
     }
 }
