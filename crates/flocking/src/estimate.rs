@@ -104,7 +104,7 @@ impl Scenario {
         let steps = self.steps();
         let every = self.record_every.max(1);
         // t = 0, every `record_every` steps, and the last step
-        let records = steps / every + 1 + u64::from(steps % every != 0);
+        let records = steps / every + 1 + u64::from(!steps.is_multiple_of(every));
         let state_values = n * 2.0 * dim as f64;
         let trajectory = match outputs.trajectory_csv {
             // t, agent, position, velocity per row
