@@ -282,3 +282,24 @@ fn a_control_period_beyond_the_stable_step_of_another_protocol_is_warned() {
     assert!(warned(&text(1.0 / above), "conditions.control.rate"));
     assert!(!warned(&text(1.0 / below), "conditions.control.rate"));
 }
+
+/// Every ```ron block of docs/conditions.md is a scenario that parses and validates, with every
+/// part of the conditions set.
+#[test]
+fn the_examples_of_docs_conditions_parse() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/conditions.md");
+    let doc = std::fs::read_to_string(path).expect("docs/conditions.md");
+    let blocks: Vec<&str> = doc
+        .split("```ron\n")
+        .skip(1)
+        .map(|rest| rest.split("```").next().expect("a closed block"))
+        .collect();
+    assert!(!blocks.is_empty());
+    for block in blocks {
+        let scenario =
+            Scenario::parse(block, "docs/conditions.md").unwrap_or_else(|e| panic!("{e}"));
+        let c = &scenario.conditions;
+        assert!(c.communication.is_some() && c.sensing.is_some() && c.control.is_some());
+        assert!(c.actuation.is_some() && c.disturbance.is_some() && c.faults.is_some());
+    }
+}

@@ -1,5 +1,5 @@
 """flocking: Olfati-Saber's flocking algorithms (IEEE TAC 51(3) 2006, Caltech CDS 03-006, ACC 2004)
-and the Tanner-Jadbabaie-Pappas law, in Rust, from Python.
+and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python.
 
 - :class:`Scenario`: a RON scenario (``Scenario.load``, ``Scenario.from_ron``, ``to_ron``), any
   parameter changed by its path (``with_values``), explicit initial states (``with_initial``).
