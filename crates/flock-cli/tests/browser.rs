@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use crate::common::{TempDir, fixture};
+use crate::common::{fixture, temp_dir};
 
 /// The simulated time of the short runs: 101 recorded frames, 0.2 s apart.
 const DURATION: f64 = 20.0;
@@ -70,7 +70,7 @@ fn check_player(name: &str, mode: &str, artefact: &str) {
         );
     }
 
-    let tmp = TempDir::new(&format!("browser_{mode}"));
+    let tmp = temp_dir(&format!("browser_{mode}"));
     let mut scenario = fixture(name);
     scenario.duration = DURATION;
     assert_eq!(scenario.validate(), Ok(()));

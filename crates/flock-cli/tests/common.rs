@@ -2,6 +2,7 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
+pub use tempfile::TempDir;
 
 use flocking::Scenario;
 
@@ -32,31 +33,13 @@ pub fn fixture(name: &str) -> Scenario {
     Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// A fresh directory under the system's temporary directory, named after the process and the
-/// test, removed (with its `.partial` sibling) when dropped.
-pub struct TempDir(PathBuf);
-
-impl TempDir {
-    /// Creates `flock-cli-{pid}-{test}` (emptied first if a previous run left it).
-    pub fn new(test: &str) -> Self {
-        let path = std::env::temp_dir().join(format!("flock-cli-{}-{test}", std::process::id()));
-        if path.exists() {
-            fs::remove_dir_all(&path).expect("remove a stale temporary directory");
-        }
-        fs::create_dir_all(&path).expect("create the temporary directory");
-        Self(path)
-    }
-
-    /// The directory.
-    pub fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
-    }
+/// A fresh directory for `test` under the system's temporary directory, with a name of its
+/// own, removed when dropped.
+pub fn temp_dir(test: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("flocking-{test}-"))
+        .tempdir()
+        .expect("create a temporary directory")
 }
 
 /// Runs the `flocking` binary in `dir` with `args` and waits for it.

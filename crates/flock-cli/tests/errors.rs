@@ -7,7 +7,7 @@ use std::path::Path;
 use flocking::run_dir::METRICS_HEADER;
 use flocking::{Scenario, ScenarioError};
 
-use crate::common::{TempDir, files, flocking, stderr, write};
+use crate::common::{TempDir, files, flocking, stderr, temp_dir, write};
 
 /// A valid 2D scenario of 5 agents and 10 steps; each error test breaks one field of it.
 pub const TINY_2D: &str = r#"Scenario(
@@ -539,7 +539,7 @@ fn partial(out: &Path) -> std::path::PathBuf {
 
 #[test]
 fn validate_accepts_a_valid_scenario_and_prints_it_resolved() {
-    let tmp = TempDir::new("validate_good");
+    let tmp = temp_dir("validate_good");
     let file = write(tmp.path(), "tiny.ron", TINY_2D);
     let output = flocking(tmp.path(), &["validate", &file]);
     let stdout = String::from_utf8_lossy(&output.stdout);
@@ -553,7 +553,7 @@ fn validate_accepts_a_valid_scenario_and_prints_it_resolved() {
 
 #[test]
 fn validate_rejects_a_bad_scenario_with_exit_code_2() {
-    let tmp = TempDir::new("validate_bad");
+    let tmp = temp_dir("validate_bad");
     let file = write(tmp.path(), "bad.ron", &edit(TINY_2D, "h: 0.2", "h: 1.0"));
     let output = flocking(tmp.path(), &["validate", &file]);
     assert_eq!(output.status.code(), Some(2));
@@ -568,7 +568,7 @@ fn validate_rejects_a_bad_scenario_with_exit_code_2() {
 /// `flocking run` needs a scenario unless it resumes: its usage says so, and so does the error.
 #[test]
 fn run_help_shows_the_scenario_as_required_unless_resuming() {
-    let tmp = TempDir::new("run_help");
+    let tmp = temp_dir("run_help");
     let help = flocking(tmp.path(), &["run", "--help"]);
     let text = String::from_utf8_lossy(&help.stdout);
     assert!(help.status.success(), "{text}");
@@ -593,7 +593,7 @@ fn run_help_shows_the_scenario_as_required_unless_resuming() {
 
 #[test]
 fn validate_names_an_unreadable_file_with_exit_code_2() {
-    let tmp = TempDir::new("validate_missing");
+    let tmp = temp_dir("validate_missing");
     let missing = tmp.path().join("no-such-scenario.ron");
     let output = flocking(tmp.path(), &["validate", missing.to_str().expect("UTF-8")]);
     assert_eq!(output.status.code(), Some(2));
@@ -603,7 +603,7 @@ fn validate_names_an_unreadable_file_with_exit_code_2() {
 
 #[test]
 fn run_of_a_bad_scenario_exits_2_and_writes_nothing() {
-    let tmp = TempDir::new("run_bad");
+    let tmp = temp_dir("run_bad");
     let file = write(
         tmp.path(),
         "bad.ron",
@@ -730,19 +730,19 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
 
 #[test]
 fn run_writes_the_four_outputs_in_2d() {
-    let tmp = TempDir::new("run_2d");
+    let tmp = temp_dir("run_2d");
     check_run(&tmp, TINY_2D, 2);
 }
 
 #[test]
 fn run_writes_the_four_outputs_in_3d() {
-    let tmp = TempDir::new("run_3d");
+    let tmp = temp_dir("run_3d");
     check_run(&tmp, &tiny_3d(), 3);
 }
 
 #[test]
 fn run_refuses_an_existing_output_without_force() {
-    let tmp = TempDir::new("run_force");
+    let tmp = temp_dir("run_force");
     let first = check_run(&tmp, TINY_2D, 2);
     let out = tmp.path().join("out");
     let out_arg = out.to_str().expect("UTF-8");

@@ -5,7 +5,7 @@ use std::process::Command;
 
 use flock_cli::figures;
 
-use crate::common::{TempDir, files};
+use crate::common::{files, temp_dir};
 
 /// A tiny 2D scenario: 8 agents for 0.5 s.
 const TINY: &str = r#"Scenario(
@@ -24,7 +24,7 @@ const TINY: &str = r#"Scenario(
 
 #[test]
 fn figures_writes_an_offline_index_of_every_fixture() {
-    let tmp = TempDir::new("figures_cmd");
+    let tmp = temp_dir("figures_cmd");
     let fixtures = tmp.path().join("fixtures");
     fs::create_dir_all(&fixtures).expect("create fixtures/");
     fs::write(fixtures.join("tac2006_fig99_tiny.ron"), TINY).expect("write the scenario");
@@ -74,7 +74,7 @@ fn figures_writes_an_offline_index_of_every_fixture() {
 
 #[test]
 fn figures_without_fixtures_is_a_clear_error() {
-    let tmp = TempDir::new("figures_none");
+    let tmp = temp_dir("figures_none");
     let err = figures(
         &tmp.path().join("fixtures"),
         &tmp.path().join("o"),
@@ -94,7 +94,7 @@ fn figures_without_fixtures_is_a_clear_error() {
 
 #[test]
 fn run_quiet_is_accepted_and_writes_the_same_files() {
-    let tmp = TempDir::new("run_quiet");
+    let tmp = temp_dir("run_quiet");
     fs::write(tmp.path().join("s.ron"), TINY).expect("write the scenario");
     let flocking = |args: &[&str]| {
         let output = Command::new(env!("CARGO_BIN_EXE_flocking"))
@@ -135,7 +135,7 @@ fn section<'a>(index: &'a str, stem: &str) -> &'a str {
 fn the_committed_gallery_is_what_flock_figures_draws() {
     let stem = "tanner2003_fig3_fixed_n10";
     let committed = crate::common::fixtures_dir().join("../docs/figures");
-    let tmp = TempDir::new("figures_gallery");
+    let tmp = temp_dir("figures_gallery");
     let fixtures = tmp.path().join("fixtures");
     fs::create_dir_all(&fixtures).expect("create fixtures/");
     fs::copy(

@@ -2,7 +2,7 @@
 //! and a substring of the message): each is refused with its code and message, without a panic
 //! or a signal, and leaves nothing behind.
 
-use crate::common::{TempDir, flocking, stderr};
+use crate::common::{flocking, stderr, temp_dir};
 
 #[test]
 fn every_hostile_input_is_refused_cleanly_and_leaves_nothing() {
@@ -14,7 +14,7 @@ fn every_hostile_input_is_refused_cleanly_and_leaves_nothing() {
         .collect();
     assert!(cases.len() >= 10, "{manifest}");
     for case in cases {
-        let tmp = TempDir::new("hostile");
+        let tmp = temp_dir("hostile");
         let fields: Vec<&str> = case.split('\t').collect();
         let [command, code, message] = fields[..] else {
             panic!("a manifest line is `args<TAB>code<TAB>message`: {case}");
@@ -53,7 +53,7 @@ fn issue_20_sigint_and_sigterm_stop_the_validation_of_a_large_sweep() {
     use std::process::{Command, Stdio};
     use std::time::{Duration, Instant};
 
-    let tmp = TempDir::new("validation_signal");
+    let tmp = temp_dir("validation_signal");
     let fixture = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures/tac2006_fig11_alg2_n100.ron");
     let sweep = crate::common::write(

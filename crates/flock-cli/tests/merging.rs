@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::fs;
 
-use crate::common::{TempDir, fixture, flocking, stderr};
+use crate::common::{TempDir, fixture, flocking, stderr, temp_dir};
 
 /// The records of `trajectory.csv`: time → positions in id order.
 fn frames(text: &str) -> BTreeMap<String, Vec<(f64, f64)>> {
@@ -58,7 +58,7 @@ fn run_fig11(tmp: &TempDir, c1: f64) -> (String, String, String) {
 
 #[test]
 fn merged_agents_are_warned_at_the_first_record_and_counted() {
-    let tmp = TempDir::new("merging_strong_gain");
+    let tmp = temp_dir("merging_strong_gain");
     let (err, out, trajectory) = run_fig11(&tmp, 0.5);
     let tolerance = 1e-3 * 7.0;
     let frames = frames(&trajectory);
@@ -118,7 +118,7 @@ fn merged_agents_are_warned_at_the_first_record_and_counted() {
 
 #[test]
 fn the_fixture_gain_merges_no_agents() {
-    let tmp = TempDir::new("merging_fixture_gain");
+    let tmp = temp_dir("merging_fixture_gain");
     let (err, out, trajectory) = run_fig11(&tmp, 0.02);
     assert!(!err.contains("merged"), "{err}");
     assert!(!out.contains("merged agents"), "{out}");

@@ -2,7 +2,7 @@
 
 use std::fs;
 
-use crate::common::{TempDir, flocking};
+use crate::common::{flocking, temp_dir};
 
 /// A short Algorithm 3 run in 2D with one ball in the way.
 const SCENARIO: &str = r#"Scenario(
@@ -20,7 +20,7 @@ const SCENARIO: &str = r#"Scenario(
 
 #[test]
 fn run_with_plot_writes_every_figure() {
-    let tmp = TempDir::new("plot_run");
+    let tmp = temp_dir("plot_run");
     fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
     let output = flocking(tmp.path(), &["run", "s.ron", "--out", "o", "--plot"]);
     assert!(
@@ -63,7 +63,7 @@ fn run_with_plot_writes_every_figure() {
 
 #[test]
 fn plot_of_a_directory_that_is_not_a_run_fails_clearly() {
-    let tmp = TempDir::new("plot_missing");
+    let tmp = temp_dir("plot_missing");
     let output = flocking(tmp.path(), &["plot", "nowhere"]);
     assert!(!output.status.success());
     let message = String::from_utf8_lossy(&output.stderr);
@@ -72,7 +72,7 @@ fn plot_of_a_directory_that_is_not_a_run_fails_clearly() {
 
 #[test]
 fn a_run_with_an_npy_trajectory_draws_the_same_figures() {
-    let tmp = TempDir::new("plot_npy");
+    let tmp = temp_dir("plot_npy");
     fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
     for args in [
         &["run", "s.ron", "--out", "csv", "--plot", "--quiet"][..],

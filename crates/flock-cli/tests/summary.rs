@@ -5,7 +5,7 @@ use std::fs;
 
 use flocking::serde_json::json;
 
-use crate::common::{TempDir, csv_column, fixture, flocking, stderr};
+use crate::common::{csv_column, fixture, flocking, stderr, temp_dir};
 
 /// The column `name` of a metrics.csv, as numbers.
 fn column(metrics: &str, name: &str) -> Vec<f64> {
@@ -17,7 +17,7 @@ fn column(metrics: &str, name: &str) -> Vec<f64> {
 
 #[test]
 fn the_summary_gives_the_closest_approach_over_the_run_and_after_settling() {
-    let tmp = TempDir::new("summary_settle");
+    let tmp = temp_dir("summary_settle");
     let scenario = fixture("tac2006_fig11_alg2_n100")
         .with_values([
             ("agents", json!(30)),

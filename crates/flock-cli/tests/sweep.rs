@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{TempDir, csv_column, fixtures_dir, flocking, stderr};
+use crate::common::{csv_column, fixtures_dir, flocking, stderr, temp_dir};
 
 /// Fig. 11 cut to 30 agents and 20 s (some 10–20 ms a run), over 4 × 2 values × 3 seeds (24 runs).
 fn write_sweep(dir: &Path) -> String {
@@ -43,7 +43,7 @@ fn sweep(dir: &Path, args: &[&str]) -> String {
 
 #[test]
 fn a_killed_sweep_resumes_to_the_same_runs_csv() {
-    let tmp = TempDir::new("sweep_kill");
+    let tmp = temp_dir("sweep_kill");
     let spec = write_sweep(tmp.path());
     sweep(
         tmp.path(),
@@ -91,7 +91,7 @@ fn a_killed_sweep_resumes_to_the_same_runs_csv() {
 
 #[test]
 fn shards_merge_and_phase_diagrams_are_drawn() {
-    let tmp = TempDir::new("sweep_shards");
+    let tmp = temp_dir("sweep_shards");
     let spec = write_sweep(tmp.path());
     sweep(tmp.path(), &[&spec, "--out", "all", "--quiet"]);
     for i in 0..3 {
@@ -187,7 +187,7 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
 
 #[test]
 fn bad_sweep_commands_are_clear_errors() {
-    let tmp = TempDir::new("sweep_errors_cli");
+    let tmp = temp_dir("sweep_errors_cli");
     let spec = write_sweep(tmp.path());
     let no_out = flocking(tmp.path(), &["sweep", &spec]);
     assert_eq!(no_out.status.code(), Some(2));
@@ -242,7 +242,7 @@ fn bad_sweep_commands_are_clear_errors() {
 /// gives the same rows, and every committed diagram is drawn again from the committed runs.csv.
 #[test]
 fn the_committed_sweeps_are_what_flock_computes_and_draws() {
-    let tmp = TempDir::new("sweep_committed");
+    let tmp = temp_dir("sweep_committed");
     let sweeps = fixtures_dir().join("../sweeps");
     let committed = fixtures_dir().join("../docs/figures/sweeps");
     let stale = "stale: run the sweep and its plot commands again (docs/sweeps.md)";
@@ -469,7 +469,7 @@ fn table(path: &Path) -> Vec<(String, f64, usize, f64)> {
 /// runs.csv.
 #[test]
 fn plot_where_and_facet_draw_only_the_runs_they_name() {
-    let tmp = TempDir::new("sweep_where");
+    let tmp = temp_dir("sweep_where");
     let dir = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n");
     let dir = dir.to_str().expect("UTF-8");
     let (c1, agents, radius) = (
@@ -554,7 +554,7 @@ fn plot_where_and_facet_draw_only_the_runs_they_name() {
 
 #[test]
 fn bad_where_and_facet_are_clear_errors() {
-    let tmp = TempDir::new("sweep_bad_where");
+    let tmp = temp_dir("sweep_bad_where");
     let dir = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n");
     let dir = dir.to_str().expect("UTF-8");
     let mut ns = committed_column("agents");

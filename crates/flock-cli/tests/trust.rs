@@ -12,7 +12,7 @@ use flocking::health::Fault;
 use flocking::run_dir::{Checkpoint, INCOMPLETE_FILE};
 use flocking::{Cloud, DynSimulation, Initial, Record, Recorder, RunError, Scenario};
 
-use crate::common::{TempDir, files, flocking, stderr, write};
+use crate::common::{files, flocking, stderr, temp_dir, write};
 
 /// Algorithm 2, 60 agents, 12,000 steps recorded every 10: long enough (about a second in a
 /// test build) to be interrupted at many points.
@@ -224,7 +224,7 @@ fn initial_speeds_beyond_what_the_step_resolves_stop_the_run_at_step_0() {
 
 #[test]
 fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
-    let tmp = TempDir::new("blow_up_cli");
+    let tmp = temp_dir("blow_up_cli");
     let file = write(tmp.path(), "blow_up.ron", BLOW_UP);
     let out = tmp.path().join("out");
     let output = flocking(tmp.path(), &["run", &file, "--out", "out", "--quiet"]);
@@ -254,7 +254,7 @@ fn a_blown_up_run_keeps_its_records_marked_failed_and_refuses_to_resume() {
 
 #[test]
 fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
-    let tmp = TempDir::new("ctrl_c");
+    let tmp = temp_dir("ctrl_c");
     let file = write(tmp.path(), "long.ron", LONG_2D);
     let clock = Instant::now();
     complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
@@ -327,7 +327,7 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
 /// Kills runs with SIGKILL at pseudo-random instants, checks what each leaves, resumes, and
 /// compares the completed outputs with an uninterrupted run's.
 fn kill_and_resume(test: &str, format: &str, kills: usize) {
-    let tmp = TempDir::new(test);
+    let tmp = temp_dir(test);
     let file = write(tmp.path(), "long.ron", LONG_2D);
     let format_args = ["--trajectory-format", format];
     let mut args = vec!["run", &file, "--out", "whole", "--quiet"];
@@ -410,7 +410,7 @@ fn runs_killed_at_random_instants_resume_to_bit_identical_npy_outputs() {
 
 #[test]
 fn a_corrupt_checkpoint_is_refused_with_its_path() {
-    let tmp = TempDir::new("corrupt_checkpoint");
+    let tmp = temp_dir("corrupt_checkpoint");
     let out = tmp.path().join("cut");
     let dir = partial(&out);
     fs::create_dir_all(&dir).expect("mkdir");
@@ -443,7 +443,7 @@ fn read_npy(path: &Path) -> (String, Vec<f64>) {
 
 #[test]
 fn the_npy_trajectory_holds_exactly_the_csv_trajectory() {
-    let tmp = TempDir::new("npy");
+    let tmp = temp_dir("npy");
     let text = LONG_2D.replace("duration: 120.0", "duration: 0.5");
     let file = write(tmp.path(), "short.ron", &text);
     complete(tmp.path(), &["run", &file, "--out", "csv", "--quiet"]);
@@ -609,7 +609,7 @@ fn refused(output: &std::process::Output, words: &[&str]) {
 
 #[test]
 fn issue_20_force_never_replaces_a_users_directory() {
-    let tmp = TempDir::new("force_user_dir");
+    let tmp = temp_dir("force_user_dir");
     let file = write(tmp.path(), "s.ron", SHORT_2D);
     let d = tmp.path().join("d");
     fs::create_dir(&d).expect("mkdir");
@@ -630,8 +630,8 @@ fn issue_20_force_never_replaces_a_users_directory() {
         fs::read(tmp.path().join("r/notes.txt")).expect("kept"),
         b"mine\n"
     );
-    // ...and a run directory of flocking's alone is replaced.
-    fs::remove_file(tmp.path().join("r/notes.txt")).expect("rm");
+    // ...and a run directory of flocking's alone is replaced, once the user takes their file.
+    fs::remove_file(tmp.path().join("r/notes.txt")).expect("the user's own file");
     complete(
         tmp.path(),
         &["run", &file, "--out", "r", "--force", "--quiet"],
@@ -640,7 +640,7 @@ fn issue_20_force_never_replaces_a_users_directory() {
 
 #[test]
 fn issue_20_force_never_replaces_the_working_directory_or_its_parents() {
-    let tmp = TempDir::new("force_cwd");
+    let tmp = temp_dir("force_cwd");
     let file = write(tmp.path(), "s.ron", SHORT_2D);
     // p/c and p look like flocking's run directories, and are still refused.
     let c = tmp.path().join("p/c");
@@ -701,7 +701,7 @@ impl Drop for Tmpfs {
 
 #[test]
 fn issue_20_force_never_replaces_a_mount_point() {
-    let tmp = TempDir::new("force_mount");
+    let tmp = temp_dir("force_mount");
     let file = write(tmp.path(), "s.ron", SHORT_2D);
     let Some(_mount) = Tmpfs::mount(&tmp.path().join("m"), "1m") else {
         return;
@@ -729,7 +729,7 @@ fn wait_for(path: &Path, child: &mut Child) {
 
 #[test]
 fn issue_20_a_directory_appearing_during_the_run_is_kept_and_the_run_stays_resumable() {
-    let tmp = TempDir::new("appearing");
+    let tmp = temp_dir("appearing");
     let file = write(tmp.path(), "long.ron", LONG_2D);
     complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
     let out = tmp.path().join("cut");
@@ -792,7 +792,7 @@ fn issue_20_a_directory_appearing_during_the_run_is_kept_and_the_run_stays_resum
 
 #[test]
 fn issue_20_a_second_writer_is_refused_with_the_first_ones_pid() {
-    let tmp = TempDir::new("two_writers");
+    let tmp = temp_dir("two_writers");
     let file = write(tmp.path(), "long.ron", LONG_2D);
     complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
     let out = tmp.path().join("cut");
@@ -853,7 +853,7 @@ fn issue_20_a_second_writer_is_refused_with_the_first_ones_pid() {
 
 #[test]
 fn issue_20_resume_refuses_an_edited_scenario_naming_the_field() {
-    let tmp = TempDir::new("edited_scenario");
+    let tmp = temp_dir("edited_scenario");
     let file = write(tmp.path(), "long.ron", LONG_2D);
     let out = tmp.path().join("cut");
     let mut child = spawn(
@@ -886,22 +886,33 @@ fn issue_20_resume_refuses_an_edited_scenario_naming_the_field() {
     assert_eq!(after, before, "the refused resume changes nothing");
 }
 
-/// The free space of the filesystem of `dir` is cut to `pages` pages by a filler file.
-fn fill(dir: &Path, pages: u64) -> PathBuf {
-    use std::io::Write as _;
-    let filler = dir.join("filler");
-    let mut file = fs::File::create(&filler).expect("filler");
-    let page = vec![0u8; 4096];
-    while file.write_all(&page).is_ok() {}
-    let len = file.metadata().expect("len").len();
-    file.set_len(len.saturating_sub(pages * 4096))
-        .expect("free pages");
-    filler
+/// A file of the test's own that fills the filesystem of its directory but `pages` pages; it
+/// is created new (never a file that was there) and removed, alone, when dropped.
+struct Filler(PathBuf);
+
+impl Filler {
+    fn new(dir: &Path, pages: u64) -> Self {
+        use std::io::Write as _;
+        let path = dir.join("filler");
+        let mut file = fs::File::create_new(&path).expect("a new filler file");
+        let page = vec![0u8; 4096];
+        while file.write_all(&page).is_ok() {}
+        let len = file.metadata().expect("len").len();
+        file.set_len(len.saturating_sub(pages * 4096))
+            .expect("free pages");
+        Self(path)
+    }
+}
+
+impl Drop for Filler {
+    fn drop(&mut self) {
+        let _ = fs::remove_file(&self.0);
+    }
 }
 
 #[test]
 fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
-    let tmp = TempDir::new("full_disk");
+    let tmp = temp_dir("full_disk");
     let file = write(tmp.path(), "s.ron", SHORT_2D);
     complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
     let whole = files(&tmp.path().join("whole"));
@@ -912,7 +923,7 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
     };
     fs::write(disk.join("thesis.tex"), "x\n").expect("a user's file");
     // The resource check refuses a full disk before writing anything, with the figures...
-    let filler = fill(&disk, 0);
+    let filler = Filler::new(&disk, 0);
     let refused = flocking(
         tmp.path(),
         &[
@@ -923,7 +934,7 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
             "--quiet",
         ],
     );
-    fs::remove_file(&filler).expect("free the space");
+    drop(filler); // frees the space
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
     assert!(
         stderr(&refused).contains("of disk but 0 B is free"),
@@ -937,7 +948,7 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
     for pages in 0..=bytes / 4096 + 12 {
         let out = disk.join(format!("run{pages}"));
         let out_arg = out.to_str().expect("UTF-8");
-        let filler = fill(&disk, pages);
+        let filler = Filler::new(&disk, pages);
         let output = flocking(
             tmp.path(),
             &[
@@ -951,7 +962,7 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
                 "--no-resource-check",
             ],
         );
-        fs::remove_file(&filler).expect("free the space");
+        drop(filler); // frees the space
         let err = stderr(&output);
         assert_eq!(fs::read(disk.join("thesis.tex")).expect("kept"), b"x\n");
         match output.status.code() {
@@ -979,14 +990,15 @@ fn issue_20_a_full_disk_at_any_phase_keeps_the_run_resumable() {
             "{pages} free pages: {err}"
         );
         assert!(written == whole, "{pages} free pages: {err}");
-        fs::remove_dir_all(&out).expect("clean");
+        // the finished run is flocking's, and removable as such (its marker checked first)
+        flocking::owned::remove(&out, flocking::owned::Kind::Run).expect("a run of flocking's");
     }
     assert!(failures > 3, "only {failures} runs hit the full disk");
 }
 
 #[test]
 fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
-    let tmp = TempDir::new("sweep_stopped");
+    let tmp = temp_dir("sweep_stopped");
     write(tmp.path(), "long.ron", LONG_2D);
     let sweep = write(
         tmp.path(),
@@ -1020,7 +1032,7 @@ fn seeds_sweep(dir: &Path, base: &str, seeds: usize) -> String {
 
 #[test]
 fn issue_20_sweep_and_merge_never_replace_a_users_files() {
-    let tmp = TempDir::new("sweep_user_dir");
+    let tmp = temp_dir("sweep_user_dir");
     write(tmp.path(), "short.ron", SHORT_2D);
     let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
     let mine = tmp.path().join("mine");
@@ -1071,7 +1083,7 @@ fn issue_20_sweep_and_merge_never_replace_a_users_files() {
 
 #[test]
 fn issue_20_a_kept_run_never_replaces_a_users_directory() {
-    let tmp = TempDir::new("sweep_keep_user");
+    let tmp = temp_dir("sweep_keep_user");
     write(tmp.path(), "short.ron", SHORT_2D);
     let sweep = seeds_sweep(tmp.path(), "short.ron", 1);
     let args = ["sweep", &sweep, "--out", "sw", "--keep-runs", "--quiet"];
@@ -1086,7 +1098,13 @@ fn issue_20_a_kept_run_never_replaces_a_users_directory() {
     let run = sw.join("runs").join(&id);
     // the run's row is lost, and a user's file is in its directory: it is run again, and refused
     for row in fs::read_dir(sw.join("rows")).expect("rows/") {
-        fs::remove_file(row.expect("entry").path()).expect("rm");
+        let row = row.expect("entry").path();
+        assert_eq!(
+            row.extension().and_then(|e| e.to_str()),
+            Some("csv"),
+            "a row flocking wrote"
+        );
+        fs::remove_file(&row).expect("a row flocking wrote");
     }
     fs::write(run.join("thesis.tex"), "x\n").expect("a user's file");
     let output = flocking(tmp.path(), &args);
@@ -1101,7 +1119,7 @@ fn issue_20_a_kept_run_never_replaces_a_users_directory() {
 
 #[test]
 fn issue_20_a_second_sweep_writer_is_refused_with_the_first_ones_pid() {
-    let tmp = TempDir::new("two_sweeps");
+    let tmp = temp_dir("two_sweeps");
     write(tmp.path(), "long.ron", LONG_2D);
     let sweep = seeds_sweep(tmp.path(), "long.ron", 2);
     let args = [
@@ -1134,7 +1152,7 @@ fn issue_20_a_second_sweep_writer_is_refused_with_the_first_ones_pid() {
 
 #[test]
 fn issue_20_figures_never_replaces_a_users_directory() {
-    let tmp = TempDir::new("figures_user_dir");
+    let tmp = temp_dir("figures_user_dir");
     let fixtures = tmp.path().join("fixtures");
     fs::create_dir(&fixtures).expect("mkdir");
     write(&fixtures, "short.ron", SHORT_2D);
@@ -1179,7 +1197,7 @@ fn issue_20_figures_never_replaces_a_users_directory() {
 
 #[test]
 fn issue_20_plot_never_overwrites_a_file_flocking_did_not_write() {
-    let tmp = TempDir::new("plot_user_files");
+    let tmp = temp_dir("plot_user_files");
     let file = write(tmp.path(), "s.ron", SHORT_2D);
     // `flocking plot`: bad input is exit 2
     let output = flocking(tmp.path(), &["plot", "nowhere"]);

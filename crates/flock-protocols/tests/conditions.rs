@@ -622,29 +622,40 @@ fn a_resumed_run_with_every_condition_is_bit_identical() {
     }
 }
 
+/// Algorithm 1 from `n` random agents, run `steps` steps ideally and under `conditions`: the
+/// two final states, and the conditioned simulation.
+fn ideal_and_conditioned(
+    n: usize,
+    conditions: &Conditions,
+    steps: usize,
+) -> (Swarm<DVec2>, Simulation<DVec2, Algorithm1>) {
+    let protocol = || Algorithm1 {
+        alpha: papers_alpha(),
+    };
+    let start = random_swarm::<DVec2>(n, 20.0, 1.0, 2);
+    let mut ideal = Simulation::new(protocol(), Integrator::SymplecticEuler, start.clone(), 0.01)
+        .expect("valid");
+    let mut conditioned = Simulation::new(protocol(), Integrator::SymplecticEuler, start, 0.01)
+        .expect("valid")
+        .with_conditions(conditions, 0)
+        .expect("valid");
+    for _ in 0..steps {
+        ideal.step();
+        conditioned.step();
+    }
+    (ideal.swarm().into_owned(), conditioned)
+}
+
 /// Perception made exact (a communication section with no delay and no loss) takes the local
 /// path, and agrees with the ideal run to round-off.
 #[test]
 fn exact_perception_on_the_local_path_is_the_ideal_run() {
-    let protocol = || Algorithm1 {
-        alpha: papers_alpha(),
-    };
-    let start = random_swarm::<DVec2>(80, 20.0, 1.0, 2);
-    let mut ideal = Simulation::new(protocol(), Integrator::SymplecticEuler, start.clone(), 0.01)
-        .expect("valid");
     let exact = Conditions {
         communication: Some(Communication::default()),
         ..Conditions::default()
     };
-    let mut local = Simulation::new(protocol(), Integrator::SymplecticEuler, start, 0.01)
-        .expect("valid")
-        .with_conditions(&exact, 0)
-        .expect("valid");
-    for _ in 0..300 {
-        ideal.step();
-        local.step();
-    }
-    let (a, b) = (ideal.swarm(), local.swarm());
+    let (a, local) = ideal_and_conditioned(80, &exact, 300);
+    let b = local.swarm();
     let worst = a
         .positions
         .iter()
@@ -658,21 +669,8 @@ fn exact_perception_on_the_local_path_is_the_ideal_run() {
 /// `Conditions::default()` is the ideal run, bit for bit.
 #[test]
 fn default_conditions_are_the_ideal_run() {
-    let protocol = || Algorithm1 {
-        alpha: papers_alpha(),
-    };
-    let start = random_swarm::<DVec2>(300, 30.0, 1.0, 2);
-    let mut ideal = Simulation::new(protocol(), Integrator::SymplecticEuler, start.clone(), 0.01)
-        .expect("valid");
-    let mut same = Simulation::new(protocol(), Integrator::SymplecticEuler, start, 0.01)
-        .expect("valid")
-        .with_conditions(&Conditions::default(), 0)
-        .expect("valid");
-    for _ in 0..50 {
-        ideal.step();
-        same.step();
-    }
-    assert_eq!(bits(&ideal.swarm()), bits(&same.swarm()));
+    let (ideal, same) = ideal_and_conditioned(300, &Conditions::default(), 50);
+    assert_eq!(bits(&ideal), bits(&same.swarm()));
     assert!(same.conditions_state().is_none());
 }
 

@@ -162,8 +162,8 @@ fn conditions_are_reachable_by_dotted_path() {
 
 #[test]
 fn a_sweep_over_the_delay_gives_one_scenario_per_value() {
-    let dir = std::env::temp_dir().join(format!("flocking_conditions_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let tmp = crate::common::temp_dir("conditions_sweep");
+    let dir = tmp.path();
     let base = dir.join("cycle.ron");
     std::fs::write(&base, cycle(1.0, "")).expect("write the base");
     let sweep: Sweep = format!(
@@ -205,7 +205,6 @@ fn a_sweep_over_the_delay_gives_one_scenario_per_value() {
             .is_ideal()
     );
     assert_eq!(delays, [0.0, 0.0, 0.05, 0.05, 0.1, 0.1]);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

@@ -6,7 +6,7 @@ use std::cell::RefCell;
 use flocking::run_dir::{METRICS_HEADER, OutputOptions, TrajectoryFormat};
 use flocking::{DynSimulation, Record, Recorder, RunDirectory, Scenario, State, read_run};
 
-use crate::common::{TempDir, fixture};
+use crate::common::{TempDir, fixture, temp_dir};
 
 /// `fixtures/{name}.ron` cut to `duration` seconds.
 fn short(name: &str, duration: f64) -> Scenario {
@@ -55,7 +55,7 @@ fn write(
 
 #[test]
 fn runs_read_back_as_recorded_from_csv_and_npy() {
-    let tmp = TempDir::new("run_dir_round_trip");
+    let tmp = temp_dir("run_dir_round_trip");
     let scenario = short("tac2006_fig14_split_rejoin_n150", 1.0);
     let rows = write(&scenario, &tmp, "csv", TrajectoryFormat::Csv);
     write(&scenario, &tmp, "npy", TrajectoryFormat::Npy);
@@ -102,7 +102,7 @@ fn runs_read_back_as_recorded_from_csv_and_npy() {
 
 #[test]
 fn the_header_names_the_diagnostics_of_each_protocol() {
-    let tmp = TempDir::new("run_dir_headers");
+    let tmp = temp_dir("run_dir_headers");
     for (name, extra) in [
         ("tac2006_fig11_alg2_n100", ""),
         (
@@ -128,7 +128,7 @@ fn the_header_names_the_diagnostics_of_each_protocol() {
 
 #[test]
 fn a_record_naming_other_columns_is_refused() {
-    let tmp = TempDir::new("run_dir_drift");
+    let tmp = temp_dir("run_dir_drift");
     let scenario = short("tac2006_fig11_alg2_n100", 0.1);
     let mut dir =
         RunDirectory::create(&tmp.path().join("out"), &scenario, false).expect("a new directory");

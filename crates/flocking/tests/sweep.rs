@@ -12,7 +12,7 @@ use flocking::sweep::{
     ExecuteOptions, ParameterLabel, Shard, Sweep, SweepError, Values, execute, metric_label,
 };
 
-use crate::common::TempDir;
+use crate::common::temp_dir;
 
 /// Fig. 11 cut to 20 agents and 2 s, over c₁ × two agent counts × 2 seeds (12 runs), one value
 /// of c₁ so large that the run blows up.
@@ -212,7 +212,7 @@ fn sweep_into(sweep: &Sweep, dir: &std::path::Path, jobs: usize, shard: Option<S
 
 #[test]
 fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
-    let tmp = TempDir::new("sweep_errors");
+    let tmp = temp_dir("sweep_errors");
     let sweep = tiny();
     let text = sweep_into(&sweep, tmp.path(), 2, None);
     let mut reader = csv::Reader::from_reader(text.as_bytes());
@@ -267,7 +267,7 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
 #[test]
 fn runs_csv_is_the_same_bytes_for_any_workers_shards_and_interruptions() {
     let sweep = tiny();
-    let tmp = TempDir::new("sweep_identity");
+    let tmp = temp_dir("sweep_identity");
     let one = sweep_into(&sweep, &tmp.path().join("one"), 1, None);
     let two = sweep_into(&sweep, &tmp.path().join("two"), 2, None);
     assert_eq!(one, two, "--jobs 1 and --jobs 2");
@@ -317,7 +317,7 @@ fn runs_csv_is_the_same_bytes_for_any_workers_shards_and_interruptions() {
 
 #[test]
 fn keep_runs_writes_each_run_directory() {
-    let tmp = TempDir::new("sweep_keep");
+    let tmp = temp_dir("sweep_keep");
     let sweep = Sweep {
         axes: Vec::new(),
         seeds: 2,
@@ -405,7 +405,7 @@ fn closest_in(metrics: &str, from: f64) -> (f64, f64) {
 /// from each kept run's metrics.csv.
 #[test]
 fn settled_columns_are_the_closest_approach_after_the_settle_fraction() {
-    let tmp = TempDir::new("sweep_settled");
+    let tmp = temp_dir("sweep_settled");
     for (settle, dir) in [(None, "default"), (Some(0.5), "half")] {
         let text = match settle {
             None => SWEEP.to_owned(),

@@ -408,15 +408,7 @@ impl Sweep {
     /// The first problem found, with its line and column for syntax errors.
     pub fn parse(text: &str, origin: &str, dir: &Path) -> Result<Self, SweepError> {
         let text = crate::input::without_bom(text);
-        let mut sweep: Self =
-            crate::input::ron_options()
-                .from_str(text)
-                .map_err(|e| SweepError::Syntax {
-                    origin: origin.to_owned(),
-                    line: e.span.start.line,
-                    col: e.span.start.col,
-                    message: crate::input::ron_message(&e.code),
-                })?;
+        let mut sweep = Self::read(text, origin)?;
         if let Base::Path(path) = &sweep.base {
             let scenario = Scenario::load(dir.join(path)).map_err(SweepError::Base)?;
             sweep.base = Base::Inline(Box::new(scenario));
@@ -439,19 +431,24 @@ impl Sweep {
     /// As [`Sweep::parse`], less the runs' checks; a `Path` base (the text is not self-contained).
     pub fn parse_checked(text: &str, origin: &str) -> Result<Self, SweepError> {
         let text = crate::input::without_bom(text);
-        let sweep: Self =
-            crate::input::ron_options()
-                .from_str(text)
-                .map_err(|e| SweepError::Syntax {
-                    origin: origin.to_owned(),
-                    line: e.span.start.line,
-                    col: e.span.start.col,
-                    message: crate::input::ron_message(&e.code),
-                })?;
+        let sweep = Self::read(text, origin)?;
         sweep
             .check()
             .map_err(|e| e.placed(origin, text, &sweep.axes))?;
         Ok(sweep)
+    }
+
+    /// The sweep of RON text `text` from `origin`, unchecked; a syntax error with its line and
+    /// column.
+    fn read(text: &str, origin: &str) -> Result<Self, SweepError> {
+        crate::input::ron_options()
+            .from_str(text)
+            .map_err(|e| SweepError::Syntax {
+                origin: origin.to_owned(),
+                line: e.span.start.line,
+                col: e.span.start.col,
+                message: crate::input::ron_message(&e.code),
+            })
     }
 
     /// The number of runs, the grid's points times the seeds.
