@@ -141,7 +141,7 @@ impl<V: Vector> TranslationalController<V> {
 /// obstacles (eq. 54; none for § 10). The γ-agents of the obstacles sit at b_k + λ_d n_d with
 /// n_d = p_d/‖p_d‖ of the controller (of the per-agent feedback for a sink).
 ///
-/// It has no [`LocalForm`](crate::LocalForm) ([`Protocol::local_form`](crate::Protocol::local_form)
+/// It has no [`LocalForm`](crate::LocalForm) ([`Protocol::local_form`]
 /// is `None`): ū needs the centre of mass (q̄, p̄) of the whole flock, which no agent perceives
 /// from its neighbours, so the conditions that make agents perceive different worlds
 /// (communication, sensing, silent or removed agents) are refused for it.

@@ -87,7 +87,7 @@ pub fn sweep_run(
 }
 
 /// The lock of a sweep's output directory ([`store::prepare`]), held until
-/// [`SweepLock::release`] (or until the process ends): another writer of the directory is
+/// its `release` method is called (or until the process ends): another writer of the directory is
 /// refused meanwhile.
 #[pyclass(module = "flocking._flocking")]
 pub struct SweepLock(Option<DirLock>);

@@ -624,7 +624,7 @@ impl RunDirectory {
     /// `DIR.partial` to `DIR`, then removes its checkpoint and `INCOMPLETE` note. A `DIR` is
     /// replaced only if it was empty when the run started and still is, or if `force` was set
     /// and it is flocking's ([`owned::remove`]); a `DIR` that appeared during the run is never
-    /// renamed over (the rename itself refuses an existing `DIR`, [`rename_no_replace`]).
+    /// renamed over (the rename itself refuses an existing `DIR`: it is made with `RENAME_NOREPLACE`).
     ///
     /// # Errors
     /// Any I/O error, naming the operation and the path; `DIR.partial` is then kept with its
