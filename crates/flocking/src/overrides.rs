@@ -10,13 +10,16 @@
 //! have defaults (`communication`, `actuation`, `disturbance`, `faults`) read as their defaults
 //! (`conditions.communication.delay` is 0 on an ideal scenario), a field left unset in it (such as
 //! `conditions.communication.range`, or `conditions.control.rate` with no `control`) can be set,
-//! and a part that a change leaves at its default stays unwritten. An enum value is given whole,
-//! as JSON's externally tagged form: `{"Bernoulli": {"p": 0.1}}` for `Bernoulli(p: 0.1)` (the
-//! same map in a RON sweep file), `"None"` for a unit variant.
+//! and a part that a change leaves at its default stays unwritten. An enum value is given whole:
+//! as a string of RON (`"Bernoulli(p: 0.1)"`, `"None"`) at the enum paths of the conditions
+//! (`communication.loss`, `communication.when_lost`, `communication.delayed`, `sensing.noise`,
+//! `faults.mode`), or anywhere in JSON's externally tagged form (`{"Bernoulli": {"p": 0.1}}`,
+//! the same map in a RON sweep file).
 
 use serde_json::Value;
 
 use flock_protocols::Conditions;
+use flock_protocols::conditions::{Delayed, FaultMode, Loss, Noise, WhenLost};
 
 use crate::Scenario;
 use crate::error::ScenarioError;
@@ -72,6 +75,7 @@ impl Scenario {
         for (path, value) in values {
             let path = path.as_ref();
             check_depth(path, &value)?;
+            let value = tagged(path, value);
             set(&mut tree, path, value.clone())?;
             scenario = match serde_json::from_value(tree.clone()) {
                 Ok(scenario) => scenario,
@@ -158,6 +162,28 @@ impl Scenario {
 
 fn to_json<T: serde::Serialize>(value: &T) -> Value {
     serde_json::to_value(value).expect("conditions are plain data and serialize")
+}
+
+/// A string of RON text at a path of the conditions whose type is an enum (`"Bernoulli(p: 0.1)"`
+/// at `conditions.communication.loss`) as JSON tags that enum (`{"Bernoulli": {"p": 0.1}}`);
+/// any other value as it is.
+fn tagged(path: &str, value: Value) -> Value {
+    fn parse<T: serde::de::DeserializeOwned + serde::Serialize>(text: &str) -> Option<Value> {
+        let parsed: T = crate::input::ron_options().from_str(text).ok()?;
+        serde_json::to_value(parsed).ok()
+    }
+    let Value::String(text) = &value else {
+        return value;
+    };
+    let parsed = match path {
+        "conditions.communication.loss" => parse::<Loss>(text),
+        "conditions.communication.when_lost" => parse::<WhenLost>(text),
+        "conditions.communication.delayed" => parse::<Delayed>(text),
+        "conditions.sensing.noise" => parse::<Noise>(text),
+        "conditions.faults.mode" => parse::<FaultMode>(text),
+        _ => None,
+    };
+    parsed.unwrap_or(value)
 }
 
 /// Whether `path` lies in the `conditions` section, where a field left unset may be set.

@@ -6,7 +6,7 @@
 use core::f64::consts::PI;
 
 use flocking::glam::DVec2;
-use flocking::protocols::conditions::{Communication, Delayed, Loss};
+use flocking::protocols::conditions::{Communication, Delayed, Loss, WhenLost};
 use flocking::protocols::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, CentralisedTracking2003, Conditions,
     TranslationalController,
@@ -128,6 +128,10 @@ fn conditions_are_reachable_by_dotted_path() {
                 "conditions.communication.loss",
                 json!({"Bernoulli": {"p": 0.1}}),
             ),
+            (
+                "conditions.communication.when_lost",
+                json!("Hold(max_age: 0.5)"),
+            ),
             ("conditions.communication.range", json!(12.0)),
             ("conditions.control.rate", json!(10.0)),
         ])
@@ -136,6 +140,7 @@ fn conditions_are_reachable_by_dotted_path() {
         delay: 0.05,
         loss: Loss::Bernoulli { p: 0.1 },
         range: Some(12.0),
+        when_lost: WhenLost::Hold { max_age: 0.5 },
         ..Communication::default()
     };
     assert_eq!(delayed.conditions.communication, Some(expected));
@@ -172,7 +177,7 @@ fn a_sweep_over_the_delay_gives_one_scenario_per_value() {
     base: Path("{}"),
     axes: [
         (path: "conditions.communication.delay", values: List([0.0, 0.05, 0.1])),
-        (path: "conditions.communication.loss", values: List(["None", {{"Bernoulli": {{"p": 0.1}}}}])),
+        (path: "conditions.communication.loss", values: List(["None", "Bernoulli(p: 0.1)"])),
     ],
     seeds: 1,
 )"#,
@@ -205,6 +210,9 @@ fn a_sweep_over_the_delay_gives_one_scenario_per_value() {
             .is_ideal()
     );
     assert_eq!(delays, [0.0, 0.0, 0.05, 0.05, 0.1, 0.1]);
+    let lossy = sweep.scenario(&runs[5]).expect("valid");
+    let communication = lossy.conditions.communication.expect("a loss");
+    assert_eq!(communication.loss, Loss::Bernoulli { p: 0.1 });
 }
 
 #[test]
