@@ -36,6 +36,45 @@ const LONG_2D: &str = r#"Scenario(
 )
 "#;
 
+/// [`LONG_2D`] under every condition (issue 21): delayed neighbours with jitter, Gilbert–Elliott
+/// loss with held packets, Ornstein–Uhlenbeck sensing at 5 Hz, sampled control, clipped and lagged
+/// actuation, gusty wind, process noise and faults at a rate. Each draw is keyed by purpose, agent
+/// or link and step, and the checkpoint carries the history, the link, noise and lag states.
+const LONG_CONDITIONED: &str = r#"Scenario(
+    name: "long_conditioned",
+    dim: 2,
+    agents: 60,
+    seed: 3,
+    algorithm: Algorithm2(
+        gamma: ConstantVelocity(position: [0.0, 0.0], velocity: [1.0, 0.5]),
+        c1: 0.02,
+        c2: 0.4,
+    ),
+    initial: (
+        positions: Box(min: [-35.0, -35.0], max: [35.0, 35.0]),
+        velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0]),
+    ),
+    step: 0.01,
+    duration: 120.0,
+    record_every: 10,
+    conditions: (
+        communication: (
+            delay: 0.1,
+            jitter: 0.05,
+            delayed: Neighbours,
+            range: 10.0,
+            loss: GilbertElliott(p_fail: 0.1, p_recover: 0.9),
+            when_lost: Hold(max_age: 0.5),
+        ),
+        sensing: (noise: OrnsteinUhlenbeck(sigma_q: 0.2, sigma_p: 0.05, correlation_time: 2.0), rate: 5.0),
+        control: (rate: 20.0),
+        actuation: (max_acceleration: 6.0, max_speed: 8.0, lag: 0.5),
+        disturbance: (wind: (mean: [0.3, 0.0], gust: 0.2), process_noise: 0.05),
+        faults: (rate: 0.002, mode: Silent),
+    ),
+)
+"#;
+
 /// 30 agents with c₁^α = 200 and h = 0.05: far above the stable step, it runs away at step 1.
 const BLOW_UP: &str = r#"Scenario(
     dim: 2,
@@ -325,10 +364,15 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
 }
 
 /// Kills runs with SIGKILL at pseudo-random instants, checks what each leaves, resumes, and
-/// compares the completed outputs with an uninterrupted run's.
-fn kill_and_resume(test: &str, format: &str, kills: usize) {
+/// compares the completed outputs with an uninterrupted run's, which it returns by file name.
+fn kill_and_resume(
+    test: &str,
+    scenario: &str,
+    format: &str,
+    kills: usize,
+) -> std::collections::BTreeMap<String, Vec<u8>> {
     let tmp = temp_dir(test);
-    let file = write(tmp.path(), "long.ron", LONG_2D);
+    let file = write(tmp.path(), "long.ron", scenario);
     let format_args = ["--trajectory-format", format];
     let mut args = vec!["run", &file, "--out", "whole", "--quiet"];
     args.extend(format_args);
@@ -391,21 +435,41 @@ fn kill_and_resume(test: &str, format: &str, kills: usize) {
     );
     eprintln!("{killed} SIGKILLs mid-run, each leaving whole records");
     assert!(killed >= kills / 2, "only {killed} kills landed mid-run");
-    assert_eq!(
-        files(&out),
-        files(&tmp.path().join("whole")),
-        "after {killed} kills"
-    );
+    let whole = files(&tmp.path().join("whole"));
+    assert_eq!(files(&out), whole, "after {killed} kills");
+    whole
 }
 
 #[test]
 fn runs_killed_at_random_instants_resume_to_bit_identical_csv_outputs() {
-    kill_and_resume("sigkill_csv", "csv", 12);
+    kill_and_resume("sigkill_csv", LONG_2D, "csv", 12);
 }
 
 #[test]
 fn runs_killed_at_random_instants_resume_to_bit_identical_npy_outputs() {
-    kill_and_resume("sigkill_npy", "npy", 6);
+    kill_and_resume("sigkill_npy", LONG_2D, "npy", 6);
+}
+
+#[test]
+fn runs_under_every_condition_killed_at_random_instants_resume_to_bit_identical_outputs() {
+    let whole = kill_and_resume("sigkill_conditions", LONG_CONDITIONED, "csv", 8);
+    // the conditions were on: links were lost, information was old, agents failed
+    let metrics = String::from_utf8_lossy(&whole["metrics.csv"]).into_owned();
+    let mut lines = metrics.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let last: Vec<f64> = lines
+        .last()
+        .expect("records")
+        .split(',')
+        .map(|field| field.parse().expect("a number"))
+        .collect();
+    let column = |name: &str| {
+        let k = header.iter().position(|h| *h == name);
+        last[k.unwrap_or_else(|| panic!("no {name} in {header:?}"))]
+    };
+    assert!(column("links_lost") > 0.0, "{header:?} {last:?}");
+    assert!(column("information_age") >= 0.1, "{header:?} {last:?}");
+    assert!(column("failed") >= 1.0, "{header:?} {last:?}");
 }
 
 #[test]
