@@ -39,8 +39,9 @@
 //!   c T λ_max(L) < 2; for the other protocols T must stay below the largest stable step above
 //!   (the step estimate with T in place of h).
 //! - Delay τ with [`Delayed::All`]: consensus ṗ = −c L p(t − τ) converges iff
-//!   τ < π / (2 c λ_max(L)) (Olfati-Saber & Murray, IEEE TAC 49(9), 2004, Theorem 10); the
-//!   largest delay, τ + jitter, is checked.
+//!   τ < π / (2 c λ_max(L)) (Olfati-Saber & Murray, IEEE TAC 49(9), 2004, its time-delay result;
+//!   not among the seeds): in the eigenbasis of L each mode obeys ẋ = −c λ x(t − τ), whose roots
+//!   stay in the left half-plane iff c λ τ < π/2. The largest delay, τ + jitter, is checked.
 
 use std::fmt;
 
@@ -444,7 +445,7 @@ impl Scenario {
                     why: format!(
                         "with jitter, delays every state by up to τ = {tau} s ≥ π/(2 c λ_max) = \
                          {bound:.4} s (c = {c}, {} = {lambda:.4}): consensus with delay \
-                         (Olfati-Saber & Murray 2004, Theorem 10) diverges",
+                         (Olfati-Saber & Murray 2004) diverges",
                         of_lambda(exact)
                     ),
                     fix: format!("keep delay + jitter below {bound:.4} s, or lower the gain"),

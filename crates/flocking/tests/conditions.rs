@@ -5,6 +5,8 @@
 
 use core::f64::consts::PI;
 
+use approx::assert_relative_eq;
+
 use flocking::glam::DVec2;
 use flocking::protocols::conditions::{Communication, Delayed, Loss, WhenLost};
 use flocking::protocols::{
@@ -309,4 +311,60 @@ fn the_examples_of_docs_conditions_parse() {
         assert!(c.communication.is_some() && c.sensing.is_some() && c.control.is_some());
         assert!(c.actuation.is_some() && c.disturbance.is_some() && c.faults.is_some());
     }
+}
+
+/// The Tanner–Jadbabaie–Pappas law on the fixture's spanning tree (edges (0,4) (1,3) (1,6) (2,9)
+/// (3,4) (3,9) (4,5) (4,7) (7,8)): removing its cut vertex 4 at t = 0 leaves the components {0},
+/// {5}, {7, 8} and {1, 2, 3, 6, 9}. Within each, Σ u_i = 0 (every pair term of eq. 5 is
+/// antisymmetric), so its mean velocity is conserved and, the component being connected, every
+/// agent converges to it (seed 001, Theorem IV.4); the singletons fly on unchanged. The
+/// metrics count those four components among the nine agents left; without the fault the tree
+/// stays one.
+#[test]
+fn removing_a_cut_vertex_of_the_tanner_graph_splits_it_into_the_components_the_graph_predicts() {
+    let fixture = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/tanner2003_fig3_fixed_n10.ron"
+    ))
+    .expect("the fixture");
+    let faulty = fixture.replacen(
+        "    record_every: 10,\n",
+        "    record_every: 10,\n    conditions: (faults: (at: [(agent: 4, time: 0.0)], mode: Removed)),\n",
+        1,
+    );
+    assert_ne!(faulty, fixture);
+    let run = |text: &str| {
+        let scenario = parse(text);
+        let mut sim = flocking::DynSimulation::new(&scenario).expect("valid");
+        let start = sim.state().into_owned();
+        while sim.time() < scenario.duration {
+            sim.step();
+        }
+        (start, sim)
+    };
+    let velocity = |state: &flocking::State<'_>, i: usize| {
+        DVec2::new(state.velocities[2 * i], state.velocities[2 * i + 1])
+    };
+    let (_, ideal) = run(&fixture);
+    assert_eq!(ideal.metrics().components, 1);
+    let (start, sim) = run(&faulty);
+    let end = sim.state();
+    let components: [&[usize]; 4] = [&[0], &[5], &[7, 8], &[1, 2, 3, 6, 9]];
+    for component in components {
+        let mean = component
+            .iter()
+            .map(|&i| velocity(&start, i))
+            .sum::<DVec2>()
+            / component.len() as f64;
+        for &i in component {
+            let error = (velocity(&end, i) - mean).length();
+            assert!(error < 1e-12, "agent {i} of {component:?}: {error}");
+        }
+    }
+    let observed = sim.observe();
+    // nine agents in four components: rank L = 9 − 4, C = 5/8, C* = 5/9
+    assert_eq!(observed.metrics.components, 4);
+    assert_relative_eq!(observed.metrics.connectivity, 5.0 / 8.0);
+    assert_relative_eq!(observed.metrics.giant_component, 5.0 / 9.0);
+    assert!(observed.diagnostics.contains(&("failed", 1.0)));
 }
