@@ -1,6 +1,7 @@
 //! Integration tests of flock-protocols: the theorems of TAC 2006 checked numerically.
 
 mod algorithm3;
+mod collisions;
 mod common;
 mod conditions;
 mod determinism;
