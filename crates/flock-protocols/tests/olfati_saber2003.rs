@@ -5,7 +5,7 @@
 
 use approx::assert_abs_diff_eq;
 use flock_graph::ProximityNet;
-use flock_math::{Bump, Vector};
+use flock_math::{Bump, Potential, UnevenSigmoid, Vector};
 use flock_obstacles::Space;
 use flock_protocols::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, BallObstacle, Flocking2003, GammaAgent,
@@ -240,6 +240,22 @@ fn influence_map_lipschitz_constant_is_the_max_slope() {
         std::f64::consts::PI,
         epsilon = 1e-15
     );
+    // seed 003 after eq. 5: −π/(2(1 − δ)) ≤ ρ′_δ ≤ 0, e.g. |ρ′_δ| < 5.25 for δ = 0.7
+    for delta in [0.1, 0.7, 0.95] {
+        let bump = Bump::influence_map(delta, 1);
+        let bound = std::f64::consts::PI / (2.0 * (1.0 - delta));
+        for i in 0..=20_000 {
+            let slope = bump.derivative(1.2 * f64::from(i) / 20_000.0);
+            assert!((-bound..=0.0).contains(&slope), "δ = {delta}: ρ′ = {slope}");
+        }
+        // attained at the middle of the transition, so the bound is sharp
+        assert_abs_diff_eq!(
+            bump.derivative(0.5 * (1.0 + delta)),
+            -bound,
+            epsilon = 1e-12
+        );
+    }
+    assert!(influence_map_lipschitz(Bump::influence_map(0.7, 1)) < 5.25);
 }
 
 /// Seed 004 eq. 37: Σ_i ‖u_i^(α,α,2) − û_i^(α,α,2)‖ ≤ (2 L_ρ / r) V(q), V of eq. 28.
@@ -323,6 +339,54 @@ fn structural_energy_non_increasing_2d() {
 #[test]
 fn structural_energy_non_increasing_3d() {
     structural_energy_non_increasing::<DVec3>();
+}
+
+/// Seed 004 eq. 31: the structural energy of (α, α, 1) (0/1 adjacency, eq. 28) jumps by
+/// h₀ = ψ_α(r − d_α) > 0 at the step where a link is made, and by −h₀ where one is lost; between
+/// the switches it does not rise (Proposition 4). A pair closing from r + 0.3 at 1 m/s, and one
+/// leaving from r − 0.3 at 8 m/s, RK4 at h = 10⁻⁴ for 0.5 s: the jump is h₀ to within the
+/// step's own change, and every other step changes H_s by less than 1 % of h₀.
+#[test]
+fn the_nonsmooth_energy_jumps_by_h0_when_a_link_is_made_or_lost() {
+    let params = AlphaAlphaParams::default();
+    let h0 = UnevenSigmoid::new(params.a, params.b).potential(params.r - params.d_alpha);
+    assert!(h0 > 0.0);
+    for (gap, speed, sign) in [(0.3, 0.5, 1.0), (-0.3, -4.0, -1.0)] {
+        let half = 0.5 * (params.r + gap);
+        let swarm = Swarm::new(
+            vec![DVec2::new(-half, 0.0), DVec2::new(half, 0.0)],
+            vec![DVec2::new(speed, 0.0), DVec2::new(-speed, 0.0)],
+        );
+        let mut sim = Simulation::new(
+            protocol(AlphaAlphaForm::Nonsmooth),
+            Integrator::Rk4,
+            swarm,
+            1e-4,
+        )
+        .expect("a valid simulation");
+        let linked = |sim: &Simulation<DVec2, AlphaAlpha>| sim.graph().undirected_edge_count();
+        let (mut energy, mut links) = (sim.energy(), linked(&sim));
+        let (mut jump, mut largest_other) = (None, 0.0_f64);
+        for _ in 0..5000 {
+            sim.step();
+            let (now, now_links) = (sim.energy(), linked(&sim));
+            if now_links == links {
+                assert!(now <= energy + 1e-12, "H_s rose between switches");
+                largest_other = largest_other.max((now - energy).abs());
+            } else {
+                assert!(jump.is_none(), "one switch only");
+                jump = Some(now - energy);
+            }
+            (energy, links) = (now, now_links);
+        }
+        let jump = jump.expect("the link switched");
+        eprintln!("ΔH_s = {jump:.6} against ±h₀ = {h0:.6}; other steps ≤ {largest_other:.2e}");
+        assert!(
+            (jump - sign * h0).abs() <= 10.0 * largest_other,
+            "ΔH_s = {jump} against ±h₀ = {h0} (other steps ≤ {largest_other})"
+        );
+        assert!(largest_other < 1e-2 * h0, "{largest_other} vs h₀ = {h0}");
+    }
 }
 
 /// Seed 004 eq. 48–52, seed 000 eq. 40: (α, α, 2) plus the PD sink f_i = −c₁(q_i − q_d) − c₂ p_i.
