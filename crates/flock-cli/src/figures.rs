@@ -199,7 +199,7 @@ pub fn figures(
             .map(|name| format!("{stem}/figures/{name}"))
             .collect();
         if !quiet {
-            println!(
+            outln!(
                 "flocking figures: {stem:<36} {}D n = {:<4} {:>6} steps  {:>7.2} s  -> {}",
                 summary.dim,
                 summary.agents,
@@ -226,7 +226,7 @@ pub fn figures(
     let index = out.join("index.html");
     fs::write(&index, index_html(&entries)).map_err(io_err(&index))?;
     if !quiet {
-        println!(
+        outln!(
             "flocking figures: {} fixture(s), {}",
             entries.len(),
             index.display()

@@ -3,6 +3,8 @@
 //! `flocking bench` ([`bench::bench()`]), `flocking sweep` ([`sweep`]), the resource estimate and bounds ([`resources`]). Scenarios, runs and run directories are the `flocking`
 //! library's; figures are `flock-viz`'s.
 
+#[macro_use]
+pub mod console;
 pub mod bench;
 pub mod figures;
 pub mod progress;

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
-use flock_cli::{Progress, Report};
+use flock_cli::{Progress, Report, errln, out, outln};
 use flock_viz::{FigureOptions, plot_run_with};
 use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
@@ -163,23 +163,23 @@ fn main() -> ExitCode {
             };
             match flock_cli::bench::bench(&config) {
                 Ok(report) => {
-                    println!("{report}");
+                    outln!("{report}");
                     ExitCode::SUCCESS
                 }
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    errln!("error: {e}");
                     ExitCode::from(INVALID)
                 }
             }
         }
         Command::Plot { dir, stress_edges } => {
             if let Err(e) = check_plot_dir(&dir) {
-                eprintln!("error: {e}");
+                errln!("error: {e}");
                 return ExitCode::from(INVALID);
             }
             match plot_run_with(&dir, &figure_options(stress_edges)) {
                 Ok(files) => {
-                    println!(
+                    outln!(
                         "{} figure file(s) in {}",
                         files.len(),
                         dir.join("figures").display()
@@ -187,7 +187,7 @@ fn main() -> ExitCode {
                     ExitCode::SUCCESS
                 }
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    errln!("error: {e}");
                     match e {
                         flock_viz::PlotError::Scenario(_) => ExitCode::from(INVALID),
                         flock_viz::PlotError::Viz(_) => ExitCode::FAILURE,
@@ -202,7 +202,7 @@ fn main() -> ExitCode {
         } => match flock_cli::figures(std::path::Path::new("fixtures"), &out, quiet, !no_player) {
             Ok(_) => ExitCode::SUCCESS,
             Err(e) => {
-                eprintln!("error: {e}");
+                errln!("error: {e}");
                 if e.is_refusal() {
                     ExitCode::from(INVALID)
                 } else {
@@ -213,26 +213,26 @@ fn main() -> ExitCode {
         Command::Sweep(args) => flock_cli::sweep::main(args, &STOP, &WRITING),
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
-                println!("{}: valid", scenario.display());
-                print!("{}", s.to_ron().unwrap_or_default());
-                println!();
+                outln!("{}: valid", scenario.display());
+                out!("{}", s.to_ron().unwrap_or_default());
+                outln!();
                 let estimate = s.estimate(&Outputs::RUN);
                 if let Err(e) = flock_cli::resources::announce(&estimate, None, false) {
-                    eprintln!("warning: {e}");
+                    errln!("warning: {e}");
                 }
                 if let Some(stable) = flocking::largest_stable_step(&s) {
-                    println!(
+                    outln!(
                         "// step {} against the estimated largest stable step {stable:.3e}",
                         s.step
                     );
                 }
                 for warning in s.warnings() {
-                    eprintln!("{warning}");
+                    errln!("{warning}");
                 }
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("error: {e}");
+                errln!("error: {e}");
                 ExitCode::from(INVALID)
             }
         },
@@ -286,7 +286,7 @@ fn main() -> ExitCode {
             match execute(&scenario, dir, start.as_ref(), quiet, settle) {
                 Ok(out) if plot => match plot_run_with(&out, &figure_options(stress_edges)) {
                     Ok(files) => {
-                        println!(
+                        outln!(
                             "  figures               {} file(s) in {}",
                             files.len(),
                             out.join("figures").display()
@@ -294,7 +294,7 @@ fn main() -> ExitCode {
                         ExitCode::SUCCESS
                     }
                     Err(e) => {
-                        eprintln!("error: the run is complete, but its figures failed: {e}");
+                        errln!("error: the run is complete, but its figures failed: {e}");
                         ExitCode::FAILURE
                     }
                 },
@@ -322,10 +322,10 @@ fn stop_on_ctrl_c() {
         if !WRITING.load(Ordering::SeqCst) || STOP.swap(true, Ordering::SeqCst) {
             std::process::exit(i32::from(INTERRUPTED));
         }
-        eprintln!("\nstopping after the current step (Ctrl-C again to quit at once)");
+        errln!("\nstopping after the current step (Ctrl-C again to quit at once)");
     });
     if let Err(e) = installed {
-        eprintln!("warning: Ctrl-C will not stop the run cleanly: {e}");
+        errln!("warning: Ctrl-C will not stop the run cleanly: {e}");
     }
 }
 
@@ -338,11 +338,11 @@ fn create_directory(
     unchecked: bool,
 ) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
     let scenario = Scenario::load(path).map_err(|e| {
-        eprintln!("error: {e}");
+        errln!("error: {e}");
         ExitCode::from(INVALID)
     })?;
     for warning in scenario.warnings() {
-        eprintln!("{warning}");
+        errln!("{warning}");
     }
     let outputs = Outputs {
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
@@ -350,21 +350,21 @@ fn create_directory(
     };
     flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), unchecked).map_err(
         |e| {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::from(INVALID)
         },
     )?;
     WRITING.store(true, Ordering::SeqCst);
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
         CreateError::Occupied { target } => {
-            eprintln!(
+            errln!(
                 "error: output directory {} holds an earlier run; choose another --out or pass --force to replace it",
                 target.display()
             );
             ExitCode::from(INVALID)
         }
         CreateError::Interrupted { partial, target } => {
-            eprintln!(
+            errln!(
                 "error: {} holds an interrupted run; continue it with `flocking run --resume {}`, or pass --force to start over",
                 partial.display(),
                 target.display()
@@ -372,11 +372,11 @@ fn create_directory(
             ExitCode::from(INVALID)
         }
         CreateError::Dir(e) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::from(INVALID)
         }
         CreateError::Io(e) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::FAILURE
         }
     })?;
@@ -394,12 +394,12 @@ fn resume_directory(
                 partial,
                 target,
                 complete: false,
-            } => eprintln!(
+            } => errln!(
                 "error: there is no interrupted run at {}: start it with `flocking run SCENARIO --out {}`",
                 partial.display(),
                 target.display()
             ),
-            _ => eprintln!("error: {e}"),
+            _ => errln!("error: {e}"),
         }
         match e {
             ResumeError::Scenario(_)
@@ -410,13 +410,13 @@ fn resume_directory(
         }
     })?;
     match &start {
-        Some(start) => println!(
+        Some(start) => outln!(
             "resuming {} at step {} of {}",
             dir.partial().display(),
             start.steps,
             scenario.steps()
         ),
-        None => println!(
+        None => outln!(
             "resuming {}: no checkpoint yet, starting over",
             dir.partial().display()
         ),
@@ -450,15 +450,15 @@ fn execute(
     let error = match result {
         Ok(summary) => {
             let finished = dir.finish().map_err(|e| {
-                eprintln!("error: {e}");
+                errln!("error: {e}");
                 ExitCode::FAILURE
             })?;
             let metrics = finished.path.join("metrics.csv");
             let records = read_records(&metrics, summary.agents).map_err(|e| {
-                eprintln!("error: {}: {e}", metrics.display());
+                errln!("error: {}: {e}", metrics.display());
                 ExitCode::FAILURE
             })?;
-            println!(
+            outln!(
                 "{}",
                 Report {
                     name: &scenario.name,
@@ -469,14 +469,14 @@ fn execute(
             );
             // judged on the whole metrics.csv, also after a resume
             if let Some(verdict) = &finished.verdict {
-                println!("  Definition 5          {verdict}");
+                outln!("  Definition 5          {verdict}");
             }
-            println!("  outputs               {}", finished.path.display());
+            outln!("  outputs               {}", finished.path.display());
             return Ok(finished.path);
         }
         Err(error) => error,
     };
-    eprintln!("error: {error}");
+    errln!("error: {error}");
     let (why, resumable, code) = match &error {
         RunError::Scenario(_) => {
             dir.abandon();
@@ -492,21 +492,21 @@ fn execute(
     };
     let partial_path = dir.partial().to_owned();
     match dir.keep_incomplete(&why, resumable) {
-        Ok(partial) if resumable => eprintln!(
+        Ok(partial) if resumable => errln!(
             "the records so far are kept in {}; continue with `flocking run --resume {}`",
             partial.display(),
             partial.display()
         ),
-        Ok(partial) => eprintln!(
+        Ok(partial) => errln!(
             "the records up to the last good step are kept in {}, marked incomplete",
             partial.display()
         ),
-        Err(e) if resumable => eprintln!(
+        Err(e) if resumable => errln!(
             "error: cannot mark the run incomplete: {e}\nthe records so far are kept in {}; continue with `flocking run --resume {}`",
             partial_path.display(),
             partial_path.display()
         ),
-        Err(e) => eprintln!("error: cannot mark the run incomplete: {e}"),
+        Err(e) => errln!("error: cannot mark the run incomplete: {e}"),
     }
     Err(code)
 }
@@ -520,7 +520,7 @@ fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
         .num_threads(threads)
         .build_global()
         .map_err(|e| {
-            eprintln!("error: cannot start {threads} threads: {e}");
+            errln!("error: cannot start {threads} threads: {e}");
             ExitCode::FAILURE
         })
 }

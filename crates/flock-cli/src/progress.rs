@@ -137,8 +137,8 @@ impl<R: Recorder> Recorder for Progress<R> {
     /// Prints the warning at once, above the bar, and tells `inner`.
     fn merged(&mut self, merge: &Merge) {
         match &self.bar {
-            Some(bar) if self.shown => bar.suspend(|| eprintln!("{merge}")),
-            _ => eprintln!("{merge}"),
+            Some(bar) if self.shown => bar.suspend(|| errln!("{merge}")),
+            _ => errln!("{merge}"),
         }
         self.inner.merged(merge);
     }

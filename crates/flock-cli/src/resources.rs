@@ -47,9 +47,9 @@ pub fn parse_epsilon(text: &str) -> Result<f64, String> {
 /// # Errors
 /// What does not fit, with the figures and the flag that overrides.
 pub fn announce(estimate: &Estimate, out: Option<&Path>, unchecked: bool) -> Result<(), String> {
-    println!("{estimate}");
+    outln!("{estimate}");
     for warning in estimate.warnings() {
-        eprintln!("{warning}");
+        errln!("{warning}");
     }
     if unchecked {
         return Ok(());

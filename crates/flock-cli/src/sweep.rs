@@ -200,15 +200,15 @@ pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCod
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Usage(message)) => {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             ExitCode::from(USAGE)
         }
         Err(Failure::Failed(message)) => {
-            eprintln!("error: {message}");
+            errln!("error: {message}");
             ExitCode::FAILURE
         }
         Err(Failure::Interrupted(message)) => {
-            eprintln!("{message}");
+            errln!("{message}");
             ExitCode::from(INTERRUPTED)
         }
     }
@@ -272,13 +272,13 @@ fn run_checked(
     let done = |row: &RunRow| {
         if let Err(error) = &row.outcome {
             failed.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            bar.suspend(|| eprintln!("run {} ({}): {error}", row.index, row.id));
+            bar.suspend(|| errln!("run {} ({}): {error}", row.index, row.id));
         }
         bar.inc(1);
     };
     let executed = execute(sweep, out, options, stop, &done)?;
     bar.finish_and_clear();
-    println!(
+    outln!(
         "flocking sweep: {} run(s) now, {} found done, {} failed; {} row(s) in {}",
         executed.ran,
         executed.skipped,
@@ -297,7 +297,7 @@ fn run_checked(
 
 fn merge(out: &Path, shards: &[PathBuf]) -> Result<(), Failure> {
     let rows = store::merge(out, shards)?;
-    println!(
+    outln!(
         "flocking sweep merge: {} shard(s), {rows} row(s) in {}",
         shards.len(),
         out.join(RUNS_FILE).display()
@@ -520,7 +520,7 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
     }
     if !pooled.is_empty() {
         let names: Vec<&str> = pooled.iter().map(|a| a.label.path.as_str()).collect();
-        eprintln!(
+        errln!(
             "warning: each point pools {per_point} runs over {}: fix {} with --where {}=VALUE, or draw one panel per value with --facet {}",
             names.join(", "),
             if names.len() == 1 { "it" } else { "them" },
@@ -561,7 +561,7 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
         DirError::Io(e) => Failure::Failed(e.to_string()),
         refused => Failure::Usage(refused.to_string()),
     })?;
-    println!("flocking sweep plot: {}", out.display());
+    outln!("flocking sweep plot: {}", out.display());
     Ok(())
 }
 

@@ -10,6 +10,7 @@ mod figures_cmd;
 mod hostile;
 mod merging;
 mod names;
+mod pipes;
 mod plot;
 mod summary;
 mod sweep;
