@@ -16,10 +16,10 @@ static SAID: AtomicBool = AtomicBool::new(false);
 
 /// Writes `args` to standard output.
 pub fn out(args: fmt::Arguments<'_>) {
-    if let Err(e) = write(&mut io::stdout().lock(), args) {
-        if !SAID.swap(true, Ordering::Relaxed) {
-            err(format_args!("warning: writing to standard output: {e}\n"));
-        }
+    if let Err(e) = write(&mut io::stdout().lock(), args)
+        && !SAID.swap(true, Ordering::Relaxed)
+    {
+        err(format_args!("warning: writing to standard output: {e}\n"));
     }
 }
 
