@@ -11,6 +11,8 @@
 //! - [`metrics_svg`], [`metrics_png`]: C, R, Ẽ, K̃ against t (TAC 2006 Fig. 18), energy,
 //!   distances.
 //! - [`animation_gif`]: the whole run as an animated GIF.
+//! - [`function_svg`], [`function_png`]: the report's plots of ρ, ψ_α, φ_α and the pair
+//!   potential (CDS 03-006 Figs. 2, 4, 5), from the functions the simulations use.
 //! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
 //! - [`phase_svg`], [`phase_png`], [`phase_table`]: the phase diagram of a parameter sweep (`flocking sweep plot`).
 //! - [`write_figures`]: all of them into a directory, as `flocking plot` writes them.
@@ -39,6 +41,7 @@ pub mod figures;
 pub mod font;
 mod format;
 pub mod framing;
+pub mod functions;
 pub mod gallery;
 mod geometry;
 pub mod metrics;
@@ -59,6 +62,7 @@ pub use drawable::Drawable;
 pub use error::VizError;
 pub use figures::{FigureOptions, write_figures};
 pub use framing::Framing;
+pub use functions::{ReportFunction, function_png, function_svg};
 pub use gallery::{FigureEntry, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};

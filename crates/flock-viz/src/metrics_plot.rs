@@ -276,21 +276,21 @@ impl MetricsFigure<'_> {
     }
 }
 
-/// The data and labels of one panel.
-struct Curves<'a> {
-    title: &'a str,
-    x_desc: &'a str,
-    y_desc: &'a str,
-    t: &'a [f64],
-    values: &'a [f64],
-    secondary: Option<(&'a [f64], String)>,
+/// The data and labels of one panel: values against t (or any abscissa).
+pub(crate) struct Curves<'a> {
+    pub(crate) title: &'a str,
+    pub(crate) x_desc: &'a str,
+    pub(crate) y_desc: &'a str,
+    pub(crate) t: &'a [f64],
+    pub(crate) values: &'a [f64],
+    pub(crate) secondary: Option<(&'a [f64], String)>,
     /// The legend of the first column, when there is a second.
-    primary_label: Option<String>,
-    log: bool,
+    pub(crate) primary_label: Option<String>,
+    pub(crate) log: bool,
 }
 
 impl Curves<'_> {
-    fn draw<DB, Y>(
+    pub(crate) fn draw<DB, Y>(
         &self,
         area: &DrawingArea<DB, Shift>,
         t_range: Range<f64>,
@@ -386,7 +386,7 @@ impl Curves<'_> {
 
 /// An axis range holding the finite values (positive ones for a log axis), with a 5 % margin on
 /// a linear axis and whole decades on a log axis; a sensible range when there is no spread.
-fn fitted_range(values: impl Iterator<Item = f64>, log: bool) -> Range<f64> {
+pub(crate) fn fitted_range(values: impl Iterator<Item = f64>, log: bool) -> Range<f64> {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && (!log || *v > 0.0))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
