@@ -5,7 +5,9 @@
 //! `steps` steps of the chosen algorithm with the flocking metrics and the energy recorded every
 //! [`RECORD_EVERY`] steps, as `flocking run` records them. The [`BenchReport`] it returns prints
 //! agent-steps per second, ns per agent-step, ms per step, peak memory per agent and the thread
-//! count.
+//! count. [`ConditionFlags`] put the run under real conditions (delay, loss, sensing noise,
+//! sampled control, an acceleration limit); the report then also prints the bytes per agent the
+//! conditions keep ([`conditions::bytes_per_agent`]).
 
 use std::fmt;
 use std::str::FromStr;
@@ -14,6 +16,9 @@ use std::time::{Duration, Instant};
 use flocking::math::Vector;
 use flocking::metrics::{FlockMetrics, MetricParams};
 use flocking::obstacles::{ObstacleField, Space};
+use flocking::protocols::conditions::{
+    self, Actuation, Communication, Conditions, Delayed, Loss, Noise, SampledControl, Sensing,
+};
 use flocking::protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaInteraction, AlphaParams, BetaInteraction, BetaParams,
     DynProtocol, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
@@ -25,6 +30,13 @@ pub const RECORD_EVERY: u64 = 10;
 
 /// Obstacles of the Algorithm 3 benchmark.
 pub const BENCH_OBSTACLES: usize = 1000;
+
+/// The integration step h of the benchmark (s); delays and control periods are whole numbers
+/// of it.
+pub const STEP: f64 = 0.01;
+
+/// The seed of the conditions' random draws (loss, sensing noise).
+pub const CONDITIONS_SEED: u64 = 0;
 
 /// Which algorithm `flocking bench` runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -64,8 +76,113 @@ impl fmt::Display for BenchAlgorithm {
     }
 }
 
+/// The real conditions `flocking bench` may run under; none set (the default) is the ideal loop.
+#[derive(Clone, Copy, Debug, Default, PartialEq, clap::Args)]
+pub struct ConditionFlags {
+    /// Communication delay τ in seconds, a whole number of steps of 0.01 s (e.g. 0.1).
+    #[arg(long, value_name = "SECONDS")]
+    pub delay: Option<f64>,
+    /// Whose states the delay applies to: `neighbours` (each agent's own state is current) or
+    /// `all` (its own state is delayed too).
+    #[arg(long, value_name = "WHOSE", value_parser = parse_delayed)]
+    pub delayed: Option<Delayed>,
+    /// Bernoulli packet loss: each packet of each directed link lost with probability P.
+    #[arg(long, value_name = "P")]
+    pub loss: Option<f64>,
+    /// White sensing noise: standard deviations σ_q (m) on positions and σ_p (m/s) on
+    /// velocities; one value gives both.
+    #[arg(long, value_name = "SIGMA_Q[,SIGMA_P]", value_parser = parse_noise)]
+    pub sensing_noise: Option<(f64, f64)>,
+    /// Sampled control: the controller runs at this rate (Hz) and holds its input between.
+    #[arg(long, value_name = "HZ")]
+    pub control_rate: Option<f64>,
+    /// The commanded acceleration is clipped to this norm (m/s²).
+    #[arg(long, value_name = "M_PER_S2")]
+    pub max_acceleration: Option<f64>,
+}
+
+impl ConditionFlags {
+    /// The conditions the flags set (not validated: [`bench()`] validates them).
+    #[must_use]
+    pub fn conditions(&self) -> Conditions {
+        let communication = (self.delay.is_some() || self.delayed.is_some() || self.loss.is_some())
+            .then(|| Communication {
+                delay: self.delay.unwrap_or(0.0),
+                delayed: self.delayed.unwrap_or_default(),
+                loss: self.loss.map_or(Loss::None, |p| Loss::Bernoulli { p }),
+                ..Communication::default()
+            });
+        Conditions {
+            communication,
+            sensing: self.sensing_noise.map(|(sigma_q, sigma_p)| Sensing {
+                noise: Noise::White { sigma_q, sigma_p },
+                rate: None,
+            }),
+            control: self.control_rate.map(|rate| SampledControl { rate }),
+            actuation: self.max_acceleration.map(|a| Actuation {
+                max_acceleration: Some(a),
+                ..Actuation::default()
+            }),
+            ..Conditions::default()
+        }
+    }
+}
+
+/// One line naming the conditions set, e.g. `delay 0.1 s (neighbours), loss 0.1`.
+impl fmt::Display for ConditionFlags {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut parts = Vec::new();
+        if self.delay.is_some() || self.delayed.is_some() {
+            let whose = match self.delayed.unwrap_or_default() {
+                Delayed::Neighbours => "neighbours",
+                Delayed::All => "all",
+            };
+            parts.push(format!("delay {} s ({whose})", self.delay.unwrap_or(0.0)));
+        }
+        if let Some(p) = self.loss {
+            parts.push(format!("loss {p} (Bernoulli)"));
+        }
+        if let Some((q, p)) = self.sensing_noise {
+            parts.push(format!("sensing noise {q} m, {p} m/s (white)"));
+        }
+        if let Some(rate) = self.control_rate {
+            parts.push(format!("control at {rate} Hz"));
+        }
+        if let Some(a) = self.max_acceleration {
+            parts.push(format!("acceleration ≤ {a} m/s²"));
+        }
+        if parts.is_empty() {
+            f.write_str("none (ideal)")
+        } else {
+            f.write_str(&parts.join(", "))
+        }
+    }
+}
+
+/// `neighbours` or `all`, as [`Delayed`].
+fn parse_delayed(s: &str) -> Result<Delayed, String> {
+    match s.to_ascii_lowercase().as_str() {
+        "neighbours" | "neighbors" => Ok(Delayed::Neighbours),
+        "all" => Ok(Delayed::All),
+        _ => Err(format!("expected `neighbours` or `all`, got `{s}`")),
+    }
+}
+
+/// `SIGMA_Q` or `SIGMA_Q,SIGMA_P` (the first given for both when alone).
+fn parse_noise(s: &str) -> Result<(f64, f64), String> {
+    let number = |x: &str| {
+        x.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("`{x}` is not a number: {e}"))
+    };
+    match s.split_once(',') {
+        Some((q, p)) => Ok((number(q)?, number(p)?)),
+        None => number(s).map(|q| (q, q)),
+    }
+}
+
 /// What `flocking bench` runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BenchConfig {
     /// The number of agents n ≥ 2.
     pub n: usize,
@@ -80,6 +197,8 @@ pub struct BenchConfig {
     /// Number the agents in a random order instead of along the lattice rows, as a scenario whose
     /// agents are drawn at random is numbered: neighbours are then far apart in memory.
     pub shuffled: bool,
+    /// The real conditions (none: the ideal loop).
+    pub conditions: ConditionFlags,
 }
 
 /// The measurements of one `flocking bench` run.
@@ -111,6 +230,9 @@ pub struct BenchReport {
     pub stored_by_cell: bool,
     /// The metrics at the end.
     pub metrics: FlockMetrics,
+    /// The bytes per agent of the conditions' state, [`conditions::bytes_per_agent`] (0 when
+    /// ideal).
+    pub conditions_bytes_per_agent: usize,
 }
 
 impl BenchReport {
@@ -151,6 +273,14 @@ impl fmt::Display for BenchReport {
         }
         if c.shuffled {
             writeln!(f, "  agents numbered       at random")?;
+        }
+        if c.conditions != ConditionFlags::default() {
+            writeln!(f, "  conditions            {}", c.conditions)?;
+            writeln!(
+                f,
+                "  conditions' state     {} bytes/agent (conditions::bytes_per_agent)",
+                self.conditions_bytes_per_agent
+            )?;
         }
         if self.stored_by_cell {
             writeln!(
@@ -214,7 +344,8 @@ impl fmt::Display for BenchReport {
 /// Runs the benchmark `config` describes on the current rayon pool.
 ///
 /// # Errors
-/// When `n < 2` or above [`flocking::MAX_AGENTS`], the dimension is not 2 or 3, or `steps` is 0.
+/// When `n < 2` or above [`flocking::MAX_AGENTS`], the dimension is not 2 or 3, `steps` is 0,
+/// or the conditions are invalid ([`Conditions::validate`]).
 pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
     if config.n < 2 {
         return Err(format!("--n must be at least 2, got {}", config.n));
@@ -229,14 +360,24 @@ pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
     if config.steps == 0 {
         return Err("--steps must be at least 1".to_owned());
     }
-    match config.dim {
-        2 => Ok(bench_in::<flocking::glam::DVec2>(config)),
-        3 => Ok(bench_in::<flocking::glam::DVec3>(config)),
-        dim => Err(format!("--dim must be 2 or 3, got {dim}")),
+    if !matches!(config.dim, 2 | 3) {
+        return Err(format!("--dim must be 2 or 3, got {}", config.dim));
+    }
+    let conditions = config.conditions.conditions();
+    conditions
+        .validate(config.n, config.dim, STEP)
+        .map_err(|e| format!("invalid conditions: {e}"))?;
+    if config.dim == 2 {
+        bench_in::<flocking::glam::DVec2>(config, &conditions)
+    } else {
+        bench_in::<flocking::glam::DVec3>(config, &conditions)
     }
 }
 
-fn bench_in<V: Space>(config: &BenchConfig) -> BenchReport {
+fn bench_in<V: Space>(
+    config: &BenchConfig,
+    conditions: &Conditions,
+) -> Result<BenchReport, String> {
     let start = Instant::now();
     let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0)
         .unwrap_or_else(|e| unreachable!("the papers' α-parameters are valid: {e}"));
@@ -269,7 +410,7 @@ fn bench_in<V: Space>(config: &BenchConfig) -> BenchReport {
             })
         }
     };
-    time(config, protocol, swarm, specs.len(), start)
+    time(config, conditions, protocol, swarm, specs.len(), start)
 }
 
 /// The feedback to a γ-agent that starts at the centre of the flock and moves at (1, 0.5[, 0]).
@@ -296,17 +437,20 @@ fn navigation<V: Vector>(
 
 fn time<V: Vector>(
     config: &BenchConfig,
+    conditions: &Conditions,
     protocol: DynProtocol<V>,
     swarm: Swarm<V>,
     obstacles: usize,
     start: Instant,
-) -> BenchReport {
+) -> Result<BenchReport, String> {
     let metric_params = MetricParams {
         d: D,
         collision_distance: D / 4.0,
     };
-    let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01)
-        .unwrap_or_else(|e| unreachable!("the benchmark's state and step are valid: {e}"));
+    let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, STEP)
+        .unwrap_or_else(|e| unreachable!("the benchmark's state and step are valid: {e}"))
+        .with_conditions(conditions, CONDITIONS_SEED)
+        .map_err(|e| format!("invalid conditions: {e}"))?;
     let setup = start.elapsed();
     for _ in 0..config.warmup {
         sim.step();
@@ -335,7 +479,7 @@ fn time<V: Vector>(
     let metrics = metrics.unwrap_or_else(|| measure(&sim).0);
     // before the graph is copied into original order below
     let peak_memory = peak_memory();
-    BenchReport {
+    Ok(BenchReport {
         config: *config,
         threads: rayon::current_num_threads(),
         obstacles,
@@ -349,7 +493,8 @@ fn time<V: Vector>(
         mean_neighbours: sim.graph().directed_edge_count() as f64 / config.n as f64,
         stored_by_cell: sim.stored_by_cell(),
         metrics,
-    }
+        conditions_bytes_per_agent: conditions::bytes_per_agent(conditions, V::DIM, STEP),
+    })
 }
 
 /// The process's peak resident set (`VmHWM` of `/proc/self/status`) in bytes; `None` where the
@@ -377,5 +522,36 @@ mod tests {
         assert_eq!("3".parse(), Ok(BenchAlgorithm::Algorithm3));
         assert_eq!("Algorithm1".parse(), Ok(BenchAlgorithm::Algorithm1));
         assert!("4".parse::<BenchAlgorithm>().is_err());
+    }
+
+    #[test]
+    fn condition_flags_build_the_conditions() {
+        assert!(ConditionFlags::default().conditions().is_ideal());
+        let flags = ConditionFlags {
+            delay: Some(0.1),
+            loss: Some(0.1),
+            sensing_noise: Some((0.05, 0.02)),
+            ..ConditionFlags::default()
+        };
+        let c = flags.conditions();
+        let comm = c.communication.unwrap();
+        assert_eq!(
+            (comm.delay, comm.delayed, comm.loss),
+            (0.1, Delayed::Neighbours, Loss::Bernoulli { p: 0.1 })
+        );
+        assert_eq!(
+            c.sensing.map(|s| s.noise),
+            Some(Noise::White {
+                sigma_q: 0.05,
+                sigma_p: 0.02
+            })
+        );
+        assert_eq!(parse_noise("0.3"), Ok((0.3, 0.3)));
+        assert!(parse_noise("0.3,x").is_err());
+        assert_eq!(parse_delayed("All"), Ok(Delayed::All));
+        assert_eq!(
+            flags.to_string(),
+            "delay 0.1 s (neighbours), loss 0.1 (Bernoulli), sensing noise 0.05 m, 0.02 m/s (white)"
+        );
     }
 }

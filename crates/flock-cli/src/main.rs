@@ -130,6 +130,9 @@ enum Command {
         /// Number the agents at random instead of along the lattice (as random initial states are).
         #[arg(long)]
         shuffled: bool,
+        /// Real conditions to run under (none: the ideal loop).
+        #[command(flatten)]
+        conditions: flock_cli::bench::ConditionFlags,
     },
 }
 
@@ -149,6 +152,7 @@ fn main() -> ExitCode {
             threads,
             warmup,
             shuffled,
+            conditions,
         } => {
             if let Err(code) = use_threads(threads) {
                 return code;
@@ -160,6 +164,7 @@ fn main() -> ExitCode {
                 warmup,
                 algorithm,
                 shuffled,
+                conditions,
             };
             match flock_cli::bench::bench(&config) {
                 Ok(report) => {

@@ -99,3 +99,56 @@ fn bench_refuses_a_bad_dimension() {
     assert_eq!(out.status.code(), Some(2), "{out:?}");
     assert!(String::from_utf8_lossy(&out.stderr).contains("--dim must be 2 or 3"));
 }
+
+#[test]
+fn bench_runs_under_delay_loss_and_sensing_noise() {
+    let out = bench(&[
+        "--n",
+        "400",
+        "--steps",
+        "3",
+        "--delay",
+        "0.1",
+        "--loss",
+        "0.1",
+        "--sensing-noise",
+        "0.05,0.02",
+        "--control-rate",
+        "50",
+        "--max-acceleration",
+        "10",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let report = String::from_utf8(out.stdout).expect("UTF-8 report");
+    for line in [
+        "  conditions            delay 0.1 s (neighbours), loss 0.1 (Bernoulli), \
+         sensing noise 0.05 m, 0.02 m/s (white), control at 50 Hz, acceleration ≤ 10 m/s²",
+        // a delay line of 0.1 / 0.01 + 1 = 11 states of 32 B, and five per-agent states and a flag
+        "  conditions' state     513 bytes/agent",
+        "  agent-steps/s ",
+    ] {
+        assert!(report.contains(line), "{line}\n{report}");
+    }
+}
+
+#[test]
+fn bench_refuses_invalid_conditions() {
+    for (args, message) in [
+        (["--loss", "1.5"], "`conditions.communication.loss.p` = 1.5"),
+        (
+            ["--delay", "0.015"],
+            "`conditions.communication.delay` = 0.015",
+        ),
+        (["--control-rate", "30"], "`conditions.control.rate` = 30"),
+    ] {
+        let out = bench(&[&["--n", "100", "--steps", "1"][..], &args[..]].concat());
+        assert_eq!(out.status.code(), Some(2), "{out:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            stderr.contains("invalid conditions") && stderr.contains(message),
+            "{stderr}"
+        );
+    }
+    let out = bench(&["--n", "100", "--delayed", "sometimes"]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+}

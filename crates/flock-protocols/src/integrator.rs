@@ -339,12 +339,13 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         conditions: &Conditions,
         seed: u64,
     ) -> Result<Self, ParamError> {
-        let n = self.swarm.len();
-        let range = self.protocol.interaction_range();
-        let stage = Stage::new(conditions, seed, n, self.step, range)?;
+        // the ideal run allocates no stage (nothing to validate: every part is unset)
         if conditions.is_ideal() {
             return Ok(self);
         }
+        let n = self.swarm.len();
+        let range = self.protocol.interaction_range();
+        let stage = Stage::new(conditions, seed, n, self.step, range)?;
         if let Some(field) = perception_field(conditions)
             && self.protocol.local_form().is_none()
         {

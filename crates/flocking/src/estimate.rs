@@ -1,7 +1,9 @@
 //! What a run will cost before it starts: steps, memory, disk and time, from the figures measured
 //! in `docs/performance.md`, and whether this machine can afford it.
 //!
-//! - [`Scenario::estimate`]: the [`Estimate`] of one run with the chosen outputs ([`Outputs`]).
+//! - [`Scenario::estimate`]: the [`Estimate`] of one run with the chosen outputs ([`Outputs`]);
+//!   its memory counts the state of the scenario's conditions (mostly the delay line,
+//!   [`conditions::bytes_per_agent`]).
 //! - [`Estimate::times`]: a sweep's runs together (disk and time add up; memory is per worker).
 //! - [`Resources::of_machine`]: the memory available (`MemAvailable` of `/proc/meminfo`, or a
 //!   cgroup's `memory.max` if lower) and the free space of an output directory's disk;
@@ -25,6 +27,7 @@ use std::fmt;
 use std::path::Path;
 
 use crate::Scenario;
+use crate::protocols::conditions;
 
 /// Memory of the process without agents (docs/performance.md: ≈ 4–5 MB).
 pub const FIXED_BYTES: f64 = 5e6;
@@ -123,12 +126,14 @@ impl Scenario {
             0.0
         };
         let agent_steps = n * steps as f64;
+        // the conditions' state (mostly the delay line), none for an ideal run
+        let conditions_bytes = conditions::bytes_per_agent(&self.conditions, dim, self.step);
         Estimate {
             runs: 1,
             steps,
             records,
             agent_steps,
-            memory_bytes: FIXED_BYTES + n * BYTES_PER_AGENT[dim - 2],
+            memory_bytes: FIXED_BYTES + n * (BYTES_PER_AGENT[dim - 2] + conditions_bytes as f64),
             disk_bytes: trajectory + metrics + checkpoint,
             seconds: agent_steps / AGENT_STEPS_PER_SECOND[dim - 2],
         }
@@ -386,6 +391,24 @@ mod tests {
         assert_eq!((sweep.runs, sweep.memory_bytes), (4, one.memory_bytes));
         assert_eq!(sweep.disk_bytes, 4.0 * one.disk_bytes);
         assert!(sweep.to_string().contains("4 runs of 100 steps"), "{sweep}");
+    }
+
+    #[test]
+    fn conditions_add_their_bytes_per_agent() {
+        let ideal = scenario(1_000_000, 1.0);
+        let mut delayed = ideal.clone();
+        delayed.conditions.communication = Some(conditions::Communication {
+            delay: 0.1,
+            ..conditions::Communication::default()
+        });
+        let extra = delayed.estimate(&Outputs::NONE).memory_bytes
+            - ideal.estimate(&Outputs::NONE).memory_bytes;
+        // 11 states of the delay line and 5 per-agent states, 32 B each in 2D, and a flag
+        assert_eq!(
+            conditions::bytes_per_agent(&delayed.conditions, 2, delayed.step),
+            513
+        );
+        assert!((extra - 513e6).abs() < 1.0, "{extra}");
     }
 
     #[test]

@@ -334,7 +334,9 @@ impl<V: Vector> Stage<V> {
         let t = k as f64 * self.h;
         let mut links = core::mem::take(&mut self.links);
         let this = &*self;
-        let results = map_agents_mut(&mut links, |i, links_i| {
+        // each worker's candidate and heard lists, reused from agent to agent
+        let scratch = || (Vec::new(), Vec::new());
+        let results = map_agents_mut(&mut links, scratch, |i, links_i, (js, heard)| {
             if !this.moves(i) {
                 links_i.clear();
                 return (V::ZERO, 0, 0, 0, 0);
@@ -350,24 +352,26 @@ impl<V: Vector> Stage<V> {
                 position: q,
                 velocity: p,
             };
-            let mut js: Vec<u32> = candidates
-                .neighbours(i)
-                .iter()
-                .copied()
-                .filter(|&j| j as usize != i && this.is_heard(j as usize))
-                .filter(|&j| {
-                    // a fixed graph's link is cut beyond an explicit communication range
-                    graph_range.is_none_or(|rc| {
-                        (swarm.positions[j as usize] - swarm.positions[i]).length_squared()
-                            < rc * rc
-                    })
-                })
-                .collect();
+            js.clear();
+            js.extend(
+                candidates
+                    .neighbours(i)
+                    .iter()
+                    .copied()
+                    .filter(|&j| j as usize != i && this.is_heard(j as usize))
+                    .filter(|&j| {
+                        // a fixed graph's link is cut beyond an explicit communication range
+                        graph_range.is_none_or(|rc| {
+                            (swarm.positions[j as usize] - swarm.positions[i]).length_squared()
+                                < rc * rc
+                        })
+                    }),
+            );
             js.sort_unstable();
             let old = core::mem::take(links_i);
-            let mut heard = Vec::with_capacity(js.len());
+            heard.clear();
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
-            for &j in &js {
+            for &j in js.iter() {
                 let ju = j as usize;
                 let mut link = old
                     .binary_search_by_key(&j, |l| l.sender)
@@ -431,7 +435,7 @@ impl<V: Vector> Stage<V> {
                 }
             }
             let used = heard.len();
-            let u = local.local_input(t, &own, &heard);
+            let u = local.local_input(t, &own, heard);
             (u, js.len(), lost_count, age_sum, used)
         });
         self.links = links;
@@ -552,10 +556,13 @@ fn map_agents<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T>
     (0..n).map(f).collect()
 }
 
-/// `f(i, &mut items[i])` for every item, in parallel with the `parallel` feature; in index order.
-fn map_agents_mut<S: Send, T: Send>(
+/// `f(i, &mut items[i], scratch)` for every item, in parallel with the `parallel` feature; in
+/// index order. Each worker's `scratch` is made by `init` and passed from item to item (its
+/// buffers keep their capacity): `f`'s result must not depend on what it held before.
+fn map_agents_mut<S: Send, W, T: Send>(
     items: &mut [S],
-    f: impl Fn(usize, &mut S) -> T + Sync + Send,
+    init: impl Fn() -> W + Sync + Send,
+    f: impl Fn(usize, &mut S, &mut W) -> T + Sync + Send,
 ) -> Vec<T> {
     #[cfg(feature = "parallel")]
     {
@@ -564,9 +571,16 @@ fn map_agents_mut<S: Send, T: Send>(
             .par_iter_mut()
             .enumerate()
             .with_min_len(256)
-            .map(|(i, s)| f(i, s))
+            .map_init(init, |w, (i, s)| f(i, s, w))
             .collect()
     }
     #[cfg(not(feature = "parallel"))]
-    items.iter_mut().enumerate().map(|(i, s)| f(i, s)).collect()
+    {
+        let mut w = init();
+        items
+            .iter_mut()
+            .enumerate()
+            .map(|(i, s)| f(i, s, &mut w))
+            .collect()
+    }
 }

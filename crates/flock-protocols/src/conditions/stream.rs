@@ -41,13 +41,18 @@ const INDEX_MASK: u64 = (1 << 56) - 1;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Streams {
     seed: u64,
+    /// The generator's key, `ChaCha8Rng::seed_from_u64(seed)`'s, expanded once.
+    key: [u8; 32],
 }
 
 impl Streams {
     /// The streams of the run with scenario seed `seed`.
     #[must_use]
     pub fn new(seed: u64) -> Self {
-        Self { seed }
+        Self {
+            seed,
+            key: ChaCha8Rng::seed_from_u64(seed).get_seed(),
+        }
     }
 
     /// The seed.
@@ -59,7 +64,7 @@ impl Streams {
     /// The draws for `purpose`, agent or link `index` (< 2⁵⁶) and `step`.
     #[must_use]
     pub fn draws(&self, purpose: Purpose, index: u64, step: u64) -> Draws {
-        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        let mut rng = ChaCha8Rng::from_seed(self.key);
         rng.set_stream(((purpose as u64) << 56) | (index & INDEX_MASK));
         rng.set_word_pos(u128::from(step) * WORDS_PER_STEP);
         Draws(rng)
