@@ -10,6 +10,8 @@
 //! - Panels (small multiples): one diagram per value of a third parameter, on a grid, with the
 //!   same axes and the same colour map in every panel, each titled ("n = 50").
 //!
+//! - [`Bound`]: a theoretical value of x (a stability bound) drawn as a labelled vertical line.
+//!
 //! - [`phase_table`]: the numbers drawn, as CSV.
 //!
 //! NaN values (failed runs, empty fields) are left out of means, bands and dots.
