@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
-use flock_viz::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
+use flock_viz::phase::{Band, Bound, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
 use flocking::estimate::{Estimate, Outputs};
 use flocking::owned::{self, DirError};
 use flocking::sweep::store::{self, RUNS_FILE, StoreError};
@@ -96,6 +96,13 @@ enum SweepAction {
         /// Logarithmic y axis.
         #[arg(long)]
         log_y: bool,
+        /// A theoretical bound on x (e.g. a stability bound of the swept delay), drawn as a
+        /// labelled vertical line in every panel; it must lie within the x values drawn.
+        #[arg(long, value_name = "X", allow_negative_numbers = true)]
+        bound: Option<f64>,
+        /// The bound's label.
+        #[arg(long, value_name = "TEXT", requires = "bound", default_value = "bound")]
+        bound_label: String,
     },
 }
 
@@ -164,6 +171,8 @@ pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCod
             band,
             log_x,
             log_y,
+            bound,
+            bound_label,
         }) => {
             let request = PlotRequest {
                 x,
@@ -174,6 +183,10 @@ pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCod
                 band,
                 log_x,
                 log_y,
+                bound: bound.map(|x| Bound {
+                    x,
+                    label: bound_label,
+                }),
             };
             plot(&dir, &request, out)
         }
@@ -325,6 +338,7 @@ struct PlotRequest {
     band: BandArg,
     log_x: bool,
     log_y: bool,
+    bound: Option<Bound>,
 }
 
 /// An axis of the sweep as the plot uses it: its column of runs.csv, its values as runs.csv
@@ -548,6 +562,7 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
         } else {
             PhaseOptions::default().size
         },
+        bound: request.bound.clone(),
     };
     let out = out.unwrap_or_else(|| dir.join(format!("{}.svg", request.metric)));
     let bytes = match out.extension().and_then(|e| e.to_str()) {

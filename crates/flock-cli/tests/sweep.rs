@@ -298,9 +298,19 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
     for (name, metric, options) in COMMITTED_DIAGRAMS {
         for ext in ["svg", "png"] {
             let file = format!("docs/figures/sweeps/{name}/{metric}.{ext}");
+            let quoted: Vec<String> = options
+                .iter()
+                .map(|o| {
+                    if o.contains(' ') {
+                        format!("\"{o}\"")
+                    } else {
+                        (*o).to_owned()
+                    }
+                })
+                .collect();
             let command = format!(
                 "flocking sweep plot docs/figures/sweeps/{name} {} --out {file}",
-                options.join(" ")
+                quoted.join(" ")
             );
             if ext == "png" {
                 assert!(doc.contains(&command), "docs/sweeps.md lacks `{command}`");
@@ -319,7 +329,13 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
             drawn += 1;
         }
     }
-    let files = ["alg2_c1_n", "alg3_beta_radius"].map(|name| {
+    let files = [
+        "alg2_c1_n",
+        "alg3_beta_radius",
+        "tac2006_fig11_delay_loss",
+        "tac2006_fig14_noise_amax",
+    ]
+    .map(|name| {
         fs::read_dir(committed.join(name))
             .expect("committed")
             .filter(|e| {
@@ -340,7 +356,7 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
 
 /// The committed diagrams: the sweep, the metric (the file's stem) and the options of their plot
 /// commands in docs/sweeps.md.
-const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 6] = [
+const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 13] = [
     (
         "alg2_c1_n",
         "alpha_flock",
@@ -419,6 +435,94 @@ const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 6] = [
             "--metric",
             "min_distance",
             "--log-x",
+        ],
+    ),
+    (
+        "tac2006_fig11_delay_loss",
+        "alpha_flock",
+        &[
+            "--x",
+            "conditions.communication.delay",
+            "--y",
+            "conditions.communication.loss.Bernoulli.p",
+            "--metric",
+            "alpha_flock",
+            "--bound",
+            "0.687",
+            "--bound-label",
+            "τ* = 0.687 s (linearised)",
+        ],
+    ),
+    (
+        "tac2006_fig11_delay_loss",
+        "settled_min_distance",
+        &[
+            "--x",
+            "conditions.communication.delay",
+            "--y",
+            "conditions.communication.loss.Bernoulli.p",
+            "--metric",
+            "settled_min_distance",
+        ],
+    ),
+    (
+        "tac2006_fig11_delay_loss",
+        "settled_collisions",
+        &[
+            "--x",
+            "conditions.communication.delay",
+            "--y",
+            "conditions.communication.loss.Bernoulli.p",
+            "--metric",
+            "settled_collisions",
+        ],
+    ),
+    (
+        "tac2006_fig14_noise_amax",
+        "alpha_flock",
+        &[
+            "--x",
+            "conditions.sensing.noise.White.sigma_q",
+            "--y",
+            "conditions.actuation.max_acceleration",
+            "--metric",
+            "alpha_flock",
+        ],
+    ),
+    (
+        "tac2006_fig14_noise_amax",
+        "settled_min_distance",
+        &[
+            "--x",
+            "conditions.sensing.noise.White.sigma_q",
+            "--y",
+            "conditions.actuation.max_acceleration",
+            "--metric",
+            "settled_min_distance",
+        ],
+    ),
+    (
+        "tac2006_fig14_noise_amax",
+        "settled_collisions",
+        &[
+            "--x",
+            "conditions.sensing.noise.White.sigma_q",
+            "--y",
+            "conditions.actuation.max_acceleration",
+            "--metric",
+            "settled_collisions",
+        ],
+    ),
+    (
+        "tac2006_fig14_noise_amax",
+        "obstacle_clearance",
+        &[
+            "--x",
+            "conditions.sensing.noise.White.sigma_q",
+            "--y",
+            "conditions.actuation.max_acceleration",
+            "--metric",
+            "obstacle_clearance",
         ],
     ),
 ];
@@ -550,6 +654,51 @@ fn plot_where_and_facet_draw_only_the_runs_they_name() {
     let title = format!("cohesion radius R: mean over {seeds} seeds, n = {}", ns[1]);
     assert!(fixed.contains(&title), "{title}");
     assert!(fixed.contains("navigational gain c₁^γ (algorithm.c1)"));
+}
+
+/// `--bound X --bound-label TEXT` draws one labelled vertical line in the bound's colour, on a
+/// line (here c₁^γ = 0.05, between the grid's 0.02 and 0.063) and on a heatmap; a bound outside
+/// the x values drawn is an error that says their range, and a label without a bound is refused.
+#[test]
+fn plot_bound_draws_a_labelled_vertical_line_within_the_grid() {
+    let tmp = temp_dir("sweep_bound");
+    let dir = fixtures_dir().join("../docs/figures/sweeps/alg2_c1_n");
+    let dir = dir.to_str().expect("UTF-8");
+    let bound = ["--bound", "0.05", "--bound-label", "c₁ bound (test)"];
+    let line = [&["--where", "agents=50"][..], &bound[..]].concat();
+    let heatmap = [&["--y", "agents", "--log-x"][..], &bound[..]].concat();
+    for (extra, out) in [(line, "line.svg"), (heatmap, "heatmap.svg")] {
+        let args = plot_args(dir, "alpha_flock", &extra, out);
+        let output = flocking(tmp.path(), &args);
+        assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+        let svg = fs::read_to_string(tmp.path().join(out)).expect("svg");
+        assert_eq!(
+            svg.matches("c₁ bound (test)").count(),
+            1,
+            "{out}: one label"
+        );
+        assert_eq!(
+            svg.matches("stroke=\"#D62728\"").count(),
+            1,
+            "{out}: one line"
+        );
+    }
+    let args = plot_args(
+        dir,
+        "alpha_flock",
+        &["--where", "agents=50", "--bound", "5"],
+        "far.svg",
+    );
+    let output = flocking(tmp.path(), &args);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("the bound 5 is outside the x values drawn, 0.002 to 0.2"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!tmp.path().join("far.svg").exists());
+    let args = plot_args(dir, "alpha_flock", &["--bound-label", "alone"], "alone.svg");
+    assert_eq!(flocking(tmp.path(), &args).status.code(), Some(2));
 }
 
 #[test]

@@ -10,6 +10,7 @@
 
 use flock_math::Vector;
 
+use crate::adjacency::binary_weights;
 use crate::graph::Graph;
 use crate::parallel::fill_indexed;
 
@@ -120,12 +121,43 @@ fn check_lengths<V>(graph: &Graph, weights: &[f64], z: &[V]) {
 /// ```
 #[must_use]
 pub fn laplacian_eigenvalues(graph: &Graph) -> Vec<f64> {
+    weighted_laplacian_eigenvalues(graph, &binary_weights(graph))
+}
+
+/// The eigenvalues of the weighted Laplacian L = Δ(A) − A, ascending, for symmetric weights a_ij
+/// per directed edge (aligned with [`Graph::neighbour_indices`]), by the same Jacobi method as
+/// [`laplacian_eigenvalues`]. With the bump adjacency a_ij = ρ_h(‖q_j − q_i‖_σ / r_α) (TAC 2006
+/// eq. 11) its λ_max bounds the delay of the flock's linearised velocity consensus.
+///
+/// # Panics
+/// When `weights` is not one per directed edge.
+///
+/// # Example
+/// ```
+/// use flock_graph::{Graph, weighted_laplacian_eigenvalues};
+///
+/// // one edge of weight a: L = [[a, −a], [−a, a]], eigenvalues 0 and 2a
+/// let g = Graph::from_edges(2, &[(0, 1)]).unwrap();
+/// let lambda = weighted_laplacian_eigenvalues(&g, &[0.25, 0.25]);
+/// assert!(lambda[0].abs() < 1e-15 && (lambda[1] - 0.5).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn weighted_laplacian_eigenvalues(graph: &Graph, weights: &[f64]) -> Vec<f64> {
+    assert_eq!(
+        weights.len(),
+        graph.directed_edge_count(),
+        "one weight per directed edge"
+    );
     let n = graph.len();
     let mut a = vec![0.0; n * n];
     for i in 0..n {
-        a[i * n + i] = graph.degree(i) as f64;
-        for &j in graph.neighbours(i) {
-            a[i * n + j as usize] -= 1.0;
+        let row = graph
+            .neighbours(i)
+            .iter()
+            .zip(&weights[graph.edge_range(i)]);
+        for (&j, &w) in row {
+            a[i * n + i] += w;
+            a[i * n + j as usize] -= w;
         }
     }
     let scale: f64 = a.iter().map(|x| x * x).sum::<f64>().max(1.0);
@@ -185,6 +217,20 @@ mod tests {
         laplacian_apply(&g, &w, &e0, &mut out);
         // First column of L: (a01 + a02, −a10, −a20).
         assert_eq!(out, [DVec3::X * 2.5, DVec3::X * -2.0, DVec3::X * -0.5]);
+    }
+
+    #[test]
+    fn weighted_eigenvalues_scale_with_uniform_weights_and_sum_to_the_trace() {
+        let c4 = Graph::from_edges(4, &[(0, 1), (1, 2), (2, 3), (3, 0)]).unwrap();
+        let doubled = weighted_laplacian_eigenvalues(&c4, &[2.0; 8]);
+        for (got, want) in doubled.iter().zip(laplacian_eigenvalues(&c4)) {
+            assert!((got - 2.0 * want).abs() < 1e-12);
+        }
+        // the triangle above: trace L = 2 Σ_edges a = 2 (2 + 0.5 + 3)
+        let g = Graph::from_edges(3, &[(0, 1), (1, 2), (2, 0)]).unwrap();
+        let lambda = weighted_laplacian_eigenvalues(&g, &[2.0, 0.5, 2.0, 3.0, 0.5, 3.0]);
+        assert!(lambda[0].abs() < 1e-12);
+        assert!((lambda.iter().sum::<f64>() - 11.0).abs() < 1e-12);
     }
 
     #[test]

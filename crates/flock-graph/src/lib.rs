@@ -7,7 +7,8 @@
 //!   expected O(n) by [`NeighbourSearch`] (a uniform cell grid), exactly as
 //!   [`ProximityNet::brute_force`]; [`nearest_pair_distance`] for the closest pair.
 //! - [`binary_weights`], [`weights_from_distances`]: adjacency weights a_ij per directed edge.
-//! - [`laplacian_apply`], [`laplacian_row`], [`laplacian_quadratic_form`]: L̂ = (Δ(A) − A) ⊗ I_m without matrices.
+//! - [`laplacian_apply`], [`laplacian_row`], [`laplacian_quadratic_form`]: L̂ = (Δ(A) − A) ⊗ I_m without matrices;
+//!   [`laplacian_eigenvalues`], [`weighted_laplacian_eigenvalues`]: the spectrum of L.
 //! - [`StressWeights`], [`Friends`]: stress weights, local stress, signed friends and centres.
 //! - [`Components`]: connected components (flocks) and the density δ₀.
 //! - [`Numbering`]: agents stored out of their original order (sorted in space), with nets and
@@ -31,6 +32,7 @@ pub use components::Components;
 pub use graph::{Graph, GraphError};
 pub use laplacian::{
     laplacian_apply, laplacian_eigenvalues, laplacian_quadratic_form, laplacian_row,
+    weighted_laplacian_eigenvalues,
 };
 pub use net::ProximityNet;
 pub use numbering::Numbering;

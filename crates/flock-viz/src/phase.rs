@@ -10,11 +10,14 @@
 //! - Panels (small multiples): one diagram per value of a third parameter, on a grid, with the
 //!   same axes and the same colour map in every panel, each titled ("n = 50").
 //!
+//! - [`Bound`]: a theoretical value of x (a stability bound) drawn as a labelled vertical line.
+//!
 //! - [`phase_table`]: the numbers drawn, as CSV.
 //!
 //! NaN values (failed runs, empty fields) are left out of means, bands and dots.
 
 use plotters::coord::Shift;
+use plotters::element::{PathElement, Text};
 use plotters::prelude::{
     ChartBuilder, Circle, DrawingArea, DrawingBackend, IntoLogRange, IntoSegmentedCoord,
     LineSeries, Polygon, Rectangle, SegmentValue,
@@ -73,6 +76,19 @@ pub struct PhaseOptions {
     pub band: Band,
     /// The size of a panel in pixels (the figure is the grid of its panels).
     pub size: (u32, u32),
+    /// A theoretical bound on x, drawn as a labelled vertical line in every panel.
+    pub bound: Option<Bound>,
+}
+
+/// A labelled value of x, such as a stability bound τ* of the swept delay, drawn as a vertical
+/// line. In a heatmap, whose cells are evenly spaced, it is placed between the centres of the two
+/// cells around it, linearly in x (logarithmically with [`PhaseOptions::log_x`] and x > 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bound {
+    /// The value of x, within the grid's x values.
+    pub x: f64,
+    /// Its label ("τ* (linearised)").
+    pub label: String,
 }
 
 impl Default for PhaseOptions {
@@ -87,6 +103,7 @@ impl Default for PhaseOptions {
             log_y: false,
             band: Band::MinMax,
             size: (800, 600),
+            bound: None,
         }
     }
 }
@@ -95,6 +112,8 @@ impl Default for PhaseOptions {
 pub const EMPTY_CELL: [u8; 3] = [0xC8, 0xC8, 0xC8];
 /// The band of a one-axis diagram.
 pub const BAND: [u8; 3] = [0xC6, 0xD4, 0xEA];
+/// The line of a [`Bound`].
+pub const BOUND: [u8; 3] = [0xD6, 0x27, 0x28];
 
 /// The phase diagram as SVG.
 ///
@@ -272,6 +291,17 @@ impl<'a> Diagram<'a> {
         if lo > hi {
             return Err(VizError::invalid(format!("no run has a value of {metric}")));
         }
+        if let Some(bound) = &options.bound {
+            let (first, last) = (xs[0], xs[xs.len() - 1]);
+            if !(first..=last).contains(&bound.x) {
+                return Err(VizError::invalid(format!(
+                    "the bound {} is outside the x values drawn, {} to {}",
+                    bound.x,
+                    format::tick(first),
+                    format::tick(last)
+                )));
+            }
+        }
         Ok(Self {
             options,
             xs,
@@ -357,7 +387,7 @@ impl<'a> Diagram<'a> {
                     };
                     let position = (SegmentValue::CenterOf(i), SegmentValue::CenterOf(j));
                     chart
-                        .draw_series([plotters::element::Text::new(
+                        .draw_series([Text::new(
                             format::significant(*m, 3),
                             position,
                             text_style(12).color(&ink),
@@ -366,7 +396,69 @@ impl<'a> Diagram<'a> {
                 }
             }
         }
-        Ok(())
+        let pixel = |k: i32| {
+            chart
+                .backend_coord(&(SegmentValue::Exact(k), SegmentValue::Exact(0)))
+                .0
+        };
+        let (left, width) = (pixel(0), pixel(1) - pixel(0));
+        let plot = chart.plotting_area().strip_coord_spec();
+        self.bound(
+            &plot,
+            |x| left + ((self.cell_position(x) + 0.5) * f64::from(width)).round() as i32,
+            text,
+        )
+    }
+
+    /// Where x falls among the heatmap's cells, in cells from the first cell's centre: between
+    /// the two grid values around it, linearly in x, or in ln x with a logarithmic x axis.
+    fn cell_position(&self, x: f64) -> f64 {
+        let xs = &self.xs;
+        if xs.len() == 1 {
+            return 0.0;
+        }
+        let above = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
+        let (a, b) = (xs[above - 1], xs[above]);
+        let t = if self.options.log_x && a > 0.0 {
+            (x / a).ln() / (b / a).ln()
+        } else {
+            (x - a) / (b - a)
+        };
+        (above - 1) as f64 + t
+    }
+
+    /// The bound, if any, as a vertical line at the backend pixel column `column` across `plot`
+    /// (a chart's plotting area), labelled at its top.
+    fn bound<DB: DrawingBackend>(
+        &self,
+        plot: &DrawingArea<DB, Shift>,
+        column: impl FnOnce(f64) -> i32,
+        text: TextMode,
+    ) -> Result<(), VizError> {
+        let Some(bound) = &self.options.bound else {
+            return Ok(());
+        };
+        let x = column(bound.x) - plot.get_base_pixel().0;
+        let (width, height) = plot.dim_in_pixel();
+        let ink = style::rgb(BOUND);
+        plot.draw(&PathElement::new(
+            vec![(x, 0), (x, height as i32)],
+            ink.stroke_width(2),
+        ))
+        .map_err(VizError::draw)?;
+        let (label, font) = (text.text(&bound.label), text_style(13).color(&ink));
+        let wide = plot
+            .estimate_text_size(&label, &font)
+            .map_err(VizError::draw)?
+            .0 as i32;
+        // right of the line, or left of it where the plot ends first
+        let left = if x + 5 + wide > width as i32 {
+            x - 5 - wide
+        } else {
+            x + 5
+        };
+        plot.draw(&Text::new(label, (left, 5), font))
+            .map_err(VizError::draw)
     }
 
     /// A vertical colour bar of the map from `lo` to `hi`, labelled with the metric.
@@ -499,6 +591,12 @@ impl<'a> Diagram<'a> {
                             .map(|&p| Circle::new(p, 3, style::rgb(CURVE).filled())),
                     )
                     .map_err(VizError::draw)?;
+                let plot = chart.plotting_area().strip_coord_spec();
+                self.bound(
+                    &plot,
+                    |x| chart.backend_coord(&(x, y0.max(f64::MIN_POSITIVE))).0,
+                    text,
+                )?;
             }};
         }
         let positive = y0 > 0.0;

@@ -63,7 +63,9 @@ pub use scenario::{
     Algorithm, Cloud, FixedGraph, Initial, Point, Scenario, TannerGraph, Translation,
 };
 pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
-pub use stability::{Warning, consensus_laplacian_max, largest_stable_step};
+pub use stability::{
+    Warning, consensus_laplacian_max, largest_stable_step, velocity_consensus_delay_bound,
+};
 pub use validate::{MAX_AGENTS, MAX_STEPS};
 
 pub use flock_graph as graph;

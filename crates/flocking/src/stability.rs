@@ -47,7 +47,10 @@ use std::fmt;
 
 use core::f64::consts::PI;
 
-use flock_graph::{NeighbourSearch, ProximityNet, laplacian_eigenvalues};
+use flock_graph::{
+    NeighbourSearch, ProximityNet, laplacian_eigenvalues, weighted_laplacian_eigenvalues,
+    weights_from_distances,
+};
 use flock_math::{
     Bump, BumpedAction, Potential, SigmaNorm, TannerPotential, UnevenSigmoid, Vector,
 };
@@ -129,6 +132,47 @@ pub fn consensus_laplacian_max(scenario: &Scenario) -> Option<(f64, bool)> {
     consensus_lambda_max(scenario, || {
         StartNet::of(scenario).degree.max(kissing) as f64
     })
+}
+
+/// The delay τ* below which the linearised velocity consensus of a TAC 2006 flock (Algorithms
+/// 1–3) at `positions` is stable when every state is delayed ([`Delayed::All`]):
+/// τ* = π / (2 λ_max(c₂^α L_a(q) + c₂^γ I)) = π / (2 (c₂^α λ_max(L_a(q)) + c₂^γ)).
+///
+/// Near a lattice the velocity part of the protocol is ṗ = −(c₂^α L̂_a(q) + c₂^γ I)(p − p_r)
+/// (TAC 2006 eq. 23 and 59, relative to the γ-agent's velocity p_r), with the spatial
+/// adjacency a_ij = ρ_h(‖q_j − q_i‖_σ / r_α) (eq. 11) on the net at range r; delayed, each of its
+/// modes ẋ = −λ x(t − τ) is stable iff λ τ < π/2 (Olfati-Saber & Murray, IEEE TAC 49(9),
+/// 2004). It leaves out the position terms, which a delay destabilises too; β-agents are left
+/// out. `positions` are n rows of `scenario.dim` coordinates (a [`crate::State`]'s). `None` for
+/// the other algorithms.
+#[must_use]
+pub fn velocity_consensus_delay_bound(scenario: &Scenario, positions: &[f64]) -> Option<f64> {
+    let gamma_c2 = match &scenario.algorithm {
+        Algorithm::Algorithm1 => 0.0,
+        Algorithm::Algorithm2 { c2, .. } => *c2,
+        Algorithm::Algorithm3 { c1, c2, .. } => c2.unwrap_or(critical_damping(*c1)),
+        _ => return None,
+    };
+    let a = &scenario.alpha;
+    let r = scenario.range();
+    let net = match scenario.dim {
+        2 => ProximityNet::brute_force(&rows::<DVec2>(positions), r),
+        _ => ProximityNet::brute_force(&rows::<DVec3>(positions), r),
+    };
+    let sigma = SigmaNorm::new(a.epsilon);
+    let (bump, r_alpha) = (Bump::tac(a.h), sigma.of_length(r));
+    let weights = weights_from_distances(&net, |z| bump.value(sigma.of_length(z) / r_alpha));
+    let lambda = weighted_laplacian_eigenvalues(net.graph(), &weights);
+    let largest = a.c2 * lambda.last().copied().unwrap_or(0.0) + gamma_c2;
+    (largest > 0.0).then(|| PI / (2.0 * largest))
+}
+
+/// n rows of `V::DIM` coordinates as vectors.
+fn rows<V: Vector>(positions: &[f64]) -> Vec<V> {
+    positions
+        .chunks_exact(V::DIM)
+        .map(|row| V::from_fn(|k| row[k]))
+        .collect()
 }
 
 /// The stiffness ω² and damping γ bounds of the linearised closed loop.

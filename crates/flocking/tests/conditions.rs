@@ -8,6 +8,7 @@ use core::f64::consts::PI;
 use approx::assert_relative_eq;
 
 use flocking::glam::DVec2;
+use flocking::math::{Bump, SigmaNorm};
 use flocking::protocols::conditions::{Communication, Delayed, Loss, WhenLost};
 use flocking::protocols::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, CentralisedTracking2003, Conditions,
@@ -15,7 +16,9 @@ use flocking::protocols::{
 };
 use flocking::serde_json::json;
 use flocking::sweep::Sweep;
-use flocking::{Scenario, check_local_form, consensus_laplacian_max};
+use flocking::{
+    Scenario, check_local_form, consensus_laplacian_max, velocity_consensus_delay_bound,
+};
 
 /// Consensus with gain `gain` on the cycle C₂₀ (λ_max(L) = 4), with `conditions` (RON, may be
 /// empty).
@@ -46,6 +49,33 @@ fn the_cycle_has_the_exact_largest_laplacian_eigenvalue() {
     let (lambda, exact) = consensus_laplacian_max(&parse(&cycle(1.0, ""))).expect("consensus");
     assert!(exact);
     assert!((lambda - 4.0).abs() < 1e-12, "{lambda}");
+}
+
+#[test]
+fn the_delay_bound_of_two_agents_at_distance_d_is_that_of_one_bump_weighted_edge() {
+    let scenario = parse(
+        "Scenario(
+    name: \"pair\",
+    dim: 2,
+    agents: 2,
+    algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.02, c2: 0.4),
+    initial: (positions: Explicit([[0.0, 0.0], [7.0, 0.0]])),
+    duration: 1.0,
+)",
+    );
+    // one edge of weight a = ρ_h(‖d‖_σ / r_α): λ_max(L_a) = 2a, and c₂^α = 1
+    let sigma = SigmaNorm::new(0.1);
+    let a = Bump::tac(0.2).value(sigma.of_length(7.0) / sigma.of_length(8.4));
+    let want = std::f64::consts::PI / (2.0 * (2.0 * a + 0.4));
+    let tau = velocity_consensus_delay_bound(&scenario, &[0.0, 0.0, 7.0, 0.0]).expect("Alg. 2");
+    assert!((tau - want).abs() < 1e-12, "{tau} against {want}");
+    // out of range: no edge, only the γ-agent's damping
+    let apart = velocity_consensus_delay_bound(&scenario, &[0.0, 0.0, 9.0, 0.0]).expect("Alg. 2");
+    assert!((apart - std::f64::consts::PI / 0.8).abs() < 1e-12);
+    assert_eq!(
+        velocity_consensus_delay_bound(&parse(&cycle(1.0, "")), &[0.0; 40]),
+        None
+    );
 }
 
 #[test]

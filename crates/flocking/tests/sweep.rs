@@ -364,6 +364,40 @@ fn the_shipped_sweeps_load() {
         last.value("algorithm.beta.c1").expect("a path"),
         json!(1000.0)
     );
+    // the robustness sweeps of docs/conditions.md: the last run of each at its grid's far corner
+    let corner = |file: &str, count: usize, paths: [(&str, f64); 2]| {
+        let sweep = Sweep::load(dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            (sweep.runs().len(), sweep.seeds),
+            (count * 10, 10),
+            "{file}"
+        );
+        let last = sweep
+            .scenario(&sweep.runs()[count * 10 - 1])
+            .expect("valid");
+        for (path, value) in paths {
+            assert_eq!(last.value(path).expect("a path"), json!(value), "{file}");
+        }
+        last
+    };
+    let fig11 = corner(
+        "tac2006_fig11_delay_loss.ron",
+        11 * 4,
+        [
+            ("conditions.communication.delay", 0.8),
+            ("conditions.communication.loss.Bernoulli.p", 0.5),
+        ],
+    );
+    assert_eq!(fig11.agents, 100);
+    let fig14 = corner(
+        "tac2006_fig14_noise_amax.ron",
+        5 * 5,
+        [
+            ("conditions.sensing.noise.White.sigma_q", 3.0),
+            ("conditions.actuation.max_acceleration", 100.0),
+        ],
+    );
+    assert!(fig14.algorithm.uses_obstacles());
 }
 
 /// The column `name` of a CSV text, as numbers.
