@@ -247,6 +247,47 @@ fn a_sweep_over_the_delay_gives_one_scenario_per_value() {
     assert_eq!(communication.loss, Loss::Bernoulli { p: 0.1 });
 }
 
+/// A field of the conditions that the base leaves unset (no `actuation` limit, no `sensing` at
+/// all) is an axis of a sweep as it is a path of `with_values`; a path that names nothing is
+/// still refused, with the fields there are.
+#[test]
+fn a_sweep_axis_may_set_a_condition_the_base_leaves_unset() {
+    let tmp = crate::common::temp_dir("conditions_unset_axis");
+    let base = tmp.path().join("cycle.ron");
+    std::fs::write(&base, cycle(1.0, "")).expect("write the base");
+    let sweep = |path: &str, values: &str| {
+        format!(
+            r#"Sweep(name: "unset", base: Path("{}"), axes: [(path: "{path}", values: List([{values}]))], seeds: 1)"#,
+            base.display()
+        )
+        .parse::<Sweep>()
+    };
+    let limits = sweep("conditions.actuation.max_acceleration", "1.0, 2.0")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let runs = limits.runs();
+    let limited = limits.scenario(&runs[1]).expect("valid");
+    let actuation = limited.conditions.actuation.expect("set by the axis");
+    assert_eq!(actuation.max_acceleration, Some(2.0));
+    let noisy = sweep(
+        "conditions.sensing.noise",
+        r#""White(sigma_q: 0.1, sigma_p: 0.0)""#,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let sensing = noisy
+        .scenario(&noisy.runs()[0])
+        .expect("valid")
+        .conditions
+        .sensing;
+    assert!(sensing.is_some());
+    let error = sweep("conditions.actuation.max_jerk", "1.0")
+        .expect_err("no such parameter")
+        .to_string();
+    assert!(
+        error.contains("max_jerk") && error.contains("axes[0].path"),
+        "{error}"
+    );
+}
+
 #[test]
 fn a_protocol_without_a_local_form_is_refused_under_a_perception_condition() {
     let alpha = AlphaAlpha::new(AlphaAlphaParams::default(), AlphaAlphaForm::Smooth, 1.0);

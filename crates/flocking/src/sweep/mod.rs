@@ -499,8 +499,15 @@ impl Sweep {
             return invalid("seeds".into(), "0 seeds give no run; give 1 or more".into());
         }
         for (k, axis) in self.axes.iter().enumerate() {
-            if let Err(e) = base.value(&axis.path) {
-                return invalid(format!("axes[{k}].path"), e.to_string());
+            // a field of the conditions that the base leaves unset has no value to read, but
+            // the axis's first value sets it: such a path is checked by setting it
+            if let Err(unreadable) = base.value(&axis.path) {
+                let Some(first) = axis.values.expand().into_iter().next() else {
+                    return invalid(format!("axes[{k}].path"), unreadable.to_string());
+                };
+                if let Err(e) = base.with_values([(axis.path.as_str(), first)]) {
+                    return invalid(format!("axes[{k}].path"), e.to_string());
+                }
             }
             if let Some(first) = self.axes[..k].iter().position(|a| a.path == axis.path) {
                 return invalid(
