@@ -4,6 +4,7 @@
 
 mod common;
 mod conditions;
+mod fig7_squeeze;
 mod fixtures;
 mod obstacle_errors;
 mod overrides;
