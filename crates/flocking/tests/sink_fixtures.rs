@@ -34,7 +34,7 @@ fn acc2004_fig4_sink_ends_on_an_invariant_planar_topology() {
     let settled = sim.graph().into_owned();
     while sim.steps() < scenario.steps() {
         sim.step();
-        if sim.steps() % every == 0 {
+        if sim.steps().is_multiple_of(every) {
             assert!(
                 *sim.graph() == settled,
                 "the edge set changes at t = {}",
