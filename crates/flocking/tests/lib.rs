@@ -12,6 +12,7 @@ mod papers;
 mod params;
 mod readme;
 mod run_dir;
+mod sink_fixtures;
 mod snapshots;
 mod stability;
 mod storage_order;
