@@ -15,3 +15,4 @@ mod snapshots;
 mod stability;
 mod storage_order;
 mod sweep;
+mod topology;
