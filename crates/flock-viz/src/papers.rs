@@ -254,13 +254,16 @@ const TAC_PARAMETERS: &[Parameter] = &[
     paper("step 0.01 s (the slides: between 0.01 and 0.03 s)"),
 ];
 
-/// The parameters of Algorithm 3's figures (TAC 2006 Fig. 14–17).
+/// The parameters the seed gives of Algorithm 3's figures (TAC 2006 Fig. 14–17) besides
+/// [`TAC_PARAMETERS`].
 const TAC_OBSTACLE_PARAMETERS: &[Parameter] = &[
     paper("Algorithm 3, n = 150, 2D"),
-    paper("d = 7, r = 1.2 d, ε = 0.1 (σ-norm)"),
     paper("d′ = 0.6 d, r′ = 1.2 d′"),
-    paper("h = 0.2 for φ_α, 0.9 for φ_β"),
-    paper("step 0.01 s (the slides: between 0.01 and 0.03 s)"),
+    paper("h = 0.9 for φ_β"),
+];
+
+/// Our parameters of Algorithm 3's figures (TAC 2006 Fig. 14–17) but their obstacles.
+const TAC_OBSTACLE_OURS: &[Parameter] = &[
     ours("a = b = 5"),
     ours("c₁^α = 3, c₂^α = 2, c₁^γ = 1, c₂^γ = 0.5, c₁^β = 30, c₂^β = 2√c₁^β (the gain rule)"),
     ours("γ-agent in uniform motion at (3, 0) m/s"),
@@ -380,6 +383,8 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
             }],
             parameters: &[
                 TAC_OBSTACLE_PARAMETERS,
+                TAC_PARAMETERS,
+                TAC_OBSTACLE_OURS,
                 &[
                     ours("obstacles: a row of four balls, radii 12, 15, 15, 15, centres 25 apart"),
                     ours("duration 160 s"),
@@ -400,6 +405,8 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
             }],
             parameters: &[
                 TAC_OBSTACLE_PARAMETERS,
+                TAC_PARAMETERS,
+                TAC_OBSTACLE_OURS,
                 &[
                     ours("obstacles: two balls of radius 25 whose surfaces are 28 = 4 d apart"),
                     ours("duration 250 s"),
