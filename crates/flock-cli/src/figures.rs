@@ -11,8 +11,10 @@
 //! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/player.html` (unless `--no-player`) | `figures/animation.gif` (the largest file, and the player shows the same motion) |
 //!
 //! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference, the
-//! paper's caption and statements beside our measures, its description, the snapshot and metric
-//! PNGs and a table of the final metrics.
+//! paper's caption and statements quoted beside our measures, its parameters (the paper's or
+//! ours), its description, our measures over the whole run with the Definition 5 verdict of its
+//! `flocking.txt`, the snapshot and metric PNGs and a table of the final metrics; a figure our
+//! run does not reproduce says so at its top.
 //!
 //! `OUT` itself must be new, empty or a gallery flocking wrote (its `.flocking` marker says
 //! `figures`; files of other names in it are left alone), and is locked while it is written.
@@ -213,12 +215,20 @@ pub fn figures(
                 fixture: stem.clone(),
                 source: PlotError::Viz(source),
             })?;
+        let flocking_txt = dir.join("flocking.txt");
+        let verdict = fs::read_to_string(&flocking_txt)
+            .map_err(io_err(&flocking_txt))?
+            .lines()
+            .next()
+            .unwrap_or_default()
+            .to_owned();
         entries.push(FigureEntry {
             reference: paper_reference(&stem),
             description: scenario.description.clone(),
             stem,
             summary,
             metrics,
+            verdict,
             images,
             player,
         });

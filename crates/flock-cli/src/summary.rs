@@ -66,6 +66,17 @@ impl fmt::Display for Report<'_> {
             writeln!(f, "  {name:<22}{value:.6e}")?;
         }
         writeln!(f, "  lattice               {}", s.lattice)?;
+        // of this run's records (after its start, when resumed)
+        writeln!(
+            f,
+            "  topology invariant from t = {:.2}{}",
+            s.topology_invariant_from,
+            if s.topology_invariant_from < s.t {
+                ""
+            } else {
+                " (still changing at the final record)"
+            }
+        )?;
         writeln!(
             f,
             "  energy H              {:.6e} -> {:.6e}",

@@ -85,6 +85,16 @@ fn the_summary_gives_the_closest_approach_over_the_run_and_after_settling() {
         least(false) < least(true),
         "the start comes closer than the settled flock: {summary}"
     );
+    // the net's edge set stops changing at one of the records
+    let topology = summary
+        .lines()
+        .find_map(|l| l.strip_prefix("  topology invariant from t = "))
+        .unwrap_or_else(|| panic!("no topology line in\n{summary}"));
+    let from = topology.split(' ').next().expect("a time");
+    assert!(
+        t.iter().any(|t| format!("{t:.2}") == from),
+        "{from} is not a record's time: {summary}"
+    );
 
     let bad = flocking(
         tmp.path(),

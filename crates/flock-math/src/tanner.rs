@@ -4,7 +4,8 @@ use crate::Potential;
 
 /// V(z) = d²/z² + ln(z²/d²) − 1 of the distance z = ‖r_ij‖: nonnegative, → ∞ as z → 0, with its
 /// unique minimum V(d) = 0 at the desired distance d (Tanner, Jadbabaie & Pappas 2003, Definition
-/// IV.3; the papers' example 1/‖r‖² + ln ‖r‖² scaled to distance d and shifted to vanish at d).
+/// IV.3, which gives these conditions and no formula: 1/‖r‖² + ln ‖r‖², the usual example, is ours,
+/// scaled to distance d and shifted to vanish at d).
 ///
 /// # Example
 /// ```

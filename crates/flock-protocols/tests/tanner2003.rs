@@ -115,7 +115,7 @@ fn law_by_hand_on_a_path() {
 /// in 100 s, linked agents kept apart by the bound V_ij ≤ W(0).
 fn flocking_on_a_fixed_graph<V: Vector>(seed: u64) {
     let n = 10;
-    let d = 1.0; // V = 1/‖r‖² + ln ‖r‖² (seed 001's example), shifted by −1
+    let d = 1.0; // V = 1/‖r‖² + ln ‖r‖² (ours: seed 001 gives no formula), shifted by −1
     let graph = random_connected_graph(n, 0.2, seed);
     let law =
         TannerJadbabaiePappas::new(graph, TannerPotential::new(d), 2.0 * d).expect("connected");

@@ -1,7 +1,9 @@
 //! The page of the papers' figures that `flocking figures` writes: per fixture its paper reference,
-//! the paper's caption and statements beside our measures ([`crate::papers`]), its description,
-//! its snapshot and metric PNGs and a table of its final metrics ([`index_html`]); one
-//! self-contained page, no script, no network.
+//! a sentence at the top when our run does not reproduce the figure, the paper's caption and
+//! statements quoted beside our measures and its parameters marked as the paper's or ours
+//! ([`crate::papers`]), its description, our measures over the whole run
+//! ([`crate::whole_run`]), its snapshot and metric PNGs and a table of its final metrics
+//! ([`index_html`]); one self-contained page, no script, no network.
 
 use std::fmt::Write as _;
 
@@ -9,6 +11,7 @@ use flocking::RunSummary;
 
 use crate::metrics::Metrics;
 use crate::papers::paper_figure;
+use crate::whole_run::whole_run_rows;
 
 /// One fixture on the page.
 #[derive(Clone, Debug)]
@@ -23,6 +26,8 @@ pub struct FigureEntry {
     pub summary: RunSummary,
     /// The run's `metrics.csv`.
     pub metrics: Metrics,
+    /// The TAC 2006 Definition 5 verdict: the first line of the run's `flocking.txt`.
+    pub verdict: String,
     /// The figure files kept, relative to the output directory (`/`-separated).
     pub images: Vec<String>,
     /// Whether `<stem>/figures/player.html` was kept (the page links to it).
@@ -89,6 +94,25 @@ fn metric_rows(summary: &RunSummary) -> Vec<(String, String)> {
     rows
 }
 
+/// Appends a two-column table of `rows` under a header row, the values in `class`.
+fn push_table(html: &mut String, header: [&str; 2], rows: &[(String, String)], class: &str) {
+    let _ = writeln!(
+        html,
+        "<table>\n<tr><th>{}</th><th>{}</th></tr>",
+        escape(header[0]),
+        escape(header[1])
+    );
+    for (name, value) in rows {
+        let _ = writeln!(
+            html,
+            "<tr><td>{}</td><td{class}>{}</td></tr>",
+            escape(name),
+            escape(value)
+        );
+    }
+    html.push_str("</table>\n");
+}
+
 /// The static page: per fixture its reference, description, PNGs and final metrics.
 #[must_use]
 pub fn index_html(entries: &[FigureEntry]) -> String {
@@ -103,9 +127,12 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
          td.v { font-family: monospace; text-align: right; }\n\
          blockquote { font-style: italic; margin: 0.5em 0 0.5em 1.5em; }\n\
          th { text-align: left; padding: 0.15em 0.8em; border-bottom: 1px solid #ccc; }\n\
+         p.not { background: #fde8e8; border-left: 4px solid #c33; padding: 0.4em 0.8em; }\n\
          </style>\n</head>\n<body>\n<h1>flocking: the papers' figures</h1>\n\
-         <p>Written by <code>flocking figures</code>: every fixture run and drawn; the tables give the \
-         metrics at the final time.</p>\n<ul>\n",
+         <p>Written by <code>flocking figures</code>: every fixture run and drawn. Per figure: the \
+         paper's caption and statements, quoted from the seeds, beside our measures; its parameters, \
+         each the paper's or ours; our measures over the whole run; the metrics at the final time. \
+         A figure our run does not reproduce says so at its top.</p>\n<ul>\n",
     );
     for e in entries {
         let _ = writeln!(
@@ -119,9 +146,10 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
     html.push_str("</ul>\n");
     for e in entries {
         let s = &e.summary;
+        let figure = paper_figure(&e.stem);
         let _ = writeln!(
             html,
-            "<section id=\"{0}\">\n<h2>{1}: <code>{0}</code></h2>\n<p>{2}</p>\n\
+            "<section id=\"{0}\">\n<h2>{1}: <code>{0}</code></h2>\n{8}<p>{2}</p>\n\
              <p>{3}D, n = {4}, {5} steps to t = {6}; {7}\
              <a href=\"{0}/scenario.ron\">scenario</a>, \
              <a href=\"{0}/metrics.csv\">metrics.csv</a>, \
@@ -140,24 +168,36 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
                 )
             } else {
                 String::new()
-            }
+            },
+            figure
+                .and_then(|f| f.not_reproduced)
+                .map_or_else(String::new, |why| format!(
+                    "<p class=\"not\"><strong>Not reproduced:</strong> {}</p>\n",
+                    escape(why)
+                ))
         );
-        if let Some(figure) = paper_figure(&e.stem) {
-            let _ = writeln!(
-                html,
-                "<blockquote>{}</blockquote>\n<table>\n<tr><th>the paper</th><th>ours</th></tr>",
-                escape(figure.caption)
-            );
-            for statement in figure.statements {
-                let _ = writeln!(
-                    html,
-                    "<tr><td>{}</td><td>{}</td></tr>",
-                    escape(statement.paper),
-                    escape(&statement.ours.of(s, &e.metrics))
-                );
-            }
-            html.push_str("</table>\n");
+        if let Some(figure) = figure {
+            let _ = writeln!(html, "<blockquote>{}</blockquote>", escape(figure.caption));
+            let statements: Vec<(String, String)> = figure
+                .statements
+                .iter()
+                .map(|s| (s.paper.to_owned(), s.ours.of(&e.summary, &e.metrics)))
+                .collect();
+            push_table(&mut html, ["the paper", "ours"], &statements, "");
+            let parameters: Vec<(String, String)> = figure
+                .parameters
+                .iter()
+                .flat_map(|group| group.iter())
+                .map(|p| (p.text.to_owned(), p.source.label().to_owned()))
+                .collect();
+            push_table(&mut html, ["parameter", "from"], &parameters, "");
         }
+        push_table(
+            &mut html,
+            ["over the whole run", "ours"],
+            &whole_run_rows(s, &e.metrics, &e.verdict),
+            "",
+        );
         for image in &e.images {
             let _ = writeln!(
                 html,
@@ -165,16 +205,13 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
                 escape(image)
             );
         }
-        html.push_str("<table>\n");
-        for (name, value) in metric_rows(s) {
-            let _ = writeln!(
-                html,
-                "<tr><td>{}</td><td class=\"v\">{}</td></tr>",
-                escape(&name),
-                escape(&value)
-            );
-        }
-        html.push_str("</table>\n</section>\n");
+        push_table(
+            &mut html,
+            ["at the final time", ""],
+            &metric_rows(s),
+            " class=\"v\"",
+        );
+        html.push_str("</section>\n");
     }
     html.push_str("</body>\n</html>\n");
     html

@@ -18,7 +18,8 @@
 //! - [`write_figures`]: all of them into a directory, as `flocking plot` writes them.
 //! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
 //! - [`index_html`]: the page of every fixture's figures that `flocking figures` writes, each beside
-//!   the paper's caption and statements ([`paper_figure`]).
+//!   the paper's caption and statements ([`paper_figure`]) and its whole-run measures
+//!   ([`whole_run_rows`]).
 //!
 //! # Example
 //! ```
@@ -56,6 +57,7 @@ pub mod scene;
 pub mod snapshot;
 pub mod style;
 pub mod view;
+pub mod whole_run;
 
 pub use animation::{AnimationOptions, animation_frames, animation_gif};
 pub use drawable::Drawable;
@@ -66,7 +68,7 @@ pub use functions::{ReportFunction, function_png, function_svg};
 pub use gallery::{FigureEntry, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
-pub use papers::{Measure, PaperFigure, Statement, paper_figure};
+pub use papers::{Measure, PaperFigure, Parameter, Source, Statement, paper_figure};
 pub use phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
 pub use player::{PlayerOptions, player_html};
 pub use plot::{PlotError, plot_run, plot_run_with, run_scene};
@@ -74,3 +76,4 @@ pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
 pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
 pub use view::View;
+pub use whole_run::{WholeRun, whole_run_rows};

@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use flock_graph::Graph;
 use flock_metrics::{FlockMetrics, FlockingCriteria, FlockingVerdict, LatticeSummary};
 use flock_protocols::Observation;
 
@@ -61,6 +62,12 @@ pub struct RunSummary {
     pub first_merge: Option<Merge>,
     /// The merged agents of the final state.
     pub merged: MergedAgents,
+    /// The time of the first record of this run (after its start, when resumed) from which the
+    /// edge set of the proximity net ([`DynSimulation::graph`], agents in original order) stays
+    /// the same at every later record through the end; the final time when the last record's
+    /// edge set differs from the one before (the topology is still changing). ACC 2004 § 5: "The
+    /// topology of the flock is asymptotically invariant."
+    pub topology_invariant_from: f64,
     /// Wall-clock time of the integration.
     pub elapsed: Duration,
 }
@@ -247,12 +254,14 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
 ) -> Result<RunSummary, RunError<R::Error>> {
     let mut history = Vec::new();
     let mut first_merge = None;
+    let mut topology = EdgeSetWatch::default();
     let (mut sim, initial_energy) = match start {
         None => {
             let sim = DynSimulation::new_with(scenario, map)?;
             sim.check_health().map_err(RunError::Numerical)?;
             let observation = record(recorder, &sim, &mut first_merge)?;
             history.push((sim.time(), observation.metrics));
+            topology.see(&sim);
             (sim, observation.energy)
         }
         Some(start) => (
@@ -271,6 +280,7 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
         if steps % scenario.record_every == 0 || steps == total {
             let observation = record(recorder, &sim, &mut first_merge)?;
             history.push((sim.time(), observation.metrics));
+            topology.see(&sim);
             last = Some(observation);
         }
         let stop = steps < total && recorder.stop_requested();
@@ -303,8 +313,31 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
         history,
         first_merge,
         merged: merged_agents(&sim.state(), merge_tolerance(scenario)),
+        topology_invariant_from: topology.since.unwrap_or_else(|| sim.time()),
         elapsed,
     })
+}
+
+/// The edge set of the proximity net at the last record seen, and the time of the record that
+/// set it (when it last changed): O(edges) memory, whatever the number of records.
+#[derive(Default)]
+struct EdgeSetWatch {
+    /// The net of the last record, agents in original order.
+    previous: Option<Graph>,
+    /// The time of the first record with the edge set of `previous`.
+    since: Option<f64>,
+}
+
+impl EdgeSetWatch {
+    /// Compares the net of `sim`'s current state with that of the last record seen.
+    fn see(&mut self, sim: &DynSimulation) {
+        let graph = sim.graph();
+        // a graph's neighbour lists are sorted, so equal edge sets are equal graphs
+        if self.previous.as_ref() != Some(&*graph) {
+            self.previous = Some(graph.into_owned());
+            self.since = Some(sim.time());
+        }
+    }
 }
 
 /// The distance below which two agents of `scenario` count as merged.

@@ -17,3 +17,4 @@ mod snapshots;
 mod stability;
 mod storage_order;
 mod sweep;
+mod topology;
