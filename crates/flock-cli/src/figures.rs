@@ -14,7 +14,9 @@
 //! paper's caption and statements quoted beside our measures, its parameters (the paper's or
 //! ours), its description, our measures over the whole run with the Definition 5 verdict of its
 //! `flocking.txt`, the snapshot and metric PNGs and a table of the final metrics; a figure our
-//! run does not reproduce says so at its top.
+//! run does not reproduce says so at its top. `OUT/functions/` holds the report's plots of its
+//! functions (CDS 03-006 Figs. 2, 4, 5; [`flock_viz::function_svg`]) as SVG and PNG, shown at the
+//! end of the page.
 //!
 //! `OUT` itself must be new, empty or a gallery flocking wrote (its `.flocking` marker says
 //! `figures`; files of other names in it are left alone), and is locked while it is written.
@@ -23,7 +25,10 @@ use std::fs;
 use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 
-use flock_viz::{FigureEntry, PlotError, index_html, load_metrics, paper_reference, plot_run};
+use flock_viz::{
+    FUNCTIONS_DIR, FigureEntry, PlotError, ReportFunction, function_png, function_svg, index_html,
+    load_metrics, paper_reference, plot_run,
+};
 use flocking::owned::{self, DirError, DirLock, Kind};
 use flocking::run_dir::CreateError;
 use flocking::{RunDirectory, RunError, Scenario, ScenarioError};
@@ -233,8 +238,20 @@ pub fn figures(
             player,
         });
     }
+    let functions = out.join(FUNCTIONS_DIR);
+    fs::create_dir_all(&functions).map_err(io_err(&functions))?;
+    for function in ReportFunction::ALL {
+        let plot = |source| FiguresError::Plot {
+            fixture: function.stem().to_owned(),
+            source: PlotError::Viz(source),
+        };
+        let png = functions.join(format!("{}.png", function.stem()));
+        fs::write(&png, function_png(function).map_err(plot)?).map_err(io_err(&png))?;
+        let svg = functions.join(format!("{}.svg", function.stem()));
+        fs::write(&svg, function_svg(function).map_err(plot)?).map_err(io_err(&svg))?;
+    }
     let index = out.join("index.html");
-    fs::write(&index, index_html(&entries)).map_err(io_err(&index))?;
+    fs::write(&index, index_html(&entries, &ReportFunction::ALL)).map_err(io_err(&index))?;
     if !quiet {
         outln!(
             "flocking figures: {} fixture(s), {}",

@@ -117,60 +117,86 @@ fn run_quiet_is_accepted_and_writes_the_same_files() {
     }
 }
 
-/// The `<section>` of `stem` in a gallery page.
-fn section<'a>(index: &'a str, stem: &str) -> &'a str {
-    let start = index
-        .find(&format!("<section id=\"{stem}\">"))
-        .unwrap_or_else(|| panic!("no section for {stem}"));
-    let end = index[start..].find("</section>").expect("a closed section");
-    &index[start..start + end]
-}
-
 /// The gallery committed in `docs/figures` (`flocking figures --out docs/figures --no-player`) cannot
-/// go stale silently: the quickest fixture (the Tanner law's) is run and drawn again, and every
-/// file kept for it, and its section of the page, must equal the committed ones byte for byte;
-/// the committed page has a section for every fixture. After changing a fixture, the drawing or
-/// the metrics, regenerate the gallery with that command.
+/// go stale silently: every fixture is run and drawn again, and every file the gallery keeps —
+/// each fixture's run files and figures, the function plots and the page — must equal the
+/// committed one byte for byte. After changing a fixture, the drawing or the metrics, regenerate
+/// the gallery with that command.
+///
+/// The same runs check TAC 2006 Theorem 5 on every 2D fixture that ends as a lattice at rest
+/// (CDS Fig. 9, TAC Figs. 10, 11, 14, 16, ACC Fig. 4): an α-lattice's net is planar, so it has at
+/// most 3n − 6 edges and no two of its edges cross.
 #[test]
 fn the_committed_gallery_is_what_flock_figures_draws() {
-    let stem = "tanner2003_fig3_fixed_n10";
     let committed = crate::common::fixtures_dir().join("../docs/figures");
     let tmp = temp_dir("figures_gallery");
-    let fixtures = tmp.path().join("fixtures");
-    fs::create_dir_all(&fixtures).expect("create fixtures/");
-    fs::copy(
-        crate::common::fixtures_dir().join(format!("{stem}.ron")),
-        fixtures.join(format!("{stem}.ron")),
-    )
-    .expect("copy the fixture");
     let out = tmp.path().join("gallery");
-    figures(&fixtures, &out, true, false).unwrap_or_else(|e| panic!("{e}"));
+    let entries = figures(&crate::common::fixtures_dir(), &out, true, false)
+        .unwrap_or_else(|e| panic!("{e}"));
 
     let stale = "docs/figures is stale: regenerate it with \
                  `cargo run --release -p flock-cli -- figures --out docs/figures --no-player`";
-    for dir in ["", "figures"] {
-        let drawn = files(&out.join(stem).join(dir));
-        let kept = files(&committed.join(stem).join(dir));
-        let names = |files: &std::collections::BTreeMap<String, Vec<u8>>| {
-            files.keys().cloned().collect::<Vec<_>>()
-        };
-        assert_eq!(names(&drawn), names(&kept), "{stale}");
+    let names = |files: &std::collections::BTreeMap<String, Vec<u8>>| {
+        files.keys().cloned().collect::<Vec<_>>()
+    };
+    // every file drawn is the committed one; the directories of the fixtures and the function
+    // plots hold nothing else (the top holds other pictures of the docs too)
+    let mut dirs: Vec<(String, bool)> = entries
+        .iter()
+        .flat_map(|e| {
+            [
+                (e.stem.clone(), true),
+                (format!("{}/figures", e.stem), true),
+            ]
+        })
+        .collect();
+    dirs.extend([(String::new(), false), ("functions".to_owned(), true)]);
+    for (dir, whole) in &dirs {
+        let drawn = files(&out.join(dir));
+        let kept = files(&committed.join(dir));
+        if *whole {
+            assert_eq!(names(&drawn), names(&kept), "{dir}: {stale}");
+        }
         for (name, bytes) in &drawn {
-            assert!(bytes == &kept[name], "{stem}/{dir}/{name} differs: {stale}");
+            assert!(
+                kept.get(name) == Some(bytes),
+                "{dir}/{name} differs: {stale}"
+            );
         }
     }
-    let index = fs::read_to_string(committed.join("index.html")).expect("docs/figures/index.html");
-    let drawn = fs::read_to_string(out.join("index.html")).expect("index.html");
-    assert_eq!(section(&drawn, stem), section(&index, stem), "{stale}");
-    for path in crate::common::fixture_paths() {
-        let stem = path.file_stem().expect("a stem").to_string_lossy();
-        section(&index, &stem);
+    assert_eq!(entries.len(), crate::common::fixture_paths().len());
+
+    let lattices = [
+        "tr2003_fig9_sink_n100",
+        "tac2006_fig10_alg2_n150",
+        "tac2006_fig11_alg2_n100",
+        "tac2006_fig14_split_rejoin_n150",
+        "tac2006_fig16_squeeze_n150",
+        "acc2004_fig4_sink_n100",
+    ];
+    for stem in lattices {
+        let entry = entries
+            .iter()
+            .find(|e| e.stem == stem)
+            .unwrap_or_else(|| panic!("no fixture {stem}"));
+        let lattice = &entry.summary.lattice;
+        let n = entry.summary.agents;
+        eprintln!(
+            "{stem}: {} edges (3n − 6 = {}), {:?} crossings, K̃ = {:.1e}",
+            lattice.edges,
+            3 * n - 6,
+            lattice.crossings,
+            entry.summary.metrics.velocity_mismatch
+        );
         assert!(
-            committed
-                .join(&*stem)
-                .join("figures/snapshots.png")
-                .is_file(),
-            "{stale}"
+            lattice.edges <= 3 * n - 6,
+            "{stem}: {} edges",
+            lattice.edges
+        );
+        assert_eq!(lattice.crossings, Some(0), "{stem}");
+        assert!(
+            entry.summary.metrics.velocity_mismatch < 1e-2,
+            "{stem}: not at rest"
         );
     }
 }

@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 
 use flocking::RunSummary;
 
+use crate::functions::ReportFunction;
 use crate::metrics::Metrics;
 use crate::papers::paper_figure;
 use crate::whole_run::whole_run_rows;
@@ -113,9 +114,11 @@ fn push_table(html: &mut String, header: [&str; 2], rows: &[(String, String)], c
     html.push_str("</table>\n");
 }
 
-/// The static page: per fixture its reference, description, PNGs and final metrics.
+/// The static page: per fixture its reference, description, PNGs and final metrics; then the
+/// report's function plots `functions`, each at [`function_image`] (which `flocking figures`
+/// writes).
 #[must_use]
-pub fn index_html(entries: &[FigureEntry]) -> String {
+pub fn index_html(entries: &[FigureEntry], functions: &[ReportFunction]) -> String {
     let mut html = String::from(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>flocking: the papers' figures</title>\n<style>\n\
@@ -213,6 +216,33 @@ pub fn index_html(entries: &[FigureEntry]) -> String {
         );
         html.push_str("</section>\n");
     }
+    if !functions.is_empty() {
+        html.push_str(
+            "<section id=\"functions\">\n<h2>Olfati-Saber, CDS 03-006 (2003): the functions</h2>\n\
+             <p>Drawn from the functions the simulations call; the parameters of Fig. 5 are ours \
+             (those of Figs. 2 and 4), as is the bump's form in Fig. 2 (the cosine influence map \
+             of CDC 2003 eq. 5; the report asks only a bump with k₀ = 5/6).</p>\n",
+        );
+        for function in functions {
+            let image = function_image(*function);
+            let _ = writeln!(
+                html,
+                "<blockquote>{}</blockquote>\n<img src=\"{1}\" alt=\"{1}\" loading=\"lazy\">",
+                escape(function.caption()),
+                escape(&image)
+            );
+        }
+        html.push_str("</section>\n");
+    }
     html.push_str("</body>\n</html>\n");
     html
+}
+
+/// The directory of the gallery that holds the function plots.
+pub const FUNCTIONS_DIR: &str = "functions";
+
+/// The PNG of `function` on the page, relative to the gallery: `functions/<stem>.png`.
+#[must_use]
+pub fn function_image(function: ReportFunction) -> String {
+    format!("{FUNCTIONS_DIR}/{}.png", function.stem())
 }

@@ -65,7 +65,7 @@ pub use error::VizError;
 pub use figures::{FigureOptions, write_figures};
 pub use framing::Framing;
 pub use functions::{ReportFunction, function_png, function_svg};
-pub use gallery::{FigureEntry, index_html, paper_reference};
+pub use gallery::{FUNCTIONS_DIR, FigureEntry, function_image, index_html, paper_reference};
 pub use metrics::Metrics;
 pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
 pub use papers::{Measure, PaperFigure, Parameter, Source, Statement, paper_figure};

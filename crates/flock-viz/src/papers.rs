@@ -347,7 +347,11 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                     ours("duration 60 s"),
                 ],
             ],
-            not_reproduced: None,
+            not_reproduced: Some(
+                "The split is built into the start (one lattice given a 2 m/s outward velocity): \
+                 the 42 random starts tried scatter under Algorithm 1 into single agents and pairs \
+                 instead of fragmenting into flocks.",
+            ),
         },
     ),
     (
@@ -462,15 +466,18 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                      c₂(p_i − p_r) to a γ-agent on y = 22.5, c₁ = 0.05, c₂ = 1 (not the \
                      report's eq. 58)",
                 ),
-                ours("c₃ = 30, c₄ = 1, λ_d = 1"),
+                ours("c₃ = 30, c₄ = 1, λ_d = 0.2"),
                 ours("start: positions uniform in [−150, −60] × [0, 40]"),
                 ours("duration 60 s"),
             ]],
             not_reproduced: Some(
-                "Agents collide during the squeeze and the final net is irregular: pairs closer \
-                 than d/4 at 223 of the 580 records after t = 2 s (down to 0.105 at t = 21 s); at \
-                 t = 60 s 98 of 244 edges within ±10 % of d, 2 of 152 triangles equilateral, 16 \
-                 crossing edges; Definition 5 fails (min C* = 0.78, K̃ ≤ 1.7).",
+                "Agents collide at the balls and squeeze through the gap crowded: with c₃ ≫ 1 the \
+                 balls' γ-agents press agents together (pairs closer than d/4 at 216 of the 580 \
+                 records after t = 2 s, from 17 to 38 s, down to 0.151; up to 11 agents abreast \
+                 between O5 and O6, where the report fits two), the flock is steered through the \
+                 gap by a per-agent pull of ours, and Definition 5 fails. The sweep \
+                 sweeps/tr2003_fig7_collisions.ron finds no setting that keeps agents both apart \
+                 and out of the balls.",
             ),
         },
     ),
@@ -512,7 +519,12 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                 ours("start: positions uniform in [−40, 40]²"),
                 ours("duration 300 s"),
             ]],
-            not_reproduced: None,
+            not_reproduced: Some(
+                "The report's sink gain c₁ = 1 crushes the lattice (least distance 0.55, 151 \
+                 pairs closer than d/4 at 300 s): φ_α is bounded (|φ_α| < b = 5), so a lattice at \
+                 spacing d bears at most ≈ 1.73 b/d per metre against the sink's pressure \
+                 c₁ n/(2π) at its centre, which caps the gain near 0.08; this run uses c₁ = 0.02.",
+            ),
         },
     ),
     (
@@ -542,16 +554,11 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                 paper("the C^k influence map of eq. 4"),
                 ours("k = 2, flat part δ = d/r"),
                 ours("a = 1, b = 5 (the CDS 03-006 report's Fig. 4 pair)"),
-                ours("c₁ = 0.05, c₂ = 1, consensus gain 1"),
+                ours("c₁ = 0.02, c₂ = 1, consensus gain 1 (those of CDS Fig. 9)"),
                 ours("start: positions uniform in [−50, 50]²"),
-                ours("duration 40 s"),
+                ours("duration 600 s, to an invariant topology"),
             ]],
-            not_reproduced: Some(
-                "The topology is not seen to become invariant: the edge set still changes at t = \
-                 39.8 s of the 40-s run, the final net is irregular (121 of 265 edges within ±10 \
-                 % of d, 22 of 168 triangles equilateral, 3 crossing edges) and Definition 5 \
-                 fails (Ẽ ≤ 1.7e-2 > ε₁ = 0.01).",
-            ),
+            not_reproduced: None,
         },
     ),
     (
