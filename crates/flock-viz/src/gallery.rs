@@ -43,6 +43,7 @@ pub fn paper_reference(stem: &str) -> String {
     let paper = match parts.next().unwrap_or_default() {
         "tac2006" => "Olfati-Saber, TAC 2006",
         "tr2003" => "Olfati-Saber, CDS 03-006 (2003)",
+        "cdc2003" => "Olfati-Saber & Murray, CDC 2003",
         "acc2004" => "Olfati-Saber, ACC 2004",
         "tanner2003" => "Tanner, Jadbabaie & Pappas 2003",
         _ => return "no paper".to_owned(),

@@ -1,11 +1,12 @@
 //! Integration tests of the `flocking` library, one binary (see STYLE.md): scenario files, the
-//! papers' runs, snapshots and determinism of short runs, agents stored by cell, and the errors
-//! of bad obstacles.
+//! papers' runs and the figures that had no fixture, snapshots and determinism of short runs,
+//! agents stored by cell, and the errors of bad obstacles.
 
 mod common;
 mod conditions;
 mod fig7_squeeze;
 mod fixtures;
+mod new_figures;
 mod obstacle_errors;
 mod overrides;
 mod papers;
