@@ -1,11 +1,12 @@
 //! Integration tests of the `flocking` library, one binary (see STYLE.md): scenario files, the
-//! papers' runs, snapshots and determinism of short runs, agents stored by cell, and the errors
-//! of bad obstacles.
+//! papers' runs, the obstacle passes of TAC 2006 Fig. 14–17, snapshots and determinism of short
+//! runs, agents stored by cell, and the errors of bad obstacles.
 
 mod common;
 mod conditions;
 mod fig7_squeeze;
 mod fixtures;
+mod obstacle_fixtures;
 mod obstacle_errors;
 mod overrides;
 mod papers;
