@@ -421,8 +421,15 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                 TAC_PARAMETERS,
                 TAC_OBSTACLE_OURS,
                 &[
-                    ours("obstacles: a row of four balls, radii 12, 15, 15, 15, centres 25 apart"),
-                    ours("duration 160 s"),
+                    ours(
+                        "obstacle: one convex wedge, tip (110, 0), base x = 200–240, 30 m wide (the \
+                         seed: obstacles “restricted to connected convex regions”)",
+                    ),
+                    ours(
+                        "c₁^γ = 1 < c₁^α = 3: with c₁^γ above c₁^α a pair of agents is pressed \
+                         together at the wedge's tip and stays merged (4 of 5 seeds)",
+                    ),
+                    ours("duration 170 s"),
                 ],
             ],
             not_reproduced: None,
@@ -443,15 +450,15 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                 TAC_PARAMETERS,
                 TAC_OBSTACLE_OURS,
                 &[
-                    ours("obstacles: two balls of radius 25 whose surfaces are 28 = 4 d apart"),
+                    ours(
+                        "obstacles: two balls of radius 40 at (140, ±54), surfaces 28 = 4 d apart, \
+                         their centres beyond the flock's half-width so that every agent is turned \
+                         into the gap",
+                    ),
                     ours("duration 250 s"),
                 ],
             ],
-            not_reproduced: Some(
-                "Not all of the flock squeezes through the gap: C* falls to 0.79 at t = 77.6 s, \
-                 21 % of the 150 agents cut off from the largest flock, before it rejoins (C = 1 \
-                 at the end).",
-            ),
+            not_reproduced: None,
         },
     ),
     (

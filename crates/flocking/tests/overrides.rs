@@ -61,7 +61,7 @@ fn unset_defaults_follow_the_values_they_depend_on() {
 
 #[test]
 fn list_elements_are_numbered_and_integral_numbers_fill_integer_fields() {
-    let scenario = fixture("tac2006_fig14_split_rejoin_n150");
+    let scenario = fixture("tac2006_fig16_squeeze_n150");
     let changed = scenario
         .with_values([("obstacles.1.radius", json!(20.0)), ("seed", json!(7.0))])
         .expect("valid");
@@ -71,8 +71,8 @@ fn list_elements_are_numbered_and_integral_numbers_fill_integer_fields() {
     );
     assert_eq!(changed.seed, 7);
     assert_eq!(
-        changed.value("obstacles.2").expect("a path"),
-        scenario.value("obstacles.2").expect("a path")
+        changed.value("obstacles.0").expect("a path"),
+        scenario.value("obstacles.0").expect("a path")
     );
 }
 

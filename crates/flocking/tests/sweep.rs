@@ -535,10 +535,11 @@ fn labels_name_parameters_by_algorithm_and_columns_by_metric() {
     );
 }
 
-/// Fig. 14's obstacles, as a sweep over whole lists of them (docs/sweeps.md: "even whole RON
-/// values"): `List([Ball(…)])` once lost the variant's name and no run could read it.
+/// Fig. 16's obstacles (two balls, so the base has `obstacles.0.radius`), as a sweep over whole
+/// lists of them (docs/sweeps.md: "even whole RON values"): `List([Ball(…)])` once lost the
+/// variant's name and no run could read it.
 const OBSTACLE_SWEEP: &str = r#"Sweep(
-    base: Path("../../fixtures/tac2006_fig14_split_rejoin_n150.ron"),
+    base: Path("../../fixtures/tac2006_fig16_squeeze_n150.ron"),
     set: {"duration": 1.0, "agents": 10},
     axes: [
         (path: "obstacles", values: List([
