@@ -4,21 +4,26 @@
 
 use std::io::Read;
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, Stdio};
 
 use crate::common::{files, fixtures_dir, flocking, temp_dir, write};
 use crate::errors::TINY_2D;
 
-/// Runs `flocking args` in `dir` with standard output and standard error pipes whose readers
-/// close at once, and returns its exit code.
-fn into_closed_pipes(dir: &Path, args: &[&str]) -> Option<i32> {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_flocking"))
+/// `flocking args` started in `dir`, its standard output and standard error piped to us.
+fn piped(dir: &Path, args: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(dir)
         .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .expect("the flocking binary starts");
+        .expect("the flocking binary starts")
+}
+
+/// Runs `flocking args` in `dir` with standard output and standard error pipes whose readers
+/// close at once, and returns its exit code.
+fn into_closed_pipes(dir: &Path, args: &[&str]) -> Option<i32> {
+    let mut child = piped(dir, args);
     drop(child.stdout.take());
     drop(child.stderr.take());
     child.wait().expect("it ends").code()
@@ -26,13 +31,7 @@ fn into_closed_pipes(dir: &Path, args: &[&str]) -> Option<i32> {
 
 /// `head -1`: standard output closed after its first line; standard error kept and read.
 fn into_head(dir: &Path, args: &[&str]) -> (Option<i32>, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_flocking"))
-        .current_dir(dir)
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the flocking binary starts");
+    let mut child = piped(dir, args);
     let mut stdout = child.stdout.take().expect("a pipe");
     let mut first = Vec::new();
     let mut byte = [0u8; 1];

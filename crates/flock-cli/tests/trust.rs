@@ -40,23 +40,8 @@ const LONG_2D: &str = r#"Scenario(
 /// loss with held packets, Ornstein–Uhlenbeck sensing at 5 Hz, sampled control, clipped and lagged
 /// actuation, gusty wind, process noise and faults at a rate. Each draw is keyed by purpose, agent
 /// or link and step, and the checkpoint carries the history, the link, noise and lag states.
-const LONG_CONDITIONED: &str = r#"Scenario(
-    name: "long_conditioned",
-    dim: 2,
-    agents: 60,
-    seed: 3,
-    algorithm: Algorithm2(
-        gamma: ConstantVelocity(position: [0.0, 0.0], velocity: [1.0, 0.5]),
-        c1: 0.02,
-        c2: 0.4,
-    ),
-    initial: (
-        positions: Box(min: [-35.0, -35.0], max: [35.0, 35.0]),
-        velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0]),
-    ),
-    step: 0.01,
-    duration: 120.0,
-    record_every: 10,
+fn long_conditioned() -> String {
+    let conditions = "    record_every: 10,
     conditions: (
         communication: (
             delay: 0.1,
@@ -72,8 +57,11 @@ const LONG_CONDITIONED: &str = r#"Scenario(
         disturbance: (wind: (mean: [0.3, 0.0], gust: 0.2), process_noise: 0.05),
         faults: (rate: 0.002, mode: Silent),
     ),
-)
-"#;
+";
+    let text = LONG_2D.replacen("    record_every: 10,\n", conditions, 1);
+    assert_ne!(text, LONG_2D);
+    text
+}
 
 /// 30 agents with c₁^α = 200 and h = 0.05: far above the stable step, it runs away at step 1.
 const BLOW_UP: &str = r#"Scenario(
@@ -452,7 +440,7 @@ fn runs_killed_at_random_instants_resume_to_bit_identical_npy_outputs() {
 
 #[test]
 fn runs_under_every_condition_killed_at_random_instants_resume_to_bit_identical_outputs() {
-    let whole = kill_and_resume("sigkill_conditions", LONG_CONDITIONED, "csv", 8);
+    let whole = kill_and_resume("sigkill_conditions", &long_conditioned(), "csv", 8);
     // the conditions were on: links were lost, information was old, agents failed
     let metrics = String::from_utf8_lossy(&whole["metrics.csv"]).into_owned();
     let mut lines = metrics.lines();
