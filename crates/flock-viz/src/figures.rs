@@ -16,8 +16,11 @@ use crate::view::View;
 /// Which figures [`write_figures`] writes, and how.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FigureOptions {
-    /// How many snapshot times, spread evenly over the run (first and last included).
+    /// How many snapshot times, spread evenly over the run (first and last included), when
+    /// `snapshot_times` is `None`.
     pub snapshot_count: usize,
+    /// The snapshot times (s), each drawn at the record nearest it (a scenario's `snapshots`).
+    pub snapshot_times: Option<Vec<f64>>,
     /// How snapshots are drawn (for 3D runs `snapshot.view` is the oblique view; a top view is
     /// written beside it).
     pub snapshot: SnapshotOptions,
@@ -37,6 +40,7 @@ impl Default for FigureOptions {
     fn default() -> Self {
         Self {
             snapshot_count: 6,
+            snapshot_times: None,
             snapshot: SnapshotOptions::default(),
             metrics: MetricsOptions::default(),
             animation: Some(AnimationOptions::default()),
@@ -51,7 +55,7 @@ impl Default for FigureOptions {
 ///
 /// | file | figure |
 /// | --- | --- |
-/// | `snapshots.svg`, `snapshots.png` | agents, net, obstacles at `snapshot_count` times (TAC 2006 Figs. 10–13) |
+/// | `snapshots.svg`, `snapshots.png` | agents, net, obstacles at `snapshot_times`, or `snapshot_count` even times (TAC 2006 Figs. 10–13) |
 /// | `snapshots_top.svg`, `snapshots_top.png` | 3D runs: the same from above ([`View::TOP`]) |
 /// | `metrics.svg`, `metrics.png` | C, R, Ẽ, K̃, H, min distance, clearance against t (Fig. 18) |
 /// | `animation.gif` | the whole run, animated |
@@ -81,7 +85,10 @@ pub fn write_figures(
         Ok(())
     };
 
-    let frames = scene.evenly_spaced_frames(options.snapshot_count.max(1));
+    let frames = match &options.snapshot_times {
+        Some(times) => scene.frames_nearest(times),
+        None => scene.evenly_spaced_frames(options.snapshot_count.max(1)),
+    };
     let mut views = vec![("snapshots", options.snapshot.style.view)];
     if scene.dim == 3 {
         views.push(("snapshots_top", View::TOP));

@@ -44,7 +44,8 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     plot_run_with(dir, &FigureOptions::default())
 }
 
-/// [`plot_run`] with `options` (a Tanner run's snapshots get velocity arrows whatever they say).
+/// [`plot_run`] with `options` (a Tanner run's snapshots get velocity arrows whatever they say;
+/// the scenario's `snapshots` times, when it has them and `options` gives none).
 ///
 /// # Errors
 /// As [`plot_run`].
@@ -53,6 +54,9 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
     let run = RunData::load(dir).map_err(PlotError::Viz)?;
     let scene = run_scene(&scenario, run.scene(scenario.range())).map_err(PlotError::Scenario)?;
     let mut options = options.clone();
+    if options.snapshot_times.is_none() {
+        options.snapshot_times.clone_from(&scenario.snapshots);
+    }
     if scene.interaction_graph.is_some() {
         options.snapshot.style.velocity_arrows = true;
     }

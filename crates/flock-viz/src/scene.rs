@@ -228,6 +228,18 @@ impl Scene {
         out
     }
 
+    /// [`Scene::frame_nearest`] each of `times` (s), without repeats, in order: the snapshots a
+    /// scenario asks for where things happen (its `snapshots`).
+    #[must_use]
+    pub fn frames_nearest(&self, times: &[f64]) -> Vec<usize> {
+        let mut out: Vec<usize> = times
+            .iter()
+            .filter_map(|&t| self.frame_nearest(t))
+            .collect();
+        out.dedup();
+        out
+    }
+
     /// Checks that the scene can be drawn.
     pub(crate) fn validate(&self) -> Result<(), VizError> {
         if self.dim != 2 && self.dim != 3 {

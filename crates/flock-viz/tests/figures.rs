@@ -11,6 +11,7 @@ use crate::support::{cube_scene, flocking_metrics, lattice_scene, temp_dir};
 fn small() -> FigureOptions {
     FigureOptions {
         snapshot_count: 3,
+        snapshot_times: None,
         snapshot: SnapshotOptions {
             panel_size: (200, 200),
             ..SnapshotOptions::default()

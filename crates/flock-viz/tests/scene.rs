@@ -38,6 +38,9 @@ fn snapshot_times_are_spread_over_the_run() {
         "ties go to the earlier frame"
     );
     assert_eq!(scene.frame_nearest(-7.0), Some(0));
+    // chosen times: the nearest records, a repeat drawn once
+    assert_eq!(scene.frames_nearest(&[0.0, 2.4, 2.6, 100.0]), [0, 2, 3, 4]);
+    assert_eq!(scene.frames_nearest(&[1.1, 0.9]), [1]);
     assert_eq!(Scene::new(2, 1.0).frame_nearest(0.0), None);
 }
 

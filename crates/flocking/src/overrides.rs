@@ -130,7 +130,7 @@ impl Scenario {
     }
 
     /// The scenario as JSON, its `conditions` expanded: present, with every part that has a
-    /// default written (its default when unset).
+    /// default written (its default when unset); `snapshots` present (null when unset).
     fn tree(&self) -> Value {
         let mut tree = serde_json::to_value(self).expect("a scenario is plain data and serializes");
         let c = &self.conditions;
@@ -147,6 +147,8 @@ impl Scenario {
             ("faults", to_json(&c.faults.clone().unwrap_or_default())),
         ];
         if let Value::Object(map) = &mut tree {
+            // unset, not written, and settable
+            map.entry("snapshots").or_insert(Value::Null);
             let conditions = map
                 .entry("conditions")
                 .or_insert_with(|| Value::Object(serde_json::Map::new()));

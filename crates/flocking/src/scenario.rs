@@ -91,7 +91,16 @@ pub struct Scenario {
     /// ideal run.
     #[serde(default, skip_serializing_if = "Conditions::is_ideal")]
     pub conditions: Conditions,
+    /// The times (s) at which `flocking plot` draws the snapshots: where things happen (a net
+    /// becoming a flock, a split, a rejoin), each drawn at the record nearest it (one beyond the
+    /// end at the last record); ≥ 0, increasing, at most [`MAX_SNAPSHOTS`]. `None` (not
+    /// written): six times spread evenly over the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshots: Option<Vec<f64>>,
 }
+
+/// The most snapshot times a scenario may ask for (a figure of three rows of four panels).
+pub const MAX_SNAPSHOTS: usize = 12;
 
 /// A vector as a scenario writes it: a list of `dim` numbers (`[1.0, 2.0]`).
 pub type Point = Vec<f64>;

@@ -118,6 +118,43 @@ impl Scenario {
         self.validate_cloud(problems, "initial.positions", &self.initial.positions);
         self.validate_cloud(problems, "initial.velocities", &self.initial.velocities);
         self.validate_conditions(problems);
+        if let Some(times) = &self.snapshots {
+            problems.check(self.validate_snapshots(times));
+        }
+    }
+
+    /// Snapshot times ≥ 0, increasing, and not too many to draw (a time beyond the end, as after
+    /// shortening a run, is drawn at its last record).
+    fn validate_snapshots(&self, times: &[f64]) -> Check {
+        require(
+            !times.is_empty() && times.len() <= crate::scenario::MAX_SNAPSHOTS,
+            "snapshots",
+            times.len(),
+            &format!(
+                "is the number of times; it must be 1 to {}",
+                crate::scenario::MAX_SNAPSHOTS
+            ),
+            "list the times to draw, e.g. snapshots: [0.0, 4.0, 30.0], or leave it out for six even ones",
+        )?;
+        for (k, &t) in times.iter().enumerate() {
+            require(
+                t.is_finite() && t >= 0.0,
+                &format!("snapshots[{k}]"),
+                t,
+                "is not a time of the run",
+                "give a time ≥ 0 in seconds (one beyond the end is drawn at the last record)",
+            )?;
+            if k > 0 {
+                require(
+                    t > times[k - 1],
+                    &format!("snapshots[{k}]"),
+                    t,
+                    &format!("does not follow {} s", times[k - 1]),
+                    "list the times in increasing order",
+                )?;
+            }
+        }
+        Ok(())
     }
 
     /// The conditions' own domains ([`Conditions::validate`](flock_protocols::Conditions::validate),

@@ -133,3 +133,27 @@ fn a_dynamic_simulation_refuses_rows_of_the_wrong_size() {
     let error = DynSimulation::from_state(&scenario, &[0.0; 10], &[0.0; 200], 0).unwrap_err();
     assert_eq!(error.field().as_deref(), Some("agents"), "{error}");
 }
+
+/// A scenario's snapshot times are ≥ 0, increase and are at most `MAX_SNAPSHOTS`; each
+/// refusal names the time at fault, and the times survive the written scenario.
+#[test]
+fn snapshot_times_are_checked_and_written() {
+    let base = fixture("tac2006_fig11_alg2_n100");
+    let with = |times: Vec<f64>| base.with_values([("snapshots", serde_json::json!(times))]);
+    let ok = with(vec![0.0, 4.0, 100.0]).expect("valid times");
+    assert_eq!(ok.snapshots.as_deref(), Some(&[0.0, 4.0, 100.0][..]));
+    let written = ok.to_ron().expect("ron");
+    assert!(written.contains("snapshots: ["), "{written}");
+    assert_eq!(Scenario::parse(&written, "s.ron").expect("parses"), ok);
+    assert!(!base.to_ron().expect("ron").contains("snapshots"));
+    for (times, at) in [
+        (vec![1.0, 1.0], "snapshots[1]"),
+        (vec![5.0, 4.0], "snapshots[1]"),
+        (vec![-1.0], "snapshots[0]"),
+        (vec![], "snapshots"),
+        ((0..13).map(f64::from).collect(), "snapshots"),
+    ] {
+        let error = with(times.clone()).expect_err("refused");
+        assert_eq!(error.field().as_deref(), Some(at), "{times:?}: {error}");
+    }
+}
