@@ -44,7 +44,8 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     plot_run_with(dir, &FigureOptions::default())
 }
 
-/// [`plot_run`] with `options` (a Tanner run's snapshots get velocity arrows whatever they say;
+/// [`plot_run`] with `options` (a run on a fixed graph gets velocity arrows and dotted trails
+/// from the start whatever they say;
 /// the scenario's `snapshots` times, when it has them and `options` gives none).
 ///
 /// # Errors
@@ -58,7 +59,11 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
         options.snapshot_times.clone_from(&scenario.snapshots);
     }
     if scene.interaction_graph.is_some() {
+        // a run on a fixed graph (the Tanner law, Consensus), drawn as Tanner et al. 2003 Figs. 3–8:
+        // velocity arrows and each trajectory dotted from the start
         options.snapshot.style.velocity_arrows = true;
+        options.snapshot.style.trail = scene.frames.len();
+        options.snapshot.style.dotted_trails = true;
     }
     write_figures(&scene, Some(&run.metrics), &dir.join("figures"), &options)
         .map_err(PlotError::Viz)

@@ -77,6 +77,10 @@ pub struct PanelStyle {
     pub framing: Framing,
     /// How many earlier recorded frames each agent's trail goes back (0: no trails).
     pub trail: usize,
+    /// Whether trails are dotted, a dot at every recorded position (at most
+    /// [`MAX_TRAIL_DOTS`] per agent, evenly thinned), as Tanner et al. 2003 draw trajectories
+    /// (Figs. 3–8); otherwise a line.
+    pub dotted_trails: bool,
     /// Whether to draw the edges of the proximity net (of the scene's interaction graph, if any).
     pub edges: bool,
     /// Whether to colour each edge by the sign of its stress weight s_ij (ACC 2004 eq. 26–31,
@@ -99,6 +103,7 @@ impl Default for PanelStyle {
             view: View::default(),
             framing: Framing::Run,
             trail: 0,
+            dotted_trails: false,
             edges: true,
             stress_edges: false,
             velocity_arrows: false,
@@ -330,7 +335,7 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
         draw_edges(&mut chart, framer, frame, window, stress)?;
     }
     if panel.trail > 0 {
-        draw_trails(&mut chart, framer, frame, panel.trail, window)?;
+        draw_trails(&mut chart, framer, frame, panel, window)?;
     }
     if panel.velocity_arrows {
         draw_velocities(&mut chart, framer, frame, window, marker)?;
@@ -480,18 +485,34 @@ fn draw_velocities<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Trails of the last `trail` frames, of the agents present in all of them, and of the γ-agent.
+/// The most dots of one agent's dotted trail.
+pub const MAX_TRAIL_DOTS: usize = 60;
+
+/// Trails of the last `panel.trail` frames, of the agents present in all of them, and of the
+/// γ-agent: lines, or dots at the recorded positions when `panel.dotted_trails`.
 fn draw_trails<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
     frame: usize,
-    trail: usize,
+    panel: &PanelStyle,
     window: Rect,
 ) -> Result<(), VizError> {
-    let frames = &framer.scene().frames[frame.saturating_sub(trail)..=frame];
+    let frames = &framer.scene().frames[frame.saturating_sub(panel.trail)..=frame];
+    let stride = frames.len().div_ceil(MAX_TRAIL_DOTS).max(1);
     let mut paths = Vec::new();
+    let mut dots = Vec::new();
     let mut add = |points: Option<Vec<DVec2>>, colour| {
-        for run in clip_polyline(&points.unwrap_or_default(), window) {
+        let points = points.unwrap_or_default();
+        if panel.dotted_trails {
+            let inside = points
+                .iter()
+                .rev()
+                .step_by(stride)
+                .filter(|p| window.contains(**p));
+            dots.extend(inside.map(|&p| Circle::new(tuple(p), 1, style::rgb(colour).filled())));
+            return;
+        }
+        for run in clip_polyline(&points, window) {
             paths.push(PathElement::new(
                 run.into_iter().map(tuple).collect::<Vec<_>>(),
                 style::rgb(colour).stroke_width(1),
@@ -511,6 +532,7 @@ fn draw_trails<DB: DrawingBackend>(
         .collect();
     add(gamma, GAMMA);
     chart.draw_series(paths).map_err(VizError::draw)?;
+    chart.draw_series(dots).map_err(VizError::draw)?;
     Ok(())
 }
 

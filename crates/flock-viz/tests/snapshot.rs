@@ -90,6 +90,15 @@ fn agents_at_rest_are_dots_and_trails_follow_the_agents() {
     assert_eq!(count_marks(&svg, "polyline", "stroke", TRAIL), AGENTS);
     // The γ-agent's path is drawn in its colour.
     assert_eq!(count_marks(&svg, "polyline", "stroke", GAMMA), 1);
+    // dotted (Tanner et al. 2003 Figs. 3–8): a dot at each recorded position, frames 2 to 4
+    let dotted = styled(|style| {
+        style.trail = 2;
+        style.dotted_trails = true;
+    });
+    let svg = snapshot_svg(&scene, &[4], &dotted).unwrap();
+    assert_eq!(count_marks(&svg, "polyline", "stroke", TRAIL), 0);
+    assert_eq!(count_marks(&svg, "circle", "fill", TRAIL), 3 * AGENTS);
+    assert_eq!(count_marks(&svg, "circle", "fill", GAMMA), 3);
 }
 
 #[test]
