@@ -94,3 +94,26 @@ pub fn csv_column(text: &str, name: &str) -> Vec<String> {
         .map(|r| r.expect("a row")[k].to_owned())
         .collect()
 }
+
+/// Removes `path`, a file the test or flocking wrote under the test's own temporary directory
+/// `tmp`, after checking both: it lies under `tmp` (no `..` or link leads out) and it begins with
+/// `holds`, what the test knows it wrote there. A test removes nothing it did not make.
+pub fn remove_own_file(tmp: &Path, path: &Path, holds: &[u8]) {
+    let path = path
+        .canonicalize()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let tmp = tmp.canonicalize().expect("the test's directory");
+    assert!(
+        path.starts_with(&tmp) && path != tmp,
+        "{} is not under the test's directory {}",
+        path.display(),
+        tmp.display()
+    );
+    let bytes = fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(
+        bytes.starts_with(holds),
+        "{} does not hold what the test wrote there",
+        path.display()
+    );
+    fs::remove_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+}

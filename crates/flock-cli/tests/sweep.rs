@@ -743,19 +743,7 @@ fn bad_where_and_facet_are_clear_errors() {
     // a number matches as a number: 50.0 is the 50 of runs.csv
     let output = flocking(
         tmp.path(),
-        &[
-            "sweep",
-            "plot",
-            dir,
-            "--x",
-            "algorithm.c1",
-            "--metric",
-            "alpha_flock",
-            "--where",
-            "agents=50.0",
-            "--out",
-            "ok.csv",
-        ],
+        &plot_args(dir, "alpha_flock", &["--where", "agents=50.0"], "ok.csv"),
     );
     assert!(output.status.success(), "{}", stderr(&output));
 }

@@ -12,7 +12,7 @@ use flocking::health::Fault;
 use flocking::run_dir::{Checkpoint, INCOMPLETE_FILE};
 use flocking::{Cloud, DynSimulation, Initial, Record, Recorder, RunError, Scenario};
 
-use crate::common::{files, flocking, stderr, temp_dir, write};
+use crate::common::{files, flocking, remove_own_file, stderr, temp_dir, write};
 
 /// Algorithm 2, 60 agents, 12,000 steps recorded every 10: long enough (about a second in a
 /// test build) to be interrupted at many points.
@@ -683,7 +683,7 @@ fn issue_20_force_never_replaces_a_users_directory() {
         b"mine\n"
     );
     // ...and a run directory of flocking's alone is replaced, once the user takes their file.
-    fs::remove_file(tmp.path().join("r/notes.txt")).expect("the user's own file");
+    remove_own_file(tmp.path(), &tmp.path().join("r/notes.txt"), b"mine\n");
     complete(
         tmp.path(),
         &["run", &file, "--out", "r", "--force", "--quiet"],
@@ -939,26 +939,39 @@ fn issue_20_resume_refuses_an_edited_scenario_naming_the_field() {
 }
 
 /// A file of the test's own that fills the filesystem of its directory but `pages` pages; it
-/// is created new (never a file that was there) and removed, alone, when dropped.
-struct Filler(PathBuf);
+/// is created new (never a file that was there) and removed when dropped, only if the path still
+/// names that very file (its device and inode).
+struct Filler {
+    path: PathBuf,
+    identity: (u64, u64),
+}
 
 impl Filler {
     fn new(dir: &Path, pages: u64) -> Self {
         use std::io::Write as _;
+        use std::os::unix::fs::MetadataExt as _;
         let path = dir.join("filler");
         let mut file = fs::File::create_new(&path).expect("a new filler file");
         let page = vec![0u8; 4096];
         while file.write_all(&page).is_ok() {}
-        let len = file.metadata().expect("len").len();
-        file.set_len(len.saturating_sub(pages * 4096))
+        let metadata = file.metadata().expect("metadata");
+        file.set_len(metadata.len().saturating_sub(pages * 4096))
             .expect("free pages");
-        Self(path)
+        Self {
+            path,
+            identity: (metadata.dev(), metadata.ino()),
+        }
     }
 }
 
 impl Drop for Filler {
     fn drop(&mut self) {
-        let _ = fs::remove_file(&self.0);
+        use std::os::unix::fs::MetadataExt as _;
+        let ours = fs::symlink_metadata(&self.path)
+            .is_ok_and(|m| m.is_file() && (m.dev(), m.ino()) == self.identity);
+        if ours {
+            let _ = fs::remove_file(&self.path);
+        }
     }
 }
 
@@ -1149,14 +1162,19 @@ fn issue_20_a_kept_run_never_replaces_a_users_directory() {
         .file_name();
     let run = sw.join("runs").join(&id);
     // the run's row is lost, and a user's file is in its directory: it is run again, and refused
+    let id = id.to_string_lossy();
     for row in fs::read_dir(sw.join("rows")).expect("rows/") {
         let row = row.expect("entry").path();
-        assert_eq!(
-            row.extension().and_then(|e| e.to_str()),
-            Some("csv"),
-            "a row flocking wrote"
+        let name = row
+            .file_name()
+            .expect("a name")
+            .to_string_lossy()
+            .into_owned();
+        assert!(
+            name.ends_with(&format!("-{id}.csv")),
+            "{name}: not the row of run {id}"
         );
-        fs::remove_file(&row).expect("a row flocking wrote");
+        remove_own_file(tmp.path(), &row, b"");
     }
     fs::write(run.join("thesis.tex"), "x\n").expect("a user's file");
     let output = flocking(tmp.path(), &args);
@@ -1226,7 +1244,11 @@ fn issue_20_figures_never_replaces_a_users_directory() {
         &["short: g/short holds thesis.tex, which flocking did not write"],
     );
     assert_eq!(files(&stem), before);
-    fs::remove_file(stem.join(".flocking")).expect("no longer flocking's");
+    remove_own_file(
+        tmp.path(),
+        &stem.join(".flocking"),
+        b"written by flocking run\n",
+    );
     let before = files(&stem);
     let output = flocking(tmp.path(), &["figures", "--out", "g", "--quiet"]);
     refused(&output, &["g/short holds"]);
@@ -1261,7 +1283,11 @@ fn issue_20_plot_never_overwrites_a_file_flocking_did_not_write() {
     complete(tmp.path(), &["run", &file, "--out", "r", "--quiet"]);
     complete(tmp.path(), &["plot", "r"]);
     complete(tmp.path(), &["plot", "r"]);
-    fs::remove_file(tmp.path().join("r/.flocking")).expect("rm marker");
+    remove_own_file(
+        tmp.path(),
+        &tmp.path().join("r/.flocking"),
+        b"written by flocking run\n",
+    );
     fs::write(tmp.path().join("r/figures/metrics.svg"), "mine\n").expect("a user's figure");
     let output = flocking(tmp.path(), &["plot", "r"]);
     refused(&output, &["r holds figures, which flocking did not write"]);

@@ -69,15 +69,20 @@ fn consensus_run(
     sim
 }
 
-fn delayed(delay: f64, delayed: Delayed) -> Conditions {
+/// Conditions of communication alone.
+fn communicating(communication: Communication) -> Conditions {
     Conditions {
-        communication: Some(Communication {
-            delay,
-            delayed,
-            ..Communication::default()
-        }),
+        communication: Some(communication),
         ..Conditions::default()
     }
+}
+
+fn delayed(delay: f64, delayed: Delayed) -> Conditions {
+    communicating(Communication {
+        delay,
+        delayed,
+        ..Communication::default()
+    })
 }
 
 /// The ratio of the final to the initial disagreement.
@@ -191,14 +196,11 @@ fn process_noise_gives_the_stationary_disagreement() {
 
 fn algorithm1_momentum(symmetric: bool) -> f64 {
     let swarm = random_swarm::<DVec2>(30, 12.0, 1.0, 5);
-    let conditions = Conditions {
-        communication: Some(Communication {
-            loss: Loss::Bernoulli { p: 0.3 },
-            symmetric,
-            ..Communication::default()
-        }),
-        ..Conditions::default()
-    };
+    let conditions = communicating(Communication {
+        loss: Loss::Bernoulli { p: 0.3 },
+        symmetric,
+        ..Communication::default()
+    });
     let protocol = Algorithm1 {
         alpha: papers_alpha(),
     };
@@ -230,16 +232,13 @@ fn symmetric_loss_keeps_the_momentum_and_independent_loss_does_not() {
 /// standard errors (batch means over 40 batches of 100 s, 200 correlation times 1/(a+b)).
 #[test]
 fn gilbert_elliott_loses_its_stationary_fraction() {
-    let conditions = Conditions {
-        communication: Some(Communication {
-            loss: Loss::GilbertElliott {
-                p_fail: 0.5,
-                p_recover: 1.5,
-            },
-            ..Communication::default()
-        }),
-        ..Conditions::default()
-    };
+    let conditions = communicating(Communication {
+        loss: Loss::GilbertElliott {
+            p_fail: 0.5,
+            p_recover: 1.5,
+        },
+        ..Communication::default()
+    });
     let mut sim = consensus_run(0.1, cycle(6), 0.1, &conditions, 0);
     let column = |sim: &Simulation<DVec2, Consensus>| {
         sim.diagnostics()
@@ -807,13 +806,10 @@ fn every_condition_in_3d() {
 /// apart with a 0.5 m range hear nobody and keep their velocities.
 #[test]
 fn a_communication_range_cuts_fixed_links() {
-    let conditions = Conditions {
-        communication: Some(Communication {
-            range: Some(0.5),
-            ..Communication::default()
-        }),
-        ..Conditions::default()
-    };
+    let conditions = communicating(Communication {
+        range: Some(0.5),
+        ..Communication::default()
+    });
     let start = six_velocities();
     let swarm = Swarm::new(
         (0..6).map(|i| DVec2::new(f64::from(i), 0.0)).collect(),
@@ -836,14 +832,11 @@ fn a_communication_range_cuts_fixed_links() {
 #[test]
 fn hold_uses_the_last_value_received() {
     let run = |when_lost| {
-        let conditions = Conditions {
-            communication: Some(Communication {
-                loss: Loss::Bernoulli { p: 0.5 },
-                when_lost,
-                ..Communication::default()
-            }),
-            ..Conditions::default()
-        };
+        let conditions = communicating(Communication {
+            loss: Loss::Bernoulli { p: 0.5 },
+            when_lost,
+            ..Communication::default()
+        });
         let mut sim = consensus_run(0.5, cycle(6), 0.01, &conditions, 0);
         let (mut lost, mut age) = (0.0, 0.0);
         for _ in 0..2000 {
