@@ -200,11 +200,16 @@ pub fn figures(
         if !player {
             remove_if_present(&dir.join("figures").join("player.html"))?;
         }
-        let images: Vec<String> = ["snapshots.png", "snapshots_top.png", "metrics.png"]
-            .iter()
-            .filter(|name| dir.join("figures").join(name).is_file())
-            .map(|name| format!("{stem}/figures/{name}"))
-            .collect();
+        let images: Vec<String> = [
+            "snapshots.png",
+            "snapshots_top.png",
+            "views.png",
+            "metrics.png",
+        ]
+        .iter()
+        .filter(|name| dir.join("figures").join(name).is_file())
+        .map(|name| format!("{stem}/figures/{name}"))
+        .collect();
         if !quiet {
             outln!(
                 "flocking figures: {stem:<36} {}D n = {:<4} {:>6} steps  {:>7.2} s  -> {}",

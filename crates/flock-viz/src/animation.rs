@@ -13,7 +13,7 @@ use crate::error::VizError;
 use crate::framing::Framer;
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
-use crate::snapshot::{PanelStyle, below_title, draw_panel, figure_title};
+use crate::snapshot::{PanelStyle, below_title, draw_panel, figure_title, time_title};
 
 /// How the animation is drawn.
 #[derive(Clone, Debug, PartialEq)]
@@ -112,6 +112,12 @@ impl Figure for AnimationFrame<'_> {
         text: TextMode,
     ) -> Result<(), VizError> {
         let body = below_title(root, self.title, text)?;
-        draw_panel(&body, self.framer, self.frame, self.panel)
+        draw_panel(
+            &body,
+            self.framer,
+            self.frame,
+            self.panel,
+            &time_title(self.framer.scene(), self.frame),
+        )
     }
 }

@@ -12,6 +12,7 @@ use crate::player::{PlayerOptions, player_html};
 use crate::scene::Scene;
 use crate::snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
 use crate::view::View;
+use crate::views::{views_png, views_svg};
 
 /// Which figures [`write_figures`] writes, and how.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,6 +58,7 @@ impl Default for FigureOptions {
 /// | --- | --- |
 /// | `snapshots.svg`, `snapshots.png` | agents, net, obstacles at `snapshot_times`, or `snapshot_count` even times (TAC 2006 Figs. 10–13) |
 /// | `snapshots_top.svg`, `snapshots_top.png` | 3D runs: the same from above ([`View::TOP`]) |
+/// | `views.svg`, `views.png` | 3D runs: the last snapshot in four depth-cued views, oblique, top, front and side ([`views_svg`]) |
 /// | `metrics.svg`, `metrics.png` | C, R, Ẽ, K̃, H, min distance, clearance against t (Fig. 18) |
 /// | `animation.gif` | the whole run, animated |
 /// | `player.html` | the whole run in a self-contained canvas player |
@@ -107,6 +109,19 @@ pub fn write_figures(
                 &format!("{name}.png"),
                 &snapshot_png(scene, &frames, &snapshot)?,
             )?;
+        }
+    }
+
+    if scene.dim == 3 {
+        let last = frames[frames.len() - 1];
+        if options.svg {
+            write(
+                "views.svg",
+                views_svg(scene, last, &options.snapshot)?.as_bytes(),
+            )?;
+        }
+        if options.png {
+            write("views.png", &views_png(scene, last, &options.snapshot)?)?;
         }
     }
 

@@ -8,6 +8,8 @@
 //!   framed, independent of files.
 //! - [`snapshot_svg`], [`snapshot_png`]: agents, net and obstacles at chosen times
 //!   (TAC 2006 Figs. 10–17).
+//! - [`views_svg`], [`views_png`]: one frame of a 3D run in four depth-cued views (oblique, top,
+//!   front, side).
 //! - [`metrics_svg`], [`metrics_png`]: C, R, Ẽ, K̃ against t (TAC 2006 Fig. 18), energy,
 //!   distances.
 //! - [`animation_gif`]: the whole run as an animated GIF.
@@ -57,6 +59,7 @@ pub mod scene;
 pub mod snapshot;
 pub mod style;
 pub mod view;
+pub mod views;
 pub mod whole_run;
 
 pub use animation::{AnimationOptions, animation_frames, animation_gif};
@@ -76,4 +79,5 @@ pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
 pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
 pub use view::View;
+pub use views::{four_views, views_png, views_svg};
 pub use whole_run::{WholeRun, whole_run_rows};

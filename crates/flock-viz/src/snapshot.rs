@@ -25,8 +25,8 @@ use crate::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_se
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
 use crate::style::{
-    self, AGENT, ATTRACTION, EDGE, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, REPULSION, TRAIL,
-    VELOCITY, WALL_PLANE,
+    self, AGENT, ATTRACTION, BACKGROUND, EDGE, GAMMA, INK, NEAR_EDGE, OBSTACLE, OBSTACLE_OUTLINE,
+    REPULSION, TRAIL, VELOCITY, WALL_PLANE,
 };
 use crate::view::View;
 
@@ -222,7 +222,7 @@ impl Figure for Snapshot<'_> {
         let style = &self.options.style;
         let framer = Framer::new(self.scene, style.view, style.trail);
         for (panel, &frame) in panels.iter().zip(self.frames) {
-            draw_panel(panel, &framer, frame, style)?;
+            draw_panel(panel, &framer, frame, style, &time_title(self.scene, frame))?;
         }
         Ok(())
     }
@@ -269,21 +269,22 @@ fn tuple(p: DVec2) -> (f64, f64) {
     (p.x, p.y)
 }
 
-/// Draws frame `frame` of the framer's scene in `area`: title `t = … s`, axes, obstacles, edges,
-/// trails, agents and the γ-agent.
+/// A panel's title: the time of its frame, `t = … s`.
+pub(crate) fn time_title(scene: &Scene, frame: usize) -> String {
+    format!("t = {} s", format::number(scene.frames[frame].t, 2))
+}
+
+/// Draws frame `frame` of the framer's scene in `area`: `title`, axes, obstacles, edges, trails,
+/// agents and the γ-agent (3D scenes depth-cued: see [`DepthCue`]).
 pub(crate) fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     framer: &Framer<'_>,
     frame: usize,
     panel: &PanelStyle,
+    title: &str,
 ) -> Result<(), VizError> {
     let scene = framer.scene();
-    let area = area
-        .titled(
-            &format!("t = {} s", format::number(scene.frames[frame].t, 2)),
-            text_style(17),
-        )
-        .map_err(VizError::draw)?;
+    let area = area.titled(title, text_style(17)).map_err(VizError::draw)?;
 
     // The plotting area in pixels, to give both axes the same scale.
     let (w, h) = area.dim_in_pixel();
@@ -326,13 +327,14 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
         .map_err(VizError::draw)?;
 
     let marker = panel.marker_size * per_pixel;
+    let cue = DepthCue::of(framer, frame);
     draw_obstacles(&mut chart, framer, window)?;
     if panel.edges {
         let stress = panel
             .stress_edges
             .then_some(framer.scene().desired_distance)
             .flatten();
-        draw_edges(&mut chart, framer, frame, window, stress)?;
+        draw_edges(&mut chart, framer, frame, window, stress, &cue)?;
     }
     if panel.trail > 0 {
         draw_trails(&mut chart, framer, frame, panel, window)?;
@@ -340,7 +342,16 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     if panel.velocity_arrows {
         draw_velocities(&mut chart, framer, frame, window, marker)?;
     }
-    draw_agents(&mut chart, framer, frame, window, marker, panel.marker_size)?;
+    let agent_px = agent_marker_px(panel.marker_size, scene.desired_distance, per_pixel);
+    draw_agents(
+        &mut chart,
+        framer,
+        frame,
+        window,
+        agent_px * per_pixel,
+        agent_px,
+        &cue,
+    )?;
     draw_gamma(&mut chart, framer, frame, window, marker)?;
 
     // A frame around the plotting area, as the papers' figures have.
@@ -397,13 +408,14 @@ fn draw_obstacles<DB: DrawingBackend>(
 }
 
 /// The net: a thin line per edge (grey, or coloured by the sign of its stress weight when `stress`
-/// holds the desired distance d).
+/// holds the desired distance d), far edges first and faded by `cue`.
 fn draw_edges<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
     frame: usize,
     window: Rect,
     stress: Option<f64>,
+    cue: &DepthCue,
 ) -> Result<(), VizError> {
     let positions = &framer.scene().frames[frame].positions;
     let project = |i: u32| framer.project(positions[i as usize]);
@@ -418,23 +430,87 @@ fn draw_edges<DB: DrawingBackend>(
                 EDGE
             }
         }
+        None if cue.is_some() => NEAR_EDGE,
         None => EDGE,
     };
-    let lines: Vec<PathElement<(f64, f64)>> = framer
-        .scene()
-        .edges(frame)
+    let mut edges = framer.scene().edges(frame);
+    let depth = |(i, j): (u32, u32)| {
+        let view = framer.view();
+        view.depth(positions[i as usize]) + view.depth(positions[j as usize])
+    };
+    if cue.is_some() {
+        edges.sort_by(|&a, &b| depth(a).total_cmp(&depth(b)).then(a.cmp(&b)));
+    }
+    let lines: Vec<PathElement<(f64, f64)>> = edges
         .into_iter()
         .filter_map(|(i, j)| {
             clip_segment(project(i), project(j), window).map(|(a, b)| {
-                PathElement::new(
-                    vec![tuple(a), tuple(b)],
-                    style::rgb(colour(i, j)).stroke_width(1),
-                )
+                let faded = cue.fade(colour(i, j), 0.5 * depth((i, j)));
+                PathElement::new(vec![tuple(a), tuple(b)], style::rgb(faded).stroke_width(1))
             })
         })
         .collect();
     chart.draw_series(lines).map_err(VizError::draw)?;
     Ok(())
+}
+
+/// How far the farthest mark of a 3D panel is faded towards the background: depth cueing, the
+/// near side of the net drawn dark and the far side light, so that a projected 3D lattice reads
+/// front from back.
+pub const DEPTH_FADE: f64 = 0.8;
+
+/// The depth cueing of one 3D frame: the depth range of its agents in the view (none in 2D).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DepthCue(Option<(f64, f64)>);
+
+impl DepthCue {
+    /// The cue of frame `frame` (none for a 2D scene or a frame of no depth).
+    pub(crate) fn of(framer: &Framer<'_>, frame: usize) -> Self {
+        if framer.scene().dim != 3 {
+            return Self(None);
+        }
+        let view = framer.view();
+        let (near, far) = framer.scene().frames[frame]
+            .positions
+            .iter()
+            .map(|&q| view.depth(q))
+            .fold((f64::NEG_INFINITY, f64::INFINITY), |(hi, lo), z| {
+                (hi.max(z), lo.min(z))
+            });
+        Self((near > far).then_some((far, near)))
+    }
+
+    /// Whether the frame is depth-cued.
+    fn is_some(&self) -> bool {
+        self.0.is_some()
+    }
+
+    /// `colour` at depth `depth`: itself at the nearest agent's depth, [`DEPTH_FADE`] of the way
+    /// to the background at the farthest's.
+    fn fade(&self, colour: [u8; 3], depth: f64) -> [u8; 3] {
+        let Some((far, near)) = self.0 else {
+            return colour;
+        };
+        let farness = ((near - depth) / (near - far)).clamp(0.0, 1.0);
+        style::blend(colour, BACKGROUND, DEPTH_FADE * farness)
+    }
+}
+
+/// The smallest agent marker, in pixels.
+const MIN_MARKER_PX: f64 = 3.0;
+/// The most of the desired distance d an agent's marker spans, so that the edges between
+/// neighbours stay visible between their markers in panels that show a wide flock.
+const MARKER_PER_SPACING: f64 = 0.4;
+
+/// The length in pixels of an agent's marker: `marker_px`, or less where the desired distance d
+/// spans few pixels (`per_pixel` data units a pixel), at least [`MIN_MARKER_PX`].
+fn agent_marker_px(marker_px: f64, desired_distance: Option<f64>, per_pixel: f64) -> f64 {
+    match desired_distance {
+        Some(d) if d > 0.0 && per_pixel > 0.0 => marker_px
+            .min(MARKER_PER_SPACING * d / per_pixel)
+            .max(MIN_MARKER_PX.min(marker_px)),
+        _ => marker_px,
+    }
 }
 
 /// Each agent's (projected) velocity as an arrow from the agent, the fastest `3 · length` long.
@@ -536,8 +612,8 @@ fn draw_trails<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The α-agents, far ones first, as triangles of length `length` (data units) along their
-/// (projected) velocity; agents at rest as dots of a quarter of `marker_px` pixels.
+/// The α-agents, far ones first (faded by `cue`), as triangles of length `length` (data units)
+/// along their (projected) velocity; agents at rest as dots of a quarter of `marker_px` pixels.
 fn draw_agents<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
@@ -545,15 +621,15 @@ fn draw_agents<DB: DrawingBackend>(
     window: Rect,
     length: f64,
     marker_px: f64,
+    cue: &DepthCue,
 ) -> Result<(), VizError> {
     let state = &framer.scene().frames[frame];
+    let view = framer.view();
+    let depth: Vec<f64> = state.positions.iter().map(|&q| view.depth(q)).collect();
     let mut order: Vec<usize> = (0..state.positions.len()).collect();
-    if framer.scene().dim == 3 {
-        let view = framer.view();
-        let depth: Vec<f64> = state.positions.iter().map(|&q| view.depth(q)).collect();
+    if cue.is_some() {
         order.sort_by(|&a, &b| depth[a].total_cmp(&depth[b]).then(a.cmp(&b)));
     }
-    let agent = style::rgb(AGENT).filled();
     let mut triangles = Vec::new();
     let mut dots = Vec::new();
     for i in order {
@@ -561,6 +637,7 @@ fn draw_agents<DB: DrawingBackend>(
         if !window.contains(centre) {
             continue;
         }
+        let agent = style::rgb(cue.fade(AGENT, depth[i])).filled();
         match framer.project_vector(state.velocities[i]).try_normalize() {
             Some(e) => {
                 let side = 0.36 * length * e.perp();

@@ -14,7 +14,10 @@ pub const INK: [u8; 3] = [0x00, 0x00, 0x00];
 /// The α-agents' markers.
 pub const AGENT: [u8; 3] = [0x1F, 0x4E, 0x9C];
 /// The edges of the proximity net.
-pub const EDGE: [u8; 3] = [0xB4, 0xB4, 0xB4];
+pub const EDGE: [u8; 3] = [0x96, 0x96, 0x96];
+/// An edge of a depth-cued 3D panel at the nearest agent's depth, faded towards the background
+/// with depth (the far side of the net is lighter than [`EDGE`]).
+pub const NEAR_EDGE: [u8; 3] = [0x40, 0x40, 0x40];
 /// An edge under attraction (stress weight s_ij > 0, ‖q_j − q_i‖ > d: j ∈ F_i⁺, ACC 2004 eq. 28).
 pub const ATTRACTION: [u8; 3] = [0xE0, 0x82, 0x14];
 /// An edge under repulsion (s_ij < 0, ‖q_j − q_i‖ < d: j ∈ F_i⁻).
@@ -47,6 +50,25 @@ pub const GRID: [u8; 3] = [0xE6, 0xE6, 0xE6];
 #[must_use]
 pub fn hex(colour: [u8; 3]) -> String {
     format!("#{:02X}{:02X}{:02X}", colour[0], colour[1], colour[2])
+}
+
+/// `colour` moved a fraction `amount` (0 to 1) of the way to `toward`, each channel rounded.
+///
+/// # Example
+/// ```
+/// use flock_viz::style::{AGENT, BACKGROUND, blend};
+///
+/// assert_eq!(blend(AGENT, BACKGROUND, 0.0), AGENT);
+/// assert_eq!(blend(AGENT, BACKGROUND, 1.0), BACKGROUND);
+/// assert_eq!(blend([0, 0, 0], [255, 255, 255], 0.5), [128, 128, 128]);
+/// ```
+#[must_use]
+pub fn blend(colour: [u8; 3], toward: [u8; 3], amount: f64) -> [u8; 3] {
+    let amount = amount.clamp(0.0, 1.0);
+    std::array::from_fn(|k| {
+        let (a, b) = (f64::from(colour[k]), f64::from(toward[k]));
+        (a + amount * (b - a)).round() as u8
+    })
 }
 
 /// The plotters colour.

@@ -41,6 +41,18 @@ impl View {
         elevation: 90.0,
     };
 
+    /// The front view: looking along +y, x to the right, z up.
+    pub const FRONT: Self = Self {
+        azimuth: -90.0,
+        elevation: 0.0,
+    };
+
+    /// The side view: looking along −x, y to the right, z up.
+    pub const SIDE: Self = Self {
+        azimuth: 0.0,
+        elevation: 0.0,
+    };
+
     /// The view from azimuth and elevation in degrees.
     #[must_use]
     pub const fn new(azimuth: f64, elevation: f64) -> Self {
@@ -77,30 +89,42 @@ impl View {
     /// Whether this is [`View::TOP`] (the page axes are x and y).
     #[must_use]
     pub fn is_top(self) -> bool {
-        self.basis().0 == DVec3::X && self.basis().1 == DVec3::Y
+        self.page_axes() == Some(("x", "y"))
     }
 
-    /// The names of the page axes: `("x", "y")` for the top view, `("u", "v")` otherwise.
+    /// The names of the page axes when both are coordinate axes (`("x", "y")` for the top view,
+    /// `("x", "z")` for the front view, `("y", "z")` for the side view).
+    fn page_axes(self) -> Option<(&'static str, &'static str)> {
+        let name = |a: DVec3| match a {
+            DVec3::X => Some("x"),
+            DVec3::Y => Some("y"),
+            DVec3::Z => Some("z"),
+            _ => None,
+        };
+        let (u, v, _) = self.basis();
+        Some((name(u)?, name(v)?))
+    }
+
+    /// The names of the page axes: the coordinate axes when the page shows two of them (top,
+    /// front and side views), `("u", "v")` otherwise.
     #[must_use]
     pub fn axis_names(self) -> (&'static str, &'static str) {
-        if self.is_top() {
-            ("x", "y")
-        } else {
-            ("u", "v")
-        }
+        self.page_axes().unwrap_or(("u", "v"))
     }
 
-    /// A short description for titles: `top view` or `view az −60°, el 30°`.
+    /// A short description for titles: `top view`, `front view`, `side view` or
+    /// `view az −60°, el 30°`.
     #[must_use]
     pub fn describe(self) -> String {
-        if self.is_top() {
-            "top view".to_owned()
-        } else {
-            format!(
+        match self.page_axes() {
+            Some(("x", "y")) => "top view".to_owned(),
+            Some(("x", "z")) => "front view".to_owned(),
+            Some(("y", "z")) => "side view".to_owned(),
+            _ => format!(
                 "view az {}°, el {}°",
                 crate::format::number(self.azimuth, 1),
                 crate::format::number(self.elevation, 1)
-            )
+            ),
         }
     }
 }
@@ -142,5 +166,20 @@ mod tests {
         assert!(!View::default().is_top());
         assert_eq!(View::TOP.describe(), "top view");
         assert_eq!(View::default().describe(), "view az -60°, el 30°");
+    }
+
+    #[test]
+    fn front_and_side_views_show_two_coordinate_axes() {
+        let p = DVec3::new(1.0, 2.0, 3.0);
+        assert_eq!(View::FRONT.project(p), DVec2::new(1.0, 3.0));
+        assert_eq!(View::SIDE.project(p), DVec2::new(2.0, 3.0));
+        assert_eq!(View::FRONT.axis_names(), ("x", "z"));
+        assert_eq!(View::SIDE.axis_names(), ("y", "z"));
+        assert_eq!(View::default().axis_names(), ("u", "v"));
+        assert_eq!(View::FRONT.describe(), "front view");
+        assert_eq!(View::SIDE.describe(), "side view");
+        // the viewer looks along +y (front) and −x (side): nearer is smaller y, larger x
+        assert!(View::FRONT.depth(DVec3::new(0.0, -1.0, 0.0)) > View::FRONT.depth(DVec3::Y));
+        assert!(View::SIDE.depth(DVec3::X) > View::SIDE.depth(-DVec3::X));
     }
 }

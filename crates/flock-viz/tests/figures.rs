@@ -79,7 +79,11 @@ fn a_3d_run_gets_a_top_view_too() {
     let written = write_figures(&cube_scene(), None, &dir, &options).unwrap();
     assert_eq!(
         written,
-        [dir.join("snapshots.svg"), dir.join("snapshots_top.svg")]
+        [
+            dir.join("snapshots.svg"),
+            dir.join("snapshots_top.svg"),
+            dir.join("views.svg")
+        ]
     );
     let top = fs::read_to_string(dir.join("snapshots_top.svg")).unwrap();
     assert!(top.contains("top view"));

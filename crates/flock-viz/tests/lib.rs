@@ -9,3 +9,4 @@ mod run_data;
 mod scene;
 mod snapshot;
 mod support;
+mod views;

@@ -1,11 +1,13 @@
 //! Snapshots (TAC 2006 Figs. 10–13): markers, edges, obstacles, γ-agent, labels, PNG output.
 
-use flock_viz::style::{EDGE, GAMMA, OBSTACLE, TRAIL};
+use approx::assert_abs_diff_eq;
+use flock_viz::snapshot::DEPTH_FADE;
+use flock_viz::style::{BACKGROUND, EDGE, GAMMA, NEAR_EDGE, OBSTACLE, TRAIL, blend};
 use flock_viz::{Frame, Scene, SnapshotOptions, View, VizError, snapshot_png, snapshot_svg};
 use glam::DVec2;
 
 use crate::support::{
-    AGENTS, EDGES, agent_markers, count_marks, cube_scene, decode_png, lattice_scene, styled,
+    AGENTS, EDGES, agent_fades, agent_markers, count_marks, cube_scene, decode_png, lattice_scene, styled,
 };
 
 #[test]
@@ -255,4 +257,98 @@ fn a_fixed_graph_is_drawn_instead_of_the_net_with_velocity_arrows() {
         snapshot_svg(&bad, &[0], &SnapshotOptions::default()),
         Err(VizError::Invalid(_))
     ));
+}
+
+#[test]
+fn three_d_panels_are_depth_cued_far_agents_first_and_faded() {
+    let scene = cube_scene();
+    let view = View::default();
+    let svg = snapshot_svg(&scene, &[0], &styled(|style| style.view = view)).unwrap();
+    let fades = agent_fades(&svg);
+    assert_eq!(fades.len(), 27);
+    // drawn far to near: the fade falls from DEPTH_FADE at the farthest agent to 0 at the nearest
+    assert!(fades.windows(2).all(|w| w[0] >= w[1]), "{fades:?}");
+    assert_abs_diff_eq!(fades[0], DEPTH_FADE, epsilon = 0.01);
+    assert_eq!(fades[26], 0.0);
+    // and each agent faded by its depth: the cube's middle layer in depth half way
+    let depths: Vec<f64> = scene.frames[0].positions.iter().map(|&q| view.depth(q)).collect();
+    let (far, near) = depths
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| (lo.min(z), hi.max(z)));
+    let mut expected: Vec<f64> = depths
+        .iter()
+        .map(|z| DEPTH_FADE * (near - z) / (near - far))
+        .collect();
+    expected.sort_by(|a, b| b.total_cmp(a));
+    for (fade, expected) in fades.iter().zip(&expected) {
+        assert_abs_diff_eq!(fade, expected, epsilon = 0.01);
+    }
+    // the edges drawn far to near, light to dark: shades of NEAR_EDGE at their middles' depths
+    let mut bare = scene.clone();
+    bare.obstacles.clear();
+    let svg = snapshot_svg(&bare, &[0], &styled(|style| style.view = view)).unwrap();
+    let greys: Vec<u8> = svg
+        .split("<polyline")
+        .skip(1)
+        .filter_map(|e| e.split("stroke=\"#").nth(1)?.get(..2))
+        .map(|g| u8::from_str_radix(g, 16).unwrap())
+        .filter(|&g| g != 0) // the axes and the frame, in ink
+        .collect();
+    assert_eq!(greys.len(), 54); // the cube's 3 · 9 · 2 edges
+    assert!(greys.windows(2).all(|w| w[0] >= w[1]), "{greys:?}");
+    let shade = |fade: f64| blend(NEAR_EDGE, BACKGROUND, fade)[0];
+    // the nearest edge: its middle half an edge behind the nearest corner, of the depth range
+    // 3 · 7 · (|w_x| + |w_y| + |w_z|) in this view
+    let w = view.basis().2;
+    let range = 14.0 * (w.x.abs() + w.y.abs() + w.z.abs());
+    let nearest_edge = DEPTH_FADE * 3.5 * w.x.abs().min(w.y.abs()).min(w.z.abs()) / range;
+    assert_eq!(greys[53], shade(nearest_edge));
+    assert!(greys[0] > shade(0.6) && greys[53] < shade(0.1), "{greys:?}");
+    // 2D panels are not cued
+    let flat = snapshot_svg(&lattice_scene(), &[0], &SnapshotOptions::default()).unwrap();
+    assert!(agent_fades(&flat).iter().all(|&f| f == 0.0));
+}
+
+/// The length in pixels, along its velocity (+x), of the first agent's triangle.
+fn first_marker_length(svg: &str) -> i32 {
+    let polygon = svg
+        .split('<')
+        .find(|e| e.starts_with("polygon ") && e.contains("#1F4E9C"))
+        .unwrap();
+    let xs: Vec<i32> = polygon
+        .split("points=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|p| p.split_once(',').unwrap().0.parse().unwrap())
+        .collect();
+    xs.iter().max().unwrap() - xs.iter().min().unwrap()
+}
+
+#[test]
+fn markers_shrink_in_wide_panels_so_that_edges_show_between_them() {
+    // Two neighbours d = 7 apart and a third agent `far` away along x: the panel spans ≈ far
+    // metres over its 394 pixels.
+    let scene = |far: f64| {
+        let q = [DVec2::ZERO, DVec2::new(7.0, 0.0), DVec2::new(far, 0.0)];
+        Scene::new(2, 8.4)
+            .with_desired_distance(7.0)
+            .with_frame(Frame::from_vectors(0.0, &q, &[DVec2::X; 3]))
+    };
+    let options = SnapshotOptions::default(); // markers of 10 px
+    // narrow: d spans ≈ 39 px, the marker keeps its 10 px
+    let narrow = snapshot_svg(&scene(70.0), &[0], &options).unwrap();
+    assert!((9..=10).contains(&first_marker_length(&narrow)));
+    // wide: d spans ≈ 7.9 px, the marker 0.4 d ≈ 3.2 px, leaving ≈ 4.7 px of the edge bare
+    let wide = snapshot_svg(&scene(350.0), &[0], &options).unwrap();
+    let length = first_marker_length(&wide);
+    assert!((2..=4).contains(&length), "{length} px");
+    // without a desired distance nothing says how far apart neighbours are: 10 px
+    let mut unknown = scene(350.0);
+    unknown.desired_distance = None;
+    let unknown = snapshot_svg(&unknown, &[0], &options).unwrap();
+    assert!((9..=10).contains(&first_marker_length(&unknown)));
 }

@@ -2,7 +2,8 @@
 
 use std::path::PathBuf;
 
-use flock_viz::style::{self, AGENT};
+use flock_viz::snapshot::DEPTH_FADE;
+use flock_viz::style::{self, AGENT, BACKGROUND};
 use flock_viz::{Drawable, Frame, Metrics, Scene};
 use glam::{DVec2, DVec3};
 
@@ -94,9 +95,33 @@ pub fn count_marks(svg: &str, tag: &str, attribute: &str, colour: [u8; 3]) -> us
         .count()
 }
 
-/// The agent markers of an SVG: triangles and (for agents at rest) dots.
+/// The agent markers of an SVG: triangles and (for agents at rest) dots, in the agents' colour or
+/// (3D panels, depth-cued) a shade of it.
 pub fn agent_markers(svg: &str) -> usize {
-    count_marks(svg, "polygon", "fill", AGENT) + count_marks(svg, "circle", "fill", AGENT)
+    agent_fades(svg).len()
+}
+
+/// How far each agent marker of an SVG is faded towards the background, in drawing order: 0 for
+/// [`AGENT`] itself, [`DEPTH_FADE`] for the farthest agent of a depth-cued 3D panel.
+pub fn agent_fades(svg: &str) -> Vec<f64> {
+    svg.split('<')
+        .filter(|element| element.starts_with("polygon ") || element.starts_with("circle "))
+        .filter_map(|element| {
+            let fill = element.split("fill=\"#").nth(1)?.get(..6)?;
+            let channel = |k: usize| u8::from_str_radix(&fill[2 * k..2 * k + 2], 16).ok();
+            let colour = [channel(0)?, channel(1)?, channel(2)?];
+            // the fades that give each channel its value: an interval per channel, to intersect
+            let (lo, hi) = (0..3).fold((0.0_f64, DEPTH_FADE), |(lo, hi), k| {
+                let (a, b, v) = (
+                    f64::from(AGENT[k]),
+                    f64::from(BACKGROUND[k]),
+                    f64::from(colour[k]),
+                );
+                (lo.max((v - 0.5 - a) / (b - a)), hi.min((v + 0.5 - a) / (b - a)))
+            });
+            (lo <= hi).then_some(lo.max(0.0))
+        })
+        .collect()
 }
 
 /// FNV-1a, 64 bits: a hash that is the same on every run and machine.
