@@ -161,22 +161,35 @@ impl Drawable {
     }
 
     /// The page-plane shapes of `obstacles` in `view`, in drawing order: light wall planes
-    /// first (they lie behind everything), then the others in their order.
+    /// first (they lie behind everything), then the others in their order; each with its
+    /// obstacle's [`Drawable::front_depth`].
     pub(crate) fn project_all(
         obstacles: &[Self],
         view: View,
         dim: usize,
         world: (DVec3, DVec3),
-    ) -> Vec<Shape> {
-        let shapes: Vec<Shape> = obstacles
+    ) -> Vec<(Shape, Option<f64>)> {
+        let shapes: Vec<(Shape, Option<f64>)> = obstacles
             .iter()
-            .filter_map(|o| o.project(view, dim, world))
+            .filter_map(|o| Some((o.project(view, dim, world)?, o.front_depth(view))))
             .collect();
-        let (mut planes, solids): (Vec<Shape>, Vec<Shape>) = shapes
+        let (mut planes, solids): (Vec<_>, Vec<_>) = shapes
             .into_iter()
-            .partition(|s| matches!(s, Shape::Plane(_)));
+            .partition(|(s, _)| matches!(s, Shape::Plane(_)));
         planes.extend(solids);
         planes
+    }
+
+    /// How far towards the viewer of `view` the obstacle's nearest point lies ([`View::depth`]);
+    /// `None` for a wall, which reaches every depth.
+    pub(crate) fn front_depth(&self, view: View) -> Option<f64> {
+        let nearest = |points: &[DVec3]| points.iter().map(|&p| view.depth(p)).reduce(f64::max);
+        match self {
+            Self::Disc { centre, radius } => Some(view.depth(*centre) + radius),
+            Self::Polygon { points } | Self::ConvexHull { points } => nearest(points),
+            Self::Capsule { a, b, radius } => Some(view.depth(*a).max(view.depth(*b)) + radius),
+            Self::HalfPlane { .. } => None,
+        }
     }
 
     /// The page-plane shape of this obstacle in `view` (`dim` 2 draws x, y whatever the view),

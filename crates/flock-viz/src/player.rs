@@ -287,7 +287,7 @@ fn data_json(scene: &Scene, frames: &[usize], options: &PlayerOptions) -> String
             let world = framer.world_for(window.padded(window.size().max_element()));
             let obstacles = Drawable::project_all(&scene.obstacles, view, dim, world)
                 .into_iter()
-                .map(|shape| match shape {
+                .map(|(shape, _)| match shape {
                     Shape::Circle { centre, radius } => ObstacleData::Disc {
                         c: [rounded(centre.x, dq), rounded(centre.y, dq)],
                         r: rounded(radius, dq),

@@ -328,7 +328,7 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
 
     let marker = panel.marker_size * per_pixel;
     let cue = DepthCue::of(framer, frame);
-    draw_obstacles(&mut chart, framer, window)?;
+    draw_obstacles(&mut chart, framer, window, &cue)?;
     if panel.edges {
         let stress = panel
             .stress_edges
@@ -371,15 +371,19 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Obstacles, filled grey and outlined, cut to the window; light wall planes first.
+/// Obstacles, filled grey and outlined, cut to the window; light wall planes first; in 3D an
+/// obstacle wholly behind the flock's farthest agent faded by `cue` (one the flock is level with
+/// or behind is full grey).
 fn draw_obstacles<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
     window: Rect,
+    cue: &DepthCue,
 ) -> Result<(), VizError> {
     let scene = framer.scene();
     let world = framer.world_for(window);
-    for shape in Drawable::project_all(&scene.obstacles, framer.view(), scene.dim, world) {
+    for (shape, front) in Drawable::project_all(&scene.obstacles, framer.view(), scene.dim, world) {
+        let fade = |colour| front.map_or(colour, |depth| cue.fade_behind(colour, depth));
         let (polygon, fill) = match shape {
             Shape::Circle { centre, radius } => {
                 (circle_polygon(centre, radius, CIRCLE_SIDES), OBSTACLE)
@@ -395,12 +399,12 @@ fn draw_obstacles<DB: DrawingBackend>(
         let mut outline = points.clone();
         outline.push(points[0]);
         chart
-            .draw_series([Polygon::new(points, style::rgb(fill).filled())])
+            .draw_series([Polygon::new(points, style::rgb(fade(fill)).filled())])
             .map_err(VizError::draw)?;
         chart
             .draw_series([PathElement::new(
                 outline,
-                style::rgb(OBSTACLE_OUTLINE).stroke_width(1),
+                style::rgb(fade(OBSTACLE_OUTLINE)).stroke_width(1),
             )])
             .map_err(VizError::draw)?;
     }
@@ -493,6 +497,15 @@ impl DepthCue {
         };
         let farness = ((near - depth) / (near - far)).clamp(0.0, 1.0);
         style::blend(colour, BACKGROUND, DEPTH_FADE * farness)
+    }
+
+    /// `colour` of a body whose nearest point lies at depth `front`: faded fully
+    /// ([`DEPTH_FADE`]) when the whole body lies behind the farthest agent, itself otherwise.
+    fn fade_behind(&self, colour: [u8; 3], front: f64) -> [u8; 3] {
+        match self.0 {
+            Some((far, _)) if front < far => style::blend(colour, BACKGROUND, DEPTH_FADE),
+            _ => colour,
+        }
     }
 }
 

@@ -7,7 +7,8 @@ use flock_viz::{Frame, Scene, SnapshotOptions, View, VizError, snapshot_png, sna
 use glam::DVec2;
 
 use crate::support::{
-    AGENTS, EDGES, agent_fades, agent_markers, count_marks, cube_scene, decode_png, lattice_scene, styled,
+    AGENTS, EDGES, agent_fades, agent_markers, count_marks, cube_scene, decode_png, lattice_scene,
+    styled,
 };
 
 #[test]
@@ -271,10 +272,16 @@ fn three_d_panels_are_depth_cued_far_agents_first_and_faded() {
     assert_abs_diff_eq!(fades[0], DEPTH_FADE, epsilon = 0.01);
     assert_eq!(fades[26], 0.0);
     // and each agent faded by its depth: the cube's middle layer in depth half way
-    let depths: Vec<f64> = scene.frames[0].positions.iter().map(|&q| view.depth(q)).collect();
+    let depths: Vec<f64> = scene.frames[0]
+        .positions
+        .iter()
+        .map(|&q| view.depth(q))
+        .collect();
     let (far, near) = depths
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| (lo.min(z), hi.max(z)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| {
+            (lo.min(z), hi.max(z))
+        });
     let mut expected: Vec<f64> = depths
         .iter()
         .map(|z| DEPTH_FADE * (near - z) / (near - far))
@@ -351,4 +358,22 @@ fn markers_shrink_in_wide_panels_so_that_edges_show_between_them() {
     unknown.desired_distance = None;
     let unknown = snapshot_svg(&unknown, &[0], &options).unwrap();
     assert!((9..=10).contains(&first_marker_length(&unknown)));
+}
+
+#[test]
+fn in_3d_an_obstacle_behind_the_flock_is_faded_and_one_before_it_is_not() {
+    use flock_viz::Drawable;
+    use glam::DVec3;
+
+    // Seen from above: two agents at z = 0 and 7, a ball above them (nearer the viewer) and one
+    // below (behind them), both projected between the agents.
+    let q = [DVec3::ZERO, DVec3::new(7.0, 0.0, 7.0)];
+    let scene = Scene::new(3, 8.4)
+        .with_frame(Frame::from_vectors(0.0, &q, &[DVec3::X; 2]))
+        .with_obstacle(Drawable::ball(DVec3::new(3.5, 0.0, 50.0), 2.0))
+        .with_obstacle(Drawable::ball(DVec3::new(3.5, 0.0, -50.0), 2.0));
+    let svg = snapshot_svg(&scene, &[0], &styled(|style| style.view = View::TOP)).unwrap();
+    assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 1);
+    let behind = blend(OBSTACLE, BACKGROUND, DEPTH_FADE);
+    assert_eq!(count_marks(&svg, "polygon", "fill", behind), 1);
 }

@@ -117,7 +117,10 @@ pub fn agent_fades(svg: &str) -> Vec<f64> {
                     f64::from(BACKGROUND[k]),
                     f64::from(colour[k]),
                 );
-                (lo.max((v - 0.5 - a) / (b - a)), hi.min((v + 0.5 - a) / (b - a)))
+                (
+                    lo.max((v - 0.5 - a) / (b - a)),
+                    hi.min((v + 0.5 - a) / (b - a)),
+                )
             });
             (lo <= hi).then_some(lo.max(0.0))
         })
