@@ -334,6 +334,7 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
         "alg3_beta_radius",
         "tac2006_fig11_delay_loss",
         "tac2006_fig14_noise_amax",
+        "tac2006_fig14_gain_ordering",
     ]
     .map(|name| {
         fs::read_dir(committed.join(name))
@@ -356,7 +357,7 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
 
 /// The committed diagrams: the sweep, the metric (the file's stem) and the options of their plot
 /// commands in docs/sweeps.md.
-const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 13] = [
+const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 15] = [
     (
         "alg2_c1_n",
         "alpha_flock",
@@ -523,6 +524,30 @@ const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 13] = [
             "conditions.actuation.max_acceleration",
             "--metric",
             "obstacle_clearance",
+        ],
+    ),
+    (
+        "tac2006_fig14_gain_ordering",
+        "settled_collisions",
+        &[
+            "--x",
+            "algorithm.c1",
+            "--y",
+            "alpha.c2",
+            "--metric",
+            "settled_collisions",
+        ],
+    ),
+    (
+        "tac2006_fig14_gain_ordering",
+        "settled_min_distance",
+        &[
+            "--x",
+            "algorithm.c1",
+            "--y",
+            "alpha.c2",
+            "--metric",
+            "settled_min_distance",
         ],
     ),
 ];

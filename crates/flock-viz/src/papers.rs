@@ -426,8 +426,10 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                          seed: obstacles “restricted to connected convex regions”)",
                     ),
                     ours(
-                        "c₁^γ = 1 < c₁^α = 3: with c₁^γ above c₁^α a pair of agents is pressed \
-                         together at the wedge's tip and stays merged (4 of 5 seeds)",
+                        "c₁^γ = 1 < c₁^α = 3, not the paper's c₁^α < c₁^γ < c₁^β: with c₁^γ = 3.1 \
+                         or 3.5 a pair of agents is pressed together in front of the wedge's tip \
+                         and stays merged in 2–5 of 5 seeds whatever c₂^α \
+                         (sweeps/tac2006_fig14_gain_ordering.ron)",
                     ),
                     ours("duration 170 s"),
                 ],
