@@ -56,23 +56,7 @@ fn markers_point_along_the_velocity() {
         &[DVec2::new(0.0, 3.0)],
     ));
     let svg = snapshot_svg(&scene, &[0], &SnapshotOptions::default()).unwrap();
-    let polygon = svg
-        .split('<')
-        .find(|e| e.starts_with("polygon ") && e.contains("#1F4E9C"))
-        .unwrap();
-    let points: Vec<(i32, i32)> = polygon
-        .split("points=\"")
-        .nth(1)
-        .unwrap()
-        .split('"')
-        .next()
-        .unwrap()
-        .split_whitespace()
-        .map(|p| {
-            let (x, y) = p.split_once(',').unwrap();
-            (x.parse().unwrap(), y.parse().unwrap())
-        })
-        .collect();
+    let points = first_triangle(&svg);
     assert_eq!(points.len(), 3);
     let (tip, base) = (points[0], [points[1], points[2]]);
     assert!(base.iter().all(|b| b.1 - tip.1 >= 9), "{points:?}");
@@ -316,13 +300,13 @@ fn three_d_panels_are_depth_cued_far_agents_first_and_faded() {
     assert!(agent_fades(&flat).iter().all(|&f| f == 0.0));
 }
 
-/// The length in pixels, along its velocity (+x), of the first agent's triangle.
-fn first_marker_length(svg: &str) -> i32 {
+/// The pixel corners of the first agent's triangle in an SVG.
+fn first_triangle(svg: &str) -> Vec<(i32, i32)> {
     let polygon = svg
         .split('<')
         .find(|e| e.starts_with("polygon ") && e.contains("#1F4E9C"))
         .unwrap();
-    let xs: Vec<i32> = polygon
+    polygon
         .split("points=\"")
         .nth(1)
         .unwrap()
@@ -330,8 +314,16 @@ fn first_marker_length(svg: &str) -> i32 {
         .next()
         .unwrap()
         .split_whitespace()
-        .map(|p| p.split_once(',').unwrap().0.parse().unwrap())
-        .collect();
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// The length in pixels, along its velocity (+x), of the first agent's triangle.
+fn first_marker_length(svg: &str) -> i32 {
+    let xs: Vec<i32> = first_triangle(svg).iter().map(|p| p.0).collect();
     xs.iter().max().unwrap() - xs.iter().min().unwrap()
 }
 
