@@ -137,7 +137,10 @@ fn tac2006_fig14_splits_on_the_wedge_and_rejoins() {
         .filter(|r| r.1 < 1.0)
         .map(|r| r.0)
         .fold(split, f64::max);
-    assert!((76.0..=79.0).contains(&last_apart), "apart until t = {last_apart}");
+    assert!(
+        (76.0..=79.0).contains(&last_apart),
+        "apart until t = {last_apart}"
+    );
     for &(t, c_star, ..) in pass.during(79.0..=f64::INFINITY) {
         assert_eq!(c_star, 1.0, "not rejoined at t = {t}");
     }
