@@ -97,8 +97,14 @@ pub fn csv_column(text: &str, name: &str) -> Vec<String> {
 
 /// Removes `path`, a file the test or flocking wrote under the test's own temporary directory
 /// `tmp`, after checking both: it lies under `tmp` (no `..` or link leads out) and it begins with
-/// `holds`, what the test knows it wrote there. A test removes nothing it did not make.
+/// `holds`, what the test knows it wrote there, and it is a regular file, not a link. A test
+/// removes nothing it did not make.
 pub fn remove_own_file(tmp: &Path, path: &Path, holds: &[u8]) {
+    assert!(
+        fs::symlink_metadata(path).is_ok_and(|m| m.is_file()),
+        "{} is not a regular file",
+        path.display()
+    );
     let path = path
         .canonicalize()
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

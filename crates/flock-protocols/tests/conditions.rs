@@ -383,19 +383,15 @@ fn wind_offsets_the_centre_by_w_over_c1() {
     assert!(error < 1e-6, "{error}");
 }
 
-/// Removing the cut vertex 2 of the path 0–1–2–3–4 at t = 0 leaves the components {0, 1} and
-/// {3, 4}, each converging to the mean of its own initial velocities; the metrics count the
-/// two components and leave the removed agent out.
-#[test]
-fn removing_a_cut_vertex_splits_the_consensus() {
+/// Consensus (gain 1) on the path 0–1–2–3–4 from positions `q` and velocities `p`, its cut
+/// vertex 2 failing at t = 0 in `mode`, after `steps` steps of 0.01 s.
+fn path_with_failed_cut_vertex(
+    q: Vec<DVec2>,
+    p: Vec<DVec2>,
+    mode: FaultMode,
+    steps: usize,
+) -> Simulation<DVec2, Consensus> {
     let graph = Graph::from_edges(5, &[(0, 1), (1, 2), (2, 3), (3, 4)]).expect("a path");
-    let p: Vec<DVec2> = [1.0, 3.0, 10.0, -2.0, 0.0]
-        .into_iter()
-        .map(|x| DVec2::new(x, 0.5 * x))
-        .collect();
-    let q = (0..5)
-        .map(|i| DVec2::new(f64::from(i) * 0.5, 0.0))
-        .collect();
     let conditions = Conditions {
         faults: Some(Faults {
             at: vec![Failure {
@@ -403,7 +399,7 @@ fn removing_a_cut_vertex_splits_the_consensus() {
                 time: 0.0,
             }],
             rate: 0.0,
-            mode: FaultMode::Removed,
+            mode,
         }),
         ..Conditions::default()
     };
@@ -411,15 +407,31 @@ fn removing_a_cut_vertex_splits_the_consensus() {
     let mut sim = Simulation::new(
         protocol,
         Integrator::SymplecticEuler,
-        Swarm::new(q, p.clone()),
+        Swarm::new(q, p),
         0.01,
     )
     .expect("valid")
     .with_conditions(&conditions, 0)
     .expect("valid");
-    for _ in 0..3000 {
+    for _ in 0..steps {
         sim.step();
     }
+    sim
+}
+
+/// Removing the cut vertex 2 of the path 0–1–2–3–4 at t = 0 leaves the components {0, 1} and
+/// {3, 4}, each converging to the mean of its own initial velocities; the metrics count the
+/// two components and leave the removed agent out.
+#[test]
+fn removing_a_cut_vertex_splits_the_consensus() {
+    let p: Vec<DVec2> = [1.0, 3.0, 10.0, -2.0, 0.0]
+        .into_iter()
+        .map(|x| DVec2::new(x, 0.5 * x))
+        .collect();
+    let q = (0..5)
+        .map(|i| DVec2::new(f64::from(i) * 0.5, 0.0))
+        .collect();
+    let sim = path_with_failed_cut_vertex(q, p.clone(), FaultMode::Removed, 3000);
     let v = sim.swarm().velocities.clone();
     let left = (p[0] + p[1]) / 2.0;
     let right = (p[3] + p[4]) / 2.0;
@@ -444,33 +456,14 @@ fn removing_a_cut_vertex_splits_the_consensus() {
 /// on, heard by nobody) splits it like a removed one, while it follows its neighbours.
 #[test]
 fn frozen_and_silent_faults() {
-    let graph = Graph::from_edges(5, &[(0, 1), (1, 2), (2, 3), (3, 4)]).expect("a path");
     let p: Vec<DVec2> = [1.0, 3.0, 10.0, -2.0, 0.0]
         .into_iter()
         .map(|x| DVec2::new(x, -x))
         .collect();
     let run = |mode| {
-        let conditions = Conditions {
-            faults: Some(Faults {
-                at: vec![Failure {
-                    agent: 2,
-                    time: 0.0,
-                }],
-                rate: 0.0,
-                mode,
-            }),
-            ..Conditions::default()
-        };
-        let protocol = Consensus::fixed(1.0, graph.clone(), 1.0).expect("valid");
-        let swarm = Swarm::new(vec![DVec2::ZERO; 5], p.clone());
-        let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, 0.01)
-            .expect("valid")
-            .with_conditions(&conditions, 0)
-            .expect("valid");
-        for _ in 0..10_000 {
-            sim.step();
-        }
-        sim.swarm().into_owned()
+        path_with_failed_cut_vertex(vec![DVec2::ZERO; 5], p.clone(), mode, 10_000)
+            .swarm()
+            .into_owned()
     };
     let frozen = run(FaultMode::Frozen);
     assert_eq!(frozen.positions[2], DVec2::ZERO);

@@ -438,18 +438,18 @@ fn draw_edges<DB: DrawingBackend>(
         None => EDGE,
     };
     let mut edges = framer.scene().edges(frame);
-    let depth = |(i, j): (u32, u32)| {
-        let view = framer.view();
-        view.depth(positions[i as usize]) + view.depth(positions[j as usize])
-    };
     if cue.is_some() {
-        edges.sort_by(|&a, &b| depth(a).total_cmp(&depth(b)).then(a.cmp(&b)));
+        edges.sort_by(|&a, &b| {
+            cue.edge_depth(a)
+                .total_cmp(&cue.edge_depth(b))
+                .then(a.cmp(&b))
+        });
     }
     let lines: Vec<PathElement<(f64, f64)>> = edges
         .into_iter()
         .filter_map(|(i, j)| {
             clip_segment(project(i), project(j), window).map(|(a, b)| {
-                let faded = cue.fade(colour(i, j), 0.5 * depth((i, j)));
+                let faded = cue.fade(colour(i, j), cue.edge_depth((i, j)));
                 PathElement::new(vec![tuple(a), tuple(b)], style::rgb(faded).stroke_width(1))
             })
         })
@@ -463,36 +463,59 @@ fn draw_edges<DB: DrawingBackend>(
 /// front from back.
 pub const DEPTH_FADE: f64 = 0.8;
 
-/// The depth cueing of one 3D frame: the depth range of its agents in the view (none in 2D).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct DepthCue(Option<(f64, f64)>);
+/// The depth cueing of one 3D frame: its agents' depths in the view and their range (none in
+/// 2D).
+#[derive(Clone, Debug)]
+pub(crate) struct DepthCue {
+    /// Each agent's [`View::depth`] (empty in 2D).
+    depths: Vec<f64>,
+    /// (farthest, nearest) of `depths`, when they differ.
+    range: Option<(f64, f64)>,
+}
 
 impl DepthCue {
     /// The cue of frame `frame` (none for a 2D scene or a frame of no depth).
     pub(crate) fn of(framer: &Framer<'_>, frame: usize) -> Self {
         if framer.scene().dim != 3 {
-            return Self(None);
+            return Self {
+                depths: Vec::new(),
+                range: None,
+            };
         }
         let view = framer.view();
-        let (near, far) = framer.scene().frames[frame]
+        let depths: Vec<f64> = framer.scene().frames[frame]
             .positions
             .iter()
             .map(|&q| view.depth(q))
-            .fold((f64::NEG_INFINITY, f64::INFINITY), |(hi, lo), z| {
-                (hi.max(z), lo.min(z))
+            .collect();
+        let (far, near) = depths
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| {
+                (lo.min(z), hi.max(z))
             });
-        Self((near > far).then_some((far, near)))
+        let range = (near > far).then_some((far, near));
+        Self { depths, range }
+    }
+
+    /// The depth of agent `i` (0 in 2D).
+    fn depth(&self, i: usize) -> f64 {
+        self.depths.get(i).copied().unwrap_or(0.0)
+    }
+
+    /// The depth of the middle of the edge (i, j).
+    fn edge_depth(&self, (i, j): (u32, u32)) -> f64 {
+        0.5 * (self.depth(i as usize) + self.depth(j as usize))
     }
 
     /// Whether the frame is depth-cued.
     fn is_some(&self) -> bool {
-        self.0.is_some()
+        self.range.is_some()
     }
 
     /// `colour` at depth `depth`: itself at the nearest agent's depth, [`DEPTH_FADE`] of the way
     /// to the background at the farthest's.
     fn fade(&self, colour: [u8; 3], depth: f64) -> [u8; 3] {
-        let Some((far, near)) = self.0 else {
+        let Some((far, near)) = self.range else {
             return colour;
         };
         let farness = ((near - depth) / (near - far)).clamp(0.0, 1.0);
@@ -502,7 +525,7 @@ impl DepthCue {
     /// `colour` of a body whose nearest point lies at depth `front`: faded fully
     /// ([`DEPTH_FADE`]) when the whole body lies behind the farthest agent, itself otherwise.
     fn fade_behind(&self, colour: [u8; 3], front: f64) -> [u8; 3] {
-        match self.0 {
+        match self.range {
             Some((far, _)) if front < far => style::blend(colour, BACKGROUND, DEPTH_FADE),
             _ => colour,
         }
@@ -637,11 +660,9 @@ fn draw_agents<DB: DrawingBackend>(
     cue: &DepthCue,
 ) -> Result<(), VizError> {
     let state = &framer.scene().frames[frame];
-    let view = framer.view();
-    let depth: Vec<f64> = state.positions.iter().map(|&q| view.depth(q)).collect();
     let mut order: Vec<usize> = (0..state.positions.len()).collect();
     if cue.is_some() {
-        order.sort_by(|&a, &b| depth[a].total_cmp(&depth[b]).then(a.cmp(&b)));
+        order.sort_by(|&a, &b| cue.depth(a).total_cmp(&cue.depth(b)).then(a.cmp(&b)));
     }
     let mut triangles = Vec::new();
     let mut dots = Vec::new();
@@ -650,7 +671,7 @@ fn draw_agents<DB: DrawingBackend>(
         if !window.contains(centre) {
             continue;
         }
-        let agent = style::rgb(cue.fade(AGENT, depth[i])).filled();
+        let agent = style::rgb(cue.fade(AGENT, cue.depth(i))).filled();
         match framer.project_vector(state.velocities[i]).try_normalize() {
             Some(e) => {
                 let side = 0.36 * length * e.perp();

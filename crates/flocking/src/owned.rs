@@ -393,7 +393,8 @@ pub fn parent_of(path: &Path) -> &Path {
 }
 
 /// An exclusive lock on a directory being written, held until dropped (or until the process
-/// dies: the operating system then releases it). Dropping it removes its [`LOCK_FILE`].
+/// dies: the operating system then releases it). Dropping it removes its [`LOCK_FILE`], if that
+/// path still names the very file it locked.
 #[derive(Debug)]
 pub struct DirLock {
     file: File,
@@ -464,8 +465,16 @@ impl DirLock {
 impl Drop for DirLock {
     fn drop(&mut self) {
         // Removed while still locked, so that no other writer can lock this file afterwards
-        // believing it holds the directory.
-        let _ = fs::remove_file(&self.path);
+        // believing it holds the directory; only if the path still names the file this lock
+        // holds (same device and inode), so that nothing else put there is ever removed.
+        let ours = |m: fs::Metadata| {
+            self.file
+                .metadata()
+                .is_ok_and(|held| m.is_file() && (held.dev(), held.ino()) == (m.dev(), m.ino()))
+        };
+        if fs::symlink_metadata(&self.path).is_ok_and(ours) {
+            let _ = fs::remove_file(&self.path);
+        }
         let _ = self.file.unlock();
     }
 }
@@ -496,7 +505,29 @@ fn utc_now() -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::unescape_mount_point;
+    use super::{DirLock, LOCK_FILE, unescape_mount_point};
+
+    /// A lock removes its own lock file when dropped, and leaves a file that has replaced it.
+    #[test]
+    fn a_dropped_lock_removes_only_its_own_file() {
+        let dir = std::env::temp_dir().join(format!("flocking-dirlock-{}", std::process::id()));
+        std::fs::create_dir(&dir).expect("a new directory");
+        let lock_file = dir.join(LOCK_FILE);
+        drop(DirLock::acquire(&dir).expect("locked"));
+        assert!(!lock_file.exists(), "its own lock file removed");
+
+        let lock = DirLock::acquire(&dir).expect("locked");
+        let moved = dir.join("moved");
+        std::fs::rename(&lock_file, &moved).expect("moved away");
+        std::fs::write(&lock_file, "another's\n").expect("a file in its place");
+        drop(lock);
+        assert_eq!(std::fs::read(&lock_file).expect("kept"), b"another's\n");
+
+        for file in [&lock_file, &moved] {
+            std::fs::remove_file(file).expect("clean");
+        }
+        std::fs::remove_dir(&dir).expect("clean");
+    }
 
     #[test]
     fn mount_points_are_unescaped() {

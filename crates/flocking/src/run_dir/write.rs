@@ -1118,7 +1118,9 @@ mod tests {
     fn issue_20_the_finishing_rename_never_replaces_a_directory_that_appeared() {
         let tmp = std::env::temp_dir().join(format!("flocking-noreplace-{}", std::process::id()));
         let (partial, target) = (tmp.join("d.partial"), tmp.join("d"));
-        std::fs::create_dir_all(&partial).expect("mkdir");
+        // new directories only: nothing that was there before is touched, nor removed below
+        std::fs::create_dir(&tmp).expect("a new directory");
+        std::fs::create_dir(&partial).expect("mkdir");
         std::fs::write(partial.join("metrics.csv"), "t\n").expect("a record");
         std::fs::create_dir(&target).expect("an empty DIR appears");
         let error = super::rename_no_replace(&partial, &target).expect_err("refused");
@@ -1131,6 +1133,9 @@ mod tests {
         std::fs::remove_dir(&target).expect("the user moves it away");
         super::rename_no_replace(&partial, &target).expect("renamed");
         assert!(target.join("metrics.csv").is_file() && !partial.exists());
-        std::fs::remove_dir_all(&tmp).expect("clean");
+        // what this test made, one by one (remove_dir refuses a directory that is not empty)
+        std::fs::remove_file(target.join("metrics.csv")).expect("clean");
+        std::fs::remove_dir(&target).expect("clean");
+        std::fs::remove_dir(&tmp).expect("clean");
     }
 }
