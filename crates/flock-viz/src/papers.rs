@@ -490,8 +490,9 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                       r = 1.2 d_α, balls of eq. 59 and ‖p_d‖ = 10",
                 ),
                 ours(
-                    "as tr2003_fig7: p_d = (10, 0), a per-agent pull c₁ = 0.05, c₂ = 1 to a \
-                      γ-agent on y = 22.5, c₃ = 30, c₄ = 1, λ_d = 0.2",
+                    "as tr2003_fig7 before its action function changed: p_d = (10, 0), a \
+                      per-agent pull c₁ = 0.05, c₂ = 1 to a γ-agent on y = 22.5, c₃ = 30, c₄ = 1, \
+                      λ_d = 0.2",
                 ),
                 ours(
                     "the random start: seed 3, chosen as the first seed whose largest flock at \
@@ -502,7 +503,9 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                 "Reproduced only by the choice of the random start: the paper's 95 (the report's \
                  97) lies within the 94–98 that seeds 1–13 give at t = 60 s, and our γ pull, which \
                  the paper does not have, reunites all 100 agents by t = 64 s; pairs closer than \
-                 d/4 from 17 to 40 s, as in CDS Fig. 7.",
+                 d/4 from 17 to 40 s, as CDS Fig. 7 had with a = 1, b = 5 (its a = 4, b = 80 \
+                 keep pairs apart but leave 97–99 in the largest flock over seeds 1–13, never \
+                 95).",
             ),
         },
     ),
@@ -540,7 +543,6 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
             parameters: &[&[
                 paper("n = 100, random initial positions, zero initial velocities"),
                 paper("d_α = 7, r = 1.2 d_α"),
-                paper("a = 1, b = 5 (the action function of its Fig. 4)"),
                 paper("the six balls M_obs of eq. 59"),
                 paper("‖p_d‖ = 10, c₃ ≫ 1, λ_d ∈ (0, 1]"),
                 ours("p_d = (10, 0) (the report writes (0, 10))"),
@@ -549,18 +551,19 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                      c₂(p_i − p_r) to a γ-agent on y = 22.5, c₁ = 0.05, c₂ = 1 (not the \
                      report's eq. 58)",
                 ),
-                ours("c₃ = 30, c₄ = 1, λ_d = 0.2"),
+                ours(
+                    "a = 4, b = 80: the γ pull c₃ a within half the α-repulsion's bound b (§ 11 \
+                     gives no a, b; with its Fig. 4 pair a = 1, b = 5 pairs collide at the balls)",
+                ),
+                ours("c₃ = 10, c₄ = 1, λ_d = 0.2"),
                 ours("start: positions uniform in [−150, −60] × [0, 40]"),
                 ours("duration 60 s"),
             ]],
             not_reproduced: Some(
-                "Agents collide at the balls and squeeze through the gap crowded: with c₃ ≫ 1 the \
-                 balls' γ-agents press agents together (pairs closer than d/4 at 216 of the 580 \
-                 records after t = 2 s, from 17 to 38 s, down to 0.151; up to 11 agents abreast \
-                 between O5 and O6, where the report fits two), the flock is steered through the \
-                 gap by a per-agent pull of ours, and Definition 5 fails. The sweep \
-                 sweeps/tr2003_fig7_collisions.ron finds no setting that keeps agents both apart \
-                 and out of the balls.",
+                "The flock is steered through the gap by a per-agent pull of ours, and 33 of the \
+                 100 agents go round O5 and O6 rather than squeeze between them; Definition 5 \
+                 fails over the last quarter (the three stragglers and the end of the rejoin: \
+                 K̃ ≤ 2.8).",
             ),
         },
     ),
@@ -595,19 +598,18 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
             parameters: &[&[
                 paper("n = 100, random initial positions, zero initial velocities"),
                 paper("a sink at (q_d, p_d) = (0, 0)"),
+                paper("f_i = −q_i − c₂ p_i (eq. 50: position gain 1)"),
                 paper("d_α = 7, r = 1.2 d_α"),
-                paper("a = 1, b = 5 (the action function of its Fig. 4)"),
-                ours("c₁ = 0.02, c₂ = 1 (the report's eq. 50 has c₁ = 1)"),
+                ours(
+                    "a = 50, b = 250: the shape of the report's Fig. 4 pair (a = 1, b = 5) × 50, \
+                     so that a lattice at spacing d bears the sink's pressure (§ 11 gives no a, b)",
+                ),
+                ours("c₂ = 1 (the report: c₂ > 0)"),
                 ours("the influence map's flat part δ = d/r"),
                 ours("start: positions uniform in [−40, 40]²"),
-                ours("duration 300 s"),
+                ours("duration 60 s"),
             ]],
-            not_reproduced: Some(
-                "The report's sink gain c₁ = 1 crushes the lattice (least distance 0.55, 151 \
-                 pairs closer than d/4 at 300 s): φ_α is bounded (|φ_α| < b = 5), so a lattice at \
-                 spacing d bears at most ≈ 1.73 b/d per metre against the sink's pressure \
-                 c₁ n/(2π) at its centre, which caps the gain near 0.08; this run uses c₁ = 0.02.",
-            ),
+            not_reproduced: None,
         },
     ),
     (
@@ -637,7 +639,10 @@ const PAPER_FIGURES: &[(&str, &str, PaperFigure)] = &[
                 paper("the C^k influence map of eq. 4"),
                 ours("k = 2, flat part δ = d/r"),
                 ours("a = 1, b = 5 (the CDS 03-006 report's Fig. 4 pair)"),
-                ours("c₁ = 0.02, c₂ = 1, consensus gain 1 (those of CDS Fig. 9)"),
+                ours(
+                    "c₁ = 0.02, c₂ = 1, consensus gain 1 (with a = 1, b = 5 the lattice stands only \
+                     for c₁ ≲ 0.05; see CDS Fig. 9)",
+                ),
                 ours("start: positions uniform in [−50, 50]²"),
                 ours("duration 600 s, to an invariant topology"),
             ]],

@@ -189,13 +189,15 @@ fn assert_connects(name: &str, by: f64) {
     assert_eq!(m.collisions, 0);
 }
 
+/// The report: "The net becomes connected after 4 seconds"; with eq. 50's gain 1 the fixture's
+/// net is connected from t = 1.5 s.
 #[test]
 fn tr2003_fig9_sink_connects_the_net() {
     assert_connects("tr2003_fig9_sink_n100", 4.0);
 }
 
-/// The ACC start is sparser ([−50, 50]²) and its sink as weak as Fig. 9's (c₁ = 0.02): it
-/// connects at t = 15.5 s.
+/// The ACC start is sparser ([−50, 50]²) and its sink weaker than Fig. 9's (c₁ = 0.02 with
+/// a = 1, b = 5): it connects at t = 15.5 s.
 #[test]
 fn acc2004_fig4_sink_connects_the_net() {
     assert_connects("acc2004_fig4_sink_n100", 16.0);
@@ -264,8 +266,10 @@ fn tr2003_fig9_sink_ends_on_a_lattice_of_equilateral_triangles() {
 /// CDS 03-006 § 9–10 on the sink of Fig. 9: the 2003 protocols record the defect factor
 /// (eq. 46–47) and H_s, H_tr (eq. 48–49). With the distributed PD of eq. 50, Σ_i u_i^α = 0 makes
 /// the centre of mass a damped oscillator of its own (Proposition 6): H_tr never rises and decays
-/// as that oscillator's slow mode, e^(−2σt) with σ the slow root of s² + c₂ s + c₁ = 0, whatever the
-/// (α, α) part; the defect factor falls as the net settles into its lattice.
+/// at twice the slowest decay rate σ of s² + c₂ s + c₁ = 0 (the real part of its slow root; c₂/2
+/// for the fixture's underdamped c₁ = 1, c₂ = 1), whatever the (α, α) part, read over the first
+/// half of the run, before H_tr reaches round-off; the defect factor falls as the net settles into
+/// its lattice.
 #[test]
 fn tr2003_fig9_sink_separates_translation_from_structure() {
     let (scenario, _, trace) = trace_fixture("tr2003_fig9_sink_n100");
@@ -277,8 +281,8 @@ fn tr2003_fig9_sink_separates_translation_from_structure() {
         panic!("a 2003 protocol with a sink")
     };
     let (c1, c2) = (translation.c1, translation.c2);
-    assert!(c2 * c2 > 4.0 * c1, "overdamped");
-    let sigma = 0.5 * (c2 - (c2 * c2 - 4.0 * c1).sqrt());
+    let discriminant = c2 * c2 - 4.0 * c1;
+    let sigma = 0.5 * (c2 - discriminant.max(0.0).sqrt());
     let h_tr = trace.column("translational_energy");
     for (k, pair) in h_tr.windows(2).enumerate() {
         assert!(
@@ -289,11 +293,13 @@ fn tr2003_fig9_sink_separates_translation_from_structure() {
             k + 1
         );
     }
-    let (first, last) = (h_tr[0], h_tr[h_tr.len() - 1]);
-    let slow_mode = (-2.0 * sigma * scenario.duration).exp();
+    let half = h_tr.len() / 2;
+    let elapsed = trace.0[half].0 - trace.0[0].0;
+    let rate = (h_tr[0] / h_tr[half]).ln() / elapsed;
     assert!(
-        (0.5..2.0).contains(&(last / first / slow_mode)),
-        "H_tr: {first} → {last}, the slow mode alone gives ×{slow_mode}"
+        (0.9..1.1).contains(&(rate / (2.0 * sigma))),
+        "H_tr decays at {rate} over {elapsed} s; the slow mode alone gives {}",
+        2.0 * sigma
     );
     let h_s = trace.column("structural_energy");
     assert!(h_s.iter().all(|&h| h.is_finite() && h >= 0.0), "{h_s:?}");
