@@ -335,6 +335,7 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
         "tac2006_fig11_delay_loss",
         "tac2006_fig14_noise_amax",
         "tac2006_fig14_gain_ordering",
+        "tr2003_fig7_repulsion",
     ]
     .map(|name| {
         fs::read_dir(committed.join(name))
@@ -357,7 +358,7 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
 
 /// The committed diagrams: the sweep, the metric (the file's stem) and the options of their plot
 /// commands in docs/sweeps.md.
-const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 15] = [
+const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 19] = [
     (
         "alg2_c1_n",
         "alpha_flock",
@@ -548,6 +549,54 @@ const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 15] = [
             "alpha.c2",
             "--metric",
             "settled_min_distance",
+        ],
+    ),
+    (
+        "tr2003_fig7_repulsion",
+        "settled_collisions",
+        &[
+            "--x",
+            "alpha.b",
+            "--y",
+            "algorithm.avoidance.c3",
+            "--metric",
+            "settled_collisions",
+        ],
+    ),
+    (
+        "tr2003_fig7_repulsion",
+        "settled_min_distance",
+        &[
+            "--x",
+            "alpha.b",
+            "--y",
+            "algorithm.avoidance.c3",
+            "--metric",
+            "settled_min_distance",
+        ],
+    ),
+    (
+        "tr2003_fig7_repulsion",
+        "obstacle_clearance",
+        &[
+            "--x",
+            "alpha.b",
+            "--y",
+            "algorithm.avoidance.c3",
+            "--metric",
+            "obstacle_clearance",
+        ],
+    ),
+    (
+        "tr2003_fig7_repulsion",
+        "giant_component",
+        &[
+            "--x",
+            "alpha.b",
+            "--y",
+            "algorithm.avoidance.c3",
+            "--metric",
+            "giant_component",
         ],
     ),
 ];
