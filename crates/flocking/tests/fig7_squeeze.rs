@@ -91,7 +91,10 @@ fn tr2003_fig7_least_distance_after_settling() {
     let settled: Vec<_> = squeeze.records.iter().filter(|r| r.0 >= SETTLED).collect();
     for &&(t, least, collisions, _) in &settled {
         assert!(least >= 3.3, "a pair within {least} at t = {t}");
-        assert_eq!(collisions, 0, "pairs closer than d/4 = {quarter} at t = {t}");
+        assert_eq!(
+            collisions, 0,
+            "pairs closer than d/4 = {quarter} at t = {t}"
+        );
     }
     let closest = settled.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
     assert!(closest < 3.5, "the balls press pairs to {closest}");
@@ -103,7 +106,11 @@ fn tr2003_fig7_least_distance_after_settling() {
 fn tr2003_fig7_the_middle_of_the_flock_squeezes_through_the_waist() {
     let (_, _, squeeze) = squeeze();
     let crossed: Vec<f64> = squeeze.crossed_at.iter().flatten().copied().collect();
-    assert_eq!(crossed.len(), squeeze.crossed_at.len(), "every agent passes x = {GAP_X}");
+    assert_eq!(
+        crossed.len(),
+        squeeze.crossed_at.len(),
+        "every agent passes x = {GAP_X}"
+    );
     let through = crossed.iter().filter(|y| WAIST.contains(y)).count();
     assert!((60..=75).contains(&through), "{through} through the waist");
 }

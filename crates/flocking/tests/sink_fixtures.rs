@@ -54,7 +54,10 @@ fn tr2003_fig9_report_gain_needs_the_action_function_scaled() {
     };
     for (a, b) in [(1.0, 5.0), (1.0, 50.0)] {
         let (d, metrics, lattice) = run(a, b);
-        assert!(metrics.min_distance < 0.5 * d, "a = {a}, b = {b}: {metrics:?}");
+        assert!(
+            metrics.min_distance < 0.5 * d,
+            "a = {a}, b = {b}: {metrics:?}"
+        );
         assert!(lattice.crossings > Some(100), "a = {a}, b = {b}: {lattice}");
         assert_eq!(lattice.within_edge_bound(), Some(false), "{lattice}");
     }

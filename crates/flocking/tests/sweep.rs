@@ -398,20 +398,24 @@ fn the_shipped_sweeps_load() {
         ],
     );
     assert!(fig14.algorithm.uses_obstacles());
-    // CDS Fig. 7–8: the repulsion sweep sets b and c₃ on every run, the older one pins b = 5
+    // CDS Fig. 7–8: the action-function sweep sets a, b and c₃ on every run, the older one pins
+    // the report's Fig. 4 pair a = 1, b = 5
     let fig7 = Sweep::load(dir.join("tr2003_fig7_repulsion.ron")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!((fig7.runs().len(), fig7.seeds), (8 * 4 * 5, 5));
-    let last = fig7.scenario(&fig7.runs()[159]).expect("valid");
-    assert_eq!(last.value("alpha.b").expect("a path"), json!(120.0));
-    assert_eq!(
-        last.value("algorithm.avoidance.c3").expect("a path"),
-        json!(30.0)
-    );
+    assert_eq!((fig7.runs().len(), fig7.seeds), (2 * 8 * 4 * 5, 5));
+    let last = fig7.scenario(&fig7.runs()[319]).expect("valid");
+    for (path, value) in [
+        ("alpha.a", 4.0),
+        ("alpha.b", 120.0),
+        ("algorithm.avoidance.c3", 30.0),
+    ] {
+        assert_eq!(last.value(path).expect("a path"), json!(value), "{path}");
+    }
     let older =
         Sweep::load(dir.join("tr2003_fig7_collisions.ron")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!((older.runs().len(), older.seeds), (6 * 3 * 2, 2));
     for run in older.runs() {
         let scenario = older.scenario(&run).expect("valid");
+        assert_eq!(scenario.value("alpha.a").expect("a path"), json!(1.0));
         assert_eq!(scenario.value("alpha.b").expect("a path"), json!(5.0));
     }
 }
