@@ -292,322 +292,60 @@ fn the_committed_sweeps_are_what_flock_computes_and_draws() {
         );
     }
 
-    // the plot commands of docs/sweeps.md, drawing into the committed files
-    let doc = fs::read_to_string(fixtures_dir().join("../docs/sweeps.md")).expect("docs/sweeps.md");
+    // every plot command of docs/sweeps.md that draws into the committed files, run from the
+    // repository's root as written (and its SVG twin, the same command with `.svg`), but drawing
+    // into the test's directory, compared with the committed file
+    let root = fixtures_dir().join("..");
+    let doc = fs::read_to_string(root.join("docs/sweeps.md")).expect("docs/sweeps.md");
     let mut drawn = 0;
-    for (name, metric, options) in COMMITTED_DIAGRAMS {
-        for ext in ["svg", "png"] {
-            let file = format!("docs/figures/sweeps/{name}/{metric}.{ext}");
-            let quoted: Vec<String> = options
-                .iter()
-                .map(|o| {
-                    if o.contains(' ') {
-                        format!("\"{o}\"")
-                    } else {
-                        (*o).to_owned()
-                    }
-                })
-                .collect();
-            let command = format!(
-                "flocking sweep plot docs/figures/sweeps/{name} {} --out {file}",
-                quoted.join(" ")
-            );
-            if ext == "png" {
-                assert!(doc.contains(&command), "docs/sweeps.md lacks `{command}`");
-            }
-            let out = tmp.path().join(format!("{name}-{metric}.{ext}"));
-            let dir = committed.join(name);
-            let mut args = vec!["plot", dir.to_str().expect("UTF-8")];
-            args.extend_from_slice(options);
-            args.extend(["--out", out.to_str().expect("UTF-8")]);
-            sweep(tmp.path(), &args);
+    for line in doc
+        .lines()
+        .filter(|l| l.starts_with("flocking sweep plot docs/figures/sweeps/"))
+    {
+        let mut words = shlex::split(line).unwrap_or_else(|| panic!("a shell line: {line}"));
+        let out = words.iter().position(|w| w == "--out").expect("--out") + 1;
+        let Some(file) = words[out]
+            .strip_prefix("docs/figures/sweeps/")
+            .map(Path::new)
+        else {
+            continue;
+        };
+        let file = committed.join(file);
+        for ext in ["png", "svg"] {
+            let into = tmp.path().join(format!("drawn-{drawn}.{ext}"));
+            words[out] = into.to_str().expect("UTF-8").to_owned();
+            let args: Vec<&str> = words[1..].iter().map(String::as_str).collect();
+            let output = flocking(&root, &args);
+            assert!(output.status.success(), "{line}: {}", stderr(&output));
+            let file = file.with_extension(ext);
             assert!(
-                fs::read(&out).expect("drawn")
-                    == fs::read(dir.join(format!("{metric}.{ext}"))).expect("committed"),
-                "{file} is {stale}"
+                fs::read(&into).expect("drawn") == fs::read(&file).expect("committed"),
+                "{} is {stale}",
+                file.display()
             );
             drawn += 1;
         }
     }
-    let files = [
-        "alg2_c1_n",
-        "alg3_beta_radius",
-        "tac2006_fig11_delay_loss",
-        "tac2006_fig14_noise_amax",
-        "tac2006_fig14_gain_ordering",
-        "tr2003_fig7_repulsion",
-    ]
-    .map(|name| {
-        fs::read_dir(committed.join(name))
-            .expect("committed")
-            .filter(|e| {
-                e.as_ref()
-                    .expect("entry")
-                    .path()
-                    .extension()
-                    .is_some_and(|x| x == "svg" || x == "png")
-            })
-            .count()
-    });
+    let committed_diagrams: usize = fs::read_dir(&committed)
+        .expect("committed")
+        .map(|sweep| {
+            fs::read_dir(sweep.expect("a sweep").path())
+                .expect("committed")
+                .filter(|e| {
+                    e.as_ref()
+                        .expect("entry")
+                        .path()
+                        .extension()
+                        .is_some_and(|x| x == "svg" || x == "png")
+                })
+                .count()
+        })
+        .sum();
     assert_eq!(
-        files.iter().sum::<usize>(),
-        drawn,
+        committed_diagrams, drawn,
         "every committed diagram is drawn"
     );
 }
-
-/// The committed diagrams: the sweep, the metric (the file's stem) and the options of their plot
-/// commands in docs/sweeps.md.
-const COMMITTED_DIAGRAMS: [(&str, &str, &[&str]); 19] = [
-    (
-        "alg2_c1_n",
-        "alpha_flock",
-        &[
-            "--x",
-            "algorithm.c1",
-            "--y",
-            "agents",
-            "--metric",
-            "alpha_flock",
-            "--log-x",
-        ],
-    ),
-    (
-        "alg2_c1_n",
-        "cohesion_radius",
-        &[
-            "--x",
-            "algorithm.c1",
-            "--facet",
-            "agents",
-            "--metric",
-            "cohesion_radius",
-            "--band",
-            "quantiles",
-            "--log-x",
-        ],
-    ),
-    (
-        "alg2_c1_n",
-        "settled_collisions",
-        &[
-            "--x",
-            "algorithm.c1",
-            "--y",
-            "agents",
-            "--metric",
-            "settled_collisions",
-            "--log-x",
-        ],
-    ),
-    (
-        "alg3_beta_radius",
-        "obstacle_clearance",
-        &[
-            "--x",
-            "algorithm.beta.c1",
-            "--y",
-            "obstacles.0.radius",
-            "--metric",
-            "obstacle_clearance",
-            "--log-x",
-        ],
-    ),
-    (
-        "alg3_beta_radius",
-        "collisions",
-        &[
-            "--x",
-            "algorithm.beta.c1",
-            "--y",
-            "obstacles.0.radius",
-            "--metric",
-            "collisions",
-            "--log-x",
-        ],
-    ),
-    (
-        "alg3_beta_radius",
-        "min_distance",
-        &[
-            "--x",
-            "algorithm.beta.c1",
-            "--y",
-            "obstacles.0.radius",
-            "--metric",
-            "min_distance",
-            "--log-x",
-        ],
-    ),
-    (
-        "tac2006_fig11_delay_loss",
-        "alpha_flock",
-        &[
-            "--x",
-            "conditions.communication.delay",
-            "--y",
-            "conditions.communication.loss.Bernoulli.p",
-            "--metric",
-            "alpha_flock",
-            "--bound",
-            "0.687",
-            "--bound-label",
-            "τ* = 0.687 s (linearised)",
-        ],
-    ),
-    (
-        "tac2006_fig11_delay_loss",
-        "settled_min_distance",
-        &[
-            "--x",
-            "conditions.communication.delay",
-            "--y",
-            "conditions.communication.loss.Bernoulli.p",
-            "--metric",
-            "settled_min_distance",
-        ],
-    ),
-    (
-        "tac2006_fig11_delay_loss",
-        "settled_collisions",
-        &[
-            "--x",
-            "conditions.communication.delay",
-            "--y",
-            "conditions.communication.loss.Bernoulli.p",
-            "--metric",
-            "settled_collisions",
-        ],
-    ),
-    (
-        "tac2006_fig14_noise_amax",
-        "alpha_flock",
-        &[
-            "--x",
-            "conditions.sensing.noise.White.sigma_q",
-            "--y",
-            "conditions.actuation.max_acceleration",
-            "--metric",
-            "alpha_flock",
-        ],
-    ),
-    (
-        "tac2006_fig14_noise_amax",
-        "settled_min_distance",
-        &[
-            "--x",
-            "conditions.sensing.noise.White.sigma_q",
-            "--y",
-            "conditions.actuation.max_acceleration",
-            "--metric",
-            "settled_min_distance",
-        ],
-    ),
-    (
-        "tac2006_fig14_noise_amax",
-        "settled_collisions",
-        &[
-            "--x",
-            "conditions.sensing.noise.White.sigma_q",
-            "--y",
-            "conditions.actuation.max_acceleration",
-            "--metric",
-            "settled_collisions",
-        ],
-    ),
-    (
-        "tac2006_fig14_noise_amax",
-        "obstacle_clearance",
-        &[
-            "--x",
-            "conditions.sensing.noise.White.sigma_q",
-            "--y",
-            "conditions.actuation.max_acceleration",
-            "--metric",
-            "obstacle_clearance",
-        ],
-    ),
-    (
-        "tac2006_fig14_gain_ordering",
-        "settled_collisions",
-        &[
-            "--x",
-            "algorithm.c1",
-            "--y",
-            "alpha.c2",
-            "--metric",
-            "settled_collisions",
-        ],
-    ),
-    (
-        "tac2006_fig14_gain_ordering",
-        "settled_min_distance",
-        &[
-            "--x",
-            "algorithm.c1",
-            "--y",
-            "alpha.c2",
-            "--metric",
-            "settled_min_distance",
-        ],
-    ),
-    (
-        "tr2003_fig7_repulsion",
-        "settled_collisions",
-        &[
-            "--x",
-            "alpha.b",
-            "--y",
-            "algorithm.avoidance.c3",
-            "--facet",
-            "alpha.a",
-            "--metric",
-            "settled_collisions",
-        ],
-    ),
-    (
-        "tr2003_fig7_repulsion",
-        "settled_min_distance",
-        &[
-            "--x",
-            "alpha.b",
-            "--y",
-            "algorithm.avoidance.c3",
-            "--facet",
-            "alpha.a",
-            "--metric",
-            "settled_min_distance",
-        ],
-    ),
-    (
-        "tr2003_fig7_repulsion",
-        "obstacle_clearance",
-        &[
-            "--x",
-            "alpha.b",
-            "--y",
-            "algorithm.avoidance.c3",
-            "--facet",
-            "alpha.a",
-            "--metric",
-            "obstacle_clearance",
-        ],
-    ),
-    (
-        "tr2003_fig7_repulsion",
-        "giant_component",
-        &[
-            "--x",
-            "alpha.b",
-            "--y",
-            "algorithm.avoidance.c3",
-            "--facet",
-            "alpha.a",
-            "--metric",
-            "giant_component",
-        ],
-    ),
-];
 
 /// The committed `runs.csv` of Algorithm 2's sweep: its column `name` as text, row by row.
 fn committed_column(name: &str) -> Vec<String> {

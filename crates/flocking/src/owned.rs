@@ -523,6 +523,10 @@ mod tests {
         drop(lock);
         assert_eq!(std::fs::read(&lock_file).expect("kept"), b"another's\n");
 
+        // only the two files this test made, each checked to hold what was written into it
+        let holder = format!("process {}, started ", std::process::id());
+        let moved_text = std::fs::read_to_string(&moved).expect("the moved lock file");
+        assert!(moved_text.starts_with(&holder), "{moved_text}");
         for file in [&lock_file, &moved] {
             std::fs::remove_file(file).expect("clean");
         }

@@ -1133,7 +1133,12 @@ mod tests {
         std::fs::remove_dir(&target).expect("the user moves it away");
         super::rename_no_replace(&partial, &target).expect("renamed");
         assert!(target.join("metrics.csv").is_file() && !partial.exists());
-        // what this test made, one by one (remove_dir refuses a directory that is not empty)
+        // what this test made, one by one (remove_dir refuses a directory that is not empty):
+        // the record it wrote, checked first
+        assert_eq!(
+            std::fs::read(target.join("metrics.csv")).expect("the record"),
+            b"t\n"
+        );
         std::fs::remove_file(target.join("metrics.csv")).expect("clean");
         std::fs::remove_dir(&target).expect("clean");
         std::fs::remove_dir(&tmp).expect("clean");
