@@ -3,6 +3,7 @@
 //! Tanner, Jadbabaie & Pappas (2003), with the 2D/3D [`Vector`] abstraction.
 //!
 //! - [`Vector`]: the one code path for [`glam::DVec2`] and [`glam::DVec3`].
+//! - [`Domain`]: open space or a periodic box, with the minimum image.
 //! - [`SigmaNorm`], [`sigma1`], [`sigma1_vec`]: the σ-norm, its gradient σ_ε and the sigmoid σ₁.
 //! - [`Bump`]: ρ_h (TAC eq. 10) and the C^k influence map (ACC 2004 eq. 4).
 //! - [`Potential`]: a pair ψ, φ = ψ′, implemented by [`UnevenSigmoid`] (2003 eq. 29),
@@ -11,6 +12,7 @@
 
 pub mod action;
 pub mod bump;
+pub mod domain;
 pub mod potential;
 pub mod quadrature;
 pub mod sigma;
@@ -20,6 +22,7 @@ pub mod vector;
 
 pub use action::BumpedAction;
 pub use bump::Bump;
+pub use domain::{Domain, minimum_image, wrap_coordinate};
 pub use potential::Potential;
 pub use quadrature::{CumulativeIntegral, GaussLegendre};
 pub use sigma::{SigmaNorm, sigma1, sigma1_vec};
