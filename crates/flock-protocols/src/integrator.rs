@@ -5,14 +5,14 @@ use std::borrow::Cow;
 
 use flock_graph::parallel::{fill_indexed, join};
 use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
 
-use crate::conditions::stage::{Stage, perception_field};
+use crate::conditions::stage::{self, Stage, perception_field};
 use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
-use crate::{Protocol, Swarm};
+use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The integration scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -87,6 +87,8 @@ pub struct Simulation<V, P> {
     rk: Option<RungeKuttaScratch<V>>,
     /// The real conditions of the run, `None` for the ideal run ([`Simulation::with_conditions`]).
     conditions: Option<Box<Stage<V>>>,
+    /// Open space or a periodic box ([`Simulation::with_domain`]).
+    domain: Domain<V>,
 }
 
 /// What [`Simulation::observe`] measures of a state.
@@ -164,6 +166,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             inputs: vec![V::ZERO; n],
             rk,
             conditions: None,
+            domain: Domain::Open,
         };
         simulation.rebuild_net();
         Ok(simulation)
@@ -323,6 +326,56 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         }
     }
 
+    /// The simulation in `domain`: on a periodic box every agent is wrapped into the box after
+    /// each step, the net holds the pairs within r by the minimum image, and a protocol that does
+    /// not measure displacements in the domain itself ([`Protocol::measures_in_domain`]) computes
+    /// each agent's input from its [`LocalForm`] with every neighbour at its image nearest the
+    /// agent. Agents are then kept in original order. `Domain::Open` changes nothing.
+    ///
+    /// # Errors
+    /// A side of the box not positive and finite or shorter than 2r (`domain.size`), or a protocol
+    /// that needs its local form on a torus and has none (`domain`).
+    pub fn with_domain(mut self, domain: Domain<V>) -> Result<Self, ParamError> {
+        if let Domain::Periodic { size } = domain {
+            let r = self.protocol.interaction_range();
+            for k in 0..V::DIM {
+                let side = size.coord(k);
+                check::positive(&format!("domain.size[{k}]"), side)?;
+                check::require(
+                    side >= 2.0 * r,
+                    &format!("domain.size[{k}]"),
+                    side,
+                    &format!("is shorter than twice the interaction range r = {r} (an agent would see another agent's two images)"),
+                    &format!("make every side of the box at least {}", 2.0 * r),
+                )?;
+            }
+            if !self.protocol.measures_in_domain() && self.protocol.local_form().is_none() {
+                return Err(ParamError::new(
+                    "domain",
+                    "Periodic",
+                    "needs each agent's input from what it perceives (its local form), and this protocol has none",
+                    "run this protocol in open space (domain: Open)",
+                ));
+            }
+            if self.stored_by_cell() {
+                self.swarm = self.swarm().into_owned();
+            }
+            self.net = empty_net(&self.protocol);
+            for q in &mut self.swarm.positions {
+                *q = domain.wrap(*q);
+            }
+        }
+        self.domain = domain;
+        self.rebuild_net();
+        Ok(self)
+    }
+
+    /// The domain.
+    #[must_use]
+    pub const fn domain(&self) -> &Domain<V> {
+        &self.domain
+    }
+
     /// The simulation under real `conditions` (validated for its agents, dimension and step),
     /// every random draw keyed from `seed`. With `Conditions::default()` it is the ideal
     /// simulation, unchanged. Otherwise agents are kept in original order (not stored by cell).
@@ -346,6 +399,16 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let n = self.swarm.len();
         let range = self.protocol.interaction_range();
         let stage = Stage::new(conditions, seed, n, self.step, range)?;
+        if self.protocol.update().sets_velocity()
+            && let Some(field) = stage::acceleration_field(conditions)
+        {
+            return Err(ParamError::new(
+                field,
+                "set",
+                "acts on an acceleration, and this model sets its agents' velocities directly",
+                "remove this condition for this model (conditions on perception, sampling and faults apply)",
+            ));
+        }
         if let Some(field) = perception_field(conditions)
             && self.protocol.local_form().is_none()
         {
@@ -364,8 +427,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             rk.net = empty_net(&self.protocol);
         }
         self.conditions = Some(Box::new(stage));
-        let r = self.protocol.interaction_range();
-        self.search.build(&self.swarm.positions, r, &mut self.net);
+        self.rebuild_net();
         Ok(self)
     }
 
@@ -442,6 +504,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         if let Some(stage) = self.conditions.as_mut() {
             stage.step(
                 &self.protocol,
+                &self.domain,
                 &mut self.swarm,
                 &self.net,
                 self.steps,
@@ -451,9 +514,10 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             self.rebuild_net();
             return;
         }
-        match self.integrator {
-            Integrator::SymplecticEuler => self.symplectic_euler(),
-            Integrator::Rk4 => self.runge_kutta(),
+        match (self.protocol.update(), self.integrator) {
+            (Update::Acceleration, Integrator::Rk4) => self.runge_kutta(),
+            // a model that sets velocities has its own update, whatever the integrator
+            (update, _) => self.explicit_update(update),
         }
         self.steps += 1;
         self.rebuild_net();
@@ -467,12 +531,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let r = self.protocol.interaction_range();
         let sorts = self.protocol.follows_numbering()
             && self.protocol.interaction_graph().is_none()
-            && self.conditions.is_none();
+            && self.conditions.is_none()
+            && !self.domain.is_periodic();
         let sorted = !self.net.numbering().is_identity();
         if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {
             self.sort_by_cell();
         }
-        self.search.build(&self.swarm.positions, r, &mut self.net);
+        self.search
+            .build_in(&self.domain, &self.swarm.positions, r, &mut self.net);
         if sorts && !sorted && self.net.is_scattered() {
             self.sort_by_cell();
             self.search.build(&self.swarm.positions, r, &mut self.net);
@@ -507,17 +573,25 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         }
     }
 
-    fn symplectic_euler(&mut self) {
+    /// One explicit step: symplectic Euler for an acceleration, or the model's own update
+    /// ([`advance`]); positions wrapped into a periodic box.
+    fn explicit_update(&mut self, update: Update) {
         let (t, h) = (self.time(), self.step);
-        self.protocol
-            .controls(t, &self.swarm, &self.net, &mut self.inputs);
+        controls_in(
+            &self.protocol,
+            &self.domain,
+            t,
+            &self.swarm,
+            &self.net,
+            &mut self.inputs,
+        );
+        let domain = self.domain;
         let Swarm {
             positions,
             velocities,
         } = &mut self.swarm;
-        let update = |((q, p), &u): ((&mut V, &mut V), &V)| {
-            *p += u * h;
-            *q += *p * h;
+        let apply = |((q, p), &u): ((&mut V, &mut V), &V)| {
+            (*q, *p) = advance(update, &domain, h, *q, *p, u);
         };
         #[cfg(feature = "parallel")]
         {
@@ -527,14 +601,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 .zip(velocities.par_iter_mut())
                 .zip(self.inputs.par_iter())
                 .with_min_len(4096)
-                .for_each(update);
+                .for_each(apply);
         }
         #[cfg(not(feature = "parallel"))]
         positions
             .iter_mut()
             .zip(velocities.iter_mut())
             .zip(&self.inputs)
-            .for_each(update);
+            .for_each(apply);
     }
 
     /// y ← y + (h/6)(k₁ + 2k₂ + 2k₃ + k₄) with y = (q, p) and k = (p, u(t, q, p)).
@@ -551,7 +625,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         rk.sum_p.fill(V::ZERO);
         // stage 1 evaluates at y itself, whose net is already built
         rk.stage.velocities.copy_from_slice(&y.velocities);
-        self.protocol.controls(t, y, &self.net, &mut self.inputs);
+        controls_in(&self.protocol, &self.domain, t, y, &self.net, &mut self.inputs);
         for (stage, weight) in WEIGHTS.into_iter().enumerate() {
             // here rk.stage.velocities holds p_s and self.inputs holds u_s
             for i in 0..y.len() {
@@ -566,13 +640,81 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 rk.stage.positions[i] = y.positions[i] + p_s * (offset * h);
                 rk.stage.velocities[i] = y.velocities[i] + u_s * (offset * h);
             }
-            self.search.build(&rk.stage.positions, range, &mut rk.net);
-            self.protocol
-                .controls(t + offset * h, &rk.stage, &rk.net, &mut self.inputs);
+            self.search
+                .build_in(&self.domain, &rk.stage.positions, range, &mut rk.net);
+            controls_in(
+                &self.protocol,
+                &self.domain,
+                t + offset * h,
+                &rk.stage,
+                &rk.net,
+                &mut self.inputs,
+            );
         }
         for i in 0..y.len() {
-            y.positions[i] += rk.sum_q[i] * (h / 6.0);
+            y.positions[i] = self.domain.wrap(y.positions[i] + rk.sum_q[i] * (h / 6.0));
             y.velocities[i] += rk.sum_p[i] * (h / 6.0);
         }
     }
+}
+
+/// One agent's state after a step h of the loop's integrate stage, from its input u:
+/// symplectic Euler p ← p + h u, q ← q + h p for an acceleration, or the model's own update
+/// ([`Update`]); q wrapped into the box of a periodic `domain`.
+#[inline]
+#[must_use]
+pub fn advance<V: Vector>(update: Update, domain: &Domain<V>, h: f64, q: V, p: V, u: V) -> (V, V) {
+    match update {
+        Update::Acceleration => {
+            let p = p + u * h;
+            (domain.wrap(q + p * h), p)
+        }
+        Update::TurnThenMove => (domain.wrap(q + u * h), u),
+        Update::MoveThenTurn => (domain.wrap(q + p * h), u),
+    }
+}
+
+/// Every agent's input at time `t`: [`Protocol::controls`] of the state, or on a torus, for a
+/// protocol that does not measure in the domain itself, its [`LocalForm`] with every neighbour in
+/// the net at its image nearest the agent ([`Domain::image_near`]), in ascending index.
+pub(crate) fn controls_in<V: Vector, P: Protocol<V> + ?Sized>(
+    protocol: &P,
+    domain: &Domain<V>,
+    t: f64,
+    swarm: &Swarm<V>,
+    net: &ProximityNet,
+    inputs: &mut [V],
+) {
+    match protocol.local_form() {
+        Some(local) if domain.is_periodic() && !protocol.measures_in_domain() => {
+            local_controls(local, domain, t, swarm, net, inputs);
+        }
+        _ => protocol.controls(t, swarm, net, inputs),
+    }
+}
+
+/// u_i = local_input(t, own, heard) with the true states, neighbours at their nearest image.
+fn local_controls<V: Vector>(
+    local: &dyn LocalForm<V>,
+    domain: &Domain<V>,
+    t: f64,
+    swarm: &Swarm<V>,
+    net: &ProximityNet,
+    inputs: &mut [V],
+) {
+    let (q, p) = (&swarm.positions, &swarm.velocities);
+    let perceived = |i: usize, position: V| Perceived {
+        agent: i as u32,
+        position,
+        velocity: p[i],
+    };
+    fill_indexed(inputs, |i| {
+        let mut js: Vec<u32> = net.graph().neighbours(i).to_vec();
+        js.sort_unstable();
+        let heard: Vec<Perceived<V>> = js
+            .iter()
+            .map(|&j| perceived(j as usize, domain.image_near(q[i], q[j as usize])))
+            .collect();
+        local.local_input(t, &perceived(i, q[i]), &heard)
+    });
 }

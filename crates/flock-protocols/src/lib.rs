@@ -7,6 +7,9 @@
 //!   [`StressForm`] (ACC 2004 eq. 39), [`Flocking2003`] with a sink, [`ObstacleFlocking2003`]
 //!   (eq. 54–58) and [`TannerJadbabaiePappas`] (Tanner, Jadbabaie & Pappas 2003, eq. 5).
 //! - [`Consensus`]: velocity matching (seed 000 eq. 9) on a fixed graph or the proximity net.
+//! - The classic models: [`CuckerSmale`] (Cucker & Smale 2007), [`Vicsek`] (Vicsek et al. 1995),
+//!   [`Boids`] (Reynolds 1987, as the ABM frameworks' benchmark declares it) and [`Couzin`]
+//!   (Couzin et al. 2002); the last three set velocities with their own [`Update`].
 //! - [`Simulation`]: fixed-step [`Integrator`]s (symplectic Euler by default, RK4) that rebuild the
 //!   proximity net at every evaluation, with the metrics, energy, diagnostics and health of the
 //!   state in the agents' original order.
@@ -25,6 +28,8 @@ pub mod alpha;
 pub mod beta;
 pub mod conditions;
 pub mod consensus;
+pub mod couzin2002;
+pub mod cucker_smale2007;
 pub mod error;
 pub mod gamma;
 pub mod health;
@@ -35,18 +40,22 @@ pub mod olfati_saber2003_tracking;
 pub mod olfati_saber2004;
 pub mod olfati_saber2006;
 pub mod protocol;
+pub mod reynolds1987;
 pub mod swarm;
 pub mod tanner2003;
+pub mod vicsek1995;
 
 pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 #[cfg(feature = "obstacles")]
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
 pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
+pub use couzin2002::{Couzin, CouzinParams};
+pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
 pub use error::{ParamError, check};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
 pub use health::{AgentFault, Fault};
-pub use integrator::{Integrator, Observation, Simulation};
+pub use integrator::{Integrator, Observation, Simulation, advance};
 pub use olfati_saber2003::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, AvoidanceGains, Flocking2003, ObstacleParams,
     influence_map_lipschitz,
@@ -59,8 +68,10 @@ pub use olfati_saber2004::StressForm;
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2006::Algorithm3;
 pub use olfati_saber2006::{Algorithm1, Algorithm2};
-pub use protocol::{DynProtocol, LocalForm, Perceived, Protocol};
+pub use protocol::{DynProtocol, LocalForm, Perceived, Protocol, Update};
+pub use reynolds1987::{Boids, BoidsParams};
 pub use swarm::Swarm;
 pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,
 };
+pub use vicsek1995::{Vicsek, VicsekParams, planar};

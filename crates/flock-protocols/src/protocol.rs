@@ -81,6 +81,48 @@ pub trait Protocol<V: Vector>: Sync {
     fn local_form(&self) -> Option<&dyn LocalForm<V>> {
         None
     }
+
+    /// What the protocol's output u_i is, and so how the loop applies it ([`Update`]): an
+    /// acceleration by default.
+    #[must_use]
+    fn update(&self) -> Update {
+        Update::Acceleration
+    }
+
+    /// Whether [`Protocol::controls`] measures every displacement in the run's
+    /// [`Domain`](flock_math::Domain) itself (the minimum image on a torus), as the models of
+    /// periodic boxes do. False by default: on a torus the simulation then computes each
+    /// agent's input from the protocol's [`LocalForm`] with every neighbour at its image nearest
+    /// the agent.
+    #[must_use]
+    fn measures_in_domain(&self) -> bool {
+        false
+    }
+}
+
+/// What a protocol's output u_i is, and how the loop of a run applies it after the control
+/// step (the "integrate" stage of fail → sense → communicate → control → actuate → integrate).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Update {
+    /// A commanded acceleration of a double integrator q̇ = p, ṗ = u (TAC 2006 eq. 1), integrated
+    /// by the run's [`Integrator`](crate::Integrator).
+    #[default]
+    Acceleration,
+    /// The agent's next velocity, set at once, and then the move with it: p ← u_i,
+    /// q ← q + h p (the boids of the ABM frameworks, Couzin et al. 2002).
+    TurnThenMove,
+    /// The move with the present velocity, then the new velocity: q ← q + h p, p ← u_i
+    /// (Vicsek et al. 1995, eq. 1 with x_i(t + 1) = x_i(t) + v_i(t) Δt, then eq. 2).
+    MoveThenTurn,
+}
+
+impl Update {
+    /// Whether u_i is a velocity (the discrete-time, constant-speed models): conditions on
+    /// accelerations (actuation limits and lag, wind, process noise, speed limits) do not apply.
+    #[must_use]
+    pub const fn sets_velocity(self) -> bool {
+        !matches!(self, Self::Acceleration)
+    }
 }
 
 /// An agent's state as the agent computing its input perceives it: its own, as it measures it,
@@ -147,6 +189,14 @@ impl<V: Vector, P: Protocol<V> + ?Sized> Protocol<V> for Box<P> {
 
     fn interaction_graph(&self) -> Option<&Graph> {
         (**self).interaction_graph()
+    }
+
+    fn update(&self) -> Update {
+        (**self).update()
+    }
+
+    fn measures_in_domain(&self) -> bool {
+        (**self).measures_in_domain()
     }
 
     fn local_form(&self) -> Option<&dyn LocalForm<V>> {

@@ -8,6 +8,7 @@ mod determinism;
 mod invariance;
 mod local_form;
 mod long_run;
+mod models;
 mod olfati_saber2003;
 mod olfati_saber2003_tracking;
 mod properties;

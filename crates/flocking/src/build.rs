@@ -2,19 +2,19 @@
 //! scenario's algorithm into a [`DynProtocol`].
 
 use flock_graph::Graph;
-use flock_math::{Bump, TannerPotential};
+use flock_math::{Bump, Domain, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
 use flock_protocols::conditions::stage::perception_field;
 use flock_protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
-    BetaInteraction, Conditions, Consensus, DynProtocol, Flocking2003, GammaAgent,
-    NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
-    TannerJadbabaiePappas, random_connected_graph,
+    BetaInteraction, Boids, Conditions, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003,
+    GammaAgent, NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
+    TannerJadbabaiePappas, Vicsek, random_connected_graph,
 };
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;
-use crate::scenario::{Algorithm, FixedGraph, Point, Scenario};
+use crate::scenario::{Algorithm, DomainSpec, FixedGraph, Point, Scenario};
 
 /// The γ-agent of a validated scenario in vectors `V`.
 #[must_use]
@@ -112,7 +112,34 @@ impl Scenario {
                 };
                 Box::new(consensus.map_err(within("algorithm"))?)
             }
+            Algorithm::CuckerSmale(params) => Box::new(
+                CuckerSmale::new(*params, r, self.agents, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
+            Algorithm::Vicsek(params) => Box::new(
+                Vicsek::new(*params, self.step, self.seed, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
+            Algorithm::Boids(params) => Box::new(
+                Boids::new(*params, self.step, self.seed, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
+            Algorithm::Couzin(params) => Box::new(
+                Couzin::new(*params, self.step, self.seed, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
         })
+    }
+
+    /// The scenario's domain in vectors `V` (of the scenario's dimension).
+    #[must_use]
+    pub fn domain<V: Space>(&self) -> Domain<V> {
+        match &self.domain {
+            DomainSpec::Open => Domain::Open,
+            DomainSpec::Periodic { size } => Domain::Periodic {
+                size: to_vector(size),
+            },
+        }
     }
 
     /// The fixed graph of a scenario: the Tanner law's, or that of [`Algorithm::Consensus`] on a

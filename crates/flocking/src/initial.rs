@@ -67,6 +67,14 @@ fn draw<V: Vector>(cloud: &Cloud, k: usize, rng: &mut Pcg64) -> V {
             mean + V::from_fn(|_| standard_normal(rng)) * *std
         }
         Cloud::Explicit(rows) => to_vector(&rows[k]),
+        Cloud::Headings { speed } => loop {
+            // a direction uniform on the sphere: rejection from the cube, then normalised
+            let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);
+            let r2 = x.length_squared();
+            if r2 <= 1.0 && r2 > 1e-12 {
+                break x * (*speed / r2.sqrt());
+            }
+        },
     }
 }
 

@@ -14,8 +14,8 @@ use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
-    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, Conditions, GammaAgent, Integrator,
-    critical_damping,
+    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, BoidsParams, Conditions,
+    CouzinParams, CuckerSmaleParams, GammaAgent, Integrator, VicsekParams, critical_damping,
 };
 
 use crate::error::ScenarioError;
@@ -64,6 +64,9 @@ pub struct Scenario {
     pub seed: u64,
     /// The protocol.
     pub algorithm: Algorithm,
+    /// The space the agents live in: `Open` (the default, not written) or a periodic box.
+    #[serde(default, skip_serializing_if = "DomainSpec::is_open")]
+    pub domain: DomainSpec,
     /// Parameters and gains of the α-interaction.
     #[serde(default)]
     pub alpha: AlphaConfig,
@@ -172,6 +175,41 @@ pub enum Algorithm {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         graph: Option<FixedGraph>,
     },
+    /// The Cucker–Smale model (IEEE TAC 52(5), 2007): ṗ_i = (λ/N) Σ_j ψ(‖q_j − q_i‖)(p_j − p_i),
+    /// ψ(r) = K/(σ² + r²)^β, every pair (`CuckerSmale(beta: 0.25)`).
+    CuckerSmale(CuckerSmaleParams),
+    /// The Vicsek model (PRL 75, 1995): constant speed v₀, the neighbours' mean heading within
+    /// r plus uniform noise in [−η/2, η/2]; planar (`Vicsek(v0: 0.03, r: 1.0, eta: 2.0)`).
+    Vicsek(VicsekParams),
+    /// Reynolds's boids as the ABM frameworks' benchmark declares them (`Boids(visual_distance: 5.0)`,
+    /// every other parameter at the declaration's default).
+    Boids(BoidsParams),
+    /// The zone model of Couzin et al. (J. theor. Biol. 218, 2002) (`Couzin(delta_r_o: 2.0,
+    /// delta_r_a: 12.0)`, the others at the paper's values).
+    Couzin(CouzinParams),
+}
+
+/// The space of a scenario.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum DomainSpec {
+    /// ℝ^m.
+    #[default]
+    Open,
+    /// The torus [0, L₁) × … × [0, L_m): positions wrapped after each step, every distance the
+    /// minimum image, the centre of mass the circular mean per axis.
+    Periodic {
+        /// The sides (L₁, …, L_m), each at least twice the interaction range.
+        size: Vec<f64>,
+    },
+}
+
+impl DomainSpec {
+    /// Whether the domain is open space.
+    #[must_use]
+    pub fn is_open(&self) -> bool {
+        matches!(self, Self::Open)
+    }
 }
 
 impl Algorithm {
@@ -181,7 +219,7 @@ impl Algorithm {
         match self {
             Self::Algorithm2 { gamma, .. } | Self::Algorithm3 { gamma, .. } => Some(gamma),
             Self::Flocking2003 { translation, .. } => translation.as_ref().map(|t| &t.gamma),
-            Self::Algorithm1 | Self::Tanner { .. } | Self::Consensus { .. } => None,
+            _ => None,
         }
     }
 
@@ -197,8 +235,19 @@ impl Algorithm {
             | Self::Algorithm3 { .. }
             | Self::Flocking2003 { .. }
             | Self::Tanner { .. }
-            | Self::Consensus { .. } => true,
+            | Self::Consensus { .. }
+            | Self::Vicsek(_)
+            | Self::Boids(_)
+            | Self::Couzin(_) => true,
+            Self::CuckerSmale(params) => params.cutoff.is_some(),
         }
+    }
+
+    /// Whether the algorithm is a model that sets its agents' velocities (Vicsek, boids, Couzin),
+    /// rather than an acceleration.
+    #[must_use]
+    pub fn sets_velocity(&self) -> bool {
+        matches!(self, Self::Vicsek(_) | Self::Boids(_) | Self::Couzin(_))
     }
 
     /// Whether the algorithm sees the scenario's obstacles.
@@ -295,6 +344,12 @@ pub enum Cloud {
     },
     /// One vector per agent.
     Explicit(Vec<Vec<f64>>),
+    /// Vectors of one length `speed` in directions uniform on the circle or sphere: the random
+    /// headings the constant-speed models start from (Vicsek et al. 1995, Couzin et al. 2002).
+    Headings {
+        /// The length ≥ 0 of every vector.
+        speed: f64,
+    },
 }
 
 fn default_step() -> f64 {
@@ -356,17 +411,31 @@ impl Scenario {
         self
     }
 
-    /// The interaction range r (default 1.2 d).
+    /// The interaction range r: `alpha.r` (default 1.2 d), or the model's own (Vicsek's r, the
+    /// boids' visual distance plus 2 s h, Couzin's r_a, Cucker–Smale's cut-off when it has one).
     #[must_use]
     pub fn range(&self) -> f64 {
-        self.alpha.range()
+        match &self.algorithm {
+            Algorithm::CuckerSmale(p) => p.cutoff.unwrap_or_else(|| self.alpha.range()),
+            Algorithm::Vicsek(p) => p.r,
+            Algorithm::Boids(p) => p.visual_distance + 2.0 * p.speed * self.step,
+            Algorithm::Couzin(p) => p.r_r + p.delta_r_o + p.delta_r_a,
+            _ => self.alpha.range(),
+        }
     }
 
-    /// The collision distance.
+    /// The collision distance: as given, or by default d/4 (TAC 2006), and for the models of
+    /// their own spacing the boids' `separation`, Couzin's zone of repulsion r_r, and r/4 for
+    /// Vicsek's point particles.
     #[must_use]
     pub fn collision_distance(&self) -> f64 {
         self.collision_distance
-            .unwrap_or(COLLISION_FRACTION * self.alpha.d)
+            .unwrap_or_else(|| match &self.algorithm {
+                Algorithm::Boids(p) => p.separation.min(self.range()),
+                Algorithm::Couzin(p) => p.r_r,
+                Algorithm::Vicsek(p) => COLLISION_FRACTION * p.r,
+                _ => COLLISION_FRACTION * self.alpha.d,
+            })
     }
 
     /// The number of steps ⌈T / h⌉ (rounded to the nearest when T/h is within round-off of an integer).
@@ -389,7 +458,8 @@ impl Scenario {
     /// # Errors
     /// Never for a validated scenario; the RON serializer's error otherwise.
     pub fn to_ron(&self) -> Result<String, ron::Error> {
-        let config = ron::ser::PrettyConfig::new().extensions(Extensions::IMPLICIT_SOME);
+        let config = ron::ser::PrettyConfig::new()
+            .extensions(Extensions::IMPLICIT_SOME | Extensions::UNWRAP_VARIANT_NEWTYPES);
         let text = ron::ser::to_string_pretty(self, config)?;
         let defaults = self.unset_defaults();
         if defaults.is_empty() {

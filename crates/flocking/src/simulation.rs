@@ -336,6 +336,7 @@ impl DynSimulation {
         let protocol = map.map(scenario.protocol::<V>()?);
         let agents = swarm.len();
         let sim = Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?
+            .with_domain(scenario.domain())?
             .with_conditions(&scenario.conditions, scenario.seed)?;
         Ok(Self {
             inner: Box::new(sim),

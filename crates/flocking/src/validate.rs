@@ -15,7 +15,7 @@ use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
 use crate::initial::initial_positions;
-use crate::scenario::{Algorithm, Cloud, FixedGraph, Point, Scenario};
+use crate::scenario::{Algorithm, Cloud, DomainSpec, FixedGraph, Point, Scenario};
 use crate::stability::coincident_start;
 
 /// The most agents accepted: flocking keeps about 250 bytes per agent (docs/performance.md).
@@ -172,6 +172,17 @@ impl Scenario {
         {
             problems.check(Err::<(), _>(no_local_form(part)));
         }
+        if self.algorithm.sets_velocity()
+            && let Some(part) =
+                flock_protocols::conditions::stage::acceleration_field(&self.conditions)
+        {
+            problems.check(Err::<(), _>(ParamError::new(
+                part,
+                "set",
+                "acts on an acceleration, and this model sets its agents' velocities directly",
+                "remove this condition for this model (delay, loss, range, sensing noise, sampled control and faults apply)",
+            )));
+        }
     }
 
     fn validate_agents(&self) -> Check {
@@ -296,7 +307,53 @@ impl Scenario {
                     problems.check(self.validate_fixed_graph(graph, false));
                 }
             }
+            Algorithm::CuckerSmale(_)
+            | Algorithm::Vicsek(_)
+            | Algorithm::Boids(_)
+            | Algorithm::Couzin(_) => {
+                // the model's constructor checks its parameters, each named
+                let built = match self.dim {
+                    2 => self.protocol::<DVec2>().map(|_| ()),
+                    _ => self.protocol::<DVec3>().map(|_| ()),
+                };
+                problems.check(built);
+            }
         }
+        self.validate_domain(problems);
+    }
+
+    /// A periodic box: one side per dimension, each positive and at least twice the interaction
+    /// range; no obstacles on a torus (an obstacle would need its images).
+    fn validate_domain(&self, problems: &mut Problems) {
+        let DomainSpec::Periodic { size } = &self.domain else {
+            return;
+        };
+        if let Err(e) = vector("domain.size", size, self.dim) {
+            problems.check(Err::<(), _>(e));
+            return;
+        }
+        let r = self.range();
+        for (k, &side) in size.iter().enumerate() {
+            let field = format!("domain.size[{k}]");
+            problems.check(positive(&field, side).and_then(|()| {
+                require(
+                    side >= 2.0 * r,
+                    &field,
+                    side,
+                    &format!(
+                        "is shorter than twice the interaction range r = {r}: an agent would see two images of another"
+                    ),
+                    &format!("make every side at least {}", 2.0 * r),
+                )
+            }));
+        }
+        problems.check(require(
+            self.obstacles.is_empty(),
+            "obstacles",
+            self.obstacles.len(),
+            "are not supported on a periodic domain (an obstacle would need its images across the wrap)",
+            "remove the obstacles, or use domain: Open",
+        ));
     }
 
     /// A fixed graph on the agents; `connected` for the Tanner law (Assumption IV.2).
@@ -426,6 +483,9 @@ impl Scenario {
             Cloud::Gaussian { mean, std } => {
                 problems.check(vector(&format!("{field}.mean"), mean, dim));
                 problems.check(length(&format!("{field}.std"), *std));
+            }
+            Cloud::Headings { speed } => {
+                problems.check(length(&format!("{field}.speed"), *speed));
             }
             Cloud::Explicit(rows) => {
                 problems.check(require(

@@ -4,7 +4,7 @@
 //! what agents perceive, from the true state ([`Protocol::controls`]).
 
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 
 use super::actuation::{Lag, clip};
 use super::config::{Conditions, Delayed, FaultMode, Loss, WhenLost, period_steps, whole_steps};
@@ -14,7 +14,8 @@ use super::links::{Held, Link, lost};
 use super::noise::{OrnsteinUhlenbeck, SensorNoise};
 use super::stream::{Purpose, Streams};
 use crate::error::ParamError;
-use crate::{Integrator, LocalForm, Perceived, Protocol, Swarm};
+use crate::integrator::{advance, controls_in};
+use crate::{Integrator, LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The readings of the last step, for the diagnostics columns.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -61,6 +62,19 @@ pub struct Stage<V> {
     // scratch
     search: NeighbourSearch,
     net: ProximityNet,
+}
+
+/// The field of a condition that acts on an acceleration (actuation limits and lag, wind,
+/// process noise), which a model that sets velocities cannot take.
+#[must_use]
+pub fn acceleration_field(conditions: &Conditions) -> Option<&'static str> {
+    if conditions.actuation.is_some() {
+        Some("conditions.actuation")
+    } else if conditions.disturbance.is_some() {
+        Some("conditions.disturbance")
+    } else {
+        None
+    }
 }
 
 /// Whether `conditions` change what agents perceive (their own or others' states), and the
@@ -239,9 +253,11 @@ impl<V: Vector> Stage<V> {
 
     /// One step h from step `k` of the true state `swarm` (original order) whose proximity net
     /// is `net`: fail → sense → communicate → control → actuate → disturb and integrate.
+    #[allow(clippy::too_many_arguments)]
     pub fn step<P: Protocol<V> + ?Sized>(
         &mut self,
         protocol: &P,
+        domain: &Domain<V>,
         swarm: &mut Swarm<V>,
         net: &ProximityNet,
         k: u64,
@@ -258,10 +274,10 @@ impl<V: Vector> Stage<V> {
         }
         if k.is_multiple_of(self.control_period) {
             match protocol.local_form().filter(|_| self.perceives) {
-                Some(local) => self.communicate_and_control(protocol, local, swarm, net, k),
+                Some(local) => self.communicate_and_control(protocol, local, domain, swarm, net, k),
                 None => {
                     let t = k as f64 * self.h;
-                    protocol.controls(t, swarm, net, &mut self.inputs);
+                    controls_in(protocol, domain, t, swarm, net, &mut self.inputs);
                 }
             }
             for i in 0..self.inputs.len() {
@@ -271,7 +287,10 @@ impl<V: Vector> Stage<V> {
             }
         }
         self.actuate();
-        self.disturb_and_integrate(swarm, k, integrator);
+        match protocol.update() {
+            Update::Acceleration => self.disturb_and_integrate(swarm, domain, k, integrator),
+            update => self.set_velocities(swarm, domain, update),
+        }
         self.started = true;
     }
 
@@ -307,6 +326,7 @@ impl<V: Vector> Stage<V> {
         &mut self,
         protocol: &P,
         local: &dyn LocalForm<V>,
+        domain: &Domain<V>,
         swarm: &Swarm<V>,
         net: &ProximityNet,
         k: u64,
@@ -362,7 +382,9 @@ impl<V: Vector> Stage<V> {
                     .filter(|&j| {
                         // a fixed graph's link is cut beyond an explicit communication range
                         graph_range.is_none_or(|rc| {
-                            (swarm.positions[j as usize] - swarm.positions[i]).length_squared()
+                            domain
+                                .displacement(swarm.positions[i], swarm.positions[j as usize])
+                                .length_squared()
                                 < rc * rc
                         })
                     }),
@@ -391,7 +413,9 @@ impl<V: Vector> Stage<V> {
                 } else {
                     directed
                 };
-                let length = (swarm.positions[ju] - swarm.positions[i]).length();
+                let length = domain
+                    .displacement(swarm.positions[i], swarm.positions[ju])
+                    .length();
                 let dropped = lost(
                     &comm.loss,
                     &this.streams,
@@ -426,7 +450,7 @@ impl<V: Vector> Stage<V> {
                     age_sum += k - held.stamp.min(k);
                     heard.push(Perceived {
                         agent: j,
-                        position: held.position,
+                        position: domain.image_near(own.position, held.position),
                         velocity: held.velocity,
                     });
                 }
@@ -475,7 +499,13 @@ impl<V: Vector> Stage<V> {
     /// q ← q + h p + ½ h² (a + w), p ← p + h (a + w) + σ √h ξ (the delivered acceleration is
     /// constant over the step: Runge–Kutta stages would re-evaluate nothing). Agents that do not
     /// move (failed, frozen or removed) keep their position with zero velocity.
-    fn disturb_and_integrate(&mut self, swarm: &mut Swarm<V>, k: u64, integrator: Integrator) {
+    fn disturb_and_integrate(
+        &mut self,
+        swarm: &mut Swarm<V>,
+        domain: &Domain<V>,
+        k: u64,
+        integrator: Integrator,
+    ) {
         let h = self.h;
         let disturbance = self.conditions.disturbance.clone().unwrap_or_default();
         if let Some(gusts) = self.gusts {
@@ -521,12 +551,12 @@ impl<V: Vector> Stage<V> {
             match integrator {
                 Integrator::SymplecticEuler => {
                     let (p, clipped) = clip(p + a * h + noise, max_speed);
-                    (q + p * h, p, clipped)
+                    (domain.wrap(q + p * h), p, clipped)
                 }
                 Integrator::Rk4 => {
                     let q = q + p * h + a * (0.5 * h * h);
                     let (p, clipped) = clip(p + a * h + noise, max_speed);
-                    (q, p, clipped)
+                    (domain.wrap(q), p, clipped)
                 }
             }
         });
@@ -537,6 +567,19 @@ impl<V: Vector> Stage<V> {
             clipped += usize::from(c);
         }
         self.readings.at_speed_limit = clipped as f64;
+    }
+
+    /// Integrate, for a model that sets velocities: its own update ([`advance`]) with the input
+    /// delivered; agents that do not move keep their position with zero velocity.
+    fn set_velocities(&mut self, swarm: &mut Swarm<V>, domain: &Domain<V>, update: Update) {
+        for i in 0..swarm.len() {
+            let (q, p) = (swarm.positions[i], swarm.velocities[i]);
+            (swarm.positions[i], swarm.velocities[i]) = if self.moves(i) {
+                advance(update, domain, self.h, q, p, self.delivered[i])
+            } else {
+                (q, V::ZERO)
+            };
+        }
     }
 }
 

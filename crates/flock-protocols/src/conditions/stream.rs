@@ -28,6 +28,10 @@ pub enum Purpose {
     ProcessNoise = 5,
     /// An agent's random failure.
     Failure = 6,
+    /// The noise of a model's own update (the angular noise of Vicsek 1995 and Couzin 2002).
+    ModelNoise = 7,
+    /// The order in which a sequential model activates its agents (index 0).
+    Activation = 8,
 }
 
 /// 32-bit words of the stream reserved for each step of each key (512 `u64`s: far more than any

@@ -1,0 +1,224 @@
+//! Reynolds's boids (C. W. Reynolds, "Flocks, herds and schools: a distributed behavioral model",
+//! SIGGRAPH 1987: separation, alignment, cohesion) in the form the agent-based modelling
+//! frameworks benchmark: JuliaDynamics' ABMFrameworksComparison, `Flocking/DECLARATION.md`
+//! (Agents.jl, MASON, NetLogo and Mesa implement it), whose rule and defaults this follows.
+
+use flock_graph::ProximityNet;
+use flock_math::{Domain, Vector};
+
+use crate::conditions::stream::{Purpose, Streams};
+use crate::error::{ParamError, check};
+use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
+
+/// The parameters of the boids, named as the declaration names them, with its defaults (the same
+/// for its "small" and "large" workloads but for `visual_distance`: 5 small, 15 large).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct BoidsParams {
+    /// The speed s > 0: each step a boid moves s h along its heading (declaration: 1).
+    pub speed: f64,
+    /// The weight of the mean offset to the neighbours (cohesion; declaration: 0.03).
+    pub cohere_factor: f64,
+    /// Neighbours closer than this are pushed away (declaration: 1).
+    pub separation: f64,
+    /// The weight of the separation vector (declaration: 0.015).
+    pub separate_factor: f64,
+    /// The weight of the neighbours' mean heading (alignment; declaration: 0.05).
+    pub match_factor: f64,
+    /// A boid sees the others within this distance, boundary included (declaration: 5 small).
+    pub visual_distance: f64,
+}
+
+impl Default for BoidsParams {
+    fn default() -> Self {
+        Self {
+            speed: 1.0,
+            cohere_factor: 0.03,
+            separation: 1.0,
+            separate_factor: 0.015,
+            match_factor: 0.05,
+            visual_distance: 5.0,
+        }
+    }
+}
+
+/// The boids of the ABM frameworks' benchmark.
+///
+/// Each step, the boids are activated one by one in a random order drawn anew ([`Purpose::Activation`]
+/// streams of the run's seed); the activated boid i, with unit heading v_i = p_i / s, sums over
+/// the N boids j within its visual distance (‖q_j − q_i‖ ≤ visual_distance, minimum image on a
+/// torus; positions and headings as they are at its activation, so the boids activated before it
+/// have already moved):
+///
+/// - cohesion c = Σ (q_j − q_i), alignment m = Σ v_j,
+/// - separation s = −Σ (q_j − q_i) over those closer than `separation`,
+///
+/// and sets v_i ← w / ‖w‖ with w = (v_i + c f_c / N + s f_s / N + m f_m / N) / 2 (N ≥ 1), then moves
+/// q_i ← q_i + s h v_i (wrapped into the box). The output u_i is the new velocity s v_i
+/// ([`Update::TurnThenMove`]), so the loop's move repeats exactly the move of the sweep.
+///
+/// The declaration's own code (Agents.jl) forms q_j − q_i without the minimum image, so near the
+/// wrap its cohesion points the long way round; here every offset is the minimum image, as the
+/// declaration asks of the neighbour search.
+///
+/// The proximity net is built at the visual distance plus 2 s h, the most two boids can close in
+/// a step, so that it holds every pair that comes within sight during the sweep; the metrics'
+/// connectivity is of that net. Under conditions that change what boids perceive (delay, loss,
+/// noise, faults), every boid turns on what it perceived at the start of the step (its
+/// [`LocalForm`]): the activation order then plays no part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Boids<V> {
+    params: BoidsParams,
+    step: f64,
+    streams: Streams,
+    domain: Domain<V>,
+}
+
+impl<V: Vector> Boids<V> {
+    /// The boids moving by `step` per activation (the declaration's step is 1), their activation
+    /// order drawn from the streams of `seed`, in `domain` (the declaration's: a periodic box).
+    ///
+    /// # Errors
+    /// `speed`, `visual_distance` or `step` not positive and finite; a factor or `separation`
+    /// negative.
+    pub fn new(
+        params: BoidsParams,
+        step: f64,
+        seed: u64,
+        domain: Domain<V>,
+    ) -> Result<Self, ParamError> {
+        check::positive("speed", params.speed)?;
+        check::positive("visual_distance", params.visual_distance)?;
+        check::positive("step", step)?;
+        for (name, value) in [
+            ("cohere_factor", params.cohere_factor),
+            ("separation", params.separation),
+            ("separate_factor", params.separate_factor),
+            ("match_factor", params.match_factor),
+        ] {
+            check::non_negative(name, value)?;
+        }
+        Ok(Self {
+            params,
+            step,
+            streams: Streams::new(seed),
+            domain,
+        })
+    }
+
+    /// The parameters.
+    #[must_use]
+    pub const fn params(&self) -> BoidsParams {
+        self.params
+    }
+
+    /// The order in which the boids are activated at time `t`: a Fisher–Yates shuffle whose k-th
+    /// swap draws from its own keyed stream.
+    #[must_use]
+    pub fn activation_order(&self, t: f64, n: usize) -> Vec<u32> {
+        let k = (t / self.step).round() as u64;
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            let j = self
+                .streams
+                .draws(Purpose::Activation, i as u64, k)
+                .up_to(i as u64) as usize;
+            order.swap(i, j);
+        }
+        order
+    }
+
+    /// The new unit heading of a boid at `q` with heading `v` from its candidates `others`
+    /// (position, heading), those within sight counted.
+    fn turn(&self, q: V, v: V, others: impl Iterator<Item = (V, V)>) -> V {
+        let p = &self.params;
+        let (sight, apart) = (
+            p.visual_distance * p.visual_distance,
+            p.separation * p.separation,
+        );
+        let (mut cohere, mut separate, mut matching, mut count) = (V::ZERO, V::ZERO, V::ZERO, 0u32);
+        for (qj, vj) in others {
+            let offset = self.domain.displacement(q, qj);
+            let d2 = offset.length_squared();
+            if d2 > sight {
+                continue;
+            }
+            count += 1;
+            cohere += offset;
+            if d2 < apart {
+                separate -= offset;
+            }
+            matching += vj;
+        }
+        let n = f64::from(count.max(1));
+        let w = (v + cohere / n * p.cohere_factor
+            + separate / n * p.separate_factor
+            + matching / n * p.match_factor)
+            / 2.0;
+        w / w.length()
+    }
+}
+
+impl<V: Vector> Protocol<V> for Boids<V> {
+    /// The visual distance plus 2 s h (see [`Boids`]).
+    fn interaction_range(&self) -> f64 {
+        self.params.visual_distance + 2.0 * self.params.speed * self.step
+    }
+
+    fn uses_net_distances(&self) -> bool {
+        false
+    }
+
+    /// The sequential sweep in the step's random order, each boid reading the others as they are
+    /// at its activation.
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
+        let s = self.params.speed;
+        let mut q = swarm.positions.clone();
+        let mut v: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
+        for i in self.activation_order(t, q.len()) {
+            let i = i as usize;
+            let others = net
+                .graph()
+                .neighbours(i)
+                .iter()
+                .map(|&j| (q[j as usize], v[j as usize]));
+            let heading = self.turn(q[i], v[i], others);
+            let p = heading * s;
+            inputs[i] = p;
+            v[i] = heading;
+            q[i] = self.domain.wrap(q[i] + p * self.step);
+        }
+    }
+
+    /// The boids have no energy their rule decreases: the heading mismatch
+    /// N − ‖Σ v_i‖ ≥ 0 (0 when every boid heads alike) is reported in its place.
+    fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
+        let total = swarm
+            .velocities
+            .iter()
+            .fold(V::ZERO, |acc, &p| acc + p / self.params.speed);
+        swarm.len() as f64 - total.length()
+    }
+
+    fn update(&self) -> Update {
+        Update::TurnThenMove
+    }
+
+    fn measures_in_domain(&self) -> bool {
+        true
+    }
+
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        Some(self)
+    }
+}
+
+/// The rule on what the boid perceived at the start of the step (no activation order).
+impl<V: Vector> LocalForm<V> for Boids<V> {
+    fn local_input(&self, _t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
+        let s = self.params.speed;
+        let others = heard.iter().map(|o| (o.position, o.velocity / s));
+        self.turn(own.position, own.velocity / s, others) * s
+    }
+}
