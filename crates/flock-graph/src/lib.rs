@@ -5,7 +5,10 @@
 //! - [`ProximityNet`]: the net N_i = { j ≠ i : ‖q_j − q_i‖ < r } with its edge lengths (or
 //!   without them: [`ProximityNet::without_distances`], [`ProximityNet::edge_lengths`]), built in
 //!   expected O(n) by [`NeighbourSearch`] (a uniform cell grid), exactly as
-//!   [`ProximityNet::brute_force`]; [`nearest_pair_distance`] for the closest pair.
+//!   [`ProximityNet::brute_force`]; [`nearest_pair_distance`] for the closest pair. On a periodic
+//!   box ([`flock_math::Domain`]) by minimum image: [`NeighbourSearch::build_in`],
+//!   [`ProximityNet::brute_force_in`], [`ProximityNet::edge_lengths_in`], and each agent's
+//!   nearest-neighbour distance, [`NeighbourSearch::nearest_distances_in`].
 //! - [`binary_weights`], [`weights_from_distances`]: adjacency weights a_ij per directed edge.
 //! - [`laplacian_apply`], [`laplacian_row`], [`laplacian_quadratic_form`]: L̂ = (Δ(A) − A) ⊗ I_m without matrices;
 //!   [`laplacian_eigenvalues`], [`weighted_laplacian_eigenvalues`]: the spectrum of L.
@@ -26,6 +29,7 @@ pub mod numbering;
 pub mod parallel;
 pub mod search;
 pub mod stress;
+mod torus;
 
 pub use adjacency::{binary_weights, weights_from_distances};
 pub use components::Components;

@@ -18,7 +18,7 @@
 //! index, so that sums over an agent's neighbours, added in original order
 //! ([`Numbering::ordered_sum`]), have the bits of the same net in original order.
 
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 
 use crate::graph::Graph;
 use crate::numbering::Numbering;
@@ -97,7 +97,8 @@ impl ProximityNet {
     /// ‖q_j − q_i‖ for every directed edge `i → j`, in the order of
     /// [`Graph::neighbour_indices`]: the stored [`ProximityNet::distances`], or, for a net without
     /// them, the same bits recomputed from `positions` (which must be the positions the net was
-    /// built from; they are not read when the distances are stored).
+    /// built from; they are not read when the distances are stored). For a net built in a
+    /// periodic box, [`ProximityNet::edge_lengths_in`].
     ///
     /// # Panics
     /// When the net has no distances and `positions` has fewer agents than the net.
@@ -105,15 +106,7 @@ impl ProximityNet {
         &'a self,
         positions: &'a [V],
     ) -> impl Iterator<Item = f64> + 'a {
-        if self.lean {
-            assert!(
-                positions.len() >= self.graph.len(),
-                "{} positions for a net of {} agents",
-                positions.len(),
-                self.graph.len()
-            );
-        }
-        (0..self.graph.len()).flat_map(move |i| self.lengths_of(i, positions))
+        self.edge_lengths_in(&Domain::Open, positions)
     }
 
     /// The lengths ‖q_j − q_i‖ of agent `i`'s edges, in list order: stored or recomputed, as by
@@ -127,11 +120,61 @@ impl ProximityNet {
         i: usize,
         positions: &'a [V],
     ) -> impl Iterator<Item = f64> + 'a {
+        self.lengths_of_in(&Domain::Open, i, positions)
+    }
+
+    /// The edge lengths of a net built in `domain` (minimum-image distances on a torus, as
+    /// [`NeighbourSearch::build_in`](crate::NeighbourSearch::build_in) stores them): the stored
+    /// distances, or, for a net without them, the same bits recomputed from `positions`.
+    /// [`Domain::Open`] is [`ProximityNet::edge_lengths`].
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::{NeighbourSearch, ProximityNet};
+    /// use flock_math::Domain;
+    /// use glam::DVec2;
+    ///
+    /// let torus = Domain::Periodic { size: DVec2::new(4.0, 4.0) };
+    /// let q = [DVec2::new(0.5, 1.0), DVec2::new(3.5, 1.0)];
+    /// let mut lean = ProximityNet::without_distances();
+    /// NeighbourSearch::new().build_in(&torus, &q, 1.5, &mut lean);
+    /// assert_eq!(lean.edge_lengths_in(&torus, &q).collect::<Vec<_>>(), [1.0, 1.0]);
+    /// ```
+    ///
+    /// # Panics
+    /// When the net has no distances and `positions` has fewer agents than the net.
+    pub fn edge_lengths_in<'a, V: Vector>(
+        &'a self,
+        domain: &'a Domain<V>,
+        positions: &'a [V],
+    ) -> impl Iterator<Item = f64> + 'a {
+        if self.lean {
+            assert!(
+                positions.len() >= self.graph.len(),
+                "{} positions for a net of {} agents",
+                positions.len(),
+                self.graph.len()
+            );
+        }
+        (0..self.graph.len()).flat_map(move |i| self.lengths_of_in(domain, i, positions))
+    }
+
+    /// The lengths of agent `i`'s edges in `domain`, in list order: stored or recomputed by
+    /// minimum image, as by [`ProximityNet::edge_lengths_in`].
+    ///
+    /// # Panics
+    /// As [`ProximityNet::lengths_of`].
+    pub fn lengths_of_in<'a, V: Vector>(
+        &'a self,
+        domain: &'a Domain<V>,
+        i: usize,
+        positions: &'a [V],
+    ) -> impl Iterator<Item = f64> + 'a {
         let graph = &self.graph;
         graph.edge_range(i).map(move |e| {
             if self.lean {
                 let j = graph.neighbour_indices()[e] as usize;
-                squared_distance(positions[i], positions[j]).sqrt()
+                squared_distance_in(domain, positions[i], positions[j]).sqrt()
             } else {
                 self.distances[e]
             }
@@ -239,6 +282,47 @@ impl ProximityNet {
         net
     }
 
+    /// The O(n²) reference in `domain`: tests every ordered pair with the shared predicate on the
+    /// displacement [`Domain::displacement`] (the minimum image on a torus), and stores the square
+    /// root of that same squared length. [`Domain::Open`] is [`ProximityNet::brute_force`].
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::ProximityNet;
+    /// use flock_math::Domain;
+    /// use glam::DVec2;
+    ///
+    /// let torus = Domain::Periodic { size: DVec2::new(10.0, 10.0) };
+    /// let q = [DVec2::new(0.5, 0.5), DVec2::new(9.5, 9.5)];
+    /// let net = ProximityNet::brute_force_in(&torus, &q, 2.0);
+    /// assert_eq!(net.graph().neighbours(0), &[1]); // through the corner
+    /// assert_eq!(net.distances()[0], 2.0_f64.sqrt());
+    /// ```
+    ///
+    /// # Panics
+    /// When `positions.len()` exceeds `u32::MAX`.
+    #[must_use]
+    pub fn brute_force_in<V: Vector>(domain: &Domain<V>, positions: &[V], r: f64) -> Self {
+        if !domain.is_periodic() {
+            return Self::brute_force(positions, r);
+        }
+        let mut net = Self::new();
+        let r2 = range_squared(r);
+        let (offsets, neighbours, distances) = net.clear_for_rebuild(positions.len(), r);
+        let distances = distances.unwrap_or_else(|| unreachable!("a new net keeps distances"));
+        for (i, &qi) in positions.iter().enumerate() {
+            for (j, &qj) in positions.iter().enumerate() {
+                let d2 = squared_distance_in(domain, qi, qj);
+                if j != i && in_range(d2, r2) {
+                    neighbours.push(node_index(j));
+                    distances.push(d2.sqrt());
+                }
+            }
+            offsets.push(neighbours.len());
+        }
+        net
+    }
+
     /// Empties the net for `n` agents and range `r`, keeping its allocations, and hands out the CSR
     /// arrays and, unless the net keeps none, the distances to be refilled (see
     /// `Graph::clear_for_rebuild`).
@@ -316,6 +400,18 @@ pub(crate) fn range_squared(r: f64) -> f64 {
 #[must_use]
 pub(crate) fn squared_distance<V: Vector>(qi: V, qj: V) -> f64 {
     (qj - qi).length_squared()
+}
+
+/// ‖displacement(q_i, q_j)‖² in `domain`: the minimum image on a torus, bit-identical for (i, j)
+/// and (j, i) (the minimum image is odd: rounding and `round` are symmetric), and
+/// [`squared_distance`] bit for bit in open space.
+#[inline]
+#[must_use]
+pub(crate) fn squared_distance_in<V: Vector>(domain: &Domain<V>, qi: V, qj: V) -> f64 {
+    match domain {
+        Domain::Open => squared_distance(qi, qj),
+        Domain::Periodic { .. } => domain.displacement(qi, qj).length_squared(),
+    }
 }
 
 /// The edge predicate ‖q_j − q_i‖² < r² (false for NaN).

@@ -27,6 +27,7 @@ use flock_math::Vector;
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, join, map_chunks};
+use crate::torus::{TorusBlock, TorusGrid};
 
 /// log₂ of the agents per block of work (any value gives the same net): 1,024 agents, a unit of
 /// rayon work with the `parallel` feature.
@@ -65,6 +66,10 @@ pub struct NeighbourSearch {
     grid: CellGrid,
     /// Neighbour lists of blocks of 2^[`BLOCK_SHIFT`] slots (agents in cell order).
     blocks: Vec<Block>,
+    /// The grid of a periodic box ([`NeighbourSearch::build_in`]).
+    pub(crate) torus: TorusGrid,
+    /// Neighbour lists of blocks of slots of the periodic grid.
+    pub(crate) torus_blocks: Vec<TorusBlock>,
 }
 
 impl NeighbourSearch {
@@ -220,6 +225,39 @@ impl NeighbourSearch {
     }
 }
 
+impl NeighbourSearch {
+    /// For each agent `pending[p]`, the least squared distance below `threshold` to another finite
+    /// agent, +∞ when there is none, in `found[p]`; the grid is rebuilt with `reach`, and
+    /// `threshold` must not exceed `reach²`.
+    pub(crate) fn open_nearest<V: Vector>(
+        &mut self,
+        positions: &[V],
+        reach: f64,
+        threshold: f64,
+        pending: &[u32],
+        found: &mut [f64],
+    ) {
+        self.grid.rebuild(positions, reach);
+        let grid = &self.grid;
+        fill_indexed(found, |p| {
+            let slot = grid.slot_of[pending[p] as usize] as usize;
+            let mut cells = grid.cells_of(slot);
+            cells.cell_of(slot);
+            let qi = grid.position::<V>(slot);
+            let mut best = f64::INFINITY;
+            for row in grid.candidate_rows(cells.coords()).iter() {
+                for t in row {
+                    let d2 = squared_distance(qi, grid.position::<V>(t));
+                    if t != slot && in_range(d2, threshold) && d2 < best {
+                        best = d2;
+                    }
+                }
+            }
+            best
+        });
+    }
+}
+
 /// Agents per task of the parallel gather.
 const GATHER_LEN: usize = 4096;
 
@@ -227,7 +265,7 @@ const GATHER_LEN: usize = 4096;
 /// i's ranges (given by `offsets`) of `neighbours` and `distances`, which start at agent
 /// `agents.start` (`distances` may be empty: then every `distances_i` is); halves the range on the
 /// rayon pool down to [`GATHER_LEN`] agents.
-fn gather(
+pub(crate) fn gather(
     agents: Range<usize>,
     neighbours: &mut [u32],
     distances: &mut [f64],
@@ -676,7 +714,7 @@ impl CellGrid {
 /// `side ≥ reach · (1 + 2ε) + 6 ε · max_abs`; the padding below has a wide margin.
 #[inline]
 #[must_use]
-fn padded_side(reach: f64, max_abs: f64) -> f64 {
+pub(crate) fn padded_side(reach: f64, max_abs: f64) -> f64 {
     const PAD: f64 = 64.0 * f64::EPSILON;
     reach * (1.0 + PAD) + PAD * max_abs + f64::MIN_POSITIVE.sqrt()
 }

@@ -8,3 +8,4 @@ mod laplacian;
 mod nearest;
 mod search;
 mod stress;
+mod torus;

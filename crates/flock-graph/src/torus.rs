@@ -1,0 +1,563 @@
+//! Fixed-radius neighbour search on a periodic box (a torus): [`NeighbourSearch::build_in`] and
+//! the per-agent nearest-neighbour distances [`NeighbourSearch::nearest_distances_in`].
+//!
+//! The box [0, L₁) × … × [0, L_m) is cut into c_k = ⌊L_k / s⌋ cells per axis (at least one),
+//! s the range padded against rounding as in the open search, so every cell is at least s wide and
+//! two agents whose minimum-image distance is below r lie in the same cell or in cells adjacent
+//! across the wrap. The adjacent cells of cell c along an axis are c − 1, c, c + 1 modulo c_k,
+//! taken once each: with two cells per axis c − 1 and c + 1 are the same cell, with one cell there
+//! is only c, so no pair is visited twice. When the agents are few the cells are merged (halving
+//! the axis with the most cells) until there are at most 4n.
+//!
+//! Each agent's list is sorted by neighbour index (original index, for a net with a
+//! [`Numbering`]) and each distance is the square root of the minimum-image squared length that
+//! [`ProximityNet::brute_force_in`] computes, so the net equals the brute-force one bit for bit.
+//! The lists are built in blocks of slots (agents in cell order) and gathered in agent order; the
+//! blocks only partition the work, so the net is the same for any rayon pool size.
+
+use core::ops::Range;
+
+use flock_math::{Domain, Vector};
+
+use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
+use crate::numbering::Numbering;
+use crate::parallel::{fill_indexed, for_each_indexed_mut};
+use crate::search::{NeighbourSearch, gather, padded_side};
+
+/// log₂ of the slots per block of work.
+const BLOCK_SHIFT: u32 = 10;
+
+/// Cells allowed per agent.
+const CELLS_PER_AGENT: usize = 4;
+
+/// Slot (and cell) of an agent with a non-finite coordinate: it is in no cell.
+const NO_SLOT: u32 = u32::MAX;
+
+/// Most cells of a grid.
+const MAX_CELLS: usize = u32::MAX as usize - 1;
+
+/// A grid of the periodic box with the finite agents sorted by cell (counting sort, ascending
+/// index within a cell); position `s` in that order is a *slot*.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TorusGrid {
+    /// Cells per axis (1 on the unused axis of 2D).
+    dims: [usize; 3],
+    /// Cell width L_k / c_k per axis.
+    width: [f64; 3],
+    /// The slots of cell c are `cell_start[c]..cell_start[c + 1]`.
+    cell_start: Vec<usize>,
+    /// Agent in each slot.
+    order: Vec<u32>,
+    /// Coordinates of the agent in each slot, m per slot.
+    coords: Vec<f64>,
+    /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
+    slot_of: Vec<u32>,
+}
+
+/// The slot ranges of up to 27 cells: a cell and its neighbours across the wrap, each once.
+#[derive(Clone, Copy, Debug, Default)]
+struct CandidateCells {
+    ranges: [(usize, usize); 27],
+    count: usize,
+}
+
+impl CandidateCells {
+    #[inline]
+    fn iter(&self) -> impl Iterator<Item = Range<usize>> + '_ {
+        self.ranges[..self.count].iter().map(|&(a, b)| a..b)
+    }
+}
+
+/// The distinct cells c − 1, c, c + 1 modulo `cells`, and how many there are.
+#[inline]
+fn around(c: usize, cells: usize) -> ([usize; 3], usize) {
+    match cells {
+        1 => ([0; 3], 1),
+        2 => ([0, 1, 0], 2),
+        _ => ([(c + cells - 1) % cells, c, (c + 1) % cells], 3),
+    }
+}
+
+impl TorusGrid {
+    /// Rebuilds the grid of the box of sides `size` for `positions`, with cells wide enough that
+    /// a minimum-image squared distance below `reach²` (as the predicate computes it) joins agents
+    /// of the same or adjacent cells.
+    fn rebuild<V: Vector>(&mut self, size: V, positions: &[V], reach: f64) {
+        let finite = positions.iter().filter(|q| q.is_finite()).count();
+        let longest = (0..V::DIM).fold(0.0_f64, |m, k| m.max(size.coord(k)));
+        let side = padded_side(reach, longest);
+        let max_cells = (CELLS_PER_AGENT * finite.max(1)).min(MAX_CELLS);
+        let mut dims = [1_usize; 3];
+        for (k, dim) in dims.iter_mut().enumerate().take(V::DIM) {
+            let c = (size.coord(k) / side).floor();
+            // NaN (an infinite side) and fewer than one cell give one cell
+            *dim = if c >= 1.0 {
+                c.min(max_cells as f64) as usize
+            } else {
+                1
+            };
+        }
+        while dims.iter().map(|&c| c as f64).product::<f64>() > max_cells as f64 {
+            let k = (0..3).max_by_key(|&k| dims[k]).unwrap_or(0);
+            dims[k] = dims[k].div_ceil(2);
+        }
+        self.dims = dims;
+        self.width = core::array::from_fn(|k| {
+            if k < V::DIM {
+                size.coord(k) / dims[k] as f64
+            } else {
+                1.0
+            }
+        });
+        let cells: usize = dims.iter().product();
+        let (width, dims_) = (self.width, self.dims);
+        let cell_of = |q: V| -> u32 {
+            if !q.is_finite() {
+                return NO_SLOT;
+            }
+            let c: [usize; 3] = core::array::from_fn(|k| {
+                if k >= V::DIM || dims_[k] == 1 {
+                    return 0;
+                }
+                // positions are in the box; an agent a few ulps off it lands in the cell it wraps
+                // to (or one adjacent, which the padding covers)
+                let t = (q.coord(k) / width[k]).floor().rem_euclid(dims_[k] as f64);
+                (t as usize).min(dims_[k] - 1)
+            });
+            (c[0] + dims_[0] * (c[1] + dims_[1] * c[2])) as u32
+        };
+        self.slot_of.resize(positions.len(), 0);
+        fill_indexed(&mut self.slot_of, |i| cell_of(positions[i]));
+        self.cell_start.clear();
+        self.cell_start.resize(cells + 1, 0);
+        for &c in self.slot_of.iter().filter(|&&c| c != NO_SLOT) {
+            self.cell_start[c as usize + 1] += 1;
+        }
+        for c in 0..cells {
+            self.cell_start[c + 1] += self.cell_start[c];
+        }
+        self.order.resize(finite, 0);
+        self.coords.resize(finite * V::DIM, 0.0);
+        for (i, (slot_of, q)) in self.slot_of.iter_mut().zip(positions).enumerate() {
+            let c = *slot_of;
+            if c != NO_SLOT {
+                let slot = self.cell_start[c as usize];
+                self.cell_start[c as usize] += 1;
+                self.order[slot] = node_index(i);
+                for (k, x) in self.coords[slot * V::DIM..(slot + 1) * V::DIM]
+                    .iter_mut()
+                    .enumerate()
+                {
+                    *x = q.coord(k);
+                }
+                *slot_of = slot as u32;
+            }
+        }
+        self.cell_start.copy_within(0..cells, 1);
+        self.cell_start[0] = 0;
+    }
+
+    /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
+    #[inline]
+    fn position<V: Vector>(&self, slot: usize) -> V {
+        let c = &self.coords[slot * V::DIM..(slot + 1) * V::DIM];
+        V::from_fn(|k| c[k])
+    }
+
+    /// The coordinates of the cell holding `slot`.
+    fn cell_coords(&self, slot: usize) -> [usize; 3] {
+        let cell = self.cell_start.partition_point(|&s| s <= slot) - 1;
+        let [dx, dy, _] = self.dims;
+        [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
+    }
+
+    /// The slot ranges of the cell `[cx, cy, cz]` and of its neighbours across the wrap.
+    fn candidates(&self, [cx, cy, cz]: [usize; 3]) -> CandidateCells {
+        let [dx, dy, dz] = self.dims;
+        let ((xs, nx), (ys, ny), (zs, nz)) = (around(cx, dx), around(cy, dy), around(cz, dz));
+        let mut out = CandidateCells::default();
+        for &z in &zs[..nz] {
+            for &y in &ys[..ny] {
+                for &x in &xs[..nx] {
+                    let cell = x + dx * (y + dy * z);
+                    let (a, b) = (self.cell_start[cell], self.cell_start[cell + 1]);
+                    if a < b {
+                        out.ranges[out.count] = (a, b);
+                        out.count += 1;
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The neighbour lists of a block of consecutive slots, as storage indices in ascending original
+/// index.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TorusBlock {
+    /// End of each slot's list in `neighbours`.
+    ends: Vec<usize>,
+    neighbours: Vec<u32>,
+    /// Scratch: one slot's neighbours keyed by original index.
+    keyed: Vec<u64>,
+}
+
+impl TorusBlock {
+    fn fill<V: Vector>(
+        &mut self,
+        grid: &TorusGrid,
+        domain: &Domain<V>,
+        r2: f64,
+        numbering: &Numbering,
+        slots: Range<usize>,
+    ) {
+        self.ends.clear();
+        self.neighbours.clear();
+        let (mut cell, mut candidates) = ([usize::MAX; 3], CandidateCells::default());
+        for slot in slots {
+            let coords = grid.cell_coords(slot);
+            if coords != cell {
+                (cell, candidates) = (coords, grid.candidates(coords));
+            }
+            let qi = grid.position::<V>(slot);
+            self.keyed.clear();
+            for range in candidates.iter() {
+                for t in range {
+                    let d2 = squared_distance_in(domain, qi, grid.position::<V>(t));
+                    if in_range(d2, r2) && t != slot {
+                        let j = grid.order[t];
+                        let k = numbering.original(j as usize) as u64;
+                        self.keyed.push(k << 32 | u64::from(j));
+                    }
+                }
+            }
+            self.keyed.sort_unstable();
+            // the storage index: j < n ≤ u32::MAX
+            self.neighbours
+                .extend(self.keyed.iter().map(|&key| key as u32));
+            self.ends.push(self.neighbours.len());
+        }
+    }
+
+    #[inline]
+    fn edges(&self, k: usize) -> Range<usize> {
+        (if k == 0 { 0 } else { self.ends[k - 1] })..self.ends[k]
+    }
+}
+
+impl NeighbourSearch {
+    /// Rebuilds `net` as the proximity net of `positions` in `domain` with range `r`:
+    /// N_i = { j ≠ i : ‖displacement(q_i, q_j)‖ < r }, the distance of a periodic box being the
+    /// minimum image.
+    ///
+    /// [`Domain::Open`] is [`NeighbourSearch::build`], bit for bit. On a torus the positions must
+    /// lie in the box [0, L) (wrapped with [`Domain::wrap`]); the net equals
+    /// [`ProximityNet::brute_force_in`]`(domain, positions, r)`: same neighbour order (ascending
+    /// index), the stored distances the bit-identical minimum-image distances, whatever the rayon
+    /// pool size. The numbering is kept as by [`NeighbourSearch::build`] (lists in ascending
+    /// original index). No side is required to exceed 2r: with sides below that, each pair is
+    /// still joined once, by its minimum image. A range that is not positive gives no edges;
+    /// agents with a non-finite coordinate have none.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::{NeighbourSearch, ProximityNet};
+    /// use flock_math::Domain;
+    /// use glam::DVec2;
+    ///
+    /// let torus = Domain::Periodic { size: DVec2::new(10.0, 10.0) };
+    /// let q = [DVec2::new(0.2, 5.0), DVec2::new(9.7, 5.0), DVec2::new(5.0, 5.0)];
+    /// let mut net = ProximityNet::new();
+    /// NeighbourSearch::new().build_in(&torus, &q, 1.0, &mut net);
+    /// assert_eq!(net.graph().neighbours(0), &[1]); // across the wrap
+    /// assert!((net.distances()[0] - 0.5).abs() < 1e-12);
+    /// assert_eq!(net, ProximityNet::brute_force_in(&torus, &q, 1.0));
+    /// ```
+    ///
+    /// # Panics
+    /// When `positions.len()` exceeds `u32::MAX`.
+    pub fn build_in<V: Vector>(
+        &mut self,
+        domain: &Domain<V>,
+        positions: &[V],
+        r: f64,
+        net: &mut ProximityNet,
+    ) {
+        match domain {
+            Domain::Open => self.build(positions, r, net),
+            Domain::Periodic { size } => {
+                self.build_on_torus(domain, *size, positions, r, net, BLOCK_SHIFT);
+            }
+        }
+    }
+
+    /// The periodic net with blocks of 2^`block_shift` slots.
+    fn build_on_torus<V: Vector>(
+        &mut self,
+        domain: &Domain<V>,
+        size: V,
+        positions: &[V],
+        r: f64,
+        net: &mut ProximityNet,
+        block_shift: u32,
+    ) {
+        debug_assert!(
+            positions.iter().all(|q| !q.is_finite()
+                || (0..V::DIM).all(|k| (0.0..=size.coord(k)).contains(&q.coord(k)))),
+            "positions outside the periodic box"
+        );
+        let block_len = 1_usize << block_shift;
+        let n = positions.len();
+        let r2 = range_squared(r);
+        let (offsets, neighbours, distances, numbering) = net.arrays_for_rebuild(n, r);
+        if n < 2 || r2 == 0.0 {
+            offsets.clear();
+            offsets.resize(n + 1, 0);
+            neighbours.clear();
+            if let Some(distances) = distances {
+                distances.clear();
+            }
+            return;
+        }
+        let (grid, blocks) = (&mut self.torus, &mut self.torus_blocks);
+        grid.rebuild(size, positions, r);
+        let grid = &*grid;
+        let slots = grid.order.len();
+        let count = slots.div_ceil(block_len);
+        if blocks.len() < count {
+            blocks.resize_with(count, TorusBlock::default);
+        }
+        for_each_indexed_mut(&mut blocks[..count], 1, |b, block| {
+            let start = b * block_len;
+            let slots = start..start + (slots - start).min(block_len);
+            block.fill::<V>(grid, domain, r2, numbering, slots);
+        });
+        let blocks = &blocks[..count];
+        let list = |i: usize| {
+            let slot = grid.slot_of[i];
+            (slot != NO_SLOT).then(|| {
+                let slot = slot as usize;
+                let block = &blocks[slot >> block_shift];
+                &block.neighbours[block.edges(slot & (block_len - 1))]
+            })
+        };
+        offsets.resize(n + 1, 0);
+        offsets[0] = 0;
+        fill_indexed(&mut offsets[1..], |i| list(i).map_or(0, <[u32]>::len));
+        for i in 0..n {
+            offsets[i + 1] += offsets[i];
+        }
+        let edges = offsets[n];
+        neighbours.resize(edges, 0);
+        let mut no_distances = Vec::new();
+        let distances = match distances {
+            Some(distances) => {
+                distances.resize(edges, 0.0);
+                distances
+            }
+            None => &mut no_distances,
+        };
+        let offsets = &offsets[..];
+        gather(
+            0..n,
+            neighbours,
+            distances,
+            &|i, out, lengths| {
+                if let Some(list) = list(i) {
+                    out.copy_from_slice(list);
+                    let qi = positions[i];
+                    for (l, &j) in lengths.iter_mut().zip(list) {
+                        *l = squared_distance_in(domain, qi, positions[j as usize]).sqrt();
+                    }
+                }
+            },
+            offsets,
+        );
+    }
+
+    /// Fills `out` (resized to `positions.len()`) with the distance from each agent to its nearest
+    /// other agent in `domain` (minimum image on a torus): out_i = min_{j≠i} ‖displacement(q_i,
+    /// q_j)‖ over the finite agents j, +∞ for an agent with no other finite agent (fewer than two,
+    /// or a non-finite position).
+    ///
+    /// Exact, bit-identical to the minimum of the brute-force distances, whatever the thread count:
+    /// a cell grid with a growing reach, starting at the mean spacing of the agents, each pass
+    /// searching only the agents not yet settled (expected O(n) for agents of bounded density;
+    /// isolated agents cost more passes, never a wrong answer).
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::NeighbourSearch;
+    /// use flock_math::Domain;
+    /// use glam::DVec2;
+    ///
+    /// let torus = Domain::Periodic { size: DVec2::new(10.0, 10.0) };
+    /// let q = [DVec2::new(0.5, 5.0), DVec2::new(9.5, 5.0), DVec2::new(3.5, 1.0)];
+    /// let mut d = Vec::new();
+    /// NeighbourSearch::new().nearest_distances_in(&torus, &q, &mut d);
+    /// assert_eq!(d[..2], [1.0, 1.0]);
+    /// NeighbourSearch::new().nearest_distances_in(&Domain::Open, &q, &mut d);
+    /// assert_eq!(d[0], 5.0);
+    /// ```
+    pub fn nearest_distances_in<V: Vector>(
+        &mut self,
+        domain: &Domain<V>,
+        positions: &[V],
+        out: &mut Vec<f64>,
+    ) {
+        let n = positions.len();
+        out.clear();
+        out.resize(n, f64::INFINITY);
+        let finite = positions.iter().filter(|q| q.is_finite()).count();
+        if finite < 2 {
+            return;
+        }
+        // The largest squared distance between finite agents (bounded by the box's half
+        // diagonal on a torus, by the bounding box's diagonal in open space), and a first reach.
+        let (lo, hi) = positions.iter().filter(|q| q.is_finite()).fold(
+            (None::<V>, None::<V>),
+            |(lo, hi), &q| {
+                (
+                    Some(lo.map_or(q, |l| l.min(q))),
+                    Some(hi.map_or(q, |h| h.max(q))),
+                )
+            },
+        );
+        let (lo, hi) = (lo.unwrap_or(V::ZERO), hi.unwrap_or(V::ZERO));
+        let extent = match domain {
+            Domain::Open => hi - lo,
+            Domain::Periodic { size } => V::from_fn(|k| {
+                (hi.coord(k) - lo.coord(k))
+                    .min(size.coord(k) / 2.0)
+                    .max(0.0)
+            }),
+        };
+        let diameter = extent.length();
+        let volume = (0..V::DIM)
+            .map(|k| extent.coord(k))
+            .filter(|&e| e > 0.0)
+            .fold(1.0, |v, e| v * e);
+        let mut reach = (volume / finite as f64).powf(1.0 / V::DIM as f64);
+        if !(reach > 0.0 && reach.is_finite()) || reach > diameter {
+            reach = diameter;
+        }
+        let mut pending: Vec<u32> = (0..n)
+            .filter(|&i| positions[i].is_finite())
+            .map(node_index)
+            .collect();
+        loop {
+            // the last pass: every pair is a candidate, any distance is accepted
+            let last = reach >= diameter || !reach.is_finite();
+            let threshold = if last { f64::INFINITY } else { reach * reach };
+            let mut found = vec![f64::INFINITY; pending.len()];
+            match domain {
+                Domain::Open => {
+                    let reach = if last { f64::INFINITY } else { reach };
+                    self.open_nearest(positions, reach, threshold, &pending, &mut found);
+                }
+                Domain::Periodic { size } => {
+                    let grid = &mut self.torus;
+                    grid.rebuild(*size, positions, if last { f64::INFINITY } else { reach });
+                    let grid = &*grid;
+                    fill_indexed(&mut found, |p| {
+                        let slot = grid.slot_of[pending[p] as usize] as usize;
+                        let qi = grid.position::<V>(slot);
+                        let mut best = f64::INFINITY;
+                        for range in grid.candidates(grid.cell_coords(slot)).iter() {
+                            for t in range {
+                                let d2 = squared_distance_in(domain, qi, grid.position::<V>(t));
+                                if t != slot && in_range(d2, threshold) && d2 < best {
+                                    best = d2;
+                                }
+                            }
+                        }
+                        best
+                    });
+                }
+            }
+            let mut still = Vec::new();
+            for (&i, &d2) in pending.iter().zip(&found) {
+                if d2.is_finite() {
+                    out[i as usize] = d2.sqrt();
+                } else {
+                    still.push(i);
+                }
+            }
+            pending = still;
+            if pending.is_empty() || last {
+                return;
+            }
+            reach = (2.0 * reach).min(diameter);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec2;
+
+    #[test]
+    fn two_cells_per_axis_give_each_cell_once() {
+        assert_eq!(around(0, 2), ([0, 1, 0], 2));
+        assert_eq!(around(1, 2), ([0, 1, 0], 2));
+        assert_eq!(around(0, 1), ([0; 3], 1));
+        assert_eq!(around(0, 5), ([4, 0, 1], 3));
+        assert_eq!(around(4, 5), ([3, 4, 0], 3));
+        let mut grid = TorusGrid::default();
+        let q = [
+            DVec2::new(0.5, 0.5),
+            DVec2::new(1.5, 1.5),
+            DVec2::new(1.9, 0.1),
+        ];
+        grid.rebuild(DVec2::new(2.0, 2.0), &q, 0.99);
+        assert_eq!(grid.dims, [2, 2, 1]);
+        let cells = grid.candidates(grid.cell_coords(0));
+        assert_eq!(cells.count, 3, "the three non-empty cells, each once");
+    }
+
+    #[test]
+    fn few_agents_merge_cells() {
+        let mut grid = TorusGrid::default();
+        let q = [DVec2::new(1.0, 1.0), DVec2::new(50.0, 50.0)];
+        grid.rebuild(DVec2::new(100.0, 100.0), &q, 1.0);
+        assert!(grid.dims.iter().product::<usize>() <= 8, "{:?}", grid.dims);
+        assert!(grid.width[0] >= 1.0);
+    }
+
+    /// The blocks only partition the work: any block length and pool size gives the same net.
+    #[test]
+    fn periodic_net_is_independent_of_blocks_and_threads() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+        let size = DVec2::new(30.0, 20.0);
+        let q: Vec<DVec2> = (0..2500)
+            .map(|_| DVec2::new(rng.random::<f64>() * 30.0, rng.random::<f64>() * 20.0))
+            .collect();
+        let domain = Domain::Periodic { size };
+        let expected = ProximityNet::brute_force_in(&domain, &q, 1.3);
+        assert!(expected.graph().directed_edge_count() > q.len());
+        let mut search = NeighbourSearch::new();
+        let mut net = ProximityNet::new();
+        for block_shift in [0, 3, 10, 12] {
+            search.build_on_torus(&domain, size, &q, 1.3, &mut net, block_shift);
+            assert_eq!(net, expected, "blocks of 2^{block_shift}");
+        }
+        #[cfg(feature = "parallel")]
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| search.build_in(&domain, &q, 1.3, &mut net));
+            assert_eq!(net, expected, "{threads} threads");
+            let mut d = Vec::new();
+            pool.install(|| search.nearest_distances_in(&domain, &q, &mut d));
+            let bits: Vec<u64> = d.iter().map(|x| x.to_bits()).collect();
+            let mut d1 = Vec::new();
+            NeighbourSearch::new().nearest_distances_in(&domain, &q, &mut d1);
+            assert_eq!(bits, d1.iter().map(|x| x.to_bits()).collect::<Vec<_>>());
+        }
+    }
+}
