@@ -186,12 +186,23 @@ struct Stiffness {
 fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f64> {
     let kissing = if scenario.dim == 2 { 6 } else { 12 };
     let deg = || degree().max(kissing) as f64;
+    let radius = match scenario.integrator {
+        Integrator::SymplecticEuler => 2.0,
+        Integrator::Rk4 => RK4_RADIUS,
+    };
+    match &scenario.algorithm {
+        // discrete-time maps with their own step: no continuous dynamics to resolve
+        Algorithm::Vicsek(_) | Algorithm::Boids(_) | Algorithm::Couzin(_) => return None,
+        // ṗ = −(λ/N) L_ψ p with ψ ≤ K/σ^{2β}: by Gershgorin λ_max ≤ 2 λ K (N − 1) / (N σ^{2β})
+        Algorithm::CuckerSmale(p) => {
+            let lambda = 2.0 * p.lambda * p.k / (p.sigma * p.sigma).powf(p.beta);
+            let step = radius / lambda;
+            return (step.is_finite() && step > 0.0).then_some(step);
+        }
+        _ => {}
+    }
     if let Algorithm::Consensus { gain, .. } = &scenario.algorithm {
         let (lambda, _) = consensus_lambda_max(scenario, deg)?;
-        let radius = match scenario.integrator {
-            Integrator::SymplecticEuler => 2.0,
-            Integrator::Rk4 => RK4_RADIUS,
-        };
         let step = radius / (gain * lambda);
         return (step.is_finite() && step > 0.0).then_some(step);
     }
