@@ -3,7 +3,7 @@
 //! Liquids*, 2nd ed. 2017, § 1.6.3), as Vicsek et al. (PRL 75, 1995) and the ABM frameworks'
 //! boids benchmark (JuliaDynamics ABMFrameworksComparison, `Flocking/DECLARATION.md`) use it.
 
-use crate::Vector;
+use crate::{Vector, mean_of};
 
 /// Open space, or a periodic box with its origin at 0.
 ///
@@ -86,6 +86,57 @@ impl<V: Vector> Domain<V> {
         }
     }
 
+    /// The centre of mass of `points`. In open space their mean, bit for bit [`mean_of`] (zero for
+    /// no point). On a torus, where the mean of the coordinates depends on where the box is cut,
+    /// the circular mean per axis (Bai & Breen, "Calculating center of mass in an unbounded 2D
+    /// environment", J. Graphics Tools 13(4), 2008): each coordinate is mapped to an angle
+    /// θ_i = 2π x_i / L on the circle of circumference L, the unit vectors (cos θ_i, sin θ_i) are
+    /// averaged into (ξ̄, ζ̄), and the mean angle θ̄ = atan2(−ζ̄, −ξ̄) + π ∈ [0, 2π] is mapped back,
+    /// x̄ = L θ̄ / 2π, wrapped into [0, L). The sums run in the order of `points`.
+    ///
+    /// For agents within a quarter of the box of each other on an axis this is close to their
+    /// mean taken in one unwrapped image; it is ill-conditioned when (ξ̄, ζ̄) is near zero (agents
+    /// spread evenly round an axis), where no centre is meaningful (the result is then some point
+    /// of the box, never NaN for finite points).
+    ///
+    /// # Example
+    /// ```
+    /// use flock_math::Domain;
+    /// use glam::DVec2;
+    ///
+    /// let torus = Domain::Periodic { size: DVec2::new(10.0, 10.0) };
+    /// // two agents either side of the wrap at x = 0: their centre is on the wrap, not at x = 5
+    /// let c = torus.centre_of([DVec2::new(9.0, 4.0), DVec2::new(1.0, 6.0)].into_iter());
+    /// assert!(c.x.min(10.0 - c.x) < 1e-12 && (c.y - 5.0).abs() < 1e-12);
+    /// let open = Domain::Open.centre_of([DVec2::new(9.0, 4.0), DVec2::new(1.0, 6.0)].into_iter());
+    /// assert_eq!(open, DVec2::new(5.0, 5.0));
+    /// ```
+    #[must_use]
+    pub fn centre_of(&self, points: impl ExactSizeIterator<Item = V>) -> V {
+        match self {
+            Self::Open => mean_of(points),
+            Self::Periodic { size } => {
+                if points.len() == 0 {
+                    return V::ZERO;
+                }
+                let (mut cos, mut sin) = ([0.0; 3], [0.0; 3]);
+                for q in points {
+                    for k in 0..V::DIM {
+                        let theta = core::f64::consts::TAU * (q.coord(k) / size.coord(k));
+                        cos[k] += theta.cos();
+                        sin[k] += theta.sin();
+                    }
+                }
+                // atan2 is invariant under scaling: the sums stand for the means
+                V::from_fn(|k| {
+                    let theta = (-sin[k]).atan2(-cos[k]) + core::f64::consts::PI;
+                    let l = size.coord(k);
+                    wrap_coordinate(l * (theta / core::f64::consts::TAU), l)
+                })
+            }
+        }
+    }
+
     /// The point of the image lattice of `to` nearest `from`: `from + displacement(from, to)`,
     /// the position of `to` as an agent at `from` sees it.
     #[inline]
@@ -125,6 +176,42 @@ mod tests {
             torus.image_near(DVec3::new(1.0, 19.0, 2.0), DVec3::new(9.0, 1.0, 28.0)),
             DVec3::new(-1.0, 21.0, -2.0)
         );
+    }
+
+    #[test]
+    fn circular_mean_of_a_flock_across_the_wrap() {
+        let size = DVec3::new(10.0, 20.0, 30.0);
+        let torus = Domain::Periodic { size };
+        // a flock round (9.8, 0.1, 15) cut by the faces x = 0 and y = 0: the circular mean is its
+        // centre; the plain mean of the wrapped coordinates is far from every agent
+        let offsets = [
+            DVec3::new(-0.4, 0.3, 0.1),
+            DVec3::new(0.4, -0.3, -0.1),
+            DVec3::new(0.2, 0.2, 0.2),
+            DVec3::new(-0.2, -0.2, -0.2),
+        ];
+        let centre = DVec3::new(9.8, 0.1, 15.0);
+        let q: Vec<DVec3> = offsets.iter().map(|&o| torus.wrap(centre + o)).collect();
+        let c = torus.centre_of(q.iter().copied());
+        assert!(torus.distance(c, centre) < 1e-12, "{c}");
+        assert!(torus.distance(mean_of(q.iter().copied()), centre) > 4.0);
+        // shifting every agent by a vector shifts the centre by it
+        let shift = DVec3::new(3.3, -7.1, 29.0);
+        let moved = torus.centre_of(q.iter().map(|&p| torus.wrap(p + shift)));
+        assert!(torus.distance(moved, torus.wrap(centre + shift)) < 1e-12);
+        assert_eq!(torus.centre_of(core::iter::empty()), DVec3::ZERO);
+        // open space is the mean, bit for bit
+        assert_eq!(
+            Domain::Open.centre_of(q.iter().copied()),
+            mean_of(q.iter().copied())
+        );
+        // evenly spread: some point of the box, not NaN
+        let ring = [DVec2::new(0.0, 1.0), DVec2::new(5.0, 1.0)];
+        let c = Domain::Periodic {
+            size: DVec2::new(10.0, 10.0),
+        }
+        .centre_of(ring.into_iter());
+        assert!((0.0..10.0).contains(&c.x) && (c.y - 1.0).abs() < 1e-12);
     }
 
     proptest! {

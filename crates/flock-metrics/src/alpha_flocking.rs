@@ -116,6 +116,10 @@ impl Default for FlockingCriteria {
 ///     velocity_mismatch: 1e-6,
 ///     min_distance: 6.5,
 ///     collisions: 0,
+///     polarisation: 1.0,
+///     milling: 0.0,
+///     nearest_neighbour_mean: 7.0,
+///     nearest_neighbour_min: 6.5,
 /// };
 /// let records: Vec<(f64, FlockMetrics)> = (0..=100).map(|k| (f64::from(k), settled)).collect();
 /// let verdict = FlockingVerdict::judge(&records, &FlockingCriteria::default()).unwrap();
@@ -260,6 +264,10 @@ mod tests {
             velocity_mismatch: 1e-4,
             min_distance: 6.0,
             collisions: 0,
+            polarisation: 1.0,
+            milling: 0.0,
+            nearest_neighbour_mean: 7.0,
+            nearest_neighbour_min: 6.0,
         }
     }
 

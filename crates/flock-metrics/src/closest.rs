@@ -22,6 +22,10 @@ use crate::FlockMetrics;
 ///     velocity_mismatch: 0.0,
 ///     min_distance,
 ///     collisions,
+///     polarisation: 1.0,
+///     milling: 0.0,
+///     nearest_neighbour_mean: min_distance,
+///     nearest_neighbour_min: min_distance,
 /// };
 /// // a random start with colliding pairs, spread out by t = 5
 /// let records = [(0.0, at(0.1, 3)), (5.0, at(6.0, 0)), (10.0, at(6.5, 0))];

@@ -1,8 +1,8 @@
 //! The flocking metrics of TAC 2006, Section VIII.
 
-use flock_graph::parallel::{join, map_chunks};
-use flock_graph::{Components, Numbering, ProximityNet, nearest_pair_distance};
-use flock_math::{Vector, mean_of};
+use flock_graph::parallel::{fill_indexed, join, map_chunks};
+use flock_graph::{Components, NeighbourSearch, Numbering, ProximityNet};
+use flock_math::{Domain, Vector, mean_of};
 
 /// What the metrics compare against.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,6 +36,31 @@ pub struct FlockMetrics {
     pub min_distance: f64,
     /// The number of pairs closer than the collision distance.
     pub collisions: usize,
+    /// The polarisation (order parameter) Φ = ‖Σ_i p_i/‖p_i‖‖ / N ∈ [0, 1]: 1 when every agent
+    /// heads the same way, about 1/√N for random headings. Vicsek et al., PRL 75 (1995), v_a (for
+    /// agents of constant speed); Couzin et al., J. theor. Biol. 218 (2002), p_group. Agents at
+    /// rest (p_i = 0, or not finite) are left out of the sum but counted in N; 0 for no agent.
+    pub polarisation: f64,
+    /// The milling (angular momentum) parameter M = ‖Σ_i r̂_ic × p̂_i‖ / N ∈ [0, 1], r̂_ic the unit
+    /// vector from the group centre q_c to agent i and p̂_i its heading: 1 for agents circling the
+    /// centre all the same way (a mill, a torus), near 0 for a polarised group. Couzin et al.,
+    /// J. theor. Biol. 218 (2002), m_group. In 3D the norm of the summed cross products, in 2D the
+    /// absolute value of the summed scalar cross products r̂_x p̂_y − r̂_y p̂_x. On a torus q_c is
+    /// the circular mean ([`Domain::centre_of`]) and r_ic the minimum image. Agents at rest or at
+    /// the centre add nothing but count in N; 0 for no agent.
+    pub milling: f64,
+    /// The mean over agents of the distance to the nearest other agent, (1/N) Σ_i min_{j≠i}
+    /// ‖q_j − q_i‖ (minimum image on a torus), the mean nearest-neighbour distance of the
+    /// collective-motion literature (e.g. Ballerini et al., PNAS 105 (2008), r₁). Exact: from the
+    /// net when every agent has a neighbour in it, otherwise from a search over all agents
+    /// ([`NeighbourSearch::nearest_distances_in`]). +∞ for fewer than two agents (as
+    /// [`FlockMetrics::min_distance`]), or when an agent has a non-finite position.
+    pub nearest_neighbour_mean: f64,
+    /// The least over agents of the distance to the nearest other agent: the smallest distance
+    /// between two agents, so equal to [`FlockMetrics::min_distance`] (computed from the same
+    /// nearest-neighbour distances as [`FlockMetrics::nearest_neighbour_mean`]); +∞ for fewer than
+    /// two agents.
+    pub nearest_neighbour_min: f64,
 }
 
 impl FlockMetrics {
@@ -72,16 +97,65 @@ impl FlockMetrics {
     /// ```
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
+        Self::measure_in(&Domain::Open, q, p, net, params)
+    }
+
+    /// Every metric of the state (q, p) in `domain` with its net, built in that domain
+    /// ([`NeighbourSearch::build_in`]). [`Domain::Open`] is [`FlockMetrics::measure`], bit for bit.
+    ///
+    /// On a torus every metric is measured as the agents see each other, by minimum image:
+    /// - C, C* and the components are those of the net, whose edges are minimum-image pairs;
+    /// - the centre q_c is the circular mean per axis ([`Domain::centre_of`], Bai & Breen 2008),
+    ///   and R = max_i ‖displacement(q_c, q_i)‖ (at most half the box's diagonal);
+    /// - Ẽ, the collisions and the minimum distance use the minimum-image edge lengths
+    ///   ([`ProximityNet::lengths_of_in`]), the nearest-neighbour distances the minimum-image
+    ///   distances, and the milling r_ic = displacement(q_c, q_i);
+    /// - K̃ and the polarisation read the velocities only, which the wrap does not change.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::{NeighbourSearch, ProximityNet};
+    /// use flock_math::Domain;
+    /// use flock_metrics::{FlockMetrics, MetricParams};
+    /// use glam::DVec2;
+    ///
+    /// // three agents 7 apart on a line that crosses the wrap at x = 0 of a 100 × 100 box
+    /// let torus = Domain::Periodic { size: DVec2::new(100.0, 100.0) };
+    /// let q = [DVec2::new(93.0, 50.0), DVec2::new(0.0, 50.0), DVec2::new(7.0, 50.0)];
+    /// let p = [DVec2::X; 3];
+    /// let mut net = ProximityNet::new();
+    /// NeighbourSearch::new().build_in(&torus, &q, 8.4, &mut net);
+    /// let params = MetricParams { d: 7.0, collision_distance: 1.75 };
+    /// let m = FlockMetrics::measure_in(&torus, &q, &p, &net, &params);
+    /// assert_eq!((m.connectivity, m.components, m.min_distance), (1.0, 1, 7.0));
+    /// assert!(m.deviation_energy < 1e-24 && (m.cohesion_radius - 7.0).abs() < 1e-9);
+    /// assert_eq!((m.polarisation, m.nearest_neighbour_mean, m.nearest_neighbour_min), (1.0, 7.0, 7.0));
+    /// ```
+    #[must_use]
+    pub fn measure_in<V: Vector>(
+        domain: &Domain<V>,
+        q: &[V],
+        p: &[V],
+        net: &ProximityNet,
+        params: &MetricParams,
+    ) -> Self {
         let components = || Components::of(net.graph());
         let numbering = net.numbering();
         let rest = || {
+            let centre = domain.centre_of(numbering.ordered(q));
             (
-                EdgeMetrics::of(q, net, params),
-                radius_about(q, mean_of(numbering.ordered(q))),
+                EdgeMetrics::of(domain, q, net, params),
+                radius_about(domain, q, centre),
                 mismatch(numbering.ordered(p)),
+                polarisation_of(numbering.ordered(p)),
+                milling_about(domain, centre, numbering.ordered(q), numbering.ordered(p)),
+                NearestNeighbours::of(domain, q, net),
             )
         };
-        let (components, (edges, cohesion_radius, velocity_mismatch)) = join(components, rest);
+        let (
+            components,
+            (edges, cohesion_radius, velocity_mismatch, polarisation, milling, nearest),
+        ) = join(components, rest);
         Self {
             connectivity: relative_connectivity(&components),
             giant_component: components.giant_share(),
@@ -89,8 +163,16 @@ impl FlockMetrics {
             cohesion_radius,
             deviation_energy: edges.deviation_energy,
             velocity_mismatch,
-            min_distance: edges.min_distance(q),
+            min_distance: if edges.shortest.is_finite() {
+                edges.shortest
+            } else {
+                nearest.min
+            },
             collisions: edges.collisions,
+            polarisation,
+            milling,
+            nearest_neighbour_mean: nearest.mean,
+            nearest_neighbour_min: nearest.min,
         }
     }
 }
@@ -133,8 +215,49 @@ impl FlockMetrics {
         ]
     }
 
+    /// The names of [`FlockMetrics::extras`], in its order: the columns of `metrics.csv` after
+    /// `energy`, followed there by `components`.
+    pub const EXTRA_COLUMNS: [&'static str; 4] = [
+        "polarisation",
+        "milling",
+        "nearest_neighbour_mean",
+        "nearest_neighbour_min",
+    ];
+
+    /// The real-valued metrics of the columns [`FlockMetrics::EXTRA_COLUMNS`]: the polarisation,
+    /// the milling and the mean and least nearest-neighbour distances.
+    #[must_use]
+    pub fn extras(&self) -> [f64; 4] {
+        [
+            self.polarisation,
+            self.milling,
+            self.nearest_neighbour_mean,
+            self.nearest_neighbour_min,
+        ]
+    }
+
+    /// The metrics with the values of [`FlockMetrics::extras`] `extras` (read back from
+    /// `metrics.csv`, say), the others unchanged.
+    #[must_use]
+    pub const fn with_extras(self, extras: [f64; 4]) -> Self {
+        let [
+            polarisation,
+            milling,
+            nearest_neighbour_mean,
+            nearest_neighbour_min,
+        ] = extras;
+        Self {
+            polarisation,
+            milling,
+            nearest_neighbour_mean,
+            nearest_neighbour_min,
+            ..self
+        }
+    }
+
     /// The metrics of [`FlockMetrics::reals`] `reals` (read back from `metrics.csv`, say), with
-    /// the counts that are not among them.
+    /// the counts that are not among them; the [`FlockMetrics::extras`] are NaN (unknown) until
+    /// set with [`FlockMetrics::with_extras`].
     #[must_use]
     pub const fn from_reals(reals: [f64; 6], components: usize, collisions: usize) -> Self {
         let [
@@ -154,6 +277,10 @@ impl FlockMetrics {
             velocity_mismatch,
             min_distance,
             collisions,
+            polarisation: f64::NAN,
+            milling: f64::NAN,
+            nearest_neighbour_mean: f64::NAN,
+            nearest_neighbour_min: f64::NAN,
         }
     }
 }
@@ -171,18 +298,23 @@ impl EdgeMetrics {
     /// One pass over the edges in storage order for the squared errors of each agent, added in
     /// original order ([`Numbering::ordered_sum`]), and one, in chunks, for the shortest edge and
     /// the close pairs (which do not depend on the order).
-    fn of<V: Vector>(q: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
+    fn of<V: Vector>(
+        domain: &Domain<V>,
+        q: &[V],
+        net: &ProximityNet,
+        params: &MetricParams,
+    ) -> Self {
         debug_assert!(
             params.collision_distance <= net.range(),
             "collision distance beyond the net's range"
         );
         let (d, n) = (params.d, net.graph().len());
         let sum = net.numbering().ordered_sum(n, |i| {
-            net.lengths_of(i, q)
+            net.lengths_of_in(domain, i, q)
                 .fold(0.0, |sum, l| sum + (l - d) * (l - d))
         });
         let (shortest, close) = map_chunks(n, EDGE_CHUNK, |agents| {
-            agents.flat_map(|i| net.lengths_of(i, q)).fold(
+            agents.flat_map(|i| net.lengths_of_in(domain, i, q)).fold(
                 (f64::INFINITY, 0),
                 |(shortest, close), l| {
                     let colliding = usize::from(l < params.collision_distance);
@@ -201,15 +333,6 @@ impl EdgeMetrics {
             collisions: close / 2,
         }
     }
-
-    /// [`min_distance`].
-    fn min_distance<V: Vector>(&self, q: &[V]) -> f64 {
-        if self.shortest.is_finite() {
-            self.shortest
-        } else {
-            nearest_pair_distance(q).unwrap_or(f64::INFINITY)
-        }
-    }
 }
 
 /// C(t) = rank(L(q)) / (n − 1) = (n − #components) / (n − 1) for an undirected net (TAC 2006
@@ -226,14 +349,157 @@ pub fn relative_connectivity(components: &Components) -> f64 {
 /// R(t) = max_i ‖q_i − q_c‖ (TAC 2006 eq. 81).
 #[must_use]
 pub fn cohesion_radius<V: Vector>(q: &[V]) -> f64 {
-    radius_about(q, mean_of(q.iter().copied()))
+    radius_about(&Domain::Open, q, mean_of(q.iter().copied()))
 }
 
-/// max_i ‖q_i − centre‖ (0 for no agent).
-fn radius_about<V: Vector>(q: &[V], centre: V) -> f64 {
+/// max_i ‖displacement(centre, q_i)‖ (0 for no agent).
+fn radius_about<V: Vector>(domain: &Domain<V>, q: &[V], centre: V) -> f64 {
     q.iter()
-        .map(|&qi| (qi - centre).length())
+        .map(|&qi| domain.displacement(centre, qi).length())
         .fold(0.0, f64::max)
+}
+
+/// The polarisation Φ = ‖Σ_i p_i/‖p_i‖‖ / N of [`FlockMetrics::polarisation`] (Vicsek et al.
+/// 1995 v_a; Couzin et al. 2002 p_group), summed in the iterator's order; agents at rest add
+/// nothing but count in N; 0 for no agent.
+///
+/// # Example
+/// ```
+/// use flock_metrics::polarisation;
+/// use glam::DVec2;
+///
+/// assert_eq!(polarisation(&[DVec2::X, DVec2::new(3.0, 0.0)]), 1.0);
+/// assert_eq!(polarisation(&[DVec2::X, -DVec2::X]), 0.0);
+/// assert_eq!(polarisation(&[DVec2::X, DVec2::ZERO]), 0.5); // one at rest
+/// ```
+#[must_use]
+pub fn polarisation<V: Vector>(p: &[V]) -> f64 {
+    polarisation_of(p.iter().copied())
+}
+
+/// [`polarisation`] of the velocities in the iterator's order.
+fn polarisation_of<V: Vector>(p: impl ExactSizeIterator<Item = V>) -> f64 {
+    let n = p.len();
+    if n == 0 {
+        return 0.0;
+    }
+    p.fold(V::ZERO, |sum, pi| sum + pi.normalize_or_zero())
+        .length()
+        / n as f64
+}
+
+/// The milling M = ‖Σ_i r̂_ic × p̂_i‖ / N of [`FlockMetrics::milling`] (Couzin et al. 2002,
+/// m_group) about the centre q_c of the agents in `domain` ([`Domain::centre_of`]: the mean in
+/// open space, the circular mean on a torus), r_ic = displacement(q_c, q_i).
+///
+/// # Example
+/// ```
+/// use flock_math::Domain;
+/// use flock_metrics::milling;
+/// use glam::DVec2;
+///
+/// // four agents circling the origin anticlockwise: a perfect mill
+/// let q = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
+/// let p = [DVec2::Y, -DVec2::X, -DVec2::Y, DVec2::X];
+/// assert!((milling(&Domain::Open, &q, &p) - 1.0).abs() < 1e-15);
+/// assert_eq!(milling(&Domain::Open, &q, &[DVec2::X; 4]), 0.0); // polarised
+/// ```
+#[must_use]
+pub fn milling<V: Vector>(domain: &Domain<V>, q: &[V], p: &[V]) -> f64 {
+    let centre = domain.centre_of(q.iter().copied());
+    milling_about(domain, centre, q.iter().copied(), p.iter().copied())
+}
+
+/// M about `centre`, summed in the iterators' order.
+fn milling_about<V: Vector>(
+    domain: &Domain<V>,
+    centre: V,
+    q: impl ExactSizeIterator<Item = V>,
+    p: impl Iterator<Item = V>,
+) -> f64 {
+    let n = q.len();
+    if n == 0 {
+        return 0.0;
+    }
+    let sum = q.zip(p).fold([0.0; 3], |sum, (qi, pi)| {
+        let r = domain.displacement(centre, qi).normalize_or_zero();
+        let c = cross(r, pi.normalize_or_zero());
+        [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]]
+    });
+    let norm = if V::DIM == 2 {
+        sum[2].abs()
+    } else {
+        (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt()
+    };
+    norm / n as f64
+}
+
+/// a × b, the plane embedded at z = 0 in 2D (only the z component then).
+#[inline]
+fn cross<V: Vector>(a: V, b: V) -> [f64; 3] {
+    let (ax, ay, bx, by) = (a.coord(0), a.coord(1), b.coord(0), b.coord(1));
+    let z = ax * by - ay * bx;
+    if V::DIM == 2 {
+        [0.0, 0.0, z]
+    } else {
+        let (az, bz) = (a.coord(2), b.coord(2));
+        [ay * bz - az * by, az * bx - ax * bz, z]
+    }
+}
+
+/// The mean and least nearest-neighbour distances.
+struct NearestNeighbours {
+    mean: f64,
+    min: f64,
+}
+
+impl NearestNeighbours {
+    /// From the net when every agent has a neighbour in it (its nearest is then its shortest
+    /// edge), otherwise from an exact search over all agents; the mean summed in original order.
+    fn of<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet) -> Self {
+        let n = q.len();
+        if n < 2 {
+            return Self {
+                mean: f64::INFINITY,
+                min: f64::INFINITY,
+            };
+        }
+        let graph = net.graph();
+        let mut nearest = vec![f64::INFINITY; n];
+        if graph.len() == n && (0..n).all(|i| graph.degree(i) > 0) {
+            fill_indexed(&mut nearest, |i| {
+                net.lengths_of_in(domain, i, q)
+                    .fold(f64::INFINITY, f64::min)
+            });
+        } else {
+            NeighbourSearch::new().nearest_distances_in(domain, q, &mut nearest);
+        }
+        Self {
+            mean: net.numbering().ordered_sum(n, |s| nearest[s]) / n as f64,
+            min: nearest.iter().copied().fold(f64::INFINITY, f64::min),
+        }
+    }
+}
+
+/// The distance from each agent to its nearest other agent in `domain` (minimum image on a
+/// torus), +∞ for an agent without another finite agent: exact, by
+/// [`NeighbourSearch::nearest_distances_in`].
+///
+/// # Example
+/// ```
+/// use flock_math::Domain;
+/// use flock_metrics::nearest_neighbour_distances;
+/// use glam::DVec2;
+///
+/// let q = [DVec2::new(0.0, 0.0), DVec2::new(3.0, 0.0), DVec2::new(3.0, 1.0)];
+/// assert_eq!(nearest_neighbour_distances(&Domain::Open, &q), [3.0, 1.0, 1.0]);
+/// assert_eq!(nearest_neighbour_distances(&Domain::Open, &q[..1]), [f64::INFINITY]);
+/// ```
+#[must_use]
+pub fn nearest_neighbour_distances<V: Vector>(domain: &Domain<V>, q: &[V]) -> Vec<f64> {
+    let mut out = Vec::new();
+    NeighbourSearch::new().nearest_distances_in(domain, q, &mut out);
+    out
 }
 
 /// Ẽ = E(q) / d² with E(q) = (1/(|E| + 1)) Σ_i Σ_{j∈N_i} (‖q_j − q_i‖ − d)² (TAC 2006 eq. 7 and 82),
@@ -244,6 +510,7 @@ fn radius_about<V: Vector>(q: &[V], centre: V) -> f64 {
 #[must_use]
 pub fn deviation_energy<V: Vector>(q: &[V], net: &ProximityNet, d: f64) -> f64 {
     EdgeMetrics::of(
+        &Domain::Open,
         q,
         net,
         &MetricParams {
@@ -310,7 +577,7 @@ pub fn min_distance<V: Vector>(q: &[V], net: &ProximityNet) -> f64 {
     if shortest.is_finite() {
         shortest
     } else {
-        nearest_pair_distance(q).unwrap_or(f64::INFINITY)
+        flock_graph::nearest_pair_distance(q).unwrap_or(f64::INFINITY)
     }
 }
 
@@ -323,7 +590,7 @@ pub fn collisions<V: Vector>(q: &[V], net: &ProximityNet, collision_distance: f6
         d: 1.0,
         collision_distance,
     };
-    EdgeMetrics::of(q, net, &params).collisions
+    EdgeMetrics::of(&Domain::Open, q, net, &params).collisions
 }
 
 #[cfg(test)]
@@ -514,7 +781,11 @@ mod tests {
         let mut numbered = ProximityNet::without_distances();
         numbered.permute(&order);
         search.build(&q_s, 8.4, &mut numbered);
-        let bits = |m: FlockMetrics| m.reals().map(f64::to_bits);
+        let bits = |m: FlockMetrics| {
+            let [a, b, c, d, e, f] = m.reals().map(f64::to_bits);
+            let [g, h, i, j] = m.extras().map(f64::to_bits);
+            [a, b, c, d, e, f, g, h, i, j]
+        };
         let (original, renumbered) = (
             FlockMetrics::measure(&q, &p, &net, &params),
             FlockMetrics::measure(&q_s, &p_s, &numbered, &params),
@@ -532,7 +803,12 @@ mod tests {
         assert_eq!(mismatch(&p, &net), mismatch(&p_s, &numbered));
         let back =
             FlockMetrics::from_reals(original.reals(), original.components, original.collisions);
-        assert_eq!(back, original, "from_reals inverts reals");
+        assert!(back.polarisation.is_nan() && back.nearest_neighbour_min.is_nan());
+        assert_eq!(
+            back.with_extras(original.extras()),
+            original,
+            "from_reals and with_extras invert reals and extras"
+        );
     }
 
     #[test]
@@ -547,5 +823,229 @@ mod tests {
         );
         assert_eq!(collisions(&q, &lean, 1.5), 1);
         assert_eq!(collisions(&q, &full, 1.5), 1);
+    }
+
+    /// A deterministic stream of numbers in [0, 1).
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+        move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A flock about `centre` (spread ±`spread` per axis) with velocities turning about it.
+    fn flock<V: Vector>(seed: u64, n: usize, centre: V, spread: f64) -> (Vec<V>, Vec<V>) {
+        let mut u = uniform(seed);
+        let q: Vec<V> = (0..n)
+            .map(|_| centre + V::from_fn(|_| spread * (2.0 * u() - 1.0)))
+            .collect();
+        let p: Vec<V> = (0..n)
+            .map(|_| V::from_fn(|k| if k == 0 { 1.0 } else { 0.0 } + 0.8 * (2.0 * u() - 1.0)))
+            .collect();
+        (q, p)
+    }
+
+    /// The same flock measured in open space and cut by the faces of a periodic box (its centre
+    /// near a corner, so on every axis some agents are wrapped to the far side): every metric
+    /// agrees, so none of them reads a wrapped coordinate as a distance.
+    fn check_torus_matches_open<V: Vector>() {
+        let size = V::from_fn(|k| [60.0, 50.0, 40.0][k]);
+        let torus = Domain::Periodic { size };
+        let params = MetricParams {
+            d: 7.0,
+            collision_distance: 2.0,
+        };
+        // clustered (every agent has a neighbour) and sparse (some have none: the search path)
+        for (seed, n, spread) in [(1, 60, 6.0), (2, 40, 14.0), (3, 2, 1.0)] {
+            let (q_open, p) = flock::<V>(seed, n, V::from_fn(|_| 100.0), spread);
+            let corner = V::from_fn(|k| size.coord(k) - 0.7);
+            let shift = corner - V::from_fn(|_| 100.0);
+            let q_torus: Vec<V> = q_open.iter().map(|&x| torus.wrap(x + shift)).collect();
+            assert!(
+                q_torus.iter().any(|x| x.coord(0) < 10.0)
+                    && q_torus.iter().any(|x| x.coord(0) > 50.0)
+                    || n < 10
+            );
+            let open_net = ProximityNet::brute_force(&q_open, 8.4);
+            let mut torus_net = ProximityNet::without_distances();
+            flock_graph::NeighbourSearch::new().build_in(&torus, &q_torus, 8.4, &mut torus_net);
+            let a = FlockMetrics::measure(&q_open, &p, &open_net, &params);
+            let b = FlockMetrics::measure_in(&torus, &q_torus, &p, &torus_net, &params);
+            assert_eq!(
+                (a.components, a.collisions),
+                (b.components, b.collisions),
+                "seed {seed}"
+            );
+            // R and the milling are measured from the circular mean, a little off the mean:
+            // compare with open space about the same centre, unwrapped
+            let centre = torus.centre_of(q_torus.iter().copied());
+            let unwrapped = q_open[0] + torus.displacement(q_torus[0], centre);
+            let mean = mean_of(q_open.iter().copied());
+            assert!(
+                (unwrapped - mean).length() < 0.1 * spread,
+                "{unwrapped:?} {mean:?}"
+            );
+            let a = FlockMetrics {
+                cohesion_radius: radius_about(&Domain::Open, &q_open, unwrapped),
+                milling: milling_about(
+                    &Domain::Open,
+                    unwrapped,
+                    q_open.iter().copied(),
+                    p.iter().copied(),
+                ),
+                ..a
+            };
+            for (x, y) in a
+                .reals()
+                .into_iter()
+                .chain(a.extras())
+                .zip(b.reals().into_iter().chain(b.extras()))
+            {
+                assert_relative_eq!(x, y, epsilon = 1e-9, max_relative = 1e-9);
+            }
+            if n > 10 {
+                assert!(a.milling > 0.01 && a.polarisation > 0.3, "{a:?}");
+            }
+            // the metrics with the open-space formulas are wrong on the torus: the test can fail
+            let naive = FlockMetrics::measure(&q_torus, &p, &torus_net, &params);
+            if n > 10 {
+                assert!(naive.cohesion_radius > a.cohesion_radius + 5.0);
+                assert!((naive.milling - a.milling).abs() > 1e-3);
+            }
+        }
+    }
+
+    #[test]
+    fn torus_matches_open_space_2d() {
+        check_torus_matches_open::<DVec2>();
+    }
+
+    #[test]
+    fn torus_matches_open_space_3d() {
+        check_torus_matches_open::<DVec3>();
+    }
+
+    /// Open space is `measure`, bit for bit, and `measure` keeps the former definitions.
+    #[test]
+    fn open_domain_is_measure_bit_for_bit() {
+        let (q, p) = flock::<DVec3>(7, 80, DVec3::ZERO, 12.0);
+        let net = ProximityNet::brute_force(&q, 8.4);
+        let params = MetricParams {
+            d: 7.0,
+            collision_distance: 2.0,
+        };
+        let a = FlockMetrics::measure(&q, &p, &net, &params);
+        let b = FlockMetrics::measure_in(&Domain::Open, &q, &p, &net, &params);
+        let bits = |m: &FlockMetrics| (m.reals().map(f64::to_bits), m.extras().map(f64::to_bits));
+        assert_eq!(bits(&a), bits(&b));
+        assert_eq!(a.cohesion_radius.to_bits(), cohesion_radius(&q).to_bits());
+        assert_eq!(a.min_distance.to_bits(), min_distance(&q, &net).to_bits());
+        assert_eq!(a.polarisation.to_bits(), polarisation(&p).to_bits());
+        assert_eq!(
+            a.milling.to_bits(),
+            milling(&Domain::Open, &q, &p).to_bits()
+        );
+    }
+
+    /// The nearest-neighbour distances against brute force, on the net's path (every agent has a
+    /// neighbour) and on the search's (loners beyond the range), in open space and on a torus.
+    fn check_nearest<V: Vector>() {
+        let size = V::from_fn(|_| 80.0);
+        let params = MetricParams {
+            d: 7.0,
+            collision_distance: 2.0,
+        };
+        for domain in [Domain::Open, Domain::Periodic { size }] {
+            for (seed, n, spread) in [(11, 50, 8.0), (12, 50, 39.9)] {
+                let (q, p) = flock::<V>(seed, n, V::from_fn(|_| 40.0), spread);
+                let brute: Vec<f64> = (0..n)
+                    .map(|i| {
+                        (0..n)
+                            .filter(|&j| j != i)
+                            .map(|j| domain.distance(q[i], q[j]))
+                            .fold(f64::INFINITY, f64::min)
+                    })
+                    .collect();
+                let mut net = ProximityNet::new();
+                flock_graph::NeighbourSearch::new().build_in(&domain, &q, 8.4, &mut net);
+                let isolated = (0..n).any(|i| net.graph().degree(i) == 0);
+                assert_eq!(isolated, spread > 10.0, "both paths are tested");
+                let m = FlockMetrics::measure_in(&domain, &q, &p, &net, &params);
+                let mean = brute.iter().sum::<f64>() / n as f64;
+                let least = brute.iter().copied().fold(f64::INFINITY, f64::min);
+                assert_relative_eq!(m.nearest_neighbour_mean, mean, max_relative = 1e-12);
+                assert_eq!(m.nearest_neighbour_min, least);
+                assert_eq!(m.min_distance, least);
+                assert_eq!(nearest_neighbour_distances(&domain, &q), brute);
+            }
+        }
+    }
+
+    #[test]
+    fn nearest_neighbours_match_brute_force_2d() {
+        check_nearest::<DVec2>();
+    }
+
+    #[test]
+    fn nearest_neighbours_match_brute_force_3d() {
+        check_nearest::<DVec3>();
+    }
+
+    #[test]
+    fn order_parameters_of_known_states() {
+        // a mill in 3D: agents on a circle in the plane z = 5 moving tangentially
+        let q: Vec<DVec3> = (0..12)
+            .map(|k| {
+                let a = f64::from(k) * core::f64::consts::TAU / 12.0;
+                DVec3::new(a.cos(), a.sin(), 5.0) * 10.0
+            })
+            .collect();
+        let p: Vec<DVec3> = q.iter().map(|x| DVec3::new(-x.y, x.x, 0.0) * 0.3).collect();
+        assert!((milling(&Domain::Open, &q, &p) - 1.0).abs() < 1e-12);
+        assert!(polarisation(&p) < 1e-12);
+        // clockwise in 2D: the absolute value
+        let q2: Vec<DVec2> = q.iter().map(|x| x.truncate()).collect();
+        let p2: Vec<DVec2> = q2.iter().map(|x| DVec2::new(x.y, -x.x)).collect();
+        assert!((milling(&Domain::Open, &q2, &p2) - 1.0).abs() < 1e-12);
+        // the same mill on a torus, cut by the faces: still a mill
+        let torus = Domain::Periodic {
+            size: DVec2::new(30.0, 30.0),
+        };
+        let wrapped: Vec<DVec2> = q2.iter().map(|&x| torus.wrap(x)).collect();
+        assert!((milling(&torus, &wrapped, &p2) - 1.0).abs() < 1e-9);
+        assert!(milling(&Domain::Open, &wrapped, &p2) < 0.9);
+        // one agent: the polarisation of its heading, no milling, no nearest neighbour
+        let one = [DVec2::new(3.0, 4.0)];
+        let net = ProximityNet::brute_force(&one, 8.4);
+        let params = MetricParams {
+            d: 7.0,
+            collision_distance: 2.0,
+        };
+        let m = FlockMetrics::measure(&one, &[DVec2::new(0.0, 2.0)], &net, &params);
+        assert_eq!((m.polarisation, m.milling), (1.0, 0.0));
+        assert_eq!(
+            (
+                m.nearest_neighbour_mean,
+                m.nearest_neighbour_min,
+                m.min_distance
+            ),
+            (f64::INFINITY, f64::INFINITY, f64::INFINITY)
+        );
+        // agents at rest count in N
+        assert_eq!(
+            polarisation(&[DVec3::X, DVec3::ZERO, DVec3::ZERO, DVec3::Y * 2.0]),
+            2f64.sqrt() / 4.0
+        );
+        let none = FlockMetrics::measure::<DVec2>(
+            &[],
+            &[],
+            &ProximityNet::brute_force::<DVec2>(&[], 8.4),
+            &params,
+        );
+        assert_eq!((none.polarisation, none.milling), (0.0, 0.0));
+        assert!(none.extras().iter().all(|x| !x.is_nan()));
     }
 }

@@ -4,7 +4,10 @@
 //! distance and the number of colliding pairs. Every metric costs O(n + |E|).
 //!
 //! - [`ObstacleMetrics`]: the smallest agent–obstacle clearance and the agents inside obstacles.
-//! - [`FlockMetrics::measure`]: all of them at once from positions, velocities and the net.
+//! - [`FlockMetrics::measure`]: all of them at once from positions, velocities and the net;
+//!   [`FlockMetrics::measure_in`] in a periodic box (minimum image, circular-mean centre).
+//! - The order parameters of the classic models: [`polarisation`] (Vicsek et al. 1995, Couzin et
+//!   al. 2002), [`milling`] (Couzin et al. 2002), and [`nearest_neighbour_distances`].
 //! - The functions [`relative_connectivity`], [`cohesion_radius`], [`deviation_energy`],
 //!   [`velocity_mismatch`], [`component_velocity_mismatch`], [`min_distance`], [`collisions`].
 //! - [`LatticeSummary`]: edges near d, triangles, TAC 2006 Theorem 5's 3n − 6 bound and crossings
@@ -22,7 +25,8 @@ pub mod obstacles;
 
 pub use flocking::{
     FlockMetrics, MetricParams, cohesion_radius, collisions, component_velocity_mismatch,
-    deviation_energy, min_distance, relative_connectivity, velocity_mismatch,
+    deviation_energy, milling, min_distance, nearest_neighbour_distances, polarisation,
+    relative_connectivity, velocity_mismatch,
 };
 pub use obstacles::ObstacleMetrics;
 

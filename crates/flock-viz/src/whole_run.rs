@@ -164,6 +164,10 @@ mod tests {
             velocity_mismatch: 0.0,
             min_distance,
             collisions,
+            polarisation: 1.0,
+            milling: 0.0,
+            nearest_neighbour_mean: min_distance,
+            nearest_neighbour_min: min_distance,
         }
     }
 
