@@ -137,14 +137,19 @@ impl<V: Vector> Domain<V> {
         }
     }
 
-    /// The point of the image lattice of `to` nearest `from`: `from + displacement(from, to)`,
-    /// the position of `to` as an agent at `from` sees it.
+    /// The point of the image lattice of `to` nearest `from`, `to` shifted by whole periods
+    /// (`to` itself, bit for bit, when it is the nearest): the position of `to` as an agent at
+    /// `from` sees it.
     #[inline]
     #[must_use]
     pub fn image_near(&self, from: V, to: V) -> V {
         match self {
             Self::Open => to,
-            Self::Periodic { .. } => from + self.displacement(from, to),
+            Self::Periodic { size } => V::from_fn(|k| {
+                let (x, period) = (to.coord(k), size.coord(k));
+                let shift = ((x - from.coord(k)) / period).round();
+                if shift == 0.0 { x } else { x - shift * period }
+            }),
         }
     }
 }

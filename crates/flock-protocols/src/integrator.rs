@@ -245,7 +245,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         if let Some(removed) = self.conditions.as_ref().and_then(|c| c.removed()) {
             return self.metrics_without(removed, params);
         }
-        let metrics = FlockMetrics::measure(
+        let metrics = FlockMetrics::measure_in(
+            &self.domain,
             &self.swarm.positions,
             &self.swarm.velocities,
             &self.net,
@@ -462,8 +463,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let pick = |x: &[V]| kept.iter().map(|&i| x[i]).collect::<Vec<V>>();
         let (q, p) = (pick(&self.swarm.positions), pick(&self.swarm.velocities));
         let mut net = empty_net(&self.protocol);
-        NeighbourSearch::new().build(&q, self.protocol.interaction_range(), &mut net);
-        let metrics = FlockMetrics::measure(&q, &p, &net, params);
+        let r = self.protocol.interaction_range();
+        NeighbourSearch::new().build_in(&self.domain, &q, r, &mut net);
+        let metrics = FlockMetrics::measure_in(&self.domain, &q, &p, &net, params);
         match self.protocol.interaction_graph() {
             Some(graph) => {
                 let mut index = vec![usize::MAX; removed.len()];

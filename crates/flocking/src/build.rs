@@ -134,11 +134,24 @@ impl Scenario {
     /// The scenario's domain in vectors `V` (of the scenario's dimension).
     #[must_use]
     pub fn domain<V: Space>(&self) -> Domain<V> {
-        match &self.domain {
-            DomainSpec::Open => Domain::Open,
-            DomainSpec::Periodic { size } => Domain::Periodic {
-                size: to_vector(size),
+        match self.box_size() {
+            None => Domain::Open,
+            Some(size) => Domain::Periodic {
+                size: to_vector(&size),
             },
+        }
+    }
+
+    /// The sides of the scenario's periodic box, `None` in open space.
+    #[must_use]
+    pub fn box_size(&self) -> Option<Vec<f64>> {
+        match &self.domain {
+            DomainSpec::Open => None,
+            DomainSpec::Periodic { size } => Some(size.clone()),
+            DomainSpec::PeriodicAtDensity { density } => {
+                let side = (self.agents as f64 / density).powf(1.0 / self.dim as f64);
+                Some(vec![side; self.dim])
+            }
         }
     }
 

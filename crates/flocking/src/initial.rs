@@ -14,8 +14,8 @@ use crate::scenario::{Cloud, Scenario};
 pub fn initial_swarm<V: Vector>(scenario: &Scenario) -> Swarm<V> {
     let mut rng = Pcg64::seed_from_u64(scenario.seed);
     let n = scenario.agents;
-    let positions = sample(&scenario.initial.positions, n, &mut rng);
-    let velocities = sample(&scenario.initial.velocities, n, &mut rng);
+    let positions = sample(&in_box(scenario, &scenario.initial.positions), n, &mut rng);
+    let velocities = sample(&in_box(scenario, &scenario.initial.velocities), n, &mut rng);
     Swarm::new(positions, velocities)
 }
 
@@ -34,8 +34,19 @@ fn sample<V: Vector>(cloud: &Cloud, n: usize, rng: &mut Pcg64) -> Vec<V> {
 /// the obstacles in constant memory).
 pub fn initial_positions<V: Vector>(scenario: &Scenario) -> impl Iterator<Item = V> + '_ {
     let mut rng = Pcg64::seed_from_u64(scenario.seed);
-    let cloud = &scenario.initial.positions;
-    (0..scenario.agents).map(move |k| draw(cloud, k, &mut rng))
+    let cloud = in_box(scenario, &scenario.initial.positions);
+    (0..scenario.agents).map(move |k| draw(&cloud, k, &mut rng))
+}
+
+/// `cloud` with [`Cloud::Domain`] as the box [0, L) of the scenario's periodic domain.
+fn in_box(scenario: &Scenario, cloud: &Cloud) -> Cloud {
+    match (cloud, scenario.box_size()) {
+        (Cloud::Domain, Some(size)) => Cloud::Box {
+            min: vec![0.0; size.len()],
+            max: size,
+        },
+        _ => cloud.clone(),
+    }
 }
 
 /// `n` draws of `cloud` from `rng`, in order.
@@ -67,6 +78,7 @@ fn draw<V: Vector>(cloud: &Cloud, k: usize, rng: &mut Pcg64) -> V {
             mean + V::from_fn(|_| standard_normal(rng)) * *std
         }
         Cloud::Explicit(rows) => to_vector(&rows[k]),
+        Cloud::Domain => unreachable!("a validated scenario's Domain cloud is its box (in_box)"),
         Cloud::Headings { speed } => loop {
             // a direction uniform on the sphere: rejection from the cube, then normalised
             let x = V::from_fn(|_| 2.0 * rng.random::<f64>() - 1.0);

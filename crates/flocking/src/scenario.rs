@@ -202,6 +202,13 @@ pub enum DomainSpec {
         /// The sides (L₁, …, L_m), each at least twice the interaction range.
         size: Vec<f64>,
     },
+    /// The square or cube periodic box that holds the agents at number `density` ρ: side
+    /// L = (n/ρ)^(1/m), so that a sweep over `agents` keeps the density fixed (Vicsek et al. 1995
+    /// Fig. 2(a)).
+    PeriodicAtDensity {
+        /// Agents per unit area (2D) or volume (3D), > 0.
+        density: f64,
+    },
 }
 
 impl DomainSpec {
@@ -344,6 +351,8 @@ pub enum Cloud {
     },
     /// One vector per agent.
     Explicit(Vec<Vec<f64>>),
+    /// Uniform in the scenario's periodic box (a periodic domain only).
+    Domain,
     /// Vectors of one length `speed` in directions uniform on the circle or sphere: the random
     /// headings the constant-speed models start from (Vicsek et al. 1995, Couzin et al. 2002).
     Headings {

@@ -325,27 +325,54 @@ impl Scenario {
     /// A periodic box: one side per dimension, each positive and at least twice the interaction
     /// range; no obstacles on a torus (an obstacle would need its images).
     fn validate_domain(&self, problems: &mut Problems) {
-        let DomainSpec::Periodic { size } = &self.domain else {
-            return;
+        let size = match &self.domain {
+            DomainSpec::Open => return,
+            DomainSpec::Periodic { size } => {
+                if let Err(e) = vector("domain.size", size, self.dim) {
+                    problems.check(Err::<(), _>(e));
+                    return;
+                }
+                size.clone()
+            }
+            DomainSpec::PeriodicAtDensity { density } => {
+                if let Err(e) = positive("domain.density", *density) {
+                    problems.check(Err::<(), _>(e));
+                    return;
+                }
+                self.box_size().unwrap_or_default()
+            }
         };
-        if let Err(e) = vector("domain.size", size, self.dim) {
-            problems.check(Err::<(), _>(e));
-            return;
-        }
         let r = self.range();
-        for (k, &side) in size.iter().enumerate() {
-            let field = format!("domain.size[{k}]");
-            problems.check(positive(&field, side).and_then(|()| {
-                require(
-                    side >= 2.0 * r,
-                    &field,
-                    side,
-                    &format!(
-                        "is shorter than twice the interaction range r = {r}: an agent would see two images of another"
-                    ),
-                    &format!("make every side at least {}", 2.0 * r),
-                )
-            }));
+        let short = |side: f64| {
+            format!(
+                "gives a box side {side}, shorter than twice the interaction range r = {r}: an agent would see two images of another"
+            )
+        };
+        match &self.domain {
+            DomainSpec::PeriodicAtDensity { density } => {
+                let most = self.agents as f64 / (2.0 * r).powi(self.dim as i32);
+                problems.check(require(
+                    size.iter().all(|&side| side >= 2.0 * r),
+                    "domain.density",
+                    density,
+                    &short(size[0]),
+                    &format!("use a density of at most {most} for {} agents, or more agents", self.agents),
+                ));
+            }
+            _ => {
+                for (k, &side) in size.iter().enumerate() {
+                    let field = format!("domain.size[{k}]");
+                    problems.check(positive(&field, side).and_then(|()| {
+                        require(
+                            side >= 2.0 * r,
+                            &field,
+                            side,
+                            &short(side),
+                            &format!("make every side at least {}", 2.0 * r),
+                        )
+                    }));
+                }
+            }
         }
         problems.check(require(
             self.obstacles.is_empty(),
@@ -353,6 +380,13 @@ impl Scenario {
             self.obstacles.len(),
             "are not supported on a periodic domain (an obstacle would need its images across the wrap)",
             "remove the obstacles, or use domain: Open",
+        ));
+        problems.check(require(
+            self.algorithm.gamma().is_none(),
+            "domain",
+            "periodic",
+            "has no γ-agent support: the navigational feedback measures q_i − q_r in open space, and on a torus the γ-agent would need its nearest image",
+            "use an algorithm without a γ-agent on a periodic domain (Algorithm1, Consensus, the models), or domain: Open",
         ));
     }
 
@@ -484,6 +518,13 @@ impl Scenario {
                 problems.check(vector(&format!("{field}.mean"), mean, dim));
                 problems.check(length(&format!("{field}.std"), *std));
             }
+            Cloud::Domain => problems.check(require(
+                self.box_size().is_some(),
+                field,
+                "Domain",
+                "draws uniformly in the periodic box, and the scenario's domain is open",
+                "give a periodic domain (domain: Periodic(size: [...]) or PeriodicAtDensity(density: ...)), or another cloud such as Box(min: [...], max: [...])",
+            )),
             Cloud::Headings { speed } => {
                 problems.check(length(&format!("{field}.speed"), *speed));
             }

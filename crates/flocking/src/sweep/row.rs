@@ -30,11 +30,16 @@ pub struct Outcome {
     /// With obstacles: the least clearance of an agent to an obstacle and the most agents inside
     /// one, at any record.
     pub obstacles: Option<(f64, f64)>,
+    /// The mean polarisation and milling over the records after the run has settled (t ≥ the
+    /// sweep's `settle` × the duration): the time averages of the collective-motion literature
+    /// (Vicsek et al. 1995's v_a, Couzin et al. 2002's p_group and m_group). `None` without such
+    /// a record.
+    pub settled_order: Option<(f64, f64)>,
 }
 
 /// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`), each with what a
 /// figure calls it ([`metric_label`]).
-const OUTCOME_COLUMNS: [(&str, &str); 14] = {
+const OUTCOME_COLUMNS: [(&str, &str); 19] = {
     let [c, giant, radius, deviation, mismatch, distance] = FlockMetrics::REAL_COLUMNS;
     [
         (c, "connectivity C"),
@@ -51,6 +56,11 @@ const OUTCOME_COLUMNS: [(&str, &str); 14] = {
         ("inside_obstacles", "most agents inside obstacles"),
         ("settled_min_distance", "least distance after settling"),
         ("settled_collisions", "most colliding pairs after settling"),
+        ("polarisation", "polarisation (final)"),
+        ("milling", "milling (final)"),
+        ("nearest_neighbour_mean", "mean nearest-neighbour distance"),
+        ("settled_polarisation", "polarisation, mean after settling"),
+        ("settled_milling", "milling, mean after settling"),
     ]
 };
 
@@ -94,6 +104,16 @@ impl Outcome {
         let alpha_flock = summary
             .verdict(&sweep.criteria())
             .map(|v| (v.is_alpha_flocking(), v.is_strict()));
+        let settled: Vec<&FlockMetrics> = history
+            .iter()
+            .filter(|(t, _)| *t >= sweep.settle * duration)
+            .map(|(_, m)| m)
+            .collect();
+        let count = settled.len() as f64;
+        let settled_order = (!settled.is_empty()).then(|| {
+            let mean = |f: fn(&FlockMetrics) -> f64| settled.iter().map(|m| f(m)).sum::<f64>() / count;
+            (mean(|m| m.polarisation), mean(|m| m.milling))
+        });
         Self {
             metrics: FlockMetrics {
                 min_distance: whole.min_distance,
@@ -104,6 +124,7 @@ impl Outcome {
             connected_from,
             alpha_flock,
             obstacles,
+            settled_order,
         }
     }
 
@@ -128,6 +149,11 @@ impl Outcome {
             or_empty(self.obstacles.map(|(_, i)| i.to_string())),
             or_empty(self.settled.map(|s| s.min_distance.to_string())),
             or_empty(self.settled.map(|s| s.collisions.to_string())),
+            self.metrics.polarisation.to_string(),
+            self.metrics.milling.to_string(),
+            self.metrics.nearest_neighbour_mean.to_string(),
+            or_empty(self.settled_order.map(|(p, _)| p.to_string())),
+            or_empty(self.settled_order.map(|(_, m)| m.to_string())),
         ]
     }
 }
