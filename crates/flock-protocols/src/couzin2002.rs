@@ -17,8 +17,6 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 /// read in the paper's Table 1 (not re-read here from the paper itself). Δr_o and Δr_a are
 /// the paper's two axes (0–15 in its Fig. 2).
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct CouzinParams {
     /// The radius r_r > 0 of the zone of repulsion.
     pub r_r: f64,
@@ -199,7 +197,13 @@ pub fn bounded_turn<V: Vector>(from: V, to: V, max_angle: f64) -> V {
     let across = (to - from * from.dot(to)).normalize_or_zero();
     let across = if across == V::ZERO {
         // opposite directions: any perpendicular; the first axis not along `from`
-        let axis = V::from_fn(|k| if k == usize::from(from.coord(0).abs() > 0.9) { 1.0 } else { 0.0 });
+        let axis = V::from_fn(|k| {
+            if k == usize::from(from.coord(0).abs() > 0.9) {
+                1.0
+            } else {
+                0.0
+            }
+        });
         (axis - from * from.dot(axis)).normalize_or_zero()
     } else {
         across
@@ -271,7 +275,10 @@ mod tests {
         assert_abs_diff_eq!(turned.dot(DVec2::X).acos(), 0.1, epsilon = 1e-12);
         assert!(turned.y > 0.0);
         // within the bound, the whole way
-        assert_eq!(bounded_turn(DVec2::X, DVec2::new(0.1, 1.0).normalize(), 2.0), DVec2::new(0.1, 1.0).normalize());
+        assert_eq!(
+            bounded_turn(DVec2::X, DVec2::new(0.1, 1.0).normalize(), 2.0),
+            DVec2::new(0.1, 1.0).normalize()
+        );
         // opposite directions in 3D: still a unit vector turned by the bound
         let back = bounded_turn(DVec3::X, -DVec3::X, 0.2);
         assert_abs_diff_eq!(back.length(), 1.0, epsilon = 1e-15);

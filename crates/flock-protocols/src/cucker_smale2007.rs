@@ -52,28 +52,17 @@ pub struct CuckerSmale<V> {
 
 /// The parameters of the Cucker–Smale model, as a scenario writes them.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct CuckerSmaleParams {
     /// The coupling λ > 0.
-    #[cfg_attr(feature = "serde", serde(default = "one"))]
     pub lambda: f64,
     /// The kernel's scale K > 0.
-    #[cfg_attr(feature = "serde", serde(default = "one"))]
     pub k: f64,
     /// The kernel's offset σ > 0.
-    #[cfg_attr(feature = "serde", serde(default = "one"))]
     pub sigma: f64,
     /// The kernel's decay β ≥ 0 (unconditional flocking for β < 1/2).
     pub beta: f64,
     /// A cut-off of ψ beyond which pairs do not interact; `None` (the paper): every pair.
-    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub cutoff: Option<f64>,
-}
-
-#[cfg(feature = "serde")]
-const fn one() -> f64 {
-    1.0
 }
 
 impl CuckerSmaleParams {

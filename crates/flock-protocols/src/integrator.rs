@@ -346,7 +346,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                     side >= 2.0 * r,
                     &format!("domain.size[{k}]"),
                     side,
-                    &format!("is shorter than twice the interaction range r = {r} (an agent would see another agent's two images)"),
+                    &format!(
+                        "is shorter than twice the interaction range r = {r} (an agent would see another agent's two images)"
+                    ),
                     &format!("make every side of the box at least {}", 2.0 * r),
                 )?;
             }
@@ -627,7 +629,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         rk.sum_p.fill(V::ZERO);
         // stage 1 evaluates at y itself, whose net is already built
         rk.stage.velocities.copy_from_slice(&y.velocities);
-        controls_in(&self.protocol, &self.domain, t, y, &self.net, &mut self.inputs);
+        controls_in(
+            &self.protocol,
+            &self.domain,
+            t,
+            y,
+            &self.net,
+            &mut self.inputs,
+        );
         for (stage, weight) in WEIGHTS.into_iter().enumerate() {
             // here rk.stage.velocities holds p_s and self.inputs holds u_s
             for i in 0..y.len() {

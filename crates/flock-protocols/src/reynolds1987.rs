@@ -13,8 +13,6 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
 /// for its "small" and "large" workloads but for `visual_distance`: 5 small, 15 large).
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct BoidsParams {
     /// The speed s > 0: each step a boid moves s h along its heading (declaration: 1).
     pub speed: f64,
@@ -152,7 +150,8 @@ impl<V: Vector> Boids<V> {
             matching += vj;
         }
         let n = f64::from(count.max(1));
-        let w = (v + cohere / n * p.cohere_factor
+        let w = (v
+            + cohere / n * p.cohere_factor
             + separate / n * p.separate_factor
             + matching / n * p.match_factor)
             / 2.0;

@@ -12,8 +12,6 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the Vicsek model, as a scenario writes them (the paper's names).
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct VicsekParams {
     /// The speed v₀ > 0 of every particle (the paper's Fig. 2: v₀ = 0.03).
     pub v0: f64,
@@ -112,13 +110,7 @@ impl<V: Vector> Protocol<V> for Vicsek<V> {
 
     /// Each particle's new velocity from the velocities of its neighbours within r (the net's
     /// edges, ascending index) and its own.
-    fn controls(
-        &self,
-        t: f64,
-        swarm: &Swarm<V>,
-        net: &ProximityNet,
-        inputs: &mut [V],
-    ) {
+    fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let p = &swarm.velocities;
         fill_indexed(inputs, |i| {
             let mut sum = p[i];
@@ -153,12 +145,7 @@ impl<V: Vector> Protocol<V> for Vicsek<V> {
 /// The new velocity from the velocities heard within r (by their perceived minimum-image
 /// distance) and the agent's own.
 impl<V: Vector> LocalForm<V> for Vicsek<V> {
-    fn local_input(
-        &self,
-        t: f64,
-        own: &Perceived<V>,
-        heard: &[Perceived<V>],
-    ) -> V {
+    fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
         let r2 = self.params.r * self.params.r;
         let mut sum = own.velocity;
         for o in heard {
@@ -207,14 +194,15 @@ mod tests {
             Domain::Open,
         )
         .unwrap();
-        let draws: Vec<f64> = (0..20_000)
-            .map(|k| model.noise(3, f64::from(k)))
-            .collect();
+        let draws: Vec<f64> = (0..20_000).map(|k| model.noise(3, f64::from(k))).collect();
         assert!(draws.iter().all(|x| (-1.0..1.0).contains(x)));
         let mean = draws.iter().sum::<f64>() / draws.len() as f64;
         let var = draws.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / draws.len() as f64;
         // uniform on [−1, 1]: mean 0, variance 1/3 (4σ bounds)
-        assert!(mean.abs() < 4.0 * (1.0 / 3.0 / 20_000.0_f64).sqrt(), "{mean}");
+        assert!(
+            mean.abs() < 4.0 * (1.0 / 3.0 / 20_000.0_f64).sqrt(),
+            "{mean}"
+        );
         assert!((var - 1.0 / 3.0).abs() < 0.01, "{var}");
     }
 }

@@ -6,8 +6,8 @@ use approx::assert_abs_diff_eq;
 use flock_math::{Domain, Vector};
 use flock_protocols::conditions::stream::{Purpose, Streams};
 use flock_protocols::{
-    Boids, BoidsParams, Couzin, CouzinParams, CuckerSmale, CuckerSmaleParams, Integrator,
-    Protocol, Simulation, Swarm, Vicsek, VicsekParams,
+    Boids, BoidsParams, Couzin, CouzinParams, CuckerSmale, CuckerSmaleParams, Integrator, Protocol,
+    Simulation, Swarm, Vicsek, VicsekParams,
 };
 use glam::{DVec2, DVec3};
 
@@ -111,7 +111,11 @@ fn cucker_smale_agrees<V: Vector>(side: Option<f64>) {
         (q, p) = cucker_smale_step(&q, &p, 0.3, h, side);
     }
     let state = sim.swarm();
-    assert!(max_gap(&state.positions, &q) < 1e-10, "{}", max_gap(&state.positions, &q));
+    assert!(
+        max_gap(&state.positions, &q) < 1e-10,
+        "{}",
+        max_gap(&state.positions, &q)
+    );
     assert!(max_gap(&state.velocities, &p) < 1e-12);
 }
 
@@ -136,8 +140,8 @@ fn cucker_smale_aligns_unconditionally_below_one_half() {
         for seed in 0..10 {
             let swarm = random_swarm::<DVec2>(12, 100.0, 5.0, 100 + seed);
             let mean0 = swarm.mean_velocity();
-            let model =
-                CuckerSmale::new(CuckerSmaleParams::with_beta(beta), 8.4, 12, Domain::Open).unwrap();
+            let model = CuckerSmale::new(CuckerSmaleParams::with_beta(beta), 8.4, 12, Domain::Open)
+                .unwrap();
             // RK4 with h = 0.5: the rates λ ψ ≤ 1 keep it stable and accurate
             let mut sim = Simulation::new(model, Integrator::Rk4, swarm, 0.5).unwrap();
             let mut steps = 0;
@@ -146,7 +150,11 @@ fn cucker_smale_aligns_unconditionally_below_one_half() {
                 steps += 1;
             }
             let p = sim.swarm().velocities.clone();
-            assert!(mismatch(&p) < 1e-6, "β = {beta}, seed {seed}: {} after {steps} steps", mismatch(&p));
+            assert!(
+                mismatch(&p) < 1e-6,
+                "β = {beta}, seed {seed}: {} after {steps} steps",
+                mismatch(&p)
+            );
             let mean = p.iter().copied().sum::<DVec2>() / 12.0;
             assert_abs_diff_eq!(mean, mean0, epsilon = 1e-12);
         }
@@ -178,7 +186,10 @@ fn cucker_smale_beyond_one_half_keeps_a_fast_pair_apart() {
     let x = (s.positions[1] - s.positions[0]).x;
     let v = (s.velocities[1] - s.velocities[0]).x;
     let bound = v0 - (core::f64::consts::FRAC_PI_2 - x0.atan());
-    assert!(v > bound && bound > 1.2, "relative speed {v}, bound {bound}");
+    assert!(
+        v > bound && bound > 1.2,
+        "relative speed {v}, bound {bound}"
+    );
     assert_abs_diff_eq!(v, v0 - (x.atan() - x0.atan()), epsilon = 1e-9);
     // the complement: β = 0.25 aligns the same pair
     let model = CuckerSmale::new(CuckerSmaleParams::with_beta(0.25), 8.4, 2, Domain::Open).unwrap();
@@ -210,7 +221,8 @@ fn vicsek_step(
                 .filter(|&j| j == i || offset(q[i], q[j], side).length() < params.r)
                 .map(|j| p[j])
                 .sum();
-            let noise = params.eta * (streams.draws(Purpose::ModelNoise, i as u64, k).uniform() - 0.5);
+            let noise =
+                params.eta * (streams.draws(Purpose::ModelNoise, i as u64, k).uniform() - 0.5);
             let theta = sum.y.atan2(sum.x) + noise;
             DVec2::new(theta.cos(), theta.sin()) * params.v0
         })
@@ -260,7 +272,11 @@ fn vicsek_equals_brute_force_open_and_periodic() {
 /// `average` of `steps` steps.
 fn vicsek_order(n: usize, eta: f64, steps: u64, average: u64, seed: u64) -> f64 {
     let side = (n as f64 / 4.0).sqrt();
-    let params = VicsekParams { v0: 0.03, r: 1.0, eta };
+    let params = VicsekParams {
+        v0: 0.03,
+        r: 1.0,
+        eta,
+    };
     let mut swarm = random_swarm::<DVec2>(n, side / 2.0, 0.0, seed);
     for q in &mut swarm.positions {
         *q += DVec2::splat(side / 2.0);
@@ -295,7 +311,10 @@ fn vicsek_orders_at_low_noise_and_not_at_full_noise() {
     assert!(low > 0.95, "η = 0.1: v_a = {low}");
     let full = vicsek_order(n, core::f64::consts::TAU, 300, 200, 1);
     let random = (core::f64::consts::PI / 4.0).sqrt() / (n as f64).sqrt();
-    assert!(full > 0.5 * random && full < 2.0 * random, "η = 2π: v_a = {full}, {random}");
+    assert!(
+        full > 0.5 * random && full < 2.0 * random,
+        "η = 2π: v_a = {full}, {random}"
+    );
 }
 
 // ---------------------------------------------------------------- boids
@@ -350,7 +369,9 @@ fn boids_agree<V: Vector>(side: Option<f64>) {
     }
     let h = 0.5;
     let model = Boids::new(b, h, 4, domain(side)).unwrap();
-    let orders: Vec<Vec<u32>> = (0..10).map(|k| model.activation_order(f64::from(k) * h, n)).collect();
+    let orders: Vec<Vec<u32>> = (0..10)
+        .map(|k| model.activation_order(f64::from(k) * h, n))
+        .collect();
     let mut sim = Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), h)
         .unwrap()
         .with_domain(domain(side))
@@ -362,7 +383,11 @@ fn boids_agree<V: Vector>(side: Option<f64>) {
         boids_step(&mut q, &mut heading, order, b, h, side);
     }
     let state = sim.swarm();
-    assert!(max_gap(&state.positions, &q) < 1e-9, "{}", max_gap(&state.positions, &q));
+    assert!(
+        max_gap(&state.positions, &q) < 1e-9,
+        "{}",
+        max_gap(&state.positions, &q)
+    );
     let p: Vec<V> = heading.iter().map(|&v| v * b.speed).collect();
     assert!(max_gap(&state.velocities, &p) < 1e-12);
 }
@@ -390,7 +415,13 @@ fn boids_order_is_a_permutation_drawn_anew_each_step() {
 // ---------------------------------------------------------------- Couzin
 
 /// The desired direction of Couzin et al. 2002 without noise, then the bounded turn, brute force.
-fn couzin_step<V: Vector>(q: &[V], p: &[V], c: CouzinParams, tau: f64, side: Option<f64>) -> (Vec<V>, Vec<V>) {
+fn couzin_step<V: Vector>(
+    q: &[V],
+    p: &[V],
+    c: CouzinParams,
+    tau: f64,
+    side: Option<f64>,
+) -> (Vec<V>, Vec<V>) {
     let n = q.len();
     let r_o = c.r_r + c.delta_r_o;
     let r_a = r_o + c.delta_r_a;
@@ -469,7 +500,11 @@ fn couzin_agrees<V: Vector>(side: Option<f64>) {
         (q, p) = couzin_step(&q, &p, c, tau, side);
     }
     let state = sim.swarm();
-    assert!(max_gap(&state.positions, &q) < 1e-9, "{}", max_gap(&state.positions, &q));
+    assert!(
+        max_gap(&state.positions, &q) < 1e-9,
+        "{}",
+        max_gap(&state.positions, &q)
+    );
     assert!(max_gap(&state.velocities, &p) < 1e-9);
 }
 
@@ -493,7 +528,9 @@ fn couzin_noise_has_the_papers_spread() {
     // τ = 1 s: the turning bound θ τ = 40° lets every drawn turn through
     let tau = 1.0;
     let n = 2000;
-    let q: Vec<DVec2> = (0..n).map(|i| DVec2::new(100.0 * f64::from(i), 0.0)).collect();
+    let q: Vec<DVec2> = (0..n)
+        .map(|i| DVec2::new(100.0 * f64::from(i), 0.0))
+        .collect();
     let p = vec![DVec2::new(c.speed, 0.0); n as usize];
     let model = Couzin::new(c, tau, 7, Domain::Open).unwrap();
     let mut inputs = vec![DVec2::ZERO; n as usize];
@@ -509,19 +546,32 @@ fn couzin_noise_has_the_papers_spread() {
 
 /// A run of Algorithm 1 (the γ-agent-free α-interaction, TAC 2006 eq. 23 with c₁ = c₂ = 1) from
 /// a perturbed triangular lattice drifting at `drift`, in `domain`.
-fn drifting_lattice(domain: Domain<DVec2>, drift: DVec2, offset: DVec2) -> Simulation<DVec2, flock_protocols::Algorithm1> {
+fn drifting_lattice(
+    domain: Domain<DVec2>,
+    drift: DVec2,
+    offset: DVec2,
+) -> Simulation<DVec2, flock_protocols::Algorithm1> {
     let mut q = crate::common::triangular_lattice::<DVec2>(5, 6, 7.0);
     for (k, x) in q.iter_mut().enumerate() {
-        *x += offset + DVec2::new(0.3 * ((k * 7) % 5) as f64 / 5.0, 0.2 * ((k * 3) % 4) as f64 / 4.0);
+        *x += offset
+            + DVec2::new(
+                0.3 * ((k * 7) % 5) as f64 / 5.0,
+                0.2 * ((k * 3) % 4) as f64 / 4.0,
+            );
     }
     let p = vec![drift; q.len()];
     let protocol = flock_protocols::Algorithm1 {
         alpha: crate::common::papers_alpha(),
     };
-    Simulation::new(protocol, Integrator::SymplecticEuler, Swarm::new(q, p), 0.01)
-        .unwrap()
-        .with_domain(domain)
-        .unwrap()
+    Simulation::new(
+        protocol,
+        Integrator::SymplecticEuler,
+        Swarm::new(q, p),
+        0.01,
+    )
+    .unwrap()
+    .with_domain(domain)
+    .unwrap()
 }
 
 /// Away from the wrap the torus changes nothing: the run of Algorithm 1 in a box of side 400
@@ -539,8 +589,16 @@ fn periodic_run_equals_open_space_away_from_the_wrap() {
         periodic.step();
     }
     let (a, b) = (open.swarm(), periodic.swarm());
-    for (x, y) in a.positions.iter().zip(&b.positions).chain(a.velocities.iter().zip(&b.velocities)) {
-        assert_eq!((x.x.to_bits(), x.y.to_bits()), (y.x.to_bits(), y.y.to_bits()));
+    for (x, y) in a
+        .positions
+        .iter()
+        .zip(&b.positions)
+        .chain(a.velocities.iter().zip(&b.velocities))
+    {
+        assert_eq!(
+            (x.x.to_bits(), x.y.to_bits()),
+            (y.x.to_bits(), y.y.to_bits())
+        );
     }
 }
 
@@ -580,7 +638,11 @@ fn a_lattice_crossing_the_wrap_keeps_its_metrics() {
         }
         let (m_open, m_torus) = (open.metrics(&params), periodic.metrics(&params));
         assert_eq!(m_torus.connectivity, 1.0);
-        assert_abs_diff_eq!(m_torus.deviation_energy, m_open.deviation_energy, epsilon = 1e-9);
+        assert_abs_diff_eq!(
+            m_torus.deviation_energy,
+            m_open.deviation_energy,
+            epsilon = 1e-9
+        );
         // R about the circular mean, not the arithmetic one: equal only for a flock small
         // against the box
         let gap = (m_torus.cohesion_radius - m_open.cohesion_radius).abs();
@@ -588,6 +650,12 @@ fn a_lattice_crossing_the_wrap_keeps_its_metrics() {
         assert_abs_diff_eq!(m_torus.min_distance, m_open.min_distance, epsilon = 1e-9);
         assert_abs_diff_eq!(m_torus.polarisation, m_open.polarisation, epsilon = 1e-12);
     }
-    assert!(straddled >= 5, "the flock straddled the faces at only {straddled} checks");
-    assert!(worst_radius < 0.01, "R on the torus {worst_radius} from R in open space");
+    assert!(
+        straddled >= 5,
+        "the flock straddled the faces at only {straddled} checks"
+    );
+    assert!(
+        worst_radius < 0.01,
+        "R on the torus {worst_radius} from R in open space"
+    );
 }

@@ -112,22 +112,34 @@ impl Scenario {
                 };
                 Box::new(consensus.map_err(within("algorithm"))?)
             }
-            Algorithm::CuckerSmale(params) => Box::new(
-                CuckerSmale::new(*params, r, self.agents, self.domain())
-                    .map_err(within("algorithm"))?,
-            ),
-            Algorithm::Vicsek(params) => Box::new(
-                Vicsek::new(*params, self.step, self.seed, self.domain())
-                    .map_err(within("algorithm"))?,
-            ),
-            Algorithm::Boids(params) => Box::new(
-                Boids::new(*params, self.step, self.seed, self.domain())
-                    .map_err(within("algorithm"))?,
-            ),
-            Algorithm::Couzin(params) => Box::new(
-                Couzin::new(*params, self.step, self.seed, self.domain())
-                    .map_err(within("algorithm"))?,
-            ),
+            model @ Algorithm::CuckerSmale { .. } => {
+                let params = model.cucker_smale().unwrap_or_else(|| unreachable!());
+                Box::new(
+                    CuckerSmale::new(params, r, self.agents, self.domain())
+                        .map_err(within("algorithm"))?,
+                )
+            }
+            model @ Algorithm::Vicsek { .. } => {
+                let params = model.vicsek().unwrap_or_else(|| unreachable!());
+                Box::new(
+                    Vicsek::new(params, self.step, self.seed, self.domain())
+                        .map_err(within("algorithm"))?,
+                )
+            }
+            model @ Algorithm::Boids { .. } => {
+                let params = model.boids().unwrap_or_else(|| unreachable!());
+                Box::new(
+                    Boids::new(params, self.step, self.seed, self.domain())
+                        .map_err(within("algorithm"))?,
+                )
+            }
+            model @ Algorithm::Couzin { .. } => {
+                let params = model.couzin().unwrap_or_else(|| unreachable!());
+                Box::new(
+                    Couzin::new(params, self.step, self.seed, self.domain())
+                        .map_err(within("algorithm"))?,
+                )
+            }
         })
     }
 

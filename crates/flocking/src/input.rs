@@ -57,12 +57,11 @@ pub fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
-/// The RON options of scenario and sweep files: `IMPLICIT_SOME`, `UNWRAP_VARIANT_NEWTYPES` (a
-/// model's parameters written in its variant: `Vicsek(v0: 0.03, r: 1.0, eta: 2.0)`), nesting at most [`MAX_NESTING`].
+/// The RON options of scenario and sweep files: `IMPLICIT_SOME`, nesting at most [`MAX_NESTING`].
 #[must_use]
 pub fn ron_options() -> ron::Options {
     ron::Options::default()
-        .with_default_extension(Extensions::IMPLICIT_SOME | Extensions::UNWRAP_VARIANT_NEWTYPES)
+        .with_default_extension(Extensions::IMPLICIT_SOME)
         .with_recursion_limit(MAX_NESTING)
 }
 

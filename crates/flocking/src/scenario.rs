@@ -14,8 +14,8 @@ use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
-    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, BoidsParams, Conditions,
-    CouzinParams, CuckerSmaleParams, GammaAgent, Integrator, VicsekParams, critical_damping,
+    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, BoidsParams, Conditions, CouzinParams,
+    CuckerSmaleParams, GammaAgent, Integrator, VicsekParams, critical_damping,
 };
 
 use crate::error::ScenarioError;
@@ -176,17 +176,192 @@ pub enum Algorithm {
         graph: Option<FixedGraph>,
     },
     /// The Cucker–Smale model (IEEE TAC 52(5), 2007): ṗ_i = (λ/N) Σ_j ψ(‖q_j − q_i‖)(p_j − p_i),
-    /// ψ(r) = K/(σ² + r²)^β, every pair (`CuckerSmale(beta: 0.25)`).
-    CuckerSmale(CuckerSmaleParams),
+    /// ψ(r) = K/(σ² + r²)^β, every pair (`CuckerSmale(beta: 0.25)`; [`CuckerSmaleParams`]).
+    CuckerSmale {
+        /// The coupling λ > 0 (default 1).
+        #[serde(default = "one")]
+        lambda: f64,
+        /// The kernel's scale K > 0 (default 1).
+        #[serde(default = "one")]
+        k: f64,
+        /// The kernel's offset σ > 0 (default 1).
+        #[serde(default = "one")]
+        sigma: f64,
+        /// The kernel's decay β ≥ 0: unconditional flocking for β < 1/2.
+        beta: f64,
+        /// A cut-off of ψ; `None` (the paper): every pair interacts.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        cutoff: Option<f64>,
+    },
     /// The Vicsek model (PRL 75, 1995): constant speed v₀, the neighbours' mean heading within
-    /// r plus uniform noise in [−η/2, η/2]; planar (`Vicsek(v0: 0.03, r: 1.0, eta: 2.0)`).
-    Vicsek(VicsekParams),
-    /// Reynolds's boids as the ABM frameworks' benchmark declares them (`Boids(visual_distance: 5.0)`,
-    /// every other parameter at the declaration's default).
-    Boids(BoidsParams),
-    /// The zone model of Couzin et al. (J. theor. Biol. 218, 2002) (`Couzin(delta_r_o: 2.0,
-    /// delta_r_a: 12.0)`, the others at the paper's values).
-    Couzin(CouzinParams),
+    /// r plus uniform noise in [−η/2, η/2]; planar (`Vicsek(eta: 2.0)`; [`VicsekParams`]).
+    Vicsek {
+        /// The speed v₀ > 0 (default 0.03, the paper's Fig. 2).
+        #[serde(default = "vicsek_v0")]
+        v0: f64,
+        /// The interaction radius r > 0 (default 1, the paper's unit).
+        #[serde(default = "one")]
+        r: f64,
+        /// The noise amplitude η ∈ [0, 2π].
+        eta: f64,
+    },
+    /// Reynolds's boids as the ABM frameworks' benchmark declares them (`Boids(visual_distance:
+    /// 5.0)`; every parameter defaults to the declaration's, [`BoidsParams`]).
+    Boids {
+        /// The speed s > 0 (default 1).
+        #[serde(default = "one")]
+        speed: f64,
+        /// The cohesion weight (default 0.03).
+        #[serde(default = "boids_cohere")]
+        cohere_factor: f64,
+        /// Neighbours closer than this are pushed away (default 1).
+        #[serde(default = "one")]
+        separation: f64,
+        /// The separation weight (default 0.015).
+        #[serde(default = "boids_separate")]
+        separate_factor: f64,
+        /// The alignment weight (default 0.05).
+        #[serde(default = "boids_match")]
+        match_factor: f64,
+        /// The visual distance (default 5, the declaration's "small"; 15 "large").
+        #[serde(default = "boids_vision")]
+        visual_distance: f64,
+    },
+    /// The zone model of Couzin et al. (J. theor. Biol. 218, 2002) (`Couzin(delta_r_o: 1.0,
+    /// delta_r_a: 14.0)`; the others default to the paper's values, [`CouzinParams`]).
+    Couzin {
+        /// The radius r_r of the zone of repulsion (default 1).
+        #[serde(default = "one")]
+        r_r: f64,
+        /// The width Δr_o ≥ 0 of the zone of orientation.
+        delta_r_o: f64,
+        /// The width Δr_a ≥ 0 of the zone of attraction.
+        delta_r_a: f64,
+        /// The field of perception α in degrees (default 270).
+        #[serde(default = "couzin_field")]
+        field_of_perception: f64,
+        /// The largest turning rate θ in degrees per second (default 40).
+        #[serde(default = "couzin_turning")]
+        turning_rate: f64,
+        /// The speed s (default 3).
+        #[serde(default = "couzin_speed")]
+        speed: f64,
+        /// The standard deviation σ (rad) of the angular noise (default 0.05).
+        #[serde(default = "couzin_noise")]
+        noise: f64,
+    },
+}
+
+// The models' defaults, from their parameter types (one definition of each value).
+fn one() -> f64 {
+    1.0
+}
+fn vicsek_v0() -> f64 {
+    0.03
+}
+fn boids_cohere() -> f64 {
+    BoidsParams::default().cohere_factor
+}
+fn boids_separate() -> f64 {
+    BoidsParams::default().separate_factor
+}
+fn boids_match() -> f64 {
+    BoidsParams::default().match_factor
+}
+fn boids_vision() -> f64 {
+    BoidsParams::default().visual_distance
+}
+fn couzin_field() -> f64 {
+    CouzinParams::default().field_of_perception
+}
+fn couzin_turning() -> f64 {
+    CouzinParams::default().turning_rate
+}
+fn couzin_speed() -> f64 {
+    CouzinParams::default().speed
+}
+fn couzin_noise() -> f64 {
+    CouzinParams::default().noise
+}
+
+impl Algorithm {
+    /// The Cucker–Smale parameters of [`Algorithm::CuckerSmale`].
+    #[must_use]
+    pub fn cucker_smale(&self) -> Option<CuckerSmaleParams> {
+        match *self {
+            Self::CuckerSmale {
+                lambda,
+                k,
+                sigma,
+                beta,
+                cutoff,
+            } => Some(CuckerSmaleParams {
+                lambda,
+                k,
+                sigma,
+                beta,
+                cutoff,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The parameters of [`Algorithm::Vicsek`].
+    #[must_use]
+    pub fn vicsek(&self) -> Option<VicsekParams> {
+        match *self {
+            Self::Vicsek { v0, r, eta } => Some(VicsekParams { v0, r, eta }),
+            _ => None,
+        }
+    }
+
+    /// The parameters of [`Algorithm::Boids`].
+    #[must_use]
+    pub fn boids(&self) -> Option<BoidsParams> {
+        match *self {
+            Self::Boids {
+                speed,
+                cohere_factor,
+                separation,
+                separate_factor,
+                match_factor,
+                visual_distance,
+            } => Some(BoidsParams {
+                speed,
+                cohere_factor,
+                separation,
+                separate_factor,
+                match_factor,
+                visual_distance,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The parameters of [`Algorithm::Couzin`].
+    #[must_use]
+    pub fn couzin(&self) -> Option<CouzinParams> {
+        match *self {
+            Self::Couzin {
+                r_r,
+                delta_r_o,
+                delta_r_a,
+                field_of_perception,
+                turning_rate,
+                speed,
+                noise,
+            } => Some(CouzinParams {
+                r_r,
+                delta_r_o,
+                delta_r_a,
+                field_of_perception,
+                turning_rate,
+                speed,
+                noise,
+            }),
+            _ => None,
+        }
+    }
 }
 
 /// The space of a scenario.
@@ -243,10 +418,10 @@ impl Algorithm {
             | Self::Flocking2003 { .. }
             | Self::Tanner { .. }
             | Self::Consensus { .. }
-            | Self::Vicsek(_)
-            | Self::Boids(_)
-            | Self::Couzin(_) => true,
-            Self::CuckerSmale(params) => params.cutoff.is_some(),
+            | Self::Vicsek { .. }
+            | Self::Boids { .. }
+            | Self::Couzin { .. } => true,
+            Self::CuckerSmale { cutoff, .. } => cutoff.is_some(),
         }
     }
 
@@ -254,7 +429,10 @@ impl Algorithm {
     /// rather than an acceleration.
     #[must_use]
     pub fn sets_velocity(&self) -> bool {
-        matches!(self, Self::Vicsek(_) | Self::Boids(_) | Self::Couzin(_))
+        matches!(
+            self,
+            Self::Vicsek { .. } | Self::Boids { .. } | Self::Couzin { .. }
+        )
     }
 
     /// Whether the algorithm sees the scenario's obstacles.
@@ -424,11 +602,20 @@ impl Scenario {
     /// boids' visual distance plus 2 s h, Couzin's r_a, Cucker–Smale's cut-off when it has one).
     #[must_use]
     pub fn range(&self) -> f64 {
-        match &self.algorithm {
-            Algorithm::CuckerSmale(p) => p.cutoff.unwrap_or_else(|| self.alpha.range()),
-            Algorithm::Vicsek(p) => p.r,
-            Algorithm::Boids(p) => p.visual_distance + 2.0 * p.speed * self.step,
-            Algorithm::Couzin(p) => p.r_r + p.delta_r_o + p.delta_r_a,
+        match self.algorithm {
+            Algorithm::CuckerSmale { cutoff, .. } => cutoff.unwrap_or_else(|| self.alpha.range()),
+            Algorithm::Vicsek { r, .. } => r,
+            Algorithm::Boids {
+                visual_distance,
+                speed,
+                ..
+            } => visual_distance + 2.0 * speed * self.step,
+            Algorithm::Couzin {
+                r_r,
+                delta_r_o,
+                delta_r_a,
+                ..
+            } => r_r + delta_r_o + delta_r_a,
             _ => self.alpha.range(),
         }
     }
@@ -439,10 +626,10 @@ impl Scenario {
     #[must_use]
     pub fn collision_distance(&self) -> f64 {
         self.collision_distance
-            .unwrap_or_else(|| match &self.algorithm {
-                Algorithm::Boids(p) => p.separation.min(self.range()),
-                Algorithm::Couzin(p) => p.r_r,
-                Algorithm::Vicsek(p) => COLLISION_FRACTION * p.r,
+            .unwrap_or_else(|| match self.algorithm {
+                Algorithm::Boids { separation, .. } => separation.min(self.range()),
+                Algorithm::Couzin { r_r, .. } => r_r,
+                Algorithm::Vicsek { r, .. } => COLLISION_FRACTION * r,
                 _ => COLLISION_FRACTION * self.alpha.d,
             })
     }
@@ -467,8 +654,7 @@ impl Scenario {
     /// # Errors
     /// Never for a validated scenario; the RON serializer's error otherwise.
     pub fn to_ron(&self) -> Result<String, ron::Error> {
-        let config = ron::ser::PrettyConfig::new()
-            .extensions(Extensions::IMPLICIT_SOME | Extensions::UNWRAP_VARIANT_NEWTYPES);
+        let config = ron::ser::PrettyConfig::new().extensions(Extensions::IMPLICIT_SOME);
         let text = ron::ser::to_string_pretty(self, config)?;
         let defaults = self.unset_defaults();
         if defaults.is_empty() {

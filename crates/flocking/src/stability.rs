@@ -192,9 +192,12 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
     };
     match &scenario.algorithm {
         // discrete-time maps with their own step: no continuous dynamics to resolve
-        Algorithm::Vicsek(_) | Algorithm::Boids(_) | Algorithm::Couzin(_) => return None,
+        Algorithm::Vicsek { .. } | Algorithm::Boids { .. } | Algorithm::Couzin { .. } => {
+            return None;
+        }
         // ṗ = −(λ/N) L_ψ p with ψ ≤ K/σ^{2β}: by Gershgorin λ_max ≤ 2 λ K (N − 1) / (N σ^{2β})
-        Algorithm::CuckerSmale(p) => {
+        model @ Algorithm::CuckerSmale { .. } => {
+            let p = model.cucker_smale().unwrap_or_else(|| unreachable!());
             let lambda = 2.0 * p.lambda * p.k / (p.sigma * p.sigma).powf(p.beta);
             let step = radius / lambda;
             return (step.is_finite() && step > 0.0).then_some(step);

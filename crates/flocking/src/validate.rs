@@ -307,10 +307,10 @@ impl Scenario {
                     problems.check(self.validate_fixed_graph(graph, false));
                 }
             }
-            Algorithm::CuckerSmale(_)
-            | Algorithm::Vicsek(_)
-            | Algorithm::Boids(_)
-            | Algorithm::Couzin(_) => {
+            Algorithm::CuckerSmale { .. }
+            | Algorithm::Vicsek { .. }
+            | Algorithm::Boids { .. }
+            | Algorithm::Couzin { .. } => {
                 // the model's constructor checks its parameters, each named
                 let built = match self.dim {
                     2 => self.protocol::<DVec2>().map(|_| ()),
@@ -356,7 +356,10 @@ impl Scenario {
                     "domain.density",
                     density,
                     &short(size[0]),
-                    &format!("use a density of at most {most} for {} agents, or more agents", self.agents),
+                    &format!(
+                        "use a density of at most {most} for {} agents, or more agents",
+                        self.agents
+                    ),
                 ));
             }
             _ => {

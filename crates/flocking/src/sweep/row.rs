@@ -111,7 +111,8 @@ impl Outcome {
             .collect();
         let count = settled.len() as f64;
         let settled_order = (!settled.is_empty()).then(|| {
-            let mean = |f: fn(&FlockMetrics) -> f64| settled.iter().map(|m| f(m)).sum::<f64>() / count;
+            let mean =
+                |f: fn(&FlockMetrics) -> f64| settled.iter().map(|m| f(m)).sum::<f64>() / count;
             (mean(|m| m.polarisation), mean(|m| m.milling))
         });
         Self {
