@@ -73,7 +73,7 @@ impl FlockMetrics {
     /// feature the components (union-find) are found while another thread measures the edges,
     /// the cohesion radius and the velocity mismatch; each is computed as without it.
     ///
-    /// A net built by [`NeighbourSearch`](flock_graph::NeighbourSearch) from `q` has the identity
+    /// A net built by [`NeighbourSearch`] from `q` has the identity
     /// numbering: `q` and `p` are then simply in the order of the agents. A simulation that
     /// stores its agents otherwise measures them itself (`flock_protocols::Simulation::metrics`),
     /// so that a state and a net of different orders never meet.
