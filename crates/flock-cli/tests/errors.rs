@@ -676,7 +676,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
     assert_eq!(metrics[0], METRICS_HEADER);
     assert_eq!(
         metrics[0],
-        "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy"
+        "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,components"
     );
     assert_eq!(metrics.len(), 3, "{metrics:?}");
     for row in &metrics[1..] {
@@ -684,7 +684,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
             .split(',')
             .map(|x| x.parse().expect("a number"))
             .collect();
-        assert_eq!(values.len(), 9, "{row}");
+        assert_eq!(values.len(), 14, "{row}");
         assert!(values.iter().all(|x| x.is_finite()), "{row}");
     }
     assert!(metrics[1].starts_with("0,"), "{}", metrics[1]);

@@ -73,7 +73,7 @@ impl FlockMetrics {
     /// feature the components (union-find) are found while another thread measures the edges,
     /// the cohesion radius and the velocity mismatch; each is computed as without it.
     ///
-    /// A net built by [`NeighbourSearch`](flock_graph::NeighbourSearch) from `q` has the identity
+    /// A net built by [`NeighbourSearch`] from `q` has the identity
     /// numbering: `q` and `p` are then simply in the order of the agents. A simulation that
     /// stores its agents otherwise measures them itself (`flock_protocols::Simulation::metrics`),
     /// so that a state and a net of different orders never meet.
@@ -837,7 +837,7 @@ mod tests {
     }
 
     /// A flock about `centre` (spread ±`spread` per axis) with velocities turning about it.
-    fn flock<V: Vector>(seed: u64, n: usize, centre: V, spread: f64) -> (Vec<V>, Vec<V>) {
+    fn moving_group<V: Vector>(seed: u64, n: usize, centre: V, spread: f64) -> (Vec<V>, Vec<V>) {
         let mut u = uniform(seed);
         let q: Vec<V> = (0..n)
             .map(|_| centre + V::from_fn(|_| spread * (2.0 * u() - 1.0)))
@@ -860,7 +860,7 @@ mod tests {
         };
         // clustered (every agent has a neighbour) and sparse (some have none: the search path)
         for (seed, n, spread) in [(1, 60, 6.0), (2, 40, 14.0), (3, 2, 1.0)] {
-            let (q_open, p) = flock::<V>(seed, n, V::from_fn(|_| 100.0), spread);
+            let (q_open, p) = moving_group::<V>(seed, n, V::from_fn(|_| 100.0), spread);
             let corner = V::from_fn(|k| size.coord(k) - 0.7);
             let shift = corner - V::from_fn(|_| 100.0);
             let q_torus: Vec<V> = q_open.iter().map(|&x| torus.wrap(x + shift)).collect();
@@ -931,7 +931,7 @@ mod tests {
     /// Open space is `measure`, bit for bit, and `measure` keeps the former definitions.
     #[test]
     fn open_domain_is_measure_bit_for_bit() {
-        let (q, p) = flock::<DVec3>(7, 80, DVec3::ZERO, 12.0);
+        let (q, p) = moving_group::<DVec3>(7, 80, DVec3::ZERO, 12.0);
         let net = ProximityNet::brute_force(&q, 8.4);
         let params = MetricParams {
             d: 7.0,
@@ -960,7 +960,7 @@ mod tests {
         };
         for domain in [Domain::Open, Domain::Periodic { size }] {
             for (seed, n, spread) in [(11, 50, 8.0), (12, 50, 39.9)] {
-                let (q, p) = flock::<V>(seed, n, V::from_fn(|_| 40.0), spread);
+                let (q, p) = moving_group::<V>(seed, n, V::from_fn(|_| 40.0), spread);
                 let brute: Vec<f64> = (0..n)
                     .map(|i| {
                         (0..n)

@@ -33,11 +33,13 @@ struct Memory {
     keep_trajectory: bool,
     /// The names of the protocol's diagnostic columns (after `energy`).
     diagnostics: Vec<&'static str>,
-    /// The real-valued columns of `metrics.csv` but `collisions`: t, the six metrics, the energy,
-    /// then the diagnostics.
+    /// The real-valued columns of `metrics.csv` but `collisions` and `components`: t, the six
+    /// metrics, the energy, the four extra metrics, then the diagnostics.
     reals: Vec<Vec<f64>>,
     /// The `collisions` column.
     collisions: Vec<i64>,
+    /// The `components` column.
+    components: Vec<i64>,
     /// The recorded positions (frames of n rows of dim), when kept.
     positions: Vec<f64>,
     /// The recorded velocities, when kept.
@@ -50,8 +52,9 @@ struct Memory {
     agents: usize,
 }
 
-/// The columns before the diagnostics: t, the real metrics, then the energy.
-const REAL_COLUMNS: usize = FlockMetrics::REAL_COLUMNS.len() + 2;
+/// The real columns before the diagnostics: t, the real metrics, the energy, the extra metrics.
+const REAL_COLUMNS: usize =
+    FlockMetrics::REAL_COLUMNS.len() + 2 + FlockMetrics::EXTRA_COLUMNS.len();
 
 impl Memory {
     /// Nothing recorded yet; room for every record of a run of `scenario` from t = 0 (t = 0,
@@ -86,12 +89,15 @@ impl Memory {
         let values = std::iter::once(record.t)
             .chain(m.reals())
             .chain([record.energy])
+            .chain(m.extras())
             .chain(record.diagnostics.iter().map(|(_, value)| *value));
         for (column, value) in self.reals.iter_mut().zip(values) {
             column.push(value);
         }
         self.collisions
             .push(i64::try_from(m.collisions).unwrap_or(i64::MAX));
+        self.components
+            .push(i64::try_from(m.components).unwrap_or(i64::MAX));
         let state = &record.state;
         (self.dim, self.agents) = (state.dim, state.agents());
         self.last.0 = record.t;
@@ -117,20 +123,30 @@ impl Memory {
         let names = std::iter::once(TIME)
             .chain(FlockMetrics::REAL_COLUMNS)
             .chain(["energy"])
+            .chain(FlockMetrics::EXTRA_COLUMNS)
             .chain(self.diagnostics.iter().copied());
         let mut columns = Vec::with_capacity(self.reals.len() + 1);
         for (name, column) in names.zip(self.reals) {
             columns.push((name.to_owned(), Column::Real(column)));
         }
-        // `collisions` stands before `energy`, as in metrics.csv
-        let at = if columns.is_empty() {
-            0
+        // `collisions` stands before `energy`, and `components` after the extra metrics, as in
+        // metrics.csv
+        let (collisions, components) = if columns.is_empty() {
+            (0, 1)
         } else {
-            REAL_COLUMNS - 1
+            let collisions = 1 + FlockMetrics::REAL_COLUMNS.len();
+            (
+                collisions,
+                collisions + 2 + FlockMetrics::EXTRA_COLUMNS.len(),
+            )
         };
         columns.insert(
-            at,
+            collisions,
             ("collisions".to_owned(), Column::Integer(self.collisions)),
+        );
+        columns.insert(
+            components,
+            ("components".to_owned(), Column::Integer(self.components)),
         );
         if self.keep_trajectory {
             let size = self.agents * self.dim;
@@ -157,7 +173,7 @@ impl Memory {
     }
 }
 
-/// A column of `metrics.csv`: `collisions` counts, the others are reals.
+/// A column of `metrics.csv`: `collisions` and `components` count, the others are reals.
 enum Column {
     Real(Vec<f64>),
     Integer(Vec<i64>),
@@ -504,7 +520,7 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         .metrics
         .into_iter()
         .map(|(name, values)| {
-            let column = if name == "collisions" {
+            let column = if name == "collisions" || name == "components" {
                 // whole numbers, as written
                 Column::Integer(values.iter().map(|&x| x as i64).collect())
             } else {

@@ -269,9 +269,11 @@ impl PySimulation {
         PyScenario { inner }
     }
 
-    /// The flocking metrics of the current state (TAC 2006 Section VIII), named as the columns of
-    /// `metrics.csv`: connectivity, giant_component, cohesion_radius, deviation_energy,
-    /// velocity_mismatch, min_distance (floats) and collisions (an int).
+    /// The flocking metrics of the current state (TAC 2006 Section VIII), named and ordered as the
+    /// columns of `metrics.csv`: connectivity, giant_component, cohesion_radius,
+    /// deviation_energy, velocity_mismatch, min_distance (floats), collisions (an int),
+    /// polarisation, milling, nearest_neighbour_mean, nearest_neighbour_min (floats) and
+    /// components (an int).
     fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let metrics = py.detach(|| self.lock().metrics());
         let dict = PyDict::new(py);
@@ -279,6 +281,13 @@ impl PySimulation {
             dict.set_item(name, value)?;
         }
         dict.set_item("collisions", metrics.collisions)?;
+        for (name, value) in FlockMetrics::EXTRA_COLUMNS
+            .into_iter()
+            .zip(metrics.extras())
+        {
+            dict.set_item(name, value)?;
+        }
+        dict.set_item("components", metrics.components)?;
         Ok(dict)
     }
 

@@ -55,7 +55,7 @@ def test_run_shapes_and_dtypes():
     assert list(result.metrics) == COLUMNS
     for name, column in result.metrics.items():
         assert column.shape == (frames,), name
-        assert column.dtype == (np.int64 if name == "collisions" else np.float64), name
+        assert column.dtype == (np.int64 if name in ("collisions", "components") else np.float64), name
     assert result.trajectory.times.shape == (frames,)
     assert np.array_equal(result.trajectory.times, result.metrics["t"])
     assert result.trajectory.positions.shape == (frames, 100, 2)
@@ -83,7 +83,8 @@ def test_simulation_shapes():
     assert (sim.dim, sim.agents, sim.steps, sim.t) == (3, 50, 0, 0.0)
     assert sim.q.shape == sim.p.shape == (50, 3)
     assert sim.q.dtype == np.float64
-    assert list(sim.metrics()) == COLUMNS[1:-1]
+    assert list(sim.metrics()) == [name for name in COLUMNS if name not in ("t", "energy")]
+    assert isinstance(sim.metrics()["components"], int)
     assert isinstance(sim.metrics()["collisions"], int)
     assert isinstance(sim.energy(), float)
     q = sim.q

@@ -3,7 +3,7 @@
 //! and the obstacles.
 
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 use glam::DVec3;
 
 use crate::drawable::Drawable;
@@ -105,6 +105,10 @@ pub struct Scene {
     /// The desired distance d of the lattice, by which an edge's stress weight has its sign
     /// (ACC 2004 eq. 26: attraction beyond d, repulsion within).
     pub desired_distance: Option<f64>,
+    /// The sides (L₁, L₂[, L₃]) of the periodic box [0, L₁) × … the run lives in, z = 0 in 2D;
+    /// `None` in open space. A periodic scene draws the box, its net by minimum image, no edge
+    /// and no trail segment across the wrap.
+    pub periodic_box: Option<DVec3>,
 }
 
 impl Scene {
@@ -119,7 +123,72 @@ impl Scene {
             obstacles: Vec::new(),
             interaction_graph: None,
             desired_distance: None,
+            periodic_box: None,
         }
+    }
+
+    /// The scene of a run in the periodic box of sides `size` (lifted: z = 0 in 2D).
+    ///
+    /// # Example
+    /// ```
+    /// use flock_viz::{Frame, Scene};
+    /// use glam::{DVec2, DVec3};
+    ///
+    /// // two agents either side of the wrap at x = 0 of a 20 × 20 box are neighbours
+    /// let q = [DVec2::new(0.5, 5.0), DVec2::new(19.5, 5.0)];
+    /// let scene = Scene::new(2, 8.4)
+    ///     .with_frame(Frame::from_vectors(0.0, &q, &[DVec2::X; 2]))
+    ///     .with_periodic_box(DVec3::new(20.0, 20.0, 0.0));
+    /// assert_eq!(scene.edges(0), vec![(0, 1)]);
+    /// assert!(scene.crosses_wrap(scene.frames[0].positions[0], scene.frames[0].positions[1]));
+    /// ```
+    #[must_use]
+    pub fn with_periodic_box(mut self, size: DVec3) -> Self {
+        self.periodic_box = Some(size);
+        self
+    }
+
+    /// The domain of the lifted positions: open, or the periodic box (the unused z side of a
+    /// 2D box is 1, where every z is 0).
+    fn domain(&self) -> Domain<DVec3> {
+        match self.periodic_box {
+            None => Domain::Open,
+            Some(size) if self.dim == 2 => Domain::Periodic {
+                size: DVec3::new(size.x, size.y, 1.0),
+            },
+            Some(size) => Domain::Periodic { size },
+        }
+    }
+
+    /// Whether the straight segment from `a` to `b` crosses the wrap of the periodic box: the
+    /// minimum image of b − a is not b − a (some |b_k − a_k| > L_k/2). Never in open space.
+    #[must_use]
+    pub fn crosses_wrap(&self, a: DVec3, b: DVec3) -> bool {
+        self.domain().displacement(a, b) != b - a
+    }
+
+    /// The positions of agent `agent` over `frames` (indices into [`Scene::frames`]), cut into
+    /// runs where the agent crosses the wrap of the periodic box between two frames (one run in
+    /// open space); empty when a frame lacks the agent.
+    #[must_use]
+    pub fn trail_runs(&self, agent: usize, frames: core::ops::Range<usize>) -> Vec<Vec<DVec3>> {
+        let mut runs: Vec<Vec<DVec3>> = Vec::new();
+        let mut previous: Option<DVec3> = None;
+        for frame in &self.frames[frames] {
+            let Some(&q) = frame.positions.get(agent) else {
+                return Vec::new();
+            };
+            match previous {
+                Some(p) if !self.crosses_wrap(p, q) => {
+                    if let Some(run) = runs.last_mut() {
+                        run.push(q);
+                    }
+                }
+                _ => runs.push(vec![q]),
+            }
+            previous = Some(q);
+        }
+        runs
     }
 
     /// The scene with a title.
@@ -187,7 +256,12 @@ impl Scene {
             return edges.clone();
         }
         let mut net = ProximityNet::new();
-        NeighbourSearch::new().build(&self.frames[frame].positions, self.range, &mut net);
+        NeighbourSearch::new().build_in(
+            &self.domain(),
+            &self.frames[frame].positions,
+            self.range,
+            &mut net,
+        );
         let graph = net.graph();
         let mut edges = Vec::with_capacity(graph.undirected_edge_count());
         for i in 0..graph.len() {

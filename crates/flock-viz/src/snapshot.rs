@@ -7,7 +7,7 @@
 //! - [`snapshot_svg`], [`snapshot_png`]: a figure of one panel per chosen frame.
 //! - [`SnapshotOptions`]: panel size, view, framing, trails, edges, marker size, length unit.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::{
@@ -26,7 +26,7 @@ use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
 use crate::style::{
     self, AGENT, ATTRACTION, BACKGROUND, EDGE, GAMMA, INK, NEAR_EDGE, OBSTACLE, OBSTACLE_OUTLINE,
-    REPULSION, TRAIL, VELOCITY, WALL_PLANE,
+    PERIODIC_BOX, REPULSION, TRAIL, VELOCITY, WALL_PLANE,
 };
 use crate::view::View;
 
@@ -328,6 +328,7 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
 
     let marker = panel.marker_size * per_pixel;
     let cue = DepthCue::of(framer, frame);
+    draw_periodic_box(&mut chart, framer, window)?;
     draw_obstacles(&mut chart, framer, window, &cue)?;
     if panel.edges {
         let stress = panel
@@ -437,7 +438,10 @@ fn draw_edges<DB: DrawingBackend>(
         None if cue.is_some() => NEAR_EDGE,
         None => EDGE,
     };
-    let mut edges = framer.scene().edges(frame);
+    // an edge across the wrap of a periodic box would span the box: it is not drawn
+    let scene = framer.scene();
+    let mut edges = scene.edges(frame);
+    edges.retain(|&(i, j)| !scene.crosses_wrap(positions[i as usize], positions[j as usize]));
     if cue.is_some() {
         edges.sort_by(|&a, &b| {
             cue.edge_depth(a)
@@ -597,6 +601,44 @@ fn draw_velocities<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The periodic box of the scene, if any: the rectangle [0, L₁] × [0, L₂] in 2D, the twelve
+/// edges of the cuboid projected in 3D, thin and grey, cut to the window.
+fn draw_periodic_box<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    framer: &Framer<'_>,
+    window: Rect,
+) -> Result<(), VizError> {
+    let Some(size) = framer.scene().periodic_box else {
+        return Ok(());
+    };
+    let corner = |k: usize| {
+        DVec3::new(
+            if k & 1 == 0 { 0.0 } else { size.x },
+            if k & 2 == 0 { 0.0 } else { size.y },
+            if k & 4 == 0 { 0.0 } else { size.z },
+        )
+    };
+    // the corners joined along one axis: 4 edges in 2D, 12 in 3D
+    let corners = if framer.scene().dim == 2 { 4 } else { 8 };
+    let mut lines = Vec::new();
+    for a in 0..corners {
+        for axis in [1, 2, 4] {
+            let b = a | axis;
+            if b != a && b < corners {
+                let (p, q) = (framer.project(corner(a)), framer.project(corner(b)));
+                if let Some((p, q)) = clip_segment(p, q, window) {
+                    lines.push(PathElement::new(
+                        vec![tuple(p), tuple(q)],
+                        style::rgb(PERIODIC_BOX).stroke_width(1),
+                    ));
+                }
+            }
+        }
+    }
+    chart.draw_series(lines).map_err(VizError::draw)?;
+    Ok(())
+}
+
 /// The most dots of one agent's dotted trail.
 pub const MAX_TRAIL_DOTS: usize = 60;
 
@@ -609,40 +651,46 @@ fn draw_trails<DB: DrawingBackend>(
     panel: &PanelStyle,
     window: Rect,
 ) -> Result<(), VizError> {
-    let frames = &framer.scene().frames[frame.saturating_sub(panel.trail)..=frame];
+    let scene = framer.scene();
+    let range = frame.saturating_sub(panel.trail)..frame + 1;
+    let frames = &scene.frames[range.clone()];
     let stride = frames.len().div_ceil(MAX_TRAIL_DOTS).max(1);
     let mut paths = Vec::new();
     let mut dots = Vec::new();
-    let mut add = |points: Option<Vec<DVec2>>, colour| {
-        let points = points.unwrap_or_default();
+    // each run of a trail: split where the agent crosses the wrap of a periodic box
+    let mut add = |runs: Vec<Vec<DVec2>>, colour| {
         if panel.dotted_trails {
-            let inside = points
+            let inside = runs
                 .iter()
+                .flatten()
                 .rev()
                 .step_by(stride)
                 .filter(|p| window.contains(**p));
             dots.extend(inside.map(|&p| Circle::new(tuple(p), 1, style::rgb(colour).filled())));
             return;
         }
-        for run in clip_polyline(&points, window) {
-            paths.push(PathElement::new(
-                run.into_iter().map(tuple).collect::<Vec<_>>(),
-                style::rgb(colour).stroke_width(1),
-            ));
+        for points in runs {
+            for run in clip_polyline(&points, window) {
+                paths.push(PathElement::new(
+                    run.into_iter().map(tuple).collect::<Vec<_>>(),
+                    style::rgb(colour).stroke_width(1),
+                ));
+            }
         }
     };
     for i in 0..frames[frames.len() - 1].positions.len() {
-        let points = frames
-            .iter()
-            .map(|f| f.positions.get(i).map(|&q| framer.project(q)))
+        let runs = scene
+            .trail_runs(i, range.clone())
+            .into_iter()
+            .map(|run| run.into_iter().map(|q| framer.project(q)).collect())
             .collect();
-        add(points, TRAIL);
+        add(runs, TRAIL);
     }
-    let gamma = frames
+    let gamma: Option<Vec<DVec2>> = frames
         .iter()
         .map(|f| f.gamma.map(|g| framer.project(g)))
         .collect();
-    add(gamma, GAMMA);
+    add(gamma.into_iter().collect(), GAMMA);
     chart.draw_series(paths).map_err(VizError::draw)?;
     chart.draw_series(dots).map_err(VizError::draw)?;
     Ok(())

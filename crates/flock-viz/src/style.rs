@@ -26,6 +26,8 @@ pub const REPULSION: [u8; 3] = [0x7B, 0x32, 0x94];
 pub const VELOCITY: [u8; 3] = [0x2C, 0xA0, 0x2C];
 /// The agents' trails.
 pub const TRAIL: [u8; 3] = [0x9D, 0xB9, 0xE0];
+/// The sides of a periodic box.
+pub const PERIODIC_BOX: [u8; 3] = [0x6E, 0x6E, 0x6E];
 /// The obstacles' fill.
 pub const OBSTACLE: [u8; 3] = [0xA8, 0xA8, 0xA8];
 /// The obstacles' outline.

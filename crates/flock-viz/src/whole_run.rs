@@ -46,6 +46,10 @@ impl WholeRun {
     ///     velocity_mismatch: 0.0,
     ///     min_distance,
     ///     collisions,
+    ///     polarisation: 1.0,
+    ///     milling: 0.0,
+    ///     nearest_neighbour_mean: min_distance,
+    ///     nearest_neighbour_min: min_distance,
     /// };
     /// let run = WholeRun::of(&[(0.0, at(0.5, 2, 0.8)), (3.0, at(6.0, 1, 1.0))]).unwrap();
     /// assert_eq!(run.least_distance, (0.5, 0.0));

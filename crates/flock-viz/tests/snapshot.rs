@@ -369,3 +369,80 @@ fn in_3d_an_obstacle_behind_the_flock_is_faded_and_one_before_it_is_not() {
     let behind = blend(OBSTACLE, BACKGROUND, DEPTH_FADE);
     assert_eq!(count_marks(&svg, "polygon", "fill", behind), 1);
 }
+
+/// Two agents moving along x across the wrap of a periodic box, and a third resting by the first
+/// across the wrap, over ten frames.
+fn wrapping_scene(periodic: bool) -> Scene {
+    let size = 20.0;
+    let mut scene = Scene::new(2, 3.0);
+    for k in 0..10 {
+        let x = (15.0 + 1.2 * f64::from(k)) % size;
+        let q = [
+            DVec2::new(x, 5.0),
+            DVec2::new((x + 2.0) % size, 12.0),
+            DVec2::new(0.5, 16.0),
+            DVec2::new(19.0, 16.0),
+        ];
+        let p = [DVec2::X, DVec2::X, DVec2::ZERO, DVec2::ZERO];
+        scene = scene.with_frame(Frame::from_vectors(f64::from(k), &q, &p));
+    }
+    if periodic {
+        scene = scene.with_periodic_box(glam::DVec3::new(size, size, 0.0));
+    }
+    scene
+}
+
+/// A periodic scene draws its box and cuts the trails at the wrap: no segment spans the box.
+#[test]
+fn periodic_runs_draw_the_box_and_no_segment_across_the_wrap() {
+    use flock_viz::style::PERIODIC_BOX;
+    let options = styled(|style| {
+        style.trail = 9;
+        style.framing = flock_viz::Framing::Fixed {
+            min: DVec2::new(-1.0, -1.0),
+            max: DVec2::new(21.0, 21.0),
+        };
+    });
+    let open = snapshot_svg(&wrapping_scene(false), &[9], &options).unwrap();
+    let torus = snapshot_svg(&wrapping_scene(true), &[9], &options).unwrap();
+    // open space: one trail per agent (those at rest too), the moving ones jumping back across
+    // the box; no box
+    assert_eq!(count_marks(&open, "polyline", "stroke", TRAIL), 4);
+    assert_eq!(count_marks(&open, "polyline", "stroke", PERIODIC_BOX), 0);
+    // the torus: each moving agent's trail in two runs, the box's four sides
+    assert_eq!(count_marks(&torus, "polyline", "stroke", TRAIL), 6);
+    assert_eq!(count_marks(&torus, "polyline", "stroke", PERIODIC_BOX), 4);
+    // agents 2 and 3 are neighbours across the wrap (distance 1.5): an edge of the net, not drawn
+    let scene = wrapping_scene(true);
+    assert!(scene.edges(9).contains(&(2, 3)));
+    assert!(!wrapping_scene(false).edges(9).contains(&(2, 3)));
+    assert_eq!(
+        count_marks(&torus, "polyline", "stroke", EDGE),
+        scene.edges(9).len() - 1
+    );
+    let runs = scene.trail_runs(0, 0..10);
+    assert_eq!(runs.iter().map(Vec::len).collect::<Vec<_>>(), [5, 5]);
+    assert_eq!(wrapping_scene(false).trail_runs(0, 0..10).len(), 1);
+}
+
+/// In 3D the box is the twelve projected edges of the cuboid.
+#[test]
+fn periodic_box_in_3d_has_twelve_edges() {
+    use flock_viz::style::PERIODIC_BOX;
+    let q = [
+        glam::DVec3::new(1.0, 2.0, 3.0),
+        glam::DVec3::new(9.0, 8.0, 7.0),
+    ];
+    let scene = Scene::new(3, 2.0)
+        .with_frame(Frame::from_vectors(0.0, &q, &[glam::DVec3::X; 2]))
+        .with_periodic_box(glam::DVec3::new(10.0, 10.0, 10.0));
+    let options = styled(|style| {
+        style.view = View::new(30.0, 20.0);
+        style.framing = flock_viz::Framing::Fixed {
+            min: DVec2::new(-30.0, -30.0),
+            max: DVec2::new(30.0, 30.0),
+        };
+    });
+    let svg = snapshot_svg(&scene, &[0], &options).unwrap();
+    assert_eq!(count_marks(&svg, "polyline", "stroke", PERIODIC_BOX), 12);
+}

@@ -27,6 +27,8 @@ impl Recorder for Rows<'_> {
         row.extend(m.reals());
         row.push(m.collisions as f64);
         row.push(record.energy);
+        row.extend(m.extras());
+        row.push(m.components as f64);
         row.extend(record.diagnostics.iter().map(|&(_, v)| v));
         self.1.borrow_mut().push(row);
         self.0.record(record)

@@ -4,6 +4,7 @@
 use std::fmt::Write as _;
 use std::time::Duration;
 
+use flocking::metrics::FlockMetrics;
 use flocking::{Record, Recorder, RunSummary, Scenario};
 
 use crate::common::{fixture_paths, sig6, stem};
@@ -50,6 +51,9 @@ fn rounded(name: &str, s: &RunSummary) -> String {
     line("collisions", m.collisions.to_string());
     line("initial_energy", sig6(s.initial_energy));
     line("final_energy", sig6(s.final_energy));
+    for (column, value) in FlockMetrics::EXTRA_COLUMNS.into_iter().zip(m.extras()) {
+        line(column, sig6(value));
+    }
     for (column, value) in &s.diagnostics {
         line(column, sig6(*value));
     }
@@ -59,7 +63,7 @@ fn rounded(name: &str, s: &RunSummary) -> String {
 /// Every number of a summary as its bits, except the wall time.
 fn bits(s: &RunSummary) -> Vec<u64> {
     let m = &s.metrics;
-    let floats = [s.t].into_iter().chain(m.reals()).chain([
+    let floats = [s.t].into_iter().chain(m.reals()).chain(m.extras()).chain([
         s.component_velocity_mismatch,
         s.initial_energy,
         s.final_energy,

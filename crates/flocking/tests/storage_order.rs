@@ -41,7 +41,8 @@ impl Recorder for Bits {
     fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
         let numbers = [record.t, record.energy]
             .into_iter()
-            .chain(record.metrics.reals());
+            .chain(record.metrics.reals())
+            .chain(record.metrics.extras());
         let state = &record.state;
         let coordinates = state
             .positions
@@ -79,7 +80,8 @@ fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identic
         .map(f64::to_bits)
         .collect();
     assert!(
-        whole.records[0][8..] == drawn[..],
+        // after t, the energy, the six reals and the four extras
+        whole.records[0][12..] == drawn[..],
         "t = 0 is recorded in original order"
     );
     // the net of the drawn state is scattered in memory: the simulation stores it by cell

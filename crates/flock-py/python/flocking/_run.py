@@ -66,8 +66,9 @@ class Run:
     - ``scenario``: the scenario run.
     - ``metrics``: the columns of ``metrics.csv`` by name (``t``, ``connectivity``,
       ``giant_component``, ``cohesion_radius``, ``deviation_energy``, ``velocity_mismatch``,
-      ``min_distance``, ``collisions`` (int64), ``energy``, then the protocol's diagnostics), one
-      entry per recorded step.
+      ``min_distance``, ``collisions`` (int64), ``energy``, ``polarisation``, ``milling``,
+      ``nearest_neighbour_mean``, ``nearest_neighbour_min``, ``components`` (int64), then the
+      protocol's diagnostics), one entry per recorded step.
     - ``trajectory``: the recorded states, or None when the run kept none (``trajectory=False``);
       recorded at the same instants as the metrics.
     - ``final``: the final state.

@@ -52,6 +52,11 @@ pub fn read_records(path: &Path, agents: usize) -> io::Result<Vec<(f64, FlockMet
     let (t, collisions) = (column(TIME)?, column("collisions")?);
     let reals =
         (FlockMetrics::REAL_COLUMNS.into_iter().map(column)).collect::<io::Result<Vec<_>>>()?;
+    // files written before the extra columns existed leave them NaN
+    let extras: Vec<Option<&[f64]>> = FlockMetrics::EXTRA_COLUMNS
+        .into_iter()
+        .map(|name| column(name).ok())
+        .collect();
     let n = agents as f64;
     Ok((0..t.len())
         .map(|k| {
@@ -61,7 +66,10 @@ pub fn read_records(path: &Path, agents: usize) -> io::Result<Vec<(f64, FlockMet
             } else {
                 (n - values[0] * (n - 1.0)).round() as usize
             };
-            let metrics = FlockMetrics::from_reals(values, components, collisions[k] as usize);
+            let metrics = FlockMetrics::from_reals(values, components, collisions[k] as usize)
+                .with_extras(std::array::from_fn(|j| {
+                    extras[j].map_or(f64::NAN, |column| column[k])
+                }));
             (t[k], metrics)
         })
         .collect())

@@ -44,8 +44,11 @@ use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
 use flock_metrics::{FlockingCriteria, FlockingVerdict};
 
-/// The header of `metrics.csv`.
-pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy";
+/// The header of `metrics.csv`: t, [`FlockMetrics::REAL_COLUMNS`](flock_metrics::FlockMetrics::REAL_COLUMNS),
+/// the collisions, the energy, then (appended later, so that the former columns keep their
+/// places) [`FlockMetrics::EXTRA_COLUMNS`](flock_metrics::FlockMetrics::EXTRA_COLUMNS) and the
+/// number of components; the protocol's diagnostics follow.
+pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,components";
 
 /// The file that marks a directory as incomplete, and says why.
 pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
@@ -1001,6 +1004,10 @@ impl Recorder for RunDirectory {
             let _ = write!(line, ",{value}");
         }
         let _ = write!(line, ",{},{}", m.collisions, record.energy);
+        for value in m.extras() {
+            let _ = write!(line, ",{value}");
+        }
+        let _ = write!(line, ",{}", m.components);
         for (_, value) in record.diagnostics {
             let _ = write!(line, ",{value}");
         }
@@ -1102,12 +1109,14 @@ mod tests {
     use crate::run_dir::TIME;
 
     /// The header names what a record writes, in its order: t, [`FlockMetrics::reals`], the
-    /// collisions and the energy.
+    /// collisions, the energy, [`FlockMetrics::extras`] and the components.
     #[test]
     fn the_metrics_header_names_the_recorded_values() {
         let names: Vec<&str> = std::iter::once(TIME)
             .chain(FlockMetrics::REAL_COLUMNS)
             .chain(["collisions", "energy"])
+            .chain(FlockMetrics::EXTRA_COLUMNS)
+            .chain(["components"])
             .collect();
         assert_eq!(METRICS_HEADER, names.join(","));
     }
