@@ -6,6 +6,7 @@ mod common;
 mod conditions;
 mod fig7_squeeze;
 mod fixtures;
+mod models;
 mod new_figures;
 mod obstacle_errors;
 mod obstacle_fixtures;

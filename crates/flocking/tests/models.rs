@@ -1,0 +1,237 @@
+//! The classic models as scenarios: Couzin et al. 2002's four collective states at a point inside
+//! each, every model resumed from a checkpoint with the bits of the uninterrupted run (random
+//! noise, random activation order and conditions included), their parameters by dotted path, and
+//! the errors of what they cannot take.
+
+use flocking::serde_json::json;
+use flocking::{DynSimulation, Record, Recorder, Scenario, Start};
+
+use crate::common::fixture;
+
+/// The polarisation and milling averaged over the records of the last three quarters of `scenario`.
+fn settled_order(scenario: &Scenario) -> (f64, f64) {
+    let mut sim = DynSimulation::new(scenario).expect("a valid scenario");
+    let steps = scenario.steps();
+    let (mut p, mut m, mut count) = (0.0, 0.0, 0.0);
+    for k in 1..=steps {
+        sim.step();
+        if k >= steps / 4 && k % scenario.record_every == 0 {
+            let metrics = sim.metrics();
+            p += metrics.polarisation;
+            m += metrics.milling;
+            count += 1.0;
+        }
+    }
+    (p / count, m / count)
+}
+
+/// The collective state of Couzin et al. (2002) by p_group and m_group, with our thresholds (the
+/// paper names the states and plots both measures, but draws no numerical border):
+/// torus m ≥ 0.5; highly parallel p ≥ 0.95; dynamic parallel 0.5 ≤ p < 0.95; swarm otherwise.
+fn couzin_state((p, m): (f64, f64)) -> &'static str {
+    if m >= 0.5 {
+        "torus"
+    } else if p >= 0.95 {
+        "highly parallel"
+    } else if p >= 0.5 {
+        "dynamic parallel"
+    } else {
+        "swarm"
+    }
+}
+
+/// One point inside each of the paper's four states (Fig. 2, as the committed sweep
+/// sweeps/couzin2002_zones.ron maps them with 3 seeds): the measured polarisation and angular
+/// momentum put each in its state.
+#[test]
+fn couzin_shows_its_four_collective_states() {
+    let base = fixture("couzin2002_torus_n100");
+    for ((delta_r_o, delta_r_a), state) in [
+        ((0.0, 14.0), "swarm"),
+        ((1.0, 14.0), "torus"),
+        ((4.0, 8.0), "dynamic parallel"),
+        ((8.0, 8.0), "highly parallel"),
+    ] {
+        let scenario = base
+            .with_values([
+                ("algorithm.delta_r_o", json!(delta_r_o)),
+                ("algorithm.delta_r_a", json!(delta_r_a)),
+            ])
+            .expect("valid zones");
+        let measured = settled_order(&scenario);
+        assert_eq!(
+            couzin_state(measured),
+            state,
+            "Δr_o = {delta_r_o}, Δr_a = {delta_r_a}: (p, m) = {measured:?}"
+        );
+    }
+}
+
+/// Every record's bits, and the checkpoint at step `at`.
+struct Bits {
+    at: u64,
+    records: Vec<Vec<u64>>,
+    checkpoint: Option<Start>,
+}
+
+impl Recorder for Bits {
+    type Error = std::convert::Infallible;
+
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
+        let state = &record.state;
+        let numbers = [record.t, record.energy]
+            .into_iter()
+            .chain(record.metrics.reals())
+            .chain(record.metrics.extras())
+            .chain(state.positions.iter().copied())
+            .chain(state.velocities.iter().copied());
+        self.records.push(numbers.map(f64::to_bits).collect());
+        Ok(())
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        steps == self.at
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> Result<(), Self::Error> {
+        self.checkpoint = Some(start.clone());
+        Ok(())
+    }
+}
+
+/// A run interrupted at a checkpoint and resumed records the bits of the uninterrupted run: the
+/// models' noise, the boids' activation order and the conditions' draws are keyed by step.
+#[test]
+fn every_model_resumes_with_the_bits_of_the_whole_run() {
+    let short = |name: &str, changes: &[(&str, flocking::serde_json::Value)]| {
+        let scenario = fixture(name);
+        let mut changes = changes.to_vec();
+        changes.push(("duration", json!(40.0 * scenario.step)));
+        changes.push(("record_every", json!(5)));
+        scenario.with_values(changes).expect("valid")
+    };
+    let noisy = json!({"noise": {"White": {"sigma_q": 0.01, "sigma_p": 0.001}}});
+    let lossy = json!({"delay": 2.0, "loss": {"Bernoulli": {"p": 0.2}}});
+    let scenarios = [
+        short("vicsek1995_fig2a_n400", &[]),
+        short(
+            "vicsek1995_fig2a_n400",
+            &[
+                ("conditions.sensing", noisy),
+                ("conditions.communication", lossy),
+            ],
+        ),
+        short("boids_small_n200", &[]),
+        short(
+            "couzin2002_torus_n100",
+            &[("conditions.faults", json!({"rate": 0.05}))],
+        ),
+        short("cucker_smale2007_n50", &[]),
+    ];
+    for scenario in &scenarios {
+        let mut whole = Bits {
+            at: 15,
+            records: Vec::new(),
+            checkpoint: None,
+        };
+        flocking::run(scenario, &mut whole).expect("the run");
+        let checkpoint = whole.checkpoint.take().expect("a checkpoint at step 15");
+        let mut resumed = Bits {
+            at: u64::MAX,
+            records: Vec::new(),
+            checkpoint: None,
+        };
+        flocking::resume(scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
+        assert!(!resumed.records.is_empty());
+        let tail = &whole.records[whole.records.len() - resumed.records.len()..];
+        assert!(
+            resumed.records[..] == *tail,
+            "{}: the resumed records differ",
+            scenario.name
+        );
+    }
+}
+
+/// What a model cannot take is refused with its field: an acceleration condition for a model
+/// that sets velocities, a 3D Vicsek run, a box smaller than twice the range, obstacles or a
+/// γ-agent on a torus, perception conditions for the all-pairs Cucker–Smale model.
+#[test]
+fn models_refuse_what_they_cannot_take_naming_the_field() {
+    let refused = |name: &str, changes: Vec<(&str, flocking::serde_json::Value)>| {
+        let error = fixture(name).with_values(changes).expect_err("refused");
+        error.field().unwrap_or_default()
+    };
+    assert_eq!(
+        refused(
+            "boids_small_n200",
+            vec![("conditions.actuation.max_acceleration", json!(1.0))]
+        ),
+        "conditions.actuation"
+    );
+    assert_eq!(
+        refused(
+            "vicsek1995_fig2a_n400",
+            vec![("conditions.disturbance.process_noise", json!(0.1))]
+        ),
+        "conditions.disturbance"
+    );
+    assert_eq!(
+        refused("vicsek1995_fig2a_n400", vec![("algorithm.eta", json!(7.0))]),
+        "algorithm.eta"
+    );
+    assert_eq!(
+        refused(
+            "vicsek1995_fig2a_n400",
+            vec![("domain", json!({"PeriodicAtDensity": {"density": 500.0}}))]
+        ),
+        "domain.density"
+    );
+    assert_eq!(
+        refused(
+            "boids_small_n200",
+            vec![("domain", json!({"Periodic": {"size": [100.0, 10.0]}}))]
+        ),
+        "domain.size[1]"
+    );
+    assert_eq!(
+        refused(
+            "cucker_smale2007_n50",
+            vec![("conditions.communication.delay", json!(0.1))]
+        ),
+        "conditions.communication"
+    );
+    assert_eq!(
+        refused(
+            "tac2006_fig11_alg2_n100",
+            vec![("domain", json!({"Periodic": {"size": [500.0, 500.0]}}))]
+        ),
+        "domain"
+    );
+    let three_d = Scenario::parse(
+        "Scenario(dim: 3, agents: 10, algorithm: Vicsek(eta: 1.0), \
+         initial: (positions: Box(min: [0.0, 0.0, 0.0], max: [5.0, 5.0, 5.0])), duration: 10.0, step: 1.0)",
+        "vicsek3d.ron",
+    )
+    .expect_err("planar");
+    assert_eq!(three_d.field().as_deref(), Some("algorithm.dim"));
+}
+
+/// A model's parameters are reachable by dotted path, with their defaults.
+#[test]
+fn model_parameters_by_path() {
+    let boids = fixture("boids_small_n200");
+    assert_eq!(
+        boids.value("algorithm.cohere_factor").ok(),
+        Some(json!(0.03))
+    );
+    let wider = boids
+        .with_values([("algorithm.visual_distance", json!(7.5))])
+        .expect("valid");
+    assert_eq!(wider.range(), 7.5 + 2.0);
+    let couzin = fixture("couzin2002_torus_n100");
+    assert_eq!(
+        couzin.value("algorithm.field_of_perception").ok(),
+        Some(json!(270.0))
+    );
+    assert_eq!(couzin.range(), 16.0);
+}
