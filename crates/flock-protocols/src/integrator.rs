@@ -385,7 +385,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     ///
     /// When no condition changes what agents perceive (no communication or sensing section, no
     /// silent or removed faults), inputs are [`Protocol::controls`] of the true state; otherwise
-    /// each agent's input is its protocol's [`LocalForm`](crate::LocalForm) of what it perceives.
+    /// each agent's input is its protocol's [`LocalForm`] of what it perceives.
     ///
     /// # Errors
     /// A parameter outside its domain ([`Conditions::validate`]), or a condition that changes
