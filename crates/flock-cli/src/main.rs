@@ -133,11 +133,71 @@ enum Command {
         /// Real conditions to run under (none: the ideal loop).
         #[command(flatten)]
         conditions: flock_cli::bench::ConditionFlags,
+        /// Instead of the α-lattice, a workload of the ABM frameworks' boids benchmark
+        /// (ABMFrameworksComparison's Flocking/DECLARATION.md): 100 steps timed from a fresh start
+        /// per seed, the median printed.
+        #[arg(long, value_enum)]
+        workload: Option<WorkloadName>,
+        /// With --workload: the number of seeds timed.
+        #[arg(long, default_value_t = 10, requires = "workload")]
+        seeds: u64,
+        /// With --workload: this many birds at the workload's density (its box grown to hold them).
+        #[arg(long, requires = "workload")]
+        scale_to: Option<usize>,
     },
+}
+
+/// The workloads of `flocking bench --workload`.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum WorkloadName {
+    /// 200 birds, 100 × 100 periodic box, visual distance 5.
+    BoidsSmall,
+    /// 400 birds, 150 × 150 periodic box, visual distance 15.
+    BoidsLarge,
 }
 
 /// Exit code of an invalid scenario.
 const INVALID: u8 = 2;
+
+/// `flocking bench --workload`: times the workload and prints its median.
+fn bench_workload(name: WorkloadName, seeds: u64, scale_to: Option<usize>) -> ExitCode {
+    use flocking::workload::{Workload, time_seeds};
+    let workload = match name {
+        WorkloadName::BoidsSmall => Workload::BoidsSmall,
+        WorkloadName::BoidsLarge => Workload::BoidsLarge,
+    };
+    let scenario = match scale_to {
+        None => Ok(workload.scenario()),
+        Some(n) => workload.scaled(n),
+    };
+    match scenario.and_then(|s| time_seeds(&s, seeds.max(1))) {
+        Ok(report) => {
+            let s = &report.scenario;
+            let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+            let (least, most) = (
+                report.times.iter().min().copied().unwrap_or_default(),
+                report.times.iter().max().copied().unwrap_or_default(),
+            );
+            outln!(
+                "{name:?}: {} birds, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s)",
+                s.agents,
+                s.box_size().unwrap_or_default(),
+                s.steps(),
+                report.times.len(),
+                ms(report.median()),
+                ms(least),
+                ms(most),
+                report.agent_steps_per_second(),
+                rayon::current_num_threads()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            errln!("error: {e}");
+            ExitCode::from(INVALID)
+        }
+    }
+}
 
 fn main() -> ExitCode {
     let command = Cli::parse().command;
@@ -153,9 +213,15 @@ fn main() -> ExitCode {
             warmup,
             shuffled,
             conditions,
+            workload,
+            seeds,
+            scale_to,
         } => {
             if let Err(code) = use_threads(threads) {
                 return code;
+            }
+            if let Some(workload) = workload {
+                return bench_workload(workload, seeds, scale_to);
             }
             let config = flock_cli::bench::BenchConfig {
                 n,

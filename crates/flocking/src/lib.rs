@@ -52,6 +52,7 @@ pub mod stability;
 pub mod sweep;
 pub mod synthetic;
 mod validate;
+pub mod workload;
 
 pub use build::check_local_form;
 pub use error::ScenarioError;

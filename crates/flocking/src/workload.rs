@@ -1,0 +1,143 @@
+//! The workloads of the agent-based modelling frameworks' boids benchmark (JuliaDynamics
+//! ABMFrameworksComparison, `Flocking/DECLARATION.md`), timed as the frameworks time them: 100
+//! steps of the model from a fresh random start, the median over seeds, so that our figures
+//! stand beside their published ones. `flocking bench --workload` prints them.
+
+use std::time::{Duration, Instant};
+
+use serde_json::json;
+
+use crate::error::ScenarioError;
+use crate::{DynSimulation, Scenario};
+
+/// A workload of the boids benchmark.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Workload {
+    /// 200 birds in a 100 × 100 periodic box, visual distance 5, 100 steps.
+    BoidsSmall,
+    /// 400 birds in a 150 × 150 periodic box, visual distance 15, 100 steps.
+    BoidsLarge,
+}
+
+impl Workload {
+    /// Its scenario: `fixtures/boids_small_n200.ron` or `fixtures/boids_large_n400.ron`.
+    ///
+    /// # Panics
+    /// Never: the fixtures are compiled in and checked by the tests.
+    #[must_use]
+    pub fn scenario(self) -> Scenario {
+        let (text, name) = match self {
+            Self::BoidsSmall => (
+                include_str!("../../../fixtures/boids_small_n200.ron"),
+                "boids_small_n200.ron",
+            ),
+            Self::BoidsLarge => (
+                include_str!("../../../fixtures/boids_large_n400.ron"),
+                "boids_large_n400.ron",
+            ),
+        };
+        Scenario::parse(text, name).unwrap_or_else(|e| unreachable!("{name}: {e}"))
+    }
+
+    /// The workload with `agents` birds at its own density (the box grown to keep the birds per
+    /// unit area of the declaration), positions uniform in the box.
+    ///
+    /// # Errors
+    /// A number of agents the scenario refuses (0, or too many).
+    pub fn scaled(self, agents: usize) -> Result<Scenario, ScenarioError> {
+        let scenario = self.scenario();
+        let crate::scenario::DomainSpec::Periodic { size } = &scenario.domain else {
+            unreachable!("the boids workloads are periodic");
+        };
+        let density = scenario.agents as f64 / size.iter().product::<f64>();
+        scenario.with_values([
+            ("agents", json!(agents)),
+            ("domain", json!({"PeriodicAtDensity": {"density": density}})),
+            ("initial.positions", json!("Domain")),
+        ])
+    }
+}
+
+/// The timings of a workload.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorkloadReport {
+    /// The scenario timed.
+    pub scenario: Scenario,
+    /// The time of the scenario's steps for each seed 0, 1, …, in order.
+    pub times: Vec<Duration>,
+}
+
+impl WorkloadReport {
+    /// The median time over the seeds (the mean of the two middle ones for an even count).
+    #[must_use]
+    pub fn median(&self) -> Duration {
+        let mut sorted = self.times.clone();
+        sorted.sort_unstable();
+        let n = sorted.len();
+        if n == 0 {
+            return Duration::ZERO;
+        }
+        if n % 2 == 1 {
+            sorted[n / 2]
+        } else {
+            (sorted[n / 2 - 1] + sorted[n / 2]) / 2
+        }
+    }
+
+    /// Agent-steps per second at the median.
+    #[must_use]
+    pub fn agent_steps_per_second(&self) -> f64 {
+        let work = self.scenario.agents as f64 * self.scenario.steps() as f64;
+        work / self.median().as_secs_f64()
+    }
+}
+
+/// Times `scenario`'s steps (no metrics, no output: the model alone, as the frameworks time it)
+/// from seeds 0 to `seeds` − 1; building the start is not timed.
+///
+/// # Errors
+/// A scenario refused with a seed.
+pub fn time_seeds(scenario: &Scenario, seeds: u64) -> Result<WorkloadReport, ScenarioError> {
+    let mut times = Vec::new();
+    for seed in 0..seeds {
+        let seeded = scenario.with_values([("seed", json!(seed))])?;
+        let mut sim = DynSimulation::new(&seeded)?;
+        let start = Instant::now();
+        for _ in 0..seeded.steps() {
+            sim.step();
+        }
+        times.push(start.elapsed());
+    }
+    Ok(WorkloadReport {
+        scenario: scenario.clone(),
+        times,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_workloads_are_the_declaration() {
+        let small = Workload::BoidsSmall.scenario();
+        assert_eq!((small.agents, small.steps()), (200, 100));
+        assert_eq!(small.box_size(), Some(vec![100.0, 100.0]));
+        let large = Workload::BoidsLarge.scenario();
+        assert_eq!((large.agents, large.steps()), (400, 100));
+        assert_eq!(large.box_size(), Some(vec![150.0, 150.0]));
+        // scaled at the declaration's density: 200 birds per 10⁴ square units
+        let million = Workload::BoidsSmall.scaled(1_000_000).expect("valid");
+        let side = million.box_size().expect("periodic")[0];
+        assert!((side - (1e6_f64 / 0.02).sqrt()).abs() < 1e-9, "{side}");
+        let report = time_seeds(
+            &small
+                .with_values([("duration", json!(3.0))])
+                .expect("valid"),
+            3,
+        )
+        .expect("runs");
+        assert_eq!(report.times.len(), 3);
+        assert!(report.median() <= *report.times.iter().max().expect("three"));
+    }
+}
