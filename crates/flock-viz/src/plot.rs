@@ -82,8 +82,8 @@ pub fn run_scene(scenario: &Scenario, scene: Scene) -> Result<Scene, flocking::S
     }
 }
 
-/// The scene with its title, desired distance, obstacles, γ-agent and fixed graph (Tanner,
-/// consensus on a fixed graph).
+/// The scene with its title, desired distance, obstacles, periodic box, γ-agent and fixed graph
+/// (Tanner, consensus on a fixed graph).
 fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Result<Scene, flocking::ScenarioError> {
     let mut scene = scene
         .with_title(scenario.name.clone())
@@ -96,6 +96,9 @@ fn decorate<V: Space>(scene: Scene, scenario: &Scenario) -> Result<Scene, flocki
     }
     for spec in &scenario.obstacles {
         scene = scene.with_obstacle(drawable::<V>(spec));
+    }
+    if let Some(size) = scenario.box_size() {
+        scene = scene.with_periodic_box(DVec3::from_fn(|k| size.get(k).copied().unwrap_or(0.0)));
     }
     Ok(match scenario.algorithm.gamma() {
         Some(gamma) => {
