@@ -376,6 +376,10 @@ fn create_directory(
             );
             ExitCode::from(INVALID)
         }
+        e @ CreateError::NotADirectory { .. } => {
+            errln!("error: {e}");
+            ExitCode::from(INVALID)
+        }
         CreateError::Dir(e) => {
             errln!("error: {e}");
             ExitCode::from(INVALID)
@@ -394,6 +398,10 @@ fn resume_directory(
     checkpoint_every: u64,
 ) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
     let (dir, scenario, start) = RunDirectory::resume(dir, checkpoint_every).map_err(|e| {
+        if let ResumeError::Tidied { .. } = &e {
+            outln!("{e}");
+            return ExitCode::SUCCESS;
+        }
         match &e {
             ResumeError::Nothing {
                 partial,
@@ -411,6 +419,7 @@ fn resume_directory(
             | ResumeError::Nothing { .. }
             | ResumeError::Refused(_)
             | ResumeError::Dir(_) => ExitCode::from(INVALID),
+            ResumeError::Tidied { .. } => ExitCode::SUCCESS,
             ResumeError::Io(_) => ExitCode::FAILURE,
         }
     })?;
@@ -558,13 +567,26 @@ fn check_plot_dir(dir: &Path) -> Result<(), String> {
             ));
         }
     }
-    let figures = dir.join("figures");
-    if figures.exists() && !flocking::owned::marked(dir, flocking::owned::Kind::Run) {
-        return Err(flocking::owned::DirError::Foreign {
+    let figures = dir.join(flocking::owned::FIGURES_DIR);
+    let foreign = |entry: String| {
+        Err(flocking::owned::DirError::Foreign {
             dir: dir.to_owned(),
-            entry: "figures".into(),
+            entry,
         }
-        .to_string());
+        .to_string())
+    };
+    let Ok(meta) = std::fs::symlink_metadata(&figures) else {
+        return Ok(());
+    };
+    if !flocking::owned::marked(dir, flocking::owned::Kind::Run) || !meta.is_dir() {
+        // a link (to a user's directory), a file, or figures of a directory without the marker
+        return foreign("figures".into());
+    }
+    // a figure's name that is a link or a directory is not one of flocking's files
+    for name in flocking::owned::RUN_FIGURES {
+        if std::fs::symlink_metadata(figures.join(name)).is_ok_and(|m| !m.is_file()) {
+            return foreign(format!("figures/{name}"));
+        }
     }
     Ok(())
 }

@@ -59,6 +59,7 @@ pub fn create_error(py: Python<'_>, error: &CreateError, out: &Path) -> PyErr {
             partial.display(),
             target.display().to_string()
         ),
+        e @ CreateError::NotADirectory { .. } => e.to_string(),
         CreateError::Dir(e) => e.to_string(),
         CreateError::Io(e) => e.to_string(),
     };

@@ -194,6 +194,13 @@ pub enum CreateError {
         /// `DIR`.
         target: PathBuf,
     },
+    /// The output path exists and is not a directory (a file, a FIFO, a device, a link).
+    NotADirectory {
+        /// The output path.
+        target: PathBuf,
+        /// What it is.
+        what: &'static str,
+    },
     /// The directory is not flocking's to replace, or another process is writing it.
     Dir(DirError),
     /// Writing failed.
@@ -212,6 +219,11 @@ impl std::fmt::Display for CreateError {
                 f,
                 "{} holds an interrupted run (resume it, or start over with `force`)",
                 partial.display()
+            ),
+            Self::NotADirectory { target, what } => write!(
+                f,
+                "output directory {} is {what}, not a directory: flocking never replaces it; choose another output directory",
+                target.display()
             ),
             Self::Dir(e) => write!(f, "{e}"),
             Self::Io(e) => write!(f, "{e}"),
@@ -248,6 +260,12 @@ pub enum ResumeError {
         /// Whether `DIR` holds a complete run.
         complete: bool,
     },
+    /// `DIR` holds a complete run whose finishing was cut short after its rename (a second
+    /// SIGTERM, a kill): its leftover checkpoint and note have now been removed.
+    Tidied {
+        /// `DIR`.
+        target: PathBuf,
+    },
     /// The run cannot be resumed; the message says why and what to do.
     Refused(String),
     /// The directory's `scenario.ron` no longer loads.
@@ -276,6 +294,11 @@ impl std::fmt::Display for ResumeError {
                     write!(f, "there is no interrupted run at {}", partial.display())
                 }
             }
+            Self::Tidied { target } => write!(
+                f,
+                "{} holds a complete run whose finishing was cut short: its leftover checkpoint and {INCOMPLETE_FILE} note are removed, there is nothing to resume",
+                target.display()
+            ),
             Self::Refused(why) => write!(f, "{why}"),
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Dir(e) => write!(f, "{e}"),
@@ -341,6 +364,9 @@ impl RunDirectory {
         scenario: &Scenario,
         options: &OutputOptions,
     ) -> Result<Self, CreateError> {
+        // `newdir/` is `newdir` (issue 27: else `DIR.partial` would be `newdir/.partial`)
+        let target = &normalized(target);
+        check_target(target)?;
         let non_empty = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
         if non_empty {
             owned::check_owned(target, Kind::Run)?;
@@ -352,7 +378,8 @@ impl RunDirectory {
             owned::check_removable(target, Kind::Run)?;
         }
         let partial = partial_path(target);
-        if partial.exists() {
+        if fs::symlink_metadata(&partial).is_ok() {
+            check_target(&partial)?;
             owned::check_owned(&partial, Kind::Run)?;
             let lock = DirLock::acquire(&partial)?;
             if !options.force {
@@ -376,13 +403,12 @@ impl RunDirectory {
     ) -> Result<Self, DirError> {
         // The directory is prepared under another name and appears as `DIR.partial` with its
         // marker, lock, `INCOMPLETE` note and scenario already inside.
+        // One name per process: two runs started together into the same `DIR` each prepare
+        // their own, and the rename to `DIR.partial` picks one (issue 27).
         let mut staging = partial.clone().into_os_string();
-        staging.push(".new");
+        staging.push(format!(".new-{}", std::process::id()));
         let staging = PathBuf::from(staging);
-        if staging.exists() {
-            let _lock = DirLock::acquire(&staging)?;
-            owned::remove(&staging, Kind::Run)?;
-        }
+        remove_stale_staging(&partial);
         fs::create_dir_all(parent_of(&staging))
             .map_err(at(format_args!("create {}", parent_of(&staging).display())))?;
         fs::create_dir(&staging).map_err(at(format_args!("create {}", staging.display())))?;
@@ -404,7 +430,7 @@ impl RunDirectory {
     ) -> Result<Self, DirError> {
         owned::mark(staging, Kind::Run)?;
         let lock = DirLock::acquire(staging)?;
-        write_incomplete(staging, &running_note(target))?;
+        write_incomplete(staging, &running_note(target, options.force))?;
         let text = scenario.to_ron().map_err(io::Error::other)? + "\n";
         write_durably(&staging.join("scenario.ron"), text.as_bytes())?;
         let mut this = Self::start_files(
@@ -419,11 +445,22 @@ impl RunDirectory {
         sync_dir(staging).map_err(at(format_args!("flush {}", staging.display())))?;
         // The open files follow the directory's rename; a `DIR.partial` that another process
         // created meanwhile makes it fail.
-        rename_no_replace(staging, partial).map_err(at(format_args!(
-            "rename {} to {}",
-            staging.display(),
-            partial.display()
-        )))?;
+        rename_no_replace(staging, partial).map_err(|e| {
+            if e.kind() == io::ErrorKind::AlreadyExists {
+                // another process started a run into the same `DIR` at the same time, and won
+                DirError::Busy {
+                    dir: partial.to_owned(),
+                    holder: "another flocking process, started at the same time".into(),
+                }
+            } else {
+                at(format_args!(
+                    "rename {} to {}",
+                    staging.display(),
+                    partial.display()
+                ))(e)
+                .into()
+            }
+        })?;
         this.partial = partial.to_owned();
         this.lock.moved_to(partial);
         sync_dir(parent_of(partial))
@@ -507,12 +544,27 @@ impl RunDirectory {
             None => (dir.clone(), partial_path(&dir)),
         };
         if !partial.is_dir() {
+            if tidy_completed(&target)? {
+                return Err(ResumeError::Tidied { target });
+            }
             return Err(ResumeError::Nothing {
-                complete: target.is_dir(),
+                complete: owned::marked(&target, Kind::Run)
+                    && target.join("metrics.csv").is_file()
+                    && !target.join(INCOMPLETE_FILE).exists(),
                 partial,
                 target,
             });
         }
+        // Issue 27: only a directory flocking wrote, holding only what a run writes (regular
+        // files, no link, no FIFO), is cut back and written into.
+        if !owned::marked(&partial, Kind::Run) {
+            return Err(ResumeError::Refused(format!(
+                "{} has no {} marker: it is not a run directory flocking wrote, and flocking never writes into it; start a new run with --out elsewhere",
+                partial.display(),
+                owned::MARKER_FILE
+            )));
+        }
+        owned::check_only_own(&partial, Kind::Run)?;
         let note_path = partial.join(INCOMPLETE_FILE);
         let note = match fs::read_to_string(&note_path) {
             Ok(note) => note,
@@ -525,6 +577,9 @@ impl RunDirectory {
             Err(e) => return Err(at(format_args!("read {}", note_path.display()))(e).into()),
         };
         let lock = DirLock::acquire(&partial)?;
+        // a run started with `force` replaces its `DIR` (flocking's) when it completes, also
+        // after a resume (issue 27)
+        let force = note.lines().any(|line| line == FORCE_LINE);
         if note.starts_with(FAILED) {
             return Err(ResumeError::Refused(format!(
                 "the run in {} cannot be resumed, it would fail again: {}",
@@ -542,18 +597,19 @@ impl RunDirectory {
         let Some(checkpoint) = Checkpoint::read(&partial)? else {
             // No checkpoint yet: the run starts over, in fresh files.
             owned::mark(&partial, Kind::Run)?;
-            write_incomplete(&partial, &running_note(&target))?;
+            write_incomplete(&partial, &running_note(&target, force))?;
             let options = OutputOptions {
-                force: false,
+                force,
                 format,
                 checkpoint_every,
             };
-            let this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
+            let mut this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
+            this.force = force;
             return Ok((this, scenario, None));
         };
         check_scenario(&checkpoint, &scenario, &partial)?;
         owned::mark(&partial, Kind::Run)?;
-        write_incomplete(&partial, &running_note(&target))?;
+        write_incomplete(&partial, &running_note(&target, force))?;
         let metrics_path = partial.join("metrics.csv");
         let columns = if checkpoint.records > 0 {
             Some(diagnostic_columns(&metrics_path)?)
@@ -592,7 +648,7 @@ impl RunDirectory {
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
             scenario: checkpoint.scenario,
-            force: false,
+            force,
             empty_target,
             lock,
         };
@@ -766,8 +822,9 @@ impl RunDirectory {
     pub fn keep_incomplete(self, why: &str, resumable: bool) -> io::Result<PathBuf> {
         let note = if resumable {
             format!(
-                "incomplete: {why}\nEvery record in this directory is complete up to the last one written.\nResume: flocking run --resume {}\n",
-                self.target.display()
+                "incomplete: {why}\nEvery record in this directory is complete up to the last one written.\nResume: flocking run --resume {}\n{}",
+                self.target.display(),
+                force_line(self.force)
             )
         } else {
             format!(
@@ -907,12 +964,135 @@ fn changed_fields(a: &Scenario, b: &Scenario) -> Vec<String> {
 }
 
 /// The note of a directory being written.
-fn running_note(target: &Path) -> String {
+fn running_note(target: &Path, force: bool) -> String {
     format!(
-        "incomplete: the run is in progress (flocking process {}), or was killed.\nA process killed while writing may leave its last record cut; `flocking run --resume` removes it.\nResume a killed run: flocking run --resume {}\n",
+        "incomplete: the run is in progress (flocking process {}), or was killed.\nA process killed while writing may leave its last record cut; `flocking run --resume` removes it.\nResume a killed run: flocking run --resume {}\n{}",
         std::process::id(),
-        target.display()
+        target.display(),
+        force_line(force)
     )
+}
+
+/// The line of the `INCOMPLETE` note of a run started with `force`: it replaces its `DIR`, if
+/// flocking's, when it completes, also after a resume.
+const FORCE_LINE: &str =
+    "With --force: the run replaces the earlier run in its directory when it completes.";
+
+/// [`FORCE_LINE`] with its line break, or nothing.
+fn force_line(force: bool) -> String {
+    if force {
+        format!("{FORCE_LINE}\n")
+    } else {
+        String::new()
+    }
+}
+
+/// Finishes what [`RunDirectory::finish`] left undone when killed right after renaming
+/// `DIR.partial` to `DIR`: removes the checkpoint and the `INCOMPLETE` note of a `DIR` that is
+/// flocking's, holds only a run's files and is complete (its `final.csv` and verdict written
+/// before the rename). Returns whether it did.
+fn tidy_completed(target: &Path) -> Result<bool, ResumeError> {
+    let leftover = |name: &str| fs::symlink_metadata(target.join(name)).is_ok_and(|m| m.is_file());
+    if !(owned::marked(target, Kind::Run)
+        && leftover(INCOMPLETE_FILE)
+        && leftover("final.csv")
+        && leftover(VERDICT_FILE))
+    {
+        return Ok(false);
+    }
+    owned::check_only_own(target, Kind::Run)?;
+    let _lock = DirLock::acquire(target)?;
+    for name in [
+        CHECKPOINT_FILE,
+        CHECKPOINT_TMP,
+        INCOMPLETE_TMP,
+        INCOMPLETE_FILE,
+    ] {
+        let path = target.join(name);
+        match fs::remove_file(&path) {
+            Err(e) if e.kind() != io::ErrorKind::NotFound => {
+                return Err(at(format_args!("remove {}", path.display()))(e).into());
+            }
+            _ => {}
+        }
+    }
+    sync_dir(target).map_err(at(format_args!("flush {}", target.display())))?;
+    Ok(true)
+}
+
+/// `path` without a trailing slash or `.` components (`newdir/` is `newdir`).
+fn normalized(path: &Path) -> PathBuf {
+    let path: PathBuf = path.components().collect();
+    if path.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        path
+    }
+}
+
+/// Refuses an output path that exists but is not a directory (a file, a FIFO, a device such as
+/// `/dev/null`, a link, even one to a directory or a dangling one), before anything is written.
+fn check_target(target: &Path) -> Result<(), CreateError> {
+    let Ok(meta) = fs::symlink_metadata(target) else {
+        return Ok(());
+    };
+    let file_type = meta.file_type();
+    let what = {
+        use std::os::unix::fs::FileTypeExt as _;
+        if file_type.is_dir() {
+            return Ok(());
+        } else if file_type.is_symlink() {
+            if fs::metadata(target).is_ok() {
+                "a link"
+            } else {
+                "a dangling link"
+            }
+        } else if file_type.is_file() {
+            "a file"
+        } else if file_type.is_fifo() {
+            "a FIFO"
+        } else if file_type.is_char_device() || file_type.is_block_device() {
+            "a device"
+        } else {
+            "a socket"
+        }
+    };
+    Err(CreateError::NotADirectory {
+        target: target.to_owned(),
+        what,
+    })
+}
+
+/// Removes the staging directories `DIR.partial.new-<pid>` of runs killed while preparing: each
+/// marked, its `INCOMPLETE` note written (after its writer took its lock) and its lock free. A
+/// staging directory of a live process is locked, or not yet noted, and kept.
+fn remove_stale_staging(partial: &Path) {
+    let Some(name) = partial
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+    else {
+        return;
+    };
+    let prefix = format!("{name}.new");
+    let Ok(entries) = fs::read_dir(parent_of(partial)) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let entry_name = entry.file_name().to_string_lossy().into_owned();
+        if !entry_name.starts_with(&prefix) {
+            continue;
+        }
+        let staging = entry.path();
+        if !owned::marked(&staging, Kind::Run)
+            || !fs::symlink_metadata(staging.join(INCOMPLETE_FILE)).is_ok_and(|m| m.is_file())
+        {
+            continue;
+        }
+        if let Ok(lock) = DirLock::acquire(&staging) {
+            let _ = owned::remove(&staging, Kind::Run);
+            drop(lock);
+        }
+    }
 }
 
 /// Replaces the `INCOMPLETE` note atomically.
@@ -1076,7 +1256,7 @@ impl Recorder for RunDirectory {
         .write(&self.partial)?;
         let whole = format!(
             "{}Whole records, checkpointed after step {}: {} (the first {} bytes of metrics.csv; of the trajectory, {} {}).\n",
-            running_note(&self.target),
+            running_note(&self.target, self.force),
             start.steps,
             self.records,
             self.metrics_bytes,

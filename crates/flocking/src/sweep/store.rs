@@ -9,8 +9,8 @@
 //! | `runs/<id>/` | with `--keep-runs`, each run's directory as `flocking run` writes it |
 //! | `.flocking`, `.flocking.lock` | flocking's marker, and the lock of the process writing it ([`crate::owned`]) |
 //!
-//! A directory is written only when it is new, empty or marked as a sweep's (or, written before
-//! markers, holds this very sweep's `sweep.ron`): a user's `runs.csv` is never replaced. The
+//! A directory is written only when it is new, empty or marked as a sweep's: a user's `runs.csv`
+//! is never replaced, not even in a copy of a sweep's directory that lacks the marker. The
 //! writer holds the directory's lock from [`prepare`] to its end, so that a second sweep or merge
 //! into it is refused while the first one writes.
 //!
@@ -136,9 +136,8 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), StoreError> {
 /// Creates `dir` for `sweep`, or opens it again when it holds the same sweep (to resume), and
 /// locks it: the returned lock is to be held until the sweep is written.
 ///
-/// `dir` must be new, empty, or marked as a sweep's ([`owned::check_owned`]); a directory
-/// written before markers existed is accepted when it holds this sweep's `sweep.ron`, and
-/// marked.
+/// `dir` must be new, empty, or marked as a sweep's ([`owned::check_owned`]): a copy without
+/// the marker is refused, even one holding this very sweep.
 ///
 /// # Errors
 /// [`StoreError::Dir`] for a directory holding files flocking did not write or being written by
@@ -151,11 +150,9 @@ pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<DirLock, StoreError> {
         })
     })?;
     let file = dir.join(SWEEP_FILE);
-    let earlier = !owned::marked(dir, Kind::Sweep)
-        && fs::read_to_string(&file).is_ok_and(|existing| existing == text);
-    if !earlier {
-        owned::check_owned(dir, Kind::Sweep)?;
-    }
+    // Issue 27: a user's copy of a sweep (its `sweep.ron`, an edited `runs.csv`, no marker) is
+    // the user's, even when it holds this very sweep.
+    owned::check_owned(dir, Kind::Sweep)?;
     fs::create_dir_all(dir).map_err(io_error(dir))?;
     // marked before it is locked, so that a second writer meets the lock, not a stranger's file
     if !owned::marked(dir, Kind::Sweep) {
