@@ -112,7 +112,7 @@ pub fn sweep_prepare(
 ) -> PyResult<(Vec<usize>, SweepLock)> {
     let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     let lock = store::prepare(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
-    let finished = store::finished(&dir).map_err(|e| store_error(py, &e, &dir))?;
+    let finished = store::finished(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
     Ok((finished.into_keys().collect(), SweepLock(Some(lock))))
 }
 

@@ -225,13 +225,27 @@ pub fn write_fields(
     write_atomic(&row_file(dir, index, id), &bytes)
 }
 
-/// The runs finished in `dir`: the ids of its row files by run index. Only the names are read: a
-/// row file is written whole (under a temporary name, then renamed), so that it exists says that
-/// its run is done.
+/// The runs of `sweep` finished in `dir`: the ids of its row files by run index. Only the names
+/// are read: a row file is written whole (under a temporary name, then renamed), so that it
+/// exists says that its run is done. A row file whose index is not a run of `sweep`, or whose id
+/// is not that run's, is not a row of this sweep and is ignored (issue 27: a stray
+/// `rows/00000099-ffff.csv` added a row to `runs.csv`).
 ///
 /// # Errors
 /// An unreadable directory.
-pub fn finished(dir: &Path) -> Result<BTreeMap<usize, String>, StoreError> {
+pub fn finished(dir: &Path, sweep: &Sweep) -> Result<BTreeMap<usize, String>, StoreError> {
+    let runs = sweep.runs();
+    Ok(row_files(dir)?
+        .into_iter()
+        .filter_map(|(index, ids)| {
+            let id = runs.get(index)?.id(&sweep.axes);
+            ids.contains(&id).then_some((index, id))
+        })
+        .collect())
+}
+
+/// The ids of the row files of `dir` by index.
+fn row_files(dir: &Path) -> Result<BTreeMap<usize, Vec<String>>, StoreError> {
     let rows = dir.join(ROWS_DIR);
     let mut found = BTreeMap::new();
     let entries = match fs::read_dir(&rows) {
@@ -248,7 +262,7 @@ pub fn finished(dir: &Path) -> Result<BTreeMap<usize, String>, StoreError> {
             .and_then(|stem| stem.split_once('-'))
             .and_then(|(index, id)| Some((index.parse::<usize>().ok()?, id.to_owned())));
         if let Some((index, id)) = run {
-            found.insert(index, id);
+            found.entry(index).or_insert_with(Vec::new).push(id);
         }
     }
     Ok(found)
@@ -272,7 +286,7 @@ fn read_row(path: &Path) -> Result<(String, String), StoreError> {
 /// # Errors
 /// Any I/O error.
 pub fn assemble(dir: &Path, sweep: &Sweep) -> Result<usize, StoreError> {
-    let rows = finished(dir)?;
+    let rows = finished(dir, sweep)?;
     let mut runs = csv_line(&header(sweep));
     let mut times = b"run,id,wall_time\n".to_vec();
     for (&index, id) in &rows {
@@ -307,14 +321,14 @@ pub fn merge(out: &Path, shards: &[PathBuf]) -> Result<usize, StoreError> {
         if read_sweep(shard)? != sweep {
             return Err(StoreError::OtherSweep(shard.clone()));
         }
-        for (index, id) in finished(shard)? {
+        for (index, id) in finished(shard, &sweep)? {
             let from = row_file(shard, index, &id);
             let bytes = fs::read(&from).map_err(io_error(&from))?;
             write_atomic(&row_file(out, index, &id), &bytes)?;
         }
     }
     let total = sweep.runs().len();
-    let have = finished(out)?;
+    let have = finished(out, &sweep)?;
     let missing: Vec<usize> = (0..total).filter(|k| !have.contains_key(k)).collect();
     if let Some(&first) = missing.first() {
         return Err(StoreError::Missing {
