@@ -898,8 +898,28 @@ fn check_scenario(
             changed_fields(&started, scenario).join(", ")
         )));
     }
+    // issue 27: a step count past the scenario's end would stop the output short and judge it
+    if checkpoint.start.steps > scenario.steps() {
+        return Err(ResumeError::Refused(format!(
+            "the checkpoint in {} is at step {}, past the scenario's last step {}: it is not a checkpoint of this run; start a new run with --out elsewhere",
+            partial.display(),
+            checkpoint.start.steps,
+            scenario.steps()
+        )));
+    }
+    // t = 0, every `record_every` steps, and the last step
+    let records_bound = checkpoint.start.steps / scenario.record_every.max(1) + 2;
+    if checkpoint.records > records_bound {
+        return Err(ResumeError::Refused(format!(
+            "the checkpoint in {} counts {} records after step {}, more than the {records_bound} a run records by then: it is not a checkpoint of this run",
+            partial.display(),
+            checkpoint.records,
+            checkpoint.start.steps
+        )));
+    }
     if checkpoint.dim == scenario.dim
         && checkpoint.start.positions.len() == scenario.agents * scenario.dim
+        && checkpoint.start.velocities.len() == checkpoint.start.positions.len()
     {
         return Ok(());
     }
