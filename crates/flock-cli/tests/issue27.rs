@@ -624,3 +624,31 @@ fn issue_27_a_stray_row_file_adds_no_row() {
     complete(tmp.path(), &args);
     assert_eq!(fs::read(sw.join("runs.csv")).expect("runs.csv"), before);
 }
+
+/// Issue 27: with every agent removed by faults, the metrics are undefined: the summary and
+/// `flocking.txt` say so (they said "C 1.0000 (0 component(s))" and "strict: yes").
+#[test]
+fn issue_27_the_metrics_of_an_empty_flock_are_undefined() {
+    let tmp = temp_dir("empty_flock");
+    let text = SHORT_2D.replace(
+        "    record_every: 10,\n",
+        "    record_every: 10,\n    conditions: (faults: (at: [(agent: 0, time: 0.5), (agent: 1, time: 0.5), (agent: 2, time: 0.5)], mode: Removed)),\n",
+    );
+    let text = text.replace("agents: 20", "agents: 3");
+    assert_ne!(text, SHORT_2D);
+    let file = write(tmp.path(), "empty.ron", &text);
+    let output = flocking(tmp.path(), &["run", &file, "--out", "r", "--quiet"]);
+    let out = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert!(
+        out.contains("metrics               undefined: no agent is left"),
+        "{out}"
+    );
+    assert!(!out.contains("connectivity C"), "{out}");
+    assert!(!out.contains("strict: yes"), "{out}");
+    let verdict = fs::read_to_string(tmp.path().join("r/flocking.txt")).expect("flocking.txt");
+    assert!(
+        verdict.contains("undefined, strict: undefined"),
+        "{verdict}"
+    );
+}

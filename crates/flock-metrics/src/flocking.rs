@@ -39,7 +39,27 @@ pub struct FlockMetrics {
 }
 
 impl FlockMetrics {
-    /// Every metric of the state (q, p) with its net.
+    /// The metrics of a flock without agents (every agent removed by faults): undefined, NaN
+    /// (C, C*, R, Ẽ, K̃), with no component, no pair (min distance ∞) and no collision. Issue 27:
+    /// such a flock was reported "C = 1 (0 components)" and judged strictly α-flocking.
+    pub const EMPTY: Self = Self {
+        connectivity: f64::NAN,
+        giant_component: f64::NAN,
+        components: 0,
+        cohesion_radius: f64::NAN,
+        deviation_energy: f64::NAN,
+        velocity_mismatch: f64::NAN,
+        min_distance: f64::INFINITY,
+        collisions: 0,
+    };
+
+    /// Whether these are the metrics of a flock without agents ([`FlockMetrics::EMPTY`]).
+    #[must_use]
+    pub fn is_empty_flock(&self) -> bool {
+        self.components == 0 && self.connectivity.is_nan()
+    }
+
+    /// Every metric of the state (q, p) with its net; [`FlockMetrics::EMPTY`] without agents.
     ///
     /// `net` is the net of `q`, with or without stored distances
     /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way. The
@@ -72,6 +92,9 @@ impl FlockMetrics {
     /// ```
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], p: &[V], net: &ProximityNet, params: &MetricParams) -> Self {
+        if q.is_empty() {
+            return Self::EMPTY;
+        }
         let components = || Components::of(net.graph());
         let numbering = net.numbering();
         let rest = || {
