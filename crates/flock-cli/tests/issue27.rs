@@ -652,3 +652,54 @@ fn issue_27_the_metrics_of_an_empty_flock_are_undefined() {
         "{verdict}"
     );
 }
+
+/// Issue 27: a run made with Python's `controls=f` records it in its directory; `flocking run
+/// --resume` cannot supply `f` and refuses it, untouched, rather than finish it with the
+/// scenario's protocol (neither run).
+#[test]
+fn issue_27_a_run_with_python_controls_is_not_resumed_without_them() {
+    use flocking::{RunDirectory, Scenario};
+    let tmp = temp_dir("controls_resume");
+    let scenario: Scenario = SHORT_2D.parse().expect("a scenario");
+    let out = tmp.path().join("x");
+    let mut dir = RunDirectory::create(&out, &scenario, false).expect("created");
+    dir.record_controls("Python controls=__main__.f")
+        .expect("recorded");
+    let partial = dir
+        .keep_incomplete("interrupted by Ctrl-C", true)
+        .expect("kept");
+    assert_eq!(
+        fs::read_to_string(partial.join("controls.txt")).expect("the record"),
+        "inputs from Python controls=__main__.f\n"
+    );
+    let before = files(&partial);
+    let output = flocking(tmp.path(), &["run", "--resume", "x"]);
+    refused(
+        &output,
+        &[
+            "was made with Python controls=__main__.f",
+            "flocking.resume(\"",
+        ],
+    );
+    assert_eq!(files(&partial), before, "nothing written");
+    // the library refuses the other mismatch too, and resumes with the controls given
+    let error = RunDirectory::resume_with_controls(&out, 1000, None).expect_err("refused");
+    assert!(error.to_string().contains("neither run"), "{error}");
+    let (resumed, _, _) =
+        RunDirectory::resume_with_controls(&out, 1000, Some("Python controls=__main__.f"))
+            .expect("resumed with its controls");
+    assert_eq!(resumed.controls(), Some("Python controls=__main__.f"));
+    drop(resumed);
+    let plain = tmp.path().join("plain");
+    let dir = RunDirectory::create(&plain, &scenario, false).expect("created");
+    dir.keep_incomplete("interrupted by Ctrl-C", true)
+        .expect("kept");
+    let error = RunDirectory::resume_with_controls(&plain, 1000, Some("Python controls=g"))
+        .expect_err("refused");
+    assert!(
+        error
+            .to_string()
+            .contains("made with the scenario's protocol"),
+        "{error}"
+    );
+}

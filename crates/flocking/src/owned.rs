@@ -87,6 +87,7 @@ impl Kind {
                 "checkpoint.tmp",
                 "INCOMPLETE",
                 "INCOMPLETE.tmp",
+                "controls.txt",
             ],
             // Sweeps and galleries are written into, never removed.
             Self::Sweep | Self::Figures => &[],
@@ -110,6 +111,7 @@ impl Kind {
                 "checkpoint.tmp",
                 "INCOMPLETE",
                 "INCOMPLETE.tmp",
+                "controls.txt",
             ],
             Self::Sweep => &[
                 MARKER_FILE,

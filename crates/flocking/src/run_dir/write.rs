@@ -168,6 +168,9 @@ pub struct RunDirectory {
     empty_target: bool,
     /// The lock on `DIR.partial`, held until the directory is dropped.
     lock: DirLock,
+    /// Where the run's inputs come from when not from the scenario's protocol
+    /// ([`CONTROLS_FILE`]).
+    controls: Option<String>,
 }
 
 /// A complete run directory.
@@ -520,6 +523,7 @@ impl RunDirectory {
             force: false,
             empty_target: is_empty_dir(target),
             lock,
+            controls: None,
         })
     }
 
@@ -537,6 +541,22 @@ impl RunDirectory {
     pub fn resume(
         dir: &Path,
         checkpoint_every: u64,
+    ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
+        Self::resume_with_controls(dir, checkpoint_every, None)
+    }
+
+    /// [`RunDirectory::resume`] of a run whose inputs come from `controls` (a description of
+    /// them, e.g. Python's `controls=f`), or from the scenario's protocol (`None`). A run made
+    /// with controls from elsewhere records them in [`CONTROLS_FILE`]
+    /// ([`RunDirectory::record_controls`]): resuming it without them, or a run of the protocol
+    /// with them, would finish it as neither run, and is refused before anything is written.
+    ///
+    /// # Errors
+    /// As [`RunDirectory::resume`]; [`ResumeError::Refused`] when the controls do not match.
+    pub fn resume_with_controls(
+        dir: &Path,
+        checkpoint_every: u64,
+        controls: Option<&str>,
     ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
         let dir: PathBuf = dir.components().collect();
         let (target, partial) = match dir.to_str().and_then(|s| s.strip_suffix(".partial")) {
@@ -577,6 +597,23 @@ impl RunDirectory {
             Err(e) => return Err(at(format_args!("read {}", note_path.display()))(e).into()),
         };
         let lock = DirLock::acquire(&partial)?;
+        let recorded = read_controls(&partial)?;
+        match (&recorded, controls) {
+            (Some(recorded), None) => {
+                return Err(ResumeError::Refused(format!(
+                    "the run in {} was made with {recorded}, which this resume cannot supply: continuing it with the scenario's protocol would finish it as neither run; resume it from Python with flocking.resume({:?}, controls=…) and the same function",
+                    partial.display(),
+                    target.display().to_string()
+                )));
+            }
+            (None, Some(given)) => {
+                return Err(ResumeError::Refused(format!(
+                    "the run in {} was made with the scenario's protocol, not with {given}: resume it without controls",
+                    partial.display()
+                )));
+            }
+            _ => {}
+        }
         // a run started with `force` replaces its `DIR` (flocking's) when it completes, also
         // after a resume (issue 27)
         let force = note.lines().any(|line| line == FORCE_LINE);
@@ -605,6 +642,7 @@ impl RunDirectory {
             };
             let mut this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
             this.force = force;
+            this.controls = recorded;
             return Ok((this, scenario, None));
         };
         check_scenario(&checkpoint, &scenario, &partial)?;
@@ -651,8 +689,33 @@ impl RunDirectory {
             force,
             empty_target,
             lock,
+            controls: recorded,
         };
         Ok((this, scenario, Some(checkpoint.start)))
+    }
+
+    /// Records in [`CONTROLS_FILE`] that the run's inputs come from `source` (e.g. "Python
+    /// controls `f`"), not from the scenario's protocol: a resume must supply them
+    /// ([`RunDirectory::resume_with_controls`]). The file stays in the finished `DIR`.
+    ///
+    /// # Errors
+    /// Any I/O error, with its path.
+    pub fn record_controls(&mut self, source: &str) -> io::Result<()> {
+        let line = source.replace('\n', " ");
+        write_durably(
+            &self.partial.join(CONTROLS_FILE),
+            format!("{CONTROLS_PREFIX}{line}\n").as_bytes(),
+        )?;
+        sync_dir(&self.partial).map_err(at(format_args!("flush {}", self.partial.display())))?;
+        self.controls = Some(line);
+        Ok(())
+    }
+
+    /// Where the run's inputs come from, when not from the scenario's protocol
+    /// ([`RunDirectory::record_controls`]).
+    #[must_use]
+    pub fn controls(&self) -> Option<&str> {
+        self.controls.as_deref()
     }
 
     /// Stops the run (after keeping a checkpoint) once `flag` is set, e.g. by Ctrl-C.
@@ -991,6 +1054,34 @@ fn running_note(target: &Path, force: bool) -> String {
         target.display(),
         force_line(force)
     )
+}
+
+/// The file of a run directory that records where the run's inputs came from when not from the
+/// scenario's protocol (Python's `controls=f`).
+pub const CONTROLS_FILE: &str = "controls.txt";
+
+/// The start of [`CONTROLS_FILE`]'s line.
+const CONTROLS_PREFIX: &str = "inputs from ";
+
+/// The source of the controls recorded in `partial` ([`CONTROLS_FILE`]), if any.
+fn read_controls(partial: &Path) -> Result<Option<String>, ResumeError> {
+    use std::io::Read as _;
+    let path = partial.join(CONTROLS_FILE);
+    let file = match File::open(&path) {
+        Ok(file) => file,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(at(format_args!("read {}", path.display()))(e).into()),
+    };
+    let mut text = String::new();
+    file.take(4096)
+        .read_to_string(&mut text)
+        .map_err(at(format_args!("read {}", path.display())))?;
+    let line = text.trim_end();
+    Ok(Some(
+        line.strip_prefix(CONTROLS_PREFIX)
+            .unwrap_or(line)
+            .to_owned(),
+    ))
 }
 
 /// The line of the `INCOMPLETE` note of a run started with `force`: it replaces its `DIR`, if
