@@ -143,6 +143,16 @@ fn main() -> ExitCode {
     let command = Cli::parse().command;
     // reading and checking can be interrupted at once: nothing is written yet
     stop_on_ctrl_c();
+    let code = dispatch(command);
+    // what the command printed did not reach its reader (a full disk behind a redirection)
+    if flock_cli::console::stdout_failed() && code == ExitCode::SUCCESS {
+        return ExitCode::FAILURE;
+    }
+    code
+}
+
+/// Runs `command` and returns its exit code.
+fn dispatch(command: Command) -> ExitCode {
     match command {
         Command::Bench {
             n,

@@ -703,3 +703,36 @@ fn issue_27_a_run_with_python_controls_is_not_resumed_without_them() {
         "{error}"
     );
 }
+
+/// Issue 27: output that cannot be written (`> /dev/full`) is a failure, not exit 0.
+#[test]
+fn issue_27_validate_into_a_full_device_fails() {
+    let tmp = temp_dir("dev_full");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    let full = fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("/dev/full");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_flocking"))
+        .current_dir(tmp.path())
+        .args(["validate", &file])
+        .stdout(full)
+        .output()
+        .expect("the flocking binary runs");
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{err}");
+    assert!(err.contains("writing to standard output"), "{err}");
+}
+
+/// Issue 27: a file given as a merge shard is a refusal (exit 2) naming it, not an I/O error.
+#[test]
+fn issue_27_a_file_given_as_a_merge_shard_is_refused() {
+    let tmp = temp_dir("merge_file");
+    fs::write(tmp.path().join("notes.txt"), "mine\n").expect("a user's file");
+    let output = flocking(tmp.path(), &["sweep", "merge", "--out", "m", "notes.txt"]);
+    refused(
+        &output,
+        &["notes.txt is not the output directory of a sweep"],
+    );
+    assert!(!tmp.path().join("m").exists());
+}

@@ -315,6 +315,10 @@ pub fn merge(out: &Path, shards: &[PathBuf]) -> Result<usize, StoreError> {
             first: 0,
         });
     };
+    // a file given as a shard is a refusal, not an I/O error (issue 27)
+    if let Some(file) = shards.iter().find(|shard| !shard.is_dir()) {
+        return Err(StoreError::NotASweep(file.clone()));
+    }
     let sweep = read_sweep(first)?;
     let _lock = prepare(out, &sweep)?;
     for shard in shards {
