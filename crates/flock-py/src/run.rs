@@ -431,6 +431,15 @@ pub fn run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let format = TrajectoryFormat::from_str(trajectory_format).map_err(PyValueError::new_err)?;
     let scenario = &scenario.inner;
+    let outputs = match &out {
+        Some(_) => flocking::estimate::Outputs {
+            trajectory_csv: Some(format == TrajectoryFormat::Csv),
+            ..flocking::estimate::Outputs::RUN
+        },
+        None => flocking::estimate::Outputs::NONE,
+    };
+    // before the warnings, which build the initial net of every agent
+    crate::errors::check_resources(py, scenario, &outputs, out.as_deref())?;
     warn(py, scenario)?;
     let dir = match &out {
         Some(out) => {
