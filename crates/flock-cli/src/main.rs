@@ -356,19 +356,20 @@ fn create_directory(
         errln!("error: {e}");
         ExitCode::from(INVALID)
     })?;
-    for warning in scenario.warnings() {
-        errln!("{warning}");
-    }
     let outputs = Outputs {
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
         ..Outputs::RUN
     };
+    // before the warnings, which build the initial net of every agent (issue 27)
     flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), unchecked).map_err(
         |e| {
             errln!("error: {e}");
             ExitCode::from(INVALID)
         },
     )?;
+    for warning in scenario.warnings() {
+        errln!("{warning}");
+    }
     WRITING.store(true, Ordering::SeqCst);
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
         CreateError::Occupied { target } => {

@@ -370,7 +370,7 @@ fn issue_27_two_runs_into_one_directory_one_wins_the_other_is_refused() {
             .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
             .filter(|name| name.starts_with(&out))
             .collect();
-        assert_eq!(left, [out.clone()], "trial {trial}");
+        assert_eq!(left, std::slice::from_ref(&out), "trial {trial}");
     }
 }
 
@@ -735,4 +735,28 @@ fn issue_27_a_file_given_as_a_merge_shard_is_refused() {
         &["notes.txt is not the output directory of a sweep"],
     );
     assert!(!tmp.path().join("m").exists());
+}
+
+/// Issue 27: the resource estimate is checked before anything large is built, and counts an
+/// address-space limit (`ulimit -v`): 10⁸ agents under a 4 GiB limit are refused with the
+/// estimate (exit 2), where the warnings' initial net aborted the process.
+#[test]
+fn issue_27_the_estimate_is_checked_first_and_counts_ulimit() {
+    let tmp = temp_dir("ulimit");
+    let text = SHORT_2D.replace("agents: 20", "agents: 100000000");
+    let file = write(tmp.path(), "big.ron", &text);
+    let output = std::process::Command::new("sh")
+        .current_dir(tmp.path())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 4194304 && exec {} run {file} --out o",
+            env!("CARGO_BIN_EXE_flocking")
+        ))
+        .output()
+        .expect("sh runs");
+    refused(
+        &output,
+        &["a run needs about 25.0 GB of memory but", "is available"],
+    );
+    assert!(!tmp.path().join("o").exists() && !tmp.path().join("o.partial").exists());
 }

@@ -292,14 +292,14 @@ pub fn run_one_with<M: MapProtocol>(
     }
 }
 
+/// A kept run's summary and obstacle extremes, or why it failed and whether that is the
+/// machine's failure (to be retried) rather than the run's.
+type Kept = Result<(RunSummary, Option<(f64, f64)>), (String, bool)>;
+
 /// The run written to `dir` (replaced if present) as `flocking run --out dir` writes it. An
 /// error says why, and whether it is the machine's (the directory could not be made, written
 /// or finished: the run is to be made again) rather than the run's.
-fn keep_run<M: MapProtocol>(
-    scenario: &crate::Scenario,
-    dir: &Path,
-    map: &M,
-) -> Result<(RunSummary, Option<(f64, f64)>), (String, bool)> {
+fn keep_run<M: MapProtocol>(scenario: &crate::Scenario, dir: &Path, map: &M) -> Kept {
     let mut recorder = Obstacles {
         inner: RunDirectory::create(dir, scenario, true).map_err(|e| (e.to_string(), true))?,
         extremes: None,
