@@ -23,6 +23,13 @@ pub fn out(args: fmt::Arguments<'_>) {
     }
 }
 
+/// Whether writing to standard output failed (other than by a closed pipe): the command's exit
+/// code is then not 0 (issue 27: `flocking validate s > /dev/full` exited 0).
+#[must_use]
+pub fn stdout_failed() -> bool {
+    SAID.load(Ordering::Relaxed)
+}
+
 /// Writes `args` to standard error.
 pub fn err(args: fmt::Arguments<'_>) {
     // nowhere is left to say that standard error failed

@@ -203,6 +203,16 @@ fn main() -> ExitCode {
     let command = Cli::parse().command;
     // reading and checking can be interrupted at once: nothing is written yet
     stop_on_ctrl_c();
+    let code = dispatch(command);
+    // what the command printed did not reach its reader (a full disk behind a redirection)
+    if flock_cli::console::stdout_failed() && code == ExitCode::SUCCESS {
+        return ExitCode::FAILURE;
+    }
+    code
+}
+
+/// Runs `command` and returns its exit code.
+fn dispatch(command: Command) -> ExitCode {
     match command {
         Command::Bench {
             n,
@@ -412,19 +422,20 @@ fn create_directory(
         errln!("error: {e}");
         ExitCode::from(INVALID)
     })?;
-    for warning in scenario.warnings() {
-        errln!("{warning}");
-    }
     let outputs = Outputs {
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
         ..Outputs::RUN
     };
+    // before the warnings, which build the initial net of every agent (issue 27)
     flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), unchecked).map_err(
         |e| {
             errln!("error: {e}");
             ExitCode::from(INVALID)
         },
     )?;
+    for warning in scenario.warnings() {
+        errln!("{warning}");
+    }
     WRITING.store(true, Ordering::SeqCst);
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
         CreateError::Occupied { target } => {
@@ -440,6 +451,10 @@ fn create_directory(
                 partial.display(),
                 target.display()
             );
+            ExitCode::from(INVALID)
+        }
+        e @ CreateError::NotADirectory { .. } => {
+            errln!("error: {e}");
             ExitCode::from(INVALID)
         }
         CreateError::Dir(e) => {
@@ -460,6 +475,10 @@ fn resume_directory(
     checkpoint_every: u64,
 ) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
     let (dir, scenario, start) = RunDirectory::resume(dir, checkpoint_every).map_err(|e| {
+        if let ResumeError::Tidied { .. } = &e {
+            outln!("{e}");
+            return ExitCode::SUCCESS;
+        }
         match &e {
             ResumeError::Nothing {
                 partial,
@@ -477,6 +496,7 @@ fn resume_directory(
             | ResumeError::Nothing { .. }
             | ResumeError::Refused(_)
             | ResumeError::Dir(_) => ExitCode::from(INVALID),
+            ResumeError::Tidied { .. } => ExitCode::SUCCESS,
             ResumeError::Io(_) => ExitCode::FAILURE,
         }
     })?;
@@ -624,13 +644,26 @@ fn check_plot_dir(dir: &Path) -> Result<(), String> {
             ));
         }
     }
-    let figures = dir.join("figures");
-    if figures.exists() && !flocking::owned::marked(dir, flocking::owned::Kind::Run) {
-        return Err(flocking::owned::DirError::Foreign {
+    let figures = dir.join(flocking::owned::FIGURES_DIR);
+    let foreign = |entry: String| {
+        Err(flocking::owned::DirError::Foreign {
             dir: dir.to_owned(),
-            entry: "figures".into(),
+            entry,
         }
-        .to_string());
+        .to_string())
+    };
+    let Ok(meta) = std::fs::symlink_metadata(&figures) else {
+        return Ok(());
+    };
+    if !flocking::owned::marked(dir, flocking::owned::Kind::Run) || !meta.is_dir() {
+        // a link (to a user's directory), a file, or figures of a directory without the marker
+        return foreign("figures".into());
+    }
+    // a figure's name that is a link or a directory is not one of flocking's files
+    for name in flocking::owned::RUN_FIGURES {
+        if std::fs::symlink_metadata(figures.join(name)).is_ok_and(|m| !m.is_file()) {
+            return foreign(format!("figures/{name}"));
+        }
     }
     Ok(())
 }

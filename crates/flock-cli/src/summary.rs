@@ -28,19 +28,26 @@ impl fmt::Display for Report<'_> {
             "flocking run: {} ({}D, n = {}, {} steps to t = {})",
             self.name, s.dim, s.agents, s.steps, s.t
         )?;
-        writeln!(
-            f,
-            "  connectivity C        {:.4}   ({} component(s))",
-            m.connectivity, m.components
-        )?;
-        writeln!(f, "  giant component C*    {:.4}", m.giant_component)?;
-        writeln!(f, "  cohesion radius R     {:.4}", m.cohesion_radius)?;
-        writeln!(f, "  deviation energy Ẽ    {:.3e}", m.deviation_energy)?;
-        writeln!(
-            f,
-            "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
-            m.velocity_mismatch, s.component_velocity_mismatch
-        )?;
+        if m.is_empty_flock() {
+            writeln!(
+                f,
+                "  metrics               undefined: no agent is left (every agent was removed by faults)"
+            )?;
+        } else {
+            writeln!(
+                f,
+                "  connectivity C        {:.4}   ({} component(s))",
+                m.connectivity, m.components
+            )?;
+            writeln!(f, "  giant component C*    {:.4}", m.giant_component)?;
+            writeln!(f, "  cohesion radius R     {:.4}", m.cohesion_radius)?;
+            writeln!(f, "  deviation energy Ẽ    {:.3e}", m.deviation_energy)?;
+            writeln!(
+                f,
+                "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
+                m.velocity_mismatch, s.component_velocity_mismatch
+            )?;
+        }
         let from = self.settled_from;
         let [whole, settled] = [f64::NEG_INFINITY, from].map(|t| Closest::over(self.records, t));
         let [whole_distance, settled_distance] = [whole, settled]

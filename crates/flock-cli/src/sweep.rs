@@ -305,6 +305,12 @@ fn run_checked(
             out.display()
         )));
     }
+    if executed.unwritten > 0 {
+        return Err(Failure::Failed(format!(
+            "{} run(s) could not be written (see above); they have no row, and the same command makes them again once that is fixed",
+            executed.unwritten
+        )));
+    }
     Ok(())
 }
 

@@ -8,6 +8,7 @@ mod common;
 mod errors;
 mod figures_cmd;
 mod hostile;
+mod issue27;
 mod merging;
 mod names;
 mod pipes;

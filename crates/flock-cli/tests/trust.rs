@@ -16,7 +16,7 @@ use crate::common::{files, flocking, remove_own_file, stderr, temp_dir, write};
 
 /// Algorithm 2, 60 agents, 12,000 steps recorded every 10: long enough (about a second in a
 /// test build) to be interrupted at many points.
-const LONG_2D: &str = r#"Scenario(
+pub(crate) const LONG_2D: &str = r#"Scenario(
     name: "long",
     dim: 2,
     agents: 60,
@@ -81,13 +81,13 @@ fn partial(out: &Path) -> PathBuf {
 }
 
 /// Runs `args` to completion, asserting success.
-fn complete(dir: &Path, args: &[&str]) {
+pub(crate) fn complete(dir: &Path, args: &[&str]) {
     let output = flocking(dir, args);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
 }
 
 /// A `flocking` process in the background.
-fn spawn(dir: &Path, args: &[&str]) -> Child {
+pub(crate) fn spawn(dir: &Path, args: &[&str]) -> Child {
     Command::new(env!("CARGO_BIN_EXE_flocking"))
         .current_dir(dir)
         .args(args)
@@ -466,6 +466,8 @@ fn a_corrupt_checkpoint_is_refused_with_its_path() {
     let out = tmp.path().join("cut");
     let dir = partial(&out);
     fs::create_dir_all(&dir).expect("mkdir");
+    // flocking's partial directory (issue 27: a resume writes only into a marked one)
+    fs::write(dir.join(".flocking"), "written by flocking run\n").expect("marker");
     fs::write(dir.join("scenario.ron"), LONG_2D).expect("scenario");
     fs::write(dir.join(INCOMPLETE_FILE), "incomplete: killed\n").expect("note");
     fs::write(dir.join("checkpoint.bin"), b"FLOCKCK2 but cut short").expect("checkpoint");
@@ -633,7 +635,7 @@ fn the_fuzzers_findings_are_rejected_or_run_finite() {
 }
 
 /// A short run (2D, 20 agents, 400 steps recorded every 10) for the ownership tests.
-const SHORT_2D: &str = r#"Scenario(
+pub(crate) const SHORT_2D: &str = r#"Scenario(
     name: "short",
     dim: 2,
     agents: 20,
@@ -651,7 +653,7 @@ const SHORT_2D: &str = r#"Scenario(
 "#;
 
 /// Asserts that `output` exited with code 2 and that its stderr holds every one of `words`.
-fn refused(output: &std::process::Output, words: &[&str]) {
+pub(crate) fn refused(output: &std::process::Output, words: &[&str]) {
     let err = stderr(output);
     assert_eq!(output.status.code(), Some(2), "{err}");
     for word in words {
@@ -1087,7 +1089,7 @@ fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
 }
 
 /// A sweep of `seeds` runs of `base` (a file in the same directory), no axes.
-fn seeds_sweep(dir: &Path, base: &str, seeds: usize) -> String {
+pub(crate) fn seeds_sweep(dir: &Path, base: &str, seeds: usize) -> String {
     write(
         dir,
         "sweep.ron",

@@ -156,6 +156,9 @@ pub struct FlockingVerdict {
     pub small_mismatch: bool,
     /// Condition a: one component at every record.
     pub connected: bool,
+    /// Whether some record of the window is of a flock without agents (every agent removed by
+    /// faults): its metrics are undefined, and so is the verdict (neither condition holds).
+    pub empty: bool,
 }
 
 impl FlockingVerdict {
@@ -206,19 +209,24 @@ impl FlockingVerdict {
             small_deviation: max_deviation_energy <= criteria.epsilon1,
             small_mismatch: max_velocity_mismatch <= criteria.epsilon2,
             connected: window.iter().all(|m| m.components == 1),
+            empty: window.iter().any(|m| m.is_empty_flock()),
         })
     }
 
     /// α-flocking: quasi-flock, cohesive, Ẽ ≤ ε₁ and K̃ ≤ ε₂ over the window (conditions 1–4).
     #[must_use]
     pub const fn is_alpha_flocking(&self) -> bool {
-        self.quasi_flock && self.cohesive && self.small_deviation && self.small_mismatch
+        !self.empty
+            && self.quasi_flock
+            && self.cohesive
+            && self.small_deviation
+            && self.small_mismatch
     }
 
     /// Strict α-flocking: connected, Ẽ ≤ ε₁ and K̃ ≤ ε₂ over the window (conditions a–c).
     #[must_use]
     pub const fn is_strict(&self) -> bool {
-        self.connected && self.small_deviation && self.small_mismatch
+        !self.empty && self.connected && self.small_deviation && self.small_mismatch
     }
 }
 
@@ -232,6 +240,13 @@ impl fmt::Display for FlockingVerdict {
     /// R ≤ 20.00 (from 20.00), Ẽ ≤ 1.0e-4, K̃ ≤ 1.0e-6`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let yes = |b: bool| if b { "yes" } else { "no" };
+        if self.empty {
+            return write!(
+                f,
+                "α-flocking over [{:.2}, {:.2}] s ({} records): undefined, strict: undefined — no agent is left at some record (every agent removed by faults): its metrics are undefined",
+                self.from, self.to, self.records
+            );
+        }
         write!(
             f,
             "α-flocking over [{:.2}, {:.2}] s ({} records): {}, strict: {} — min C* = {:.3}, \
@@ -283,6 +298,22 @@ mod tests {
 
     fn judge(records: &[(f64, FlockMetrics)]) -> FlockingVerdict {
         FlockingVerdict::judge(records, &FlockingCriteria::default()).expect("records")
+    }
+
+    /// Issue 27: a record of a flock without agents makes the verdict undefined, never strict.
+    #[test]
+    fn issue_27_an_empty_flock_is_not_judged_a_flock() {
+        let records = run(|t| {
+            if t < 90.0 {
+                flock()
+            } else {
+                FlockMetrics::EMPTY
+            }
+        });
+        let verdict = judge(&records);
+        assert!(verdict.empty);
+        assert!(!verdict.is_alpha_flocking() && !verdict.is_strict());
+        assert!(verdict.to_string().contains("undefined"), "{verdict}");
     }
 
     #[test]

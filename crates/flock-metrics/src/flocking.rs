@@ -39,7 +39,7 @@ pub struct FlockMetrics {
     /// The polarisation (order parameter) Φ = ‖Σ_i p_i/‖p_i‖‖ / N ∈ [0, 1]: 1 when every agent
     /// heads the same way, about 1/√N for random headings. Vicsek et al., PRL 75 (1995), v_a (for
     /// agents of constant speed); Couzin et al., J. theor. Biol. 218 (2002), p_group. Agents at
-    /// rest (p_i = 0, or not finite) are left out of the sum but counted in N; 0 for no agent.
+    /// rest (p_i = 0, or not finite) are left out of the sum but counted in N; undefined (NaN, [`FlockMetrics::EMPTY`]) for no agent.
     pub polarisation: f64,
     /// The milling (angular momentum) parameter M = ‖Σ_i r̂_ic × p̂_i‖ / N ∈ [0, 1], r̂_ic the unit
     /// vector from the group centre q_c to agent i and p̂_i its heading: 1 for agents circling the
@@ -47,7 +47,7 @@ pub struct FlockMetrics {
     /// J. theor. Biol. 218 (2002), m_group. In 3D the norm of the summed cross products, in 2D the
     /// absolute value of the summed scalar cross products r̂_x p̂_y − r̂_y p̂_x. On a torus q_c is
     /// the circular mean ([`Domain::centre_of`]) and r_ic the minimum image. Agents at rest or at
-    /// the centre add nothing but count in N; 0 for no agent.
+    /// the centre add nothing but count in N; undefined (NaN) for no agent.
     pub milling: f64,
     /// The mean over agents of the distance to the nearest other agent, (1/N) Σ_i min_{j≠i}
     /// ‖q_j − q_i‖ (minimum image on a torus), the mean nearest-neighbour distance of the
@@ -64,7 +64,31 @@ pub struct FlockMetrics {
 }
 
 impl FlockMetrics {
-    /// Every metric of the state (q, p) with its net.
+    /// The metrics of a flock without agents (every agent removed by faults): undefined, NaN
+    /// (C, C*, R, Ẽ, K̃), with no component, no pair (min distance ∞) and no collision. Issue 27:
+    /// such a flock was reported "C = 1 (0 components)" and judged strictly α-flocking.
+    pub const EMPTY: Self = Self {
+        connectivity: f64::NAN,
+        giant_component: f64::NAN,
+        components: 0,
+        cohesion_radius: f64::NAN,
+        deviation_energy: f64::NAN,
+        velocity_mismatch: f64::NAN,
+        min_distance: f64::INFINITY,
+        collisions: 0,
+        polarisation: f64::NAN,
+        milling: f64::NAN,
+        nearest_neighbour_mean: f64::NAN,
+        nearest_neighbour_min: f64::INFINITY,
+    };
+
+    /// Whether these are the metrics of a flock without agents ([`FlockMetrics::EMPTY`]).
+    #[must_use]
+    pub fn is_empty_flock(&self) -> bool {
+        self.components == 0 && self.connectivity.is_nan()
+    }
+
+    /// Every metric of the state (q, p) with its net; [`FlockMetrics::EMPTY`] without agents.
     ///
     /// `net` is the net of `q`, with or without stored distances
     /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way. The
@@ -139,6 +163,9 @@ impl FlockMetrics {
         net: &ProximityNet,
         params: &MetricParams,
     ) -> Self {
+        if q.is_empty() {
+            return Self::EMPTY;
+        }
         let components = || Components::of(net.graph());
         let numbering = net.numbering();
         let rest = || {

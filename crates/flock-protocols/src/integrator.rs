@@ -462,6 +462,10 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// position where they failed, with zero velocity, but leave every metric).
     fn metrics_without(&self, removed: &[bool], params: &MetricParams) -> FlockMetrics {
         let kept: Vec<usize> = (0..removed.len()).filter(|&i| !removed[i]).collect();
+        if kept.is_empty() {
+            // every agent removed: undefined, also on a fixed interaction graph
+            return FlockMetrics::EMPTY;
+        }
         let pick = |x: &[V]| kept.iter().map(|&i| x[i]).collect::<Vec<V>>();
         let (q, p) = (pick(&self.swarm.positions), pick(&self.swarm.velocities));
         let mut net = empty_net(&self.protocol);

@@ -59,6 +59,7 @@ pub fn create_error(py: Python<'_>, error: &CreateError, out: &Path) -> PyErr {
             partial.display(),
             target.display().to_string()
         ),
+        e @ CreateError::NotADirectory { .. } => e.to_string(),
         CreateError::Dir(e) => e.to_string(),
         CreateError::Io(e) => e.to_string(),
     };
@@ -102,5 +103,34 @@ pub fn read_error(py: Python<'_>, error: &ReadError) -> PyErr {
         ReadError::Io { path, .. } | ReadError::Parse { path, .. } => {
             run_directory_error(py, error, path)
         }
+    }
+}
+
+/// The CLI's resource check before a run or a simulation (issue 27: `Simulation` with a 10⁶ s
+/// delay, `run` with 10⁸ agents aborted the interpreter): the scenario's estimate with `outputs`
+/// must fit in this machine's memory and, with `out`, in the free space there. Raises
+/// `MemoryError` (memory) or `RunDirectoryError` (disk) with the CLI's figures, before anything is
+/// allocated or written.
+pub fn check_resources(
+    py: Python<'_>,
+    scenario: &flocking::Scenario,
+    outputs: &flocking::estimate::Outputs,
+    out: Option<&Path>,
+) -> PyResult<()> {
+    use flocking::estimate::Resources;
+    let resources = match out {
+        Some(out) => Resources::of_machine(out),
+        None => Resources {
+            disk_bytes: None,
+            ..Resources::of_machine(Path::new("."))
+        },
+    };
+    let Err(why) = scenario.estimate(outputs).check(&resources) else {
+        return Ok(());
+    };
+    let why = why.replace(", or --no-resource-check to try anyway", "");
+    match out {
+        Some(out) if why.starts_with("the outputs") => Err(run_directory_error(py, why, out)),
+        _ => Err(pyo3::exceptions::PyMemoryError::new_err(why)),
     }
 }

@@ -35,6 +35,7 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;
     module.add_function(wrap_pyfunction!(player::run_player_html, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_read, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_load, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_run, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_prepare, module)?)?;

@@ -447,6 +447,15 @@ pub fn run<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let format = TrajectoryFormat::from_str(trajectory_format).map_err(PyValueError::new_err)?;
     let scenario = &scenario.inner;
+    let outputs = match &out {
+        Some(_) => flocking::estimate::Outputs {
+            trajectory_csv: Some(format == TrajectoryFormat::Csv),
+            ..flocking::estimate::Outputs::RUN
+        },
+        None => flocking::estimate::Outputs::NONE,
+    };
+    // before the warnings, which build the initial net of every agent
+    crate::errors::check_resources(py, scenario, &outputs, out.as_deref())?;
     warn(py, scenario)?;
     let dir = match &out {
         Some(out) => {
@@ -462,6 +471,14 @@ pub fn run<'py>(
         }
         None => None,
     };
+    // issue 27: the directory records that its inputs came from Python, so that a resume
+    // without them is refused
+    let mut dir = dir;
+    if let (Some(directory), Some(f), Some(out)) = (&mut dir, &controls, &out) {
+        directory
+            .record_controls(&controls_source(py, f))
+            .map_err(|e| crate::errors::run_directory_error(py, e, out))?;
+    }
     let controls = controls.map(|f| PythonControls::new(f, scenario));
     let (memory, path, verdict) = execute(py, scenario, None, dir, trajectory, controls.as_ref())?;
     memory.into_result(py, scenario, path.as_deref(), verdict)
@@ -479,8 +496,10 @@ pub fn resume<'py>(
     checkpoint_every: u64,
     controls: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let source = controls.as_ref().map(|f| controls_source(py, f));
     let (directory, scenario, start) =
-        RunDirectory::resume(&dir, checkpoint_every).map_err(|e| resume_error(py, &e, &dir))?;
+        RunDirectory::resume_with_controls(&dir, checkpoint_every, source.as_deref())
+            .map_err(|e| resume_error(py, &e, &dir))?;
     let controls = controls.map(|f| PythonControls::new(f, &scenario));
     let (_, path, _) = execute(
         py,
@@ -492,6 +511,24 @@ pub fn resume<'py>(
     )?;
     let path = path.unwrap_or(dir);
     read_run(py, path)
+}
+
+/// What a run directory records of Python's `controls=f`: "Python controls=`module.qualname`".
+fn controls_source(py: Python<'_>, f: &Py<PyAny>) -> String {
+    let attribute = |name: &str| {
+        f.getattr(py, name)
+            .ok()
+            .and_then(|v| v.extract::<String>(py).ok())
+    };
+    let name = match (attribute("__module__"), attribute("__qualname__")) {
+        (Some(module), Some(qualname)) => format!("{module}.{qualname}"),
+        (None, Some(qualname)) => qualname,
+        _ => f
+            .bind(py)
+            .repr()
+            .map_or_else(|_| "a callable".to_owned(), |r| r.to_string()),
+    };
+    format!("Python controls={name}")
 }
 
 /// Reads the run directory `dir` (complete, or an interrupted `DIR.partial`): its scenario, the

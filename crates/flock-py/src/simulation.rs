@@ -110,6 +110,7 @@ impl PySimulation {
         controls: Option<Py<PyAny>>,
     ) -> PyResult<Self> {
         let scenario = &scenario.inner;
+        crate::errors::check_resources(py, scenario, &flocking::estimate::Outputs::NONE, None)?;
         let controls = controls.map(|f| PythonControls::new(f, scenario));
         let sim = match (&positions, &velocities, &controls) {
             (None, None, None) => DynSimulation::new(scenario),

@@ -24,6 +24,23 @@ fn store_error(py: Python<'_>, error: &StoreError, dir: &Path) -> PyErr {
     }
 }
 
+/// The text of the sweep file at `path`, read as the CLI reads it (issue 27): a file that is not
+/// regular (a FIFO, `/dev/zero`) or larger than the input limit is refused before reading,
+/// naming the path, as a `ScenarioError`.
+#[pyfunction]
+pub fn sweep_read(py: Python<'_>, path: PathBuf) -> PyResult<String> {
+    py.detach(|| flocking::input::read_text(&path))
+        .map_err(|message| {
+            sweep_error(
+                py,
+                &SweepError::Io {
+                    path: path.display().to_string(),
+                    message,
+                },
+            )
+        })
+}
+
 /// `(text, runs)`: the sweep in `text` (`Path` bases relative to `base_dir`) as self-contained RON,
 /// and its number of runs.
 #[pyfunction]
@@ -112,7 +129,7 @@ pub fn sweep_prepare(
 ) -> PyResult<(Vec<usize>, SweepLock)> {
     let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     let lock = store::prepare(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
-    let finished = store::finished(&dir).map_err(|e| store_error(py, &e, &dir))?;
+    let finished = store::finished(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))?;
     Ok((finished.into_keys().collect(), SweepLock(Some(lock))))
 }
 

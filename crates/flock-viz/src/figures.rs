@@ -72,6 +72,15 @@ pub fn write_figures(
     options: &FigureOptions,
 ) -> Result<Vec<PathBuf>, VizError> {
     scene.validate()?;
+    if fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(VizError::Io {
+            path: dir.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                "a link, which flocking did not create: flocking never writes through it; move it away",
+            ),
+        });
+    }
     fs::create_dir_all(dir).map_err(|source| VizError::Io {
         path: dir.to_path_buf(),
         source,
@@ -79,7 +88,8 @@ pub fn write_figures(
     let mut written = Vec::new();
     let mut write = |name: &str, bytes: &[u8]| -> Result<(), VizError> {
         let path = dir.join(name);
-        fs::write(&path, bytes).map_err(|source| VizError::Io {
+        // never through a link: a user's file it points to is left as it is
+        flocking::owned::write_no_follow(&path, bytes).map_err(|source| VizError::Io {
             path: path.clone(),
             source,
         })?;

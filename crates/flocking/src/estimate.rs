@@ -287,10 +287,37 @@ fn available_memory() -> Option<f64> {
             .ok()
     };
     let cgroup = read("memory.max").map(|max| max - read("memory.current").unwrap_or(0.0));
-    match (available, cgroup) {
-        (Some(a), Some(c)) => Some(a.min(c)),
-        (a, c) => a.or(c),
-    }
+    [available, cgroup, address_space_left()]
+        .into_iter()
+        .flatten()
+        .reduce(f64::min)
+}
+
+/// The address space this process may still map when it is limited (`ulimit -v`, `RLIMIT_AS`
+/// of `/proc/self/limits`, less the `VmSize` of `/proc/self/status`): beyond it an allocation
+/// fails and the process aborts (issue 27).
+fn address_space_left() -> Option<f64> {
+    let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
+    let soft = limits
+        .lines()
+        .find_map(|line| line.strip_prefix("Max address space"))?
+        .split_whitespace()
+        .next()?
+        .parse::<f64>()
+        .ok()?;
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let used = status
+        .lines()
+        .find_map(|line| line.strip_prefix("VmSize:"))
+        .and_then(|rest| {
+            rest.trim()
+                .trim_end_matches("kB")
+                .trim()
+                .parse::<f64>()
+                .ok()
+        })
+        .map_or(0.0, |kb| kb * 1024.0);
+    Some((soft - used).max(0.0))
 }
 
 #[cfg(unix)]

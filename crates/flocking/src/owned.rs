@@ -7,14 +7,19 @@
 //!   not write.
 //! - [`remove`] ([`check_removable`]): the only way flocking removes a directory. It refuses the filesystem root, the
 //!   working directory and its ancestors, mount points ([`DirError::Special`]), and any directory
-//!   without the marker or holding a file that its [`Kind`] does not write
-//!   ([`DirError::Foreign`]).
+//!   without the marker or holding, at any depth, an entry that its [`Kind`] does not write: a
+//!   name it never writes, a link, a FIFO, a subdirectory of its `figures/` ([`DirError::Foreign`],
+//!   naming it by its relative path, `figures/mine`).
+//! - [`check_only_own`]: the same at every depth, for a writer that cuts back and appends to a
+//!   directory (`flocking run --resume`).
+//! - [`write_no_follow`]: a figure is never written through a link.
 //! - [`DirLock`]: an exclusive advisory lock ([`File::try_lock`]) on [`LOCK_FILE`] held by the
 //!   writer for as long as it writes; a second writer gets [`DirError::Busy`] with the holder's
 //!   process id and start time. The operating system releases the lock when the process dies, so
 //!   a stale lock file is simply taken over.
 //! - [`write_file`]: a file written where a user names it (a figure, a table) never replaces a
-//!   file that flocking did not write.
+//!   file that flocking did not write, nor one of the files a directory of flocking's is made of
+//!   ([`DirError::Reserved`]: a sweep's `runs.csv`).
 //! - [`at`]: every I/O error of these paths says what was being done to which path.
 
 use std::fmt;
@@ -65,7 +70,8 @@ impl Kind {
         }
     }
 
-    /// The entries a directory of this kind may hold when [`remove`] removes it.
+    /// The files a directory of this kind may hold at its top level when [`remove`] removes it
+    /// (each a regular file, never a link), besides the subdirectories of [`Kind::subdirectories`].
     fn entries(self) -> &'static [&'static str] {
         match self {
             Self::Run => &[
@@ -77,17 +83,79 @@ impl Kind {
                 "final.csv",
                 "scenario.ron",
                 "flocking.txt",
-                "figures",
                 "checkpoint.bin",
                 "checkpoint.tmp",
                 "INCOMPLETE",
                 "INCOMPLETE.tmp",
+                "controls.txt",
             ],
             // Sweeps and galleries are written into, never removed.
             Self::Sweep | Self::Figures => &[],
         }
     }
+
+    /// The names a directory of this kind is made of, which [`write_file`] never replaces.
+    fn reserved(self) -> &'static [&'static str] {
+        match self {
+            Self::Run => &[
+                MARKER_FILE,
+                LOCK_FILE,
+                "metrics.csv",
+                "trajectory.csv",
+                "trajectory.npy",
+                "final.csv",
+                "scenario.ron",
+                "flocking.txt",
+                FIGURES_DIR,
+                "checkpoint.bin",
+                "checkpoint.tmp",
+                "INCOMPLETE",
+                "INCOMPLETE.tmp",
+                "controls.txt",
+            ],
+            Self::Sweep => &[
+                MARKER_FILE,
+                LOCK_FILE,
+                "sweep.ron",
+                "sweep.tmp",
+                "runs.csv",
+                "runs.tmp",
+                "times.csv",
+                "times.tmp",
+                "rows",
+                "runs",
+            ],
+            Self::Figures => &[MARKER_FILE, LOCK_FILE, "index.html", "functions"],
+        }
+    }
+
+    /// The subdirectories a directory of this kind may hold when [`remove`] removes it, each
+    /// with the files it may hold (regular files, never links, no deeper directories).
+    fn subdirectories(self) -> &'static [(&'static str, &'static [&'static str])] {
+        match self {
+            Self::Run => &[(FIGURES_DIR, RUN_FIGURES)],
+            Self::Sweep | Self::Figures => &[],
+        }
+    }
 }
+
+/// The subdirectory of a run directory that `flocking plot` draws into.
+pub const FIGURES_DIR: &str = "figures";
+
+/// Every file `flocking plot` writes into a run's [`FIGURES_DIR`]: a run directory holding any
+/// other is never removed (issue 27: ownership at every depth).
+pub const RUN_FIGURES: &[&str] = &[
+    "snapshots.svg",
+    "snapshots.png",
+    "snapshots_top.svg",
+    "snapshots_top.png",
+    "views.svg",
+    "views.png",
+    "metrics.svg",
+    "metrics.png",
+    "animation.gif",
+    "player.html",
+];
 
 /// Why flocking refuses a directory.
 #[derive(Debug)]
@@ -114,6 +182,14 @@ pub enum DirError {
         dir: PathBuf,
         /// What it is.
         what: &'static str,
+    },
+    /// The path names one of the files a directory of flocking's is made of (a sweep's
+    /// `runs.csv`, a run's `metrics.csv`): a figure or table is never written over it.
+    Reserved {
+        /// The path.
+        path: PathBuf,
+        /// What the directory is.
+        of: &'static str,
     },
     /// Another process is writing the directory.
     Busy {
@@ -143,6 +219,11 @@ impl fmt::Display for DirError {
                 f,
                 "{} is {what}: flocking never replaces it; choose another output directory",
                 dir.display()
+            ),
+            Self::Reserved { path, of } => write!(
+                f,
+                "{} is one of the files of {of}: flocking never writes a figure or a table over it; choose another output file",
+                path.display()
             ),
             Self::Busy { dir, holder } => {
                 write!(f, "{} is being written by {holder}", dir.display())
@@ -206,17 +287,37 @@ pub fn marked_by_flocking(dir: &Path) -> bool {
 /// [`DirError::Foreign`] naming the existing file (nothing is written); any I/O error, with its
 /// path.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
+    use std::os::unix::fs::OpenOptionsExt as _;
     let dir = parent_of(path);
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let marker = [Kind::Run, Kind::Sweep, Kind::Figures]
+        .into_iter()
+        .find(|&kind| marked(dir, kind));
+    if let (Some(kind), Some(name)) = (marker, &name)
+        && kind.reserved().contains(&name.as_str())
+    {
+        return Err(DirError::Reserved {
+            path: path.to_owned(),
+            of: kind.what(),
+        });
+    }
     let mut options = OpenOptions::new();
     options.write(true);
-    if marked_by_flocking(dir) {
-        options.create(true).truncate(true);
+    if marker.is_some() {
+        // never through a link (a user's file it points to)
+        options
+            .create(true)
+            .truncate(true)
+            .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed());
     } else {
         options.create_new(true);
     }
     let mut file = match options.open(path) {
         Ok(file) => file,
-        Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {
+        Err(e)
+            if e.kind() == io::ErrorKind::AlreadyExists
+                || e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) =>
+        {
             return Err(DirError::Foreign {
                 dir: dir.to_owned(),
                 entry: path.file_name().map_or_else(
@@ -229,6 +330,51 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
     };
     file.write_all(bytes)
         .map_err(|e| at(format_args!("write {}", path.display()))(e).into())
+}
+
+/// Writes `bytes` to the file `path` (created, or cut and rewritten), never through a link: a
+/// link at `path` is refused (`O_NOFOLLOW`) and what it points to left untouched, as is a
+/// directory at `path` that is a link (issue 27: `flocking plot r` with `r/figures` a link to a
+/// user's directory).
+///
+/// # Errors
+/// A link (naming it and what to do); any I/O error, with its path.
+pub fn write_no_follow(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    use std::os::unix::fs::OpenOptionsExt as _;
+    let parent = parent_of(path);
+    if fs::symlink_metadata(parent).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(link_refused(parent));
+    }
+    let flags = rustix::fs::OFlags::NOFOLLOW.bits();
+    let mut file = OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .custom_flags(flags.cast_signed())
+        .open(path)
+        .map_err(|e| {
+            if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
+                link_refused(path)
+            } else {
+                at(format_args!("create {}", path.display()))(e)
+            }
+        })?;
+    let write = |file: &mut File| {
+        file.set_len(0)?;
+        file.write_all(bytes)
+    };
+    write(&mut file).map_err(at(format_args!("write {}", path.display())))
+}
+
+/// The error of a link that flocking would have written through.
+fn link_refused(path: &Path) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::AlreadyExists,
+        format!(
+            "{} is a link, which flocking did not create: flocking never writes through it; move it away",
+            path.display()
+        ),
+    )
 }
 
 /// The names in `dir`, sorted (none when it does not exist).
@@ -294,15 +440,52 @@ pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
 /// [`DirError::Special`], [`DirError::Foreign`], or an I/O error naming its path.
 pub fn check_removable(dir: &Path, kind: Kind) -> Result<(), DirError> {
     check_special(dir)?;
+    check_only_own(dir, kind)
+}
+
+/// The first entry of `dir`, at any depth, that a directory of `kind` does not hold: a name it
+/// never writes, a link, a file where it writes a directory or the reverse, anything inside a
+/// subdirectory but the files it writes there. Named by its path relative to `dir`; `None`
+/// when every entry is one flocking writes.
+fn foreign_entry(dir: &Path, kind: Kind) -> io::Result<Option<String>> {
+    let kind_of = |path: &Path| fs::symlink_metadata(path).map(|m| m.file_type());
+    for name in entries(dir)? {
+        let path = dir.join(&name);
+        let file_type = kind_of(&path)?;
+        if kind.entries().contains(&name.as_str()) && file_type.is_file() {
+            continue;
+        }
+        let Some((_, files)) = kind
+            .subdirectories()
+            .iter()
+            .find(|(sub, _)| *sub == name)
+            .filter(|_| file_type.is_dir())
+        else {
+            return Ok(Some(name));
+        };
+        for inner in entries(&path)? {
+            let inner_path = path.join(&inner);
+            if !(files.contains(&inner.as_str()) && kind_of(&inner_path)?.is_file()) {
+                return Ok(Some(format!("{name}/{inner}")));
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// Checks that `dir` carries the marker of `kind` and holds, at every depth, only what `kind`
+/// writes (regular files of its names, never a link or a FIFO): what a writer may cut back or
+/// rewrite (`flocking run --resume`).
+///
+/// # Errors
+/// [`DirError::Foreign`] naming the first entry flocking did not write, [`DirError::OtherKind`],
+/// or an I/O error naming its path.
+pub fn check_only_own(dir: &Path, kind: Kind) -> Result<(), DirError> {
     check_owned(dir, kind)?;
-    let names = entries(dir).map_err(at(format_args!("list {}", dir.display())))?;
-    match names
-        .iter()
-        .find(|name| !kind.entries().contains(&name.as_str()))
-    {
+    match foreign_entry(dir, kind).map_err(at(format_args!("list {}", dir.display())))? {
         Some(entry) => Err(DirError::Foreign {
             dir: dir.to_owned(),
-            entry: entry.clone(),
+            entry,
         }),
         None => Ok(()),
     }

@@ -152,3 +152,77 @@ fn a_record_naming_other_columns_is_refused() {
     assert!(error.to_string().contains("diagnostic columns"), "{error}");
     dir.abandon();
 }
+
+/// The bytes of a checkpoint with the header words `words` (dim, agents, steps, energy bits,
+/// records, metrics bytes, trajectory bytes; the scenario's length is added), the state
+/// `state`, the scenario `scenario`, and a valid FNV-1a hash: a forged checkpoint.
+fn forged_checkpoint(words: [u64; 7], state: &[f64], scenario: &str) -> Vec<u8> {
+    let mut bytes = b"FLOCKCK2".to_vec();
+    for word in words.into_iter().chain([scenario.len() as u64]) {
+        bytes.extend_from_slice(&word.to_le_bytes());
+    }
+    for x in state {
+        bytes.extend_from_slice(&x.to_le_bytes());
+    }
+    bytes.extend_from_slice(scenario.as_bytes());
+    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |hash, &b| {
+        (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    bytes.extend_from_slice(&hash.to_le_bytes());
+    bytes
+}
+
+/// Issue 27: every field of a checkpoint read back is checked as user input. A forged file with
+/// a valid hash (`dim = 1, agents = 2⁶³` panicked; `steps = u64::MAX` was accepted, and the run
+/// stopped at t = 105 of 300 judged "α-flocking: yes") is refused, naming the field.
+#[test]
+fn issue_27_a_forged_checkpoint_is_refused_not_trusted() {
+    let tmp = temp_dir("forged_checkpoint");
+    let mut scenario = fixture("tac2006_fig11_alg2_n100");
+    scenario.agents = 2;
+    scenario.duration = 1.0;
+    let text = scenario.to_ron().expect("RON");
+    let state = [0.0; 8];
+    let h = 1.0_f64.to_bits();
+    let cases: [([u64; 7], &[f64], &str); 4] = [
+        (
+            [1, 1 << 63, 0, h, 0, 0, 0],
+            &[],
+            "its dimension is 1, not 2 or 3",
+        ),
+        (
+            [2, 1 << 62, 0, h, 0, 0, 0],
+            &[],
+            "holds 4611686018427387904 agents",
+        ),
+        (
+            [2, 2, u64::MAX, h, 0, 0, 0],
+            &state,
+            "past the scenario's last step",
+        ),
+        (
+            [2, 2, 10, h, u64::MAX, 0, 0],
+            &state,
+            "counts 18446744073709551615 records",
+        ),
+    ];
+    for (k, (words, state, message)) in cases.into_iter().enumerate() {
+        let out = tmp.path().join(format!("r{k}"));
+        let partial = flocking::run_dir::partial_path(&out);
+        std::fs::create_dir(&partial).expect("mkdir");
+        std::fs::write(partial.join(".flocking"), "written by flocking run\n").expect("marker");
+        std::fs::write(partial.join("scenario.ron"), format!("{text}\n")).expect("scenario");
+        std::fs::write(partial.join("INCOMPLETE"), "incomplete: killed\n").expect("note");
+        std::fs::write(partial.join("metrics.csv"), "").expect("metrics");
+        std::fs::write(partial.join("trajectory.csv"), "").expect("trajectory");
+        std::fs::write(
+            partial.join("checkpoint.bin"),
+            forged_checkpoint(words, state, &text),
+        )
+        .expect("a forged checkpoint");
+        let Err(error) = RunDirectory::resume(&out, 1000) else {
+            panic!("case {k}: a forged checkpoint was resumed");
+        };
+        assert!(error.to_string().contains(message), "case {k}: {error}");
+    }
+}

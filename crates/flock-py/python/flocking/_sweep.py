@@ -127,10 +127,10 @@ def sweep(
     fails (an invalid value, a blow-up) is a row with its error, not an exception.
     """
     spec_path = _os.fspath(spec)
-    with open(spec_path) as f:
-        text, count = _flocking.sweep_load(
-            f.read(), spec_path, _os.path.dirname(_os.path.abspath(spec_path))
-        )
+    # read as the CLI reads it: a FIFO or /dev/zero is refused, a file is read up to the limit
+    text, count = _flocking.sweep_load(
+        _flocking.sweep_read(spec_path), spec_path, _os.path.dirname(_os.path.abspath(spec_path))
+    )
     out_path = _os.fspath(out)
     # the lock of ``out`` is held until runs.csv is written: a second writer is refused
     finished, lock = _flocking.sweep_prepare(out_path, text)
@@ -140,11 +140,25 @@ def sweep(
         own = executor is None
         if executor is None:
             executor = _futures.ProcessPoolExecutor(max_workers=_os.cpu_count() or 1)
+        futures = []
         try:
             futures = [executor.submit(_sweep_run, text, k, controls) for k in pending]
             for future in _futures.as_completed(futures):
                 index, run_id, fields, wall_time = future.result()
                 _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
+        except BaseException:
+            # Ctrl-C, or a failed run of `controls` (issue 27): cancel the runs not started,
+            # keep every run finished meanwhile, and do not wait for the running ones
+            for future in futures:
+                future.cancel()
+            for future in futures:
+                if future.done() and not future.cancelled() and future.exception() is None:
+                    index, run_id, fields, wall_time = future.result()
+                    _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
+            if own:
+                own = False
+                executor.shutdown(wait=False, cancel_futures=True)
+            raise
         finally:
             if own:
                 executor.shutdown()

@@ -133,10 +133,26 @@ impl Checkpoint {
         else {
             return Err(corrupt("too short"));
         };
+        // every field read back is checked as user input (issue 27: a forged file with a valid
+        // hash and `agents = 2⁶³` overflowed here)
+        if !(*dim == 2 || *dim == 3) {
+            return Err(corrupt(&format!("its dimension is {dim}, not 2 or 3")));
+        }
+        if *agents == 0 || *agents > crate::MAX_AGENTS as u64 {
+            return Err(corrupt(&format!(
+                "it holds {agents} agents, not 1 to {}",
+                crate::MAX_AGENTS
+            )));
+        }
+        // at most 3 × 10⁸ coordinates: no overflow
         let size = usize::try_from(dim * agents).map_err(|_| corrupt("too large"))?;
+        let state_end = MAGIC.len() + 8 * (8 + 2 * size);
+        if body.len() < state_end {
+            return Err(corrupt("its length does not match its size"));
+        }
         let state: Option<Vec<u64>> = (8..8 + 2 * size).map(word).collect();
         let state = state.ok_or_else(|| corrupt("its length does not match its size"))?;
-        let texts = &body[MAGIC.len() + 8 * (8 + 2 * size)..];
+        let texts = &body[state_end..];
         let (scenario, conditions) = usize::try_from(*scenario_bytes)
             .ok()
             .and_then(|n| texts.split_at_checked(n))

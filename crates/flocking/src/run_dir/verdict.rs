@@ -61,7 +61,10 @@ pub fn read_records(path: &Path, agents: usize) -> io::Result<Vec<(f64, FlockMet
     Ok((0..t.len())
         .map(|k| {
             let values: [f64; 6] = std::array::from_fn(|j| reals[j][k]);
-            let components = if agents <= 1 {
+            // an empty flock's C is NaN (undefined): no component
+            let components = if values[0].is_nan() {
+                0
+            } else if agents <= 1 {
                 1
             } else {
                 (n - values[0] * (n - 1.0)).round() as usize

@@ -171,6 +171,9 @@ pub struct RunDirectory {
     empty_target: bool,
     /// The lock on `DIR.partial`, held until the directory is dropped.
     lock: DirLock,
+    /// Where the run's inputs come from when not from the scenario's protocol
+    /// ([`CONTROLS_FILE`]).
+    controls: Option<String>,
 }
 
 /// A complete run directory.
@@ -197,6 +200,13 @@ pub enum CreateError {
         /// `DIR`.
         target: PathBuf,
     },
+    /// The output path exists and is not a directory (a file, a FIFO, a device, a link).
+    NotADirectory {
+        /// The output path.
+        target: PathBuf,
+        /// What it is.
+        what: &'static str,
+    },
     /// The directory is not flocking's to replace, or another process is writing it.
     Dir(DirError),
     /// Writing failed.
@@ -215,6 +225,11 @@ impl std::fmt::Display for CreateError {
                 f,
                 "{} holds an interrupted run (resume it, or start over with `force`)",
                 partial.display()
+            ),
+            Self::NotADirectory { target, what } => write!(
+                f,
+                "output directory {} is {what}, not a directory: flocking never replaces it; choose another output directory",
+                target.display()
             ),
             Self::Dir(e) => write!(f, "{e}"),
             Self::Io(e) => write!(f, "{e}"),
@@ -251,6 +266,12 @@ pub enum ResumeError {
         /// Whether `DIR` holds a complete run.
         complete: bool,
     },
+    /// `DIR` holds a complete run whose finishing was cut short after its rename (a second
+    /// SIGTERM, a kill): its leftover checkpoint and note have now been removed.
+    Tidied {
+        /// `DIR`.
+        target: PathBuf,
+    },
     /// The run cannot be resumed; the message says why and what to do.
     Refused(String),
     /// The directory's `scenario.ron` no longer loads.
@@ -279,6 +300,11 @@ impl std::fmt::Display for ResumeError {
                     write!(f, "there is no interrupted run at {}", partial.display())
                 }
             }
+            Self::Tidied { target } => write!(
+                f,
+                "{} holds a complete run whose finishing was cut short: its leftover checkpoint and {INCOMPLETE_FILE} note are removed, there is nothing to resume",
+                target.display()
+            ),
             Self::Refused(why) => write!(f, "{why}"),
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Dir(e) => write!(f, "{e}"),
@@ -344,6 +370,9 @@ impl RunDirectory {
         scenario: &Scenario,
         options: &OutputOptions,
     ) -> Result<Self, CreateError> {
+        // `newdir/` is `newdir` (issue 27: else `DIR.partial` would be `newdir/.partial`)
+        let target = &normalized(target);
+        check_target(target)?;
         let non_empty = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
         if non_empty {
             owned::check_owned(target, Kind::Run)?;
@@ -355,7 +384,8 @@ impl RunDirectory {
             owned::check_removable(target, Kind::Run)?;
         }
         let partial = partial_path(target);
-        if partial.exists() {
+        if fs::symlink_metadata(&partial).is_ok() {
+            check_target(&partial)?;
             owned::check_owned(&partial, Kind::Run)?;
             let lock = DirLock::acquire(&partial)?;
             if !options.force {
@@ -379,13 +409,12 @@ impl RunDirectory {
     ) -> Result<Self, DirError> {
         // The directory is prepared under another name and appears as `DIR.partial` with its
         // marker, lock, `INCOMPLETE` note and scenario already inside.
+        // One name per process: two runs started together into the same `DIR` each prepare
+        // their own, and the rename to `DIR.partial` picks one (issue 27).
         let mut staging = partial.clone().into_os_string();
-        staging.push(".new");
+        staging.push(format!(".new-{}", std::process::id()));
         let staging = PathBuf::from(staging);
-        if staging.exists() {
-            let _lock = DirLock::acquire(&staging)?;
-            owned::remove(&staging, Kind::Run)?;
-        }
+        remove_stale_staging(&partial);
         fs::create_dir_all(parent_of(&staging))
             .map_err(at(format_args!("create {}", parent_of(&staging).display())))?;
         fs::create_dir(&staging).map_err(at(format_args!("create {}", staging.display())))?;
@@ -407,7 +436,7 @@ impl RunDirectory {
     ) -> Result<Self, DirError> {
         owned::mark(staging, Kind::Run)?;
         let lock = DirLock::acquire(staging)?;
-        write_incomplete(staging, &running_note(target))?;
+        write_incomplete(staging, &running_note(target, options.force))?;
         let text = scenario.to_ron().map_err(io::Error::other)? + "\n";
         write_durably(&staging.join("scenario.ron"), text.as_bytes())?;
         let mut this = Self::start_files(
@@ -422,11 +451,22 @@ impl RunDirectory {
         sync_dir(staging).map_err(at(format_args!("flush {}", staging.display())))?;
         // The open files follow the directory's rename; a `DIR.partial` that another process
         // created meanwhile makes it fail.
-        rename_no_replace(staging, partial).map_err(at(format_args!(
-            "rename {} to {}",
-            staging.display(),
-            partial.display()
-        )))?;
+        rename_no_replace(staging, partial).map_err(|e| {
+            if e.kind() == io::ErrorKind::AlreadyExists {
+                // another process started a run into the same `DIR` at the same time, and won
+                DirError::Busy {
+                    dir: partial.to_owned(),
+                    holder: "another flocking process, started at the same time".into(),
+                }
+            } else {
+                at(format_args!(
+                    "rename {} to {}",
+                    staging.display(),
+                    partial.display()
+                ))(e)
+                .into()
+            }
+        })?;
         this.partial = partial.to_owned();
         this.lock.moved_to(partial);
         sync_dir(parent_of(partial))
@@ -486,6 +526,7 @@ impl RunDirectory {
             force: false,
             empty_target: is_empty_dir(target),
             lock,
+            controls: None,
         })
     }
 
@@ -504,18 +545,49 @@ impl RunDirectory {
         dir: &Path,
         checkpoint_every: u64,
     ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
+        Self::resume_with_controls(dir, checkpoint_every, None)
+    }
+
+    /// [`RunDirectory::resume`] of a run whose inputs come from `controls` (a description of
+    /// them, e.g. Python's `controls=f`), or from the scenario's protocol (`None`). A run made
+    /// with controls from elsewhere records them in [`CONTROLS_FILE`]
+    /// ([`RunDirectory::record_controls`]): resuming it without them, or a run of the protocol
+    /// with them, would finish it as neither run, and is refused before anything is written.
+    ///
+    /// # Errors
+    /// As [`RunDirectory::resume`]; [`ResumeError::Refused`] when the controls do not match.
+    pub fn resume_with_controls(
+        dir: &Path,
+        checkpoint_every: u64,
+        controls: Option<&str>,
+    ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
         let dir: PathBuf = dir.components().collect();
         let (target, partial) = match dir.to_str().and_then(|s| s.strip_suffix(".partial")) {
             Some(stem) => (PathBuf::from(stem), dir.clone()),
             None => (dir.clone(), partial_path(&dir)),
         };
         if !partial.is_dir() {
+            if tidy_completed(&target)? {
+                return Err(ResumeError::Tidied { target });
+            }
             return Err(ResumeError::Nothing {
-                complete: target.is_dir(),
+                complete: owned::marked(&target, Kind::Run)
+                    && target.join("metrics.csv").is_file()
+                    && !target.join(INCOMPLETE_FILE).exists(),
                 partial,
                 target,
             });
         }
+        // Issue 27: only a directory flocking wrote, holding only what a run writes (regular
+        // files, no link, no FIFO), is cut back and written into.
+        if !owned::marked(&partial, Kind::Run) {
+            return Err(ResumeError::Refused(format!(
+                "{} has no {} marker: it is not a run directory flocking wrote, and flocking never writes into it; start a new run with --out elsewhere",
+                partial.display(),
+                owned::MARKER_FILE
+            )));
+        }
+        owned::check_only_own(&partial, Kind::Run)?;
         let note_path = partial.join(INCOMPLETE_FILE);
         let note = match fs::read_to_string(&note_path) {
             Ok(note) => note,
@@ -528,6 +600,26 @@ impl RunDirectory {
             Err(e) => return Err(at(format_args!("read {}", note_path.display()))(e).into()),
         };
         let lock = DirLock::acquire(&partial)?;
+        let recorded = read_controls(&partial)?;
+        match (&recorded, controls) {
+            (Some(recorded), None) => {
+                return Err(ResumeError::Refused(format!(
+                    "the run in {} was made with {recorded}, which this resume cannot supply: continuing it with the scenario's protocol would finish it as neither run; resume it from Python with flocking.resume({:?}, controls=…) and the same function",
+                    partial.display(),
+                    target.display().to_string()
+                )));
+            }
+            (None, Some(given)) => {
+                return Err(ResumeError::Refused(format!(
+                    "the run in {} was made with the scenario's protocol, not with {given}: resume it without controls",
+                    partial.display()
+                )));
+            }
+            _ => {}
+        }
+        // a run started with `force` replaces its `DIR` (flocking's) when it completes, also
+        // after a resume (issue 27)
+        let force = note.lines().any(|line| line == FORCE_LINE);
         if note.starts_with(FAILED) {
             return Err(ResumeError::Refused(format!(
                 "the run in {} cannot be resumed, it would fail again: {}",
@@ -545,18 +637,20 @@ impl RunDirectory {
         let Some(checkpoint) = Checkpoint::read(&partial)? else {
             // No checkpoint yet: the run starts over, in fresh files.
             owned::mark(&partial, Kind::Run)?;
-            write_incomplete(&partial, &running_note(&target))?;
+            write_incomplete(&partial, &running_note(&target, force))?;
             let options = OutputOptions {
-                force: false,
+                force,
                 format,
                 checkpoint_every,
             };
-            let this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
+            let mut this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
+            this.force = force;
+            this.controls = recorded;
             return Ok((this, scenario, None));
         };
         check_scenario(&checkpoint, &scenario, &partial)?;
         owned::mark(&partial, Kind::Run)?;
-        write_incomplete(&partial, &running_note(&target))?;
+        write_incomplete(&partial, &running_note(&target, force))?;
         let metrics_path = partial.join("metrics.csv");
         let columns = if checkpoint.records > 0 {
             Some(diagnostic_columns(&metrics_path)?)
@@ -595,11 +689,36 @@ impl RunDirectory {
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
             scenario: checkpoint.scenario,
-            force: false,
+            force,
             empty_target,
             lock,
+            controls: recorded,
         };
         Ok((this, scenario, Some(checkpoint.start)))
+    }
+
+    /// Records in [`CONTROLS_FILE`] that the run's inputs come from `source` (e.g. "Python
+    /// controls `f`"), not from the scenario's protocol: a resume must supply them
+    /// ([`RunDirectory::resume_with_controls`]). The file stays in the finished `DIR`.
+    ///
+    /// # Errors
+    /// Any I/O error, with its path.
+    pub fn record_controls(&mut self, source: &str) -> io::Result<()> {
+        let line = source.replace('\n', " ");
+        write_durably(
+            &self.partial.join(CONTROLS_FILE),
+            format!("{CONTROLS_PREFIX}{line}\n").as_bytes(),
+        )?;
+        sync_dir(&self.partial).map_err(at(format_args!("flush {}", self.partial.display())))?;
+        self.controls = Some(line);
+        Ok(())
+    }
+
+    /// Where the run's inputs come from, when not from the scenario's protocol
+    /// ([`RunDirectory::record_controls`]).
+    #[must_use]
+    pub fn controls(&self) -> Option<&str> {
+        self.controls.as_deref()
     }
 
     /// Stops the run (after keeping a checkpoint) once `flag` is set, e.g. by Ctrl-C.
@@ -769,8 +888,9 @@ impl RunDirectory {
     pub fn keep_incomplete(self, why: &str, resumable: bool) -> io::Result<PathBuf> {
         let note = if resumable {
             format!(
-                "incomplete: {why}\nEvery record in this directory is complete up to the last one written.\nResume: flocking run --resume {}\n",
-                self.target.display()
+                "incomplete: {why}\nEvery record in this directory is complete up to the last one written.\nResume: flocking run --resume {}\n{}",
+                self.target.display(),
+                force_line(self.force)
             )
         } else {
             format!(
@@ -844,8 +964,28 @@ fn check_scenario(
             changed_fields(&started, scenario).join(", ")
         )));
     }
+    // issue 27: a step count past the scenario's end would stop the output short and judge it
+    if checkpoint.start.steps > scenario.steps() {
+        return Err(ResumeError::Refused(format!(
+            "the checkpoint in {} is at step {}, past the scenario's last step {}: it is not a checkpoint of this run; start a new run with --out elsewhere",
+            partial.display(),
+            checkpoint.start.steps,
+            scenario.steps()
+        )));
+    }
+    // t = 0, every `record_every` steps, and the last step
+    let records_bound = checkpoint.start.steps / scenario.record_every.max(1) + 2;
+    if checkpoint.records > records_bound {
+        return Err(ResumeError::Refused(format!(
+            "the checkpoint in {} counts {} records after step {}, more than the {records_bound} a run records by then: it is not a checkpoint of this run",
+            partial.display(),
+            checkpoint.records,
+            checkpoint.start.steps
+        )));
+    }
     if checkpoint.dim == scenario.dim
         && checkpoint.start.positions.len() == scenario.agents * scenario.dim
+        && checkpoint.start.velocities.len() == checkpoint.start.positions.len()
     {
         return Ok(());
     }
@@ -910,12 +1050,163 @@ fn changed_fields(a: &Scenario, b: &Scenario) -> Vec<String> {
 }
 
 /// The note of a directory being written.
-fn running_note(target: &Path) -> String {
+fn running_note(target: &Path, force: bool) -> String {
     format!(
-        "incomplete: the run is in progress (flocking process {}), or was killed.\nA process killed while writing may leave its last record cut; `flocking run --resume` removes it.\nResume a killed run: flocking run --resume {}\n",
+        "incomplete: the run is in progress (flocking process {}), or was killed.\nA process killed while writing may leave its last record cut; `flocking run --resume` removes it.\nResume a killed run: flocking run --resume {}\n{}",
         std::process::id(),
-        target.display()
+        target.display(),
+        force_line(force)
     )
+}
+
+/// The file of a run directory that records where the run's inputs came from when not from the
+/// scenario's protocol (Python's `controls=f`).
+pub const CONTROLS_FILE: &str = "controls.txt";
+
+/// The start of [`CONTROLS_FILE`]'s line.
+const CONTROLS_PREFIX: &str = "inputs from ";
+
+/// The source of the controls recorded in `partial` ([`CONTROLS_FILE`]), if any.
+fn read_controls(partial: &Path) -> Result<Option<String>, ResumeError> {
+    use std::io::Read as _;
+    let path = partial.join(CONTROLS_FILE);
+    let file = match File::open(&path) {
+        Ok(file) => file,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(at(format_args!("read {}", path.display()))(e).into()),
+    };
+    let mut text = String::new();
+    file.take(4096)
+        .read_to_string(&mut text)
+        .map_err(at(format_args!("read {}", path.display())))?;
+    let line = text.trim_end();
+    Ok(Some(
+        line.strip_prefix(CONTROLS_PREFIX)
+            .unwrap_or(line)
+            .to_owned(),
+    ))
+}
+
+/// The line of the `INCOMPLETE` note of a run started with `force`: it replaces its `DIR`, if
+/// flocking's, when it completes, also after a resume.
+const FORCE_LINE: &str =
+    "With --force: the run replaces the earlier run in its directory when it completes.";
+
+/// [`FORCE_LINE`] with its line break, or nothing.
+fn force_line(force: bool) -> String {
+    if force {
+        format!("{FORCE_LINE}\n")
+    } else {
+        String::new()
+    }
+}
+
+/// Finishes what [`RunDirectory::finish`] left undone when killed right after renaming
+/// `DIR.partial` to `DIR`: removes the checkpoint and the `INCOMPLETE` note of a `DIR` that is
+/// flocking's, holds only a run's files and is complete (its `final.csv` and verdict written
+/// before the rename). Returns whether it did.
+fn tidy_completed(target: &Path) -> Result<bool, ResumeError> {
+    let leftover = |name: &str| fs::symlink_metadata(target.join(name)).is_ok_and(|m| m.is_file());
+    if !(owned::marked(target, Kind::Run)
+        && leftover(INCOMPLETE_FILE)
+        && leftover("final.csv")
+        && leftover(VERDICT_FILE))
+    {
+        return Ok(false);
+    }
+    owned::check_only_own(target, Kind::Run)?;
+    let _lock = DirLock::acquire(target)?;
+    for name in [
+        CHECKPOINT_FILE,
+        CHECKPOINT_TMP,
+        INCOMPLETE_TMP,
+        INCOMPLETE_FILE,
+    ] {
+        let path = target.join(name);
+        match fs::remove_file(&path) {
+            Err(e) if e.kind() != io::ErrorKind::NotFound => {
+                return Err(at(format_args!("remove {}", path.display()))(e).into());
+            }
+            _ => {}
+        }
+    }
+    sync_dir(target).map_err(at(format_args!("flush {}", target.display())))?;
+    Ok(true)
+}
+
+/// `path` without a trailing slash or `.` components (`newdir/` is `newdir`).
+fn normalized(path: &Path) -> PathBuf {
+    let path: PathBuf = path.components().collect();
+    if path.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        path
+    }
+}
+
+/// Refuses an output path that exists but is not a directory (a file, a FIFO, a device such as
+/// `/dev/null`, a link, even one to a directory or a dangling one), before anything is written.
+fn check_target(target: &Path) -> Result<(), CreateError> {
+    let Ok(meta) = fs::symlink_metadata(target) else {
+        return Ok(());
+    };
+    let file_type = meta.file_type();
+    let what = {
+        use std::os::unix::fs::FileTypeExt as _;
+        if file_type.is_dir() {
+            return Ok(());
+        } else if file_type.is_symlink() {
+            if fs::metadata(target).is_ok() {
+                "a link"
+            } else {
+                "a dangling link"
+            }
+        } else if file_type.is_file() {
+            "a file"
+        } else if file_type.is_fifo() {
+            "a FIFO"
+        } else if file_type.is_char_device() || file_type.is_block_device() {
+            "a device"
+        } else {
+            "a socket"
+        }
+    };
+    Err(CreateError::NotADirectory {
+        target: target.to_owned(),
+        what,
+    })
+}
+
+/// Removes the staging directories `DIR.partial.new-<pid>` of runs killed while preparing: each
+/// marked, its `INCOMPLETE` note written (after its writer took its lock) and its lock free. A
+/// staging directory of a live process is locked, or not yet noted, and kept.
+fn remove_stale_staging(partial: &Path) {
+    let Some(name) = partial
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+    else {
+        return;
+    };
+    let prefix = format!("{name}.new");
+    let Ok(entries) = fs::read_dir(parent_of(partial)) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let entry_name = entry.file_name().to_string_lossy().into_owned();
+        if !entry_name.starts_with(&prefix) {
+            continue;
+        }
+        let staging = entry.path();
+        if !owned::marked(&staging, Kind::Run)
+            || !fs::symlink_metadata(staging.join(INCOMPLETE_FILE)).is_ok_and(|m| m.is_file())
+        {
+            continue;
+        }
+        if let Ok(lock) = DirLock::acquire(&staging) {
+            let _ = owned::remove(&staging, Kind::Run);
+            drop(lock);
+        }
+    }
 }
 
 /// Replaces the `INCOMPLETE` note atomically.
@@ -1083,7 +1374,7 @@ impl Recorder for RunDirectory {
         .write(&self.partial)?;
         let whole = format!(
             "{}Whole records, checkpointed after step {}: {} (the first {} bytes of metrics.csv; of the trajectory, {} {}).\n",
-            running_note(&self.target),
+            running_note(&self.target, self.force),
             start.steps,
             self.records,
             self.metrics_bytes,

@@ -71,6 +71,9 @@ pub struct Executed {
     pub skipped: usize,
     /// Runs made now.
     pub ran: usize,
+    /// Runs whose directory could not be written (a full disk): no row is stored for them, and
+    /// the same call makes them again.
+    pub unwritten: usize,
     /// Rows in `runs.csv`.
     pub rows: usize,
     /// Whether `stop` ended it early (`runs.csv` then holds the finished runs; the same call
@@ -86,7 +89,8 @@ pub struct Executed {
 /// # Errors
 /// A directory that is not flocking's or is being written ([`store::prepare`]), a directory
 /// that holds another sweep, a worker pool that cannot be built, any I/O error. A run
-/// that fails is not an error: its row says why.
+/// that fails is not an error: its row says why; a run whose directory cannot be written has
+/// no row ([`Executed::unwritten`]).
 pub fn execute(
     sweep: &Sweep,
     dir: &Path,
@@ -100,6 +104,7 @@ pub fn execute(
     let keep = options.keep_runs.then(|| dir.join(RUNS_DIR));
     let next = AtomicUsize::new(0);
     let ran = AtomicUsize::new(0);
+    let unwritten = AtomicUsize::new(0);
     let failure: Mutex<Option<StoreError>> = Mutex::new(None);
     let worker = || {
         let pool = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
@@ -121,6 +126,12 @@ pub fn execute(
                 return;
             };
             let row = pool.install(|| run_one(sweep, run, keep.as_deref()));
+            if row.retry {
+                // an I/O failure is not a result of the run: no row, made again next time
+                unwritten.fetch_add(1, Ordering::Relaxed);
+                done(&row);
+                continue;
+            }
             if let Err(e) = store::write_row(dir, &row) {
                 *failure.lock().expect("no worker panics") = Some(e);
                 return;
@@ -139,11 +150,13 @@ pub fn execute(
     }
     let rows = store::assemble(dir, sweep)?;
     let ran = ran.into_inner();
+    let unwritten = unwritten.into_inner();
     Ok(Executed {
         skipped,
         ran,
+        unwritten,
         rows,
-        stopped: ran < pending.len(),
+        stopped: ran + unwritten < pending.len(),
     })
 }
 
@@ -157,7 +170,7 @@ pub fn share(
     dir: &Path,
     shard: Option<Shard>,
 ) -> Result<(usize, Vec<RunSpec>), StoreError> {
-    let finished = store::finished(dir)?;
+    let finished = store::finished(dir, sweep)?;
     let mine = sweep
         .runs()
         .into_iter()

@@ -509,6 +509,16 @@ impl Sweep {
                     return invalid(format!("axes[{k}].path"), e.to_string());
                 }
             }
+            if axis.path == "seed" {
+                // issue 27: else `run,id,seed,seed`, and N runs of N / seeds simulations
+                return invalid(
+                    format!("axes[{k}].path"),
+                    "`seed` is given by `seeds` (each run's seed is 0, 1, …, seeds − 1, replacing \
+                     the scenario's): an axis on it would be overridden; remove the axis and \
+                     give `seeds: N` for N seeds"
+                        .into(),
+                );
+            }
             if let Some(first) = self.axes[..k].iter().position(|a| a.path == axis.path) {
                 return invalid(
                     format!("axes[{k}].path"),

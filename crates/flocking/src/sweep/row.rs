@@ -215,6 +215,10 @@ pub struct RunRow {
     pub outcome: Result<Outcome, String>,
     /// Seconds of wall-clock time, from building the scenario to the last record.
     pub wall_time: f64,
+    /// Whether the failure is not the run's but the machine's: its kept directory could not be
+    /// written (a full disk, a user's file in it). Such a row is never stored: the run is made
+    /// again by the next invocation (issue 27).
+    pub retry: bool,
 }
 
 /// An axis value as `runs.csv` writes it: a string as itself, anything else as JSON (`0.2`, `50`,
@@ -280,6 +284,7 @@ pub fn run_one_with<M: MapProtocol>(
 ) -> RunRow {
     let start = Instant::now();
     let id = spec.id(&sweep.axes);
+    let mut retry = false;
     let outcome = sweep
         .scenario(spec)
         .map_err(|e| e.to_string())
@@ -294,7 +299,10 @@ pub fn run_one_with<M: MapProtocol>(
                         .map(|summary| (summary, recorder.extremes))
                         .map_err(|e| e.to_string())
                 }
-                Some(dir) => keep_run(&scenario, &dir.join(&id), map),
+                Some(dir) => keep_run(&scenario, &dir.join(&id), map).map_err(|(e, io)| {
+                    retry = io;
+                    e
+                }),
             };
             ran.map(|(summary, obstacles)| {
                 Outcome::of(&summary, obstacles, sweep, scenario.duration)
@@ -307,29 +315,40 @@ pub fn run_one_with<M: MapProtocol>(
         seed: spec.seed,
         outcome,
         wall_time: start.elapsed().as_secs_f64(),
+        retry,
     }
 }
 
-/// The run written to `dir` (replaced if present) as `flocking run --out dir` writes it.
-fn keep_run<M: MapProtocol>(
-    scenario: &crate::Scenario,
-    dir: &Path,
-    map: &M,
-) -> Result<(RunSummary, Option<(f64, f64)>), String> {
+/// A kept run's summary and obstacle extremes, or why it failed and whether that is the
+/// machine's failure (to be retried) rather than the run's.
+type Kept = Result<(RunSummary, Option<(f64, f64)>), (String, bool)>;
+
+/// The run written to `dir` (replaced if present) as `flocking run --out dir` writes it. An
+/// error says why, and whether it is the machine's (the directory could not be made, written
+/// or finished: the run is to be made again) rather than the run's.
+fn keep_run<M: MapProtocol>(scenario: &crate::Scenario, dir: &Path, map: &M) -> Kept {
     let mut recorder = Obstacles {
-        inner: RunDirectory::create(dir, scenario, true).map_err(|e| e.to_string())?,
+        inner: RunDirectory::create(dir, scenario, true).map_err(|e| (e.to_string(), true))?,
         extremes: None,
     };
     match resume_with(scenario, None, &mut recorder, map) {
         Ok(summary) => {
-            recorder.inner.finish().map_err(|e| e.to_string())?;
+            recorder.inner.finish().map_err(|e| {
+                // the run is made again from its start: its partial directory (flocking's)
+                // would only hold the room a full disk lacks
+                let _ = crate::owned::remove(
+                    &crate::run_dir::partial_path(dir),
+                    crate::owned::Kind::Run,
+                );
+                (e.to_string(), true)
+            })?;
             Ok((summary, recorder.extremes))
         }
         Err(error) => {
             recorder.inner.abandon();
             Err(match error {
-                RunError::Record(e) => format!("writing {}: {e}", dir.display()),
-                other => other.to_string(),
+                RunError::Record(e) => (format!("writing {}: {e}", dir.display()), true),
+                other => (other.to_string(), false),
             })
         }
     }

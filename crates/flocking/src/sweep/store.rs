@@ -9,8 +9,8 @@
 //! | `runs/<id>/` | with `--keep-runs`, each run's directory as `flocking run` writes it |
 //! | `.flocking`, `.flocking.lock` | flocking's marker, and the lock of the process writing it ([`crate::owned`]) |
 //!
-//! A directory is written only when it is new, empty or marked as a sweep's (or, written before
-//! markers, holds this very sweep's `sweep.ron`): a user's `runs.csv` is never replaced. The
+//! A directory is written only when it is new, empty or marked as a sweep's: a user's `runs.csv`
+//! is never replaced, not even in a copy of a sweep's directory that lacks the marker. The
 //! writer holds the directory's lock from [`prepare`] to its end, so that a second sweep or merge
 //! into it is refused while the first one writes.
 //!
@@ -136,9 +136,8 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), StoreError> {
 /// Creates `dir` for `sweep`, or opens it again when it holds the same sweep (to resume), and
 /// locks it: the returned lock is to be held until the sweep is written.
 ///
-/// `dir` must be new, empty, or marked as a sweep's ([`owned::check_owned`]); a directory
-/// written before markers existed is accepted when it holds this sweep's `sweep.ron`, and
-/// marked.
+/// `dir` must be new, empty, or marked as a sweep's ([`owned::check_owned`]): a copy without
+/// the marker is refused, even one holding this very sweep.
 ///
 /// # Errors
 /// [`StoreError::Dir`] for a directory holding files flocking did not write or being written by
@@ -151,11 +150,9 @@ pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<DirLock, StoreError> {
         })
     })?;
     let file = dir.join(SWEEP_FILE);
-    let earlier = !owned::marked(dir, Kind::Sweep)
-        && fs::read_to_string(&file).is_ok_and(|existing| existing == text);
-    if !earlier {
-        owned::check_owned(dir, Kind::Sweep)?;
-    }
+    // Issue 27: a user's copy of a sweep (its `sweep.ron`, an edited `runs.csv`, no marker) is
+    // the user's, even when it holds this very sweep.
+    owned::check_owned(dir, Kind::Sweep)?;
     fs::create_dir_all(dir).map_err(io_error(dir))?;
     // marked before it is locked, so that a second writer meets the lock, not a stranger's file
     if !owned::marked(dir, Kind::Sweep) {
@@ -228,13 +225,27 @@ pub fn write_fields(
     write_atomic(&row_file(dir, index, id), &bytes)
 }
 
-/// The runs finished in `dir`: the ids of its row files by run index. Only the names are read: a
-/// row file is written whole (under a temporary name, then renamed), so that it exists says that
-/// its run is done.
+/// The runs of `sweep` finished in `dir`: the ids of its row files by run index. Only the names
+/// are read: a row file is written whole (under a temporary name, then renamed), so that it
+/// exists says that its run is done. A row file whose index is not a run of `sweep`, or whose id
+/// is not that run's, is not a row of this sweep and is ignored (issue 27: a stray
+/// `rows/00000099-ffff.csv` added a row to `runs.csv`).
 ///
 /// # Errors
 /// An unreadable directory.
-pub fn finished(dir: &Path) -> Result<BTreeMap<usize, String>, StoreError> {
+pub fn finished(dir: &Path, sweep: &Sweep) -> Result<BTreeMap<usize, String>, StoreError> {
+    let runs = sweep.runs();
+    Ok(row_files(dir)?
+        .into_iter()
+        .filter_map(|(index, ids)| {
+            let id = runs.get(index)?.id(&sweep.axes);
+            ids.contains(&id).then_some((index, id))
+        })
+        .collect())
+}
+
+/// The ids of the row files of `dir` by index.
+fn row_files(dir: &Path) -> Result<BTreeMap<usize, Vec<String>>, StoreError> {
     let rows = dir.join(ROWS_DIR);
     let mut found = BTreeMap::new();
     let entries = match fs::read_dir(&rows) {
@@ -251,7 +262,7 @@ pub fn finished(dir: &Path) -> Result<BTreeMap<usize, String>, StoreError> {
             .and_then(|stem| stem.split_once('-'))
             .and_then(|(index, id)| Some((index.parse::<usize>().ok()?, id.to_owned())));
         if let Some((index, id)) = run {
-            found.insert(index, id);
+            found.entry(index).or_insert_with(Vec::new).push(id);
         }
     }
     Ok(found)
@@ -275,7 +286,7 @@ fn read_row(path: &Path) -> Result<(String, String), StoreError> {
 /// # Errors
 /// Any I/O error.
 pub fn assemble(dir: &Path, sweep: &Sweep) -> Result<usize, StoreError> {
-    let rows = finished(dir)?;
+    let rows = finished(dir, sweep)?;
     let mut runs = csv_line(&header(sweep));
     let mut times = b"run,id,wall_time\n".to_vec();
     for (&index, id) in &rows {
@@ -304,20 +315,24 @@ pub fn merge(out: &Path, shards: &[PathBuf]) -> Result<usize, StoreError> {
             first: 0,
         });
     };
+    // a file given as a shard is a refusal, not an I/O error (issue 27)
+    if let Some(file) = shards.iter().find(|shard| !shard.is_dir()) {
+        return Err(StoreError::NotASweep(file.clone()));
+    }
     let sweep = read_sweep(first)?;
     let _lock = prepare(out, &sweep)?;
     for shard in shards {
         if read_sweep(shard)? != sweep {
             return Err(StoreError::OtherSweep(shard.clone()));
         }
-        for (index, id) in finished(shard)? {
+        for (index, id) in finished(shard, &sweep)? {
             let from = row_file(shard, index, &id);
             let bytes = fs::read(&from).map_err(io_error(&from))?;
             write_atomic(&row_file(out, index, &id), &bytes)?;
         }
     }
     let total = sweep.runs().len();
-    let have = finished(out)?;
+    let have = finished(out, &sweep)?;
     let missing: Vec<usize> = (0..total).filter(|k| !have.contains_key(k)).collect();
     if let Some(&first) = missing.first() {
         return Err(StoreError::Missing {
