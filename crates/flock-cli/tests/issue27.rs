@@ -794,3 +794,31 @@ fn issue_27_the_gallery_never_writes_through_a_link() {
         b"mine\n"
     );
 }
+
+/// Issue 27: `flocking validate` of a scenario that does not fit says so and skips what would
+/// build the initial net of every agent (it aborted under `ulimit -v`).
+#[test]
+fn issue_27_validate_of_a_scenario_that_does_not_fit_does_not_abort() {
+    let tmp = temp_dir("validate_ulimit");
+    let text = SHORT_2D.replace("agents: 20", "agents: 100000000");
+    let file = write(tmp.path(), "big.ron", &text);
+    let output = std::process::Command::new("sh")
+        .current_dir(tmp.path())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 4194304 && exec {} validate {file}",
+            env!("CARGO_BIN_EXE_flocking")
+        ))
+        .output()
+        .expect("sh runs");
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("warning: a run needs about 25.0 GB of memory"),
+        "{err}"
+    );
+    assert!(
+        err.contains("the start's warnings are not estimated"),
+        "{err}"
+    );
+}
