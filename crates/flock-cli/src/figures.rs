@@ -250,13 +250,20 @@ pub fn figures(
             fixture: function.stem().to_owned(),
             source: PlotError::Viz(source),
         };
+        // never through a link (issue 27)
         let png = functions.join(format!("{}.png", function.stem()));
-        fs::write(&png, function_png(function).map_err(plot)?).map_err(io_err(&png))?;
+        owned::write_no_follow(&png, &function_png(function).map_err(plot)?)
+            .map_err(io_err(&png))?;
         let svg = functions.join(format!("{}.svg", function.stem()));
-        fs::write(&svg, function_svg(function).map_err(plot)?).map_err(io_err(&svg))?;
+        owned::write_no_follow(&svg, function_svg(function).map_err(plot)?.as_bytes())
+            .map_err(io_err(&svg))?;
     }
     let index = out.join("index.html");
-    fs::write(&index, index_html(&entries, &ReportFunction::ALL)).map_err(io_err(&index))?;
+    owned::write_no_follow(
+        &index,
+        index_html(&entries, &ReportFunction::ALL).as_bytes(),
+    )
+    .map_err(io_err(&index))?;
     if !quiet {
         outln!(
             "flocking figures: {} fixture(s), {}",

@@ -300,6 +300,12 @@ fn dispatch(command: Command) -> ExitCode {
                 let estimate = s.estimate(&Outputs::RUN);
                 if let Err(e) = flock_cli::resources::announce(&estimate, None, false) {
                     errln!("warning: {e}");
+                    // the stable step and the warnings build the initial net of every agent,
+                    // which does not fit either (issue 27)
+                    errln!(
+                        "warning: the stable step and the start's warnings are not estimated: they need the initial net of every agent"
+                    );
+                    return ExitCode::SUCCESS;
                 }
                 if let Some(stable) = flocking::largest_stable_step(&s) {
                     outln!(

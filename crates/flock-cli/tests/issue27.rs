@@ -760,3 +760,65 @@ fn issue_27_the_estimate_is_checked_first_and_counts_ulimit() {
     );
     assert!(!tmp.path().join("o").exists() && !tmp.path().join("o.partial").exists());
 }
+
+/// Issue 27: the gallery's `index.html` and `functions/` are never written through a link.
+#[test]
+fn issue_27_the_gallery_never_writes_through_a_link() {
+    let tmp = temp_dir("gallery_link");
+    let fixtures = tmp.path().join("fixtures");
+    fs::create_dir(&fixtures).expect("mkdir");
+    write(&fixtures, "short.ron", SHORT_2D);
+    complete(
+        tmp.path(),
+        &["figures", "--out", "g", "--quiet", "--no-player"],
+    );
+    fs::write(tmp.path().join("page.html"), "mine\n").expect("a user's page");
+    remove_own_file(
+        tmp.path(),
+        &tmp.path().join("g/index.html"),
+        b"<!DOCTYPE html>",
+    );
+    std::os::unix::fs::symlink("../page.html", tmp.path().join("g/index.html")).expect("a link");
+    let output = flocking(
+        tmp.path(),
+        &["figures", "--out", "g", "--quiet", "--no-player"],
+    );
+    let err = stderr(&output);
+    assert_ne!(output.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("g/index.html is a link, which flocking did not create"),
+        "{err}"
+    );
+    assert_eq!(
+        fs::read(tmp.path().join("page.html")).expect("kept"),
+        b"mine\n"
+    );
+}
+
+/// Issue 27: `flocking validate` of a scenario that does not fit says so and skips what would
+/// build the initial net of every agent (it aborted under `ulimit -v`).
+#[test]
+fn issue_27_validate_of_a_scenario_that_does_not_fit_does_not_abort() {
+    let tmp = temp_dir("validate_ulimit");
+    let text = SHORT_2D.replace("agents: 20", "agents: 100000000");
+    let file = write(tmp.path(), "big.ron", &text);
+    let output = std::process::Command::new("sh")
+        .current_dir(tmp.path())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 4194304 && exec {} validate {file}",
+            env!("CARGO_BIN_EXE_flocking")
+        ))
+        .output()
+        .expect("sh runs");
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("warning: a run needs about 25.0 GB of memory"),
+        "{err}"
+    );
+    assert!(
+        err.contains("the start's warnings are not estimated"),
+        "{err}"
+    );
+}
