@@ -106,6 +106,37 @@ fn conditions_round_trip_through_to_ron_and_stay_unwritten_when_ideal() {
     assert_eq!(back.to_ron().expect("ron"), written);
 }
 
+/// `sensing.rate` alone is a sampled sensor that measures exactly: accepted, written back without
+/// a noise, and the same run as with `noise: White(sigma_q: 0.0, sigma_p: 0.0)` written out.
+#[test]
+fn a_sensor_rate_alone_is_accepted_as_exact_sampled_sensing() {
+    let sampled = parse(&cycle(1.0, "\n    conditions: (sensing: (rate: 5.0)),"));
+    let sensing = sampled.conditions.sensing.expect("sensing");
+    assert_eq!(sensing.rate, Some(5.0));
+    assert!(sensing.noise.is_none());
+    let written = sampled.to_ron().expect("ron");
+    assert!(
+        written.contains("sensing") && !written.contains("noise"),
+        "{written}"
+    );
+    assert_eq!(parse(&written), sampled);
+    let explicit = parse(&cycle(
+        1.0,
+        "\n    conditions: (sensing: (noise: White(sigma_q: 0.0, sigma_p: 0.0), rate: 5.0)),",
+    ));
+    let positions = |s: &Scenario| {
+        let mut s = flocking::DynSimulation::new(s).expect("builds");
+        for _ in 0..100 {
+            s.step();
+        }
+        s.state().positions.into_owned()
+    };
+    let a = positions(&sampled);
+    assert_eq!(a, positions(&explicit));
+    // and sampling does change the run: the measurement is held between updates
+    assert_ne!(positions(&parse(&cycle(1.0, ""))), a);
+}
+
 #[test]
 fn a_bad_probability_is_named_with_its_value_line_and_column() {
     let text = cycle(

@@ -147,13 +147,38 @@ pub enum Noise {
     },
 }
 
+impl Noise {
+    /// No noise: white noise of zero deviations (the measurement is exact).
+    pub const NONE: Self = Self::White {
+        sigma_q: 0.0,
+        sigma_p: 0.0,
+    };
+
+    /// [`Noise::NONE`] (serde's default of [`Sensing::noise`]).
+    #[must_use]
+    pub const fn none() -> Self {
+        Self::NONE
+    }
+
+    /// Whether this is [`Noise::NONE`] (left out of a written scenario).
+    #[must_use]
+    pub fn is_none(&self) -> bool {
+        *self == Self::NONE
+    }
+}
+
 /// Noise on what each agent measures of its own state; the measured state is what it uses for
 /// itself and what it sends to the others.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Sensing {
-    /// The noise process.
+    /// The noise process; by default none ([`Noise::NONE`], white noise of zero deviations): a
+    /// sensor at `rate` that measures exactly.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "Noise::none", skip_serializing_if = "Noise::is_none")
+    )]
     pub noise: Noise,
     /// The sensor rate (Hz): the measurement is refreshed every 1/rate seconds (a whole number
     /// of steps) and held between. `None`: at every step.
