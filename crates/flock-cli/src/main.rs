@@ -222,7 +222,7 @@ fn main() -> ExitCode {
                 out!("{}", s.to_ron().unwrap_or_default());
                 outln!();
                 let estimate = s.estimate(&Outputs::RUN);
-                if let Err(e) = flock_cli::resources::announce(&estimate, None, false) {
+                if let Err(e) = flock_cli::resources::announce(&estimate, None, (false, false)) {
                     errln!("warning: {e}");
                 }
                 if let Some(stable) = flocking::largest_stable_step(&s) {
@@ -353,12 +353,11 @@ fn create_directory(
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
         ..Outputs::RUN
     };
-    flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), unchecked).map_err(
-        |e| {
+    flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), (unchecked, false))
+        .map_err(|e| {
             errln!("error: {e}");
             ExitCode::from(INVALID)
-        },
-    )?;
+        })?;
     WRITING.store(true, Ordering::SeqCst);
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
         CreateError::Occupied { target } => {

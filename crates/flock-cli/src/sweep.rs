@@ -254,7 +254,7 @@ fn run(
         memory_bytes: estimate.memory_bytes * workers,
         ..estimate
     };
-    crate::resources::announce(&estimate, Some(out), unchecked).map_err(Failure::Usage)?;
+    crate::resources::announce(&estimate, Some(out), (unchecked, true)).map_err(Failure::Usage)?;
     writing.store(true, std::sync::atomic::Ordering::SeqCst);
     run_checked(&sweep, out, options, quiet, stop)
 }
