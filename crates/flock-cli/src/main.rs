@@ -79,8 +79,9 @@ enum Command {
     /// draw its figures (GIF and trajectory CSVs dropped), and write `DIR/index.html`, a static page
     /// of the papers' figures and final metrics.
     Figures {
-        /// The output directory.
-        #[arg(long, default_value = "docs/figures")]
+        /// The output directory (default `figures` in the current directory; the repository's
+        /// gallery is regenerated with `--out docs/figures --no-player`).
+        #[arg(long, default_value = "figures")]
         out: PathBuf,
         /// Print nothing but errors.
         #[arg(long)]
