@@ -43,7 +43,7 @@ pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
 pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
-pub use error::{ParamError, check};
+pub use error::{ParamError, check, plain_value};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
 pub use health::{AgentFault, Fault};
 pub use integrator::{Integrator, Observation, Simulation};

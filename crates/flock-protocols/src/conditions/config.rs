@@ -297,15 +297,32 @@ pub fn whole_steps(field: &str, seconds: f64, h: f64) -> Result<u64, ParamError>
     check::non_negative(field, seconds)?;
     let steps = (seconds / h).round();
     if (steps * h - seconds).abs() > 1e-9 * seconds.max(h) {
-        let below = (seconds / h).floor() * h;
+        let below = (seconds / h).floor();
         return Err(ParamError::new(
             field,
             seconds,
             format!("is not a whole number of steps of {h} s"),
-            format!("write {below} or {} (or change `step`)", below + h),
+            format!(
+                "write {} or {} (or change `step`)",
+                steps_text(below, h),
+                steps_text(below + 1.0, h)
+            ),
         ));
     }
     Ok(steps as u64)
+}
+
+/// `k` steps of `h` seconds as the shortest decimal within round-off of k h: 6 steps of 0.01 s
+/// are `0.06`, not the `0.060000000000000005` of the product.
+fn steps_text(k: f64, h: f64) -> String {
+    let seconds = k * h;
+    (0..17)
+        .map(|digits| format!("{seconds:.digits$}"))
+        .find(|text| {
+            text.parse::<f64>()
+                .is_ok_and(|x| (x - seconds).abs() <= 1e-9 * h)
+        })
+        .unwrap_or_else(|| seconds.to_string())
 }
 
 /// Checks that a rate (Hz) gives a period that is a whole number ≥ 1 of steps `h`, and returns
@@ -504,6 +521,11 @@ mod tests {
         let e = whole_steps("delay", 0.105, 0.01).unwrap_err();
         assert_eq!(e.field, "delay");
         assert!(e.fix.contains("0.1") && e.fix.contains("0.11"), "{e}");
+        // 6 × 0.01 is 0.060000000000000005 in floating point: the fix writes 0.06
+        let e = whole_steps("delay", 0.055, 0.01).unwrap_err();
+        assert_eq!(e.fix, "write 0.05 or 0.06 (or change `step`)");
+        let e = whole_steps("delay", 0.0012, 0.0005).unwrap_err();
+        assert_eq!(e.fix, "write 0.001 or 0.0015 (or change `step`)");
     }
 
     #[test]
