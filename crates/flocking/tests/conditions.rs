@@ -470,3 +470,48 @@ fn removing_a_cut_vertex_of_the_tanner_graph_splits_it_into_the_components_the_g
     assert_relative_eq!(observed.metrics.giant_component, 5.0 / 9.0);
     assert!(observed.diagnostics.contains(&("failed", 1.0)));
 }
+
+/// The example of `docs/conditions.md` does what the page says it does: it does not flock (at
+/// t = 30 s many groups, C* < 0.5), mostly because of its 1 s actuator lag, while the same
+/// scenario without conditions is one connected flock.
+#[test]
+fn the_docs_example_breaks_up_as_the_docs_say() {
+    let page = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/conditions.md"),
+    )
+    .expect("docs/conditions.md");
+    let from = page.find("## An example").expect("the example's section");
+    let start = from + page[from..].find("```ron\n").expect("its RON block") + "```ron\n".len();
+    let end = start + page[start..].find("```").expect("the end of the block");
+    let text = &page[start..end];
+    let last = |scenario: &Scenario| {
+        let summary = flocking::run(scenario, &mut ()).expect("runs");
+        summary.metrics
+    };
+    let example = parse(text);
+    let real = last(&example);
+    assert!(
+        real.components >= 10 && real.giant_component < 0.5,
+        "{real:?}"
+    );
+    let mut ideal = example.clone();
+    ideal.conditions = Conditions::default();
+    let ideal = last(&ideal);
+    assert!(
+        ideal.connectivity == 1.0 && ideal.velocity_mismatch < 1e-3,
+        "{ideal:?}"
+    );
+    let mut lag_only = example.clone();
+    lag_only.conditions = Conditions {
+        actuation: example.conditions.actuation.map(|a| {
+            flocking::protocols::conditions::Actuation {
+                max_acceleration: None,
+                max_speed: None,
+                ..a
+            }
+        }),
+        ..Conditions::default()
+    };
+    let lagged = last(&lag_only);
+    assert!(lagged.giant_component < 0.5, "{lagged:?}");
+}
