@@ -106,8 +106,9 @@ fn conditions_round_trip_through_to_ron_and_stay_unwritten_when_ideal() {
     assert_eq!(back.to_ron().expect("ron"), written);
 }
 
-/// `sensing.rate` alone is a sampled sensor that measures exactly: accepted, written back without
-/// a noise, and the same run as with `noise: White(sigma_q: 0.0, sigma_p: 0.0)` written out.
+/// `sensing.rate` alone is a sampled sensor that measures exactly: accepted, written back with its
+/// zero noise spelt out (so that a sweep's path `conditions.sensing.noise.White.sigma_q` still goes
+/// through it), and the same run as with `noise: White(sigma_q: 0.0, sigma_p: 0.0)` written out.
 #[test]
 fn a_sensor_rate_alone_is_accepted_as_exact_sampled_sensing() {
     let sampled = parse(&cycle(1.0, "\n    conditions: (sensing: (rate: 5.0)),"));
@@ -115,11 +116,16 @@ fn a_sensor_rate_alone_is_accepted_as_exact_sampled_sensing() {
     assert_eq!(sensing.rate, Some(5.0));
     assert!(sensing.noise.is_none());
     let written = sampled.to_ron().expect("ron");
-    assert!(
-        written.contains("sensing") && !written.contains("noise"),
-        "{written}"
-    );
+    assert!(written.contains("White"), "{written}");
     assert_eq!(parse(&written), sampled);
+    let through = sampled
+        .with_values([(
+            "conditions.sensing.noise.White.sigma_q",
+            flocking::serde_json::json!(0.5),
+        )])
+        .expect("the path goes through the written noise");
+    let noise = through.conditions.sensing.expect("sensing").noise;
+    assert!(!noise.is_none(), "{noise:?}");
     let explicit = parse(&cycle(
         1.0,
         "\n    conditions: (sensing: (noise: White(sigma_q: 0.0, sigma_p: 0.0), rate: 5.0)),",

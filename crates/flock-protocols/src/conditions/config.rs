@@ -160,7 +160,7 @@ impl Noise {
         Self::NONE
     }
 
-    /// Whether this is [`Noise::NONE`] (left out of a written scenario).
+    /// Whether this is [`Noise::NONE`].
     #[must_use]
     pub fn is_none(&self) -> bool {
         *self == Self::NONE
@@ -174,11 +174,9 @@ impl Noise {
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Sensing {
     /// The noise process; by default none ([`Noise::NONE`], white noise of zero deviations): a
-    /// sensor at `rate` that measures exactly.
-    #[cfg_attr(
-        feature = "serde",
-        serde(default = "Noise::none", skip_serializing_if = "Noise::is_none")
-    )]
+    /// sensor at `rate` that measures exactly. Always written back (a sweep's path
+    /// `conditions.sensing.noise.White.sigma_q` goes through it).
+    #[cfg_attr(feature = "serde", serde(default = "Noise::none"))]
     pub noise: Noise,
     /// The sensor rate (Hz): the measurement is refreshed every 1/rate seconds (a whole number
     /// of steps) and held between. `None`: at every step.
