@@ -2,8 +2,10 @@
 # A Slurm job array for a flocking sweep: task i of N runs shard i/N of the sweep into OUT/shard-i;
 # once every task has finished, join the shards:
 #
-#     sbatch --array=0-99 scripts/slurm-sweep.sh sweeps/alg2_c1_n.ron out/alg2
-#     flocking sweep merge --out out/alg2/merged out/alg2/shard-*
+#     sbatch --array=0-99 scripts/slurm-sweep.sh sweeps/alg2_c1_n.ron out/alg2-slurm
+#     flocking sweep merge --out out/alg2-slurm/merged out/alg2-slurm/shard-*
+#
+# OUT is the shards' own directory: not the --out of a `flocking sweep` (it would mix the two).
 #
 # (or chain the merge: `sbatch --dependency=afterok:<array job id> --wrap "flocking sweep merge …"`).
 # Each task runs its runs one at a time on one core (--jobs 1, --cpus-per-task 1); a task that is

@@ -79,8 +79,9 @@ enum Command {
     /// draw its figures (GIF and trajectory CSVs dropped), and write `DIR/index.html`, a static page
     /// of the papers' figures and final metrics.
     Figures {
-        /// The output directory.
-        #[arg(long, default_value = "docs/figures")]
+        /// The output directory (default `figures` in the current directory; the repository's
+        /// gallery is regenerated with `--out docs/figures --no-player`).
+        #[arg(long, default_value = "figures")]
         out: PathBuf,
         /// Print nothing but errors.
         #[arg(long)]
@@ -298,7 +299,7 @@ fn dispatch(command: Command) -> ExitCode {
                 out!("{}", s.to_ron().unwrap_or_default());
                 outln!();
                 let estimate = s.estimate(&Outputs::RUN);
-                if let Err(e) = flock_cli::resources::announce(&estimate, None, false) {
+                if let Err(e) = flock_cli::resources::announce(&estimate, None, (false, false)) {
                     errln!("warning: {e}");
                     // the stable step and the warnings build the initial net of every agent,
                     // which does not fit either (issue 27)
@@ -433,12 +434,11 @@ fn create_directory(
         ..Outputs::RUN
     };
     // before the warnings, which build the initial net of every agent (issue 27)
-    flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), unchecked).map_err(
-        |e| {
+    flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), (unchecked, false))
+        .map_err(|e| {
             errln!("error: {e}");
             ExitCode::from(INVALID)
-        },
-    )?;
+        })?;
     for warning in scenario.warnings() {
         errln!("{warning}");
     }

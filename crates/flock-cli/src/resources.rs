@@ -43,12 +43,22 @@ pub fn parse_epsilon(text: &str) -> Result<f64, String> {
 
 /// Prints `estimate` (one line on stdout, its warnings on stderr) and, unless `unchecked`,
 /// refuses it when it does not fit in this machine's memory or the free space where `out` goes.
+/// The fixes named are those of `flocking sweep` when `sweep`, else of `flocking run`.
 ///
 /// # Errors
 /// What does not fit, with the figures and the flag that overrides.
-pub fn announce(estimate: &Estimate, out: Option<&Path>, unchecked: bool) -> Result<(), String> {
+pub fn announce(
+    estimate: &Estimate,
+    out: Option<&Path>,
+    (unchecked, sweep): (bool, bool),
+) -> Result<(), String> {
     outln!("{estimate}");
-    for warning in estimate.warnings() {
+    let warnings = if sweep {
+        estimate.sweep_warnings()
+    } else {
+        estimate.warnings()
+    };
+    for warning in warnings {
         errln!("{warning}");
     }
     if unchecked {
@@ -61,7 +71,11 @@ pub fn announce(estimate: &Estimate, out: Option<&Path>, unchecked: bool) -> Res
             ..Resources::of_machine(Path::new("."))
         },
     };
-    estimate.check(&resources)
+    if sweep {
+        estimate.check_sweep(&resources)
+    } else {
+        estimate.check(&resources)
+    }
 }
 
 #[cfg(test)]

@@ -5,6 +5,25 @@ use std::fmt;
 use flocking::RunSummary;
 use flocking::metrics::{Closest, FlockMetrics};
 
+/// The diagnostic columns that count agents (`docs/outputs.md`): printed as whole numbers.
+pub const COUNT_COLUMNS: [&str; 4] = [
+    "inside_obstacles",
+    "at_acceleration_limit",
+    "at_speed_limit",
+    "failed",
+];
+
+/// A diagnostic's value as the summary prints it: a count as an integer (`failed 1`), any other
+/// value in scientific notation (`defect_factor 1.234560e-3`).
+#[must_use]
+pub fn diagnostic(name: &str, value: f64) -> String {
+    if COUNT_COLUMNS.contains(&name) && value.fract() == 0.0 && value.abs() < 1e15 {
+        format!("{value:.0}")
+    } else {
+        format!("{value:.6e}")
+    }
+}
+
 /// A run summary with its scenario's name and its records, ready to print.
 #[derive(Debug)]
 pub struct Report<'a> {
@@ -69,8 +88,8 @@ impl fmt::Display for Report<'_> {
                 s.merged
             )?;
         }
-        for (name, value) in &s.diagnostics {
-            writeln!(f, "  {name:<22}{value:.6e}")?;
+        for &(name, value) in &s.diagnostics {
+            writeln!(f, "  {name:<22}{}", diagnostic(name, value))?;
         }
         writeln!(f, "  lattice               {}", s.lattice)?;
         // of this run's records (after its start, when resumed)
@@ -94,5 +113,20 @@ impl fmt::Display for Report<'_> {
             "  wall time             {:.3} s ({rate:.3e} agent-steps/s)",
             s.elapsed.as_secs_f64()
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_print_as_integers_and_measures_in_scientific_notation() {
+        assert_eq!(diagnostic("failed", 1.0), "1");
+        assert_eq!(diagnostic("inside_obstacles", 0.0), "0");
+        assert_eq!(diagnostic("at_speed_limit", 12.0), "12");
+        assert_eq!(diagnostic("at_acceleration_limit", 3.0), "3");
+        assert_eq!(diagnostic("links_lost", 1.0), "1.000000e0");
+        assert_eq!(diagnostic("information_age", 0.05), "5.000000e-2");
     }
 }

@@ -241,20 +241,39 @@ fn run(
     } else {
         Outputs::NONE
     };
-    let runs = sweep.runs();
-    let estimate = runs
+    if sweep.runs().is_empty() {
+        return Err(Failure::Usage("the sweep has no runs".into()));
+    }
+    // what this command will run: its shard's runs not found done in `out`
+    let pending = share(&sweep, out, options.shard).map_or_else(
+        |_| {
+            let mine = sweep.runs().into_iter();
+            mine.filter(|run| options.shard.is_none_or(|s| s.owns(run.index)))
+                .collect()
+        },
+        |(_, pending)| pending,
+    );
+    let estimate = pending
         .iter()
         .filter_map(|run| sweep.scenario(run).ok())
         .map(|scenario| scenario.estimate(&outputs))
-        .reduce(Estimate::and)
-        .ok_or_else(|| Failure::Usage("the sweep has no runs".into()))?;
-    // the workers run at once: each needs its run's memory
-    let workers = options.jobs.min(runs.len()).max(1) as f64;
-    let estimate = Estimate {
-        memory_bytes: estimate.memory_bytes * workers,
-        ..estimate
-    };
-    crate::resources::announce(&estimate, Some(out), unchecked).map_err(Failure::Usage)?;
+        .reduce(Estimate::and);
+    match estimate {
+        Some(estimate) => {
+            // the workers run at once: each needs its run's memory
+            let workers = options.jobs.min(pending.len()).max(1) as f64;
+            let estimate = Estimate {
+                memory_bytes: estimate.memory_bytes * workers,
+                ..estimate
+            };
+            crate::resources::announce(&estimate, Some(out), (unchecked, true))
+                .map_err(Failure::Usage)?;
+        }
+        None => outln!(
+            "estimate: nothing left to run, every run is done in {}",
+            out.display()
+        ),
+    }
     writing.store(true, std::sync::atomic::Ordering::SeqCst);
     run_checked(&sweep, out, options, quiet, stop)
 }
@@ -432,6 +451,27 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
         })
     };
     let (cx, cm) = (column(&request.x, "x")?, column(&request.metric, "metric")?);
+    // the measured columns lie between `seed` and `error`; the others are not metrics
+    let measured = match (
+        header.iter().position(|h| h == "seed"),
+        header.iter().position(|h| h == "error"),
+    ) {
+        (Some(seed), Some(error)) if seed < error => seed + 1..error,
+        _ => 0..header.len(),
+    };
+    if !measured.contains(&cm) {
+        return Err(Failure::Usage(format!(
+            "--metric {:?} is not a measured column of {}; the metrics are {}",
+            request.metric,
+            path.display(),
+            header
+                .iter()
+                .skip(measured.start)
+                .take(measured.len())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
     let cy = request.y.as_deref().map(|y| column(y, "y")).transpose()?;
     let mut shown_axes = vec![request.x.as_str()];
     shown_axes.extend(request.y.as_deref());

@@ -134,11 +134,6 @@ fn the_committed_gallery_is_what_flock_figures_draws() {
     let entries = figures(&crate::common::fixtures_dir(), &out, true, false)
         .unwrap_or_else(|e| panic!("{e}"));
 
-    let stale = "docs/figures is stale: regenerate it with \
-                 `cargo run --release -p flock-cli -- figures --out docs/figures --no-player`";
-    let names = |files: &std::collections::BTreeMap<String, Vec<u8>>| {
-        files.keys().cloned().collect::<Vec<_>>()
-    };
     // every file drawn is the committed one; the directories of the fixtures and the function
     // plots hold nothing else (the top holds other pictures of the docs too)
     let mut dirs: Vec<(String, bool)> = entries
@@ -151,19 +146,43 @@ fn the_committed_gallery_is_what_flock_figures_draws() {
         })
         .collect();
     dirs.extend([(String::new(), false), ("functions".to_owned(), true)]);
+    let mut differences = Vec::new();
     for (dir, whole) in &dirs {
         let drawn = files(&out.join(dir));
         let kept = files(&committed.join(dir));
-        if *whole {
-            assert_eq!(names(&drawn), names(&kept), "{dir}: {stale}");
-        }
+        let path = |name: &str| {
+            if dir.is_empty() {
+                name.to_owned()
+            } else {
+                format!("{dir}/{name}")
+            }
+        };
         for (name, bytes) in &drawn {
-            assert!(
-                kept.get(name) == Some(bytes),
-                "{dir}/{name} differs: {stale}"
-            );
+            match kept.get(name) {
+                None => differences.push(format!("{} (drawn, not committed)", path(name))),
+                Some(k) if k != bytes => differences.push(format!(
+                    "{} (drawn {} bytes, committed {} bytes{})",
+                    path(name),
+                    bytes.len(),
+                    k.len(),
+                    first_difference(bytes, k)
+                )),
+                Some(_) => {}
+            }
+        }
+        if *whole {
+            for name in kept.keys().filter(|n| !drawn.contains_key(*n)) {
+                differences.push(format!("{} (committed, no longer drawn)", path(name)));
+            }
         }
     }
+    assert!(
+        differences.is_empty(),
+        "docs/figures is stale, {} file(s) differ:\n  {}\nregenerate it with \
+         `cargo run --release -p flock-cli -- figures --out docs/figures --no-player`",
+        differences.len(),
+        differences.join("\n  ")
+    );
     assert_eq!(entries.len(), crate::common::fixture_paths().len());
 
     let lattices = [
@@ -199,4 +218,40 @@ fn the_committed_gallery_is_what_flock_figures_draws() {
             "{stem}: not at rest"
         );
     }
+}
+
+/// Where two versions of a file first differ: `, first at line L: "drawn" against "committed"`
+/// for text, `, first at byte B` otherwise.
+fn first_difference(drawn: &[u8], committed: &[u8]) -> String {
+    if let (Ok(a), Ok(b)) = (std::str::from_utf8(drawn), std::str::from_utf8(committed)) {
+        let cut = |s: &str| s.chars().take(80).collect::<String>();
+        let mut lines = a.lines().zip(b.lines()).enumerate();
+        return match lines.find(|(_, (x, y))| x != y) {
+            Some((k, (x, y))) => format!(
+                ", first at line {}: {:?} against {:?}",
+                k + 1,
+                cut(x),
+                cut(y)
+            ),
+            None => ", one is a prefix of the other".to_owned(),
+        };
+    }
+    let at = drawn
+        .iter()
+        .zip(committed)
+        .position(|(a, b)| a != b)
+        .unwrap_or(drawn.len().min(committed.len()));
+    format!(", first at byte {at}")
+}
+
+#[test]
+fn a_stale_file_is_named_with_where_it_differs() {
+    assert_eq!(
+        first_difference(b"a\nb\nc", b"a\nB\nc"),
+        ", first at line 2: \"b\" against \"B\""
+    );
+    assert_eq!(
+        first_difference(&[0, 1, 2, 0xff], &[0, 1, 3, 0xff]),
+        ", first at byte 2"
+    );
 }

@@ -41,6 +41,29 @@ fn sweep(dir: &Path, args: &[&str]) -> String {
     String::from_utf8_lossy(&output.stdout).into_owned()
 }
 
+/// The estimate counts the runs this command will run: a shard's, less those found done (a
+/// Slurm task of 1 run in 4 estimated all of them, and a finished sweep minutes of work).
+#[test]
+fn the_estimate_counts_only_the_runs_left_in_this_share() {
+    let tmp = temp_dir("sweep_estimate");
+    let spec = write_sweep(tmp.path());
+    let shard = sweep(
+        tmp.path(),
+        &[
+            &spec, "--out", "s", "--shard", "1/4", "--jobs", "1", "--quiet",
+        ],
+    );
+    assert!(shard.contains("estimate: 6 runs of"), "{shard}");
+    let again = sweep(
+        tmp.path(),
+        &[
+            &spec, "--out", "s", "--shard", "1/4", "--jobs", "1", "--quiet",
+        ],
+    );
+    assert!(again.contains("estimate: nothing left to run"), "{again}");
+    assert!(!again.contains("runs of"), "{again}");
+}
+
 #[test]
 fn a_killed_sweep_resumes_to_the_same_runs_csv() {
     let tmp = temp_dir("sweep_kill");
@@ -560,6 +583,17 @@ fn bad_where_and_facet_are_clear_errors() {
     assert!(e.contains("--facet algorithm.c1"), "{e}");
     let e = failing(&["--where", "agents"]);
     assert!(e.contains("AXIS=VALUE"), "{e}");
+    // a column that is not a measure is bad input, not a failed plot (issue 28: exit 1 before)
+    for metric in ["error", "id", "seed"] {
+        let args = plot_args(dir, metric, &[], "never.svg");
+        let output = flocking(tmp.path(), &args);
+        let e = stderr(&output);
+        assert_eq!(output.status.code(), Some(2), "{metric}: {e}");
+        assert!(
+            e.contains("not a measured column") && e.contains("alpha_flock"),
+            "{e}"
+        );
+    }
     // a number matches as a number: 50.0 is the 50 of runs.csv
     let output = flocking(
         tmp.path(),

@@ -16,8 +16,9 @@ use parry2d_f64::transformation::convex_hull;
 use crate::basis::orthogonal_unit;
 use crate::error::{check_finite, coordinates, from_coordinates};
 use crate::polytope::{self, Planes};
-use crate::thin::{self, Feature};
-use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, capsule, cuboid, wall};
+use crate::shapes::{self, Hull, Kind, Parry};
+use crate::thin::Feature;
+use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, cuboid, wall};
 
 /// A convex obstacle of ℝ²: a parry shape placed by a [`Pose`].
 ///
@@ -42,30 +43,8 @@ use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, capsule, cub
 /// ```
 #[derive(Clone, Debug)]
 pub struct Obstacle2d {
-    kind: Kind,
+    kind: Kind<DVec2>,
     pose: Pose,
-}
-
-/// The shapes an [`Obstacle2d`] can be.
-#[derive(Clone, Debug)]
-enum Kind {
-    Ball(Ball),
-    Wall(HalfSpace),
-    /// Local frame: the pose's translation and rotation.
-    Cuboid(Cuboid),
-    /// Local frame: the pose's translation (the centroid of the points).
-    Polygon(Box<Polygon>),
-    /// World coordinates (identity pose).
-    Capsule(Capsule),
-    /// World coordinates (identity pose).
-    Segment(Segment),
-}
-
-/// A convex polygon and its edge lines.
-#[derive(Clone, Debug)]
-struct Polygon {
-    shape: ConvexPolygon,
-    planes: Planes<DVec2>,
 }
 
 impl Obstacle2d {
@@ -196,7 +175,7 @@ impl Obstacle2d {
         let planes = Planes::new(planes, radius);
         planes.check_convex(&local, points)?;
         Ok(Self {
-            kind: Kind::Polygon(Box::new(Polygon { shape, planes })),
+            kind: Kind::Hull(Box::new(Hull { shape, planes })),
             pose: Pose::from_translation(centroid),
         })
     }
@@ -361,9 +340,10 @@ impl Obstacle2d {
             Kind::Ball(ball) => ball,
             Kind::Wall(half_space) => half_space,
             Kind::Cuboid(cuboid) => cuboid,
-            Kind::Polygon(polygon) => &polygon.shape,
+            Kind::Hull(hull) => &hull.shape,
             Kind::Capsule(capsule) => capsule,
             Kind::Segment(segment) => segment,
+            Kind::Plate(none) => match *none {},
         }
     }
 
@@ -371,19 +351,6 @@ impl Obstacle2d {
     #[must_use]
     pub fn pose(&self) -> &Pose {
         &self.pose
-    }
-
-    /// The β-agent computed in the local frame of the pose, brought back to the world.
-    #[inline]
-    fn to_world(&self, q: DVec2, local: BetaAgent<DVec2>) -> BetaAgent<DVec2> {
-        BetaAgent::with_velocity(
-            q,
-            self.pose.transform_point(local.position),
-            self.pose.transform_vector(local.normal),
-            self.pose.transform_vector(local.velocity),
-            local.mu,
-            local.inside,
-        )
     }
 }
 
@@ -398,84 +365,7 @@ impl Obstacle<DVec2> for Obstacle2d {
 
     #[inline]
     fn beta_agent(&self, q: DVec2, p: DVec2) -> BetaAgent<DVec2> {
-        match &self.kind {
-            Kind::Ball(shape) => {
-                let projection = shape.project_point(&self.pose, q, false);
-                ball::beta_agent(
-                    q,
-                    p,
-                    self.pose.translation,
-                    shape.radius,
-                    projection.point,
-                    projection.is_inside,
-                )
-            }
-            Kind::Wall(shape) => {
-                let projection = shape.project_point(&self.pose, q, false);
-                let normal = self.pose.transform_vector(shape.normal);
-                wall::beta_agent(q, p, normal, projection.point, projection.is_inside)
-            }
-            Kind::Cuboid(shape) => {
-                let local_q = self.pose.inverse_transform_point(q);
-                let local_p = self.pose.inverse_transform_vector(p);
-                let projection = shape.project_local_point(local_q, false);
-                let local = cuboid::beta_agent(
-                    local_q,
-                    local_p,
-                    shape.half_extents,
-                    projection.point,
-                    projection.is_inside,
-                );
-                self.to_world(q, local)
-            }
-            Kind::Polygon(polygon) => {
-                let local_q = q - self.pose.translation;
-                let projection = polygon.shape.project_local_point(local_q, false);
-                let local = polytope::beta_agent(
-                    local_q,
-                    p,
-                    &polygon.planes,
-                    projection.point,
-                    projection.is_inside,
-                );
-                BetaAgent::with_velocity(
-                    q,
-                    local.position + self.pose.translation,
-                    local.normal,
-                    local.velocity,
-                    local.mu,
-                    local.inside,
-                )
-            }
-            Kind::Capsule(shape) => {
-                let projection = shape.project_local_point(q, false);
-                capsule::beta_agent(
-                    q,
-                    p,
-                    shape.segment.a,
-                    shape.segment.b,
-                    shape.radius,
-                    projection.point,
-                    projection.is_inside,
-                )
-            }
-            Kind::Segment(shape) => {
-                let (projection, location) = shape.project_local_point_and_get_location(q, false);
-                let direction = (shape.b - shape.a).normalize();
-                let feature = match location {
-                    SegmentPointLocation::OnVertex(_) => Feature::Vertex,
-                    SegmentPointLocation::OnEdge(_) => Feature::Edge(direction),
-                };
-                thin::beta_agent(
-                    q,
-                    p,
-                    projection.point,
-                    projection.is_inside,
-                    feature,
-                    orthogonal_unit(direction),
-                )
-            }
-        }
+        shapes::beta_agent(&self.kind, &self.pose, q, p)
     }
 
     fn aabb(&self) -> Option<(DVec2, DVec2)> {
@@ -484,5 +374,98 @@ impl Obstacle<DVec2> for Obstacle2d {
         }
         let aabb = self.shape().compute_aabb(&self.pose);
         Some((aabb.mins, aabb.maxs))
+    }
+}
+
+/// No plate in the plane (a triangle is a convex polygon there): [`Kind::Plate`] cannot be built.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum NoPlate {}
+
+/// parry2d-f64's types and projections for the β-agent algorithm of [`shapes`].
+impl Parry for DVec2 {
+    type Pose = Pose;
+    type Ball = Ball;
+    type HalfSpace = HalfSpace;
+    type Cuboid = Cuboid;
+    type Hull = ConvexPolygon;
+    type Capsule = Capsule;
+    type Segment = Segment;
+    type Plate = NoPlate;
+
+    #[inline]
+    fn translation(pose: &Pose) -> Self {
+        pose.translation
+    }
+    #[inline]
+    fn to_world_point(pose: &Pose, x: Self) -> Self {
+        pose.transform_point(x)
+    }
+    #[inline]
+    fn to_world_vector(pose: &Pose, v: Self) -> Self {
+        pose.transform_vector(v)
+    }
+    #[inline]
+    fn to_local_point(pose: &Pose, x: Self) -> Self {
+        pose.inverse_transform_point(x)
+    }
+    #[inline]
+    fn to_local_vector(pose: &Pose, v: Self) -> Self {
+        pose.inverse_transform_vector(v)
+    }
+    #[inline]
+    fn radius(ball: &Ball) -> f64 {
+        ball.radius
+    }
+    #[inline]
+    fn project_ball(ball: &Ball, pose: &Pose, q: Self) -> (Self, bool) {
+        let projection = ball.project_point(pose, q, false);
+        (projection.point, projection.is_inside)
+    }
+    #[inline]
+    fn wall_normal(wall: &HalfSpace) -> Self {
+        wall.normal
+    }
+    #[inline]
+    fn project_wall(wall: &HalfSpace, pose: &Pose, q: Self) -> (Self, bool) {
+        let projection = wall.project_point(pose, q, false);
+        (projection.point, projection.is_inside)
+    }
+    #[inline]
+    fn half_extents(cuboid: &Cuboid) -> Self {
+        cuboid.half_extents
+    }
+    #[inline]
+    fn project_cuboid(cuboid: &Cuboid, local_q: Self) -> (Self, bool) {
+        let projection = cuboid.project_local_point(local_q, false);
+        (projection.point, projection.is_inside)
+    }
+    #[inline]
+    fn project_hull(hull: &ConvexPolygon, local_q: Self) -> (Self, bool) {
+        let projection = hull.project_local_point(local_q, false);
+        (projection.point, projection.is_inside)
+    }
+    #[inline]
+    fn capsule(capsule: &Capsule) -> (Self, Self, f64) {
+        (capsule.segment.a, capsule.segment.b, capsule.radius)
+    }
+    #[inline]
+    fn project_capsule(capsule: &Capsule, q: Self) -> (Self, bool) {
+        let projection = capsule.project_local_point(q, false);
+        (projection.point, projection.is_inside)
+    }
+    #[inline]
+    fn project_segment(segment: &Segment, q: Self) -> (Self, bool, Feature<Self>, Self) {
+        let (projection, location) = segment.project_local_point_and_get_location(q, false);
+        let direction = (segment.b - segment.a).normalize();
+        let feature = match location {
+            SegmentPointLocation::OnVertex(_) => Feature::Vertex,
+            SegmentPointLocation::OnEdge(_) => Feature::Edge(direction),
+        };
+        let normal = orthogonal_unit(direction);
+        (projection.point, projection.is_inside, feature, normal)
+    }
+    #[inline]
+    fn project_plate(plate: &NoPlate, _q: Self) -> (Self, bool, Feature<Self>, Self) {
+        match *plate {}
     }
 }

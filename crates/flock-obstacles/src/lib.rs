@@ -29,6 +29,7 @@ pub mod error;
 pub mod field;
 pub mod obstacle;
 mod polytope;
+mod shapes;
 pub mod space;
 pub mod spec;
 mod thin;

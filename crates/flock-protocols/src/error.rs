@@ -39,7 +39,7 @@ impl ParamError {
     ) -> Self {
         Self {
             field: field.into(),
-            value: format!("{value:?}"),
+            value: plain_value(&value),
             why: why.into(),
             fix: fix.into(),
         }
@@ -221,4 +221,21 @@ pub mod check {
             "rescale the scenario (or move its origin) so that every coordinate stays within ±1e9",
         )
     }
+}
+
+/// A value's `Debug` text without Rust's type names, as a scenario writes it: glam's
+/// `DVec2(NaN, 1.0)` is `(NaN, 1.0)`.
+///
+/// # Example
+/// ```
+/// use flock_protocols::plain_value;
+///
+/// assert_eq!(plain_value(&glam::DVec2::new(f64::NAN, 1.0)), "(NaN, 1.0)");
+/// assert_eq!(plain_value(&0.5), "0.5");
+/// ```
+#[must_use]
+pub fn plain_value(value: &impl fmt::Debug) -> String {
+    format!("{value:?}")
+        .replace("DVec2(", "(")
+        .replace("DVec3(", "(")
 }

@@ -52,7 +52,7 @@ pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
 pub use couzin2002::{Couzin, CouzinParams};
 pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
-pub use error::{ParamError, check};
+pub use error::{ParamError, check, plain_value};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
 pub use health::{AgentFault, Fault};
 pub use integrator::{Integrator, Observation, Simulation, advance};

@@ -9,7 +9,8 @@
 //! - [`controls`]: `controls=`, the inputs u_i computed by a Python function on the proximity net.
 //! - [`sweep`]: the pieces of `flocking.sweep` — a run of a sweep in any worker process, the output
 //!   directory of `flocking sweep`.
-//! - [`player`]: the HTML player of a run held in memory (`Run._repr_html_`).
+//! - [`player`]: the HTML player of a run held in memory (`Run.player()`).
+//! - [`progress`]: the progress line of `flocking.run` and `flocking.resume`.
 //! - [`errors`]: flocking's errors as the Python exceptions of `flocking._errors`, with the CLI's
 //!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
 
@@ -19,6 +20,7 @@ pub mod controls;
 pub mod errors;
 pub mod interrupt;
 pub mod player;
+pub mod progress;
 pub mod run;
 pub mod scenario;
 pub mod simulation;
@@ -42,5 +44,6 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(sweep::sweep_write_row, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_assemble, module)?)?;
     module.add("METRICS_HEADER", flocking::run_dir::METRICS_HEADER)?;
+    module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

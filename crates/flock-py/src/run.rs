@@ -24,6 +24,7 @@ use crate::errors::{
     create_error, numerical_error, read_error, resume_error, run_directory_error, scenario_error,
 };
 use crate::interrupt::Interrupt;
+use crate::progress::Progress;
 use crate::scenario::PyScenario;
 
 /// The recorded instants of a run, kept as the columns of `metrics.csv` and the trajectory.
@@ -238,6 +239,8 @@ struct PyRecorder {
     interrupt: Interrupt,
     /// H(0), for a checkpoint after `controls` failed: that of the first record, or the start's.
     initial_energy: Option<f64>,
+    /// The progress line, when asked.
+    progress: Option<Progress>,
 }
 
 impl Recorder for PyRecorder {
@@ -249,6 +252,9 @@ impl Recorder for PyRecorder {
         }
         self.initial_energy.get_or_insert(record.energy);
         self.memory.record(record);
+        if let Some(progress) = &mut self.progress {
+            progress.at(record.t);
+        }
         Ok(())
     }
 
@@ -280,13 +286,15 @@ fn execute<'py>(
     start: Option<&Start>,
     dir: Option<RunDirectory>,
     keep_trajectory: bool,
-    controls: Option<&PythonControls>,
+    (controls, progress): (Option<&PythonControls>, bool),
 ) -> PyResult<(Memory, Option<PathBuf>, Option<String>)> {
+    let t0 = start.map_or(0.0, |s| s.steps as f64 * scenario.step);
     let mut recorder = PyRecorder {
         memory: Memory::new(scenario, keep_trajectory),
         dir,
         interrupt: Interrupt::new(),
         initial_energy: start.map(|s| s.initial_energy),
+        progress: progress.then(|| Progress::new(t0, scenario.duration, scenario.step)),
     };
     let (outcome, recorder) = py.detach(move || {
         let outcome = match controls {
@@ -305,7 +313,11 @@ fn execute<'py>(
         mut dir,
         interrupt,
         initial_energy,
+        progress,
     } = recorder;
+    if let Some(progress) = progress {
+        progress.clear();
+    }
     let error = match outcome {
         Ok(verdict) => {
             let path = match dir {
@@ -433,7 +445,7 @@ fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
 /// before the step it was called for, leaves `out` resumable with the same `controls`, and is
 /// raised again.
 #[pyfunction]
-#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false, controls = None))]
+#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false, controls = None, progress = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -444,6 +456,7 @@ pub fn run<'py>(
     checkpoint_every: u64,
     force: bool,
     controls: Option<Py<PyAny>>,
+    progress: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let format = TrajectoryFormat::from_str(trajectory_format).map_err(PyValueError::new_err)?;
     let scenario = &scenario.inner;
@@ -480,7 +493,14 @@ pub fn run<'py>(
             .map_err(|e| crate::errors::run_directory_error(py, e, out))?;
     }
     let controls = controls.map(|f| PythonControls::new(f, scenario));
-    let (memory, path, verdict) = execute(py, scenario, None, dir, trajectory, controls.as_ref())?;
+    let (memory, path, verdict) = execute(
+        py,
+        scenario,
+        None,
+        dir,
+        trajectory,
+        (controls.as_ref(), progress),
+    )?;
     memory.into_result(py, scenario, path.as_deref(), verdict)
 }
 
@@ -489,12 +509,13 @@ pub fn run<'py>(
 /// run's), and returns the whole run read back from it. A run made with `controls` needs the same
 /// `controls` to continue as it would have.
 #[pyfunction]
-#[pyo3(signature = (dir, *, checkpoint_every = 1000, controls = None))]
+#[pyo3(signature = (dir, *, checkpoint_every = 1000, controls = None, progress = false))]
 pub fn resume<'py>(
     py: Python<'py>,
     dir: PathBuf,
     checkpoint_every: u64,
     controls: Option<Py<PyAny>>,
+    progress: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let source = controls.as_ref().map(|f| controls_source(py, f));
     let (directory, scenario, start) =
@@ -507,7 +528,7 @@ pub fn resume<'py>(
         start.as_ref(),
         Some(directory),
         false,
-        controls.as_ref(),
+        (controls.as_ref(), progress),
     )?;
     let path = path.unwrap_or(dir);
     read_run(py, path)

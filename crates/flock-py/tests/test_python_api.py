@@ -88,7 +88,16 @@ def test_to_xarray(fig11_run):
     assert attrs["alpha_r"] == pytest.approx(8.4)  # resolved: 1.2 d
     assert flocking.Scenario.from_ron(attrs["scenario"]).to_ron() == run.scenario.to_ron() == attrs["scenario"]
     for value in attrs.values():
-        assert isinstance(value, (str, int, float)), value
+        assert isinstance(value, (str, int, float)) or all(isinstance(x, (int, float)) for x in value), value
+    # units on time, the state and every metric; the gains and the rest of the scenario
+    assert data["time"].attrs["units"] == "s"
+    assert (data["q"].attrs["units"], data["p"].attrs["units"]) == ("m", "m s-1")
+    for name in run.metrics:
+        if name != "t":
+            assert data[name].attrs["units"] == flocking._run.UNITS[name], name
+    assert data["cohesion_radius"].attrs["units"] == "m"
+    for path in ("algorithm.c1", "algorithm.c2", "initial.positions.std"):
+        assert attrs[path] == run.scenario.value(path), path
     # the 3D axis and a run without trajectory
     kept = flocking.run(short(FIXTURES / "tac2006_fig13_alg2_3d_n50.ron"), trajectory=False).to_xarray()
     assert "q" not in kept and list(kept["axis"].values) == ["x", "y", "z"]
@@ -103,13 +112,16 @@ def test_to_xarray_of_a_run_directory(tmp_path):
     assert np.array_equal(data["q"], run.trajectory.positions)
 
 
-def test_the_html_of_a_run_is_a_summary_and_the_player(fig11_run, tmp_path):
+def test_the_html_of_a_run_is_a_summary_and_a_snapshot_and_the_player_on_request(fig11_run, tmp_path):
     page = fig11_run._repr_html_()
     for label in ("name", "dim", "n", "duration", "final C", "final C*", "final Ẽ", "final K̃", "least distance"):
         assert f">{html.escape(label)}</th>" in page, label
     least = f"{fig11_run.metrics['min_distance'].min():.4g}"
     assert f"<td style='text-align:left'>{least}</td>" in page
-    frame = re.search(r'<iframe srcdoc="([^"]*)"', page)
+    # a snapshot of the final state, one dot per agent, and no player
+    assert page.count("<circle ") == 100 and "<svg" in page
+    assert "<iframe" not in page and "run.player()" in page
+    frame = re.search(r'<iframe srcdoc="([^"]*)"', fig11_run.player()._repr_html_())
     assert frame is not None  # the player, escaped into one attribute
     player = html.unescape(frame.group(1))
     assert player.startswith("<!DOCTYPE html>") and 'id="play"' in player and "flock-data" in player
@@ -117,8 +129,17 @@ def test_the_html_of_a_run_is_a_summary_and_the_player(fig11_run, tmp_path):
     # a finished run directory's verdict is shown; a run without trajectory has no player
     run = flocking.run(short(FIG11), tmp_path / "out", trajectory=False)
     page = run._repr_html_()
-    assert "Definition 5" in page and "<iframe" not in page
+    assert "Definition 5" in page and "<iframe" not in page and "run.player()" not in page
     assert run.verdict is not None and run.verdict == (tmp_path / "out" / "flocking.txt").read_text().splitlines()[0]
+
+
+def test_the_html_of_a_thousand_agents_stays_under_100_kb():
+    # issue 28: the whole player was embedded, 11.2 MB at n = 1,000
+    scenario = short(FIG11, records=20).with_values({"agents": 1000})
+    run = flocking.run(scenario)
+    page = run._repr_html_()
+    assert page.count("<circle ") == 1000
+    assert len(page.encode()) < 100_000, len(page.encode())
 
 
 def test_sweep_columns_have_natural_dtypes(tmp_path):

@@ -7,8 +7,8 @@
 //! - Fig. 4: ψ_α(z) and φ_α(z) of eq. 29 with a = 1 and b = 5.
 //! - Fig. 5: the pair potential of two α-agents against their distance ‖q‖: (a) non-smooth,
 //!   ψ_α(‖q‖ − d_α) inside r and 0 beyond (eq. 28), with the jump h₀ = ψ_α(r − d_α) at r of
-//!   eq. 31; (b) smooth, ρ(‖q‖/r) ψ_α(‖q‖ − d_α) (eq. 30). Ours: the report gives no parameters
-//!   for it; those of Figs. 2 and 4 (d_α = 10, r = 12, a = 1, b = 5).
+//!   eq. 31; (b) smooth, ρ(‖q‖/r) ψ_α(‖q‖ − d_α) (eq. 30), with the parameters of the report's
+//!   Example 2 (d_α = 10, r = 1.2 d_α = 12, a = 1, b = 5).
 //!
 //! [`function_svg`], [`function_png`]: a figure; [`ReportFunction::curves`] its sampled data.
 

@@ -220,9 +220,10 @@ pub fn index_html(entries: &[FigureEntry], functions: &[ReportFunction]) -> Stri
     if !functions.is_empty() {
         html.push_str(
             "<section id=\"functions\">\n<h2>Olfati-Saber, CDS 03-006 (2003): the functions</h2>\n\
-             <p>Drawn from the functions the simulations call; the parameters of Fig. 5 are ours \
-             (those of Figs. 2 and 4), as is the bump's form in Fig. 2 (the cosine influence map \
-             of CDC 2003 eq. 5; the report asks only a bump with k₀ = 5/6).</p>\n",
+             <p>Drawn from the functions the simulations call; the parameters of Fig. 5 are the \
+             report's Example 2 (d = 10, r = 1.2 d, a = 1, b = 5); the bump's form in Fig. 2 is \
+             ours (the cosine influence map of CDC 2003 eq. 5; the report asks only a bump with \
+             k₀ = 5/6).</p>\n",
         );
         for function in functions {
             let image = function_image(*function);

@@ -59,11 +59,15 @@ impl ScenarioError {
     pub fn syntax(origin: &str, text: &str, error: &ron::error::SpannedError) -> Self {
         let (line, col) = (error.span.start.line, error.span.start.col);
         let message = crate::input::ron_message(&error.code);
-        // a missing field is found at the closing bracket, after the last field given
-        let field = (!matches!(error.code, ron::Error::MissingStructField { .. }))
-            .then(|| enclosing_field(text, line, col))
-            .flatten()
-            .filter(|field| !message.contains(&format!("`{field}`")));
+        // a missing field is found at the closing bracket, after the last field given; an
+        // unknown field at its own name, after the last value read (not the one it is in)
+        let field = (!matches!(
+            error.code,
+            ron::Error::MissingStructField { .. } | ron::Error::NoSuchStructField { .. }
+        ))
+        .then(|| enclosing_field(text, line, col))
+        .flatten()
+        .filter(|field| !message.contains(&format!("`{field}`")));
         Self::Syntax {
             origin: origin.to_owned(),
             line,
@@ -83,7 +87,7 @@ impl ScenarioError {
     ) -> Self {
         Self::Invalid {
             field: field.into(),
-            value: format!("{value:?}"),
+            value: flock_protocols::plain_value(&value),
             why: why.into(),
             fix: fix.into(),
         }
@@ -175,6 +179,12 @@ impl fmt::Display for ScenarioError {
                 }
             }
             Self::Obstacle(error) => write!(f, "{error}"),
+            Self::Invalid {
+                field,
+                value,
+                why,
+                fix,
+            } if value.is_empty() => write!(f, "`{field}`: {why}; {fix}"),
             Self::Invalid {
                 field,
                 value,

@@ -168,9 +168,21 @@ impl Estimate {
         }
     }
 
-    /// Warnings for a run longer than an hour or writing more than a gigabyte.
+    /// Warnings for a run longer than an hour or writing more than a gigabyte (the fixes those of
+    /// `flocking run`).
     #[must_use]
     pub fn warnings(&self) -> Vec<String> {
+        self.warnings_fixed_by(&Fixes::RUN)
+    }
+
+    /// [`Estimate::warnings`] of a sweep: the fixes those of `flocking sweep`, which writes run
+    /// directories only with `--keep-runs` (and has no `--trajectory-format`).
+    #[must_use]
+    pub fn sweep_warnings(&self) -> Vec<String> {
+        self.warnings_fixed_by(&Fixes::SWEEP)
+    }
+
+    fn warnings_fixed_by(&self, fixes: &Fixes) -> Vec<String> {
         let mut warnings = Vec::new();
         if self.seconds > LONG_SECONDS {
             warnings.push(format!(
@@ -181,9 +193,9 @@ impl Estimate {
         }
         if self.disk_bytes > LARGE_BYTES {
             warnings.push(format!(
-                "warning: this will write about {} (more than a gigabyte); a larger \
-                 record_every or --trajectory-format npy write less",
-                bytes(self.disk_bytes)
+                "warning: this will write about {} (more than a gigabyte); {} write less",
+                bytes(self.disk_bytes),
+                fixes.less_disk
             ));
         }
         warnings
@@ -194,6 +206,18 @@ impl Estimate {
     /// # Errors
     /// What does not fit, with the figures and the fix.
     pub fn check(&self, resources: &Resources) -> Result<(), String> {
+        self.check_fixed_by(resources, &Fixes::RUN)
+    }
+
+    /// [`Estimate::check`] of a sweep: the fixes named are those of `flocking sweep`.
+    ///
+    /// # Errors
+    /// What does not fit, with the figures and the fix.
+    pub fn check_sweep(&self, resources: &Resources) -> Result<(), String> {
+        self.check_fixed_by(resources, &Fixes::SWEEP)
+    }
+
+    fn check_fixed_by(&self, resources: &Resources, fixes: &Fixes) -> Result<(), String> {
         if let Some(memory) = resources.memory_bytes
             && self.memory_bytes > memory
         {
@@ -211,15 +235,34 @@ impl Estimate {
             && self.disk_bytes > disk
         {
             return Err(format!(
-                "the outputs need about {} of disk but {} is free there; record less often \
-                 (record_every), choose --trajectory-format npy or another --out, or \
+                "the outputs need about {} of disk but {} is free there; {}, or \
                  --no-resource-check to try anyway",
                 bytes(self.disk_bytes),
-                bytes(disk)
+                bytes(disk),
+                fixes.no_space
             ));
         }
         Ok(())
     }
+}
+
+/// What a command offers to write less: `flocking run`'s flags or `flocking sweep`'s.
+struct Fixes {
+    less_disk: &'static str,
+    no_space: &'static str,
+}
+
+impl Fixes {
+    const RUN: Self = Self {
+        less_disk: "a larger record_every or --trajectory-format npy",
+        no_space: "record less often (record_every), choose --trajectory-format npy or another --out",
+    };
+    const SWEEP: Self = Self {
+        less_disk: "leaving out --keep-runs (a row of runs.csv is a few hundred bytes) or a larger \
+                    record_every in the base scenario",
+        no_space: "leave out --keep-runs, record less often (record_every in the base scenario) \
+                   or choose another --out",
+    };
 }
 
 /// One line: `estimate: 10000 steps, 501 records, memory 5.0 MB, disk 4.3 MB, about 0.3 s`.
@@ -379,6 +422,35 @@ mod tests {
         s.agents = agents;
         s.duration = duration;
         s
+    }
+
+    #[test]
+    fn a_sweep_is_told_the_fixes_of_the_sweep_command() {
+        // `flocking sweep --keep-runs` has no --trajectory-format: its warning must not name it
+        let estimate = scenario(10_000_000, 1.0).estimate(&Outputs::RUN).times(3);
+        let tight = Resources {
+            memory_bytes: None,
+            disk_bytes: Some(1e6),
+        };
+        let run = [
+            estimate.warnings().join("\n"),
+            estimate.check(&tight).unwrap_err(),
+        ];
+        let sweep = [
+            estimate.sweep_warnings().join("\n"),
+            estimate.check_sweep(&tight).unwrap_err(),
+        ];
+        for text in run {
+            assert!(text.contains("--trajectory-format npy"), "{text}");
+        }
+        for text in sweep {
+            assert!(
+                text.contains("gigabyte") || text.contains("of disk"),
+                "{text}"
+            );
+            assert!(!text.contains("--trajectory-format"), "{text}");
+            assert!(text.contains("--keep-runs"), "{text}");
+        }
     }
 
     #[test]

@@ -6,9 +6,9 @@ use std::fmt;
 
 use flock_protocols::AgentFault;
 
-use crate::run::time_text;
 use crate::scenario::Scenario;
 use crate::stability::largest_stable_step;
+use crate::time::time_text;
 
 pub use flock_protocols::Fault;
 

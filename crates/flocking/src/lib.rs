@@ -51,6 +51,7 @@ pub mod simulation;
 pub mod stability;
 pub mod sweep;
 pub mod synthetic;
+pub mod time;
 mod validate;
 pub mod workload;
 

@@ -11,8 +11,8 @@ use flock_graph::{Components, NeighbourSearch, ProximityNet};
 use flock_math::Vector;
 use glam::{DVec2, DVec3};
 
-use crate::run::time_text;
 use crate::simulation::State;
+use crate::time::time_text;
 
 /// Agents closer than this fraction of the lattice distance d have merged: the α-force between
 /// them is below 10⁻³ of its scale, and shrinks as they close.

@@ -337,17 +337,38 @@ fn unknown(path: &str, depth: usize, node: &Value) -> ScenarioError {
     };
     ScenarioError::Invalid {
         field: path.to_owned(),
-        value: "(no value read)".to_owned(),
+        // nothing was read at a path that names nothing: the message is "`path`: why; fix"
+        value: String::new(),
         why,
         fix,
     }
+}
+
+/// serde's message with Rust's type names in words: "expected usize" is "expected a whole number
+/// ≥ 0".
+fn plain_types(message: &str) -> String {
+    let mut text = message.to_owned();
+    for (rust, words) in [
+        ("usize", "a whole number ≥ 0"),
+        ("u64", "a whole number ≥ 0"),
+        ("u32", "a whole number ≥ 0"),
+        ("u16", "a whole number ≥ 0"),
+        ("u8", "a whole number ≥ 0"),
+        ("i64", "a whole number"),
+        ("i32", "a whole number"),
+        ("f64", "a number"),
+        ("f32", "a number"),
+    ] {
+        text = text.replace(&format!("expected {rust}"), &format!("expected {words}"));
+    }
+    text.replace("expected a sequence", "expected a list")
 }
 
 fn wrong_type(path: &str, value: &Value, error: &serde_json::Error) -> ScenarioError {
     ScenarioError::Invalid {
         field: path.to_owned(),
         value: value.to_string(),
-        why: error.to_string(),
+        why: plain_types(&error.to_string()),
         fix: "give a value of the type the field takes, as the scenario file writes it".to_owned(),
     }
 }

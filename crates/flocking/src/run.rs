@@ -12,6 +12,9 @@ use crate::health::NumericalError;
 use crate::merging::{MERGE_FRACTION, Merge, MergedAgents, closest_pair, merged_agents};
 use crate::scenario::Scenario;
 use crate::simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
+// where they lived before: `flocking::run::Start`, `flocking::run::time_text`
+pub use crate::simulation::Start;
+pub use crate::time::time_text;
 
 /// One recorded instant.
 #[derive(Debug)]
@@ -81,23 +84,6 @@ impl RunSummary {
     }
 }
 
-/// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
-/// resumed bit-identically (a simulation carries nothing else between steps).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Start {
-    /// The number of steps taken.
-    pub steps: u64,
-    /// H at t = 0 (for the run's summary).
-    pub initial_energy: f64,
-    /// The positions, `dim` coordinates per agent, agents in original order.
-    pub positions: Vec<f64>,
-    /// The velocities, `dim` coordinates per agent.
-    pub velocities: Vec<f64>,
-    /// The state of the run's conditions (delay line, links, noise, lag, faults) as RON, empty
-    /// for an ideal run ([`flock_protocols::conditions::ConditionsState`]).
-    pub conditions: String,
-}
-
 /// Receives the recorded instants of a run, and may keep checkpoints of it or stop it.
 pub trait Recorder {
     /// Why recording failed.
@@ -136,24 +122,6 @@ impl Recorder for () {
 
     fn record(&mut self, _record: &Record<'_>) -> Result<(), Self::Error> {
         Ok(())
-    }
-}
-
-/// A time t = k·h as people write it: rounded to the decimals of the step h (at most 12), trailing
-/// zeros dropped — `0.6` where the sum of steps gives 0.6000000000000001.
-#[must_use]
-pub fn time_text(t: f64, step: f64) -> String {
-    let decimals = (0..12)
-        .find(|&k| {
-            let scaled = step * 10f64.powi(k);
-            (scaled - scaled.round()).abs() <= 1e-6
-        })
-        .unwrap_or(12) as usize;
-    let text = format!("{t:.decimals$}");
-    if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        text
     }
 }
 

@@ -15,8 +15,24 @@ use glam::{DVec2, DVec3};
 use crate::error::ScenarioError;
 use crate::health::NumericalError;
 use crate::initial::{initial_swarm, to_vector};
-use crate::run::Start;
 use crate::scenario::Scenario;
+
+/// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
+/// resumed bit-identically (a simulation carries nothing else between steps).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Start {
+    /// The number of steps taken.
+    pub steps: u64,
+    /// H at t = 0 (for the run's summary).
+    pub initial_energy: f64,
+    /// The positions, `dim` coordinates per agent, agents in original order.
+    pub positions: Vec<f64>,
+    /// The velocities, `dim` coordinates per agent.
+    pub velocities: Vec<f64>,
+    /// The state of the run's conditions (delay line, links, noise, lag, faults) as RON, empty
+    /// for an ideal run ([`flock_protocols::conditions::ConditionsState`]).
+    pub conditions: String,
+}
 
 /// A state as plain numbers: n rows of `dim` coordinates, agents in original order.
 #[derive(Clone, Debug, PartialEq)]

@@ -106,6 +106,43 @@ fn conditions_round_trip_through_to_ron_and_stay_unwritten_when_ideal() {
     assert_eq!(back.to_ron().expect("ron"), written);
 }
 
+/// `sensing.rate` alone is a sampled sensor that measures exactly: accepted, written back with its
+/// zero noise spelt out (so that a sweep's path `conditions.sensing.noise.White.sigma_q` still goes
+/// through it), and the same run as with `noise: White(sigma_q: 0.0, sigma_p: 0.0)` written out.
+#[test]
+fn a_sensor_rate_alone_is_accepted_as_exact_sampled_sensing() {
+    let sampled = parse(&cycle(1.0, "\n    conditions: (sensing: (rate: 5.0)),"));
+    let sensing = sampled.conditions.sensing.expect("sensing");
+    assert_eq!(sensing.rate, Some(5.0));
+    assert!(sensing.noise.is_none());
+    let written = sampled.to_ron().expect("ron");
+    assert!(written.contains("White"), "{written}");
+    assert_eq!(parse(&written), sampled);
+    let through = sampled
+        .with_values([(
+            "conditions.sensing.noise.White.sigma_q",
+            flocking::serde_json::json!(0.5),
+        )])
+        .expect("the path goes through the written noise");
+    let noise = through.conditions.sensing.expect("sensing").noise;
+    assert!(!noise.is_none(), "{noise:?}");
+    let explicit = parse(&cycle(
+        1.0,
+        "\n    conditions: (sensing: (noise: White(sigma_q: 0.0, sigma_p: 0.0), rate: 5.0)),",
+    ));
+    let positions = |s: &Scenario| {
+        let mut s = flocking::DynSimulation::new(s).expect("builds");
+        for _ in 0..100 {
+            s.step();
+        }
+        s.state().positions.into_owned()
+    };
+    let a = positions(&sampled);
+    assert_eq!(a, positions(&explicit));
+    // and sampling does change the run: the measurement is held between updates
+    assert_ne!(positions(&parse(&cycle(1.0, ""))), a);
+}
+
 #[test]
 fn a_bad_probability_is_named_with_its_value_line_and_column() {
     let text = cycle(
@@ -438,4 +475,49 @@ fn removing_a_cut_vertex_of_the_tanner_graph_splits_it_into_the_components_the_g
     assert_relative_eq!(observed.metrics.connectivity, 5.0 / 8.0);
     assert_relative_eq!(observed.metrics.giant_component, 5.0 / 9.0);
     assert!(observed.diagnostics.contains(&("failed", 1.0)));
+}
+
+/// The example of `docs/conditions.md` does what the page says it does: it does not flock (at
+/// t = 30 s many groups, C* < 0.5), mostly because of its 1 s actuator lag, while the same
+/// scenario without conditions is one connected flock.
+#[test]
+fn the_docs_example_breaks_up_as_the_docs_say() {
+    let page = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/conditions.md"),
+    )
+    .expect("docs/conditions.md");
+    let from = page.find("## An example").expect("the example's section");
+    let start = from + page[from..].find("```ron\n").expect("its RON block") + "```ron\n".len();
+    let end = start + page[start..].find("```").expect("the end of the block");
+    let text = &page[start..end];
+    let last = |scenario: &Scenario| {
+        let summary = flocking::run(scenario, &mut ()).expect("runs");
+        summary.metrics
+    };
+    let example = parse(text);
+    let real = last(&example);
+    assert!(
+        real.components >= 10 && real.giant_component < 0.5,
+        "{real:?}"
+    );
+    let mut ideal = example.clone();
+    ideal.conditions = Conditions::default();
+    let ideal = last(&ideal);
+    assert!(
+        ideal.connectivity == 1.0 && ideal.velocity_mismatch < 1e-3,
+        "{ideal:?}"
+    );
+    let mut lag_only = example.clone();
+    lag_only.conditions = Conditions {
+        actuation: example.conditions.actuation.map(|a| {
+            flocking::protocols::conditions::Actuation {
+                max_acceleration: None,
+                max_speed: None,
+                ..a
+            }
+        }),
+        ..Conditions::default()
+    };
+    let lagged = last(&lag_only);
+    assert!(lagged.giant_component < 0.5, "{lagged:?}");
 }

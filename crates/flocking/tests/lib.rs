@@ -1,6 +1,6 @@
 //! Integration tests of the `flocking` library, one binary (see STYLE.md): scenario files, the
 //! papers' runs, the figures that had no fixture, the obstacle passes of TAC 2006 Fig. 14–17,
-//! snapshots and determinism of short runs, agents stored by cell, and the errors of bad obstacles.
+//! snapshots and determinism of short runs, the columns of `docs/outputs.md`, agents stored by cell, and the errors of bad obstacles.
 
 mod common;
 mod conditions;
@@ -10,6 +10,7 @@ mod models;
 mod new_figures;
 mod obstacle_errors;
 mod obstacle_fixtures;
+mod outputs;
 mod overrides;
 mod papers;
 mod params;

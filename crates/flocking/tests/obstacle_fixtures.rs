@@ -78,7 +78,7 @@ impl Recorder for Pass {
 const SQUEEZE_LINE: f64 = 140.0;
 const SQUEEZE_HALF_GAP: f64 = 14.0;
 
-/// TAC 2006 Fig. 16–17, in the paper's gain ordering c₁^α < c₁^γ < c₁^β: every agent passes
+/// TAC 2006 Fig. 16–17, in SPEC.md's gain ordering c₁^α < c₁^γ < c₁^β: every agent passes
 /// between the two balls (its y within the gap when it crosses their centre line), the flock holds
 /// together while it squeezes through (C* = 1 at every record of the pass, measured; asserted
 /// ≥ 0.98), no agent enters a ball, no pair comes closer than d/4 once the start has settled
@@ -112,7 +112,7 @@ fn tac2006_fig16_every_agent_squeezes_between_the_balls() {
     }
 }
 
-/// TAC 2006 Fig. 14–15, in the paper's gain ordering c₁^α = 3 < c₁^γ = 3.5 < c₁^β = 30: the
+/// TAC 2006 Fig. 14–15, in SPEC.md's gain ordering c₁^α = 3 < c₁^γ = 3.5 < c₁^β = 30: the
 /// flock splits on the wedge's tip into two halves (C* = 0.51 at t = 50.8 s, measured), rejoins
 /// behind it (C* = 1 from 77.6 s) and ends as one net; no agent enters the wedge and no pair comes
 /// closer than d/4 after t = 0.4 s (least distance 3.42 from then, 5.62 from 2 s on: no pair

@@ -157,3 +157,58 @@ fn snapshot_times_are_checked_and_written() {
         assert_eq!(error.field().as_deref(), Some(at), "{times:?}: {error}");
     }
 }
+
+/// A misspelled field is reported as itself, in the struct it was written in, not "in the value
+/// of" the last field read before it (`c_1` after `gamma: Static(position: …)` was reported "in
+/// the value of `position`").
+#[test]
+fn a_misspelled_field_is_not_blamed_on_the_field_before_it() {
+    let text = "Scenario(
+    name: \"typo\",
+    dim: 2,
+    agents: 10,
+    algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c_1: 0.05, c2: 0.4),
+    initial: (positions: Gaussian(mean: [0.0, 0.0], std: 5.0)),
+)";
+    let error = Scenario::parse(text, "typo.ron").expect_err("c_1 is no field");
+    let message = error.to_string();
+    assert!(message.contains("c_1"), "{message}");
+    assert!(!message.contains("position"), "{message}");
+    assert!(message.starts_with("typo.ron:5:"), "{message}");
+}
+
+/// A path of `with_values` that names nothing says so without a value it never read.
+#[test]
+fn an_unknown_path_is_reported_without_a_value() {
+    let scenario = fixture("tac2006_fig11_alg2_n100");
+    let error = scenario
+        .with_values([("agent", flocking::serde_json::json!(10))])
+        .expect_err("no such parameter");
+    let message = error.to_string();
+    assert!(
+        message.starts_with("`agent`: no such parameter"),
+        "{message}"
+    );
+    assert!(!message.contains("no value read"), "{message}");
+}
+
+/// Rust's names stay out of the messages: a fractional agent count is "expected a whole number
+/// ≥ 0", not "expected usize"; a position that is not finite is `(NaN, 0.0)`, not `DVec2(NaN, 0.0)`.
+#[test]
+fn messages_name_no_rust_types() {
+    let scenario = fixture("tac2006_fig11_alg2_n100");
+    let error = scenario
+        .with_values([("agents", flocking::serde_json::json!(10.5))])
+        .expect_err("not a whole number")
+        .to_string();
+    assert!(error.contains("expected a whole number ≥ 0"), "{error}");
+    assert!(!error.contains("usize"), "{error}");
+    let scenario = scenario
+        .with_values([("agents", flocking::serde_json::json!(2))])
+        .expect("valid");
+    let error = DynSimulation::from_state(&scenario, &[f64::NAN, 0.0, 1.0, 0.0], &[0.0; 4], 0)
+        .expect_err("not finite")
+        .to_string();
+    assert!(error.contains("(NaN, 0.0)"), "{error}");
+    assert!(!error.contains("DVec"), "{error}");
+}

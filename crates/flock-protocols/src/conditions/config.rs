@@ -147,13 +147,36 @@ pub enum Noise {
     },
 }
 
+impl Noise {
+    /// No noise: white noise of zero deviations (the measurement is exact).
+    pub const NONE: Self = Self::White {
+        sigma_q: 0.0,
+        sigma_p: 0.0,
+    };
+
+    /// [`Noise::NONE`] (serde's default of [`Sensing::noise`]).
+    #[must_use]
+    pub const fn none() -> Self {
+        Self::NONE
+    }
+
+    /// Whether this is [`Noise::NONE`].
+    #[must_use]
+    pub fn is_none(&self) -> bool {
+        *self == Self::NONE
+    }
+}
+
 /// Noise on what each agent measures of its own state; the measured state is what it uses for
 /// itself and what it sends to the others.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Sensing {
-    /// The noise process.
+    /// The noise process; by default none ([`Noise::NONE`], white noise of zero deviations): a
+    /// sensor at `rate` that measures exactly. Always written back (a sweep's path
+    /// `conditions.sensing.noise.White.sigma_q` goes through it).
+    #[cfg_attr(feature = "serde", serde(default = "Noise::none"))]
     pub noise: Noise,
     /// The sensor rate (Hz): the measurement is refreshed every 1/rate seconds (a whole number
     /// of steps) and held between. `None`: at every step.
@@ -272,15 +295,32 @@ pub fn whole_steps(field: &str, seconds: f64, h: f64) -> Result<u64, ParamError>
     check::non_negative(field, seconds)?;
     let steps = (seconds / h).round();
     if (steps * h - seconds).abs() > 1e-9 * seconds.max(h) {
-        let below = (seconds / h).floor() * h;
+        let below = (seconds / h).floor();
         return Err(ParamError::new(
             field,
             seconds,
             format!("is not a whole number of steps of {h} s"),
-            format!("write {below} or {} (or change `step`)", below + h),
+            format!(
+                "write {} or {} (or change `step`)",
+                steps_text(below, h),
+                steps_text(below + 1.0, h)
+            ),
         ));
     }
     Ok(steps as u64)
+}
+
+/// `k` steps of `h` seconds as the shortest decimal within round-off of k h: 6 steps of 0.01 s
+/// are `0.06`, not the `0.060000000000000005` of the product.
+fn steps_text(k: f64, h: f64) -> String {
+    let seconds = k * h;
+    (0..17)
+        .map(|digits| format!("{seconds:.digits$}"))
+        .find(|text| {
+            text.parse::<f64>()
+                .is_ok_and(|x| (x - seconds).abs() <= 1e-9 * h)
+        })
+        .unwrap_or_else(|| seconds.to_string())
 }
 
 /// Checks that a rate (Hz) gives a period that is a whole number ≥ 1 of steps `h`, and returns
@@ -479,6 +519,11 @@ mod tests {
         let e = whole_steps("delay", 0.105, 0.01).unwrap_err();
         assert_eq!(e.field, "delay");
         assert!(e.fix.contains("0.1") && e.fix.contains("0.11"), "{e}");
+        // 6 × 0.01 is 0.060000000000000005 in floating point: the fix writes 0.06
+        let e = whole_steps("delay", 0.055, 0.01).unwrap_err();
+        assert_eq!(e.fix, "write 0.05 or 0.06 (or change `step`)");
+        let e = whole_steps("delay", 0.0012, 0.0005).unwrap_err();
+        assert_eq!(e.fix, "write 0.001 or 0.0015 (or change `step`)");
     }
 
     #[test]

@@ -4,14 +4,15 @@ and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python
 - :class:`Scenario`: a RON scenario (``Scenario.load``, ``Scenario.from_ron``, ``to_ron``), any
   parameter changed by its path (``with_values``), explicit initial states (``with_initial``).
 - :func:`run`: a whole run as numpy arrays (:class:`Run`: ``to_pandas``, ``to_xarray``, an HTML
-  summary and player in Jupyter), and the run directory of ``flocking run --out`` when ``out`` is
+  summary with a snapshot in Jupyter, ``player()``), a progress line in a terminal, and the run directory of ``flocking run --out`` when ``out`` is
   given; :func:`resume` continues an interrupted one; :func:`read_run` reads any run directory.
 - :class:`Simulation`: a run driven step by step (``step``, ``q``, ``p``, ``t``, ``metrics``,
   ``energy``).
 - ``controls=f`` (of :func:`run`, :func:`resume`, :class:`Simulation` and :func:`sweep`): the
   inputs u_i computed by ``f(t, q, p, neighbours)`` in numpy on the proximity net
   (:class:`Neighbours`), everything else from the scenario's algorithm.
-- :func:`sweep`: a sweep file's runs on any ``concurrent.futures.Executor`` (a local process
+- :func:`sweep`: a sweep file's runs, or a grid around a :class:`Scenario` defined in Python
+  (``axes=``, ``seeds=``), on any ``concurrent.futures.Executor`` (a local process
   pool by default, a Dask cluster, Slurm through dask-jobqueue), into the ``runs.csv`` that
   ``flocking sweep`` writes, byte for byte (:class:`SweepResult`).
 - Errors: :class:`FlockError`, :class:`ScenarioError` (a ``ValueError``, with ``field``),
@@ -27,7 +28,7 @@ Example::
 """
 
 from ._errors import ControlsError, FlockError, NumericalError, RunDirectoryError, ScenarioError
-from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation
+from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__
 from ._run import Run, State, Trajectory, read_run, resume, run
 from ._sweep import SweepResult, sweep
 

@@ -5,6 +5,7 @@ from dataclasses import dataclass as _dataclass
 import html as _html
 import importlib as _importlib
 from os import PathLike as _PathLike
+import sys as _sys
 from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Union
 
 import numpy as _np
@@ -18,6 +19,128 @@ if TYPE_CHECKING:  # pragma: no cover
 
 Path = Union[str, "_PathLike[str]"]
 Controls = Callable[..., Any]
+
+
+# The unit of every column of metrics.csv (docs/outputs.md); "1" for a dimensionless ratio or a count.
+UNITS: Dict[str, str] = {
+    "t": "s",
+    "connectivity": "1",
+    "giant_component": "1",
+    "cohesion_radius": "m",
+    "deviation_energy": "1",
+    "velocity_mismatch": "m2 s-2",
+    "min_distance": "m",
+    "collisions": "1",
+    "energy": "m2 s-2",
+    "obstacle_clearance": "m",
+    "inside_obstacles": "1",
+    "defect_factor": "m2",
+    "normalised_defect_factor": "1",
+    "structural_energy": "m2 s-2",
+    "translational_energy": "m2 s-2",
+    "velocity_disagreement": "m2 s-2",
+    "min_linked_distance": "m",
+    "links_lost": "1",
+    "information_age": "s",
+    "at_acceleration_limit": "1",
+    "at_speed_limit": "1",
+    "failed": "1",
+}
+
+# The top-level fields of a scenario written into to_xarray()'s attributes, flattened.
+_SCENARIO_FIELDS = (
+    "algorithm",
+    "alpha",
+    "initial",
+    "integrator",
+    "collision_distance",
+    "obstacles",
+    "conditions",
+)
+
+
+def _show_progress(progress: Optional[bool]) -> bool:
+    """Whether to draw a progress line: as asked, else when ``sys.stderr`` is a terminal."""
+    if progress is not None:
+        return bool(progress)
+    try:
+        return bool(_sys.stderr is not None and _sys.stderr.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
+def _flatten(prefix: str, value: Any, attrs: Dict[str, Any]) -> None:
+    """``value`` (a scenario's value: numbers, strings, lists, dicts, an enum as ``{"Variant":
+    ...}``) as netCDF-safe attributes named by dotted paths: ``algorithm = "Algorithm2"``,
+    ``algorithm.c1 = 0.02``, ``initial.positions.std = 50.0``."""
+    if value is None:
+        return
+    if isinstance(value, bool):
+        attrs[prefix] = int(value)
+    elif isinstance(value, (int, float, str)):
+        attrs[prefix] = value
+    elif isinstance(value, dict):
+        if len(value) == 1:
+            (key, inner), = value.items()
+            if key[:1].isupper():  # an enum variant and its fields
+                attrs[prefix] = key
+                if isinstance(inner, dict):
+                    for k, v in inner.items():
+                        _flatten(f"{prefix}.{k}", v, attrs)
+                elif inner is not None:
+                    _flatten(f"{prefix}.value", inner, attrs)
+                return
+        for key, inner in value.items():
+            _flatten(f"{prefix}.{key}", inner, attrs)
+    elif isinstance(value, (list, tuple)):
+        number = lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)  # noqa: E731
+        if value and all(number(v) for v in value):
+            attrs[prefix] = list(value)
+        elif value and all(isinstance(v, (list, tuple)) and all(number(x) for x in v) for v in value):
+            # rows of numbers (explicit positions, a graph's edges): one flat list, row after row
+            attrs[prefix] = [x for v in value for x in v]
+        else:
+            for k, inner in enumerate(value):
+                _flatten(f"{prefix}.{k}", inner, attrs)
+
+
+def _svg_snapshot(positions: _np.ndarray, t: float, size: int = 320) -> str:
+    """The agents at one instant as a small SVG (x right, y up; 3D seen from the top), each a dot:
+    about 40 bytes an agent."""
+    n = len(positions)
+    header = f'<svg xmlns="http://www.w3.org/2000/svg" width="{size}" height="{size}" viewBox="0 0 {size} {size}">'
+    if n == 0:
+        return header + "</svg>"
+    xy = _np.asarray(positions, dtype=float)[:, :2]
+    finite = _np.isfinite(xy).all(axis=1)
+    if not finite.any():
+        return header + "</svg>"
+    lo, hi = xy[finite].min(axis=0), xy[finite].max(axis=0)
+    span = float(max(hi[0] - lo[0], hi[1] - lo[1], 1e-9))
+    margin = 10.0
+    scale = (size - 2 * margin) / span
+    centre = (lo + hi) / 2
+    dots = []
+    for (x, y), ok in zip(xy, finite):
+        if ok:
+            px = size / 2 + (x - centre[0]) * scale
+            py = size / 2 - (y - centre[1]) * scale
+            dots.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="2"/>')
+    caption = f'<text x="6" y="{size - 6}" font-size="11" font-family="sans-serif">t = {t:g} s, {span:.3g} m across</text>'
+    return f'{header}<rect width="100%" height="100%" fill="white"/><g fill="#1f77b4">{"".join(dots)}</g>{caption}</svg>'
+
+
+class _Html:
+    """An HTML fragment that Jupyter shows (``_repr_html_``)."""
+
+    def __init__(self, html: str) -> None:
+        self.html = html
+
+    def _repr_html_(self) -> str:
+        return self.html
+
+    def __repr__(self) -> str:
+        return f"<HTML of {len(self.html)} characters: display it in Jupyter>"
 
 
 def _require(module: str, extra: str, what: str) -> Any:
@@ -76,7 +199,8 @@ class Run:
     - ``verdict``: TAC 2006 Definition 5 judged over the last quarter of the run (the first line
       of ``flocking.txt``), or None (an interrupted run, or no record in the window).
 
-    In Jupyter a run shows a summary table and the HTML player of ``flocking plot``.
+    In Jupyter a run shows a summary table and a snapshot of the final state (a few kB however
+    many agents); ``run.player()`` shows the HTML player of ``flocking plot``.
     """
 
     scenario: Scenario
@@ -110,6 +234,8 @@ class Run:
           indices 0..n−1, and ``"x"``, ``"y"`` (, ``"z"``)).
         - ``q`` and ``p``: positions and velocities (time, agent, axis), when the run kept its
           trajectory.
+        - Units (``units`` attributes, UDUNITS): ``time`` in s, ``q`` in m, ``p`` in m s-1, and
+          every metric's, "1" for ratios and counts (``docs/outputs.md``).
         - Every column of ``metrics.csv`` but ``t`` as a variable over ``time``: a run records
           its metrics and its trajectory at the same instants (t = 0, every ``record_every``
           steps and the last step), so they share the one ``time`` dimension. (A run directory
@@ -117,8 +243,11 @@ class Run:
         - Attributes: the scenario's ``name``, ``dim``, ``agents``, ``seed``, ``step``,
           ``duration``, ``record_every``, ``algorithm``, the resolved α parameters as
           ``alpha_d``, ``alpha_r``, ``alpha_epsilon``, ``alpha_a``, ``alpha_b``, ``alpha_h``,
-          ``alpha_c1``, ``alpha_c2``, the full RON text as ``scenario``, and ``verdict`` and
-          ``path`` when the run has them.
+          ``alpha_c1``, ``alpha_c2``; the rest of the scenario flattened by dotted path (the gains
+          ``algorithm.c1``, ``algorithm.c2``, …, ``algorithm`` the variant's name, likewise
+          ``initial.positions``, ``integrator``, ``collision_distance``, ``obstacles.0.radius``,
+          ``conditions.communication.delay``; booleans as 0/1); the full RON text as
+          ``scenario``, and ``verdict`` and ``path`` when the run has them.
         """
         xarray = _require("xarray", "xarray", "Run.to_xarray()")
         scenario = self.scenario
@@ -130,13 +259,21 @@ class Run:
         trajectory = self.trajectory
         if trajectory is not None:
             coords["time"] = trajectory.times
-            data["q"] = (("time", "agent", "axis"), trajectory.positions, {"long_name": "position q_i"})
-            data["p"] = (("time", "agent", "axis"), trajectory.velocities, {"long_name": "velocity p_i"})
+            data["q"] = (
+                ("time", "agent", "axis"),
+                trajectory.positions,
+                {"long_name": "position q_i", "units": "m"},
+            )
+            data["p"] = (
+                ("time", "agent", "axis"),
+                trajectory.velocities,
+                {"long_name": "velocity p_i", "units": "m s-1"},
+            )
         same = trajectory is None or _np.array_equal(trajectory.times, times)
         metrics_time = "time" if same else "metrics_time"
         coords[metrics_time] = times
         for name, column in metrics.items():
-            data[name] = ((metrics_time,), column)
+            data[name] = ((metrics_time,), column, {"units": UNITS.get(name, "1")})
         algorithm = scenario.value("algorithm")
         attrs: Dict[str, Any] = {
             "name": scenario.name,
@@ -149,12 +286,23 @@ class Run:
             "algorithm": next(iter(algorithm)) if isinstance(algorithm, dict) else str(algorithm),
         }
         attrs.update({f"alpha_{name}": value for name, value in scenario.alpha.items()})
+        for field in _SCENARIO_FIELDS:
+            try:
+                value = scenario.value(field)
+            except ValueError:
+                continue
+            _flatten(field, value, attrs)
+        attrs["algorithm"] = next(iter(algorithm)) if isinstance(algorithm, dict) else str(algorithm)
         attrs["scenario"] = scenario.to_ron()
         if self.verdict is not None:
             attrs["verdict"] = self.verdict
         if self.path is not None:
             attrs["path"] = self.path
-        return xarray.Dataset(data, coords=coords, attrs=attrs)
+        dataset = xarray.Dataset(data, coords=coords, attrs=attrs)
+        for time in ("time", "metrics_time"):
+            if time in dataset.coords:
+                dataset[time].attrs.update({"units": "s", "long_name": "time t"})
+        return dataset
 
     def _summary(self) -> Dict[str, str]:
         """The rows of the HTML summary: name, dim, n, duration, the final C, C*, Ẽ, K̃, the least
@@ -188,17 +336,26 @@ class Run:
             self.scenario, t.times, t.positions, t.velocities, max_frames=max_frames, size=size
         )
 
+    def player(self, *, max_frames: int = 500, size: int = 480) -> _Html:
+        """The HTML player of :meth:`player_html` in an iframe, for Jupyter to show (its size
+        grows with agents × frames: about 11 MB at n = 1,000 and 500 frames)."""
+        player = _html.escape(self.player_html(max_frames=max_frames, size=size), quote=True)
+        width, height = size + 80, size + 160
+        return _Html(
+            f'<iframe srcdoc="{player}" style="width:{width}px;height:{height}px;border:none"></iframe>'
+        )
+
     def _repr_html_(self) -> str:
+        """A summary table and a snapshot of the final state, light whatever the run's size (the
+        player is ``run.player()``)."""
         rows = "".join(
             f"<tr><th style='text-align:left'>{_html.escape(k)}</th><td style='text-align:left'>{_html.escape(v)}</td></tr>"
             for k, v in self._summary().items()
         )
         table = f"<table>{rows}</table>"
-        if self.trajectory is None or len(self.trajectory.times) == 0:
-            return table
-        player = _html.escape(self.player_html(), quote=True)
-        frame = f'<iframe srcdoc="{player}" style="width:560px;height:640px;border:none"></iframe>'
-        return f"<div>{table}{frame}</div>"
+        snapshot = _svg_snapshot(self.final.positions, self.final.t)
+        hint = "<p><code>run.player()</code> shows the HTML player.</p>" if self.trajectory is not None else ""
+        return f"<div style='display:flex;gap:1em;align-items:flex-start'>{table}<div>{snapshot}{hint}</div></div>"
 
     @classmethod
     def _from_dict(cls, raw: Dict[str, Any]) -> "Run":
@@ -225,8 +382,13 @@ def run(
     checkpoint_every: int = 1000,
     force: bool = False,
     controls: Optional[Controls] = None,
+    progress: Optional[bool] = None,
 ) -> Run:
     """Runs ``scenario`` to its end: the bits of ``flocking run`` of the same scenario.
+
+    ``progress``: a line of the simulated time, steps/s and the time left on ``sys.stderr`` while
+    it runs; by default only when ``sys.stderr`` is a terminal (never in a notebook's captured
+    output or a pipe). ``False`` hides it, ``True`` draws it anywhere.
 
     With ``out``, also writes its run directory as ``flocking run --out`` does, byte for byte
     (``trajectory_format`` ``"csv"`` or ``"npy"``; a checkpoint every ``checkpoint_every``
@@ -258,17 +420,29 @@ def run(
         checkpoint_every=checkpoint_every,
         force=force,
         controls=controls,
+        progress=_show_progress(progress),
     )
     return Run._from_dict(raw)
 
 
-def resume(dir: Path, *, checkpoint_every: int = 1000, controls: Optional[Controls] = None) -> Run:
+def resume(
+    dir: Path,
+    *,
+    checkpoint_every: int = 1000,
+    controls: Optional[Controls] = None,
+    progress: Optional[bool] = None,
+) -> Run:
     """Continues the interrupted or killed run in ``dir`` (or ``dir.partial``) from its last
     checkpoint, as ``flocking run --resume`` does (the finished directory is byte-identical to that
     of an uninterrupted run), and returns the whole run read back from it. A run made with
     ``controls`` must be resumed with the same ``controls`` (the directory does not hold it)."""
     return Run._from_dict(
-        _flocking.resume(str(dir), checkpoint_every=checkpoint_every, controls=controls)
+        _flocking.resume(
+            str(dir),
+            checkpoint_every=checkpoint_every,
+            controls=controls,
+            progress=_show_progress(progress),
+        )
     )
 
 

@@ -4,14 +4,19 @@
 import concurrent.futures as _futures
 import csv as _csv
 from dataclasses import dataclass as _dataclass
+import json as _json
+import math as _math
 import os as _os
 import re as _re
-from typing import TYPE_CHECKING, Any, Dict, List, Optional
+import sys as _sys
+import time as _time
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Union
 
 import numpy as _np
 
 from . import _flocking
-from ._run import Controls, Path, _require
+from ._flocking import Scenario
+from ._run import Controls, Path, _require, _show_progress
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
@@ -90,21 +95,102 @@ class SweepResult:
         return pandas.DataFrame(data)
 
 
+def _ron_value(value: Any) -> str:
+    """A Python value of an axis as RON: numbers and booleans as written, strings quoted (an
+    enum of the scenario given whole as a string, ``"Bernoulli(p: 0.1)"``, stays one)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, _np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, _np.floating)):
+        x = float(value)
+        if not _math.isfinite(x):
+            raise ValueError(f"axis value {x!r} is not finite")
+        return repr(x)
+    if isinstance(value, str):
+        return _json.dumps(value, ensure_ascii=False)
+    raise TypeError(
+        f"axis value {value!r} is a {type(value).__name__}: give numbers, booleans or strings"
+    )
+
+
+def _grid_text(base: Scenario, axes: Mapping[str, Sequence[Any]], seeds: int, name: Optional[str]) -> str:
+    """The sweep file of ``base`` over ``axes`` (path -> values) × ``seeds`` seeds, base inlined."""
+    if isinstance(seeds, bool) or not isinstance(seeds, (int, _np.integer)) or seeds < 1:
+        raise ValueError(f"seeds = {seeds!r}: give a whole number of seeds >= 1")
+    parts = []
+    for path, values in axes.items():
+        if isinstance(values, (str, bytes)) or not isinstance(values, Sequence) and not isinstance(values, _np.ndarray):
+            raise TypeError(f"axis {path!r}: give a list of values, not {values!r}")
+        listed = ", ".join(_ron_value(v) for v in values)
+        parts.append(f"(path: {_json.dumps(str(path))}, values: List([{listed}]))")
+    title = base.name if name is None else name
+    # the scenario's RON begins with its extensions (`#![enable(implicit_some)]`): they go first
+    lines = base.to_ron().splitlines()
+    extensions = [line for line in lines if line.startswith("#![")]
+    body = "\n".join(line for line in lines if not line.startswith("#!["))
+    return "\n".join(extensions) + (
+        f"\nSweep(name: {_json.dumps(title, ensure_ascii=False)}, base: Inline({body}), "
+        f"axes: [{', '.join(parts)}], seeds: {int(seeds)})"
+    )
+
+
+class _SweepProgress:
+    """``runs done/total`` with runs/s and the time left on ``sys.stderr``, redrawn at most five
+    times a second and cleared at the end."""
+
+    def __init__(self, done: int, total: int) -> None:
+        self.done, self.total, self.start, self.last, self.drawn = done, total, _time.monotonic(), 0.0, False
+        self.first = done
+
+    def advance(self) -> None:
+        self.done += 1
+        now = _time.monotonic()
+        if now - self.last < 0.2 and self.done < self.total:
+            return
+        self.last = now
+        elapsed = now - self.start
+        ran = self.done - self.first
+        rate = ran / elapsed if elapsed > 0 else 0.0
+        left = f"{(self.total - self.done) / rate:.0f} s left" if rate > 0 else "…"
+        _sys.stderr.write(f"\rsweep: {self.done}/{self.total} runs  {rate:.2f} runs/s  {left}   ")
+        _sys.stderr.flush()
+        self.drawn = True
+
+    def clear(self) -> None:
+        if self.drawn:
+            _sys.stderr.write("\r" + " " * 60 + "\r")
+            _sys.stderr.flush()
+
+
 def _sweep_run(text: str, index: int, controls: Optional[Controls] = None):
     """Runs run ``index`` of the self-contained sweep ``text`` (in a worker process)."""
     return _flocking.sweep_run(text, index, controls)
 
 
 def sweep(
-    spec: Path,
+    spec: Union[Path, Scenario],
     out: Path,
     executor: Optional[_futures.Executor] = None,
     *,
     controls: Optional[Controls] = None,
+    axes: Optional[Mapping[str, Sequence[Any]]] = None,
+    seeds: Optional[int] = None,
+    name: Optional[str] = None,
+    progress: Optional[bool] = None,
 ) -> SweepResult:
     """Runs the sweep file ``spec`` into the output directory ``out``, as ``flocking sweep`` does:
     the same row files, ``runs.csv`` (byte for byte) and ``times.csv``; runs found finished in
     ``out`` are skipped, so an interrupted sweep resumes.
+
+    Or a grid defined here: ``spec`` a :class:`Scenario` (the base), ``axes`` a dict from
+    parameter path to its values (``{"algorithm.c1": [0.01, 0.02], "agents": [50, 100]}``; an
+    enum of the scenario as a string of RON, ``"Bernoulli(p: 0.1)"``) and ``seeds`` the seeds of
+    each grid point (default 1): the sweep file with that base inlined, the same runs and rows
+    (``out/sweep.ron`` keeps it; ``name`` defaults to the base's).
+
+    ``progress``: a line of runs done, runs/s and the time left on ``sys.stderr``; by default
+    only when ``sys.stderr`` is a terminal.
 
     Each run is one call of a worker function submitted to ``executor``: a local process pool
     with one worker per core by default; a Dask cluster with
@@ -126,11 +212,24 @@ def sweep(
     directory of another sweep, of files flocking did not write, or being written; a run that
     fails (an invalid value, a blow-up) is a row with its error, not an exception.
     """
-    spec_path = _os.fspath(spec)
-    # read as the CLI reads it: a FIFO or /dev/zero is refused, a file is read up to the limit
-    text, count = _flocking.sweep_load(
-        _flocking.sweep_read(spec_path), spec_path, _os.path.dirname(_os.path.abspath(spec_path))
-    )
+    if isinstance(spec, Scenario):
+        if axes is None:
+            raise TypeError("a sweep of a Scenario needs axes={path: [values, ...]}")
+        text, count = _flocking.sweep_load(
+            _grid_text(spec, axes, 1 if seeds is None else seeds, name), "<sweep>", _os.getcwd()
+        )
+    else:
+        if axes is not None or seeds is not None or name is not None:
+            raise TypeError(
+                "axes=, seeds= and name= define a grid around a Scenario; a sweep file has its own"
+            )
+        spec_path = _os.fspath(spec)
+        # read as the CLI reads it: a FIFO or /dev/zero is refused, a file is read up to the limit
+        text, count = _flocking.sweep_load(
+            _flocking.sweep_read(spec_path),
+            spec_path,
+            _os.path.dirname(_os.path.abspath(spec_path)),
+        )
     out_path = _os.fspath(out)
     # the lock of ``out`` is held until runs.csv is written: a second writer is refused
     finished, lock = _flocking.sweep_prepare(out_path, text)
@@ -141,11 +240,14 @@ def sweep(
         if executor is None:
             executor = _futures.ProcessPoolExecutor(max_workers=_os.cpu_count() or 1)
         futures = []
+        bar = _SweepProgress(count - len(pending), count) if _show_progress(progress) else None
         try:
             futures = [executor.submit(_sweep_run, text, k, controls) for k in pending]
             for future in _futures.as_completed(futures):
                 index, run_id, fields, wall_time = future.result()
                 _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
+                if bar is not None:
+                    bar.advance()
         except BaseException:
             # Ctrl-C, or a failed run of `controls` (issue 27): cancel the runs not started,
             # keep every run finished meanwhile, and do not wait for the running ones
@@ -160,6 +262,8 @@ def sweep(
                 executor.shutdown(wait=False, cancel_futures=True)
             raise
         finally:
+            if bar is not None:
+                bar.clear()
             if own:
                 executor.shutdown()
         _flocking.sweep_assemble(out_path, text)
