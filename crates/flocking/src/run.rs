@@ -308,9 +308,15 @@ impl EdgeSetWatch {
     }
 }
 
-/// The distance below which two agents of `scenario` count as merged.
+/// The distance below which two agents of `scenario` count as merged: 10⁻³ d, where the α-force
+/// can no longer separate them; 0 (never) for the classic models, whose particles may overlap
+/// (Vicsek's, Cucker–Smale's) or have no α-force (boids, Couzin).
 fn merge_tolerance(scenario: &Scenario) -> f64 {
-    MERGE_FRACTION * scenario.alpha.d
+    if scenario.algorithm.is_classic_model() {
+        0.0
+    } else {
+        MERGE_FRACTION * scenario.alpha.d
+    }
 }
 
 /// Records the state of `sim` and returns what it measured; tells the recorder of the first

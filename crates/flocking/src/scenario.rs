@@ -425,6 +425,13 @@ impl Algorithm {
         }
     }
 
+    /// Whether the algorithm is one of the classic models (Cucker–Smale, Vicsek, boids, Couzin;
+    /// docs/models.md) rather than Olfati-Saber's, Tanner's or consensus.
+    #[must_use]
+    pub fn is_classic_model(&self) -> bool {
+        self.sets_velocity() || matches!(self, Self::CuckerSmale { .. })
+    }
+
     /// Whether the algorithm is a model that sets its agents' velocities (Vicsek, boids, Couzin),
     /// rather than an acceleration.
     #[must_use]
