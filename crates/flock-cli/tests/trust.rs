@@ -397,7 +397,7 @@ fn kill_and_resume(
         let fraction = 0.01 + 0.11 * ((state >> 11) as f64 / (1u64 << 53) as f64);
         Duration::from_secs_f64(fraction * whole_run)
     };
-    let mut killed = 0;
+    let (mut killed, mut early) = (0, 0);
     let mut child = spawn(tmp.path(), &first);
     while killed < kills {
         let started = Instant::now();
@@ -410,6 +410,16 @@ fn kill_and_resume(
         }
         child.kill().expect("SIGKILL");
         child.wait().expect("reaped");
+        if !partial(&out).exists() {
+            // killed while preparing, before `DIR.partial` appeared (it is built under another
+            // name and renamed whole): nothing to resume, the user's tree untouched but for
+            // that staging directory, which the next run into `DIR` clears once noted
+            assert!(!out.exists(), "DIR appears only for complete runs");
+            early += 1;
+            assert!(early < 10 * kills, "{early} kills before the run appeared");
+            child = spawn(tmp.path(), &first);
+            continue;
+        }
         killed += 1;
         check_incomplete(&out, 60);
         child = spawn(tmp.path(), &resume);

@@ -9,17 +9,17 @@ use flocking::{Record, Recorder, RunSummary, Scenario};
 
 use crate::common::{fixture_paths, sig6, stem};
 
-/// The simulated time of the short runs.
-const SHORT: f64 = 2.0;
+/// The steps of the short runs (2 s of the papers' fixtures, at h = 0.01).
+const SHORT: u64 = 200;
 
-/// Every fixture, shortened to [`SHORT`] seconds.
+/// Every fixture, shortened to [`SHORT`] steps.
 fn short_fixtures() -> Vec<(String, Scenario)> {
     fixture_paths()
         .iter()
         .map(|path| {
             let mut scenario =
                 Scenario::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            scenario.duration = SHORT;
+            scenario.duration = SHORT as f64 * scenario.step;
             assert_eq!(scenario.validate(), Ok(()), "{}", path.display());
             (stem(path), scenario)
         })
@@ -86,7 +86,7 @@ fn short_run(scenario: &Scenario) -> RunSummary {
 fn short_runs_match_their_snapshots() {
     for (name, scenario) in short_fixtures() {
         let summary = short_run(&scenario);
-        assert_eq!(summary.steps, 200, "{name}: 2 s at h = 0.01");
+        assert_eq!(summary.steps, SHORT, "{name}");
         insta::assert_snapshot!(format!("short_{name}"), rounded(&name, &summary));
     }
 }
@@ -198,13 +198,13 @@ fn one_and_three_threads_give_bit_identical_states() {
 #[test]
 fn records_start_at_zero_every_record_every_steps_and_at_the_end() {
     for (name, mut scenario) in short_fixtures() {
-        // 2 s = 200 steps; every 30 steps gives 30, 60, …, 180, then the last step 200.
+        // 200 steps; every 30 steps gives 30, 60, …, 180, then the last step 200.
         scenario.record_every = 30;
         let mut state = LastState::default();
         let summary = flocking::run(&scenario, &mut state).expect("the scenario runs");
         assert_eq!(state.records, 1 + 6 + 1, "{name}: {:?}", state.times);
         assert_eq!(state.times[0], 0.0, "{name}");
-        approx::assert_relative_eq!(state.times[1], 0.3, max_relative = 1e-12);
+        approx::assert_relative_eq!(state.times[1], 30.0 * scenario.step, max_relative = 1e-12);
         assert_eq!(*state.times.last().expect("records"), summary.t, "{name}");
         assert_eq!(
             state.energies[0].to_bits(),
