@@ -1,6 +1,6 @@
 //! Times as people write them: t = k·h rounded to the decimals of the step ([`time_text`]), for
 //! the messages of every layer (a blow-up, a merge, a run's summary). It depends on nothing else
-//! of the crate, so that the modules below [`run`](crate::run) can use it.
+//! of the crate, so that the modules below [`run`](mod@crate::run) can use it.
 
 /// A time t = k·h as people write it: rounded to the decimals of the step h (at most 12), trailing
 /// zeros dropped — `0.6` where the sum of steps gives 0.6000000000000001.
