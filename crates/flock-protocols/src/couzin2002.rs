@@ -9,6 +9,7 @@ use flock_math::{Domain, Vector};
 
 use crate::conditions::stream::{Purpose, Streams};
 use crate::error::{ParamError, check};
+use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the zone model, named as the paper names them. Defaults: r_r = 1,
@@ -233,13 +234,10 @@ impl<V: Vector> Protocol<V> for Couzin<V> {
         });
     }
 
-    /// The polarisation's complement N − ‖Σ v̂_i‖ ≥ 0: the model has no energy it decreases.
+    /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no
+    /// energy.
     fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        let total = swarm
-            .velocities
-            .iter()
-            .fold(V::ZERO, |acc, &p| acc + p.normalize_or_zero());
-        swarm.len() as f64 - total.length()
+        heading_mismatch(&swarm.velocities)
     }
 
     fn update(&self) -> Update {

@@ -8,6 +8,7 @@ use flock_math::{Domain, Vector};
 
 use crate::conditions::stream::{Purpose, Streams};
 use crate::error::{ParamError, check};
+use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
@@ -190,14 +191,10 @@ impl<V: Vector> Protocol<V> for Boids<V> {
         }
     }
 
-    /// The boids have no energy their rule decreases: the heading mismatch
-    /// N − ‖Σ v_i‖ ≥ 0 (0 when every boid heads alike) is reported in its place.
+    /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no
+    /// energy.
     fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        let total = swarm
-            .velocities
-            .iter()
-            .fold(V::ZERO, |acc, &p| acc + p / self.params.speed);
-        swarm.len() as f64 - total.length()
+        heading_mismatch(&swarm.velocities)
     }
 
     fn update(&self) -> Update {

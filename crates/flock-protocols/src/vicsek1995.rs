@@ -8,6 +8,7 @@ use flock_math::{Domain, Vector};
 
 use crate::conditions::stream::{Purpose, Streams};
 use crate::error::{ParamError, check};
+use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the Vicsek model, as a scenario writes them (the paper's names).
@@ -121,12 +122,10 @@ impl<V: Vector> Protocol<V> for Vicsek<V> {
         });
     }
 
-    /// The order parameter's complement N(1 − v_a) ≥ 0, 0 when every particle moves alike: the
-    /// model has no energy its dynamics decreases (the noise keeps it from any equilibrium).
+    /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no
+    /// energy.
     fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        let n = swarm.len() as f64;
-        let total = swarm.velocities.iter().fold(V::ZERO, |acc, &p| acc + p);
-        n - total.length() / self.params.v0
+        heading_mismatch(&swarm.velocities)
     }
 
     fn update(&self) -> Update {
