@@ -66,6 +66,11 @@ impl fmt::Display for Report<'_> {
                 "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
                 m.velocity_mismatch, s.component_velocity_mismatch
             )?;
+            writeln!(
+                f,
+                "  polarisation          {:.4}   (milling {:.4}, mean nearest neighbour {:.4})",
+                m.polarisation, m.milling, m.nearest_neighbour_mean
+            )?;
         }
         let from = self.settled_from;
         let [whole, settled] = [f64::NEG_INFINITY, from].map(|t| Closest::over(self.records, t));
