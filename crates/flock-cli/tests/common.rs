@@ -123,3 +123,60 @@ pub fn remove_own_file(tmp: &Path, path: &Path, holds: &[u8]) {
     );
     fs::remove_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
 }
+
+/// The canonical form of `path`'s parent, checked to lie under the test's directory `tmp` (so
+/// that a removal there touches only what the test made).
+fn under_test_dir(tmp: &Path, path: &Path) -> std::path::PathBuf {
+    let parent = path
+        .parent()
+        .and_then(|p| p.canonicalize().ok())
+        .unwrap_or_else(|| panic!("{} has no readable parent", path.display()));
+    let tmp = tmp.canonicalize().expect("the test's directory");
+    assert!(
+        parent.starts_with(&tmp),
+        "{} is not under the test's directory {}",
+        path.display(),
+        tmp.display()
+    );
+    parent
+}
+
+/// Removes the symbolic link `link` the test made under `tmp`, after checking that it is a link
+/// and points where the test pointed it (`to`); never what it points to.
+pub fn remove_own_link(tmp: &Path, link: &Path, to: &Path) {
+    under_test_dir(tmp, link);
+    assert!(
+        fs::symlink_metadata(link).is_ok_and(|m| m.file_type().is_symlink()),
+        "{} is not a link",
+        link.display()
+    );
+    assert_eq!(
+        fs::read_link(link).expect("the link's target"),
+        to,
+        "{} is not the test's link",
+        link.display()
+    );
+    fs::remove_file(link).unwrap_or_else(|e| panic!("{}: {e}", link.display()));
+}
+
+/// Removes the empty directory `dir` the test made under `tmp`, never `tmp` itself, `.`, `..` or
+/// a parent (`remove_dir` removes no content).
+pub fn remove_own_empty_dir(tmp: &Path, dir: &Path) {
+    under_test_dir(tmp, dir);
+    let real = dir
+        .canonicalize()
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+    let tmp = tmp.canonicalize().expect("the test's directory");
+    assert!(
+        real.starts_with(&tmp) && real != tmp,
+        "{} is not a directory the test made under {}",
+        dir.display(),
+        tmp.display()
+    );
+    assert!(
+        fs::symlink_metadata(&real).is_ok_and(|m| m.is_dir()),
+        "{} is not a directory",
+        dir.display()
+    );
+    fs::remove_dir(&real).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+}

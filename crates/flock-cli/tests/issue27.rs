@@ -5,7 +5,10 @@
 use std::fs;
 use std::path::Path;
 
-use crate::common::{files, flocking, remove_own_file, stderr, temp_dir, write};
+use crate::common::{
+    files, flocking, remove_own_empty_dir, remove_own_file, remove_own_link, stderr, temp_dir,
+    write,
+};
 use crate::trust::{SHORT_2D, complete, refused, seeds_sweep};
 
 /// The one kept run directory of the sweep in `sw`.
@@ -59,13 +62,17 @@ fn issue_27_force_refuses_a_users_file_at_any_depth_of_a_run() {
     assert!(!tmp.path().join("r.partial").exists());
     // a link in place of one of flocking's files is not flocking's either
     remove_own_file(tmp.path(), &figures.join("mine/notes.txt"), b"notes\n");
-    fs::remove_dir(figures.join("mine")).expect("the test's empty directory");
+    remove_own_empty_dir(tmp.path(), &figures.join("mine"));
     fs::write(tmp.path().join("thesis.tex"), "x\n").expect("a user's file");
     std::os::unix::fs::symlink("../thesis.tex", tmp.path().join("r/final.csv.link"))
         .expect("a link");
     let output = flocking(tmp.path(), &["run", &file, "--out", "r", "--force"]);
     refused(&output, &["r holds final.csv.link"]);
-    fs::remove_file(tmp.path().join("r/final.csv.link")).expect("the test's link");
+    remove_own_link(
+        tmp.path(),
+        &tmp.path().join("r/final.csv.link"),
+        Path::new("../thesis.tex"),
+    );
     // flocking's own run directory, figures and all, is replaced
     complete(
         tmp.path(),
@@ -141,7 +148,7 @@ fn issue_27_plot_never_writes_through_a_link() {
     assert_eq!(files(&mine).len(), 1);
     assert_eq!(fs::read(mine.join("metrics.svg")).expect("kept"), b"mine\n");
     // a link in place of one figure
-    fs::remove_file(tmp.path().join("r2/figures")).expect("the test's link");
+    remove_own_link(tmp.path(), &tmp.path().join("r2/figures"), &mine);
     fs::create_dir(tmp.path().join("r2/figures")).expect("mkdir");
     std::os::unix::fs::symlink(
         mine.join("metrics.svg"),

@@ -109,12 +109,14 @@ impl NeighbourSearch {
         // Every array is resized and overwritten below: the retained part is not zeroed first.
         let (offsets, neighbours, distances, numbering) = net.arrays_for_rebuild(n, r);
         if n < 2 || r2 == 0.0 {
-            offsets.clear();
-            offsets.resize(n + 1, 0);
-            neighbours.clear();
-            if let Some(distances) = distances {
-                distances.clear();
-            }
+            assemble(
+                n,
+                offsets,
+                neighbours,
+                distances,
+                &|_| None,
+                &|_, _, _, _| {},
+            );
             return;
         }
         self.grid.rebuild(positions, r);
@@ -129,8 +131,8 @@ impl NeighbourSearch {
             let slots = start..start + (slots - start).min(block_len);
             block.fill::<V>(grid, r2, numbering, slots);
         });
-        // Gather in agent order: the offsets first, then the lists and their distances (recomputed
-        // with the predicate's own squared length, so bit-identical) in parallel ranges of agents.
+        // the lists in agent order, their distances recomputed with the predicate's own squared
+        // length (so bit-identical)
         let slot_of = &grid.slot_of;
         let blocks = &self.blocks[..count];
         let list = |i: usize| {
@@ -141,43 +143,16 @@ impl NeighbourSearch {
                 &block.neighbours[block.edges(slot & (block_len - 1))]
             })
         };
-        // offsets[i + 1] = |N_i| (in parallel), then the running sum
-        offsets.resize(n + 1, 0);
-        offsets[0] = 0;
-        fill_indexed(&mut offsets[1..], |i| list(i).map_or(0, <[u32]>::len));
-        for i in 0..n {
-            offsets[i + 1] += offsets[i];
-        }
-        let edges = offsets[n];
-        neighbours.resize(edges, 0);
-        let mut no_distances = Vec::new();
-        let distances = match distances {
-            Some(distances) => {
-                distances.resize(edges, 0.0);
-                distances
+        let write = |i: usize, list: &[u32], out: &mut [u32], lengths: &mut [f64]| {
+            for (o, &t) in out.iter_mut().zip(list) {
+                *o = grid.order[t as usize];
             }
-            // a net without distances: the gather fills empty length slices
-            None => &mut no_distances,
+            let qi = positions[i];
+            for (l, &t) in lengths.iter_mut().zip(list) {
+                *l = squared_distance(qi, grid.position::<V>(t as usize)).sqrt();
+            }
         };
-        let offsets = &offsets[..];
-        gather(
-            0..n,
-            neighbours,
-            distances,
-            &|i, out, lengths| {
-                if let Some(list) = list(i) {
-                    for (o, &t) in out.iter_mut().zip(list) {
-                        *o = grid.order[t as usize];
-                    }
-                    let qi = positions[i];
-                    for (l, &t) in lengths.iter_mut().zip(list) {
-                        *l = squared_distance(qi, grid.position::<V>(t as usize)).sqrt();
-                    }
-                }
-                debug_assert_eq!(out.len(), offsets[i + 1] - offsets[i]);
-            },
-            offsets,
-        );
+        assemble(n, offsets, neighbours, distances, &list, &write);
     }
 
     /// The agents with a finite position, in the order of the cells of side at least `r` of a
@@ -256,6 +231,52 @@ impl NeighbourSearch {
             best
         });
     }
+}
+
+/// Writes the arrays of a net of `n` agents from each agent's list of neighbours in the search's
+/// own terms (`list(i)`, `None` for an agent with none): the offsets first, as the running sum of
+/// the lengths, then, in parallel ranges of agents, `write(i, list, neighbours_i, distances_i)`
+/// (`distances_i` empty for a net without distances). The one assembly of the open and the
+/// periodic search.
+pub(crate) fn assemble<'a>(
+    n: usize,
+    offsets: &mut Vec<usize>,
+    neighbours: &mut Vec<u32>,
+    distances: Option<&mut Vec<f64>>,
+    list: &(impl Fn(usize) -> Option<&'a [u32]> + Sync),
+    write: &(impl Fn(usize, &[u32], &mut [u32], &mut [f64]) + Sync),
+) {
+    // offsets[i + 1] = |N_i| (in parallel), then the running sum
+    offsets.resize(n + 1, 0);
+    offsets[0] = 0;
+    fill_indexed(&mut offsets[1..], |i| list(i).map_or(0, <[u32]>::len));
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let edges = offsets[n];
+    neighbours.resize(edges, 0);
+    let mut no_distances = Vec::new();
+    let distances = match distances {
+        Some(distances) => {
+            distances.resize(edges, 0.0);
+            distances
+        }
+        // a net without distances: the gather fills empty length slices
+        None => &mut no_distances,
+    };
+    let offsets = &offsets[..];
+    gather(
+        0..n,
+        neighbours,
+        distances,
+        &|i, out, lengths| {
+            if let Some(list) = list(i) {
+                write(i, list, out, lengths);
+            }
+            debug_assert_eq!(out.len(), offsets[i + 1] - offsets[i]);
+        },
+        offsets,
+    );
 }
 
 /// Agents per task of the parallel gather.

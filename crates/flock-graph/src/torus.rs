@@ -22,7 +22,7 @@ use flock_math::{Domain, Vector};
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut};
-use crate::search::{NeighbourSearch, gather, padded_side};
+use crate::search::{NeighbourSearch, assemble, padded_side};
 
 /// log₂ of the slots per block of work.
 const BLOCK_SHIFT: u32 = 10;
@@ -312,12 +312,14 @@ impl NeighbourSearch {
         let r2 = range_squared(r);
         let (offsets, neighbours, distances, numbering) = net.arrays_for_rebuild(n, r);
         if n < 2 || r2 == 0.0 {
-            offsets.clear();
-            offsets.resize(n + 1, 0);
-            neighbours.clear();
-            if let Some(distances) = distances {
-                distances.clear();
-            }
+            assemble(
+                n,
+                offsets,
+                neighbours,
+                distances,
+                &|_| None,
+                &|_, _, _, _| {},
+            );
             return;
         }
         let (grid, blocks) = (&mut self.torus, &mut self.torus_blocks);
@@ -342,38 +344,14 @@ impl NeighbourSearch {
                 &block.neighbours[block.edges(slot & (block_len - 1))]
             })
         };
-        offsets.resize(n + 1, 0);
-        offsets[0] = 0;
-        fill_indexed(&mut offsets[1..], |i| list(i).map_or(0, <[u32]>::len));
-        for i in 0..n {
-            offsets[i + 1] += offsets[i];
-        }
-        let edges = offsets[n];
-        neighbours.resize(edges, 0);
-        let mut no_distances = Vec::new();
-        let distances = match distances {
-            Some(distances) => {
-                distances.resize(edges, 0.0);
-                distances
+        let write = |i: usize, list: &[u32], out: &mut [u32], lengths: &mut [f64]| {
+            out.copy_from_slice(list);
+            let qi = positions[i];
+            for (l, &j) in lengths.iter_mut().zip(list) {
+                *l = squared_distance_in(domain, qi, positions[j as usize]).sqrt();
             }
-            None => &mut no_distances,
         };
-        let offsets = &offsets[..];
-        gather(
-            0..n,
-            neighbours,
-            distances,
-            &|i, out, lengths| {
-                if let Some(list) = list(i) {
-                    out.copy_from_slice(list);
-                    let qi = positions[i];
-                    for (l, &j) in lengths.iter_mut().zip(list) {
-                        *l = squared_distance_in(domain, qi, positions[j as usize]).sqrt();
-                    }
-                }
-            },
-            offsets,
-        );
+        assemble(n, offsets, neighbours, distances, &list, &write);
     }
 
     /// Fills `out` (resized to `positions.len()`) with the distance from each agent to its nearest

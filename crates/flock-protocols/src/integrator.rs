@@ -8,7 +8,7 @@ use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
 
-use crate::conditions::stage::{self, Stage, perception_field};
+use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field};
 use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
@@ -723,13 +723,17 @@ fn local_controls<V: Vector>(
         position,
         velocity: p[i],
     };
-    fill_indexed(inputs, |i| {
-        let mut js: Vec<u32> = net.graph().neighbours(i).to_vec();
+    // each worker's neighbour and heard lists, reused from agent to agent
+    let scratch = || (Vec::new(), Vec::new());
+    map_agents_mut(inputs, scratch, |i, u, (js, heard)| {
+        js.clear();
+        js.extend_from_slice(net.graph().neighbours(i));
         js.sort_unstable();
-        let heard: Vec<Perceived<V>> = js
-            .iter()
-            .map(|&j| perceived(j as usize, domain.image_near(q[i], q[j as usize])))
-            .collect();
-        local.local_input(t, &perceived(i, q[i]), &heard)
+        heard.clear();
+        heard.extend(
+            js.iter()
+                .map(|&j| perceived(j as usize, domain.image_near(q[i], q[j as usize]))),
+        );
+        *u = local.local_input(t, &perceived(i, q[i]), heard);
     });
 }

@@ -67,6 +67,34 @@ fn max_gap<V: Vector>(a: &[V], b: &[V]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Runs `model` from `swarm` in the domain of `side` for `steps` steps of `h` beside the
+/// brute-force `reference` (step k and state to the next state), then checks that the states
+/// agree: positions within `tolerance.0`, velocities within `tolerance.1`.
+fn agrees_with_reference<V: Vector, P: Protocol<V>>(
+    model: P,
+    swarm: Swarm<V>,
+    (h, side, steps): (f64, Option<f64>, u64),
+    mut reference: impl FnMut(u64, &[V], &[V]) -> (Vec<V>, Vec<V>),
+    tolerance: (f64, f64),
+) {
+    let mut sim = Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), h)
+        .unwrap()
+        .with_domain(domain(side))
+        .unwrap();
+    let (mut q, mut p) = (swarm.positions, swarm.velocities);
+    for k in 0..steps {
+        sim.step();
+        (q, p) = reference(k, &q, &p);
+    }
+    let state = sim.swarm();
+    let (gap_q, gap_p) = (
+        max_gap(&state.positions, &q),
+        max_gap(&state.velocities, &p),
+    );
+    assert!(gap_q < tolerance.0, "{side:?}: positions {gap_q}");
+    assert!(gap_p < tolerance.1, "{side:?}: velocities {gap_p}");
+}
+
 // ---------------------------------------------------------------- Cucker–Smale
 
 /// One symplectic Euler step of Cucker–Smale, brute force.
@@ -101,22 +129,8 @@ fn cucker_smale_agrees<V: Vector>(side: Option<f64>) {
     };
     let model = CuckerSmale::new(CuckerSmaleParams::with_beta(0.3), 5.0, 40, domain(side)).unwrap();
     let h = 0.05;
-    let mut sim = Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), h)
-        .unwrap()
-        .with_domain(domain(side))
-        .unwrap();
-    let (mut q, mut p) = (swarm.positions, swarm.velocities);
-    for _ in 0..20 {
-        sim.step();
-        (q, p) = cucker_smale_step(&q, &p, 0.3, h, side);
-    }
-    let state = sim.swarm();
-    assert!(
-        max_gap(&state.positions, &q) < 1e-10,
-        "{}",
-        max_gap(&state.positions, &q)
-    );
-    assert!(max_gap(&state.velocities, &p) < 1e-12);
+    let reference = |_, q: &[V], p: &[V]| cucker_smale_step(q, p, 0.3, h, side);
+    agrees_with_reference(model, swarm, (h, side, 20), reference, (1e-10, 1e-12));
 }
 
 #[test]
@@ -252,19 +266,9 @@ fn vicsek_equals_brute_force_open_and_periodic() {
         let mut swarm = near_the_wrap::<DVec2>(n, 5.0, 0.3, 3);
         swarm.velocities = vicsek_headings(n, 3, params.v0);
         let model = Vicsek::new(params, 1.0, 9, domain(side)).unwrap();
-        let mut sim = Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), 1.0)
-            .unwrap()
-            .with_domain(domain(side))
-            .unwrap();
         let streams = Streams::new(9);
-        let (mut q, mut p) = (swarm.positions, swarm.velocities);
-        for k in 0..30 {
-            sim.step();
-            (q, p) = vicsek_step(&q, &p, params, &streams, k, side);
-        }
-        let state = sim.swarm();
-        assert!(max_gap(&state.positions, &q) < 1e-9, "{side:?}");
-        assert!(max_gap(&state.velocities, &p) < 1e-12, "{side:?}");
+        let reference = |k, q: &[DVec2], p: &[DVec2]| vicsek_step(q, p, params, &streams, k, side);
+        agrees_with_reference(model, swarm, (1.0, side, 30), reference, (1e-9, 1e-12));
     }
 }
 
@@ -372,24 +376,16 @@ fn boids_agree<V: Vector>(side: Option<f64>) {
     let orders: Vec<Vec<u32>> = (0..10)
         .map(|k| model.activation_order(f64::from(k) * h, n))
         .collect();
-    let mut sim = Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), h)
-        .unwrap()
-        .with_domain(domain(side))
-        .unwrap();
-    let mut q = swarm.positions.clone();
-    let mut heading: Vec<V> = swarm.velocities.iter().map(|&p| p / b.speed).collect();
-    for order in &orders {
-        sim.step();
-        boids_step(&mut q, &mut heading, order, b, h, side);
-    }
-    let state = sim.swarm();
-    assert!(
-        max_gap(&state.positions, &q) < 1e-9,
-        "{}",
-        max_gap(&state.positions, &q)
-    );
-    let p: Vec<V> = heading.iter().map(|&v| v * b.speed).collect();
-    assert!(max_gap(&state.velocities, &p) < 1e-12);
+    // the declared rule keeps unit headings: the reference steps them and moves at the speed
+    let reference = |k: u64, q: &[V], p: &[V]| {
+        let (mut q, mut heading) = (
+            q.to_vec(),
+            p.iter().map(|&p| p / b.speed).collect::<Vec<V>>(),
+        );
+        boids_step(&mut q, &mut heading, &orders[k as usize], b, h, side);
+        (q, heading.into_iter().map(|v| v * b.speed).collect())
+    };
+    agrees_with_reference(model, swarm, (h, side, 10), reference, (1e-9, 1e-12));
 }
 
 #[test]
@@ -490,22 +486,8 @@ fn couzin_agrees<V: Vector>(side: Option<f64>) {
     let swarm = near_the_wrap::<V>(n, 14.0, 3.0, 8);
     let tau = 0.1;
     let model = Couzin::new(c, tau, 2, domain(side)).unwrap();
-    let mut sim = Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), tau)
-        .unwrap()
-        .with_domain(domain(side))
-        .unwrap();
-    let (mut q, mut p) = (swarm.positions, swarm.velocities);
-    for _ in 0..20 {
-        sim.step();
-        (q, p) = couzin_step(&q, &p, c, tau, side);
-    }
-    let state = sim.swarm();
-    assert!(
-        max_gap(&state.positions, &q) < 1e-9,
-        "{}",
-        max_gap(&state.positions, &q)
-    );
-    assert!(max_gap(&state.velocities, &p) < 1e-9);
+    let reference = |_, q: &[V], p: &[V]| couzin_step(q, p, c, tau, side);
+    agrees_with_reference(model, swarm, (tau, side, 20), reference, (1e-9, 1e-9));
 }
 
 #[test]

@@ -502,6 +502,47 @@ pub fn remove(dir: &Path, kind: Kind) -> Result<(), DirError> {
     fs::remove_dir_all(dir).map_err(|e| at(format_args!("remove {}", dir.display()))(e).into())
 }
 
+/// Removes the files `names` of the directory `dir` that flocking wrote as `kind`, each only if
+/// it is a regular file of one of the names `kind` writes: the marker is checked first, `dir` is
+/// never the filesystem root, the working directory or an ancestor, or a mount point, and a link,
+/// a directory or a FIFO in a name's place is refused and kept. A name that is absent is fine
+/// (a run's temporaries after a clean finish). `dir` is flushed afterwards.
+///
+/// # Errors
+/// [`DirError::Foreign`] for a `dir` without the marker or an entry that is not a regular file,
+/// [`DirError::Special`], or the I/O error of a removal, with its path. Files removed before an
+/// error stay removed; those after it are kept, so the directory is as resumable as before.
+pub fn remove_own_files(dir: &Path, kind: Kind, names: &[&str]) -> Result<(), DirError> {
+    let foreign = |entry: &str| DirError::Foreign {
+        dir: dir.to_owned(),
+        entry: entry.to_owned(),
+    };
+    if !marked(dir, kind) {
+        return Err(foreign(MARKER_FILE));
+    }
+    check_special(dir)?;
+    for &name in names {
+        let path = dir.join(name);
+        let file_type = match fs::symlink_metadata(&path) {
+            Ok(metadata) => metadata.file_type(),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
+            Err(e) => return Err(at(format_args!("read {}", path.display()))(e).into()),
+        };
+        if !(kind.entries().contains(&name) && file_type.is_file()) {
+            return Err(foreign(name));
+        }
+        match fs::remove_file(&path) {
+            Err(e) if e.kind() != io::ErrorKind::NotFound => {
+                return Err(at(format_args!("remove {}", path.display()))(e).into());
+            }
+            _ => {}
+        }
+    }
+    fs::File::open(dir)
+        .and_then(|d| d.sync_all())
+        .map_err(|e| at(format_args!("flush {}", dir.display()))(e).into())
+}
+
 /// Refuses the filesystem root, the working directory and its ancestors, and mount points.
 fn check_special(dir: &Path) -> Result<(), DirError> {
     let special = |what| {
@@ -714,6 +755,49 @@ mod tests {
             std::fs::remove_file(file).expect("clean");
         }
         std::fs::remove_dir(&dir).expect("clean");
+    }
+
+    /// Only regular files of a run's names go, and only from a marked directory: a link in a
+    /// name's place is refused and kept, and so is the file it points to.
+    #[test]
+    fn own_files_are_removed_and_nothing_else() {
+        use super::{DirError, Kind, mark, remove_own_files};
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let run = dir.path().join("run");
+        std::fs::create_dir(&run).expect("mkdir");
+        std::fs::write(run.join("checkpoint.bin"), "state\n").expect("a checkpoint");
+        let names = ["checkpoint.bin", "checkpoint.tmp", "INCOMPLETE"];
+        // no marker: nothing removed
+        assert!(matches!(
+            remove_own_files(&run, Kind::Run, &names),
+            Err(DirError::Foreign { .. })
+        ));
+        assert!(run.join("checkpoint.bin").is_file());
+        mark(&run, Kind::Run).expect("marked");
+        // a link in place of the note: refused after the files before it, the user's file kept
+        let users = dir.path().join("notes.txt");
+        std::fs::write(&users, "mine\n").expect("a user's file");
+        std::os::unix::fs::symlink(&users, run.join("INCOMPLETE")).expect("a link");
+        assert!(matches!(
+            remove_own_files(&run, Kind::Run, &names),
+            Err(DirError::Foreign { entry, .. }) if entry == "INCOMPLETE"
+        ));
+        assert!(
+            !run.join("checkpoint.bin").exists(),
+            "absent checkpoint.tmp is fine"
+        );
+        assert!(std::fs::symlink_metadata(run.join("INCOMPLETE")).is_ok());
+        assert_eq!(std::fs::read(&users).expect("kept"), b"mine\n");
+        // a name a run never writes is refused even when it is a regular file
+        std::fs::write(run.join("notes.txt"), "mine too\n").expect("a user's file in the run");
+        assert!(matches!(
+            remove_own_files(&run, Kind::Run, &["notes.txt"]),
+            Err(DirError::Foreign { .. })
+        ));
+        assert_eq!(
+            std::fs::read(run.join("notes.txt")).expect("kept"),
+            b"mine too\n"
+        );
     }
 
     #[test]

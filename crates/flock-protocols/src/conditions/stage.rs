@@ -602,7 +602,7 @@ fn map_agents<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T>
 /// `f(i, &mut items[i], scratch)` for every item, in parallel with the `parallel` feature; in
 /// index order. Each worker's `scratch` is made by `init` and passed from item to item (its
 /// buffers keep their capacity): `f`'s result must not depend on what it held before.
-fn map_agents_mut<S: Send, W, T: Send>(
+pub(crate) fn map_agents_mut<S: Send, W, T: Send>(
     items: &mut [S],
     init: impl Fn() -> W + Sync + Send,
     f: impl Fn(usize, &mut S, &mut W) -> T + Sync + Send,

@@ -397,7 +397,20 @@ impl RunDirectory {
             owned::remove(&partial, Kind::Run)?;
             drop(lock);
         }
-        Ok(Self::create_in(target, partial, scenario, options)?)
+        let this = Self::create_in(target, partial, scenario, options)?;
+        // Holding `DIR.partial`, no other run can finish into `DIR`; one that finished between
+        // the check above and the rename into `DIR.partial` left `DIR` behind (issue 27: two
+        // runs started together): this run is refused, its own new directory removed.
+        let appeared = fs::read_dir(target).is_ok_and(|mut entries| entries.next().is_some());
+        if appeared && !options.force {
+            let partial = this.partial.clone();
+            drop(this);
+            owned::remove(&partial, Kind::Run)?;
+            return Err(CreateError::Occupied {
+                target: target.to_owned(),
+            });
+        }
+        Ok(this)
     }
 
     /// [`RunDirectory::create_with`] once `target` may be written.
@@ -808,21 +821,8 @@ impl RunDirectory {
         let parent = parent_of(&self.target);
         sync_dir(parent).map_err(at(format_args!("flush {}", parent.display())))?;
         // with the temporary files a failed write (a full disk) may have left
-        for name in [
-            CHECKPOINT_FILE,
-            CHECKPOINT_TMP,
-            INCOMPLETE_FILE,
-            INCOMPLETE_TMP,
-        ] {
-            let path = self.target.join(name);
-            match fs::remove_file(&path) {
-                Err(e) if e.kind() != io::ErrorKind::NotFound => {
-                    return Err(at(format_args!("remove {}", path.display()))(e));
-                }
-                _ => {}
-            }
-        }
-        sync_dir(&self.target).map_err(at(format_args!("flush {}", self.target.display())))?;
+        owned::remove_own_files(&self.target, Kind::Run, &RUN_LEFTOVERS)
+            .map_err(io::Error::other)?;
         Ok(verdict)
     }
 
@@ -1102,6 +1102,15 @@ fn force_line(force: bool) -> String {
 }
 
 /// Finishes what [`RunDirectory::finish`] left undone when killed right after renaming
+/// The files of a running or interrupted run that a complete run does not keep, the note last:
+/// removed by the final rename's tidy-up and by a resume that finds the rename done.
+const RUN_LEFTOVERS: [&str; 4] = [
+    CHECKPOINT_FILE,
+    CHECKPOINT_TMP,
+    INCOMPLETE_TMP,
+    INCOMPLETE_FILE,
+];
+
 /// `DIR.partial` to `DIR`: removes the checkpoint and the `INCOMPLETE` note of a `DIR` that is
 /// flocking's, holds only a run's files and is complete (its `final.csv` and verdict written
 /// before the rename). Returns whether it did.
@@ -1116,21 +1125,7 @@ fn tidy_completed(target: &Path) -> Result<bool, ResumeError> {
     }
     owned::check_only_own(target, Kind::Run)?;
     let _lock = DirLock::acquire(target)?;
-    for name in [
-        CHECKPOINT_FILE,
-        CHECKPOINT_TMP,
-        INCOMPLETE_TMP,
-        INCOMPLETE_FILE,
-    ] {
-        let path = target.join(name);
-        match fs::remove_file(&path) {
-            Err(e) if e.kind() != io::ErrorKind::NotFound => {
-                return Err(at(format_args!("remove {}", path.display()))(e).into());
-            }
-            _ => {}
-        }
-    }
-    sync_dir(target).map_err(at(format_args!("flush {}", target.display())))?;
+    owned::remove_own_files(target, Kind::Run, &RUN_LEFTOVERS)?;
     Ok(true)
 }
 
