@@ -43,6 +43,7 @@ pub mod protocol;
 pub mod reynolds1987;
 pub mod swarm;
 pub mod tanner2003;
+pub mod vehicle;
 pub mod vicsek1995;
 
 pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
@@ -74,4 +75,5 @@ pub use swarm::Swarm;
 pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,
 };
+pub use vehicle::{DynVehicle, Vehicle};
 pub use vicsek1995::{Vicsek, VicsekParams, planar};
