@@ -12,6 +12,7 @@ use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field};
 use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
+use crate::vehicle::{DynVehicle, Fleet};
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The integration scheme.
@@ -89,6 +90,8 @@ pub struct Simulation<V, P> {
     conditions: Option<Box<Stage<V>>>,
     /// Open space or a periodic box ([`Simulation::with_domain`]).
     domain: Domain<V>,
+    /// The agents' vehicles, `None` for point masses ([`Simulation::with_vehicle`]).
+    fleet: Option<Box<Fleet<V>>>,
 }
 
 /// What [`Simulation::observe`] measures of a state.
@@ -167,6 +170,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             rk,
             conditions: None,
             domain: Domain::Open,
+            fleet: None,
         };
         simulation.rebuild_net();
         Ok(simulation)
@@ -285,6 +289,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         if let Some(stage) = &self.conditions {
             columns.extend(stage.diagnostics());
         }
+        if let Some(fleet) = &self.fleet {
+            columns.extend(fleet.diagnostics());
+        }
         columns
     }
 
@@ -379,6 +386,57 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         &self.domain
     }
 
+    /// The simulation of agents that are `vehicle`s ([`vehicle`](crate::vehicle)): the
+    /// protocol's input u_i is the commanded acceleration of agent i's reference point, which
+    /// its vehicle follows through its controller and dynamics, integrated at the vehicle's inner
+    /// step. Every agent starts in its vehicle's equilibrium ([`Vehicle::start`](crate::Vehicle::start),
+    /// which may change its velocity), or, resuming, in the checkpointed `states`. Agents are
+    /// then kept in original order.
+    ///
+    /// # Errors
+    /// As [`Fleet::new`]; a protocol that sets velocities (`vehicle`: it has no acceleration to
+    /// command), the integrator RK4 (`integrator`: a vehicle integrates its own dynamics), or a
+    /// condition the vehicle cannot take ([`Simulation::with_conditions`]).
+    pub fn with_vehicle(
+        mut self,
+        vehicle: DynVehicle<V>,
+        states: Option<Vec<f64>>,
+    ) -> Result<Self, ParamError> {
+        if self.protocol.update().sets_velocity() {
+            return Err(ParamError::new(
+                "vehicle",
+                vehicle.name(),
+                "needs a commanded acceleration, and this model sets its agents' velocities directly",
+                "use vehicle: PointMass for this model, or an acceleration protocol",
+            ));
+        }
+        if self.integrator == Integrator::Rk4 {
+            return Err(ParamError::new(
+                "integrator",
+                "Rk4",
+                "is not used with a vehicle, which integrates its own dynamics at its inner step",
+                "remove integrator (or write SymplecticEuler) with this vehicle",
+            ));
+        }
+        if self.stored_by_cell() {
+            self.swarm = self.swarm().into_owned();
+            self.net = empty_net(&self.protocol);
+        }
+        let fleet = Fleet::new(vehicle, &mut self.swarm, self.step, states)?;
+        if let Some(stage) = &self.conditions {
+            stage::check_vehicle(stage.conditions(), fleet.vehicle())?;
+        }
+        self.fleet = Some(Box::new(fleet));
+        self.rebuild_net();
+        Ok(self)
+    }
+
+    /// The agents' vehicles, `None` for point masses.
+    #[must_use]
+    pub fn fleet(&self) -> Option<&Fleet<V>> {
+        self.fleet.as_deref()
+    }
+
     /// The simulation under real `conditions` (validated for its agents, dimension and step),
     /// every random draw keyed from `seed`. With `Conditions::default()` it is the ideal
     /// simulation, unchanged. Otherwise agents are kept in original order (not stored by cell).
@@ -411,6 +469,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 "acts on an acceleration, and this model sets its agents' velocities directly",
                 "remove this condition for this model (conditions on perception, sampling and faults apply)",
             ));
+        }
+        if let Some(fleet) = &self.fleet {
+            stage::check_vehicle(conditions, fleet.vehicle())?;
         }
         if let Some(field) = perception_field(conditions)
             && self.protocol.local_form().is_none()
@@ -517,15 +578,28 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 &self.net,
                 self.steps,
                 self.integrator,
+                self.fleet.as_deref_mut(),
             );
-            self.steps += 1;
-            self.rebuild_net();
-            return;
-        }
-        match (self.protocol.update(), self.integrator) {
-            (Update::Acceleration, Integrator::Rk4) => self.runge_kutta(),
-            // a model that sets velocities has its own update, whatever the integrator
-            (update, _) => self.explicit_update(update),
+        } else if self.fleet.is_some() {
+            let t = self.time();
+            controls_in(
+                &self.protocol,
+                &self.domain,
+                t,
+                &self.swarm,
+                &self.net,
+                &mut self.inputs,
+            );
+            if let Some(fleet) = self.fleet.as_mut() {
+                let (h, domain) = (self.step, &self.domain);
+                fleet.advance(h, domain, &mut self.swarm, &self.inputs, |_| V::ZERO, |_| true);
+            }
+        } else {
+            match (self.protocol.update(), self.integrator) {
+                (Update::Acceleration, Integrator::Rk4) => self.runge_kutta(),
+                // a model that sets velocities has its own update, whatever the integrator
+                (update, _) => self.explicit_update(update),
+            }
         }
         self.steps += 1;
         self.rebuild_net();
@@ -540,6 +614,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let sorts = self.protocol.follows_numbering()
             && self.protocol.interaction_graph().is_none()
             && self.conditions.is_none()
+            && self.fleet.is_none()
             && !self.domain.is_periodic();
         let sorted = !self.net.numbering().is_identity();
         if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {

@@ -75,5 +75,5 @@ pub use swarm::Swarm;
 pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,
 };
-pub use vehicle::{DynVehicle, Vehicle};
+pub use vehicle::{DynVehicle, Fleet, Vehicle};
 pub use vicsek1995::{Vicsek, VicsekParams, planar};

@@ -345,9 +345,10 @@ fn execute<'py>(
             // `controls` failed in step e.steps: the run stops before it, as after Ctrl-C
             Some(failure) => {
                 let steps = e.steps.saturating_sub(1);
-                // with conditions, the state before the failed step is not all a resume needs
-                // (their delay line and noise moved on): the last regular checkpoint stays
-                let ideal = scenario.conditions.is_ideal();
+                // with conditions or vehicles, the state before the failed step is not all a
+                // resume needs (their delay line, noise and vehicle states moved on): the last
+                // regular checkpoint stays
+                let ideal = scenario.conditions.is_ideal() && scenario.vehicle.is_point_mass();
                 if let (true, Some(dir), Some((positions, velocities)), Some(initial_energy)) =
                     (ideal, dir.as_mut(), failure.start, initial_energy)
                 {
@@ -357,6 +358,7 @@ fn execute<'py>(
                         positions,
                         velocities,
                         conditions: String::new(),
+                        vehicle: Vec::new(),
                     };
                     dir.checkpoint(&start)
                         .map_err(|e| run_directory_error(py, e, dir.partial()))?;

@@ -53,6 +53,7 @@ pub mod sweep;
 pub mod synthetic;
 pub mod time;
 mod validate;
+pub mod vehicle;
 pub mod workload;
 
 pub use build::check_local_form;

@@ -19,6 +19,7 @@ use flock_protocols::{
 };
 
 use crate::error::ScenarioError;
+use crate::vehicle::VehicleSpec;
 
 /// The collision distance as a fraction of d, by default (TAC 2006 counts pairs closer than d/4).
 pub const COLLISION_FRACTION: f64 = 0.25;
@@ -67,6 +68,10 @@ pub struct Scenario {
     /// The space the agents live in: `Open` (the default, not written) or a periodic box.
     #[serde(default, skip_serializing_if = "DomainSpec::is_open")]
     pub domain: DomainSpec,
+    /// What each agent is: `PointMass` (the default, not written) or a vehicle whose reference
+    /// point follows the protocol's commanded acceleration (docs/vehicles.md).
+    #[serde(default, skip_serializing_if = "VehicleSpec::is_point_mass")]
+    pub vehicle: VehicleSpec,
     /// Parameters and gains of the α-interaction.
     #[serde(default)]
     pub alpha: AlphaConfig,

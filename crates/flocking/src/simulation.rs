@@ -16,6 +16,7 @@ use crate::error::ScenarioError;
 use crate::health::NumericalError;
 use crate::initial::{initial_swarm, to_vector};
 use crate::scenario::Scenario;
+use crate::vehicle::VehicleSpace;
 
 /// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
 /// resumed bit-identically (a simulation carries nothing else between steps).
@@ -32,6 +33,8 @@ pub struct Start {
     /// The state of the run's conditions (delay line, links, noise, lag, faults) as RON, empty
     /// for an ideal run ([`flock_protocols::conditions::ConditionsState`]).
     pub conditions: String,
+    /// The vehicles' states ([`State::vehicle`]), empty for point masses.
+    pub vehicle: Vec<f64>,
 }
 
 /// A state as plain numbers: n rows of `dim` coordinates, agents in original order.
@@ -43,6 +46,13 @@ pub struct State<'a> {
     pub positions: Cow<'a, [f64]>,
     /// The velocities, as the positions.
     pub velocities: Cow<'a, [f64]>,
+    /// The names of each agent's vehicle state beyond its reference point's position and
+    /// velocity ([`Vehicle::state_columns`](flock_protocols::Vehicle::state_columns)), empty
+    /// for point masses.
+    pub vehicle_columns: &'static [&'static str],
+    /// The vehicles' states: agent i's at `vehicle[i * k..(i + 1) * k]`, k the number of
+    /// `vehicle_columns`.
+    pub vehicle: Cow<'a, [f64]>,
 }
 
 impl State<'_> {
@@ -59,6 +69,8 @@ impl State<'_> {
             dim: self.dim,
             positions: Cow::Owned(self.positions.into_owned()),
             velocities: Cow::Owned(self.velocities.into_owned()),
+            vehicle_columns: self.vehicle_columns,
+            vehicle: Cow::Owned(self.vehicle.into_owned()),
         }
     }
 }
@@ -129,10 +141,16 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
             ),
             Cow::Owned(swarm) => (Cow::Owned(swarm.positions), Cow::Owned(swarm.velocities)),
         };
+        let (vehicle_columns, vehicle) = match self.fleet() {
+            Some(fleet) => (fleet.vehicle().state_columns(), fleet.states()),
+            None => (&[][..], &[][..]),
+        };
         State {
             dim: V::DIM,
             positions: rows(positions),
             velocities: rows(velocities),
+            vehicle_columns,
+            vehicle: Cow::Borrowed(vehicle),
         }
     }
 
@@ -234,8 +252,8 @@ impl DynSimulation {
     pub fn new_with<M: MapProtocol>(scenario: &Scenario, map: &M) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         match scenario.dim {
-            2 => Self::of(scenario, initial_swarm::<DVec2>(scenario), 0, map),
-            _ => Self::of(scenario, initial_swarm::<DVec3>(scenario), 0, map),
+            2 => Self::of(scenario, initial_swarm::<DVec2>(scenario), 0, None, map),
+            _ => Self::of(scenario, initial_swarm::<DVec3>(scenario), 0, None, map),
         }
     }
 
@@ -266,6 +284,19 @@ impl DynSimulation {
         steps: u64,
         map: &M,
     ) -> Result<Self, ScenarioError> {
+        Self::from_rows(scenario, positions, velocities, steps, None, map)
+    }
+
+    /// [`DynSimulation::from_state_with`], the vehicles in `vehicle` states if given (else each
+    /// started in its equilibrium).
+    fn from_rows<M: MapProtocol>(
+        scenario: &Scenario,
+        positions: &[f64],
+        velocities: &[f64],
+        steps: u64,
+        vehicle: Option<Vec<f64>>,
+        map: &M,
+    ) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         let size = scenario.agents * scenario.dim;
         for (name, rows) in [("positions", positions), ("velocities", velocities)] {
@@ -288,12 +319,14 @@ impl DynSimulation {
                 scenario,
                 swarm_of::<DVec2>(positions, velocities),
                 steps,
+                vehicle,
                 map,
             ),
             _ => Self::of(
                 scenario,
                 swarm_of::<DVec3>(positions, velocities),
                 steps,
+                vehicle,
                 map,
             ),
         }
@@ -322,7 +355,8 @@ impl DynSimulation {
         map: &M,
     ) -> Result<Self, ScenarioError> {
         let (q, p) = (&start.positions, &start.velocities);
-        let mut sim = Self::from_state_with(scenario, q, p, start.steps, map)?;
+        let vehicle = (!start.vehicle.is_empty()).then(|| start.vehicle.clone());
+        let mut sim = Self::from_rows(scenario, q, p, start.steps, vehicle, map)?;
         if scenario.conditions.is_ideal() {
             return Ok(sim);
         }
@@ -343,17 +377,22 @@ impl DynSimulation {
         Ok(sim)
     }
 
-    fn of<V: Space + bytemuck::Pod, M: MapProtocol>(
+    fn of<V: Space + bytemuck::Pod + VehicleSpace, M: MapProtocol>(
         scenario: &Scenario,
         swarm: Swarm<V>,
         steps: u64,
+        vehicle_states: Option<Vec<f64>>,
         map: &M,
     ) -> Result<Self, ScenarioError> {
         let protocol = map.map(scenario.protocol::<V>()?);
         let agents = swarm.len();
-        let sim = Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?
-            .with_domain(scenario.domain())?
-            .with_conditions(&scenario.conditions, scenario.seed)?;
+        let mut sim =
+            Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?
+                .with_domain(scenario.domain())?;
+        if let Some(vehicle) = V::vehicle(&scenario.vehicle)? {
+            sim = sim.with_vehicle(vehicle, vehicle_states)?;
+        }
+        let sim = sim.with_conditions(&scenario.conditions, scenario.seed)?;
         Ok(Self {
             inner: Box::new(sim),
             dim: V::DIM,
@@ -477,6 +516,7 @@ impl DynSimulation {
                 .conditions_state()
                 .map(|c| ron::to_string(&c).unwrap_or_default())
                 .unwrap_or_default(),
+            vehicle: state.vehicle.into_owned(),
         }
     }
 }

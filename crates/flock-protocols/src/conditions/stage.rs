@@ -15,6 +15,7 @@ use super::noise::{OrnsteinUhlenbeck, SensorNoise};
 use super::stream::{Purpose, Streams};
 use crate::error::ParamError;
 use crate::integrator::{advance, controls_in};
+use crate::vehicle::{Fleet, Vehicle};
 use crate::{Integrator, LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The readings of the last step, for the diagnostics columns.
@@ -75,6 +76,37 @@ pub fn acceleration_field(conditions: &Conditions) -> Option<&'static str> {
     } else {
         None
     }
+}
+
+/// Refuses the conditions a `vehicle` cannot take: a disturbance for a vehicle that takes no
+/// external acceleration, and a speed limit, which the vehicle's own limits replace.
+///
+/// # Errors
+/// The field of the condition refused.
+pub fn check_vehicle<V: Vector>(
+    conditions: &Conditions,
+    vehicle: &dyn Vehicle<V>,
+) -> Result<(), ParamError> {
+    if conditions.disturbance.is_some() && !vehicle.takes_disturbance() {
+        return Err(ParamError::new(
+            "conditions.disturbance",
+            "set",
+            format!(
+                "is an external acceleration, and a {} takes none on its reference point",
+                vehicle.name()
+            ),
+            "remove the disturbance for this vehicle, or use one that takes it (PointMass, Quadrotor)",
+        ));
+    }
+    if conditions.actuation.and_then(|a| a.max_speed).is_some() {
+        return Err(ParamError::new(
+            "conditions.actuation.max_speed",
+            "set",
+            format!("clips a point mass's speed; a {}'s own limits bound its speed", vehicle.name()),
+            "remove max_speed and set the vehicle's speed limits",
+        ));
+    }
+    Ok(())
 }
 
 /// Whether `conditions` change what agents perceive (their own or others' states), and the
@@ -202,6 +234,12 @@ impl<V: Vector> Stage<V> {
         })
     }
 
+    /// The conditions.
+    #[must_use]
+    pub const fn conditions(&self) -> &Conditions {
+        &self.conditions
+    }
+
     fn mode(&self) -> FaultMode {
         self.conditions
             .faults
@@ -252,7 +290,8 @@ impl<V: Vector> Stage<V> {
     }
 
     /// One step h from step `k` of the true state `swarm` (original order) whose proximity net
-    /// is `net`: fail → sense → communicate → control → actuate → disturb and integrate.
+    /// is `net`: fail → sense → communicate → control → actuate → disturb and integrate; with a
+    /// `fleet`, its vehicles follow the delivered accelerations under the disturbance.
     #[allow(clippy::too_many_arguments)]
     pub fn step<P: Protocol<V> + ?Sized>(
         &mut self,
@@ -262,6 +301,7 @@ impl<V: Vector> Stage<V> {
         net: &ProximityNet,
         k: u64,
         integrator: Integrator,
+        fleet: Option<&mut Fleet<V>>,
     ) {
         if let Some(f) = &self.conditions.faults {
             faults::update(f, &self.streams, k, self.h, &mut self.failed);
@@ -287,9 +327,12 @@ impl<V: Vector> Stage<V> {
             }
         }
         self.actuate();
-        match protocol.update() {
-            Update::Acceleration => self.disturb_and_integrate(swarm, domain, k, integrator),
-            update => self.set_velocities(swarm, domain, update),
+        match (protocol.update(), fleet) {
+            (Update::Acceleration, Some(fleet)) => self.drive(fleet, swarm, domain, k),
+            (Update::Acceleration, None) => {
+                self.disturb_and_integrate(swarm, domain, k, integrator);
+            }
+            (update, _) => self.set_velocities(swarm, domain, update),
         }
         self.started = true;
     }
@@ -507,25 +550,7 @@ impl<V: Vector> Stage<V> {
         integrator: Integrator,
     ) {
         let h = self.h;
-        let disturbance = self.conditions.disturbance.clone().unwrap_or_default();
-        if let Some(gusts) = self.gusts {
-            for (g, x) in self.gust.iter_mut().enumerate() {
-                let xi = self
-                    .streams
-                    .draws(Purpose::Wind, g as u64, k)
-                    .normal_vector();
-                *x = if self.started {
-                    gusts.advance(*x, xi)
-                } else {
-                    gusts.stationary(xi)
-                };
-            }
-        }
-        let mean = disturbance
-            .wind
-            .as_ref()
-            .map_or(V::ZERO, |w| V::from_fn(|d| w.mean[d]));
-        let kick = disturbance.process_noise * h.sqrt();
+        self.advance_gusts(k);
         let max_speed = self.conditions.actuation.and_then(|a| a.max_speed);
         let this = &*self;
         let next = map_agents(swarm.len(), |i| {
@@ -533,21 +558,8 @@ impl<V: Vector> Stage<V> {
             if !this.moves(i) {
                 return (q, V::ZERO, false);
             }
-            let wind = match this.gust.len() {
-                0 => mean,
-                1 => mean + this.gust[0],
-                _ => mean + this.gust[i],
-            };
+            let (wind, noise) = this.disturbance(i, k);
             let a = this.delivered[i] + wind;
-            let noise = if kick > 0.0 {
-                let xi: V = this
-                    .streams
-                    .draws(Purpose::ProcessNoise, i as u64, k)
-                    .normal_vector();
-                xi * kick
-            } else {
-                V::ZERO
-            };
             match integrator {
                 Integrator::SymplecticEuler => {
                     let (p, clipped) = clip(p + a * h + noise, max_speed);
@@ -567,6 +579,66 @@ impl<V: Vector> Stage<V> {
             clipped += usize::from(c);
         }
         self.readings.at_speed_limit = clipped as f64;
+    }
+
+    /// Disturb and integrate with vehicles: each moving agent's vehicle follows its delivered
+    /// acceleration under the external acceleration wind + σ ξ/√h (the process noise's kick
+    /// σ √h ξ spread over the step); agents that do not move keep their place and state.
+    fn drive(&mut self, fleet: &mut Fleet<V>, swarm: &mut Swarm<V>, domain: &Domain<V>, k: u64) {
+        self.advance_gusts(k);
+        let this = &*self;
+        let disturbance = |i: usize| {
+            let (wind, noise) = this.disturbance(i, k);
+            wind + noise * (1.0 / this.h)
+        };
+        let moves = |i: usize| this.moves(i);
+        fleet.advance(this.h, domain, swarm, &this.delivered, disturbance, moves);
+    }
+
+    /// The wind gusts of step `k` (Ornstein–Uhlenbeck, started in its stationary law).
+    fn advance_gusts(&mut self, k: u64) {
+        let Some(gusts) = self.gusts else {
+            return;
+        };
+        for (g, x) in self.gust.iter_mut().enumerate() {
+            let xi = self
+                .streams
+                .draws(Purpose::Wind, g as u64, k)
+                .normal_vector();
+            *x = if self.started {
+                gusts.advance(*x, xi)
+            } else {
+                gusts.stationary(xi)
+            };
+        }
+    }
+
+    /// Agent i's disturbance at step `k`: the wind w_i = mean + gusts (an acceleration) and the
+    /// process noise's velocity kick σ √h ξ (Euler–Maruyama).
+    fn disturbance(&self, i: usize, k: u64) -> (V, V) {
+        let Some(disturbance) = &self.conditions.disturbance else {
+            return (V::ZERO, V::ZERO);
+        };
+        let mean = disturbance
+            .wind
+            .as_ref()
+            .map_or(V::ZERO, |w| V::from_fn(|d| w.mean[d]));
+        let wind = match self.gust.len() {
+            0 => mean,
+            1 => mean + self.gust[0],
+            _ => mean + self.gust[i],
+        };
+        let kick = disturbance.process_noise * self.h.sqrt();
+        let noise = if kick > 0.0 {
+            let xi: V = self
+                .streams
+                .draws(Purpose::ProcessNoise, i as u64, k)
+                .normal_vector();
+            xi * kick
+        } else {
+            V::ZERO
+        };
+        (wind, noise)
     }
 
     /// Integrate, for a model that sets velocities: its own update ([`advance`]) with the input

@@ -2,13 +2,15 @@
 //! the outputs had been written then, so that `flocking run --resume DIR` cuts the outputs back to
 //! that point and continues bit-identically.
 //!
-//! The file is little-endian: the magic `FLOCKCK2`, then as u64 the dimension, the number of
+//! The file is little-endian: the magic `FLOCKCK3`, then as u64 the dimension, the number of
 //! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
-//! trajectory and the bytes of the scenario's text; then the positions and the velocities as f64
-//! (`dim` per agent), the resolved scenario as RON text (so that a resume can refuse a
+//! trajectory, the bytes of the scenario's text and the number of vehicle state values; then the
+//! positions and the velocities as f64 (`dim` per agent), the vehicles' states as f64 (none for
+//! point masses), the resolved scenario as RON text (so that a resume can refuse a
 //! `scenario.ron` edited since), the state of the run's conditions as RON text (empty for an
 //! ideal run), and last an
-//! FNV-1a hash of everything before it. It is written to `checkpoint.tmp`, flushed to the disk, and
+//! FNV-1a hash of everything before it. A checkpoint of the previous format, `FLOCKCK2`, is the
+//! same without the vehicle count and states, and is still read. It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
 
@@ -25,7 +27,10 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 /// The temporary file a checkpoint is written to before its rename.
 pub const CHECKPOINT_TMP: &str = "checkpoint.tmp";
 
-const MAGIC: &[u8; 8] = b"FLOCKCK2";
+const MAGIC: &[u8; 8] = b"FLOCKCK3";
+
+/// The magic of the format before vehicles, read as one without vehicle states.
+const MAGIC_WITHOUT_VEHICLES: &[u8; 8] = b"FLOCKCK2";
 
 /// A run's state and the lengths of its outputs at that state.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,10 +66,11 @@ impl Checkpoint {
             self.metrics_bytes,
             self.trajectory_bytes,
             self.scenario.len() as u64,
+            s.vehicle.len() as u64,
         ] {
             bytes.extend_from_slice(&word.to_le_bytes());
         }
-        for x in s.positions.iter().chain(&s.velocities) {
+        for x in s.positions.iter().chain(&s.velocities).chain(&s.vehicle) {
             bytes.extend_from_slice(&x.to_le_bytes());
         }
         bytes.extend_from_slice(self.scenario.as_bytes());
@@ -107,9 +113,13 @@ impl Checkpoint {
         let (body, hash) = bytes
             .split_last_chunk::<8>()
             .ok_or_else(|| corrupt("too short"))?;
-        if !body.starts_with(MAGIC) {
+        let words = if body.starts_with(MAGIC) {
+            9
+        } else if body.starts_with(MAGIC_WITHOUT_VEHICLES) {
+            8
+        } else {
             return Err(corrupt("wrong magic"));
-        }
+        };
         if fnv1a(body) != u64::from_le_bytes(*hash) {
             return Err(corrupt("its hash does not match"));
         }
@@ -117,7 +127,7 @@ impl Checkpoint {
             body.get(MAGIC.len() + 8 * k..MAGIC.len() + 8 * (k + 1))
                 .map(|w| u64::from_le_bytes(w.try_into().unwrap_or_default()))
         };
-        let header: Option<Vec<u64>> = (0..8).map(word).collect();
+        let header: Option<Vec<u64>> = (0..words).map(word).collect();
         let Some(
             [
                 dim,
@@ -128,6 +138,7 @@ impl Checkpoint {
                 metrics_bytes,
                 trajectory_bytes,
                 scenario_bytes,
+                vehicle @ ..,
             ],
         ) = header.as_deref()
         else {
@@ -146,11 +157,17 @@ impl Checkpoint {
         }
         // at most 3 × 10⁸ coordinates: no overflow
         let size = usize::try_from(dim * agents).map_err(|_| corrupt("too large"))?;
-        let state_end = MAGIC.len() + 8 * (8 + 2 * size);
+        let vehicle = match vehicle.first() {
+            // at most 32 values per agent: no overflow
+            Some(&k) if k <= 32 * agents => k as usize,
+            Some(k) => return Err(corrupt(&format!("it holds {k} vehicle state values"))),
+            None => 0,
+        };
+        let state_end = MAGIC.len() + 8 * (words + 2 * size + vehicle);
         if body.len() < state_end {
             return Err(corrupt("its length does not match its size"));
         }
-        let state: Option<Vec<u64>> = (8..8 + 2 * size).map(word).collect();
+        let state: Option<Vec<u64>> = (words..words + 2 * size + vehicle).map(word).collect();
         let state = state.ok_or_else(|| corrupt("its length does not match its size"))?;
         let texts = &body[state_end..];
         let (scenario, conditions) = usize::try_from(*scenario_bytes)
@@ -169,8 +186,9 @@ impl Checkpoint {
                 steps: *steps,
                 initial_energy: f64::from_bits(*energy),
                 positions: floats(&state[..size]),
-                velocities: floats(&state[size..]),
+                velocities: floats(&state[size..2 * size]),
                 conditions: text(conditions, "state of the conditions")?,
+                vehicle: floats(&state[2 * size..]),
             },
             records: *records,
             metrics_bytes: *metrics_bytes,

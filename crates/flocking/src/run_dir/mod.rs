@@ -20,7 +20,7 @@ pub mod write;
 pub use checkpoint::{CHECKPOINT_FILE, Checkpoint};
 pub use read::{
     Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv,
-    read_trajectory_npy, trajectory_header,
+    read_trajectory_npy, trajectory_header, trajectory_header_with,
 };
 pub use verdict::{VERDICT_FILE, judge_metrics_file, read_records, verdict_text};
 pub use write::{

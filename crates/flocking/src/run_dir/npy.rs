@@ -141,10 +141,15 @@ impl NpyFile {
     }
 }
 
-/// The dtype of a trajectory record: `t` and the `n × dim` positions `q` and velocities `p`.
+/// The dtype of a trajectory record: `t` and the `n × dim` positions `q` and velocities `p`,
+/// and with `vehicle` > 0 state values per agent the `n × vehicle` vehicle states `s`.
 #[must_use]
-pub fn trajectory_dtype(agents: usize, dim: usize) -> (String, u64) {
-    let descr =
-        format!("[('t', '<f8'), ('q', '<f8', ({agents}, {dim})), ('p', '<f8', ({agents}, {dim}))]");
-    (descr, 8 * (1 + 2 * agents * dim) as u64)
+pub fn trajectory_dtype(agents: usize, dim: usize, vehicle: usize) -> (String, u64) {
+    let mut descr =
+        format!("[('t', '<f8'), ('q', '<f8', ({agents}, {dim})), ('p', '<f8', ({agents}, {dim}))");
+    if vehicle > 0 {
+        descr.push_str(&format!(", ('s', '<f8', ({agents}, {vehicle}))"));
+    }
+    descr.push(']');
+    (descr, 8 * (1 + agents * (2 * dim + vehicle)) as u64)
 }

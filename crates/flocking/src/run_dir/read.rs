@@ -88,6 +88,10 @@ pub struct Trajectory {
     pub positions: Vec<f64>,
     /// The velocities, as the positions.
     pub velocities: Vec<f64>,
+    /// The names of each agent's vehicle state (empty for point masses).
+    pub vehicle_columns: Vec<String>,
+    /// The vehicles' states, frame by frame, agent by agent, `vehicle_columns.len()` each.
+    pub vehicle: Vec<f64>,
 }
 
 impl Trajectory {
@@ -109,6 +113,13 @@ impl Trajectory {
     pub fn velocities_at(&self, k: usize) -> &[f64] {
         let size = self.agents * self.dim;
         &self.velocities[k * size..(k + 1) * size]
+    }
+
+    /// The vehicles' states of frame `k`: `agents` rows of `vehicle_columns.len()` values.
+    #[must_use]
+    pub fn vehicle_at(&self, k: usize) -> &[f64] {
+        let size = self.agents * self.vehicle_columns.len();
+        &self.vehicle[k * size..(k + 1) * size]
     }
 }
 
@@ -186,7 +197,17 @@ pub fn trajectory_header(dim: usize) -> Vec<String> {
         .collect()
 }
 
-/// Reads a `trajectory.csv` (`t,id,x,y,vx,vy` or `t,id,x,y,z,vx,vy,vz`): rows grouped by t, each
+/// The header of a `trajectory.csv` in `dim` dimensions of agents whose vehicles have the
+/// state columns `vehicle` (after the velocity; none for point masses).
+#[must_use]
+pub fn trajectory_header_with(dim: usize, vehicle: &[&str]) -> Vec<String> {
+    let mut header = trajectory_header(dim);
+    header.extend(vehicle.iter().map(|c| (*c).to_owned()));
+    header
+}
+
+/// Reads a `trajectory.csv` (`t,id,x,y,vx,vy` or `t,id,x,y,z,vx,vy,vz`, then the vehicle's
+/// state columns if any): rows grouped by t, each
 /// frame listing every agent once (in any order).
 ///
 /// # Errors
@@ -196,7 +217,7 @@ pub fn read_trajectory_csv(path: &Path) -> Result<Trajectory, ReadError> {
     let table = Table::read(path)?;
     let Some(dim) = [2, 3]
         .into_iter()
-        .find(|&dim| table.header == trajectory_header(dim))
+        .find(|&dim| table.header.starts_with(&trajectory_header(dim)))
     else {
         return Err(table.error_at(
             1,
@@ -210,6 +231,7 @@ pub fn read_trajectory_csv(path: &Path) -> Result<Trajectory, ReadError> {
     };
     let mut trajectory = Trajectory {
         dim,
+        vehicle_columns: table.header[2 + 2 * dim..].to_vec(),
         ..Trajectory::default()
     };
     let mut start = 0;
@@ -277,7 +299,8 @@ fn push_frame(
     // n rows, ids in 0..n, none twice: every slot is filled
     for state in slots.into_iter().flatten() {
         trajectory.positions.extend_from_slice(&state[..dim]);
-        trajectory.velocities.extend_from_slice(&state[dim..]);
+        trajectory.velocities.extend_from_slice(&state[dim..2 * dim]);
+        trajectory.vehicle.extend_from_slice(&state[2 * dim..]);
     }
     Ok(())
 }
@@ -334,7 +357,11 @@ pub fn read_trajectory_npy(path: &Path) -> Result<Trajectory, ReadError> {
             )));
         }
     };
-    let record = 1 + 2 * agents * dim;
+    let vehicle = match numbers_after("('s', '<f8', (") {
+        Some(s) if s.len() == 2 && s[0] == agents => s[1],
+        _ => 0,
+    };
+    let record = 1 + agents * (2 * dim + vehicle);
     let data: Vec<f64> = bytes[header_end..]
         .chunks_exact(8)
         .take(records * record)
@@ -349,13 +376,16 @@ pub fn read_trajectory_npy(path: &Path) -> Result<Trajectory, ReadError> {
     let mut trajectory = Trajectory {
         dim,
         agents,
+        vehicle_columns: (1..=vehicle).map(|k| format!("s{k}")).collect(),
         ..Trajectory::default()
     };
     for r in data.chunks_exact(record) {
-        let (q, p) = r[1..].split_at(agents * dim);
+        let (q, rest) = r[1..].split_at(agents * dim);
+        let (p, s) = rest.split_at(agents * dim);
         trajectory.times.push(r[0]);
         trajectory.positions.extend_from_slice(q);
         trajectory.velocities.extend_from_slice(p);
+        trajectory.vehicle.extend_from_slice(s);
     }
     Ok(trajectory)
 }

@@ -36,7 +36,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, sync_dir};
 use super::npy::{NpyFile, trajectory_dtype};
-use super::read::trajectory_header;
+use super::read::trajectory_header_with;
 use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
 use crate::error::ScenarioError;
 use crate::owned::{self, DirError, DirLock, Kind, at, parent_of};
@@ -154,8 +154,11 @@ pub struct RunDirectory {
     stop: Option<&'static AtomicBool>,
     /// One trajectory record's bytes (CSV text or `.npy` row), reused.
     buffer: Vec<u8>,
-    /// The last recorded state (dim coordinates of q, then of p, per agent) for `final.csv`.
+    /// The last recorded state (dim coordinates of q, then of p, then the vehicle's state, per
+    /// agent) for `final.csv`.
     last_state: Vec<f64>,
+    /// The names of each agent's vehicle state (empty for point masses).
+    vehicle_columns: &'static [&'static str],
     /// The diagnostic columns of the header of `metrics.csv`, once written.
     columns: Option<Vec<String>>,
     /// The number of agents.
@@ -501,7 +504,7 @@ impl RunDirectory {
             .map_err(at(format_args!("create {}", metrics_path.display())))?;
         let trajectory = match format {
             TrajectoryFormat::Csv => {
-                let header = trajectory_csv_header(scenario.dim);
+                let header = trajectory_csv_header(scenario);
                 let path = partial.join("trajectory.csv");
                 let file = File::create(&path)
                     .and_then(|mut file| file.write_all(header.as_bytes()).map(|()| file))
@@ -512,7 +515,11 @@ impl RunDirectory {
                 }
             }
             TrajectoryFormat::Npy => {
-                let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
+                let (descr, row_bytes) = trajectory_dtype(
+                    scenario.agents,
+                    scenario.dim,
+                    scenario.vehicle.state_columns(scenario.dim).len(),
+                );
                 let path = partial.join("trajectory.npy");
                 Trajectory::Npy(
                     NpyFile::create(&path, descr, row_bytes)
@@ -532,6 +539,7 @@ impl RunDirectory {
             stop: None,
             buffer: Vec::new(),
             last_state: Vec::new(),
+            vehicle_columns: scenario.vehicle.state_columns(scenario.dim),
             columns: None,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
@@ -677,7 +685,11 @@ impl RunDirectory {
                 bytes: checkpoint.trajectory_bytes,
             },
             TrajectoryFormat::Npy => {
-                let (descr, row_bytes) = trajectory_dtype(scenario.agents, scenario.dim);
+                let (descr, row_bytes) = trajectory_dtype(
+                    scenario.agents,
+                    scenario.dim,
+                    scenario.vehicle.state_columns(scenario.dim).len(),
+                );
                 let path = partial.join("trajectory.npy");
                 Trajectory::Npy(
                     NpyFile::truncate_to(&path, descr, row_bytes, checkpoint.records)
@@ -698,6 +710,7 @@ impl RunDirectory {
             stop: None,
             buffer: Vec::new(),
             last_state: Vec::new(),
+            vehicle_columns: scenario.vehicle.state_columns(scenario.dim),
             columns,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
@@ -782,8 +795,9 @@ impl RunDirectory {
     }
 
     fn complete(&mut self) -> io::Result<Option<FlockingVerdict>> {
-        let mut last = format!("{}\n", trajectory_header(self.dim)[1..].join(",")).into_bytes();
-        let coordinates = 2 * self.dim;
+        let header = trajectory_header_with(self.dim, self.vehicle_columns);
+        let mut last = format!("{}\n", header[1..].join(",")).into_bytes();
+        let coordinates = 2 * self.dim + self.vehicle_columns.len();
         for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
             write_state(&mut last, i, state);
         }
@@ -902,9 +916,10 @@ impl RunDirectory {
     }
 }
 
-/// The header line of a `trajectory.csv` in `dim` dimensions.
-fn trajectory_csv_header(dim: usize) -> String {
-    format!("{}\n", trajectory_header(dim).join(","))
+/// The header line of the `trajectory.csv` of `scenario`.
+fn trajectory_csv_header(scenario: &Scenario) -> String {
+    let vehicle = scenario.vehicle.state_columns(scenario.dim);
+    format!("{}\n", trajectory_header_with(scenario.dim, vehicle).join(","))
 }
 
 /// The header line of `metrics.csv` with the diagnostic columns `columns`.
@@ -1300,19 +1315,23 @@ impl Recorder for RunDirectory {
         line.push('\n');
         let state = &record.state;
         let dim = state.dim;
+        let width = state.vehicle_columns.len();
         self.last_state.clear();
-        for (q, p) in state
+        for (i, (q, p)) in state
             .positions
             .chunks_exact(dim)
             .zip(state.velocities.chunks_exact(dim))
+            .enumerate()
         {
             self.last_state.extend_from_slice(q);
             self.last_state.extend_from_slice(p);
+            self.last_state
+                .extend_from_slice(&state.vehicle[i * width..(i + 1) * width]);
         }
         match &mut self.trajectory {
             Trajectory::Csv { file, bytes } => {
                 self.buffer.clear();
-                for (i, agent) in self.last_state.chunks_exact(2 * dim).enumerate() {
+                for (i, agent) in self.last_state.chunks_exact(2 * dim + width).enumerate() {
                     let _ = write!(self.buffer, "{},", record.t);
                     write_state(&mut self.buffer, i, agent);
                 }
@@ -1325,7 +1344,7 @@ impl Recorder for RunDirectory {
             Trajectory::Npy(file) => {
                 self.buffer.clear();
                 self.buffer.extend_from_slice(&record.t.to_le_bytes());
-                for rows in [&state.positions, &state.velocities] {
+                for rows in [&state.positions, &state.velocities, &state.vehicle] {
                     for x in rows.iter() {
                         self.buffer.extend_from_slice(&x.to_le_bytes());
                     }

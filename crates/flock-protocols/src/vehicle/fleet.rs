@@ -1,0 +1,205 @@
+//! [`Fleet`]: every agent's vehicle in a run, the one [`Vehicle`] and each agent's state, and
+//! what the vehicles measured over the last step.
+
+use flock_math::{Domain, Vector};
+
+use super::{DynVehicle, Vehicle};
+use crate::error::{ParamError, check};
+use crate::Swarm;
+
+/// The vehicles of a run: one [`Vehicle`], the agents' states (agents in original order, each
+/// [`Vehicle::state_columns`]`.len()` numbers) and the readings of the last step.
+#[derive(Debug)]
+pub struct Fleet<V> {
+    vehicle: DynVehicle<V>,
+    width: usize,
+    states: Vec<f64>,
+    /// Agents that hit each limit during the last step.
+    at_limit: Vec<usize>,
+    /// The mean over moving agents of ‖(p⁺ − p)/h − u‖ at the last step.
+    tracking_error: f64,
+}
+
+/// The most limits a vehicle counts ([`Vehicle::limit_columns`]).
+pub const MAX_LIMITS: usize = 8;
+
+/// The relative slack allowed when a step is checked to be a whole number of inner steps.
+const WHOLE: f64 = 1e-9;
+
+impl<V: Vector> Fleet<V> {
+    /// The fleet of `vehicle` for the agents of `swarm` at step `h`: every agent started in its
+    /// vehicle's equilibrium ([`Vehicle::start`], which may change its velocity), or, resuming,
+    /// in the `states` given (then `swarm` is already the vehicles' and is kept).
+    ///
+    /// # Errors
+    /// A parameter of the vehicle outside its domain (field `vehicle.…`), a step that is not a
+    /// whole number of inner steps (`vehicle.inner_step`), or states of another length or not
+    /// finite (`vehicle`).
+    pub fn new(
+        vehicle: DynVehicle<V>,
+        swarm: &mut Swarm<V>,
+        h: f64,
+        states: Option<Vec<f64>>,
+    ) -> Result<Self, ParamError> {
+        vehicle.validate().map_err(|e| e.within("vehicle"))?;
+        let inner = vehicle.inner_step();
+        check::positive("vehicle.inner_step", inner)?;
+        let ratio = h / inner;
+        check::require(
+            ratio >= 1.0 - WHOLE && (ratio - ratio.round()).abs() <= WHOLE * ratio,
+            "vehicle.inner_step",
+            inner,
+            &format!("does not divide the step h = {h} into whole inner steps"),
+            &format!(
+                "choose an inner step h / k for a whole k (h / {} = {})",
+                ratio.ceil().max(1.0),
+                h / ratio.ceil().max(1.0)
+            ),
+        )?;
+        let limits = vehicle.limit_columns().len();
+        check::require(
+            limits <= MAX_LIMITS,
+            "vehicle",
+            vehicle.name(),
+            &format!("counts {limits} limits, more than the {MAX_LIMITS} a fleet records"),
+            "count at most 8 limits in the vehicle's limit_columns",
+        )?;
+        let width = vehicle.state_columns().len();
+        let n = swarm.len();
+        let states = match states {
+            Some(states) => {
+                check::require(
+                    states.len() == n * width && states.iter().all(|x| x.is_finite()),
+                    "vehicle",
+                    vehicle.name(),
+                    &format!(
+                        "was given {} finite state values where {n} agents need {}",
+                        states.len(),
+                        n * width
+                    ),
+                    "resume from a checkpoint of the same scenario",
+                )?;
+                states
+            }
+            None => {
+                let mut states = vec![0.0; n * width];
+                let Swarm {
+                    positions,
+                    velocities,
+                } = swarm;
+                for ((q, p), state) in positions
+                    .iter_mut()
+                    .zip(velocities.iter_mut())
+                    .zip(states.chunks_exact_mut(width.max(1)))
+                {
+                    (*q, *p) = vehicle.start(*q, *p, state);
+                }
+                states
+            }
+        };
+        Ok(Self {
+            at_limit: vec![0; vehicle.limit_columns().len()],
+            vehicle,
+            width,
+            states,
+            tracking_error: 0.0,
+        })
+    }
+
+    /// The vehicle.
+    #[must_use]
+    pub fn vehicle(&self) -> &dyn Vehicle<V> {
+        &*self.vehicle
+    }
+
+    /// Every agent's state, agent i at `states()[i * k..(i + 1) * k]` with k the number of
+    /// [`Vehicle::state_columns`].
+    #[must_use]
+    pub fn states(&self) -> &[f64] {
+        &self.states
+    }
+
+    /// One step h of every agent: agent i, if it `moves(i)`, follows the command `commands[i]`
+    /// under the external acceleration `disturbance(i)` ([`Vehicle::advance`]); one that does
+    /// not keeps its position and state, with zero velocity. Positions are wrapped into a
+    /// periodic `domain`.
+    pub fn advance(
+        &mut self,
+        h: f64,
+        domain: &Domain<V>,
+        swarm: &mut Swarm<V>,
+        commands: &[V],
+        disturbance: impl Fn(usize) -> V + Sync,
+        moves: impl Fn(usize) -> bool + Sync,
+    ) {
+        let vehicle = &*self.vehicle;
+        let limits = self.at_limit.len();
+        let Swarm {
+            positions,
+            velocities,
+        } = swarm;
+        let agent = |(i, ((q, p), state)): (usize, ((&mut V, &mut V), &mut [f64]))| {
+            let mut hit = [false; MAX_LIMITS];
+            if !moves(i) {
+                *p = V::ZERO;
+                return (hit, None);
+            }
+            let before = *p;
+            let flags = &mut hit[..limits];
+            vehicle.advance(h, commands[i], disturbance(i), q, p, state, flags);
+            *q = domain.wrap(*q);
+            let error = ((*p - before) * (1.0 / h) - commands[i]).length();
+            (hit, Some(error))
+        };
+        let width = self.width.max(1);
+        #[cfg(feature = "parallel")]
+        let outcomes: Vec<([bool; MAX_LIMITS], Option<f64>)> = {
+            use rayon::prelude::*;
+            positions
+                .par_iter_mut()
+                .zip(velocities.par_iter_mut())
+                .zip(self.states.par_chunks_mut(width))
+                .enumerate()
+                .with_min_len(256)
+                .map(agent)
+                .collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let outcomes: Vec<([bool; MAX_LIMITS], Option<f64>)> = positions
+            .iter_mut()
+            .zip(velocities.iter_mut())
+            .zip(self.states.chunks_mut(width))
+            .enumerate()
+            .map(agent)
+            .collect();
+        self.at_limit.fill(0);
+        let (mut sum, mut moving) = (0.0, 0usize);
+        for (hit, error) in outcomes {
+            for (count, hit) in self.at_limit.iter_mut().zip(hit) {
+                *count += usize::from(hit);
+            }
+            if let Some(error) = error {
+                sum += error;
+                moving += 1;
+            }
+        }
+        self.tracking_error = if moving == 0 { 0.0 } else { sum / moving as f64 };
+    }
+
+    /// The vehicles' columns of `metrics.csv`: the agents at each limit during the last step
+    /// ([`Vehicle::limit_columns`]), then `acceleration_tracking_error`, the mean over moving
+    /// agents of ‖(p⁺ − p)/h − u_i‖, how far the reference point's mean acceleration over the
+    /// step was from the command u_i (0 for a point mass; the disturbance counts in it).
+    #[must_use]
+    pub fn diagnostics(&self) -> Vec<(&'static str, f64)> {
+        let mut columns: Vec<(&'static str, f64)> = self
+            .vehicle
+            .limit_columns()
+            .iter()
+            .zip(&self.at_limit)
+            .map(|(&name, &count)| (name, count as f64))
+            .collect();
+        columns.push(("acceleration_tracking_error", self.tracking_error));
+        columns
+    }
+}

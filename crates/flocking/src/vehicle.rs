@@ -1,0 +1,76 @@
+//! A scenario's `vehicle`: what each agent is, `PointMass` (the double integrator of the papers,
+//! the default, not written) or a vehicle of [`flock_protocols::vehicle`] whose reference point
+//! follows the protocol's commanded acceleration (docs/vehicles.md).
+
+use flock_protocols::DynVehicle;
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::ScenarioError;
+
+/// The vehicle of a scenario's agents.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub enum VehicleSpec {
+    /// The double integrator q̇ = p, ṗ = u (TAC 2006 eq. 1): today's agents, bit for bit.
+    #[default]
+    PointMass,
+}
+
+impl VehicleSpec {
+    /// Whether the agents are point masses (the default, not written in a resolved scenario).
+    #[must_use]
+    pub fn is_point_mass(&self) -> bool {
+        *self == Self::PointMass
+    }
+
+    /// The vehicle's name as a scenario writes it.
+    #[must_use]
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Self::PointMass => "PointMass",
+        }
+    }
+
+    /// The names of each agent's vehicle state in `dim` dimensions (columns of `final.csv`, the
+    /// trajectory and the checkpoint after the reference point's), empty for point masses or a
+    /// vehicle that does not exist in `dim` dimensions.
+    #[must_use]
+    pub fn state_columns(&self, dim: usize) -> &'static [&'static str] {
+        match dim {
+            2 => DVec2::vehicle(self)
+                .ok()
+                .flatten()
+                .map_or(&[][..], |v| v.state_columns()),
+            _ => DVec3::vehicle(self)
+                .ok()
+                .flatten()
+                .map_or(&[][..], |v| v.state_columns()),
+        }
+    }
+}
+
+/// The vehicles of a dimension: [`VehicleSpace::vehicle`] builds a scenario's vehicle for
+/// `Self`, or says that it does not exist in this dimension.
+pub trait VehicleSpace: flock_math::Vector + Sized {
+    /// The vehicle `spec` in this dimension; `None` for point masses.
+    ///
+    /// # Errors
+    /// A vehicle that does not exist in this dimension (field `vehicle`).
+    fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError>;
+}
+
+impl VehicleSpace for DVec2 {
+    fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
+        match spec {
+            VehicleSpec::PointMass => Ok(None),
+        }
+    }
+}
+
+impl VehicleSpace for DVec3 {
+    fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
+        match spec {
+            VehicleSpec::PointMass => Ok(None),
+        }
+    }
+}
