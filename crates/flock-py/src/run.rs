@@ -51,6 +51,11 @@ struct Memory {
     /// The dimension and the number of agents.
     dim: usize,
     agents: usize,
+    /// The names of each agent's vehicle state (none for point masses).
+    vehicle_columns: &'static [&'static str],
+    /// The recorded vehicle states (frames of n rows of k) when the trajectory is kept, else
+    /// the last.
+    vehicle: Vec<f64>,
 }
 
 /// The real columns before the diagnostics: t, the real metrics, the energy, the extra metrics.
@@ -101,6 +106,11 @@ impl Memory {
             .push(i64::try_from(m.components).unwrap_or(i64::MAX));
         let state = &record.state;
         (self.dim, self.agents) = (state.dim, state.agents());
+        self.vehicle_columns = state.vehicle_columns;
+        if !self.keep_trajectory {
+            self.vehicle.clear();
+        }
+        self.vehicle.extend_from_slice(&state.vehicle);
         self.last.0 = record.t;
         if self.keep_trajectory {
             self.positions.extend_from_slice(&state.positions);
@@ -162,7 +172,7 @@ impl Memory {
             };
             (times, self.positions, self.velocities)
         });
-        result(
+        let dict = result(
             py,
             scenario,
             columns,
@@ -170,7 +180,41 @@ impl Memory {
             (self.last, self.agents, self.dim),
             path,
             verdict,
-        )
+        )?;
+        let columns: Vec<String> = self.vehicle_columns.iter().map(|&c| c.to_owned()).collect();
+        let kept = self.keep_trajectory.then_some(self.vehicle.clone());
+        set_vehicle(&dict, &columns, kept, &self.vehicle, self.agents)?;
+        Ok(dict)
+    }
+}
+
+/// The vehicles' states in the result dict: `vehicle_columns` (their names, empty for point
+/// masses), `vehicle` ((T, n, k) when the trajectory is kept and the agents have a vehicle,
+/// else `None`) and `final["vehicle"]` ((n, k)), from the recorded `frames` and the states
+/// whose last frame is the final one (`states`).
+fn set_vehicle(
+    dict: &Bound<'_, PyDict>,
+    columns: &[String],
+    frames: Option<Vec<f64>>,
+    states: &[f64],
+    agents: usize,
+) -> PyResult<()> {
+    let py = dict.py();
+    let k = columns.len();
+    dict.set_item("vehicle_columns", columns.to_vec())?;
+    match frames.filter(|_| k > 0) {
+        Some(frames) => {
+            let count = frames.len() / (agents * k).max(1);
+            let array = PyArray1::from_vec(py, frames).reshape([count, agents, k])?;
+            dict.set_item("vehicle", array)?;
+        }
+        None => dict.set_item("vehicle", py.None())?,
+    }
+    let last = states[states.len() - (agents * k).min(states.len())..].to_vec();
+    let array = PyArray1::from_vec(py, last).reshape([agents, k])?;
+    match dict.get_item("final")? {
+        Some(last) => last.set_item("vehicle", array),
+        None => Ok(()),
     }
 }
 
@@ -589,7 +633,9 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
             (name, column)
         })
         .collect();
-    result(
+    let vehicle_columns = trajectory.vehicle_columns.clone();
+    let vehicle = trajectory.vehicle;
+    let dict = result(
         py,
         &files.scenario,
         columns,
@@ -601,5 +647,7 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         (last, agents, dim),
         Some(&dir),
         verdict,
-    )
+    )?;
+    set_vehicle(&dict, &vehicle_columns, Some(vehicle.clone()), &vehicle, agents)?;
+    Ok(dict)
 }

@@ -170,26 +170,39 @@ class Simulation:
         """The energy H of the current state."""
 
 class State:
-    """The state of every agent at time ``t``: (n, dim) positions and velocities."""
+    """The state of every agent at time ``t``: (n, dim) positions and velocities, and (n, k)
+    vehicle states named by ``vehicle_columns`` (None for point masses)."""
 
     t: float
     positions: npt.NDArray[np.float64]
     velocities: npt.NDArray[np.float64]
+    vehicle: Optional[npt.NDArray[np.float64]]
+    vehicle_columns: Tuple[str, ...]
     def __init__(
-        self, t: float, positions: npt.NDArray[np.float64], velocities: npt.NDArray[np.float64]
+        self,
+        t: float,
+        positions: npt.NDArray[np.float64],
+        velocities: npt.NDArray[np.float64],
+        vehicle: Optional[npt.NDArray[np.float64]] = None,
+        vehicle_columns: Tuple[str, ...] = (),
     ) -> None: ...
 
 class Trajectory:
-    """The recorded states: times (T,), positions and velocities (T, n, dim)."""
+    """The recorded states: times (T,), positions and velocities (T, n, dim), and the vehicle
+    states (T, n, k) named by ``vehicle_columns`` (None for point masses)."""
 
     times: npt.NDArray[np.float64]
     positions: npt.NDArray[np.float64]
     velocities: npt.NDArray[np.float64]
+    vehicle: Optional[npt.NDArray[np.float64]]
+    vehicle_columns: Tuple[str, ...]
     def __init__(
         self,
         times: npt.NDArray[np.float64],
         positions: npt.NDArray[np.float64],
         velocities: npt.NDArray[np.float64],
+        vehicle: Optional[npt.NDArray[np.float64]] = None,
+        vehicle_columns: Tuple[str, ...] = (),
     ) -> None: ...
 
 class Run:

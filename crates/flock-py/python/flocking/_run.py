@@ -6,7 +6,7 @@ import html as _html
 import importlib as _importlib
 from os import PathLike as _PathLike
 import sys as _sys
-from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Tuple, Union
 
 import numpy as _np
 
@@ -161,11 +161,16 @@ def _require(module: str, extra: str, what: str) -> Any:
 @_dataclass(frozen=True, repr=False)
 class State:
     """The state of every agent at time ``t``: ``positions`` and ``velocities`` are (n, dim)
-    float64 arrays, agent i on row i (its original index)."""
+    float64 arrays, agent i on row i (its original index). With a ``vehicle`` other than
+    ``PointMass``, the positions and velocities are the reference point's and ``vehicle`` is
+    the (n, k) array of each vehicle's state, named by ``vehicle_columns`` (``heading``,
+    ``bank``, ``attitude_w``…, docs/vehicles.md); None for point masses."""
 
     t: float
     positions: _np.ndarray
     velocities: _np.ndarray
+    vehicle: Optional[_np.ndarray] = None
+    vehicle_columns: Tuple[str, ...] = ()
 
     def __repr__(self) -> str:
         n, dim = self.positions.shape
@@ -175,11 +180,14 @@ class State:
 @_dataclass(frozen=True, repr=False)
 class Trajectory:
     """The recorded states: ``times`` (T,), ``positions`` and ``velocities`` (T, n, dim) float64
-    arrays; frame k is the state at ``times[k]``."""
+    arrays; frame k is the state at ``times[k]``. ``vehicle`` (T, n, k) holds the vehicles'
+    states named by ``vehicle_columns`` (None for point masses)."""
 
     times: _np.ndarray
     positions: _np.ndarray
     velocities: _np.ndarray
+    vehicle: Optional[_np.ndarray] = None
+    vehicle_columns: Tuple[str, ...] = ()
 
     def __repr__(self) -> str:
         frames, n, dim = self.positions.shape
@@ -365,14 +373,18 @@ class Run:
     @classmethod
     def _from_dict(cls, raw: Dict[str, Any]) -> "Run":
         trajectory = None
+        columns = tuple(raw["vehicle_columns"])
         if raw["times"] is not None:
-            trajectory = Trajectory(raw["times"], raw["positions"], raw["velocities"])
+            trajectory = Trajectory(
+                raw["times"], raw["positions"], raw["velocities"], raw["vehicle"], columns
+            )
         final = raw["final"]
+        vehicle = final["vehicle"] if columns else None
         return cls(
             scenario=raw["scenario"],
             metrics=raw["metrics"],
             trajectory=trajectory,
-            final=State(final["t"], final["positions"], final["velocities"]),
+            final=State(final["t"], final["positions"], final["velocities"], vehicle, columns),
             path=raw["path"],
             verdict=raw["verdict"],
         )
