@@ -334,7 +334,10 @@ fn data_json(scene: &Scene, frames: &[usize], options: &PlayerOptions) -> String
             .collect(),
         p: frames
             .iter()
-            .map(|&f| flat(&scene.frames[f].velocities, dp))
+            .map(|&f| {
+                let frame = &scene.frames[f];
+                flat(frame.headings.as_ref().unwrap_or(&frame.velocities), dp)
+            })
             .collect(),
         g: frames
             .iter()

@@ -4,7 +4,9 @@
 
 use std::path::Path;
 
+use flocking::Scenario;
 use flocking::run_dir::{self, ReadError, Trajectory};
+use flocking::vehicle::VehicleSpec;
 use glam::DVec3;
 
 use crate::error::VizError;
@@ -34,11 +36,19 @@ impl RunData {
         let metrics = load_metrics(&dir.join("metrics.csv"))?;
         let npy = dir.join("trajectory.npy");
         let csv = dir.join("trajectory.csv");
-        let (dim, frames) = if !csv.exists() && npy.exists() {
-            load_trajectory_npy(&npy)?
+        let trajectory = if !csv.exists() && npy.exists() {
+            run_dir::read_trajectory_npy(&npy)?
         } else {
-            load_trajectory(&csv)?
+            run_dir::read_trajectory_csv(&csv)?
         };
+        // vehicles point along their heading, which their scenario's vehicle computes
+        let vehicle = if trajectory.vehicle_columns.is_empty() {
+            None
+        } else {
+            let scenario = Scenario::load(dir.join("scenario.ron"));
+            Some(scenario.map_err(|e| VizError::Invalid(e.to_string()))?.vehicle)
+        };
+        let (dim, frames) = frames_of(&trajectory, vehicle.as_ref());
         Ok(Self {
             dim,
             metrics,
@@ -74,7 +84,7 @@ pub fn load_metrics(path: &Path) -> Result<Metrics, VizError> {
 /// # Errors
 /// As [`RunData::load`].
 pub fn load_trajectory(path: &Path) -> Result<(usize, Vec<Frame>), VizError> {
-    Ok(frames_of(&run_dir::read_trajectory_csv(path)?))
+    Ok(frames_of(&run_dir::read_trajectory_csv(path)?, None))
 }
 
 /// Reads a `trajectory.npy` ([`run_dir::read_trajectory_npy`]): the dimension and the frames.
@@ -82,16 +92,19 @@ pub fn load_trajectory(path: &Path) -> Result<(usize, Vec<Frame>), VizError> {
 /// # Errors
 /// As [`RunData::load`].
 pub fn load_trajectory_npy(path: &Path) -> Result<(usize, Vec<Frame>), VizError> {
-    Ok(frames_of(&run_dir::read_trajectory_npy(path)?))
+    Ok(frames_of(&run_dir::read_trajectory_npy(path)?, None))
 }
 
-/// The frames of a trajectory, vectors lifted to 3D.
-fn frames_of(trajectory: &Trajectory) -> (usize, Vec<Frame>) {
+/// The frames of a trajectory, vectors lifted to 3D, with each `vehicle`'s heading.
+fn frames_of(trajectory: &Trajectory, vehicle: Option<&VehicleSpec>) -> (usize, Vec<Frame>) {
     let dim = trajectory.dim;
     let vector = |v: &[f64]| DVec3::new(v[0], v[1], if dim == 3 { v[2] } else { 0.0 });
     let frames = (0..trajectory.frames())
         .map(|k| {
-            Frame::new(
+            let headings = vehicle.and_then(|v| {
+                v.headings(dim, trajectory.velocities_at(k), trajectory.vehicle_at(k))
+            });
+            let frame = Frame::new(
                 trajectory.times[k],
                 trajectory
                     .positions_at(k)
@@ -103,7 +116,11 @@ fn frames_of(trajectory: &Trajectory) -> (usize, Vec<Frame>) {
                     .chunks_exact(dim)
                     .map(vector)
                     .collect(),
-            )
+            );
+            match headings {
+                Some(rows) => frame.with_headings(rows.chunks_exact(dim).map(vector).collect()),
+                None => frame,
+            }
         })
         .collect();
     (dim, frames)

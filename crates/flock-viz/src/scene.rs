@@ -39,6 +39,9 @@ pub struct Frame {
     pub velocities: Vec<DVec3>,
     /// The γ-agent's position q_r, when the run has one.
     pub gamma: Option<DVec3>,
+    /// The direction each vehicle points (its body's forward axis), aligned with `positions`,
+    /// for agents that are vehicles; `None` for point masses, which point along their velocity.
+    pub headings: Option<Vec<DVec3>>,
 }
 
 impl Frame {
@@ -50,7 +53,23 @@ impl Frame {
             positions,
             velocities,
             gamma: None,
+            headings: None,
         }
+    }
+
+    /// The frame with each vehicle pointing along `headings` (aligned with the positions).
+    #[must_use]
+    pub fn with_headings(mut self, headings: Vec<DVec3>) -> Self {
+        self.headings = Some(headings);
+        self
+    }
+
+    /// The direction agent `i`'s marker points: its vehicle's heading, or its velocity.
+    #[must_use]
+    pub fn facing(&self, i: usize) -> DVec3 {
+        self.headings
+            .as_ref()
+            .map_or(self.velocities[i], |headings| headings[i])
     }
 
     /// A frame from a run's own vectors (`DVec2` or `DVec3`), as the protocols hold them.

@@ -720,7 +720,7 @@ fn draw_agents<DB: DrawingBackend>(
             continue;
         }
         let agent = style::rgb(cue.fade(AGENT, cue.depth(i))).filled();
-        match framer.project_vector(state.velocities[i]).try_normalize() {
+        match framer.project_vector(state.facing(i)).try_normalize() {
             Some(e) => {
                 let side = 0.36 * length * e.perp();
                 let tip = centre + (2.0 / 3.0) * length * e;

@@ -49,6 +49,37 @@ impl VehicleSpec {
     }
 }
 
+impl VehicleSpec {
+    /// The direction each vehicle points ([`Vehicle::heading`](flock_protocols::Vehicle::heading)),
+    /// `dim` numbers per agent, from the reference points' `velocities` (`dim` per agent) and the
+    /// vehicles' `states`; `None` for point masses (they point along their velocity).
+    #[must_use]
+    pub fn headings(&self, dim: usize, velocities: &[f64], states: &[f64]) -> Option<Vec<f64>> {
+        match dim {
+            2 => headings::<DVec2>(self, velocities, states),
+            _ => headings::<DVec3>(self, velocities, states),
+        }
+    }
+}
+
+/// [`VehicleSpec::headings`] in the dimension of `V`.
+fn headings<V: VehicleSpace>(
+    spec: &VehicleSpec,
+    velocities: &[f64],
+    states: &[f64],
+) -> Option<Vec<f64>> {
+    let vehicle = V::vehicle(spec).ok().flatten()?;
+    let width = vehicle.state_columns().len().max(1);
+    let rows = velocities
+        .chunks_exact(V::DIM)
+        .zip(states.chunks_exact(width))
+        .flat_map(|(p, state)| {
+            let e = vehicle.heading(V::from_fn(|k| p[k]), state);
+            (0..V::DIM).map(move |k| e.coord(k))
+        });
+    Some(rows.collect())
+}
+
 /// The vehicles of a dimension: [`VehicleSpace::vehicle`] builds a scenario's vehicle for
 /// `Self`, or says that it does not exist in this dimension.
 pub trait VehicleSpace: flock_math::Vector + Sized {
