@@ -16,6 +16,10 @@ use flock_math::Vector;
 
 use crate::ParamError;
 
+pub mod quadrotor;
+
+pub use quadrotor::{GRAVITY, Quadrotor, QuadrotorParams};
+
 /// A vehicle's dynamics and the controller that makes its reference point follow a commanded
 /// acceleration. One value serves every agent; each agent's state is a slice of
 /// [`Vehicle::state_columns`]`.len()` numbers.
