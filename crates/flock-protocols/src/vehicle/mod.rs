@@ -17,8 +17,10 @@ use flock_math::Vector;
 use crate::ParamError;
 
 pub mod fleet;
+pub mod quadrotor;
 
 pub use fleet::Fleet;
+pub use quadrotor::{GRAVITY, Quadrotor, QuadrotorParams};
 
 /// A vehicle's dynamics and the controller that makes its reference point follow a commanded
 /// acceleration. One value serves every agent; each agent's state is a slice of
