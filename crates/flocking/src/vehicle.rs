@@ -3,6 +3,7 @@
 //! follows the protocol's commanded acceleration (docs/vehicles.md).
 
 use flock_protocols::DynVehicle;
+use flock_protocols::vehicle::{Quadrotor, QuadrotorParams};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -14,6 +15,10 @@ pub enum VehicleSpec {
     /// The double integrator q̇ = p, ṗ = u (TAC 2006 eq. 1): today's agents, bit for bit.
     #[default]
     PointMass,
+    /// A quadrotor in 3D: the rigid body on SE(3) with four rotors under the geometric tracking
+    /// controller of Lee, Leok & McClamroch (CDC 2010), the command its feed-forward; the
+    /// parameters default to a Crazyflie 2.x ([`QuadrotorParams::crazyflie`]).
+    Quadrotor(QuadrotorParams),
 }
 
 impl VehicleSpec {
@@ -28,6 +33,7 @@ impl VehicleSpec {
     pub const fn name(&self) -> &'static str {
         match self {
             Self::PointMass => "PointMass",
+            Self::Quadrotor(_) => "Quadrotor",
         }
     }
 
@@ -94,6 +100,7 @@ impl VehicleSpace for DVec2 {
     fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
         match spec {
             VehicleSpec::PointMass => Ok(None),
+            VehicleSpec::Quadrotor(_) => Err(not_in(spec, 2, "set dim: 3")),
         }
     }
 }
@@ -102,6 +109,20 @@ impl VehicleSpace for DVec3 {
     fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
         match spec {
             VehicleSpec::PointMass => Ok(None),
+            VehicleSpec::Quadrotor(params) => {
+                let quadrotor = Quadrotor::new(params.clone()).map_err(|e| e.within("vehicle"))?;
+                Ok(Some(Box::new(quadrotor)))
+            }
         }
     }
+}
+
+/// The error of a vehicle that does not exist in `dim` dimensions.
+fn not_in(spec: &VehicleSpec, dim: usize, fix: &str) -> ScenarioError {
+    ScenarioError::invalid(
+        "vehicle",
+        spec.name(),
+        format!("does not exist in {dim}D"),
+        format!("{fix}, or choose another vehicle (docs/vehicles.md)"),
+    )
 }
