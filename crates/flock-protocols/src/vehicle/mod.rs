@@ -16,6 +16,12 @@ use flock_math::Vector;
 
 use crate::ParamError;
 
+pub mod fixed_wing;
+pub mod unicycle;
+
+pub use fixed_wing::{FixedWing, FixedWingParams};
+pub use unicycle::{Unicycle, UnicycleParams};
+
 /// A vehicle's dynamics and the controller that makes its reference point follow a commanded
 /// acceleration. One value serves every agent; each agent's state is a slice of
 /// [`Vehicle::state_columns`]`.len()` numbers.
