@@ -16,11 +16,19 @@ use flock_math::Vector;
 
 use crate::ParamError;
 
+pub mod fixed_wing;
 pub mod fleet;
 pub mod quadrotor;
+pub mod unicycle;
 
+pub use fixed_wing::{FixedWing, FixedWingParams};
 pub use fleet::Fleet;
-pub use quadrotor::{GRAVITY, Quadrotor, QuadrotorParams};
+pub use quadrotor::{Quadrotor, QuadrotorParams};
+pub use unicycle::{Unicycle, UnicycleParams};
+
+/// The acceleration of gravity g (m/s²), along −e3 in the flock's z-up coordinates (the value
+/// Beard & McLain's simulations and gym-pybullet-drones take).
+pub const GRAVITY: f64 = 9.81;
 
 /// A vehicle's dynamics and the controller that makes its reference point follow a commanded
 /// acceleration. One value serves every agent; each agent's state is a slice of

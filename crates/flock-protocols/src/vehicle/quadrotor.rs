@@ -67,10 +67,8 @@ use core::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use glam::{DMat3, DQuat, DVec3};
 
 use super::Vehicle;
+use super::GRAVITY;
 use crate::error::{ParamError, check};
-
-/// The acceleration of gravity g (m s⁻²), along −e3 in the flock's z-up coordinates.
-pub const GRAVITY: f64 = 9.81;
 
 /// Revolutions per minute in one radian per second, 30/π: a coefficient per rpm² times its square
 /// is the coefficient per (rad/s)².
