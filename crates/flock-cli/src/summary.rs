@@ -5,7 +5,8 @@ use std::fmt;
 use flocking::RunSummary;
 use flocking::metrics::{Closest, FlockMetrics};
 
-/// The diagnostic columns that count agents (`docs/outputs.md`): printed as whole numbers.
+/// The diagnostic columns that count agents (`docs/outputs.md`), besides the vehicles' limits
+/// (`at_…_limit`): printed as whole numbers.
 pub const COUNT_COLUMNS: [&str; 4] = [
     "inside_obstacles",
     "at_acceleration_limit",
@@ -17,7 +18,9 @@ pub const COUNT_COLUMNS: [&str; 4] = [
 /// value in scientific notation (`defect_factor 1.234560e-3`).
 #[must_use]
 pub fn diagnostic(name: &str, value: f64) -> String {
-    if COUNT_COLUMNS.contains(&name) && value.fract() == 0.0 && value.abs() < 1e15 {
+    let counts =
+        COUNT_COLUMNS.contains(&name) || name.starts_with("at_") && name.ends_with("_limit");
+    if counts && value.fract() == 0.0 && value.abs() < 1e15 {
         format!("{value:.0}")
     } else {
         format!("{value:.6e}")
@@ -94,7 +97,7 @@ impl fmt::Display for Report<'_> {
             )?;
         }
         for &(name, value) in &s.diagnostics {
-            writeln!(f, "  {name:<22}{}", diagnostic(name, value))?;
+            writeln!(f, "  {name:<21} {}", diagnostic(name, value))?;
         }
         writeln!(f, "  lattice               {}", s.lattice)?;
         // of this run's records (after its start, when resumed)
@@ -131,6 +134,7 @@ mod tests {
         assert_eq!(diagnostic("inside_obstacles", 0.0), "0");
         assert_eq!(diagnostic("at_speed_limit", 12.0), "12");
         assert_eq!(diagnostic("at_acceleration_limit", 3.0), "3");
+        assert_eq!(diagnostic("at_bank_limit", 30.0), "30");
         assert_eq!(diagnostic("links_lost", 1.0), "1.000000e0");
         assert_eq!(diagnostic("information_age", 0.05), "5.000000e-2");
     }

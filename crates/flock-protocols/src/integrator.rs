@@ -592,7 +592,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             );
             if let Some(fleet) = self.fleet.as_mut() {
                 let (h, domain) = (self.step, &self.domain);
-                fleet.advance(h, domain, &mut self.swarm, &self.inputs, |_| V::ZERO, |_| true);
+                fleet.advance(
+                    h,
+                    domain,
+                    &mut self.swarm,
+                    &self.inputs,
+                    |_| V::ZERO,
+                    |_| true,
+                );
             }
         } else {
             match (self.protocol.update(), self.integrator) {

@@ -648,6 +648,12 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         Some(&dir),
         verdict,
     )?;
-    set_vehicle(&dict, &vehicle_columns, Some(vehicle.clone()), &vehicle, agents)?;
+    set_vehicle(
+        &dict,
+        &vehicle_columns,
+        Some(vehicle.clone()),
+        &vehicle,
+        agents,
+    )?;
     Ok(dict)
 }

@@ -46,7 +46,11 @@ impl RunData {
             None
         } else {
             let scenario = Scenario::load(dir.join("scenario.ron"));
-            Some(scenario.map_err(|e| VizError::Invalid(e.to_string()))?.vehicle)
+            Some(
+                scenario
+                    .map_err(|e| VizError::Invalid(e.to_string()))?
+                    .vehicle,
+            )
         };
         let (dim, frames) = frames_of(&trajectory, vehicle.as_ref());
         Ok(Self {

@@ -3,18 +3,28 @@
 //! follows the protocol's commanded acceleration (docs/vehicles.md).
 
 use flock_protocols::DynVehicle;
-use flock_protocols::vehicle::{Quadrotor, QuadrotorParams};
+use flock_protocols::vehicle::{
+    FixedWing, FixedWingParams, Quadrotor, QuadrotorParams, Unicycle, UnicycleParams,
+};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 use crate::error::ScenarioError;
 
-/// The vehicle of a scenario's agents.
+/// The vehicle of a scenario's agents. A vehicle holds its parameters as the scenario's other
+/// optional sections do (`Some((…))`): `vehicle: Quadrotor(())` for the defaults,
+/// `vehicle: Unicycle((handle: 0.1, max_speed: 0.3))` to change some.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum VehicleSpec {
     /// The double integrator q̇ = p, ṗ = u (TAC 2006 eq. 1): today's agents, bit for bit.
     #[default]
     PointMass,
+    /// A ground robot in 2D: the kinematic unicycle (differential drive) whose handle, ℓ ahead
+    /// of its axle, is the reference point; defaults of a TurtleBot3 Burger.
+    Unicycle(UnicycleParams),
+    /// A fixed-wing aircraft in 2D or 3D: Beard & McLain's guidance model (2012, ch. 9),
+    /// airspeed in [V_min, V_max], coordinated turns with a bank limit, flight-path angle in 3D.
+    FixedWing(FixedWingParams),
     /// A quadrotor in 3D: the rigid body on SE(3) with four rotors under the geometric tracking
     /// controller of Lee, Leok & McClamroch (CDC 2010), the command its feed-forward; the
     /// parameters default to a Crazyflie 2.x ([`QuadrotorParams::crazyflie`]).
@@ -33,6 +43,8 @@ impl VehicleSpec {
     pub const fn name(&self) -> &'static str {
         match self {
             Self::PointMass => "PointMass",
+            Self::Unicycle(_) => "Unicycle",
+            Self::FixedWing(_) => "FixedWing",
             Self::Quadrotor(_) => "Quadrotor",
         }
     }
@@ -100,6 +112,8 @@ impl VehicleSpace for DVec2 {
     fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
         match spec {
             VehicleSpec::PointMass => Ok(None),
+            VehicleSpec::Unicycle(params) => boxed(Unicycle::new(params.clone())),
+            VehicleSpec::FixedWing(params) => boxed(FixedWing::new(params.clone())),
             VehicleSpec::Quadrotor(_) => Err(not_in(spec, 2, "set dim: 3")),
         }
     }
@@ -109,11 +123,20 @@ impl VehicleSpace for DVec3 {
     fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
         match spec {
             VehicleSpec::PointMass => Ok(None),
-            VehicleSpec::Quadrotor(params) => {
-                let quadrotor = Quadrotor::new(params.clone()).map_err(|e| e.within("vehicle"))?;
-                Ok(Some(Box::new(quadrotor)))
-            }
+            VehicleSpec::Unicycle(_) => Err(not_in(spec, 3, "set dim: 2")),
+            VehicleSpec::FixedWing(params) => boxed(FixedWing::new(params.clone())),
+            VehicleSpec::Quadrotor(params) => boxed(Quadrotor::new(params.clone())),
         }
+    }
+}
+
+/// A vehicle built from its parameters, boxed; their error inside `vehicle`.
+fn boxed<V: flock_math::Vector, T: flock_protocols::Vehicle<V> + 'static>(
+    vehicle: Result<T, flock_protocols::ParamError>,
+) -> Result<Option<DynVehicle<V>>, ScenarioError> {
+    match vehicle {
+        Ok(vehicle) => Ok(Some(Box::new(vehicle))),
+        Err(e) => Err(e.within("vehicle").into()),
     }
 }
 

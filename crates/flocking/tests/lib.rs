@@ -22,3 +22,4 @@ mod stability;
 mod storage_order;
 mod sweep;
 mod topology;
+mod vehicles;

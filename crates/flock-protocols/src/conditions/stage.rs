@@ -102,7 +102,10 @@ pub fn check_vehicle<V: Vector>(
         return Err(ParamError::new(
             "conditions.actuation.max_speed",
             "set",
-            format!("clips a point mass's speed; a {}'s own limits bound its speed", vehicle.name()),
+            format!(
+                "clips a point mass's speed; a {}'s own limits bound its speed",
+                vehicle.name()
+            ),
             "remove max_speed and set the vehicle's speed limits",
         ));
     }

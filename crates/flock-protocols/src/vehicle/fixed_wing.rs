@@ -24,9 +24,9 @@ use core::f64::consts::FRAC_PI_2;
 
 use glam::{DVec2, DVec3};
 
+use super::GRAVITY;
 use super::Vehicle;
 use super::unicycle::{inner_steps, wrap_angle};
-use super::GRAVITY;
 use crate::error::{ParamError, check};
 
 /// The fixed wing's parameters (SI units, angles in radians). Defaults: Beard & McLain's

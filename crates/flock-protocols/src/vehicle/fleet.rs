@@ -4,8 +4,8 @@
 use flock_math::{Domain, Vector};
 
 use super::{DynVehicle, Vehicle};
-use crate::error::{ParamError, check};
 use crate::Swarm;
+use crate::error::{ParamError, check};
 
 /// The vehicles of a run: one [`Vehicle`], the agents' states (agents in original order, each
 /// [`Vehicle::state_columns`]`.len()` numbers) and the readings of the last step.
@@ -183,7 +183,11 @@ impl<V: Vector> Fleet<V> {
                 moving += 1;
             }
         }
-        self.tracking_error = if moving == 0 { 0.0 } else { sum / moving as f64 };
+        self.tracking_error = if moving == 0 {
+            0.0
+        } else {
+            sum / moving as f64
+        };
     }
 
     /// The vehicles' columns of `metrics.csv`: the agents at each limit during the last step

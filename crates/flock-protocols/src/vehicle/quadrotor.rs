@@ -66,8 +66,8 @@ use core::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
 use glam::{DMat3, DQuat, DVec3};
 
-use super::Vehicle;
 use super::GRAVITY;
+use super::Vehicle;
 use crate::error::{ParamError, check};
 
 /// Revolutions per minute in one radian per second, 30/π: a coefficient per rpm² times its square

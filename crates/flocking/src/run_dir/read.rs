@@ -299,7 +299,9 @@ fn push_frame(
     // n rows, ids in 0..n, none twice: every slot is filled
     for state in slots.into_iter().flatten() {
         trajectory.positions.extend_from_slice(&state[..dim]);
-        trajectory.velocities.extend_from_slice(&state[dim..2 * dim]);
+        trajectory
+            .velocities
+            .extend_from_slice(&state[dim..2 * dim]);
         trajectory.vehicle.extend_from_slice(&state[2 * dim..]);
     }
     Ok(())

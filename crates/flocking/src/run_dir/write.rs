@@ -919,7 +919,10 @@ impl RunDirectory {
 /// The header line of the `trajectory.csv` of `scenario`.
 fn trajectory_csv_header(scenario: &Scenario) -> String {
     let vehicle = scenario.vehicle.state_columns(scenario.dim);
-    format!("{}\n", trajectory_header_with(scenario.dim, vehicle).join(","))
+    format!(
+        "{}\n",
+        trajectory_header_with(scenario.dim, vehicle).join(",")
+    )
 }
 
 /// The header line of `metrics.csv` with the diagnostic columns `columns`.

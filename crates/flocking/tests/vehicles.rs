@@ -1,0 +1,316 @@
+//! Vehicles as scenarios (docs/vehicles.md): the unicycle's handle is the point mass while no
+//! limit binds, its limits hold at every step, the vehicle fixtures flock by Definition 5 (and
+//! the loitering fixed wings as docs/vehicles.md measures them), every vehicle resumes from a
+//! checkpoint with the bits of the whole run (vehicle states included), and what a vehicle
+//! cannot take is refused with its field.
+
+use flocking::metrics::{FlockingCriteria, FlockingVerdict};
+use flocking::serde_json::json;
+use flocking::{DynSimulation, Record, Recorder, Scenario, ScenarioError, Start};
+
+use crate::common::fixture;
+
+/// `scenario` with `changes` by dotted path.
+fn changed(scenario: &Scenario, changes: Vec<(&str, flocking::serde_json::Value)>) -> Scenario {
+    scenario.with_values(changes).expect("valid changes")
+}
+
+/// Without saturation (limits far beyond what the run asks) and with one inner step per step,
+/// the handles of the unicycles are the point masses of the same scenario, bit for bit: the
+/// handle is a double integrator integrated by the same symplectic Euler (docs/vehicles.md).
+/// With the TurtleBot's own limits they are not (the test can fail).
+#[test]
+fn unicycle_handles_are_the_point_masses_while_no_limit_binds() {
+    let robots = fixture("unicycle_alg2_n50");
+    let free = changed(
+        &robots,
+        vec![
+            ("vehicle.max_speed", json!(1e6)),
+            ("vehicle.max_turn_rate", json!(1e6)),
+            ("vehicle.track_width", json!(null)),
+            ("vehicle.max_wheel_speed", json!(null)),
+            ("vehicle.inner_step", json!(robots.step)),
+        ],
+    );
+    let mut points = robots.clone();
+    points.vehicle = flocking::vehicle::VehicleSpec::PointMass;
+    let state_bits = |sim: &DynSimulation| {
+        let state = sim.state();
+        let bits: Vec<u64> = state
+            .positions
+            .iter()
+            .chain(state.velocities.iter())
+            .map(|x| x.to_bits())
+            .collect();
+        bits
+    };
+    let run = |scenario: &Scenario| {
+        let mut sim = DynSimulation::new(scenario).expect("a valid scenario");
+        for _ in 0..2000 {
+            sim.step();
+        }
+        sim
+    };
+    let (handles, masses, limited) = (run(&free), run(&points), run(&robots));
+    assert_eq!(state_bits(&handles), state_bits(&masses));
+    assert_ne!(state_bits(&limited), state_bits(&masses));
+}
+
+/// The limits of the unicycle hold at every step of its fixture (|v| ≤ v_max, |ω| ≤ ω_max, both
+/// wheels within their speed), and they do bind during the approach.
+#[test]
+fn unicycle_limits_hold_at_every_step() {
+    let scenario = changed(
+        &fixture("unicycle_alg2_n50"),
+        vec![("duration", json!(100.0))],
+    );
+    let (v_max, omega_max, half_track, wheel_max) = (0.22, 2.84, 0.08, 0.22);
+    let mut sim = DynSimulation::new(&scenario).expect("a valid scenario");
+    let mut at_limit = 0usize;
+    for _ in 0..scenario.steps() {
+        sim.step();
+        let state = sim.state();
+        assert_eq!(state.vehicle_columns, ["heading", "speed", "turn_rate"]);
+        for row in state.vehicle.chunks_exact(3) {
+            let (v, omega) = (row[1], row[2]);
+            let slack = 1.0 + 1e-12;
+            assert!(v.abs() <= v_max * slack, "v = {v}");
+            assert!(omega.abs() <= omega_max * slack, "ω = {omega}");
+            let wheels = [v - omega * half_track, v + omega * half_track];
+            for wheel in wheels {
+                assert!(wheel.abs() <= wheel_max * slack, "wheel speed {wheel}");
+            }
+            let usage = wheels
+                .iter()
+                .map(|w| w.abs() / wheel_max)
+                .fold((v / v_max).abs().max((omega / omega_max).abs()), f64::max);
+            at_limit += usize::from(usage >= 1.0 - 1e-9);
+        }
+    }
+    assert!(at_limit > 0, "no robot ever drove at one of its limits");
+}
+
+/// Definition 5's verdict on the records of a whole run of `scenario`.
+fn verdict(scenario: &Scenario) -> FlockingVerdict {
+    let summary = flocking::run(scenario, &mut ()).expect("the run");
+    FlockingVerdict::judge(&summary.history, &FlockingCriteria::default()).expect("records")
+}
+
+/// The vehicle fixtures flock by Definition 5 (strict): 50 robots whose handles form an
+/// α-lattice, 50 Crazyflies in 3D, 30 fixed wings behind a moving γ-agent. The same
+/// quadrotors with the point masses' stiff lattice (a = b = 5, c₂^α = 1) do not: their attitude
+/// lag breaks the lattice's damping (docs/vehicles.md).
+#[test]
+fn vehicle_fixtures_flock() {
+    for name in [
+        "unicycle_alg2_n50",
+        "crazyflie_alg2_3d_n50",
+        "fixed_wing_alg2_n30",
+    ] {
+        let v = verdict(&fixture(name));
+        assert!(v.is_strict(), "{name}: {v:?}");
+    }
+    let stiff = changed(
+        &fixture("crazyflie_alg2_3d_n50"),
+        vec![
+            ("alpha.a", json!(5.0)),
+            ("alpha.b", json!(5.0)),
+            ("alpha.c2", json!(1.0)),
+        ],
+    );
+    let v = verdict(&stiff);
+    assert!(!v.is_alpha_flocking(), "{v:?}");
+    assert!(v.max_velocity_mismatch > 0.1, "{v:?}");
+}
+
+/// The fixed wings with a static γ-agent cannot hover and loiter: they sit near their stall speed,
+/// fly aligned, and the flock's centre circles q_r at an angular rate near √c₁ on a radius near
+/// V/√c₁ (docs/vehicles.md: measured 0.91 × √c₁ and 1.09 × V/√c₁).
+#[test]
+fn fixed_wings_loiter_about_a_static_gamma_agent() {
+    let scenario = fixture("fixed_wing_loiter_n30");
+    let c1 = 0.02_f64;
+    let mut sim = DynSimulation::new(&scenario).expect("a valid scenario");
+    let (mut angle, mut unwrapped, mut radius, mut airspeed, mut count) =
+        (None, 0.0, 0.0, 0.0, 0.0);
+    let every = scenario.record_every;
+    for k in 1..=scenario.steps() {
+        sim.step();
+        if k < scenario.steps() / 2 || k % every != 0 {
+            continue;
+        }
+        let state = sim.state();
+        let n = state.agents() as f64;
+        let (cx, cy) = state
+            .positions
+            .chunks_exact(2)
+            .fold((0.0, 0.0), |(x, y), q| (x + q[0] / n, y + q[1] / n));
+        let a = cy.atan2(cx);
+        if let Some(previous) = angle {
+            let turn: f64 = a - previous;
+            unwrapped += (turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+        }
+        angle = Some(a);
+        radius += cx.hypot(cy);
+        airspeed += state.vehicle.chunks_exact(3).map(|s| s[0]).sum::<f64>() / n;
+        count += 1.0;
+        assert!(sim.metrics().polarisation > 0.99);
+    }
+    let span = (scenario.steps() - scenario.steps() / 2) as f64 * scenario.step;
+    let rate = (unwrapped / span).abs();
+    let (radius, airspeed) = (radius / count, airspeed / count);
+    assert!((18.0..18.8).contains(&airspeed), "airspeed {airspeed}");
+    let rate_ratio = rate / c1.sqrt();
+    assert!(
+        (0.8..1.0).contains(&rate_ratio),
+        "rate {rate} = {rate_ratio} √c₁"
+    );
+    let radius_ratio = radius / (airspeed / c1.sqrt());
+    assert!(
+        (0.95..1.25).contains(&radius_ratio),
+        "radius {radius} = {radius_ratio} V/√c₁"
+    );
+}
+
+/// Every record's bits (state and vehicle states), and the checkpoint at step `at`.
+struct Bits {
+    at: u64,
+    records: Vec<Vec<u64>>,
+    checkpoint: Option<Start>,
+}
+
+impl Recorder for Bits {
+    type Error = std::convert::Infallible;
+
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
+        let state = &record.state;
+        let numbers = [record.t, record.energy]
+            .into_iter()
+            .chain(record.metrics.reals())
+            .chain(record.diagnostics.iter().map(|(_, x)| *x))
+            .chain(state.positions.iter().copied())
+            .chain(state.velocities.iter().copied())
+            .chain(state.vehicle.iter().copied());
+        self.records.push(numbers.map(f64::to_bits).collect());
+        Ok(())
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        steps == self.at
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> Result<(), Self::Error> {
+        self.checkpoint = Some(start.clone());
+        Ok(())
+    }
+}
+
+/// A run of each vehicle interrupted at a checkpoint and resumed records the bits of the whole
+/// run, vehicle states and conditions (delay, loss, noise, wind on the quadrotors) included.
+#[test]
+fn every_vehicle_resumes_with_the_bits_of_the_whole_run() {
+    let short = |name: &str, mut changes: Vec<(&str, flocking::serde_json::Value)>| {
+        let scenario = fixture(name);
+        changes.push(("duration", json!(40.0 * scenario.step)));
+        changes.push(("record_every", json!(5)));
+        changed(&scenario, changes)
+    };
+    let lossy = json!({"delay": 0.1, "loss": {"Bernoulli": {"p": 0.2}}});
+    let noisy = json!({"noise": {"White": {"sigma_q": 0.05, "sigma_p": 0.01}}});
+    let wind = json!({"wind": {"mean": [1.0, 0.0, 0.0], "gust": 0.5}});
+    let scenarios = [
+        short("unicycle_alg2_n50", vec![]),
+        short("fixed_wing_alg2_n30", vec![("conditions.sensing", noisy)]),
+        short(
+            "crazyflie_alg2_3d_n50",
+            vec![
+                ("conditions.communication", lossy),
+                ("conditions.disturbance", wind),
+            ],
+        ),
+    ];
+    for scenario in &scenarios {
+        let mut whole = Bits {
+            at: 15,
+            records: Vec::new(),
+            checkpoint: None,
+        };
+        flocking::run(scenario, &mut whole).expect("the run");
+        let checkpoint = whole.checkpoint.take().expect("a checkpoint at step 15");
+        assert!(!checkpoint.vehicle.is_empty());
+        let mut resumed = Bits {
+            at: u64::MAX,
+            records: Vec::new(),
+            checkpoint: None,
+        };
+        flocking::resume(scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
+        assert!(!resumed.records.is_empty());
+        let tail = &whole.records[whole.records.len() - resumed.records.len()..];
+        assert!(
+            resumed.records[..] == *tail,
+            "{}: the resumed records differ",
+            scenario.name
+        );
+    }
+}
+
+/// What a vehicle cannot take is refused, naming the field: a quadrotor in 2D, a ground robot in
+/// 3D, a model that sets velocities, RK4, a disturbance on wheels that do not slip, a speed clip
+/// on a vehicle with its own limits, an inner step that does not divide the step, a stall speed
+/// above the top speed, a thrust-to-weight below 1.
+#[test]
+fn vehicles_refuse_what_they_cannot_take_naming_the_field() {
+    let field_of = |scenario: &Scenario| match DynSimulation::new(scenario) {
+        Err(ScenarioError::Invalid { field, .. }) => field,
+        Err(other) => panic!("{}: not a field error: {other}", scenario.name),
+        Ok(_) => panic!("{}: accepted", scenario.name),
+    };
+    let robots = fixture("unicycle_alg2_n50");
+    let quads = fixture("crazyflie_alg2_3d_n50");
+    let wings = fixture("fixed_wing_alg2_n30");
+    let mut quad_2d = robots.clone();
+    quad_2d.vehicle = quads.vehicle.clone();
+    let mut robots_3d = quads.clone();
+    robots_3d.vehicle = robots.vehicle.clone();
+    let mut vicsek_robots = fixture("vicsek1995_fig2a_n400");
+    vicsek_robots.vehicle = robots.vehicle.clone();
+    let cases = [
+        (quad_2d, "vehicle"),
+        (robots_3d, "vehicle"),
+        (vicsek_robots, "vehicle"),
+        (
+            changed(&robots, vec![("integrator", json!("Rk4"))]),
+            "integrator",
+        ),
+        (
+            changed(
+                &robots,
+                vec![("conditions.disturbance", json!({"process_noise": 0.1}))],
+            ),
+            "conditions.disturbance",
+        ),
+        (
+            changed(
+                &quads,
+                vec![("conditions.actuation", json!({"max_speed": 2.0}))],
+            ),
+            "conditions.actuation.max_speed",
+        ),
+        (
+            changed(&wings, vec![("vehicle.inner_step", json!(0.015))]),
+            "vehicle.inner_step",
+        ),
+        (
+            changed(&wings, vec![("vehicle.min_airspeed", json!(40.0))]),
+            "vehicle.min_airspeed",
+        ),
+        (
+            changed(&quads, vec![("vehicle.thrust_coefficient", json!(1e-9))]),
+            "vehicle.thrust_coefficient",
+        ),
+    ];
+    for (scenario, field) in &cases {
+        assert_eq!(field_of(scenario), *field, "{}", scenario.name);
+    }
+}
