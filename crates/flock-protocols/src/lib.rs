@@ -9,7 +9,8 @@
 //! - [`Consensus`]: velocity matching (seed 000 eq. 9) on a fixed graph or the proximity net.
 //! - The classic models: [`CuckerSmale`] (Cucker & Smale 2007), [`Vicsek`] (Vicsek et al. 1995),
 //!   [`Boids`] (Reynolds 1987, as the ABM frameworks' benchmark declares it) and [`Couzin`]
-//!   (Couzin et al. 2002); the last three set velocities with their own [`Update`].
+//!   (Couzin et al. 2002); the last three set velocities with their own [`Update`]. [`Vasarhelyi`]
+//!   (Vásárhelyi et al. 2018, the drones' model) tracks its desired velocity as an acceleration.
 //! - [`Simulation`]: fixed-step [`Integrator`]s (symplectic Euler by default, RK4) that rebuild the
 //!   proximity net at every evaluation, with the metrics, energy, diagnostics and health of the
 //!   state in the agents' original order.
@@ -43,6 +44,7 @@ pub mod protocol;
 pub mod reynolds1987;
 pub mod swarm;
 pub mod tanner2003;
+pub mod vasarhelyi2018;
 pub mod vehicle;
 pub mod vicsek1995;
 
@@ -75,5 +77,6 @@ pub use swarm::Swarm;
 pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,
 };
+pub use vasarhelyi2018::{Arena, ArenaShape, Vasarhelyi, VasarhelyiParams};
 pub use vehicle::{DynVehicle, Fleet, Vehicle};
 pub use vicsek1995::{Vicsek, VicsekParams, planar};

@@ -154,3 +154,31 @@ fn local_forms_give_the_bits_of_controls_2d() {
 fn local_forms_give_the_bits_of_controls_3d() {
     every_protocol::<DVec3>();
 }
+
+/// Vásárhelyi et al. 2018 in an arena smaller than the swarm and a communication range shorter
+/// than it (r_c = 20 m, r_0^rep = 8 m, r_0^frict = 5 m): every term and the cuts in play.
+fn vasarhelyi_local_is_controls<V: Space>() {
+    use flock_protocols::{Arena, ArenaShape, Vasarhelyi, VasarhelyiParams};
+    let swarm = random_swarm::<V>(120, 25.0, 9.0, 7);
+    let params = VasarhelyiParams {
+        r_c: 20.0,
+        r0_rep: 8.0,
+        r0_frict: 5.0,
+        ..VasarhelyiParams::default()
+    };
+    for shape in [ArenaShape::Square, ArenaShape::Circle] {
+        let arena = Arena {
+            shape,
+            centre: V::from_fn(|k| [3.0, -2.0, 1.0][k]),
+            side: 40.0,
+        };
+        let model = Vasarhelyi::new(params, arena).expect("valid");
+        local_is_controls(&model, &swarm, 40.0);
+    }
+}
+
+#[test]
+fn vasarhelyi_local_form_gives_the_bits_of_controls_2d_3d() {
+    vasarhelyi_local_is_controls::<DVec2>();
+    vasarhelyi_local_is_controls::<DVec3>();
+}

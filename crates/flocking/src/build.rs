@@ -6,10 +6,10 @@ use flock_math::{Bump, Domain, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
 use flock_protocols::conditions::stage::perception_field;
 use flock_protocols::{
-    Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
+    Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, Arena, BallObstacle,
     BetaInteraction, Boids, Conditions, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003,
     GammaAgent, NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
-    TannerJadbabaiePappas, Vicsek, random_connected_graph,
+    TannerJadbabaiePappas, Vasarhelyi, Vicsek, random_connected_graph,
 };
 
 use crate::error::ScenarioError;
@@ -139,6 +139,20 @@ impl Scenario {
                     Couzin::new(params, self.step, self.seed, self.domain())
                         .map_err(within("algorithm"))?,
                 )
+            }
+            model @ Algorithm::Vasarhelyi {
+                arena_shape,
+                arena_side,
+                arena_centre,
+                ..
+            } => {
+                let params = model.vasarhelyi().unwrap_or_else(|| unreachable!());
+                let arena = Arena {
+                    shape: *arena_shape,
+                    centre: arena_centre.as_deref().map_or(V::ZERO, to_vector),
+                    side: *arena_side,
+                };
+                Box::new(Vasarhelyi::new(params, arena).map_err(within("algorithm"))?)
             }
         })
     }

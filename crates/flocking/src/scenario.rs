@@ -14,8 +14,9 @@ use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
-    AlphaAlphaForm, AlphaConfig, AvoidanceGains, BetaConfig, BoidsParams, Conditions, CouzinParams,
-    CuckerSmaleParams, GammaAgent, Integrator, VicsekParams, critical_damping,
+    AlphaAlphaForm, AlphaConfig, ArenaShape, AvoidanceGains, BetaConfig, BoidsParams, Conditions,
+    CouzinParams, CuckerSmaleParams, GammaAgent, Integrator, VasarhelyiParams, VicsekParams,
+    critical_damping,
 };
 
 use crate::error::ScenarioError;
@@ -255,6 +256,74 @@ pub enum Algorithm {
         #[serde(default = "couzin_noise")]
         noise: f64,
     },
+    /// The drones' model of Vásárhelyi et al. (Science Robotics 3(20), 2018): repulsion,
+    /// alignment under a braking curve, self-propulsion and shill agents on the walls of an
+    /// arena, summed into a desired velocity cut at v^max and tracked as u = (v_d − v)/τ
+    /// (`Vasarhelyi()`: every parameter defaults to the optimised set for v^flock = 6 m/s,
+    /// [`VasarhelyiParams`]; SI units, m and s).
+    Vasarhelyi {
+        /// The flocking speed v^flock (default 6 m/s).
+        #[serde(default = "vas_v_flock")]
+        v_flock: f64,
+        /// The repulsion range r_0^rep (default 25 m).
+        #[serde(default = "vas_r0_rep")]
+        r0_rep: f64,
+        /// The repulsion gain p^rep (default 0.13 s⁻¹).
+        #[serde(default = "vas_p_rep")]
+        p_rep: f64,
+        /// The alignment's stopping-point offset r_0^frict (default 85.3 m).
+        #[serde(default = "vas_r0_frict")]
+        r0_frict: f64,
+        /// The alignment coefficient C^frict (default 0.05).
+        #[serde(default = "vas_c_frict")]
+        c_frict: f64,
+        /// The alignment's velocity slack v^frict (default 0.63 m/s).
+        #[serde(default = "vas_v_frict")]
+        v_frict: f64,
+        /// The alignment's braking gain p^frict (default 3.2 s⁻¹).
+        #[serde(default = "vas_p_frict")]
+        p_frict: f64,
+        /// The alignment's braking acceleration a^frict (default 4.16 m s⁻²).
+        #[serde(default = "vas_a_frict")]
+        a_frict: f64,
+        /// The walls' stopping-point offset r_0^shill (default 0.3 m).
+        #[serde(default = "vas_r0_shill")]
+        r0_shill: f64,
+        /// The shill agents' speed v^shill (default 13.6 m/s).
+        #[serde(default = "vas_v_shill")]
+        v_shill: f64,
+        /// The walls' braking gain p^shill (default 3.55 s⁻¹).
+        #[serde(default = "vas_p_shill")]
+        p_shill: f64,
+        /// The walls' braking acceleration a^shill (default 3.02 m s⁻²).
+        #[serde(default = "vas_a_shill")]
+        a_shill: f64,
+        /// The cut v^max of the desired velocity (default 8 m/s).
+        #[serde(default = "vas_v_max")]
+        v_max: f64,
+        /// The communication range r_c, the interaction range (default 100 m).
+        #[serde(default = "vas_r_c")]
+        r_c: f64,
+        /// The relaxation time τ of the velocity (default 1 s).
+        #[serde(default = "vas_tau")]
+        tau: f64,
+        /// The largest acceleration a^max (default 6 m s⁻²).
+        #[serde(default = "vas_a_max")]
+        a_max: f64,
+        /// The collision distance r^coll of φ^coll (default 3 m; the scenario's default
+        /// collision distance too).
+        #[serde(default = "vas_r_coll")]
+        r_coll: f64,
+        /// The arena's shape (default `Square`: a cube in 3D).
+        #[serde(default)]
+        arena_shape: ArenaShape,
+        /// The square's side or the circle's diameter (default 250 m).
+        #[serde(default = "vas_arena_side")]
+        arena_side: f64,
+        /// The arena's centre (`dim` numbers); default the origin.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        arena_centre: Option<Point>,
+    },
 }
 
 // The models' defaults, from their parameter types (one definition of each value).
@@ -287,6 +356,62 @@ fn couzin_speed() -> f64 {
 }
 fn couzin_noise() -> f64 {
     CouzinParams::default().noise
+}
+fn vas_v_flock() -> f64 {
+    VasarhelyiParams::default().v_flock
+}
+fn vas_r0_rep() -> f64 {
+    VasarhelyiParams::default().r0_rep
+}
+fn vas_p_rep() -> f64 {
+    VasarhelyiParams::default().p_rep
+}
+fn vas_r0_frict() -> f64 {
+    VasarhelyiParams::default().r0_frict
+}
+fn vas_c_frict() -> f64 {
+    VasarhelyiParams::default().c_frict
+}
+fn vas_v_frict() -> f64 {
+    VasarhelyiParams::default().v_frict
+}
+fn vas_p_frict() -> f64 {
+    VasarhelyiParams::default().p_frict
+}
+fn vas_a_frict() -> f64 {
+    VasarhelyiParams::default().a_frict
+}
+fn vas_r0_shill() -> f64 {
+    VasarhelyiParams::default().r0_shill
+}
+fn vas_v_shill() -> f64 {
+    VasarhelyiParams::default().v_shill
+}
+fn vas_p_shill() -> f64 {
+    VasarhelyiParams::default().p_shill
+}
+fn vas_a_shill() -> f64 {
+    VasarhelyiParams::default().a_shill
+}
+fn vas_v_max() -> f64 {
+    VasarhelyiParams::default().v_max
+}
+fn vas_r_c() -> f64 {
+    VasarhelyiParams::default().r_c
+}
+fn vas_tau() -> f64 {
+    VasarhelyiParams::default().tau
+}
+fn vas_a_max() -> f64 {
+    VasarhelyiParams::default().a_max
+}
+fn vas_r_coll() -> f64 {
+    VasarhelyiParams::default().r_coll
+}
+/// The arena side of the fixture and the default (250 m; see docs/models.md for its source).
+pub const VASARHELYI_ARENA_SIDE: f64 = 250.0;
+fn vas_arena_side() -> f64 {
+    VASARHELYI_ARENA_SIDE
 }
 
 impl Algorithm {
@@ -338,6 +463,52 @@ impl Algorithm {
                 separate_factor,
                 match_factor,
                 visual_distance,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The parameters of [`Algorithm::Vasarhelyi`].
+    #[must_use]
+    pub fn vasarhelyi(&self) -> Option<VasarhelyiParams> {
+        match *self {
+            Self::Vasarhelyi {
+                v_flock,
+                r0_rep,
+                p_rep,
+                r0_frict,
+                c_frict,
+                v_frict,
+                p_frict,
+                a_frict,
+                r0_shill,
+                v_shill,
+                p_shill,
+                a_shill,
+                v_max,
+                r_c,
+                tau,
+                a_max,
+                r_coll,
+                ..
+            } => Some(VasarhelyiParams {
+                v_flock,
+                r0_rep,
+                p_rep,
+                r0_frict,
+                c_frict,
+                v_frict,
+                p_frict,
+                a_frict,
+                r0_shill,
+                v_shill,
+                p_shill,
+                a_shill,
+                v_max,
+                r_c,
+                tau,
+                a_max,
+                r_coll,
             }),
             _ => None,
         }
@@ -425,16 +596,17 @@ impl Algorithm {
             | Self::Consensus { .. }
             | Self::Vicsek { .. }
             | Self::Boids { .. }
-            | Self::Couzin { .. } => true,
+            | Self::Couzin { .. }
+            | Self::Vasarhelyi { .. } => true,
             Self::CuckerSmale { cutoff, .. } => cutoff.is_some(),
         }
     }
 
-    /// Whether the algorithm is one of the classic models (Cucker–Smale, Vicsek, boids, Couzin;
-    /// docs/models.md) rather than Olfati-Saber's, Tanner's or consensus.
+    /// Whether the algorithm is one of the classic models (Cucker–Smale, Vicsek, boids, Couzin,
+    /// Vásárhelyi; docs/models.md) rather than Olfati-Saber's, Tanner's or consensus.
     #[must_use]
     pub fn is_classic_model(&self) -> bool {
-        self.sets_velocity() || matches!(self, Self::CuckerSmale { .. })
+        self.sets_velocity() || matches!(self, Self::CuckerSmale { .. } | Self::Vasarhelyi { .. })
     }
 
     /// Whether the algorithm is a model that sets its agents' velocities (Vicsek, boids, Couzin),
@@ -611,7 +783,8 @@ impl Scenario {
     }
 
     /// The interaction range r: `alpha.r` (default 1.2 d), or the model's own (Vicsek's r, the
-    /// boids' visual distance plus 2 s h, Couzin's r_a, Cucker–Smale's cut-off when it has one).
+    /// boids' visual distance plus 2 s h, Couzin's r_a, Cucker–Smale's cut-off when it has one,
+    /// Vásárhelyi's communication range r_c).
     #[must_use]
     pub fn range(&self) -> f64 {
         match self.algorithm {
@@ -628,19 +801,21 @@ impl Scenario {
                 delta_r_a,
                 ..
             } => r_r + delta_r_o + delta_r_a,
+            Algorithm::Vasarhelyi { r_c, .. } => r_c,
             _ => self.alpha.range(),
         }
     }
 
     /// The collision distance: as given, or by default d/4 (TAC 2006), and for the models of
-    /// their own spacing the boids' `separation`, Couzin's zone of repulsion r_r, and r/4 for
-    /// Vicsek's point particles.
+    /// their own spacing the boids' `separation`, Couzin's zone of repulsion r_r, Vásárhelyi's
+    /// r^coll, and r/4 for Vicsek's point particles.
     #[must_use]
     pub fn collision_distance(&self) -> f64 {
         self.collision_distance
             .unwrap_or_else(|| match self.algorithm {
                 Algorithm::Boids { separation, .. } => separation.min(self.range()),
                 Algorithm::Couzin { r_r, .. } => r_r,
+                Algorithm::Vasarhelyi { r_coll, .. } => r_coll,
                 Algorithm::Vicsek { r, .. } => COLLISION_FRACTION * r,
                 _ => COLLISION_FRACTION * self.alpha.d,
             })

@@ -202,6 +202,23 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
             let step = radius / lambda;
             return (step.is_finite() && step > 0.0).then_some(step);
         }
+        // v̇ = (v_d − v)/τ: damping up to (1 + C^frict deg)/τ (self-propulsion's derivative
+        // across the heading is at most 1 at the flocking speed, each neighbour's alignment
+        // C^frict), stiffness up to p^rep deg/τ (the linear repulsion)
+        model @ Algorithm::Vasarhelyi { .. } => {
+            let p = model.vasarhelyi().unwrap_or_else(|| unreachable!());
+            let degree = deg();
+            let damping = (1.0 + p.c_frict * degree) / p.tau;
+            let omega2 = p.p_rep * degree / p.tau;
+            let step = match scenario.integrator {
+                Integrator::SymplecticEuler if omega2 > 0.0 => {
+                    ((damping * damping + 4.0 * omega2).sqrt() - damping) / omega2
+                }
+                Integrator::SymplecticEuler => 2.0 / damping,
+                Integrator::Rk4 => RK4_RADIUS / omega2.sqrt().max(damping),
+            };
+            return (step.is_finite() && step > 0.0).then_some(step);
+        }
         _ => {}
     }
     if let Algorithm::Consensus { gain, .. } = &scenario.algorithm {

@@ -310,13 +310,32 @@ impl Scenario {
             Algorithm::CuckerSmale { .. }
             | Algorithm::Vicsek { .. }
             | Algorithm::Boids { .. }
-            | Algorithm::Couzin { .. } => {
+            | Algorithm::Couzin { .. }
+            | Algorithm::Vasarhelyi { .. } => {
+                let mut buildable = true;
+                if let Algorithm::Vasarhelyi { arena_centre, .. } = &self.algorithm {
+                    if let Some(centre) = arena_centre
+                        && let Err(e) = vector("algorithm.arena_centre", centre, self.dim)
+                    {
+                        problems.check(Err::<(), _>(e));
+                        buildable = false;
+                    }
+                    problems.check(require(
+                        self.domain.is_open(),
+                        "domain",
+                        &self.domain,
+                        "the Vásárhelyi model flies in an arena with walls in open space",
+                        "use domain: Open (the default) and set the arena with arena_side",
+                    ));
+                }
                 // the model's constructor checks its parameters, each named
-                let built = match self.dim {
-                    2 => self.protocol::<DVec2>().map(|_| ()),
-                    _ => self.protocol::<DVec3>().map(|_| ()),
-                };
-                problems.check(built);
+                if buildable {
+                    let built = match self.dim {
+                        2 => self.protocol::<DVec2>().map(|_| ()),
+                        _ => self.protocol::<DVec3>().map(|_| ()),
+                    };
+                    problems.check(built);
+                }
             }
         }
         self.validate_domain(problems);

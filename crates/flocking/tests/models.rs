@@ -127,6 +127,10 @@ fn every_model_resumes_with_the_bits_of_the_whole_run() {
             &[("conditions.faults", json!({"rate": 0.05}))],
         ),
         short("cucker_smale2007_n50", &[]),
+        short(
+            "vasarhelyi2018_n30",
+            &[("conditions.communication", json!({"delay": 0.05}))],
+        ),
     ];
     for scenario in &scenarios {
         let mut whole = Bits {
@@ -234,4 +238,86 @@ fn model_parameters_by_path() {
         Some(json!(270.0))
     );
     assert_eq!(couzin.range(), 16.0);
+}
+
+/// The steady-state order parameters of Vásárhelyi et al. (2018) over a run of `scenario`: the
+/// means of φ^corr and φ^vel / v^flock, the largest φ^coll and φ^wall, and the least distance,
+/// over the records from `from` seconds on.
+fn vasarhelyi_order(scenario: &Scenario, from: f64) -> [f64; 5] {
+    let mut sim = DynSimulation::new(scenario).expect("a valid scenario");
+    let (mut corr, mut speed, mut coll, mut wall) = (0.0, 0.0, 0.0_f64, 0.0_f64);
+    let (mut least, mut count) = (f64::INFINITY, 0.0);
+    for k in 1..=scenario.steps() {
+        sim.step();
+        if sim.time() >= from && k % scenario.record_every == 0 {
+            let observed = sim.observe();
+            let value = |name: &str| {
+                observed
+                    .diagnostics
+                    .iter()
+                    .find(|(column, _)| *column == name)
+                    .map(|(_, v)| *v)
+                    .unwrap_or_else(|| panic!("no {name} column"))
+            };
+            corr += value("velocity_correlation");
+            speed += value("speed_ratio");
+            coll = coll.max(value("collision_ratio"));
+            wall = wall.max(value("wall_violation"));
+            least = least.min(observed.metrics.min_distance);
+            count += 1.0;
+        }
+    }
+    [corr / count, speed / count, coll, wall, least]
+}
+
+/// The reproduction of Vásárhelyi et al. (2018): the fixture's 30 drones (v^flock = 6 m/s, the
+/// optimised parameters, a 250 m square) over 600 s, measured from t = 150 s as the paper's
+/// steady state. Its fitness asks for φ^corr near 1, φ^vel near v^flock, no collision and no
+/// wall violation; measured (docs/models.md) φ^corr = 0.977, φ^vel / v^flock = 0.925, φ^coll = 0,
+/// φ^wall = 0, least distance 9.6 m > r^coll = 3 m. (≈ 2 s in debug: not ignored.)
+#[test]
+fn vasarhelyi_thirty_drones_flock_in_their_arena() {
+    let scenario = fixture("vasarhelyi2018_n30");
+    let [corr, speed, coll, wall, least] = vasarhelyi_order(&scenario, 150.0);
+    eprintln!(
+        "φ^corr {corr:.4}, φ^vel/v^flock {speed:.4}, max φ^coll {coll}, max φ^wall {wall}, least distance {least:.3}"
+    );
+    assert!(corr > 0.95, "φ^corr = {corr}");
+    assert!((0.85..1.0).contains(&speed), "φ^vel / v^flock = {speed}");
+    assert_eq!(coll, 0.0);
+    assert_eq!(wall, 0.0);
+    assert!(least > 3.0, "least distance {least}");
+}
+
+/// The model's arena lives in open space, its centre has `dim` coordinates, and its parameters
+/// are checked by name.
+#[test]
+fn vasarhelyi_refuses_a_torus_a_bad_centre_and_bad_parameters() {
+    let base = fixture("vasarhelyi2018_n30");
+    let field = |changes: Vec<(&str, flocking::serde_json::Value)>| {
+        base.with_values(changes)
+            .expect_err("refused")
+            .field()
+            .unwrap_or_default()
+    };
+    assert_eq!(
+        field(vec![(
+            "domain",
+            json!({"Periodic": {"size": [400.0, 400.0]}})
+        )]),
+        "domain"
+    );
+    assert_eq!(
+        field(vec![("algorithm.arena_centre", json!([0.0, 0.0, 0.0]))]),
+        "algorithm.arena_centre"
+    );
+    assert_eq!(field(vec![("algorithm.tau", json!(0.0))]), "algorithm.tau");
+    assert_eq!(
+        field(vec![("algorithm.r_coll", json!(200.0))]),
+        "algorithm.r_coll"
+    );
+    // the defaults: the optimised set, the collision distance r^coll, the range r_c
+    let resolved = base.resolved();
+    assert_eq!(resolved.collision_distance, Some(3.0));
+    assert_eq!(resolved.range(), 100.0);
 }
