@@ -6,8 +6,11 @@ use flocking::RunSummary;
 use flocking::metrics::{Closest, FlockMetrics};
 
 /// The diagnostic columns that count agents (`docs/outputs.md`): printed as whole numbers.
-pub const COUNT_COLUMNS: [&str; 4] = [
+pub const COUNT_COLUMNS: [&str; 7] = [
     "inside_obstacles",
+    "stress_towards",
+    "stress_away",
+    "stress_neutral",
     "at_acceleration_limit",
     "at_speed_limit",
     "failed",
