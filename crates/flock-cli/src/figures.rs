@@ -8,7 +8,7 @@
 //! | kept | dropped |
 //! | --- | --- |
 //! | `scenario.ron`, `metrics.csv` (small, rerunnable, plottable) | `trajectory.csv`, `final.csv` (large, regenerable) |
-//! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/player.html` (unless `--no-player`) | `figures/animation.gif` (the largest file, and the player shows the same motion) |
+//! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/reynolds.{svg,png}` (the (α, α) fixtures), `figures/player.html` (unless `--no-player`) | `figures/animation.gif` (the largest file, and the player shows the same motion) |
 //!
 //! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference, the
 //! paper's caption and statements quoted beside our measures, its parameters (the paper's or
@@ -205,6 +205,7 @@ pub fn figures(
             "snapshots_top.png",
             "views.png",
             "metrics.png",
+            "reynolds.png",
         ]
         .iter()
         .filter(|name| dir.join("figures").join(name).is_file())

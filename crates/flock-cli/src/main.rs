@@ -99,6 +99,11 @@ enum Command {
         /// beyond d (attraction, F⁺), purple within (repulsion, F⁻), grey within 1 % of d (F⁰).
         #[arg(long)]
         stress_edges: bool,
+        /// For a Flocking2003 run, the time (s) of `reynolds.svg/png`, ACC 2004's reading of the
+        /// (α, α) protocol as Reynolds's rules (the record nearest it); default the second of the
+        /// scenario's `snapshots`, else a tenth of the run.
+        #[arg(long, value_name = "T")]
+        reynolds_at: Option<f64>,
     },
     /// Run a sweep file — a scenario over a grid of parameter values × seeds — into DIR/runs.csv,
     /// one row per run; or merge its shards, or plot its phase diagrams.
@@ -254,12 +259,20 @@ fn dispatch(command: Command) -> ExitCode {
                 }
             }
         }
-        Command::Plot { dir, stress_edges } => {
+        Command::Plot {
+            dir,
+            stress_edges,
+            reynolds_at,
+        } => {
             if let Err(e) = check_plot_dir(&dir) {
                 errln!("error: {e}");
                 return ExitCode::from(INVALID);
             }
-            match plot_run_with(&dir, &figure_options(stress_edges)) {
+            let options = FigureOptions {
+                reynolds_time: reynolds_at,
+                ..figure_options(stress_edges)
+            };
+            match plot_run_with(&dir, &options) {
                 Ok(files) => {
                     outln!(
                         "{} figure file(s) in {}",

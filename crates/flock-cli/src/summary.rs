@@ -7,8 +7,11 @@ use flocking::metrics::{Closest, FlockMetrics};
 
 /// The diagnostic columns that count agents (`docs/outputs.md`), besides the vehicles' limits
 /// (`at_…_limit`): printed as whole numbers.
-pub const COUNT_COLUMNS: [&str; 4] = [
+pub const COUNT_COLUMNS: [&str; 7] = [
     "inside_obstacles",
+    "stress_towards",
+    "stress_away",
+    "stress_neutral",
     "at_acceleration_limit",
     "at_speed_limit",
     "failed",

@@ -40,6 +40,10 @@ fn run_with_plot_writes_every_figure() {
         let bytes = fs::read(figures.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
         assert!(bytes.len() > 500, "{file} is only {} bytes", bytes.len());
     }
+    assert!(
+        !figures.join("reynolds.svg").exists(),
+        "the reading of ACC 2004 is for (α, α) runs only"
+    );
     let player = fs::read_to_string(figures.join("player.html")).expect("the player");
     assert!(
         player.contains("id=\"play\"") && !player.contains("http"),
@@ -98,4 +102,72 @@ fn a_run_with_an_npy_trajectory_draws_the_same_figures() {
         let read = |run: &str| fs::read(tmp.path().join(run).join("figures").join(file));
         assert_eq!(read("csv").ok(), read("npy").ok(), "{file}");
     }
+}
+
+/// A short ACC 2004 (α, α) run with a sink: `flocking plot` adds `reynolds.svg/png`, ACC 2004's
+/// reading of one frame as Reynolds's rules, at the time `--reynolds-at` asks; other runs get none.
+#[test]
+fn plot_draws_the_reynolds_reading_of_an_alpha_alpha_run() {
+    const ALPHA_ALPHA: &str = r#"Scenario(
+    name: "reynolds_test",
+    dim: 2,
+    agents: 20,
+    seed: 3,
+    algorithm: Flocking2003(form: Smooth, c1: 1.0, translation: Some((gamma: Static(position: [0.0, 0.0]), c1: 0.02, c2: 1.0))),
+    alpha: (d: 7.0, a: 1.0, b: 5.0),
+    initial: (positions: Box(min: [-15.0, -15.0], max: [15.0, 15.0])),
+    step: 0.01,
+    duration: 2.0,
+    record_every: 10,
+)
+"#;
+    let tmp = temp_dir("plot_reynolds");
+    fs::write(tmp.path().join("s.ron"), ALPHA_ALPHA).expect("write the scenario");
+    let output = flocking(tmp.path(), &["run", "s.ron", "--out", "o", "--quiet"]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let output = flocking(tmp.path(), &["plot", "o", "--reynolds-at", "1.5"]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let figures = tmp.path().join("o/figures");
+    let svg = fs::read_to_string(figures.join("reynolds.svg")).expect("reynolds.svg");
+    assert!(svg.contains("t = 1.5 s"), "not drawn at 1.5 s");
+    // the counts of the legend are those of metrics.csv at t = 1.5
+    let metrics = fs::read_to_string(tmp.path().join("o/metrics.csv")).expect("metrics.csv");
+    let header: Vec<&str> = metrics.lines().next().unwrap().split(',').collect();
+    let row: Vec<&str> = metrics
+        .lines()
+        .find(|line| line.starts_with("1.5"))
+        .expect("a record at 1.5 s")
+        .split(',')
+        .collect();
+    let count = |name: &str| {
+        let k = header.iter().position(|h| *h == name).expect(name);
+        row[k].parse::<f64>().expect("a count") as usize
+    };
+    let (towards, away, neutral) = (
+        count("stress_towards"),
+        count("stress_away"),
+        count("stress_neutral"),
+    );
+    assert_eq!(towards + away + neutral, 20);
+    for label in [
+        format!("towards the centre ({towards})"),
+        format!("away from the centre ({away})"),
+        format!("neutral ({neutral})"),
+    ] {
+        assert!(svg.contains(&label), "the legend lacks {label:?}");
+    }
+    assert!(
+        fs::read(figures.join("reynolds.png"))
+            .expect("reynolds.png")
+            .len()
+            > 500
+    );
 }

@@ -4,7 +4,9 @@
 //!   [`AlphaInteraction`] (eq. 23), the [`BetaInteraction`] with obstacles (eq. 67) and the
 //!   [`NavigationalFeedback`] to a [`GammaAgent`].
 //! - [`AlphaAlpha`] ((α,α,1), (α,α,2) and its approximation, CDS 03-006 2003 eq. 34–36),
-//!   [`StressForm`] (ACC 2004 eq. 39), [`Flocking2003`] with a sink, [`ObstacleFlocking2003`]
+//!   [`StressForm`] (ACC 2004 eq. 39), its reading as Reynolds's three rules
+//!   ([`AlphaAlpha::reynolds_reading`], ACC 2004 § 4: [`AgentReading`], [`StressRegime`]),
+//!   [`Flocking2003`] with a sink, [`ObstacleFlocking2003`]
 //!   (eq. 54–58) and [`TannerJadbabaiePappas`] (Tanner, Jadbabaie & Pappas 2003, eq. 5).
 //! - [`Consensus`]: velocity matching (seed 000 eq. 9) on a fixed graph or the proximity net.
 //! - The classic models: [`CuckerSmale`] (Cucker & Smale 2007), [`Vicsek`] (Vicsek et al. 1995),
@@ -39,6 +41,7 @@ pub mod olfati_saber2003;
 #[cfg(feature = "obstacles")]
 pub mod olfati_saber2003_tracking;
 pub mod olfati_saber2004;
+pub mod olfati_saber2004_reynolds;
 pub mod olfati_saber2006;
 pub mod protocol;
 pub mod reynolds1987;
@@ -68,6 +71,9 @@ pub use olfati_saber2003::{BallObstacle, ObstacleFlocking2003};
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2003_tracking::{CentralisedTracking2003, TranslationalController};
 pub use olfati_saber2004::StressForm;
+pub use olfati_saber2004_reynolds::{
+    AgentReading, NEUTRAL_STRESS, RegimeCounts, ReynoldsRules, StressRegime,
+};
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2006::Algorithm3;
 pub use olfati_saber2006::{Algorithm1, Algorithm2};

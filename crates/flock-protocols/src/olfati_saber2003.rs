@@ -425,9 +425,11 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
     }
 
     /// `defect_factor` μ and `normalised_defect_factor` μ_n of the net (seed 004 eq. 46–47;
-    /// ~0 on an α-lattice), and with a translational controller `structural_energy` H_s and
+    /// ~0 on an α-lattice), with a translational controller `structural_energy` H_s and
     /// `translational_energy` H_tr (eq. 48–49): by the separation principle (Proposition 6) H_tr
-    /// converges whatever the (α, α) part, and H_s does not rise under (α, α, 2).
+    /// converges whatever the (α, α) part, and H_s does not rise under (α, α, 2); then
+    /// `stress_towards`, `stress_away`, `stress_neutral`, the agents whose local stress S_i is
+    /// positive, negative or zero (seed 000 eq. 31–33, [`AlphaAlpha::stress_regimes`]).
     fn diagnostics(
         &self,
         t: f64,
@@ -446,6 +448,7 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
             ));
             columns.push(("translational_energy", h_tr));
         }
+        columns.extend(self.alpha.stress_regimes(swarm, net).columns());
         columns
     }
 }

@@ -12,6 +12,7 @@ mod models;
 mod olfati_saber2003;
 mod olfati_saber2003_tracking;
 mod properties;
+mod reynolds_reading;
 mod storage_order;
 mod tanner2003;
 mod theory;

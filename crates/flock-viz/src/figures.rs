@@ -31,6 +31,10 @@ pub struct FigureOptions {
     pub animation: Option<AnimationOptions>,
     /// The HTML player, or `None` to skip it.
     pub player: Option<PlayerOptions>,
+    /// The time (s) of the figure of ACC 2004's reading of an (α, α) run as Reynolds's rules
+    /// (`reynolds.svg/png`, [`plot_run`](crate::plot_run) only), drawn at the record nearest it;
+    /// `None`: [`crate::plot::reynolds_time`].
+    pub reynolds_time: Option<f64>,
     /// Whether to write SVG files.
     pub svg: bool,
     /// Whether to write PNG files.
@@ -46,6 +50,7 @@ impl Default for FigureOptions {
             metrics: MetricsOptions::default(),
             animation: Some(AnimationOptions::default()),
             player: Some(PlayerOptions::default()),
+            reynolds_time: None,
             svg: true,
             png: true,
         }

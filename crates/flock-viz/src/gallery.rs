@@ -86,7 +86,13 @@ fn metric_rows(summary: &RunSummary) -> Vec<(String, String)> {
         ("colliding pairs".to_owned(), m.collisions.to_string()),
     ];
     for (name, value) in &summary.diagnostics {
-        let value = if *name == "inside_obstacles" {
+        let count = [
+            "inside_obstacles",
+            "stress_towards",
+            "stress_away",
+            "stress_neutral",
+        ];
+        let value = if count.contains(name) {
             format!("{value}")
         } else {
             format!("{value:.4e}")

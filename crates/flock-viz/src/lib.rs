@@ -12,6 +12,9 @@
 //!   front, side).
 //! - [`metrics_svg`], [`metrics_png`]: C, R, Ẽ, K̃ against t (TAC 2006 Fig. 18), energy,
 //!   distances.
+//! - [`reynolds_svg`], [`reynolds_png`]: one frame of an (α, α) run read as Reynolds's three rules
+//!   (ACC 2004 § 4): each agent's motion-planning and velocity-matching terms, the sign of its
+//!   local stress, and beside them cohesion, separation and alignment.
 //! - [`animation_gif`]: the whole run as an animated GIF.
 //! - [`function_svg`], [`function_png`]: the report's plots of ρ, ψ_α, φ_α and the pair
 //!   potential (CDS 03-006 Figs. 2, 4, 5), from the functions the simulations use.
@@ -54,6 +57,7 @@ pub mod phase;
 pub mod player;
 pub mod plot;
 mod render;
+pub mod reynolds;
 pub mod run_data;
 pub mod scene;
 pub mod snapshot;
@@ -75,6 +79,7 @@ pub use papers::{Measure, PaperFigure, Parameter, Source, Statement, paper_figur
 pub use phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
 pub use player::{PlayerOptions, player_html};
 pub use plot::{PlotError, plot_run, plot_run_with, run_scene};
+pub use reynolds::{ReynoldsOptions, reynolds_png, reynolds_svg};
 pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use scene::{Frame, Scene, lift};
 pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};

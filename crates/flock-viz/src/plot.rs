@@ -12,7 +12,10 @@ use flocking::initial::to_vector;
 use flocking::obstacles::{ObstacleSpec, Space};
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
-use crate::{Drawable, FigureOptions, RunData, Scene, VizError, lift, write_figures};
+use crate::{
+    Drawable, FigureOptions, ReynoldsOptions, RunData, Scene, VizError, lift, reynolds_png,
+    reynolds_svg, write_figures,
+};
 
 /// Why figures could not be drawn.
 #[derive(Debug)]
@@ -34,8 +37,9 @@ impl std::fmt::Display for PlotError {
 
 impl std::error::Error for PlotError {}
 
-/// Draws the figures of the run in `dir` (snapshots, metric curves, GIF, HTML player) into
-/// `dir/figures/`, and returns the files written. A Tanner run is drawn on its fixed graph with
+/// Draws the figures of the run in `dir` (snapshots, metric curves, GIF, HTML player; for a
+/// `Flocking2003` run ACC 2004's reading of one frame as Reynolds's rules, `reynolds.svg/png`,
+/// [`reynolds_svg`]) into `dir/figures/`, and returns the files written. A Tanner run is drawn on its fixed graph with
 /// velocity arrows, as Tanner et al. draw Figs. 3–8.
 ///
 /// # Errors
@@ -65,8 +69,52 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
         options.snapshot.style.trail = scene.frames.len();
         options.snapshot.style.dotted_trails = true;
     }
-    write_figures(&scene, Some(&run.metrics), &dir.join("figures"), &options)
-        .map_err(PlotError::Viz)
+    let figures = dir.join("figures");
+    let mut written =
+        write_figures(&scene, Some(&run.metrics), &figures, &options).map_err(PlotError::Viz)?;
+    if let Some(alpha) = scenario.alpha_alpha() {
+        let time = options
+            .reynolds_time
+            .unwrap_or_else(|| reynolds_time(&scenario, &scene));
+        let frame = scene.frame_nearest(time).unwrap_or_default();
+        let reynolds = ReynoldsOptions {
+            view: options.snapshot.style.view,
+            length_unit: options.snapshot.style.length_unit.clone(),
+            ..ReynoldsOptions::default()
+        };
+        let mut write = |name: &str, bytes: &[u8]| {
+            let path = figures.join(name);
+            // never through a link, as write_figures
+            flocking::owned::write_no_follow(&path, bytes).map_err(|source| {
+                PlotError::Viz(VizError::Io {
+                    path: path.clone(),
+                    source,
+                })
+            })?;
+            written.push(path);
+            Ok::<_, PlotError>(())
+        };
+        if options.svg {
+            let svg = reynolds_svg(&scene, frame, &alpha, &reynolds).map_err(PlotError::Viz)?;
+            write("reynolds.svg", svg.as_bytes())?;
+        }
+        if options.png {
+            let png = reynolds_png(&scene, frame, &alpha, &reynolds).map_err(PlotError::Viz)?;
+            write("reynolds.png", &png)?;
+        }
+    }
+    Ok(written)
+}
+
+/// The default time of an (α, α) run's `reynolds.svg/png`: the second of the scenario's
+/// `snapshots` (the first after the start, where the agents already move and the regimes are
+/// still mixed), else a tenth of the run.
+#[must_use]
+pub fn reynolds_time(scenario: &Scenario, scene: &Scene) -> f64 {
+    match scenario.snapshots.as_deref() {
+        Some([_, second, ..]) => *second,
+        _ => scene.frames.last().map_or(0.0, |f| 0.1 * f.t),
+    }
 }
 
 /// The scene of a run of `scenario` whose frames `scene` holds: with its title, desired distance,

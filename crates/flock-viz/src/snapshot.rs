@@ -262,10 +262,10 @@ pub(crate) fn text_style(size: u32) -> TextStyle<'static> {
 }
 
 /// The chart of a snapshot panel: page coordinates in data units on both axes.
-type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+pub(crate) type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// A page point as plotters takes it.
-fn tuple(p: DVec2) -> (f64, f64) {
+pub(crate) fn tuple(p: DVec2) -> (f64, f64) {
     (p.x, p.y)
 }
 
@@ -284,6 +284,57 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     title: &str,
 ) -> Result<(), VizError> {
     let scene = framer.scene();
+    panel_chart(
+        area,
+        framer,
+        frame,
+        (panel.framing, &panel.length_unit),
+        title,
+        |chart, window, per_pixel| {
+            let marker = panel.marker_size * per_pixel;
+            let cue = DepthCue::of(framer, frame);
+            draw_periodic_box(chart, framer, window)?;
+            draw_obstacles(chart, framer, window, &cue)?;
+            if panel.edges {
+                let stress = panel
+                    .stress_edges
+                    .then_some(framer.scene().desired_distance)
+                    .flatten();
+                draw_edges(chart, framer, frame, window, stress, &cue)?;
+            }
+            if panel.trail > 0 {
+                draw_trails(chart, framer, frame, panel, window)?;
+            }
+            if panel.velocity_arrows {
+                draw_velocities(chart, framer, frame, window, marker)?;
+            }
+            let agent_px = agent_marker_px(panel.marker_size, scene.desired_distance, per_pixel);
+            draw_agents(
+                chart,
+                framer,
+                frame,
+                window,
+                agent_px * per_pixel,
+                agent_px,
+                &cue,
+            )?;
+            draw_gamma(chart, framer, frame, window, marker)
+        },
+    )
+}
+
+/// A panel of frame `frame` in `area`: `title`, then labelled axes of equal scales around the
+/// window that `framing` gives (lengths in `unit`), `draw`'s marks — called with the chart, the
+/// window and the data units per pixel — and a frame around the plotting area.
+pub(crate) fn panel_chart<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    framer: &Framer<'_>,
+    frame: usize,
+    (framing, unit): (Framing, &str),
+    title: &str,
+    draw: impl FnOnce(&mut Chart<'_, DB>, Rect, f64) -> Result<(), VizError>,
+) -> Result<(), VizError> {
+    let scene = framer.scene();
     let area = area.titled(title, text_style(17)).map_err(VizError::draw)?;
 
     // The plotting area in pixels, to give both axes the same scale.
@@ -291,7 +342,7 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     let plot_w = w.saturating_sub(MARGIN.2 + MARGIN.3 + Y_LABEL_AREA).max(1);
     let plot_h = h.saturating_sub(MARGIN.0 + MARGIN.1 + X_LABEL_AREA).max(1);
     let window = framer
-        .window(panel.framing, frame)
+        .window(framing, frame)
         .with_aspect(f64::from(plot_w) / f64::from(plot_h));
     let per_pixel = window.size().x / f64::from(plot_w);
 
@@ -310,7 +361,6 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
     } else {
         framer.view().axis_names()
     };
-    let unit = &panel.length_unit;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -326,34 +376,7 @@ pub(crate) fn draw_panel<DB: DrawingBackend>(
         .draw()
         .map_err(VizError::draw)?;
 
-    let marker = panel.marker_size * per_pixel;
-    let cue = DepthCue::of(framer, frame);
-    draw_periodic_box(&mut chart, framer, window)?;
-    draw_obstacles(&mut chart, framer, window, &cue)?;
-    if panel.edges {
-        let stress = panel
-            .stress_edges
-            .then_some(framer.scene().desired_distance)
-            .flatten();
-        draw_edges(&mut chart, framer, frame, window, stress, &cue)?;
-    }
-    if panel.trail > 0 {
-        draw_trails(&mut chart, framer, frame, panel, window)?;
-    }
-    if panel.velocity_arrows {
-        draw_velocities(&mut chart, framer, frame, window, marker)?;
-    }
-    let agent_px = agent_marker_px(panel.marker_size, scene.desired_distance, per_pixel);
-    draw_agents(
-        &mut chart,
-        framer,
-        frame,
-        window,
-        agent_px * per_pixel,
-        agent_px,
-        &cue,
-    )?;
-    draw_gamma(&mut chart, framer, frame, window, marker)?;
+    draw(&mut chart, window, per_pixel)?;
 
     // A frame around the plotting area, as the papers' figures have.
     let (lo, hi) = (window.min, window.max);
@@ -414,7 +437,7 @@ fn draw_obstacles<DB: DrawingBackend>(
 
 /// The net: a thin line per edge (grey, or coloured by the sign of its stress weight when `stress`
 /// holds the desired distance d), far edges first and faded by `cue`.
-fn draw_edges<DB: DrawingBackend>(
+pub(crate) fn draw_edges<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
     frame: usize,

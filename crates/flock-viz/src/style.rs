@@ -22,6 +22,13 @@ pub const NEAR_EDGE: [u8; 3] = [0x40, 0x40, 0x40];
 pub const ATTRACTION: [u8; 3] = [0xE0, 0x82, 0x14];
 /// An edge under repulsion (s_ij < 0, ‖q_j − q_i‖ < d: j ∈ F_i⁻).
 pub const REPULSION: [u8; 3] = [0x7B, 0x32, 0x94];
+/// An agent of zero local stress (S_i = 0, ACC 2004 eq. 31, case ii) in the figure of
+/// [`reynolds_svg`](crate::reynolds_svg).
+pub const NEUTRAL: [u8; 3] = [0x4D, 0x4D, 0x4D];
+/// The motion-planning term u_i^mp of the (α, α) protocol (ACC 2004 eq. 27), an arrow.
+pub const MOTION_PLANNING: [u8; 3] = [0xB2, 0x18, 0x2B];
+/// The velocity-matching term u_i^vm, and Reynolds's alignment, an arrow.
+pub const VELOCITY_MATCHING: [u8; 3] = [0x1B, 0x9E, 0x77];
 /// A velocity arrow.
 pub const VELOCITY: [u8; 3] = [0x2C, 0xA0, 0x2C];
 /// The agents' trails.

@@ -25,6 +25,7 @@ fn small() -> FigureOptions {
             ..AnimationOptions::default()
         }),
         player: Some(PlayerOptions::default()),
+        reynolds_time: None,
         svg: true,
         png: true,
     }

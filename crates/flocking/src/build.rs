@@ -35,6 +35,29 @@ impl Scenario {
         Ok(protocol)
     }
 
+    /// The (α, α) protocol of a `Flocking2003` scenario (its (α, α) part, without the
+    /// translational controller and the obstacles), `None` for the other algorithms: what
+    /// [`AlphaAlpha::reynolds_reading`] reads (ACC 2004 § 4).
+    #[must_use]
+    pub fn alpha_alpha(&self) -> Option<AlphaAlpha> {
+        let Algorithm::Flocking2003 {
+            form,
+            c1,
+            delta,
+            power,
+            ..
+        } = &self.algorithm
+        else {
+            return None;
+        };
+        let (a, b, d, r) = (self.alpha.a, self.alpha.b, self.alpha.d, self.range());
+        let params = AlphaAlphaParams {
+            bump: Bump::influence_map(delta.unwrap_or(d / r), *power),
+            ..AlphaAlphaParams::new(d, r, a, b)
+        };
+        Some(AlphaAlpha::new(params, *form, *c1))
+    }
+
     /// The protocol of the algorithm, whatever the conditions.
     fn ideal_protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
         let alpha_config = &self.alpha;
@@ -72,24 +95,16 @@ impl Scenario {
                 })
             }
             Algorithm::Flocking2003 {
-                form,
-                c1,
-                delta,
-                power,
                 translation,
                 avoidance,
+                ..
             } => {
-                let params = AlphaAlphaParams {
-                    bump: Bump::influence_map(delta.unwrap_or(d / r), *power),
-                    ..AlphaAlphaParams::new(d, r, alpha_config.a, alpha_config.b)
-                };
+                let alpha = self.alpha_alpha().unwrap_or_else(|| unreachable!());
+                let params = *alpha.params();
                 let translation = translation
                     .as_ref()
                     .map(|t| NavigationalFeedback::linear(gamma_agent::<V>(&t.gamma), t.c1, t.c2));
-                let flocking = Flocking2003 {
-                    alpha: AlphaAlpha::new(params, *form, *c1),
-                    translation,
-                };
+                let flocking = Flocking2003 { alpha, translation };
                 match avoidance {
                     None => Box::new(flocking),
                     Some(gains) => Box::new(ObstacleFlocking2003 {

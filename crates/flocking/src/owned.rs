@@ -153,6 +153,8 @@ pub const RUN_FIGURES: &[&str] = &[
     "views.png",
     "metrics.svg",
     "metrics.png",
+    "reynolds.svg",
+    "reynolds.png",
     "animation.gif",
     "player.html",
 ];

@@ -114,7 +114,7 @@ fn the_header_names_the_diagnostics_of_each_protocol() {
         (
             "tr2003_fig7_obstacles_n100",
             ",defect_factor,normalised_defect_factor,structural_energy,translational_energy,\
-             obstacle_clearance,inside_obstacles",
+             stress_towards,stress_away,stress_neutral,obstacle_clearance,inside_obstacles",
         ),
     ] {
         write(&short(name, 0.1), &tmp, name, TrajectoryFormat::Csv);
