@@ -19,11 +19,13 @@ use flocking::obstacles::{ObstacleField, Space};
 use flocking::protocols::conditions::{
     self, Actuation, Communication, Conditions, Delayed, Loss, Noise, SampledControl, Sensing,
 };
+use flocking::protocols::vehicle::{FixedWingParams, QuadrotorParams, UnicycleParams};
 use flocking::protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaInteraction, AlphaParams, BetaInteraction, BetaParams,
     DynProtocol, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
 };
 use flocking::synthetic::{D, lattice_swarm, shuffled};
+use flocking::vehicle::{VehicleSpace, VehicleSpec};
 
 /// Steps between two recorded steps (metrics and energy), as the targets count them.
 pub const RECORD_EVERY: u64 = 10;
@@ -73,6 +75,30 @@ impl fmt::Display for BenchAlgorithm {
             Self::Algorithm2 => "Algorithm 2",
             Self::Algorithm3 => "Algorithm 3",
         })
+    }
+}
+
+/// The vehicle `flocking bench` flies the agents on (none: point masses), with its default
+/// parameters (docs/vehicles.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BenchVehicle {
+    /// The TurtleBot3 Burger unicycle, 2D only.
+    Unicycle,
+    /// Beard & McLain's fixed wing.
+    FixedWing,
+    /// The Crazyflie 2.x quadrotor, 3D only.
+    Quadrotor,
+}
+
+impl BenchVehicle {
+    /// The scenario's vehicle.
+    #[must_use]
+    pub fn spec(self) -> VehicleSpec {
+        match self {
+            Self::Unicycle => VehicleSpec::Unicycle(UnicycleParams::default()),
+            Self::FixedWing => VehicleSpec::FixedWing(FixedWingParams::default()),
+            Self::Quadrotor => VehicleSpec::Quadrotor(QuadrotorParams::default()),
+        }
     }
 }
 
@@ -199,6 +225,8 @@ pub struct BenchConfig {
     pub shuffled: bool,
     /// The real conditions (none: the ideal loop).
     pub conditions: ConditionFlags,
+    /// The vehicle (none: point masses).
+    pub vehicle: Option<BenchVehicle>,
 }
 
 /// The measurements of one `flocking bench` run.
@@ -273,6 +301,9 @@ impl fmt::Display for BenchReport {
         }
         if c.shuffled {
             writeln!(f, "  agents numbered       at random")?;
+        }
+        if let Some(vehicle) = c.vehicle {
+            writeln!(f, "  vehicle               {}", vehicle.spec().name())?;
         }
         if c.conditions != ConditionFlags::default() {
             writeln!(f, "  conditions            {}", c.conditions)?;
@@ -374,7 +405,7 @@ pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
     }
 }
 
-fn bench_in<V: Space>(
+fn bench_in<V: Space + VehicleSpace>(
     config: &BenchConfig,
     conditions: &Conditions,
 ) -> Result<BenchReport, String> {
@@ -435,7 +466,7 @@ fn navigation<V: Vector>(
     form(gamma, 0.02_f64.min(1.0 / radius.max(1.0)), 0.4)
 }
 
-fn time<V: Vector>(
+fn time<V: Vector + VehicleSpace>(
     config: &BenchConfig,
     conditions: &Conditions,
     protocol: DynProtocol<V>,
@@ -448,7 +479,16 @@ fn time<V: Vector>(
         collision_distance: D / 4.0,
     };
     let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, STEP)
-        .unwrap_or_else(|e| unreachable!("the benchmark's state and step are valid: {e}"))
+        .unwrap_or_else(|e| unreachable!("the benchmark's state and step are valid: {e}"));
+    if let Some(vehicle) = config.vehicle {
+        let vehicle = V::vehicle(&vehicle.spec())
+            .map_err(|e| e.to_string())?
+            .ok_or("a vehicle")?;
+        sim = sim
+            .with_vehicle(vehicle, None)
+            .map_err(|e| format!("invalid vehicle: {e}"))?;
+    }
+    let mut sim = sim
         .with_conditions(conditions, CONDITIONS_SEED)
         .map_err(|e| format!("invalid conditions: {e}"))?;
     let setup = start.elapsed();

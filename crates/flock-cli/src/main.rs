@@ -139,6 +139,10 @@ enum Command {
         /// Real conditions to run under (none: the ideal loop).
         #[command(flatten)]
         conditions: flock_cli::bench::ConditionFlags,
+        /// Fly the agents on this vehicle with its default parameters (docs/vehicles.md):
+        /// unicycle (2D), fixed-wing, quadrotor (3D); default point masses.
+        #[arg(long, value_enum)]
+        vehicle: Option<flock_cli::bench::BenchVehicle>,
         /// Instead of the α-lattice, a workload of the ABM frameworks' boids benchmark
         /// (ABMFrameworksComparison's Flocking/DECLARATION.md): 100 steps timed from a fresh start
         /// per seed, the median printed.
@@ -229,6 +233,7 @@ fn dispatch(command: Command) -> ExitCode {
             warmup,
             shuffled,
             conditions,
+            vehicle,
             workload,
             seeds,
             scale_to,
@@ -247,6 +252,7 @@ fn dispatch(command: Command) -> ExitCode {
                 algorithm,
                 shuffled,
                 conditions,
+                vehicle,
             };
             match flock_cli::bench::bench(&config) {
                 Ok(report) => {
