@@ -100,6 +100,24 @@ fn the_outputs_page_lists_exactly_the_columns_the_writers_write() {
         .map(|path| Scenario::load(path).unwrap_or_else(|e| panic!("{}: {e}", stem(path))))
         .collect();
     scenarios.push(Scenario::parse(EVERY_CONDITION, "every_condition.ron").expect("valid"));
+    // the fixed wings in 3D (the fixtures fly them in the plane)
+    let mut wings_3d = fixture_paths()
+        .iter()
+        .find(|path| stem(path) == "fixed_wing_alg2_n30")
+        .map(|path| Scenario::load(path).expect("the fixed-wing fixture"))
+        .expect("fixtures/fixed_wing_alg2_n30.ron");
+    wings_3d = wings_3d
+        .with_values([
+            ("dim", flocking::serde_json::json!(3)),
+            ("algorithm.gamma.ConstantVelocity.position", flocking::serde_json::json!([0.0, 0.0, 0.0])),
+            ("algorithm.gamma.ConstantVelocity.velocity", flocking::serde_json::json!([25.0, 0.0, 0.0])),
+            ("initial.positions.Gaussian.mean", flocking::serde_json::json!([0.0, 0.0, 0.0])),
+            ("initial.velocities.Box.min", flocking::serde_json::json!([20.0, -3.0, -1.0])),
+            ("initial.velocities.Box.max", flocking::serde_json::json!([25.0, 3.0, 1.0])),
+            ("name", flocking::serde_json::json!("fixed_wing_3d")),
+        ])
+        .expect("the fixed wings in 3D");
+    scenarios.push(wings_3d);
     for scenario in scenarios {
         let out = tmp.path().join(&scenario.name);
         run_into(scenario, &out);
