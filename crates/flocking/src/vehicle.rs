@@ -112,8 +112,8 @@ impl VehicleSpace for DVec2 {
     fn vehicle(spec: &VehicleSpec) -> Result<Option<DynVehicle<Self>>, ScenarioError> {
         match spec {
             VehicleSpec::PointMass => Ok(None),
-            VehicleSpec::Unicycle(params) => boxed(Unicycle::new(params.clone())),
-            VehicleSpec::FixedWing(params) => boxed(FixedWing::new(params.clone())),
+            VehicleSpec::Unicycle(params) => boxed(Unicycle::new(*params)),
+            VehicleSpec::FixedWing(params) => boxed(FixedWing::new(*params)),
             VehicleSpec::Quadrotor(_) => Err(not_in(spec, 2, "set dim: 3")),
         }
     }
@@ -124,8 +124,8 @@ impl VehicleSpace for DVec3 {
         match spec {
             VehicleSpec::PointMass => Ok(None),
             VehicleSpec::Unicycle(_) => Err(not_in(spec, 3, "set dim: 2")),
-            VehicleSpec::FixedWing(params) => boxed(FixedWing::new(params.clone())),
-            VehicleSpec::Quadrotor(params) => boxed(Quadrotor::new(params.clone())),
+            VehicleSpec::FixedWing(params) => boxed(FixedWing::new(*params)),
+            VehicleSpec::Quadrotor(params) => boxed(Quadrotor::new(*params)),
         }
     }
 }

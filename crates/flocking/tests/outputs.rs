@@ -109,11 +109,26 @@ fn the_outputs_page_lists_exactly_the_columns_the_writers_write() {
     wings_3d = wings_3d
         .with_values([
             ("dim", flocking::serde_json::json!(3)),
-            ("algorithm.gamma.ConstantVelocity.position", flocking::serde_json::json!([0.0, 0.0, 0.0])),
-            ("algorithm.gamma.ConstantVelocity.velocity", flocking::serde_json::json!([25.0, 0.0, 0.0])),
-            ("initial.positions.Gaussian.mean", flocking::serde_json::json!([0.0, 0.0, 0.0])),
-            ("initial.velocities.Box.min", flocking::serde_json::json!([20.0, -3.0, -1.0])),
-            ("initial.velocities.Box.max", flocking::serde_json::json!([25.0, 3.0, 1.0])),
+            (
+                "algorithm.gamma.ConstantVelocity.position",
+                flocking::serde_json::json!([0.0, 0.0, 0.0]),
+            ),
+            (
+                "algorithm.gamma.ConstantVelocity.velocity",
+                flocking::serde_json::json!([25.0, 0.0, 0.0]),
+            ),
+            (
+                "initial.positions.Gaussian.mean",
+                flocking::serde_json::json!([0.0, 0.0, 0.0]),
+            ),
+            (
+                "initial.velocities.Box.min",
+                flocking::serde_json::json!([20.0, -3.0, -1.0]),
+            ),
+            (
+                "initial.velocities.Box.max",
+                flocking::serde_json::json!([25.0, 3.0, 1.0]),
+            ),
             ("name", flocking::serde_json::json!("fixed_wing_3d")),
         ])
         .expect("the fixed wings in 3D");
