@@ -17,9 +17,9 @@ def test_vehicle_states_in_memory_and_on_disk(tmp_path):
     result = flocking.run(scenario, out=tmp_path / "quads")
     columns = result.final.vehicle_columns
     assert columns[:4] == ("attitude_w", "attitude_x", "attitude_y", "attitude_z")
-    assert len(columns) == 13
-    assert result.final.vehicle.shape == (50, 13)
-    assert result.trajectory.vehicle.shape == (6, 50, 13)
+    assert len(columns) == 11
+    assert result.final.vehicle.shape == (50, 11)
+    assert result.trajectory.vehicle.shape == (6, 50, 11)
     # unit quaternions
     norms = np.linalg.norm(result.trajectory.vehicle[..., :4], axis=-1)
     assert np.allclose(norms, 1.0, atol=1e-12)
@@ -56,4 +56,4 @@ def test_a_quadrotor_in_the_plane_is_refused():
     with pytest.raises(flocking.ScenarioError) as error:
         flocking.run(scenario)
     assert error.value.field == "vehicle"
-    assert "3D" in str(error.value)
+    assert "set dim: 3" in str(error.value)
