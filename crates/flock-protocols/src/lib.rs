@@ -84,5 +84,5 @@ pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,
 };
 pub use vasarhelyi2018::{Arena, ArenaShape, Vasarhelyi, VasarhelyiParams};
-pub use vehicle::{DynVehicle, Fleet, Vehicle};
+pub use vehicle::{DynVehicle, Fleet, Vehicle, VehicleKind};
 pub use vicsek1995::{Vicsek, VicsekParams, planar};

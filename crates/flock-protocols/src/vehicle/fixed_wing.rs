@@ -25,8 +25,8 @@ use core::f64::consts::FRAC_PI_2;
 use glam::{DVec2, DVec3};
 
 use super::GRAVITY;
-use super::Vehicle;
-use super::unicycle::{inner_steps, wrap_angle};
+use super::unicycle::wrap_angle;
+use super::{Vehicle, VehicleKind, inner_steps};
 use crate::error::{ParamError, check};
 
 /// The fixed wing's parameters (SI units, angles in radians). Defaults: Beard & McLain's
@@ -346,7 +346,7 @@ impl Flight {
     }
 }
 
-impl Vehicle<DVec2> for FixedWing {
+impl VehicleKind for FixedWing {
     fn name(&self) -> &'static str {
         "FixedWing"
     }
@@ -359,16 +359,18 @@ impl Vehicle<DVec2> for FixedWing {
         self.params.inner_step
     }
 
+    fn takes_disturbance(&self) -> bool {
+        false
+    }
+}
+
+impl Vehicle<DVec2> for FixedWing {
     fn state_columns(&self) -> &'static [&'static str] {
         STATE_2D
     }
 
     fn limit_columns(&self) -> &'static [&'static str] {
         LIMITS_2D
-    }
-
-    fn takes_disturbance(&self) -> bool {
-        false
     }
 
     fn start(&self, q: DVec2, p: DVec2, state: &mut [f64]) -> (DVec2, DVec2) {
@@ -401,28 +403,12 @@ impl Vehicle<DVec2> for FixedWing {
 }
 
 impl Vehicle<DVec3> for FixedWing {
-    fn name(&self) -> &'static str {
-        "FixedWing"
-    }
-
-    fn validate(&self) -> Result<(), ParamError> {
-        self.params.validate()
-    }
-
-    fn inner_step(&self) -> f64 {
-        self.params.inner_step
-    }
-
     fn state_columns(&self) -> &'static [&'static str] {
         STATE_3D
     }
 
     fn limit_columns(&self) -> &'static [&'static str] {
         LIMITS_3D
-    }
-
-    fn takes_disturbance(&self) -> bool {
-        false
     }
 
     fn start(&self, q: DVec3, p: DVec3, state: &mut [f64]) -> (DVec3, DVec3) {

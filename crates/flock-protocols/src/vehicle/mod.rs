@@ -36,21 +36,7 @@ pub const GRAVITY: f64 = 9.81;
 ///
 /// A vehicle is implemented for the dimensions it exists in (a ground robot in the plane, a
 /// quadrotor in space).
-pub trait Vehicle<V: Vector>: Sync + Send + core::fmt::Debug {
-    /// The vehicle's name as a scenario writes it (`Unicycle`, `FixedWing`, `Quadrotor`).
-    fn name(&self) -> &'static str;
-
-    /// Checks every parameter, naming the field (relative to the vehicle: `max_speed`,
-    /// `motor.time_constant`), the value and the fix.
-    ///
-    /// # Errors
-    /// The first parameter outside its domain.
-    fn validate(&self) -> Result<(), ParamError>;
-
-    /// The inner step δ (s) at which the dynamics are integrated; the flock's step h must be a
-    /// whole number of inner steps.
-    fn inner_step(&self) -> f64;
-
+pub trait Vehicle<V: Vector>: VehicleKind {
     /// The names of an agent's state beyond its reference point's position and velocity, in the
     /// order of the `state` slices: columns of `final.csv`, of the trajectory and of the
     /// checkpoint (`heading`, `bank`, `attitude_w`, `rotor_speed_1`, …).
@@ -60,11 +46,6 @@ pub trait Vehicle<V: Vector>: Sync + Send + core::fmt::Debug {
     /// …): one `metrics.csv` column each, the number of agents that hit that limit during the
     /// last step.
     fn limit_columns(&self) -> &'static [&'static str];
-
-    /// Whether the vehicle takes an external acceleration (wind, process noise) on its reference
-    /// point ([`Vehicle::advance`]'s `disturbance`). A vehicle that cannot (a ground robot whose
-    /// wheels do not slip) is refused the `disturbance` condition.
-    fn takes_disturbance(&self) -> bool;
 
     /// An agent at the start of a run: its state in equilibrium (at rest on the ground, in hover,
     /// in level flight) with its reference point at `q`, moving with `p`. Writes `state` and
@@ -92,6 +73,40 @@ pub trait Vehicle<V: Vector>: Sync + Send + core::fmt::Debug {
     /// The unit vector along which the vehicle points (its body's forward axis), from its
     /// reference point's velocity `p` and its `state`: the figures' oriented marker.
     fn heading(&self, p: V, state: &[f64]) -> V;
+}
+
+/// What a vehicle is in every dimension it exists in: its name, its parameters, its inner step
+/// and whether it takes an external acceleration.
+pub trait VehicleKind: Sync + Send + core::fmt::Debug {
+    /// The vehicle's name as a scenario writes it (`Unicycle`, `FixedWing`, `Quadrotor`).
+    fn name(&self) -> &'static str;
+
+    /// Checks every parameter, naming the field (relative to the vehicle: `max_speed`,
+    /// `motor_time_constant`), the value and the fix.
+    ///
+    /// # Errors
+    /// The first parameter outside its domain.
+    fn validate(&self) -> Result<(), ParamError>;
+
+    /// The inner step δ (s) at which the dynamics are integrated; the flock's step h must be a
+    /// whole number of inner steps.
+    fn inner_step(&self) -> f64;
+
+    /// Whether the vehicle takes an external acceleration (wind, process noise) on its reference
+    /// point ([`Vehicle::advance`]'s `disturbance`). A vehicle that cannot (a ground robot whose
+    /// wheels do not slip) is refused the `disturbance` condition.
+    fn takes_disturbance(&self) -> bool;
+}
+
+/// The number of inner steps δ in the flock's step h (at least one; none for an h that is not
+/// positive and finite).
+#[must_use]
+pub(crate) fn inner_steps(h: f64, delta: f64) -> usize {
+    if h > 0.0 && h.is_finite() {
+        ((h / delta).round() as usize).max(1)
+    } else {
+        0
+    }
 }
 
 /// A vehicle chosen at run time.

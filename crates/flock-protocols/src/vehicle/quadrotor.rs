@@ -67,7 +67,7 @@ use core::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use glam::{DMat3, DQuat, DVec3};
 
 use super::GRAVITY;
-use super::Vehicle;
+use super::{Vehicle, VehicleKind, inner_steps};
 use crate::error::{ParamError, check};
 
 /// Revolutions per minute in one radian per second, 30/π: a coefficient per rpm² times its square
@@ -687,16 +687,7 @@ fn write_state(state: &mut [f64], q: DQuat, w: DVec3, speeds: &[f64; 4]) {
     state[7..11].copy_from_slice(speeds);
 }
 
-/// The number of inner steps in a step `h` of inner step `dt` (at least one when h > 0).
-fn inner_steps(h: f64, dt: f64) -> usize {
-    if h > 0.0 && h.is_finite() {
-        ((h / dt).round() as usize).max(1)
-    } else {
-        0
-    }
-}
-
-impl Vehicle<DVec3> for Quadrotor {
+impl VehicleKind for Quadrotor {
     fn name(&self) -> &'static str {
         "Quadrotor"
     }
@@ -709,16 +700,18 @@ impl Vehicle<DVec3> for Quadrotor {
         self.params.inner_step
     }
 
+    fn takes_disturbance(&self) -> bool {
+        true
+    }
+}
+
+impl Vehicle<DVec3> for Quadrotor {
     fn state_columns(&self) -> &'static [&'static str] {
         &STATE_COLUMNS
     }
 
     fn limit_columns(&self) -> &'static [&'static str] {
         &LIMIT_COLUMNS
-    }
-
-    fn takes_disturbance(&self) -> bool {
-        true
     }
 
     /// Hover at `q` moving with `p`: level attitude (body axes along the world's), Ω = 0, every

@@ -17,7 +17,7 @@
 
 use glam::DVec2;
 
-use super::Vehicle;
+use super::{Vehicle, VehicleKind, inner_steps};
 use crate::error::{ParamError, check};
 
 /// The unicycle's parameters. Defaults are ROBOTIS's TurtleBot3 Burger: maximum translational
@@ -235,7 +235,7 @@ impl Limits {
     }
 }
 
-impl Vehicle<DVec2> for Unicycle {
+impl VehicleKind for Unicycle {
     fn name(&self) -> &'static str {
         "Unicycle"
     }
@@ -248,17 +248,19 @@ impl Vehicle<DVec2> for Unicycle {
         self.params.inner_step
     }
 
+    /// False: the wheels roll without slipping, so nothing but (v, ω) moves the robot.
+    fn takes_disturbance(&self) -> bool {
+        false
+    }
+}
+
+impl Vehicle<DVec2> for Unicycle {
     fn state_columns(&self) -> &'static [&'static str] {
         STATE
     }
 
     fn limit_columns(&self) -> &'static [&'static str] {
         LIMITS
-    }
-
-    /// False: the wheels roll without slipping, so nothing but (v, ω) moves the robot.
-    fn takes_disturbance(&self) -> bool {
-        false
     }
 
     /// Heading along `p` (0 when `p` is zero), turning rate 0 and speed |p| scaled into the
@@ -299,12 +301,6 @@ impl Vehicle<DVec2> for Unicycle {
     fn heading(&self, _p: DVec2, state: &[f64]) -> DVec2 {
         forward(state[0])
     }
-}
-
-/// The number of inner steps δ in the flock's step h (at least one).
-#[must_use]
-pub(crate) fn inner_steps(h: f64, delta: f64) -> usize {
-    ((h / delta).round() as usize).max(1)
 }
 
 /// The unit vector e(θ) = (cos θ, sin θ).
