@@ -4,7 +4,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 pub use tempfile::TempDir;
 
-use flocking::Scenario;
+use flocking::{Record, Recorder, Scenario, Start};
 
 /// The workspace's `fixtures/` directory.
 pub fn fixtures_dir() -> PathBuf {
@@ -58,4 +58,65 @@ pub fn temp_dir(test: &str) -> TempDir {
         .prefix(&format!("flocking-{test}-"))
         .tempdir()
         .expect("create a temporary directory")
+}
+
+/// Every record's bits (time, energy, metrics, diagnostics, state and vehicle states), and the
+/// checkpoint taken at step `at`.
+struct Bits {
+    at: u64,
+    records: Vec<Vec<u64>>,
+    checkpoint: Option<Start>,
+}
+
+impl Recorder for Bits {
+    type Error = std::convert::Infallible;
+
+    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
+        let state = &record.state;
+        let numbers = [record.t, record.energy]
+            .into_iter()
+            .chain(record.metrics.reals())
+            .chain(record.metrics.extras())
+            .chain(record.diagnostics.iter().map(|(_, x)| *x))
+            .chain(state.positions.iter().copied())
+            .chain(state.velocities.iter().copied())
+            .chain(state.vehicle.iter().copied());
+        self.records.push(numbers.map(f64::to_bits).collect());
+        Ok(())
+    }
+
+    fn wants_checkpoint(&self, steps: u64) -> bool {
+        steps == self.at
+    }
+
+    fn checkpoint(&mut self, start: &Start) -> Result<(), Self::Error> {
+        self.checkpoint = Some(start.clone());
+        Ok(())
+    }
+}
+
+/// Runs `scenario` whole with a checkpoint at step `at`, resumes it from that checkpoint, and
+/// asserts that the resumed run records the bits of the whole run's tail; returns the checkpoint.
+pub fn assert_resumes_bit_for_bit(scenario: &Scenario, at: u64) -> Start {
+    let mut whole = Bits {
+        at,
+        records: Vec::new(),
+        checkpoint: None,
+    };
+    flocking::run(scenario, &mut whole).expect("the run");
+    let checkpoint = whole.checkpoint.take().expect("a checkpoint");
+    let mut resumed = Bits {
+        at: u64::MAX,
+        records: Vec::new(),
+        checkpoint: None,
+    };
+    flocking::resume(scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
+    assert!(!resumed.records.is_empty());
+    let tail = &whole.records[whole.records.len() - resumed.records.len()..];
+    assert!(
+        resumed.records[..] == *tail,
+        "{}: the resumed records differ",
+        scenario.name
+    );
+    checkpoint
 }

@@ -4,9 +4,9 @@
 //! the errors of what they cannot take.
 
 use flocking::serde_json::json;
-use flocking::{DynSimulation, Record, Recorder, Scenario, Start};
+use flocking::{DynSimulation, Scenario};
 
-use crate::common::fixture;
+use crate::common::{assert_resumes_bit_for_bit, fixture};
 
 /// The polarisation and milling averaged over the records of the last three quarters of `scenario`.
 fn settled_order(scenario: &Scenario) -> (f64, f64) {
@@ -67,38 +67,6 @@ fn couzin_shows_its_four_collective_states() {
     }
 }
 
-/// Every record's bits, and the checkpoint at step `at`.
-struct Bits {
-    at: u64,
-    records: Vec<Vec<u64>>,
-    checkpoint: Option<Start>,
-}
-
-impl Recorder for Bits {
-    type Error = std::convert::Infallible;
-
-    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
-        let state = &record.state;
-        let numbers = [record.t, record.energy]
-            .into_iter()
-            .chain(record.metrics.reals())
-            .chain(record.metrics.extras())
-            .chain(state.positions.iter().copied())
-            .chain(state.velocities.iter().copied());
-        self.records.push(numbers.map(f64::to_bits).collect());
-        Ok(())
-    }
-
-    fn wants_checkpoint(&self, steps: u64) -> bool {
-        steps == self.at
-    }
-
-    fn checkpoint(&mut self, start: &Start) -> Result<(), Self::Error> {
-        self.checkpoint = Some(start.clone());
-        Ok(())
-    }
-}
-
 /// A run interrupted at a checkpoint and resumed records the bits of the uninterrupted run: the
 /// models' noise, the boids' activation order and the conditions' draws are keyed by step.
 #[test]
@@ -133,26 +101,7 @@ fn every_model_resumes_with_the_bits_of_the_whole_run() {
         ),
     ];
     for scenario in &scenarios {
-        let mut whole = Bits {
-            at: 15,
-            records: Vec::new(),
-            checkpoint: None,
-        };
-        flocking::run(scenario, &mut whole).expect("the run");
-        let checkpoint = whole.checkpoint.take().expect("a checkpoint at step 15");
-        let mut resumed = Bits {
-            at: u64::MAX,
-            records: Vec::new(),
-            checkpoint: None,
-        };
-        flocking::resume(scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
-        assert!(!resumed.records.is_empty());
-        let tail = &whole.records[whole.records.len() - resumed.records.len()..];
-        assert!(
-            resumed.records[..] == *tail,
-            "{}: the resumed records differ",
-            scenario.name
-        );
+        assert_resumes_bit_for_bit(scenario, 15);
     }
 }
 

@@ -6,9 +6,9 @@
 
 use flocking::metrics::{FlockingCriteria, FlockingVerdict};
 use flocking::serde_json::json;
-use flocking::{DynSimulation, Record, Recorder, Scenario, ScenarioError, Start};
+use flocking::{DynSimulation, Scenario, ScenarioError};
 
-use crate::common::fixture;
+use crate::common::{assert_resumes_bit_for_bit, fixture};
 
 /// `scenario` with `changes` by dotted path.
 fn changed(scenario: &Scenario, changes: Vec<(&str, flocking::serde_json::Value)>) -> Scenario {
@@ -173,39 +173,6 @@ fn fixed_wings_loiter_about_a_static_gamma_agent() {
     );
 }
 
-/// Every record's bits (state and vehicle states), and the checkpoint at step `at`.
-struct Bits {
-    at: u64,
-    records: Vec<Vec<u64>>,
-    checkpoint: Option<Start>,
-}
-
-impl Recorder for Bits {
-    type Error = std::convert::Infallible;
-
-    fn record(&mut self, record: &Record<'_>) -> Result<(), Self::Error> {
-        let state = &record.state;
-        let numbers = [record.t, record.energy]
-            .into_iter()
-            .chain(record.metrics.reals())
-            .chain(record.diagnostics.iter().map(|(_, x)| *x))
-            .chain(state.positions.iter().copied())
-            .chain(state.velocities.iter().copied())
-            .chain(state.vehicle.iter().copied());
-        self.records.push(numbers.map(f64::to_bits).collect());
-        Ok(())
-    }
-
-    fn wants_checkpoint(&self, steps: u64) -> bool {
-        steps == self.at
-    }
-
-    fn checkpoint(&mut self, start: &Start) -> Result<(), Self::Error> {
-        self.checkpoint = Some(start.clone());
-        Ok(())
-    }
-}
-
 /// A run of each vehicle interrupted at a checkpoint and resumed records the bits of the whole
 /// run, vehicle states and conditions (delay, loss, noise, wind on the quadrotors) included.
 #[test]
@@ -231,27 +198,8 @@ fn every_vehicle_resumes_with_the_bits_of_the_whole_run() {
         ),
     ];
     for scenario in &scenarios {
-        let mut whole = Bits {
-            at: 15,
-            records: Vec::new(),
-            checkpoint: None,
-        };
-        flocking::run(scenario, &mut whole).expect("the run");
-        let checkpoint = whole.checkpoint.take().expect("a checkpoint at step 15");
+        let checkpoint = assert_resumes_bit_for_bit(scenario, 15);
         assert!(!checkpoint.vehicle.is_empty());
-        let mut resumed = Bits {
-            at: u64::MAX,
-            records: Vec::new(),
-            checkpoint: None,
-        };
-        flocking::resume(scenario, Some(&checkpoint), &mut resumed).expect("the resumed run");
-        assert!(!resumed.records.is_empty());
-        let tail = &whole.records[whole.records.len() - resumed.records.len()..];
-        assert!(
-            resumed.records[..] == *tail,
-            "{}: the resumed records differ",
-            scenario.name
-        );
     }
 }
 
