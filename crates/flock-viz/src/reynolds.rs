@@ -23,7 +23,7 @@ use flocking::protocols::{
 use glam::{DVec2, DVec3};
 use plotters::coord::Shift;
 use plotters::element::Text;
-use plotters::prelude::{Circle, DrawingArea, DrawingBackend, PathElement, Rectangle};
+use plotters::prelude::{Circle, DrawingArea, DrawingBackend, Rectangle};
 use plotters::style::Color;
 
 use crate::error::VizError;
@@ -33,7 +33,7 @@ use crate::geometry::Rect;
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
 use crate::snapshot::{
-    Chart, DepthCue, below_title, draw_edges, grid_size, panel_chart, text_style, tuple,
+    Chart, DepthCue, arrow, below_title, draw_edges, grid_size, panel_chart, text_style, tuple,
 };
 use crate::style::{
     self, ATTRACTION, EDGE, MOTION_PLANNING, NEUTRAL, REPULSION, VELOCITY_MATCHING,
@@ -343,16 +343,7 @@ impl Marks<'_> {
                     continue;
                 }
                 let head = head.min(0.5 * (tip - tail).length());
-                let back = tip - head * e;
-                paths.push(PathElement::new(vec![tuple(tail), tuple(tip)], colour));
-                paths.push(PathElement::new(
-                    vec![
-                        tuple(back + 0.5 * head * e.perp()),
-                        tuple(tip),
-                        tuple(back - 0.5 * head * e.perp()),
-                    ],
-                    colour,
-                ));
+                arrow(&mut paths, (tail, tip, e), head, colour);
             }
         }
         chart.draw_series(paths).map_err(VizError::draw)?;

@@ -14,7 +14,7 @@ use plotters::prelude::{
     Cartesian2d, ChartBuilder, ChartContext, Circle, DrawingArea, DrawingBackend, PathElement,
     Polygon,
 };
-use plotters::style::{Color, IntoFont, TextStyle};
+use plotters::style::{Color, IntoFont, ShapeStyle, TextStyle};
 
 use crate::drawable::{CIRCLE_SIDES, Drawable, Shape};
 use crate::error::VizError;
@@ -608,20 +608,30 @@ fn draw_velocities<DB: DrawingBackend>(
         if !(window.contains(tail) && window.contains(tip)) {
             continue;
         }
-        let head = 0.3 * length;
-        let back = tip - head * e;
-        paths.push(PathElement::new(vec![tuple(tail), tuple(tip)], colour));
-        paths.push(PathElement::new(
-            vec![
-                tuple(back + 0.5 * head * e.perp()),
-                tuple(tip),
-                tuple(back - 0.5 * head * e.perp()),
-            ],
-            colour,
-        ));
+        arrow(&mut paths, (tail, tip, e), 0.3 * length, colour);
     }
     chart.draw_series(paths).map_err(VizError::draw)?;
     Ok(())
+}
+
+/// An arrow from `tail` to `tip` along the unit vector `e` (pixels), with a head of `head`
+/// pixels: its shaft and its two barbs, pushed onto `paths`.
+pub(crate) fn arrow(
+    paths: &mut Vec<PathElement<(f64, f64)>>,
+    (tail, tip, e): (DVec2, DVec2, DVec2),
+    head: f64,
+    colour: ShapeStyle,
+) {
+    let back = tip - head * e;
+    paths.push(PathElement::new(vec![tuple(tail), tuple(tip)], colour));
+    paths.push(PathElement::new(
+        vec![
+            tuple(back + 0.5 * head * e.perp()),
+            tuple(tip),
+            tuple(back - 0.5 * head * e.perp()),
+        ],
+        colour,
+    ));
 }
 
 /// The periodic box of the scene, if any: the rectangle [0, L₁] × [0, L₂] in 2D, the twelve
