@@ -149,6 +149,10 @@ impl Scenario {
         if let Value::Object(map) = &mut tree {
             // unset, not written, and settable
             map.entry("snapshots").or_insert(Value::Null);
+            map.entry("domain")
+                .or_insert_with(|| to_json(&crate::scenario::DomainSpec::default()));
+            map.entry("vehicle")
+                .or_insert_with(|| to_json(&crate::vehicle::VehicleSpec::default()));
             let conditions = map
                 .entry("conditions")
                 .or_insert_with(|| Value::Object(serde_json::Map::new()));

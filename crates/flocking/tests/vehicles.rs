@@ -90,6 +90,39 @@ fn unicycle_limits_hold_at_every_step() {
     assert!(at_limit > 0, "no robot ever drove at one of its limits");
 }
 
+/// The Vásárhelyi model's desired velocity, tracked through u = (v_d − v)/τ by 30 Crazyflies in
+/// 3D (its arena a cube): the flock orders (φ^corr > 0.98 at the end), flies near v^flock, and no
+/// pair comes within r^coll and no drone leaves the arena (docs/vehicles.md: φ^corr 0.991, speed
+/// 0.96 v^flock after 300 s).
+#[test]
+fn vasarhelyi_flies_on_crazyflies() {
+    let drones = changed(
+        &fixture("vasarhelyi2018_n30"),
+        vec![
+            ("dim", json!(3)),
+            ("vehicle", json!({"Quadrotor": {}})),
+            ("initial.positions.Box.min", json!([-50.0, -50.0, -5.0])),
+            ("initial.positions.Box.max", json!([50.0, 50.0, 5.0])),
+            ("duration", json!(300.0)),
+        ],
+    );
+    let summary = flocking::run(&drones, &mut ()).expect("the run");
+    let value = |name: &str| {
+        summary
+            .diagnostics
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, x)| *x)
+            .unwrap_or_else(|| panic!("no {name}"))
+    };
+    assert!(value("velocity_correlation") > 0.98);
+    assert!((0.9..1.05).contains(&value("speed_ratio")));
+    assert_eq!(value("wall_violation"), 0.0);
+    for (_, metrics) in &summary.history {
+        assert_eq!(metrics.collisions, 0);
+    }
+}
+
 /// Definition 5's verdict on the records of a whole run of `scenario`.
 fn verdict(scenario: &Scenario) -> FlockingVerdict {
     let summary = flocking::run(scenario, &mut ()).expect("the run");
