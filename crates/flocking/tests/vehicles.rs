@@ -295,3 +295,60 @@ fn vehicles_refuse_what_they_cannot_take_naming_the_field() {
         assert_eq!(field_of(scenario), *field, "{}", scenario.name);
     }
 }
+
+/// The 1 kg quadrotor of docs/vehicles.md, as a scenario writes it, is `QuadrotorParams::heavy()`
+/// (to the last digits of the decimal forms), and it hovers: a scenario can fly the preset.
+#[test]
+fn the_heavy_quadrotor_of_the_docs_is_the_preset() {
+    use flocking::protocols::vehicle::QuadrotorParams;
+    let page = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/vehicles.md"
+    ))
+    .expect("docs/vehicles.md");
+    let start = page
+        .find("```ron\nvehicle: Quadrotor((")
+        .expect("the block")
+        + "```ron\n".len();
+    let block = &page[start..start + page[start..].find("```").expect("its end")];
+    let mut scenario = fixture("crazyflie_alg2_3d_n50");
+    let text = scenario.to_ron().expect("RON");
+    let vehicle_line = text
+        .lines()
+        .position(|l| l.trim_start().starts_with("vehicle:"))
+        .expect("a vehicle");
+    let mut lines: Vec<&str> = text.lines().collect();
+    let end = (vehicle_line..lines.len())
+        .find(|&k| lines[k].trim_end() == "    )),")
+        .expect("the vehicle's end");
+    lines.splice(vehicle_line..=end, block.lines());
+    scenario = Scenario::parse(&lines.join("\n"), "heavy.ron").unwrap_or_else(|e| panic!("{e}"));
+    let flocking::vehicle::VehicleSpec::Quadrotor(params) = scenario.vehicle else {
+        panic!("a quadrotor");
+    };
+    let heavy = QuadrotorParams::heavy();
+    let pairs = [
+        (params.mass, heavy.mass),
+        (params.inertia.x, heavy.inertia.x),
+        (params.inertia.z, heavy.inertia.z),
+        (params.arm_length, heavy.arm_length),
+        (params.thrust_coefficient, heavy.thrust_coefficient),
+        (params.drag_coefficient, heavy.drag_coefficient),
+        (params.rotor_speed_max, heavy.rotor_speed_max),
+        (params.motor_time_constant, heavy.motor_time_constant),
+        (params.k_x, heavy.k_x),
+        (params.k_v, heavy.k_v),
+        (params.k_r, heavy.k_r),
+        (params.k_omega, heavy.k_omega),
+        (params.max_tilt, heavy.max_tilt),
+        (params.inner_step, heavy.inner_step),
+    ];
+    for (written, preset) in pairs {
+        approx::assert_relative_eq!(written, preset, max_relative = 1e-15);
+    }
+    let mut sim = DynSimulation::new(&scenario).expect("the heavy quadrotors fly");
+    for _ in 0..100 {
+        sim.step();
+    }
+    assert!(sim.state().positions.iter().all(|x| x.is_finite()));
+}
