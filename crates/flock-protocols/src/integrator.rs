@@ -12,7 +12,7 @@ use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field};
 use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
-use crate::vehicle::{DynVehicle, Fleet};
+use crate::vehicle::{DynVehicle, Fleet, VehicleKind};
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The integration scheme.
@@ -402,22 +402,11 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         vehicle: DynVehicle<V>,
         states: Option<Vec<f64>>,
     ) -> Result<Self, ParamError> {
-        if self.protocol.update().sets_velocity() {
-            return Err(ParamError::new(
-                "vehicle",
-                vehicle.name(),
-                "needs a commanded acceleration, and this model sets its agents' velocities directly",
-                "use vehicle: PointMass for this model, or an acceleration protocol",
-            ));
-        }
-        if self.integrator == Integrator::Rk4 {
-            return Err(ParamError::new(
-                "integrator",
-                "Rk4",
-                "is not used with a vehicle, which integrates its own dynamics at its inner step",
-                "remove integrator (or write SymplecticEuler) with this vehicle",
-            ));
-        }
+        check_vehicle_loop(
+            self.protocol.update().sets_velocity(),
+            self.integrator,
+            &*vehicle,
+        )?;
         if self.stored_by_cell() {
             self.swarm = self.swarm().into_owned();
             self.net = empty_net(&self.protocol);
@@ -753,6 +742,36 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             y.velocities[i] += rk.sum_p[i] * (h / 6.0);
         }
     }
+}
+
+/// Refuses a `vehicle` in a loop that cannot drive it: a protocol that sets velocities
+/// ([`Update::sets_velocity`]: it has no acceleration to command), or the `integrator` RK4 (a
+/// vehicle integrates its own dynamics at its inner step).
+///
+/// # Errors
+/// The field refused: `vehicle` or `integrator`.
+pub fn check_vehicle_loop(
+    sets_velocity: bool,
+    integrator: Integrator,
+    vehicle: &dyn VehicleKind,
+) -> Result<(), ParamError> {
+    if sets_velocity {
+        return Err(ParamError::new(
+            "vehicle",
+            vehicle.name(),
+            "needs a commanded acceleration, and this model sets its agents' velocities directly",
+            "use vehicle: PointMass for this model, or an acceleration protocol",
+        ));
+    }
+    if integrator == Integrator::Rk4 {
+        return Err(ParamError::new(
+            "integrator",
+            "Rk4",
+            "is not used with a vehicle, which integrates its own dynamics at its inner step",
+            "remove integrator (or write SymplecticEuler) with this vehicle",
+        ));
+    }
+    Ok(())
 }
 
 /// One agent's state after a step h of the loop's integrate stage, from its input u:

@@ -61,7 +61,7 @@ pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
 pub use error::{ParamError, check, plain_value};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
 pub use health::{AgentFault, Fault};
-pub use integrator::{Integrator, Observation, Simulation, advance};
+pub use integrator::{Integrator, Observation, Simulation, advance, check_vehicle_loop};
 pub use olfati_saber2003::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, AvoidanceGains, Flocking2003, ObstacleParams,
     influence_map_lipschitz,

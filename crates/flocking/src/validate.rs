@@ -118,6 +118,12 @@ impl Scenario {
         self.validate_cloud(problems, "initial.positions", &self.initial.positions);
         self.validate_cloud(problems, "initial.velocities", &self.initial.velocities);
         self.validate_conditions(problems);
+        if self.validate_time().is_ok() {
+            problems.check(match self.dim {
+                2 => self.validate_vehicle::<glam::DVec2>(),
+                _ => self.validate_vehicle::<glam::DVec3>(),
+            });
+        }
         if let Some(times) = &self.snapshots {
             problems.check(self.validate_snapshots(times));
         }
@@ -183,6 +189,20 @@ impl Scenario {
                 "remove this condition for this model (delay, loss, range, sensing noise, sampled control and faults apply)",
             )));
         }
+    }
+
+    /// The vehicle in the scenario's dimension: its parameters, its inner step against the step,
+    /// the protocol and integrator that drive it, and the conditions it can take
+    /// (docs/vehicles.md).
+    fn validate_vehicle<V: crate::vehicle::VehicleSpace>(&self) -> Result<(), ScenarioError> {
+        let Some(vehicle) = V::vehicle(&self.vehicle)? else {
+            return Ok(());
+        };
+        let sets_velocity = self.algorithm.sets_velocity();
+        flock_protocols::check_vehicle_loop(sets_velocity, self.integrator, &*vehicle)?;
+        flock_protocols::vehicle::check_inner_step(&*vehicle, self.step)?;
+        flock_protocols::conditions::stage::check_vehicle(&self.conditions, &*vehicle)?;
+        Ok(())
     }
 
     fn validate_agents(&self) -> Check {

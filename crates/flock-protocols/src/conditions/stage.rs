@@ -15,7 +15,7 @@ use super::noise::{OrnsteinUhlenbeck, SensorNoise};
 use super::stream::{Purpose, Streams};
 use crate::error::ParamError;
 use crate::integrator::{advance, controls_in};
-use crate::vehicle::{Fleet, Vehicle};
+use crate::vehicle::{Fleet, VehicleKind};
 use crate::{Integrator, LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The readings of the last step, for the diagnostics columns.
@@ -83,10 +83,7 @@ pub fn acceleration_field(conditions: &Conditions) -> Option<&'static str> {
 ///
 /// # Errors
 /// The field of the condition refused.
-pub fn check_vehicle<V: Vector>(
-    conditions: &Conditions,
-    vehicle: &dyn Vehicle<V>,
-) -> Result<(), ParamError> {
+pub fn check_vehicle(conditions: &Conditions, vehicle: &dyn VehicleKind) -> Result<(), ParamError> {
     if conditions.disturbance.is_some() && !vehicle.takes_disturbance() {
         return Err(ParamError::new(
             "conditions.disturbance",

@@ -3,7 +3,7 @@
 
 use flock_math::{Domain, Vector};
 
-use super::{DynVehicle, Vehicle};
+use super::{DynVehicle, Vehicle, VehicleKind};
 use crate::Swarm;
 use crate::error::{ParamError, check};
 
@@ -18,6 +18,27 @@ pub struct Fleet<V> {
     at_limit: Vec<usize>,
     /// The mean over moving agents of ‖(p⁺ − p)/h − u‖ at the last step.
     tracking_error: f64,
+}
+
+/// Checks that the flock's step `h` is a whole number of `vehicle`'s inner steps.
+///
+/// # Errors
+/// An inner step that is not positive, or that does not divide h (`vehicle.inner_step`).
+pub fn check_inner_step(vehicle: &dyn VehicleKind, h: f64) -> Result<(), ParamError> {
+    let inner = vehicle.inner_step();
+    check::positive("vehicle.inner_step", inner)?;
+    let ratio = h / inner;
+    check::require(
+        ratio >= 1.0 - WHOLE && (ratio - ratio.round()).abs() <= WHOLE * ratio,
+        "vehicle.inner_step",
+        inner,
+        &format!("does not divide the step h = {h} into whole inner steps"),
+        &format!(
+            "choose an inner step h / k for a whole k (h / {} = {})",
+            ratio.ceil().max(1.0),
+            h / ratio.ceil().max(1.0)
+        ),
+    )
 }
 
 /// The most limits a vehicle counts ([`Vehicle::limit_columns`]).
@@ -42,20 +63,7 @@ impl<V: Vector> Fleet<V> {
         states: Option<Vec<f64>>,
     ) -> Result<Self, ParamError> {
         vehicle.validate().map_err(|e| e.within("vehicle"))?;
-        let inner = vehicle.inner_step();
-        check::positive("vehicle.inner_step", inner)?;
-        let ratio = h / inner;
-        check::require(
-            ratio >= 1.0 - WHOLE && (ratio - ratio.round()).abs() <= WHOLE * ratio,
-            "vehicle.inner_step",
-            inner,
-            &format!("does not divide the step h = {h} into whole inner steps"),
-            &format!(
-                "choose an inner step h / k for a whole k (h / {} = {})",
-                ratio.ceil().max(1.0),
-                h / ratio.ceil().max(1.0)
-            ),
-        )?;
+        check_inner_step(&*vehicle, h)?;
         let limits = vehicle.limit_columns().len();
         check::require(
             limits <= MAX_LIMITS,

@@ -22,7 +22,7 @@ pub mod quadrotor;
 pub mod unicycle;
 
 pub use fixed_wing::{FixedWing, FixedWingParams};
-pub use fleet::Fleet;
+pub use fleet::{Fleet, check_inner_step};
 pub use quadrotor::{Quadrotor, QuadrotorParams};
 pub use unicycle::{Unicycle, UnicycleParams};
 
