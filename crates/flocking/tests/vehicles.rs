@@ -242,57 +242,60 @@ fn every_vehicle_resumes_with_the_bits_of_the_whole_run() {
 /// above the top speed, a thrust-to-weight below 1.
 #[test]
 fn vehicles_refuse_what_they_cannot_take_naming_the_field() {
-    let field_of = |scenario: &Scenario| match DynSimulation::new(scenario) {
-        Err(ScenarioError::Invalid { field, .. }) => field,
-        Err(other) => panic!("{}: not a field error: {other}", scenario.name),
-        Ok(_) => panic!("{}: accepted", scenario.name),
+    // the field of the error, whether the change is refused when made (with_values validates)
+    // or when the run is built
+    let field_of = |base: &Scenario, changes: Vec<(&str, flocking::serde_json::Value)>| {
+        let error = match base.with_values(changes) {
+            Err(error) => error,
+            Ok(scenario) => match DynSimulation::new(&scenario) {
+                Err(error) => error,
+                Ok(_) => panic!("{}: accepted", base.name),
+            },
+        };
+        match error {
+            ScenarioError::Invalid { field, .. } => field,
+            other => panic!("{}: not a field error: {other}", base.name),
+        }
     };
     let robots = fixture("unicycle_alg2_n50");
     let quads = fixture("crazyflie_alg2_3d_n50");
     let wings = fixture("fixed_wing_alg2_n30");
-    let mut quad_2d = robots.clone();
-    quad_2d.vehicle = quads.vehicle.clone();
-    let mut robots_3d = quads.clone();
-    robots_3d.vehicle = robots.vehicle.clone();
-    let mut vicsek_robots = fixture("vicsek1995_fig2a_n400");
-    vicsek_robots.vehicle = robots.vehicle.clone();
+    let vicsek = fixture("vicsek1995_fig2a_n400");
+    let quadrotor = json!({"Quadrotor": {}});
+    let unicycle = json!({"Unicycle": {}});
     let cases = [
-        (quad_2d, "vehicle"),
-        (robots_3d, "vehicle"),
-        (vicsek_robots, "vehicle"),
+        (&robots, vec![("vehicle", quadrotor)], "vehicle"),
+        (&quads, vec![("vehicle", unicycle.clone())], "vehicle"),
+        (&vicsek, vec![("vehicle", unicycle)], "vehicle"),
+        (&robots, vec![("integrator", json!("Rk4"))], "integrator"),
         (
-            changed(&robots, vec![("integrator", json!("Rk4"))]),
-            "integrator",
-        ),
-        (
-            changed(
-                &robots,
-                vec![("conditions.disturbance", json!({"process_noise": 0.1}))],
-            ),
+            &robots,
+            vec![("conditions.disturbance", json!({"process_noise": 0.1}))],
             "conditions.disturbance",
         ),
         (
-            changed(
-                &quads,
-                vec![("conditions.actuation", json!({"max_speed": 2.0}))],
-            ),
+            &quads,
+            vec![("conditions.actuation", json!({"max_speed": 2.0}))],
             "conditions.actuation.max_speed",
         ),
         (
-            changed(&wings, vec![("vehicle.inner_step", json!(0.015))]),
+            &wings,
+            vec![("vehicle.inner_step", json!(0.015))],
             "vehicle.inner_step",
         ),
         (
-            changed(&wings, vec![("vehicle.min_airspeed", json!(40.0))]),
+            &wings,
+            vec![("vehicle.min_airspeed", json!(40.0))],
             "vehicle.min_airspeed",
         ),
         (
-            changed(&quads, vec![("vehicle.thrust_coefficient", json!(1e-9))]),
+            &quads,
+            vec![("vehicle.thrust_coefficient", json!(1e-9))],
             "vehicle.thrust_coefficient",
         ),
     ];
-    for (scenario, field) in &cases {
-        assert_eq!(field_of(scenario), *field, "{}", scenario.name);
+    for (base, changes, field) in cases {
+        assert_eq!(field_of(base, changes), field, "{}", base.name);
     }
 }
 
