@@ -50,10 +50,8 @@ def test_point_masses_have_no_vehicle_states():
 
 
 def test_a_quadrotor_in_the_plane_is_refused():
-    scenario = flocking.Scenario.load(ROBOTS).with_values(
-        {"vehicle": {"Quadrotor": {}}, "duration": 0.1}
-    )
+    scenario = flocking.Scenario.load(ROBOTS)
     with pytest.raises(flocking.ScenarioError) as error:
-        flocking.run(scenario)
+        scenario.with_values({"vehicle": {"Quadrotor": {}}})
     assert error.value.field == "vehicle"
     assert "set dim: 3" in str(error.value)
