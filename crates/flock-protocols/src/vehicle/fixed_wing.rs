@@ -161,7 +161,7 @@ const LIMITS_3D: &[&str] = &["at_airspeed_limit", "at_bank_limit", "at_flight_pa
 ///
 /// No disturbance: the guidance model is written in still air, and the wind's effect on a flock
 /// of aircraft (drift of the ground velocity, crab angle) is the wind triangle of the book's
-/// chapter 2, not an acceleration on the reference point, so [`Vehicle::takes_disturbance`] is
+/// chapter 2, not an acceleration on the reference point, so [`VehicleKind::takes_disturbance`] is
 /// false.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FixedWing {

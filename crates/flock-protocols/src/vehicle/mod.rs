@@ -55,7 +55,7 @@ pub trait Vehicle<V: Vector>: VehicleKind {
 
     /// One agent over a step `h` (a whole number of inner steps) under the commanded acceleration
     /// `command` of its reference point, held over the step, and the external acceleration
-    /// `disturbance` (zero unless [`Vehicle::takes_disturbance`]): advances `q`, `p` and
+    /// `disturbance` (zero unless [`VehicleKind::takes_disturbance`]): advances `q`, `p` and
     /// `state`, and sets `limits[k]` for every limit k of [`Vehicle::limit_columns`] the vehicle
     /// hit during the step (it never clears one).
     #[allow(clippy::too_many_arguments)]
