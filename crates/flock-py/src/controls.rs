@@ -22,7 +22,7 @@ use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods}
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::errors::exception;
+use crate::errors::{exception, is_complex};
 
 /// What `f` failed with, and the state (positions, velocities as rows, agents in original order)
 /// at the start of the step it failed in — `None` when that step began before the simulation was
@@ -145,6 +145,17 @@ impl<V: Space + bytemuck::Pod> Controlled<V> {
         let neighbours = PyNeighbours::of(py, net)?;
         let u = self.f.bind(py).call1((t, q, p, neighbours))?;
         let expected = format!("({n}, {dim}) (n agents × dim)");
+        if is_complex(&u)? {
+            return Err(controls_error(
+                py,
+                format!(
+                    "controls returned complex numbers, not real accelerations of shape {expected}: \
+                     return `u.real` when the imaginary parts are zero"
+                ),
+                (n, dim),
+                None,
+            ));
+        }
         let array = if u.is_none() {
             None
         } else {

@@ -134,3 +134,36 @@ pub fn check_resources(
         _ => Err(pyo3::exceptions::PyMemoryError::new_err(why)),
     }
 }
+
+/// Whether `value` holds complex numbers (`numpy.iscomplexobj`: a complex dtype, or a sequence
+/// of Python complex numbers). numpy would cast them to float with only a `ComplexWarning`,
+/// dropping the imaginary parts; every array the package reads is refused instead (issue 27).
+pub fn is_complex(value: &Bound<'_, PyAny>) -> PyResult<bool> {
+    let numpy = value.py().import("numpy")?;
+    numpy.getattr("iscomplexobj")?.call1((value,))?.extract()
+}
+
+/// Refuses the argument `field` when it holds complex numbers, as a `ScenarioError` naming it.
+pub fn refuse_complex(py: Python<'_>, value: &Bound<'_, PyAny>, field: &str) -> PyResult<()> {
+    if is_complex(value)? {
+        return Err(scenario_error(
+            py,
+            &ScenarioError::invalid(
+                field,
+                ComplexArray,
+                "holds complex numbers, whose imaginary parts a position or velocity cannot have",
+                "pass real numbers (`array.real` when the imaginary parts are zero)",
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A complex array, as an error shows the value refused.
+struct ComplexArray;
+
+impl std::fmt::Debug for ComplexArray {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a complex array")
+    }
+}

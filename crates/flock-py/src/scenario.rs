@@ -14,7 +14,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
-use crate::errors::scenario_error;
+use crate::errors::{refuse_complex, scenario_error};
 use flocking::input::MAX_NESTING;
 
 /// A flocking scenario: the dimension, agents, algorithm and its gains, initial condition, step,
@@ -103,9 +103,16 @@ impl PyScenario {
     fn with_initial(
         &self,
         py: Python<'_>,
-        positions: PyArrayLike2<'_, f64, AllowTypeChange>,
-        velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+        positions: &Bound<'_, PyAny>,
+        velocities: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        refuse_complex(py, positions, "initial.positions")?;
+        if let Some(v) = velocities {
+            refuse_complex(py, v, "initial.velocities")?;
+        }
+        let positions: PyArrayLike2<'_, f64, AllowTypeChange> = positions.extract()?;
+        let velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>> =
+            velocities.map(|v| v.extract()).transpose()?;
         let mut inner = self.inner.clone();
         let dim = inner.dim;
         let positions =

@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::controls::PythonControls;
-use crate::errors::{numerical_error, scenario_error};
+use crate::errors::{numerical_error, refuse_complex, scenario_error};
 use crate::interrupt::Interrupt;
 use crate::scenario::PyScenario;
 
@@ -105,10 +105,21 @@ impl PySimulation {
     fn new(
         py: Python<'_>,
         scenario: &PyScenario,
-        positions: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
-        velocities: Option<PyArrayLike2<'_, f64, AllowTypeChange>>,
+        positions: Option<&Bound<'_, PyAny>>,
+        velocities: Option<&Bound<'_, PyAny>>,
         controls: Option<Py<PyAny>>,
     ) -> PyResult<Self> {
+        let mut arrays = [None, None];
+        for (slot, (array, name)) in arrays
+            .iter_mut()
+            .zip([(positions, "positions"), (velocities, "velocities")])
+        {
+            if let Some(array) = array {
+                refuse_complex(py, array, name)?;
+                *slot = Some(array.extract::<PyArrayLike2<'_, f64, AllowTypeChange>>()?);
+            }
+        }
+        let [positions, velocities] = arrays;
         let scenario = &scenario.inner;
         crate::errors::check_resources(py, scenario, &flocking::estimate::Outputs::NONE, None)?;
         let controls = controls.map(|f| PythonControls::new(f, scenario));

@@ -9,6 +9,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import flocking
@@ -150,3 +151,25 @@ def test_issue_27_ctrl_c_stops_a_sweep_at_once_and_keeps_its_rows(tmp_path):
     # the same call resumes: every run, each once
     result = flocking.sweep(spec, out)
     assert len(result.columns["run"]) == 80
+
+
+def test_complex_arrays_are_refused_not_cast():
+    """numpy would cast a complex array to float with only a ComplexWarning, dropping the
+    imaginary parts: a start state or a controls result with complex numbers is refused, naming
+    it (and one whose imaginary parts are zero too: the caller passes ``.real``)."""
+    scenario = short(FIG11)
+    n, dim = scenario.agents, scenario.dim
+    positions = np.zeros((n, dim), dtype=complex)
+    positions[:, 0] = np.arange(n) * 5.0 + 1j
+    with pytest.raises(flocking.ScenarioError) as raised:
+        scenario.with_initial(positions)
+    assert raised.value.field == "initial.positions"
+    assert "complex" in str(raised.value)
+    with pytest.raises(flocking.ScenarioError) as raised:
+        flocking.Simulation(scenario, np.arange(n * dim, dtype=float).reshape(n, dim), positions)
+    assert raised.value.field == "velocities"
+    with pytest.raises(flocking.ControlsError, match="complex") as raised:
+        flocking.Simulation(scenario, controls=lambda t, q, p, nb: np.zeros(q.shape, complex)).step()
+    # the real parts pass
+    started = scenario.with_initial(positions.real)
+    assert started.agents == n
