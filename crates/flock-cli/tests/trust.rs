@@ -413,7 +413,7 @@ fn kill_and_resume(
         if !partial(&out).exists() {
             // killed while preparing, before `DIR.partial` appeared (it is built under another
             // name and renamed whole): nothing to resume, the user's tree untouched but for
-            // that staging directory, which the next run into `DIR` clears once noted
+            // that staging directory, which the next run into `DIR` clears (its process is gone)
             assert!(!out.exists(), "DIR appears only for complete runs");
             early += 1;
             assert!(early < 10 * kills, "{early} kills before the run appeared");

@@ -226,3 +226,38 @@ fn issue_27_a_forged_checkpoint_is_refused_not_trusted() {
         assert!(error.to_string().contains(message), "case {k}: {error}");
     }
 }
+
+/// Issue 27: a run killed while preparing leaves `DIR.partial.new-<pid>`, empty or marked without
+/// its note; the next run into `DIR` removes it once that process is gone, and keeps the one of a
+/// live process and a directory of the user's with the same prefix.
+#[test]
+fn issue_27_a_run_killed_while_preparing_leaves_nothing_behind() {
+    let tmp = temp_dir("stale_staging");
+    let out = tmp.path().join("out");
+    let staging = |suffix: &str| tmp.path().join(format!("out.partial.new-{suffix}"));
+    let dead = u32::MAX - 1;
+    let (empty, marked, live, user) = (
+        staging(&dead.to_string()),
+        staging(&(dead - 1).to_string()),
+        staging("1"), // init: alive
+        staging("notes"),
+    );
+    for dir in [&empty, &marked, &live, &user] {
+        std::fs::create_dir(dir).expect("a staging directory");
+    }
+    flocking::owned::mark(&marked, flocking::owned::Kind::Run).expect("marked");
+    std::fs::write(user.join("mine.txt"), "the user's").expect("a user file");
+    let mut scenario = fixture("tac2006_fig12_alg1_n40");
+    scenario.duration = 2.0 * scenario.step;
+    let dir = RunDirectory::create(&out, &scenario, false).expect("the run starts");
+    dir.abandon();
+    assert!(
+        !empty.exists() && !marked.exists(),
+        "the dead runs' staging is removed"
+    );
+    assert!(live.is_dir(), "a live process's staging is kept");
+    assert_eq!(
+        std::fs::read_to_string(user.join("mine.txt")).expect("kept"),
+        "the user's"
+    );
+}

@@ -1190,9 +1190,14 @@ fn check_target(target: &Path) -> Result<(), CreateError> {
     })
 }
 
-/// Removes the staging directories `DIR.partial.new-<pid>` of runs killed while preparing: each
-/// marked, its `INCOMPLETE` note written (after its writer took its lock) and its lock free. A
-/// staging directory of a live process is locked, or not yet noted, and kept.
+/// Removes the staging directories `DIR.partial.new-<pid>` of runs killed while preparing:
+/// - one marked, its `INCOMPLETE` note written (after its writer took its lock) and its lock
+///   free;
+/// - one killed before its note, when its process is gone (no `/proc/<pid>`, Linux): empty
+///   (`rmdir`, which removes nothing else), or marked and holding only files a run writes.
+///
+/// A staging directory of a live process is locked, or not yet noted with its process alive,
+/// and kept; so is anything that is not flocking's.
 fn remove_stale_staging(partial: &Path) {
     let Some(name) = partial
         .file_name()
@@ -1206,19 +1211,35 @@ fn remove_stale_staging(partial: &Path) {
     };
     for entry in entries.flatten() {
         let entry_name = entry.file_name().to_string_lossy().into_owned();
-        if !entry_name.starts_with(&prefix) {
+        let Some(pid) = entry_name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let staging = entry.path();
+        let noted = fs::symlink_metadata(staging.join(INCOMPLETE_FILE)).is_ok_and(|m| m.is_file());
+        if !noted && process_alive(pid.trim_start_matches('-')) {
             continue;
         }
-        let staging = entry.path();
-        if !owned::marked(&staging, Kind::Run)
-            || !fs::symlink_metadata(staging.join(INCOMPLETE_FILE)).is_ok_and(|m| m.is_file())
-        {
+        if !owned::marked(&staging, Kind::Run) {
+            // an empty directory only: `remove_dir` refuses anything else
+            if fs::symlink_metadata(&staging).is_ok_and(|m| m.is_dir()) {
+                let _ = fs::remove_dir(&staging);
+            }
             continue;
         }
         if let Ok(lock) = DirLock::acquire(&staging) {
             let _ = owned::remove(&staging, Kind::Run);
             drop(lock);
         }
+    }
+}
+
+/// Whether the process `pid` (decimal) may still be running: false only when it is a number and
+/// `/proc` shows no such process (Linux); an unreadable name or another platform counts as alive.
+fn process_alive(pid: &str) -> bool {
+    let proc = Path::new("/proc");
+    match pid.parse::<u32>() {
+        Ok(pid) if proc.join("self").exists() => proc.join(pid.to_string()).exists(),
+        _ => true,
     }
 }
 
