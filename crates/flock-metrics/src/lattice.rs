@@ -20,7 +20,7 @@
 use core::fmt;
 
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 
 /// The default tolerance of [`LatticeSummary::measure`]: an edge is "at d" when its length is within
 /// ±10 % of d.
@@ -74,10 +74,25 @@ impl LatticeSummary {
     /// than r).
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], net: &ProximityNet, d: f64, tolerance: f64) -> Self {
+        Self::measure_in(&Domain::Open, q, net, d, tolerance)
+    }
+
+    /// [`LatticeSummary::measure`] in `domain`: on a torus every edge is the segment from q_i to
+    /// the image of q_j nearest it (the net's minimum image), its length the minimum-image
+    /// distance, and two edges cross when they do with their midpoints at their nearest images;
+    /// in open space, the bits of [`LatticeSummary::measure`].
+    #[must_use]
+    pub fn measure_in<V: Vector>(
+        domain: &Domain<V>,
+        q: &[V],
+        net: &ProximityNet,
+        d: f64,
+        tolerance: f64,
+    ) -> Self {
         let graph = net.graph();
         let n = graph.len();
         let near: Vec<bool> = net
-            .edge_lengths(q)
+            .edge_lengths_in(domain, q)
             .map(|length| (length - d).abs() <= tolerance * d)
             .collect();
         let near_directed = near.iter().filter(|&&x| x).count();
@@ -90,7 +105,7 @@ impl LatticeSummary {
             triangles,
             equilateral_triangles,
             edge_bound: (planar && n >= 3).then(|| 3 * n - 6),
-            crossings: planar.then(|| count_crossings(q, net)),
+            crossings: planar.then(|| count_crossings(domain, q, net)),
         }
     }
 
@@ -184,31 +199,41 @@ fn count_triangles(net: &ProximityNet, near: &[bool]) -> (usize, usize) {
 /// first two coordinates. Candidates come from a neighbour search on the edges' midpoints: a
 /// crossing point is within half an edge of both midpoints, so crossing edges have midpoints closer
 /// than the longest edge.
-fn count_crossings<V: Vector>(q: &[V], net: &ProximityNet) -> usize {
+fn count_crossings<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet) -> usize {
     let graph = net.graph();
+    // each edge (i, j), i < j, as the segment from q_i to q_j's image nearest it
     let mut ends = Vec::with_capacity(graph.undirected_edge_count());
     let mut longest: f64 = 0.0;
     for i in 0..graph.len() {
         for &j in graph.neighbours(i) {
             let j = j as usize;
             if j > i {
-                ends.push((i, j));
-                longest = longest.max((q[j] - q[i]).length());
+                let far = domain.image_near(q[i], q[j]);
+                ends.push((i, j, q[i], far));
+                longest = longest.max((far - q[i]).length());
             }
         }
     }
     if ends.len() < 2 || longest == 0.0 {
         return 0;
     }
-    let midpoints: Vec<V> = ends.iter().map(|&(i, j)| (q[i] + q[j]) * 0.5).collect();
+    let midpoints: Vec<V> = ends
+        .iter()
+        .map(|&(_, _, a, b)| domain.wrap((a + b) * 0.5))
+        .collect();
     let mut candidates = ProximityNet::without_distances();
-    NeighbourSearch::new().build(&midpoints, longest * (1.0 + 1e-9), &mut candidates);
+    NeighbourSearch::new().build_in(domain, &midpoints, longest * (1.0 + 1e-9), &mut candidates);
     let mut crossings = 0;
-    for (a, &(i, j)) in ends.iter().enumerate() {
+    for (a, &(i, j, qi, qj)) in ends.iter().enumerate() {
         for &b in candidates.graph().neighbours(a) {
             let b = b as usize;
-            let (k, l) = ends[b];
-            if b > a && i != k && i != l && j != k && j != l && cross(q[i], q[j], q[k], q[l]) {
+            let (k, l, qk, ql) = ends[b];
+            if b <= a || i == k || i == l || j == k || j == l {
+                continue;
+            }
+            // segment b moved to the image of its midpoint nearest segment a's
+            let shift = domain.image_near(midpoints[a], midpoints[b]) - midpoints[b];
+            if cross(qi, qj, qk + shift, ql + shift) {
                 crossings += 1;
             }
         }
@@ -244,6 +269,38 @@ mod tests {
             }
         }
         points
+    }
+
+    /// On a torus the summary is of the minimum image: a lattice patch, and a unit square with
+    /// its crossing diagonals, moved across the corner of a periodic box and wrapped, count what
+    /// they count in open space; measured as if open (the old summary) the wrapped patch loses
+    /// its edges across the wrap.
+    #[test]
+    fn a_lattice_across_the_wrap_keeps_its_counts() {
+        let domain = Domain::Periodic {
+            size: DVec2::new(40.0, 30.0),
+        };
+        let wrapped = |q: &[DVec2]| -> Vec<DVec2> {
+            q.iter()
+                .map(|&p| domain.wrap(p + DVec2::new(-9.0, -7.5)))
+                .collect()
+        };
+        let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
+        let patch: Vec<DVec2> = triangular_lattice(4, 4, 7.0);
+        for (q, r, d) in [(&patch[..], 8.4, 7.0), (&square[..], 1.5, 1.0)] {
+            let open = LatticeSummary::measure(q, &ProximityNet::brute_force(q, r), d, 0.1);
+            let moved = wrapped(q);
+            let net = ProximityNet::brute_force_in(&domain, &moved, r);
+            let torus = LatticeSummary::measure_in(&domain, &moved, &net, d, 0.1);
+            assert_eq!(torus, open);
+            if q.len() == 4 {
+                assert_eq!((open.edges, open.crossings), (6, Some(1)));
+            } else {
+                let as_if_open =
+                    LatticeSummary::measure(&moved, &ProximityNet::brute_force(&moved, r), d, 0.1);
+                assert!(as_if_open.edges < open.edges);
+            }
+        }
     }
 
     /// R rows of C: R(C − 1) edges along the rows and 2C − 1 between consecutive rows; 2C − 2

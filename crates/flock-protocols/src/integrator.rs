@@ -267,7 +267,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// 3n − 6 and the crossing edges.
     #[must_use]
     pub fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary {
-        LatticeSummary::measure(&self.swarm.positions, &self.net, d, tolerance)
+        LatticeSummary::measure_in(&self.domain, &self.swarm.positions, &self.net, d, tolerance)
     }
 
     /// The protocol's energy at the current state.
