@@ -227,9 +227,10 @@ fn issue_27_a_forged_checkpoint_is_refused_not_trusted() {
     }
 }
 
-/// Issue 27: a run killed while preparing leaves `DIR.partial.new-<pid>`, empty or marked without
-/// its note; the next run into `DIR` removes it once that process is gone, and keeps the one of a
-/// live process and a directory of the user's with the same prefix.
+/// Issue 27: a run killed while preparing leaves `DIR.partial.new-<pid>` marked without its note;
+/// the next run into `DIR` removes it once that process is gone, and keeps the one of a live
+/// process, an unmarked one (not known to be flocking's, even empty) and a directory of the
+/// user's with the same prefix.
 #[test]
 fn issue_27_a_run_killed_while_preparing_leaves_nothing_behind() {
     let tmp = temp_dir("stale_staging");
@@ -251,10 +252,8 @@ fn issue_27_a_run_killed_while_preparing_leaves_nothing_behind() {
     scenario.duration = 2.0 * scenario.step;
     let dir = RunDirectory::create(&out, &scenario, false).expect("the run starts");
     dir.abandon();
-    assert!(
-        !empty.exists() && !marked.exists(),
-        "the dead runs' staging is removed"
-    );
+    assert!(!marked.exists(), "the dead run's staging is removed");
+    assert!(empty.is_dir(), "an unmarked directory is kept, even empty");
     assert!(live.is_dir(), "a live process's staging is kept");
     assert_eq!(
         std::fs::read_to_string(user.join("mine.txt")).expect("kept"),

@@ -18,7 +18,15 @@ pub struct Fleet<V> {
     at_limit: Vec<usize>,
     /// The mean over moving agents of ‖(p⁺ − p)/h − u‖ at the last step.
     tracking_error: f64,
+    /// Each agent's limits hit and tracking error (`None`: it did not move) at the last step.
+    outcomes: Vec<Outcome>,
 }
+
+/// One agent's limits hit during a step and its tracking error (`None` when it did not move).
+type Outcome = ([bool; MAX_LIMITS], Option<f64>);
+
+/// One agent's place in [`Fleet::advance`]: position, velocity, state and outcome.
+type Slot<'a, V> = (((&'a mut V, &'a mut V), &'a mut [f64]), &'a mut Outcome);
 
 /// Checks that the flock's step `h` is a whole number of `vehicle`'s inner steps.
 ///
@@ -111,6 +119,7 @@ impl<V: Vector> Fleet<V> {
             width,
             states,
             tracking_error: 0.0,
+            outcomes: Vec::new(),
         })
     }
 
@@ -146,47 +155,49 @@ impl<V: Vector> Fleet<V> {
             positions,
             velocities,
         } = swarm;
-        let agent = |(i, ((q, p), state)): (usize, ((&mut V, &mut V), &mut [f64]))| {
-            let mut hit = [false; MAX_LIMITS];
+        let agent = |(i, (((q, p), state), outcome)): (usize, Slot<'_, V>)| {
+            *outcome = ([false; MAX_LIMITS], None);
             if !moves(i) {
                 *p = V::ZERO;
-                return (hit, None);
+                return;
             }
             let before = *p;
-            let flags = &mut hit[..limits];
+            let flags = &mut outcome.0[..limits];
             vehicle.advance(h, commands[i], disturbance(i), q, p, state, flags);
             *q = domain.wrap(*q);
-            let error = ((*p - before) * (1.0 / h) - commands[i]).length();
-            (hit, Some(error))
+            outcome.1 = Some(((*p - before) * (1.0 / h) - commands[i]).length());
         };
         let width = self.width.max(1);
+        // one outcome per agent, in a buffer kept from step to step
+        self.outcomes
+            .resize(positions.len(), ([false; MAX_LIMITS], None));
         #[cfg(feature = "parallel")]
-        let outcomes: Vec<([bool; MAX_LIMITS], Option<f64>)> = {
+        {
             use rayon::prelude::*;
             positions
                 .par_iter_mut()
                 .zip(velocities.par_iter_mut())
                 .zip(self.states.par_chunks_mut(width))
+                .zip(self.outcomes.par_iter_mut())
                 .enumerate()
                 .with_min_len(256)
-                .map(agent)
-                .collect()
-        };
+                .for_each(agent);
+        }
         #[cfg(not(feature = "parallel"))]
-        let outcomes: Vec<([bool; MAX_LIMITS], Option<f64>)> = positions
+        positions
             .iter_mut()
             .zip(velocities.iter_mut())
             .zip(self.states.chunks_mut(width))
+            .zip(self.outcomes.iter_mut())
             .enumerate()
-            .map(agent)
-            .collect();
+            .for_each(agent);
         self.at_limit.fill(0);
         let (mut sum, mut moving) = (0.0, 0usize);
-        for (hit, error) in outcomes {
-            for (count, hit) in self.at_limit.iter_mut().zip(hit) {
+        for (hit, error) in &self.outcomes {
+            for (count, &hit) in self.at_limit.iter_mut().zip(hit) {
                 *count += usize::from(hit);
             }
-            if let Some(error) = error {
+            if let Some(error) = *error {
                 sum += error;
                 moving += 1;
             }

@@ -1190,14 +1190,14 @@ fn check_target(target: &Path) -> Result<(), CreateError> {
     })
 }
 
-/// Removes the staging directories `DIR.partial.new-<pid>` of runs killed while preparing:
-/// - one marked, its `INCOMPLETE` note written (after its writer took its lock) and its lock
-///   free;
-/// - one killed before its note, when its process is gone (no `/proc/<pid>`, Linux): empty
-///   (`rmdir`, which removes nothing else), or marked and holding only files a run writes.
+/// Removes the staging directories `DIR.partial.new-<pid>` of runs killed while preparing, each
+/// only under flocking's marker, holding only files a run writes ([`owned::remove`]) and with
+/// its lock free: one noted `INCOMPLETE` (its writer took its lock first), or one killed before
+/// its note, when its process is gone (no `/proc/<pid>`, Linux).
 ///
 /// A staging directory of a live process is locked, or not yet noted with its process alive,
-/// and kept; so is anything that is not flocking's.
+/// and kept; so is anything without the marker, even empty (a process killed between creating
+/// it and marking it leaves an empty directory, which is not known to be flocking's).
 fn remove_stale_staging(partial: &Path) {
     let Some(name) = partial
         .file_name()
@@ -1220,10 +1220,6 @@ fn remove_stale_staging(partial: &Path) {
             continue;
         }
         if !owned::marked(&staging, Kind::Run) {
-            // an empty directory only: `remove_dir` refuses anything else
-            if fs::symlink_metadata(&staging).is_ok_and(|m| m.is_dir()) {
-                let _ = fs::remove_dir(&staging);
-            }
             continue;
         }
         if let Ok(lock) = DirLock::acquire(&staging) {
