@@ -10,6 +10,7 @@ use flock_viz::{FigureOptions, plot_run_with};
 use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
 use flocking::run_dir::{CreateError, ResumeError, read_records};
+use flocking::workload::{Workload, time_seeds};
 use flocking::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
@@ -126,7 +127,7 @@ enum Command {
         steps: u64,
         /// The algorithm: 1, 2 or 3 (3 adds 1,000 obstacles).
         #[arg(long, default_value = "2")]
-        algorithm: flock_cli::bench::BenchAlgorithm,
+        algorithm: flocking::bench::BenchAlgorithm,
         /// Worker threads (default: all cores; at most 4 per core).
         #[arg(long, value_parser = flock_cli::resources::parse_threads)]
         threads: Option<usize>,
@@ -141,13 +142,13 @@ enum Command {
         conditions: flock_cli::bench::ConditionFlags,
         /// Fly the agents on this vehicle with its default parameters (docs/vehicles.md):
         /// unicycle (2D), fixed-wing, quadrotor (3D); default point masses.
-        #[arg(long, value_enum)]
-        vehicle: Option<flock_cli::bench::BenchVehicle>,
+        #[arg(long, value_parser = flock_cli::bench::vehicle_parser())]
+        vehicle: Option<flocking::bench::BenchVehicle>,
         /// Instead of the α-lattice, a workload of the ABM frameworks' boids benchmark
         /// (ABMFrameworksComparison's Flocking/DECLARATION.md): 100 steps timed from a fresh start
         /// per seed, the median printed.
-        #[arg(long, value_enum)]
-        workload: Option<WorkloadName>,
+        #[arg(long, value_parser = flock_cli::bench::workload_parser())]
+        workload: Option<flocking::workload::Workload>,
         /// With --workload: the number of seeds timed.
         #[arg(long, default_value_t = 10, requires = "workload")]
         seeds: u64,
@@ -157,49 +158,18 @@ enum Command {
     },
 }
 
-/// The workloads of `flocking bench --workload`.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-enum WorkloadName {
-    /// 200 birds, 100 × 100 periodic box, visual distance 5.
-    BoidsSmall,
-    /// 400 birds, 150 × 150 periodic box, visual distance 15.
-    BoidsLarge,
-}
-
 /// Exit code of an invalid scenario.
 const INVALID: u8 = 2;
 
 /// `flocking bench --workload`: times the workload and prints its median.
-fn bench_workload(name: WorkloadName, seeds: u64, scale_to: Option<usize>) -> ExitCode {
-    use flocking::workload::{Workload, time_seeds};
-    let workload = match name {
-        WorkloadName::BoidsSmall => Workload::BoidsSmall,
-        WorkloadName::BoidsLarge => Workload::BoidsLarge,
-    };
+fn bench_workload(workload: Workload, seeds: u64, scale_to: Option<usize>) -> ExitCode {
     let scenario = match scale_to {
         None => Ok(workload.scenario()),
         Some(n) => workload.scaled(n),
     };
     match scenario.and_then(|s| time_seeds(&s, seeds.max(1))) {
         Ok(report) => {
-            let s = &report.scenario;
-            let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-            let (least, most) = (
-                report.times.iter().min().copied().unwrap_or_default(),
-                report.times.iter().max().copied().unwrap_or_default(),
-            );
-            outln!(
-                "{name:?}: {} birds, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s)",
-                s.agents,
-                s.box_size().unwrap_or_default(),
-                s.steps(),
-                report.times.len(),
-                ms(report.median()),
-                ms(least),
-                ms(most),
-                report.agent_steps_per_second(),
-                rayon::current_num_threads()
-            );
+            outln!("{report}");
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -244,17 +214,17 @@ fn dispatch(command: Command) -> ExitCode {
             if let Some(workload) = workload {
                 return bench_workload(workload, seeds, scale_to);
             }
-            let config = flock_cli::bench::BenchConfig {
+            let config = flocking::bench::BenchConfig {
                 n,
                 dim,
                 steps,
                 warmup,
                 algorithm,
                 shuffled,
-                conditions,
+                conditions: conditions.into(),
                 vehicle,
             };
-            match flock_cli::bench::bench(&config) {
+            match flocking::bench::bench(&config) {
                 Ok(report) => {
                     outln!("{report}");
                     ExitCode::SUCCESS

@@ -3,29 +3,17 @@
 
 use std::path::Path;
 
-use flocking::estimate::{Estimate, Resources};
+use flocking::estimate::{Estimate, Resources, check_threads};
 
-/// The most threads (or sweep workers) per available core: more only adds switching.
-pub const THREADS_PER_CORE: usize = 4;
-
-/// The cores this process may use.
-fn cores() -> usize {
-    std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
-}
-
-/// `--threads` / `--jobs`: from 1 to [`THREADS_PER_CORE`] × the available cores.
+/// `--threads` / `--jobs`: from 1 to [`flocking::estimate::THREADS_PER_CORE`] × the available
+/// cores.
 ///
 /// # Errors
 /// Not a whole number in that range, with the range.
 pub fn parse_threads(text: &str) -> Result<usize, String> {
-    let most = THREADS_PER_CORE * cores();
-    match text.parse::<usize>() {
-        Ok(n) if (1..=most).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "{text:?}: give a whole number from 1 to {most} ({THREADS_PER_CORE} × the {} available cores)",
-            cores()
-        )),
-    }
+    // a number that does not parse gets the range too: the check of 0 says it
+    let threads = text.parse::<usize>().unwrap_or(0);
+    check_threads(threads).map_err(|e| format!("{text:?}: {e}"))
 }
 
 /// `--epsilon1` / `--epsilon2`: a finite number > 0.

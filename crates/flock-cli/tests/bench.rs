@@ -97,7 +97,7 @@ fn bench_runs_algorithm_3_in_3d_on_one_thread() {
 fn bench_refuses_a_bad_dimension() {
     let out = bench(&["--n", "100", "--dim", "4", "--steps", "1"]);
     assert_eq!(out.status.code(), Some(2), "{out:?}");
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--dim must be 2 or 3"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("dim must be 2 or 3, got 4"));
 }
 
 #[test]

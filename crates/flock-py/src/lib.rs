@@ -11,11 +11,13 @@
 //!   directory of `flocking sweep`.
 //! - [`player`]: the HTML player of a run held in memory (`Run.player()`).
 //! - [`progress`]: the progress line of `flocking.run` and `flocking.resume`.
+//! - [`bench`]: `flocking.bench`, the engine of `flocking bench` with the same report.
 //! - [`errors`]: flocking's errors as the Python exceptions of `flocking._errors`, with the CLI's
 //!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
 
 use pyo3::prelude::*;
 
+pub mod bench;
 pub mod controls;
 pub mod errors;
 pub mod interrupt;
@@ -33,6 +35,9 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<simulation::PySimulation>()?;
     module.add_class::<controls::PyNeighbours>()?;
     module.add_class::<sweep::SweepLock>()?;
+    module.add_class::<bench::PyBenchReport>()?;
+    module.add_class::<bench::PyWorkloadReport>()?;
+    module.add_function(wrap_pyfunction!(bench::bench, module)?)?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;

@@ -8,6 +8,7 @@
 //! - [`Resources::of_machine`]: the memory available (`MemAvailable` of `/proc/meminfo`, or a
 //!   cgroup's `memory.max` if lower) and the free space of an output directory's disk;
 //!   [`Estimate::check`] refuses what does not fit.
+//! - [`check_threads`]: a thread (or sweep worker) count within reason for this machine.
 //!
 //! # Example
 //! ```
@@ -28,6 +29,31 @@ use std::path::Path;
 
 use crate::Scenario;
 use crate::protocols::conditions;
+
+/// The most threads (or sweep workers) per available core: more only adds switching.
+pub const THREADS_PER_CORE: usize = 4;
+
+/// The cores this process may use.
+#[must_use]
+pub fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
+}
+
+/// `threads` when it is from 1 to [`THREADS_PER_CORE`] × the available cores.
+///
+/// # Errors
+/// Outside that range, with the range and the fix.
+pub fn check_threads(threads: usize) -> Result<usize, String> {
+    let most = THREADS_PER_CORE * cores();
+    if (1..=most).contains(&threads) {
+        Ok(threads)
+    } else {
+        Err(format!(
+            "give a whole number from 1 to {most} ({THREADS_PER_CORE} × the {} available cores)",
+            cores()
+        ))
+    }
+}
 
 /// Memory of the process without agents (docs/performance.md: ≈ 4–5 MB).
 pub const FIXED_BYTES: f64 = 5e6;

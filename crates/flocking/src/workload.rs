@@ -3,6 +3,8 @@
 //! steps of the model from a fresh random start, the median over seeds, so that our figures
 //! stand beside their published ones. `flocking bench --workload` prints them.
 
+use std::fmt;
+use std::str::FromStr;
 use std::time::{Duration, Instant};
 
 use serde_json::json;
@@ -20,6 +22,12 @@ pub enum Workload {
 }
 
 impl Workload {
+    /// Every workload, in the order of [`Self::NAMES`].
+    pub const ALL: [Self; 2] = [Self::BoidsSmall, Self::BoidsLarge];
+
+    /// The names `flocking bench --workload` and Python's `workload=` take.
+    pub const NAMES: [&'static str; 2] = ["boids-small", "boids-large"];
+
     /// Its scenario: `fixtures/boids_small_n200.ron` or `fixtures/boids_large_n400.ron`.
     ///
     /// # Panics
@@ -58,6 +66,24 @@ impl Workload {
     }
 }
 
+impl FromStr for Workload {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let name = s.to_ascii_lowercase().replace('_', "-");
+        Self::NAMES
+            .iter()
+            .position(|&n| n == name)
+            .map(|k| Self::ALL[k])
+            .ok_or_else(|| {
+                format!(
+                    "unknown workload `{s}`: expected one of {}",
+                    Self::NAMES.join(", ")
+                )
+            })
+    }
+}
+
 /// The timings of a workload.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WorkloadReport {
@@ -65,6 +91,8 @@ pub struct WorkloadReport {
     pub scenario: Scenario,
     /// The time of the scenario's steps for each seed 0, 1, …, in order.
     pub times: Vec<Duration>,
+    /// Worker threads of the rayon pool that ran them.
+    pub threads: usize,
 }
 
 impl WorkloadReport {
@@ -92,6 +120,30 @@ impl WorkloadReport {
     }
 }
 
+/// One line: the scenario, the median, the least and most times, agent-steps/s and threads.
+impl fmt::Display for WorkloadReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = &self.scenario;
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let least = self.times.iter().min().copied().unwrap_or_default();
+        let most = self.times.iter().max().copied().unwrap_or_default();
+        write!(
+            f,
+            "{}: {} birds, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s)",
+            s.name,
+            s.agents,
+            s.box_size().unwrap_or_default(),
+            s.steps(),
+            self.times.len(),
+            ms(self.median()),
+            ms(least),
+            ms(most),
+            self.agent_steps_per_second(),
+            self.threads
+        )
+    }
+}
+
 /// Times `scenario`'s steps (no metrics, no output: the model alone, as the frameworks time it)
 /// from seeds 0 to `seeds` − 1; building the start is not timed.
 ///
@@ -111,6 +163,7 @@ pub fn time_seeds(scenario: &Scenario, seeds: u64) -> Result<WorkloadReport, Sce
     Ok(WorkloadReport {
         scenario: scenario.clone(),
         times,
+        threads: rayon::current_num_threads(),
     })
 }
 
@@ -138,6 +191,14 @@ mod tests {
         )
         .expect("runs");
         assert_eq!(report.times.len(), 3);
+        assert!(
+            report.to_string().starts_with(
+                "boids_small_n200: 200 birds, box [100.0, 100.0], 3 steps, 3 seed(s): median"
+            ),
+            "{report}"
+        );
+        assert_eq!("Boids_Large".parse(), Ok(Workload::BoidsLarge));
+        assert!("boids".parse::<Workload>().is_err());
         assert!(report.median() <= *report.times.iter().max().expect("three"));
     }
 }

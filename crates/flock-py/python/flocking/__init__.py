@@ -15,6 +15,8 @@ and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python
   (``axes=``, ``seeds=``), on any ``concurrent.futures.Executor`` (a local process
   pool by default, a Dask cluster, Slurm through dask-jobqueue), into the ``runs.csv`` that
   ``flocking sweep`` writes, byte for byte (:class:`SweepResult`).
+- :func:`bench`: ``flocking bench`` from Python, the same engine and report
+  (:class:`BenchReport`, :class:`WorkloadReport`).
 - Errors: :class:`FlockError`, :class:`ScenarioError` (a ``ValueError``, with ``field``),
   :class:`NumericalError`, :class:`RunDirectoryError` (an ``OSError``), :class:`ControlsError`.
 
@@ -27,12 +29,14 @@ Example::
     print(result.metrics["connectivity"][-1])
 """
 
+from ._bench import BenchReport, WorkloadReport, bench
 from ._errors import ControlsError, FlockError, NumericalError, RunDirectoryError, ScenarioError
 from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__
 from ._run import Run, State, Trajectory, read_run, resume, run
 from ._sweep import SweepResult, sweep
 
 __all__ = [
+    "BenchReport",
     "ControlsError",
     "FlockError",
     "METRICS_HEADER",
@@ -46,6 +50,8 @@ __all__ = [
     "State",
     "SweepResult",
     "Trajectory",
+    "WorkloadReport",
+    "bench",
     "read_run",
     "resume",
     "run",

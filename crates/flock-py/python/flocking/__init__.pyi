@@ -274,3 +274,56 @@ def sweep(
     """Runs the sweep file ``spec`` into ``out`` on ``executor`` (a local process pool by default,
     a Dask cluster through ``Client.get_executor()``): ``runs.csv`` byte for byte that of
     ``flocking sweep``; finished runs in ``out`` are skipped."""
+
+class BenchReport:
+    """The report of :func:`bench` on the α-lattice; ``str()`` is what ``flocking bench`` prints."""
+
+    n: int
+    dim: int
+    steps: int
+    threads: int
+    agent_steps_per_second: float
+    ns_per_agent_step: float
+    ms_per_step: float
+    ms_per_plain_step: float
+    ms_per_recorded_step: Optional[float]
+    peak_memory: Optional[int]
+    bytes_per_agent: Optional[float]
+    conditions_bytes_per_agent: int
+    mean_neighbours: float
+    setup_seconds: float
+    elapsed_seconds: float
+    connectivity: float
+    min_distance: float
+
+class WorkloadReport:
+    """The report of :func:`bench` with ``workload=``; ``str()`` is what ``flocking bench
+    --workload`` prints."""
+
+    n: int
+    times: List[float]
+    median_seconds: float
+    agent_steps_per_second: float
+    threads: int
+
+def bench(
+    n: int = 100_000,
+    dim: int = 2,
+    steps: int = 20,
+    *,
+    algorithm: Union[int, str] = 2,
+    threads: Optional[int] = None,
+    warmup: int = 3,
+    shuffled: bool = False,
+    delay: Optional[float] = None,
+    delayed: Optional[str] = None,
+    loss: Optional[float] = None,
+    sensing_noise: Union[None, float, Tuple[float, float], List[float]] = None,
+    control_rate: Optional[float] = None,
+    max_acceleration: Optional[float] = None,
+    vehicle: Optional[str] = None,
+    workload: Optional[str] = None,
+    seeds: int = 10,
+    scale_to: Optional[int] = None,
+) -> Union[BenchReport, WorkloadReport]:
+    """Times the simulation loop as ``flocking bench`` does, its flags as keywords."""
