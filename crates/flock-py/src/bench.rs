@@ -200,9 +200,10 @@ fn on_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> 
     Ok(pool.install(f))
 }
 
-/// A keyword's text parsed by `parse`, or a `ValueError` naming the keyword.
+/// A keyword's text parsed by `parse`, or a `ValueError` naming the keyword as Python writes it
+/// (`vehicle='boat'`).
 fn keyword<T>(name: &str, text: &str, parse: impl Fn(&str) -> Result<T, String>) -> PyResult<T> {
-    parse(text).map_err(|e| PyValueError::new_err(format!("{name}={text:?}: {e}")))
+    parse(text).map_err(|e| PyValueError::new_err(format!("{name}='{text}': {e}")))
 }
 
 /// Times the simulation loop as `flocking bench` does, with the same flags as keywords, and
