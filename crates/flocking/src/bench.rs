@@ -113,18 +113,29 @@ impl FromStr for BenchVehicle {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let name = s.to_ascii_lowercase().replace('_', "-");
-        Self::NAMES
-            .iter()
-            .position(|&n| n == name)
-            .map(|k| Self::ALL[k])
-            .ok_or_else(|| {
-                format!(
-                    "unknown vehicle `{s}`: expected one of {}",
-                    Self::NAMES.join(", ")
-                )
-            })
+        one_of(s, "vehicle", &Self::NAMES, &Self::ALL)
     }
+}
+
+/// The item of `all` whose name in `names` (same order) is `text`, in any case and with `_` for
+/// `-`; otherwise an error naming the `what`, the text and the names.
+pub(crate) fn one_of<T: Copy>(
+    text: &str,
+    what: &str,
+    names: &[&str],
+    all: &[T],
+) -> Result<T, String> {
+    let name = text.to_ascii_lowercase().replace('_', "-");
+    names
+        .iter()
+        .position(|&n| n == name)
+        .map(|k| all[k])
+        .ok_or_else(|| {
+            format!(
+                "unknown {what} `{text}`: expected one of {}",
+                names.join(", ")
+            )
+        })
 }
 
 /// The real conditions a benchmark may run under; none set (the default) is the ideal loop.

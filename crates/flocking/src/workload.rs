@@ -70,17 +70,7 @@ impl FromStr for Workload {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let name = s.to_ascii_lowercase().replace('_', "-");
-        Self::NAMES
-            .iter()
-            .position(|&n| n == name)
-            .map(|k| Self::ALL[k])
-            .ok_or_else(|| {
-                format!(
-                    "unknown workload `{s}`: expected one of {}",
-                    Self::NAMES.join(", ")
-                )
-            })
+        crate::bench::one_of(s, "workload", &Self::NAMES, &Self::ALL)
     }
 }
 
