@@ -14,11 +14,11 @@ use parry2d_f64::shape::{
 use parry2d_f64::transformation::convex_hull;
 
 use crate::basis::orthogonal_unit;
-use crate::error::{check_finite, coordinates, from_coordinates};
+use crate::error::{check_finite, coordinates};
 use crate::polytope::{self, Planes};
-use crate::shapes::{self, Hull, Kind, Parry};
+use crate::shapes::{Hull, Kind, Parry, Placed};
 use crate::thin::Feature;
-use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, cuboid, wall};
+use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec};
 
 /// A convex obstacle of ℝ²: a parry shape placed by a [`Pose`].
 ///
@@ -42,10 +42,7 @@ use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, cuboid, wall
 /// # Ok::<(), flock_obstacles::ObstacleError>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Obstacle2d {
-    kind: Kind<DVec2>,
-    pose: Pose,
-}
+pub struct Obstacle2d(Placed<DVec2>);
 
 impl Obstacle2d {
     /// The closed disc of radius `radius` centred at `centre`.
@@ -65,11 +62,7 @@ impl Obstacle2d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn ball(centre: DVec2, radius: f64) -> Result<Self, ObstacleError> {
-        ball::validate(centre, radius)?;
-        Ok(Self {
-            kind: Kind::Ball(Ball::new(radius)),
-            pose: Pose::from_translation(centre),
-        })
+        Placed::ball(centre, radius).map(Self)
     }
 
     /// The closed half-plane `{x : a · (x − point) ≤ 0}` bounded by the line through `point`, with
@@ -90,11 +83,7 @@ impl Obstacle2d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn wall(point: DVec2, outward_normal: DVec2) -> Result<Self, ObstacleError> {
-        let normal = wall::unit_normal(point, outward_normal)?;
-        Ok(Self {
-            kind: Kind::Wall(HalfSpace::new(normal)),
-            pose: Pose::from_translation(point),
-        })
+        Placed::wall(point, outward_normal).map(Self)
     }
 
     /// The closed rectangle of half-widths `half_extents` along its own axes, centred at `centre`
@@ -118,18 +107,7 @@ impl Obstacle2d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn cuboid(centre: DVec2, half_extents: DVec2, angle: f64) -> Result<Self, ObstacleError> {
-        check_finite("centre", centre)?;
-        cuboid::validate(half_extents)?;
-        if !angle.is_finite() {
-            return Err(ObstacleError::InvalidRotation {
-                rotation: vec![angle],
-                dim: 2,
-            });
-        }
-        Ok(Self {
-            kind: Kind::Cuboid(Cuboid::new(half_extents)),
-            pose: Pose::new(centre, angle),
-        })
+        Placed::cuboid(centre, half_extents, angle).map(Self)
     }
 
     /// The convex polygon that is the convex hull of `points` (any order).
@@ -174,10 +152,10 @@ impl Obstacle2d {
             .collect();
         let planes = Planes::new(planes, radius);
         planes.check_convex(&local, points)?;
-        Ok(Self {
+        Ok(Self(Placed {
             kind: Kind::Hull(Box::new(Hull { shape, planes })),
             pose: Pose::from_translation(centroid),
-        })
+        }))
     }
 
     /// The capsule (stadium) of the points within `radius` of the segment `[a, b]`; with `a = b`,
@@ -200,16 +178,7 @@ impl Obstacle2d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn capsule(a: DVec2, b: DVec2, radius: f64) -> Result<Self, ObstacleError> {
-        check_finite("a", a)?;
-        check_finite("b", b)?;
-        ball::check_radius(radius)?;
-        if a == b {
-            return Self::ball(a, radius);
-        }
-        Ok(Self {
-            kind: Kind::Capsule(Capsule::new(a, b, radius)),
-            pose: Pose::IDENTITY,
-        })
+        Placed::capsule(a, b, radius).map(Self)
     }
 
     /// The segment `[a, b]` of zero thickness: a thin wall, both sides of which are boundary. An
@@ -231,17 +200,7 @@ impl Obstacle2d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn segment(a: DVec2, b: DVec2) -> Result<Self, ObstacleError> {
-        check_finite("a", a)?;
-        check_finite("b", b)?;
-        if a == b {
-            return Err(ObstacleError::DegenerateSegment {
-                point: coordinates(a),
-            });
-        }
-        Ok(Self {
-            kind: Kind::Segment(Segment::new(a, b)),
-            pose: Pose::IDENTITY,
-        })
+        Placed::segment(a, b).map(Self)
     }
 
     /// The solid triangle of vertices `a`, `b`, `c`: the convex polygon
@@ -280,63 +239,13 @@ impl Obstacle2d {
     /// assert!(error.to_string().contains("has 3 coordinates, but the scenario is 2D"));
     /// ```
     pub fn from_spec(spec: &ObstacleSpec) -> Result<Self, ObstacleError> {
-        match spec {
-            ObstacleSpec::Ball { centre, radius } => {
-                Self::ball(from_coordinates("centre", centre)?, *radius)
-            }
-            ObstacleSpec::Wall { point, normal } => Self::wall(
-                from_coordinates("point", point)?,
-                from_coordinates("normal", normal)?,
-            ),
-            ObstacleSpec::Cuboid {
-                centre,
-                half_extents,
-                rotation,
-            } => {
-                let angle = match rotation.as_slice() {
-                    [] => 0.0,
-                    &[angle] => angle,
-                    _ => {
-                        return Err(ObstacleError::InvalidRotation {
-                            rotation: rotation.clone(),
-                            dim: 2,
-                        });
-                    }
-                };
-                Self::cuboid(
-                    from_coordinates("centre", centre)?,
-                    from_coordinates("half_extents", half_extents)?,
-                    angle,
-                )
-            }
-            ObstacleSpec::ConvexHull { points } => {
-                let points = points
-                    .iter()
-                    .enumerate()
-                    .map(|(i, x)| from_coordinates(&format!("points[{i}]"), x))
-                    .collect::<Result<Vec<DVec2>, _>>()?;
-                Self::convex_hull(&points)
-            }
-            ObstacleSpec::Capsule { a, b, radius } => Self::capsule(
-                from_coordinates("a", a)?,
-                from_coordinates("b", b)?,
-                *radius,
-            ),
-            ObstacleSpec::Segment { a, b } => {
-                Self::segment(from_coordinates("a", a)?, from_coordinates("b", b)?)
-            }
-            ObstacleSpec::Triangle { a, b, c } => Self::triangle(
-                from_coordinates("a", a)?,
-                from_coordinates("b", b)?,
-                from_coordinates("c", c)?,
-            ),
-        }
+        Placed::from_spec(spec).map(Self)
     }
 
     /// The parry shape, in its local frame (for other parry queries, e.g. `compute_aabb`).
     #[must_use]
     pub fn shape(&self) -> &dyn Shape {
-        match &self.kind {
+        match &self.0.kind {
             Kind::Ball(ball) => ball,
             Kind::Wall(half_space) => half_space,
             Kind::Cuboid(cuboid) => cuboid,
@@ -350,7 +259,7 @@ impl Obstacle2d {
     /// The pose placing [`shape`](Self::shape) in the world.
     #[must_use]
     pub fn pose(&self) -> &Pose {
-        &self.pose
+        &self.0.pose
     }
 }
 
@@ -365,14 +274,14 @@ impl Obstacle<DVec2> for Obstacle2d {
 
     #[inline]
     fn beta_agent(&self, q: DVec2, p: DVec2) -> BetaAgent<DVec2> {
-        shapes::beta_agent(&self.kind, &self.pose, q, p)
+        self.0.beta_agent(q, p)
     }
 
     fn aabb(&self) -> Option<(DVec2, DVec2)> {
-        if let Kind::Wall(_) = self.kind {
+        if self.0.is_wall() {
             return None;
         }
-        let aabb = self.shape().compute_aabb(&self.pose);
+        let aabb = self.shape().compute_aabb(&self.0.pose);
         Some((aabb.mins, aabb.maxs))
     }
 }
@@ -381,7 +290,7 @@ impl Obstacle<DVec2> for Obstacle2d {
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum NoPlate {}
 
-/// parry2d-f64's types and projections for the β-agent algorithm of [`shapes`].
+/// parry2d-f64's types and projections for the β-agent algorithm of [`shapes`](crate::shapes).
 impl Parry for DVec2 {
     type Pose = Pose;
     type Ball = Ball;
@@ -391,6 +300,48 @@ impl Parry for DVec2 {
     type Capsule = Capsule;
     type Segment = Segment;
     type Plate = NoPlate;
+    type Rotation = f64;
+
+    fn identity() -> Pose {
+        Pose::IDENTITY
+    }
+    fn at(translation: Self) -> Pose {
+        Pose::from_translation(translation)
+    }
+    fn posed(translation: Self, angle: f64) -> Pose {
+        Pose::new(translation, angle)
+    }
+    fn rotation(values: &[f64]) -> Option<f64> {
+        match *values {
+            [] => Some(0.0),
+            [angle] => Some(angle),
+            _ => None,
+        }
+    }
+    fn rotation_values(angle: f64) -> Vec<f64> {
+        vec![angle]
+    }
+    fn ball(radius: f64) -> Ball {
+        Ball::new(radius)
+    }
+    fn half_space(normal: Self) -> HalfSpace {
+        HalfSpace::new(normal)
+    }
+    fn cuboid(half_extents: Self) -> Cuboid {
+        Cuboid::new(half_extents)
+    }
+    fn capsule_between(a: Self, b: Self, radius: f64) -> Capsule {
+        Capsule::new(a, b, radius)
+    }
+    fn segment(a: Self, b: Self) -> Segment {
+        Segment::new(a, b)
+    }
+    fn convex_hull(points: &[Self]) -> Result<Placed<Self>, ObstacleError> {
+        Obstacle2d::convex_hull(points).map(|obstacle| obstacle.0)
+    }
+    fn triangle(a: Self, b: Self, c: Self) -> Result<Placed<Self>, ObstacleError> {
+        Obstacle2d::triangle(a, b, c).map(|obstacle| obstacle.0)
+    }
 
     #[inline]
     fn translation(pose: &Pose) -> Self {

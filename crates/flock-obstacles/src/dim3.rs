@@ -15,11 +15,11 @@ use parry3d_f64::shape::{
 use parry3d_f64::transformation::try_convex_hull;
 
 use crate::basis::orthogonal_unit;
-use crate::error::{check_finite, coordinates, from_coordinates};
+use crate::error::{check_finite, coordinates};
 use crate::polytope::{self, Planes};
-use crate::shapes::{self, Hull, Kind, Parry};
+use crate::shapes::{Hull, Kind, Parry, Placed};
 use crate::thin::Feature;
-use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, cuboid, wall};
+use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec};
 
 /// A convex obstacle of ℝ³: a parry shape placed by a [`Pose`].
 ///
@@ -43,10 +43,7 @@ use crate::{BetaAgent, Obstacle, ObstacleError, ObstacleSpec, ball, cuboid, wall
 /// # Ok::<(), flock_obstacles::ObstacleError>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Obstacle3d {
-    kind: Kind<DVec3>,
-    pose: Pose,
-}
+pub struct Obstacle3d(Placed<DVec3>);
 
 /// A triangle of zero thickness, with its unit normal `(b − a) × (c − a)` normalised and the unit
 /// directions of its sides `ab`, `bc`, `ac` (parry's edge numbering).
@@ -75,11 +72,7 @@ impl Obstacle3d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn ball(centre: DVec3, radius: f64) -> Result<Self, ObstacleError> {
-        ball::validate(centre, radius)?;
-        Ok(Self {
-            kind: Kind::Ball(Ball::new(radius)),
-            pose: Pose::from_translation(centre),
-        })
+        Placed::ball(centre, radius).map(Self)
     }
 
     /// The closed half-space `{x : a · (x − point) ≤ 0}` bounded by the plane through `point`, with
@@ -100,11 +93,7 @@ impl Obstacle3d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn wall(point: DVec3, outward_normal: DVec3) -> Result<Self, ObstacleError> {
-        let normal = wall::unit_normal(point, outward_normal)?;
-        Ok(Self {
-            kind: Kind::Wall(HalfSpace::new(normal)),
-            pose: Pose::from_translation(point),
-        })
+        Placed::wall(point, outward_normal).map(Self)
     }
 
     /// The closed box of half-widths `half_extents` along its own axes, centred at `centre` and
@@ -135,18 +124,7 @@ impl Obstacle3d {
         half_extents: DVec3,
         axis_angle: DVec3,
     ) -> Result<Self, ObstacleError> {
-        check_finite("centre", centre)?;
-        cuboid::validate(half_extents)?;
-        if !axis_angle.is_finite() {
-            return Err(ObstacleError::InvalidRotation {
-                rotation: coordinates(axis_angle),
-                dim: 3,
-            });
-        }
-        Ok(Self {
-            kind: Kind::Cuboid(Cuboid::new(half_extents)),
-            pose: Pose::new(centre, axis_angle),
-        })
+        Placed::cuboid(centre, half_extents, axis_angle).map(Self)
     }
 
     /// The convex polyhedron that is the convex hull of `points` (any order).
@@ -208,10 +186,10 @@ impl Obstacle3d {
         let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
         let planes = Planes::new(planes, radius);
         planes.check_convex(&local, points)?;
-        Ok(Self {
+        Ok(Self(Placed {
             kind: Kind::Hull(Box::new(Hull { shape, planes })),
             pose: Pose::from_translation(centroid),
-        })
+        }))
     }
 
     /// The capsule of the points within `radius` of the segment `[a, b]`; with `a = b`, the ball
@@ -235,16 +213,7 @@ impl Obstacle3d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn capsule(a: DVec3, b: DVec3, radius: f64) -> Result<Self, ObstacleError> {
-        check_finite("a", a)?;
-        check_finite("b", b)?;
-        ball::check_radius(radius)?;
-        if a == b {
-            return Self::ball(a, radius);
-        }
-        Ok(Self {
-            kind: Kind::Capsule(Capsule::new(a, b, radius)),
-            pose: Pose::IDENTITY,
-        })
+        Placed::capsule(a, b, radius).map(Self)
     }
 
     /// The segment `[a, b]` of zero thickness: a thin rod. An α-agent is inside only when on it
@@ -266,17 +235,7 @@ impl Obstacle3d {
     /// # Ok::<(), flock_obstacles::ObstacleError>(())
     /// ```
     pub fn segment(a: DVec3, b: DVec3) -> Result<Self, ObstacleError> {
-        check_finite("a", a)?;
-        check_finite("b", b)?;
-        if a == b {
-            return Err(ObstacleError::DegenerateSegment {
-                point: coordinates(a),
-            });
-        }
-        Ok(Self {
-            kind: Kind::Segment(Segment::new(a, b)),
-            pose: Pose::IDENTITY,
-        })
+        Placed::segment(a, b).map(Self)
     }
 
     /// The triangle of vertices `a`, `b`, `c` as a plate of zero thickness, both sides of which are
@@ -308,14 +267,11 @@ impl Obstacle3d {
             });
         }
         let sides = [b - a, c - b, c - a].map(DVec3::normalize);
-        Ok(Self {
-            kind: Kind::Plate(Plate {
-                shape: Triangle::new(a, b, c),
-                normal,
-                sides,
-            }),
-            pose: Pose::IDENTITY,
-        })
+        Ok(Self(Placed::in_world(Kind::Plate(Plate {
+            shape: Triangle::new(a, b, c),
+            normal,
+            sides,
+        }))))
     }
 
     /// The obstacle `spec` describes, validated; vectors must have 3 coordinates, and a cuboid's
@@ -336,63 +292,13 @@ impl Obstacle3d {
     /// assert!(error.to_string().contains("has 2 coordinates, but the scenario is 3D"));
     /// ```
     pub fn from_spec(spec: &ObstacleSpec) -> Result<Self, ObstacleError> {
-        match spec {
-            ObstacleSpec::Ball { centre, radius } => {
-                Self::ball(from_coordinates("centre", centre)?, *radius)
-            }
-            ObstacleSpec::Wall { point, normal } => Self::wall(
-                from_coordinates("point", point)?,
-                from_coordinates("normal", normal)?,
-            ),
-            ObstacleSpec::Cuboid {
-                centre,
-                half_extents,
-                rotation,
-            } => {
-                let axis_angle = match rotation.as_slice() {
-                    [] => DVec3::ZERO,
-                    &[x, y, z] => DVec3::new(x, y, z),
-                    _ => {
-                        return Err(ObstacleError::InvalidRotation {
-                            rotation: rotation.clone(),
-                            dim: 3,
-                        });
-                    }
-                };
-                Self::cuboid(
-                    from_coordinates("centre", centre)?,
-                    from_coordinates("half_extents", half_extents)?,
-                    axis_angle,
-                )
-            }
-            ObstacleSpec::ConvexHull { points } => {
-                let points = points
-                    .iter()
-                    .enumerate()
-                    .map(|(i, x)| from_coordinates(&format!("points[{i}]"), x))
-                    .collect::<Result<Vec<DVec3>, _>>()?;
-                Self::convex_hull(&points)
-            }
-            ObstacleSpec::Capsule { a, b, radius } => Self::capsule(
-                from_coordinates("a", a)?,
-                from_coordinates("b", b)?,
-                *radius,
-            ),
-            ObstacleSpec::Segment { a, b } => {
-                Self::segment(from_coordinates("a", a)?, from_coordinates("b", b)?)
-            }
-            ObstacleSpec::Triangle { a, b, c } => Self::triangle(
-                from_coordinates("a", a)?,
-                from_coordinates("b", b)?,
-                from_coordinates("c", c)?,
-            ),
-        }
+        Placed::from_spec(spec).map(Self)
     }
 
     /// The parry shape, in its local frame (for other parry queries, e.g. `compute_aabb`).
     #[must_use]
     pub fn shape(&self) -> &dyn Shape {
-        match &self.kind {
+        match &self.0.kind {
             Kind::Ball(ball) => ball,
             Kind::Wall(half_space) => half_space,
             Kind::Cuboid(cuboid) => cuboid,
@@ -406,7 +312,7 @@ impl Obstacle3d {
     /// The pose placing [`shape`](Self::shape) in the world.
     #[must_use]
     pub fn pose(&self) -> &Pose {
-        &self.pose
+        &self.0.pose
     }
 }
 
@@ -421,19 +327,19 @@ impl Obstacle<DVec3> for Obstacle3d {
 
     #[inline]
     fn beta_agent(&self, q: DVec3, p: DVec3) -> BetaAgent<DVec3> {
-        shapes::beta_agent(&self.kind, &self.pose, q, p)
+        self.0.beta_agent(q, p)
     }
 
     fn aabb(&self) -> Option<(DVec3, DVec3)> {
-        if let Kind::Wall(_) = self.kind {
+        if self.0.is_wall() {
             return None;
         }
-        let aabb = self.shape().compute_aabb(&self.pose);
+        let aabb = self.shape().compute_aabb(&self.0.pose);
         Some((aabb.mins, aabb.maxs))
     }
 }
 
-/// parry3d-f64's types and projections for the β-agent algorithm of [`shapes`].
+/// parry3d-f64's types and projections for the β-agent algorithm of [`shapes`](crate::shapes).
 impl Parry for DVec3 {
     type Pose = Pose;
     type Ball = Ball;
@@ -443,6 +349,48 @@ impl Parry for DVec3 {
     type Capsule = Capsule;
     type Segment = Segment;
     type Plate = Plate;
+    type Rotation = DVec3;
+
+    fn identity() -> Pose {
+        Pose::IDENTITY
+    }
+    fn at(translation: Self) -> Pose {
+        Pose::from_translation(translation)
+    }
+    fn posed(translation: Self, axis_angle: DVec3) -> Pose {
+        Pose::new(translation, axis_angle)
+    }
+    fn rotation(values: &[f64]) -> Option<DVec3> {
+        match *values {
+            [] => Some(DVec3::ZERO),
+            [x, y, z] => Some(DVec3::new(x, y, z)),
+            _ => None,
+        }
+    }
+    fn rotation_values(axis_angle: DVec3) -> Vec<f64> {
+        coordinates(axis_angle)
+    }
+    fn ball(radius: f64) -> Ball {
+        Ball::new(radius)
+    }
+    fn half_space(normal: Self) -> HalfSpace {
+        HalfSpace::new(normal)
+    }
+    fn cuboid(half_extents: Self) -> Cuboid {
+        Cuboid::new(half_extents)
+    }
+    fn capsule_between(a: Self, b: Self, radius: f64) -> Capsule {
+        Capsule::new(a, b, radius)
+    }
+    fn segment(a: Self, b: Self) -> Segment {
+        Segment::new(a, b)
+    }
+    fn convex_hull(points: &[Self]) -> Result<Placed<Self>, ObstacleError> {
+        Obstacle3d::convex_hull(points).map(|obstacle| obstacle.0)
+    }
+    fn triangle(a: Self, b: Self, c: Self) -> Result<Placed<Self>, ObstacleError> {
+        Obstacle3d::triangle(a, b, c).map(|obstacle| obstacle.0)
+    }
 
     #[inline]
     fn translation(pose: &Pose) -> Self {

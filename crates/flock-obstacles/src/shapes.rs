@@ -1,16 +1,19 @@
-//! The β-agent of an obstacle's parry shape, written once for both dimensions ([`beta_agent`]).
+//! An obstacle's parry shape, written once for both dimensions: its β-agent ([`beta_agent`]) and
+//! the constructors and scenario reading the two dimensions share ([`Placed`]).
 //!
-//! What differs per dimension — parry's types and the calls that project onto them — is the
-//! [`Parry`] trait, implemented for `DVec2` in `dim2.rs` and for `DVec3` in `dim3.rs` (as
-//! flock-math's `Vector` carries the algebra); the shapes of an obstacle are a [`Kind`] of either.
+//! What differs per dimension — parry's types, the calls that build and project onto them, the
+//! convex hull and the triangle — is the [`Parry`] trait, implemented for `DVec2` in `dim2.rs`
+//! and for `DVec3` in `dim3.rs` (as flock-math's `Vector` carries the algebra); the shapes of an
+//! obstacle are a [`Kind`] of either.
 
 use core::fmt::Debug;
 
 use flock_math::Vector;
 
+use crate::error::{check_finite, coordinates, from_coordinates};
 use crate::polytope::{self, Planes};
 use crate::thin::{self, Feature};
-use crate::{BetaAgent, ball, capsule, cuboid, wall};
+use crate::{BetaAgent, ObstacleError, ObstacleSpec, ball, capsule, cuboid, wall};
 
 /// A dimension's parry types and the projections the β-agent needs of them.
 pub(crate) trait Parry: Vector {
@@ -30,6 +33,33 @@ pub(crate) trait Parry: Vector {
     type Segment: Clone + Debug;
     /// A triangle of zero thickness (3D; none in 2D).
     type Plate: Clone + Debug;
+    /// A rotation: an angle in 2D, an axis-angle vector in 3D.
+    type Rotation: Copy;
+
+    /// The identity pose.
+    fn identity() -> Self::Pose;
+    /// The translation to `translation`.
+    fn at(translation: Self) -> Self::Pose;
+    /// The rotation `rotation` followed by the translation to `translation`.
+    fn posed(translation: Self, rotation: Self::Rotation) -> Self::Pose;
+    /// The rotation a scenario writes as `values` (none for `[]`), or `None` for the wrong count.
+    fn rotation(values: &[f64]) -> Option<Self::Rotation>;
+    /// The numbers of `rotation`, as a scenario writes them.
+    fn rotation_values(rotation: Self::Rotation) -> Vec<f64>;
+    /// A ball of radius `radius` at the origin.
+    fn ball(radius: f64) -> Self::Ball;
+    /// The half-space through the origin with outward unit normal `normal`.
+    fn half_space(normal: Self) -> Self::HalfSpace;
+    /// A box of half-extents `half_extents` centred at the origin.
+    fn cuboid(half_extents: Self) -> Self::Cuboid;
+    /// The capsule of the points within `radius` of `[a, b]`.
+    fn capsule_between(a: Self, b: Self, radius: f64) -> Self::Capsule;
+    /// The segment `[a, b]`.
+    fn segment(a: Self, b: Self) -> Self::Segment;
+    /// The convex hull of `points`, validated (`Obstacle2d::convex_hull`, `Obstacle3d::convex_hull`).
+    fn convex_hull(points: &[Self]) -> Result<Placed<Self>, ObstacleError>;
+    /// The triangle `abc`, validated (`Obstacle2d::triangle`, `Obstacle3d::triangle`).
+    fn triangle(a: Self, b: Self, c: Self) -> Result<Placed<Self>, ObstacleError>;
 
     /// The pose's translation.
     fn translation(pose: &Self::Pose) -> Self;
@@ -85,6 +115,150 @@ pub(crate) enum Kind<V: Parry> {
     Segment(V::Segment),
     /// World coordinates (identity pose).
     Plate(V::Plate),
+}
+
+/// An obstacle of either dimension: its shape and the pose placing it in the world (the body of
+/// [`Obstacle2d`](crate::Obstacle2d) and [`Obstacle3d`](crate::Obstacle3d), whose constructors
+/// document these).
+#[derive(Clone, Debug)]
+pub(crate) struct Placed<V: Parry> {
+    pub(crate) kind: Kind<V>,
+    pub(crate) pose: V::Pose,
+}
+
+impl<V: Parry> Placed<V> {
+    /// A shape given in world coordinates (the identity pose).
+    pub(crate) fn in_world(kind: Kind<V>) -> Self {
+        Self {
+            kind,
+            pose: V::identity(),
+        }
+    }
+
+    /// The closed ball `B(centre, radius)`.
+    pub(crate) fn ball(centre: V, radius: f64) -> Result<Self, ObstacleError> {
+        ball::validate(centre, radius)?;
+        Ok(Self {
+            kind: Kind::Ball(V::ball(radius)),
+            pose: V::at(centre),
+        })
+    }
+
+    /// The closed half-space `{x : a · (x − point) ≤ 0}`, `a` the unit `outward_normal`.
+    pub(crate) fn wall(point: V, outward_normal: V) -> Result<Self, ObstacleError> {
+        let normal = wall::unit_normal(point, outward_normal)?;
+        Ok(Self {
+            kind: Kind::Wall(V::half_space(normal)),
+            pose: V::at(point),
+        })
+    }
+
+    /// The closed box of half-widths `half_extents`, turned by `rotation`, centred at `centre`.
+    pub(crate) fn cuboid(
+        centre: V,
+        half_extents: V,
+        rotation: V::Rotation,
+    ) -> Result<Self, ObstacleError> {
+        check_finite("centre", centre)?;
+        cuboid::validate(half_extents)?;
+        let values = V::rotation_values(rotation);
+        if !values.iter().all(|x| x.is_finite()) {
+            return Err(ObstacleError::InvalidRotation {
+                rotation: values,
+                dim: V::DIM,
+            });
+        }
+        Ok(Self {
+            kind: Kind::Cuboid(V::cuboid(half_extents)),
+            pose: V::posed(centre, rotation),
+        })
+    }
+
+    /// The capsule of the points within `radius` of `[a, b]`; the ball `B(a, radius)` when `a = b`.
+    pub(crate) fn capsule(a: V, b: V, radius: f64) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        ball::check_radius(radius)?;
+        if a == b {
+            return Self::ball(a, radius);
+        }
+        Ok(Self::in_world(Kind::Capsule(V::capsule_between(
+            a, b, radius,
+        ))))
+    }
+
+    /// The segment `[a, b]` of zero thickness.
+    pub(crate) fn segment(a: V, b: V) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        if a == b {
+            return Err(ObstacleError::DegenerateSegment {
+                point: coordinates(a),
+            });
+        }
+        Ok(Self::in_world(Kind::Segment(V::segment(a, b))))
+    }
+
+    /// The obstacle `spec` describes, validated: vectors of `V::DIM` coordinates, a cuboid's
+    /// `rotation` of [`Parry::rotation`]'s count or none.
+    pub(crate) fn from_spec(spec: &ObstacleSpec) -> Result<Self, ObstacleError> {
+        match spec {
+            ObstacleSpec::Ball { centre, radius } => {
+                Self::ball(from_coordinates("centre", centre)?, *radius)
+            }
+            ObstacleSpec::Wall { point, normal } => Self::wall(
+                from_coordinates("point", point)?,
+                from_coordinates("normal", normal)?,
+            ),
+            ObstacleSpec::Cuboid {
+                centre,
+                half_extents,
+                rotation,
+            } => {
+                let turn = V::rotation(rotation).ok_or_else(|| ObstacleError::InvalidRotation {
+                    rotation: rotation.clone(),
+                    dim: V::DIM,
+                })?;
+                Self::cuboid(
+                    from_coordinates("centre", centre)?,
+                    from_coordinates("half_extents", half_extents)?,
+                    turn,
+                )
+            }
+            ObstacleSpec::ConvexHull { points } => {
+                let points = points
+                    .iter()
+                    .enumerate()
+                    .map(|(i, x)| from_coordinates(&format!("points[{i}]"), x))
+                    .collect::<Result<Vec<V>, _>>()?;
+                V::convex_hull(&points)
+            }
+            ObstacleSpec::Capsule { a, b, radius } => Self::capsule(
+                from_coordinates("a", a)?,
+                from_coordinates("b", b)?,
+                *radius,
+            ),
+            ObstacleSpec::Segment { a, b } => {
+                Self::segment(from_coordinates("a", a)?, from_coordinates("b", b)?)
+            }
+            ObstacleSpec::Triangle { a, b, c } => V::triangle(
+                from_coordinates("a", a)?,
+                from_coordinates("b", b)?,
+                from_coordinates("c", c)?,
+            ),
+        }
+    }
+
+    /// Whether it is a wall (unbounded, without a bounding box).
+    pub(crate) fn is_wall(&self) -> bool {
+        matches!(self.kind, Kind::Wall(_))
+    }
+
+    /// The β-agent of the α-agent `(q, p)` on it.
+    #[inline]
+    pub(crate) fn beta_agent(&self, q: V, p: V) -> BetaAgent<V> {
+        beta_agent(&self.kind, &self.pose, q, p)
+    }
 }
 
 /// A convex polygon or polyhedron and its edge lines or face planes.
