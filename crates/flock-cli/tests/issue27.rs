@@ -1047,3 +1047,114 @@ fn issue_27_a_run_without_a_manifest_is_judged_by_names() {
     );
     assert_eq!(fs::read(&manifest).expect("recorded again"), text);
 }
+
+/// A run of `LONG_2D` into `tmp/d`, killed (SIGKILL) once it has written its first checkpoint.
+fn killed_at_first_checkpoint(tmp: &Path, file: &str) {
+    let mut child = crate::trust::spawn(
+        tmp,
+        &[
+            "run",
+            file,
+            "--out",
+            "d",
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ],
+    );
+    let checkpoint = tmp.join("d.partial/checkpoint.bin");
+    while !checkpoint.exists() {
+        assert!(child.try_wait().expect("poll").is_none(), "the run ended");
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().expect("SIGKILL");
+    child.wait().expect("reaped");
+}
+
+/// Issue 27: the manifest stays right across a SIGKILL and a resume: the resumed run records
+/// the very manifest of the uninterrupted one (its files are the same, byte for byte), and
+/// `--force` then replaces it.
+#[test]
+fn issue_27_a_run_killed_and_resumed_records_the_uninterrupted_runs_manifest() {
+    let tmp = temp_dir("manifest_resume");
+    let file = write(tmp.path(), "long.ron", crate::trust::LONG_2D);
+    complete(tmp.path(), &["run", &file, "--out", "whole", "--quiet"]);
+    killed_at_first_checkpoint(tmp.path(), &file);
+    complete(tmp.path(), &["run", "--resume", "d", "--quiet"]);
+    let manifest = |dir: &str| {
+        fs::read_to_string(tmp.path().join(dir).join(".flocking.manifest")).expect("a manifest")
+    };
+    assert_eq!(manifest("d"), manifest("whole"));
+    for name in ["metrics.csv", "trajectory.csv", "final.csv", "scenario.ron"] {
+        assert!(
+            manifest("d")
+                .lines()
+                .any(|line| line.ends_with(&format!(" {name}")))
+        );
+    }
+    complete(
+        tmp.path(),
+        &["run", &file, "--out", "d", "--force", "--quiet"],
+    );
+}
+
+/// Issue 27, errors that name no path: a resume of a run whose `metrics.csv` is gone said only
+/// "No such file or directory (os error 2)" (exit 1); it names the file and the fix (exit 2).
+#[test]
+fn issue_27_a_resume_without_its_records_names_the_missing_file() {
+    let tmp = temp_dir("resume_missing");
+    let file = write(tmp.path(), "long.ron", crate::trust::LONG_2D);
+    killed_at_first_checkpoint(tmp.path(), &file);
+    let metrics = tmp.path().join("d.partial/metrics.csv");
+    let text = fs::read(&metrics).expect("the records");
+    remove_own_file(tmp.path(), &metrics, &text);
+    let output = flocking(tmp.path(), &["run", "--resume", "d"]);
+    refused(
+        &output,
+        &[
+            "d.partial has no metrics.csv",
+            "start it over with `flocking run SCENARIO --out d --force`",
+        ],
+    );
+    assert!(!stderr(&output).contains("os error"));
+}
+
+/// Issue 27: `sweep plot --out` into a directory that does not exist said "cannot create
+/// zz/yy.svg: No such file or directory (os error 2)"; it names the directory and the fix.
+#[test]
+fn issue_27_a_figure_into_a_missing_directory_names_it() {
+    let tmp = temp_dir("plot_missing_dir");
+    write(tmp.path(), "short.ron", SHORT_2D);
+    let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
+    complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
+    let output = flocking(
+        tmp.path(),
+        &[
+            "sweep",
+            "plot",
+            "sw",
+            "--x",
+            "seed",
+            "--metric",
+            "connectivity",
+            "--out",
+            "zz/yy.svg",
+        ],
+    );
+    let err = stderr(&output);
+    assert_ne!(output.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("cannot create zz/yy.svg: the directory zz does not exist; create it"),
+        "{err}"
+    );
+    assert!(!tmp.path().join("zz").exists());
+}
+
+/// Issue 27: a disk too small for the outputs is named ("0 B is free there" said not where).
+#[test]
+fn issue_27_a_disk_too_small_is_named() {
+    let tmp = temp_dir("disk_named");
+    let file = write(tmp.path(), "s.ron", SHORT_2D);
+    let output = flocking(tmp.path(), &["run", &file, "--out", "/proc/x"]);
+    refused(&output, &["0 B is free for /proc/x"]);
+}

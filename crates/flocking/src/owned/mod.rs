@@ -360,6 +360,19 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
                 ),
             });
         }
+        Err(e) if e.kind() == io::ErrorKind::NotFound => {
+            // issue 27: "No such file or directory (os error 2)" named neither the cause nor
+            // the fix
+            return Err(io::Error::new(
+                e.kind(),
+                format!(
+                    "cannot create {}: the directory {} does not exist; create it, or choose another output file",
+                    path.display(),
+                    dir.display()
+                ),
+            )
+            .into());
+        }
         Err(e) => return Err(at(format_args!("create {}", path.display()))(e).into()),
     };
     file.write_all(bytes)

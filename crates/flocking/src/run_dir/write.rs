@@ -677,6 +677,21 @@ impl RunDirectory {
             return Ok((this, scenario, None));
         };
         check_scenario(&checkpoint, &scenario, &partial)?;
+        // the records the checkpoint counts must all be there (issue 27: a missing `metrics.csv`
+        // was "No such file or directory (os error 2)", naming no path)
+        let trajectory_file = match format {
+            TrajectoryFormat::Csv => "trajectory.csv",
+            TrajectoryFormat::Npy => "trajectory.npy",
+        };
+        for name in ["metrics.csv", trajectory_file] {
+            if fs::symlink_metadata(partial.join(name)).is_err() {
+                return Err(ResumeError::Refused(format!(
+                    "{} has no {name}: the records of the interrupted run are gone, so it cannot be resumed; start it over with `flocking run SCENARIO --out {} --force`",
+                    partial.display(),
+                    target.display()
+                )));
+            }
+        }
         owned::mark(&partial, Kind::Run)?;
         write_incomplete(&partial, &running_note(&target, force))?;
         let metrics_path = partial.join("metrics.csv");
@@ -948,7 +963,7 @@ fn metrics_header(columns: &[String]) -> String {
 /// The diagnostic columns of the header of the `metrics.csv` at `path`: the names after those of
 /// [`METRICS_HEADER`].
 fn diagnostic_columns(path: &Path) -> io::Result<Vec<String>> {
-    let text = fs::read_to_string(path)?;
+    let text = fs::read_to_string(path).map_err(at(format_args!("read {}", path.display())))?;
     let header = text.lines().next().unwrap_or_default();
     let Some(rest) = header.strip_prefix(METRICS_HEADER) else {
         return Err(io::Error::new(
@@ -1268,7 +1283,11 @@ fn cut(path: &Path, bytes: u64) -> io::Result<File> {
         .append(true)
         .open(path)
         .map_err(at(format_args!("open {}", path.display())))?;
-    if file.metadata()?.len() < bytes {
+    let len = file
+        .metadata()
+        .map_err(at(format_args!("read {}", path.display())))?
+        .len();
+    if len < bytes {
         return Err(io::Error::new(
             io::ErrorKind::UnexpectedEof,
             format!(
