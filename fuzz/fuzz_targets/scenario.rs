@@ -146,7 +146,7 @@ fn check_input(data: &[u8]) {
         return;
     };
     // `parse` validated; with its defaults written out the scenario is still valid…
-    let scenario = parsed.resolved();
+    let scenario = parsed.clone().resolved();
     if let Err(e) = scenario.validate() {
         panic!("the resolved scenario no longer validates: {e}\n{scenario:#?}");
     }

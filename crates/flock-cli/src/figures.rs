@@ -151,11 +151,28 @@ pub fn figures(
         return Err(FiguresError::NoFixtures(fixtures_dir.to_path_buf()));
     }
     owned::check_owned(out, Kind::Figures).map_err(FiguresError::Dir)?;
+    // Issue 27: everything the gallery replaces is checked before anything is written — the
+    // gallery's own files and each fixture's run directory, by name and, where a manifest
+    // records them, by size and content
+    let own_files = gallery_files();
+    owned::check_files(out, &own_files).map_err(FiguresError::Dir)?;
+    for path in &paths {
+        let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+        let dir = out.join(&*stem);
+        if fs::symlink_metadata(&dir).is_ok() {
+            owned::check_removable(&dir, Kind::Run).map_err(|e| FiguresError::Create {
+                fixture: stem.clone().into_owned(),
+                source: CreateError::Dir(e),
+            })?;
+        }
+    }
     fs::create_dir_all(out).map_err(io_err(out))?;
     if !owned::marked(out, Kind::Figures) {
         owned::mark(out, Kind::Figures).map_err(io_err(out))?;
     }
     let _lock = DirLock::acquire(out).map_err(FiguresError::Dir)?;
+    // a gallery of an older flocking has no manifest: its files are recognised by name once
+    owned::start_manifest(out, &own_files).map_err(io_err(out))?;
 
     let mut entries = Vec::with_capacity(paths.len());
     for path in &paths {
@@ -191,14 +208,14 @@ pub fn figures(
             fixture: stem.clone(),
             source,
         })?;
-        for name in DROPPED_RUN_FILES {
-            remove_if_present(&dir.join(name))?;
-        }
-        for name in DROPPED_FIGURES {
-            remove_if_present(&dir.join("figures").join(name))?;
-        }
-        if !player {
-            remove_if_present(&dir.join("figures").join("player.html"))?;
+        let figures = |name: &str| format!("{}/{name}", owned::FIGURES_DIR);
+        let dropped = DROPPED_RUN_FILES
+            .iter()
+            .map(|&name| name.to_owned())
+            .chain(DROPPED_FIGURES.iter().map(|name| figures(name)))
+            .chain((!player).then(|| figures("player.html")));
+        for name in dropped {
+            owned::remove_file(&dir, &name).map_err(FiguresError::Dir)?;
         }
         let images: Vec<String> = [
             "snapshots.png",
@@ -275,12 +292,13 @@ pub fn figures(
     Ok(entries)
 }
 
-fn remove_if_present(path: &Path) -> Result<(), FiguresError> {
-    match fs::remove_file(path) {
-        Err(e) if e.kind() != io::ErrorKind::NotFound => Err(FiguresError::Io {
-            path: path.to_path_buf(),
-            source: e,
-        }),
-        _ => Ok(()),
+/// The files of a gallery's own, relative to it: its page and the function plots.
+fn gallery_files() -> Vec<String> {
+    let mut files = vec!["index.html".to_owned()];
+    for function in ReportFunction::ALL {
+        for extension in ["png", "svg"] {
+            files.push(format!("{FUNCTIONS_DIR}/{}.{extension}", function.stem()));
+        }
     }
+    files
 }

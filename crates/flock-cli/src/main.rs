@@ -612,8 +612,9 @@ fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
 }
 
 /// Checks that `flocking plot DIR` may draw into `DIR/figures`: `DIR` is a complete run directory,
-/// and its `figures` is flocking's (`DIR` carries flocking's marker) or does not exist yet, so
-/// that no file flocking did not write is replaced.
+/// and its `figures` is flocking's (`DIR` carries flocking's marker, and its manifest, when it has
+/// one, lists each figure present with its size and content) or does not exist yet, so that no
+/// file flocking did not write is replaced.
 fn check_plot_dir(dir: &Path) -> Result<(), String> {
     if !dir.is_dir() {
         return Err(format!(
@@ -660,7 +661,12 @@ fn check_plot_dir(dir: &Path) -> Result<(), String> {
             return foreign(format!("figures/{name}"));
         }
     }
-    Ok(())
+    // a figure the user saved over one of flocking's (issue 27: ownership by content)
+    let figures: Vec<String> = flocking::owned::RUN_FIGURES
+        .iter()
+        .map(|name| format!("{}/{name}", flocking::owned::FIGURES_DIR))
+        .collect();
+    flocking::owned::check_files(dir, &figures).map_err(|e| e.to_string())
 }
 
 /// The figures' options: the defaults, with edges coloured by stress if asked.

@@ -260,8 +260,12 @@ impl Estimate {
         if let Some(disk) = resources.disk_bytes
             && self.disk_bytes > disk
         {
+            let place = resources.disk_path.as_ref().map_or_else(
+                || "there".to_owned(),
+                |path| format!("for {}", path.display()),
+            );
             return Err(format!(
-                "the outputs need about {} of disk but {} is free there; {}, or \
+                "the outputs need about {} of disk but {} is free {place}; {}, or \
                  --no-resource-check to try anyway",
                 bytes(self.disk_bytes),
                 bytes(disk),
@@ -313,12 +317,15 @@ impl fmt::Display for Estimate {
 }
 
 /// What this machine offers: memory for a run and disk for its outputs (`None`: unknown).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Resources {
     /// Memory available, in bytes.
     pub memory_bytes: Option<f64>,
     /// Free space where the outputs go, in bytes.
     pub disk_bytes: Option<f64>,
+    /// Where the outputs go, named by the message of a disk too small (issue 27: "0 B is free
+    /// there" named no path).
+    pub disk_path: Option<std::path::PathBuf>,
 }
 
 impl Resources {
@@ -330,6 +337,7 @@ impl Resources {
         Self {
             memory_bytes: available_memory(),
             disk_bytes: free_space(out),
+            disk_path: Some(out.to_owned()),
         }
     }
 }
@@ -457,6 +465,7 @@ mod tests {
         let tight = Resources {
             memory_bytes: None,
             disk_bytes: Some(1e6),
+            disk_path: Some("out/d".into()),
         };
         let run = [
             estimate.warnings().join("\n"),
@@ -477,6 +486,13 @@ mod tests {
             assert!(!text.contains("--trajectory-format"), "{text}");
             assert!(text.contains("--keep-runs"), "{text}");
         }
+        // the place is named (issue 27)
+        for text in [
+            estimate.check(&tight).unwrap_err(),
+            estimate.check_sweep(&tight).unwrap_err(),
+        ] {
+            assert!(text.contains("1.0 MB is free for out/d"), "{text}");
+        }
     }
 
     #[test]
@@ -490,6 +506,7 @@ mod tests {
         let small = Resources {
             memory_bytes: Some(2e9),
             disk_bytes: None,
+            disk_path: None,
         };
         let error = estimate.check(&small).unwrap_err();
         assert!(

@@ -22,7 +22,14 @@ pub const MAX_NESTING: usize = 64;
 /// # Errors
 /// The reason, as a sentence naming the limit or the kind of file.
 pub fn read_text(path: &Path) -> Result<String, String> {
-    let metadata = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    let metadata = std::fs::metadata(path).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            // issue 27: the bare "No such file or directory (os error 2)" said nothing to do
+            format!("{e}; check the path (relative paths start from the working directory)")
+        } else {
+            e.to_string()
+        }
+    })?;
     if !metadata.is_file() {
         let kind = if metadata.is_dir() {
             "a directory"

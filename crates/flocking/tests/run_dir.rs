@@ -260,3 +260,87 @@ fn issue_27_a_run_killed_while_preparing_leaves_nothing_behind() {
         "the user's"
     );
 }
+
+/// The fuzz directory's files of `dir` (`fuzz/corpus/<target>` or `fuzz/regressions`) whose names
+/// end with `suffix`, sorted.
+fn fuzz_files(dir: &str, suffix: &str) -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz")
+        .join(dir);
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("an entry").path())
+        .filter(|path| path.to_string_lossy().ends_with(suffix))
+        .collect();
+    paths.sort();
+    paths
+}
+
+/// The fuzz target `checkpoint`'s seeds (real checkpoints) parse, and its regressions (forged
+/// checkpoints with a valid hash, issue 27) are refused — by the parser when a field is out of
+/// its range, by the resume when the checkpoint does not fit its run — never a panic.
+#[test]
+fn the_checkpoint_fuzz_corpus_and_regressions_are_read_or_refused() {
+    use flocking::run_dir::Checkpoint;
+    let seeds = fuzz_files("corpus/checkpoint", ".bin");
+    assert!(!seeds.is_empty());
+    for path in seeds {
+        let bytes = std::fs::read(&path).expect("a seed");
+        let checkpoint =
+            Checkpoint::parse(&bytes, &path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(
+            checkpoint.start.positions.len(),
+            checkpoint.start.velocities.len()
+        );
+    }
+    let regressions = fuzz_files("regressions", ".bin");
+    assert!(regressions.len() >= 4, "{} regressions", regressions.len());
+    let tmp = temp_dir("fuzz_checkpoints");
+    let mut scenario = fixture("tac2006_fig11_alg2_n100");
+    scenario.agents = 2;
+    scenario.duration = 1.0;
+    let text = scenario.to_ron().expect("RON");
+    for (k, path) in regressions.iter().enumerate() {
+        let bytes = std::fs::read(path).expect("a regression");
+        if let Err(error) = Checkpoint::parse(&bytes, path) {
+            assert!(
+                error.to_string().contains("is not a flock checkpoint"),
+                "{error}"
+            );
+            continue;
+        }
+        let out = tmp.path().join(format!("r{k}"));
+        let partial = flocking::run_dir::partial_path(&out);
+        std::fs::create_dir(&partial).expect("mkdir");
+        std::fs::write(partial.join(".flocking"), "written by flocking run\n").expect("marker");
+        std::fs::write(partial.join("scenario.ron"), format!("{text}\n")).expect("scenario");
+        std::fs::write(partial.join("INCOMPLETE"), "incomplete: killed\n").expect("note");
+        std::fs::write(partial.join("metrics.csv"), "").expect("metrics");
+        std::fs::write(partial.join("trajectory.csv"), "").expect("trajectory");
+        std::fs::write(partial.join("checkpoint.bin"), &bytes).expect("the regression");
+        assert!(
+            RunDirectory::resume(&out, 1000).is_err(),
+            "{}: a forged checkpoint was resumed",
+            path.display()
+        );
+    }
+}
+
+/// The fuzz target `read_records`'s seeds (a byte for the number of agents, then a run's
+/// `metrics.csv`) read back every record.
+#[test]
+fn the_read_records_fuzz_corpus_reads_back() {
+    let seeds = fuzz_files("corpus/read_records", ".csv");
+    assert!(!seeds.is_empty());
+    let tmp = temp_dir("fuzz_records");
+    for path in seeds {
+        let bytes = std::fs::read(&path).expect("a seed");
+        let (&agents, text) = bytes.split_first().expect("not empty");
+        let metrics = tmp.path().join("metrics.csv");
+        std::fs::write(&metrics, text).expect("written");
+        let records = flocking::run_dir::read_records(&metrics, usize::from(agents))
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let rows = text.iter().filter(|&&b| b == b'\n').count() - 1;
+        assert_eq!(records.len(), rows, "{}", path.display());
+    }
+}

@@ -104,6 +104,16 @@ impl Checkpoint {
             Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
             Err(e) => return Err(at(format_args!("read {}", path.display()))(e)),
         };
+        Self::parse(&bytes, &path).map(Some)
+    }
+
+    /// The checkpoint of the bytes `bytes` of the file `path` (named by the errors), every field
+    /// checked as user input (the fuzz target `checkpoint` feeds it any bytes: fuzz/README.md).
+    ///
+    /// # Errors
+    /// Bytes that are not a whole checkpoint (wrong magic, length or hash), or a field out of its
+    /// range, naming it.
+    pub fn parse(bytes: &[u8], path: &Path) -> io::Result<Self> {
         let corrupt = |why: &str| {
             io::Error::new(
                 io::ErrorKind::InvalidData,
@@ -180,7 +190,7 @@ impl Checkpoint {
                 .map_err(|_| corrupt(&format!("its {what} is not text")))
         };
         let floats = |w: &[u64]| w.iter().map(|&b| f64::from_bits(b)).collect();
-        Ok(Some(Self {
+        Ok(Self {
             dim: usize::try_from(*dim).map_err(|_| corrupt("bad dimension"))?,
             start: Start {
                 steps: *steps,
@@ -194,7 +204,7 @@ impl Checkpoint {
             metrics_bytes: *metrics_bytes,
             trajectory_bytes: *trajectory_bytes,
             scenario: text(scenario, "scenario")?,
-        }))
+        })
     }
 }
 

@@ -21,6 +21,10 @@
 //!   renames over a `DIR` that appeared during the run, even an empty one: the rename is atomic
 //!   and refuses an existing `DIR` (`RENAME_NOREPLACE`), so nothing appearing between the last
 //!   check and the rename is replaced either.
+//! - Before the final rename, every file of the run is recorded by size and content in its
+//!   manifest ([`owned::manifest`]): `force` replaces a `DIR` only while its files are those
+//!   flocking wrote. A resume drops a manifest a cut-short finish left in `DIR.partial`, and
+//!   records it again when it finishes.
 //! - The checkpoint holds the resolved scenario: `--resume` refuses a `scenario.ron` edited
 //!   since, naming the fields that changed.
 //! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
@@ -621,6 +625,9 @@ impl RunDirectory {
             Err(e) => return Err(at(format_args!("read {}", note_path.display()))(e).into()),
         };
         let lock = DirLock::acquire(&partial)?;
+        // a manifest recorded just before a finishing rename that was cut short: the files are
+        // cut back and appended to, and recorded again when the run finishes
+        owned::drop_manifest(&partial)?;
         let recorded = read_controls(&partial)?;
         match (&recorded, controls) {
             (Some(recorded), None) => {
@@ -670,6 +677,21 @@ impl RunDirectory {
             return Ok((this, scenario, None));
         };
         check_scenario(&checkpoint, &scenario, &partial)?;
+        // the records the checkpoint counts must all be there (issue 27: a missing `metrics.csv`
+        // was "No such file or directory (os error 2)", naming no path)
+        let trajectory_file = match format {
+            TrajectoryFormat::Csv => "trajectory.csv",
+            TrajectoryFormat::Npy => "trajectory.npy",
+        };
+        for name in ["metrics.csv", trajectory_file] {
+            if fs::symlink_metadata(partial.join(name)).is_err() {
+                return Err(ResumeError::Refused(format!(
+                    "{} has no {name}: the records of the interrupted run are gone, so it cannot be resumed; start it over with `flocking run SCENARIO --out {} --force`",
+                    partial.display(),
+                    target.display()
+                )));
+            }
+        }
         owned::mark(&partial, Kind::Run)?;
         write_incomplete(&partial, &running_note(&target, force))?;
         let metrics_path = partial.join("metrics.csv");
@@ -810,6 +832,8 @@ impl RunDirectory {
         )?;
         let text = verdict_text(verdict.as_ref(), &self.criteria);
         write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
+        // every file of the run, by size and content, once none will change (issue 27)
+        owned::record_manifest(&self.partial)?;
         self.clear_target()?;
         // a `DIR` that appears between the check and the rename is not renamed over
         rename_no_replace(&self.partial, &self.target).map_err(|e| {
@@ -939,7 +963,7 @@ fn metrics_header(columns: &[String]) -> String {
 /// The diagnostic columns of the header of the `metrics.csv` at `path`: the names after those of
 /// [`METRICS_HEADER`].
 fn diagnostic_columns(path: &Path) -> io::Result<Vec<String>> {
-    let text = fs::read_to_string(path)?;
+    let text = fs::read_to_string(path).map_err(at(format_args!("read {}", path.display())))?;
     let header = text.lines().next().unwrap_or_default();
     let Some(rest) = header.strip_prefix(METRICS_HEADER) else {
         return Err(io::Error::new(
@@ -1122,10 +1146,11 @@ fn force_line(force: bool) -> String {
 /// Finishes what [`RunDirectory::finish`] left undone when killed right after renaming
 /// The files of a running or interrupted run that a complete run does not keep, the note last:
 /// removed by the final rename's tidy-up and by a resume that finds the rename done.
-const RUN_LEFTOVERS: [&str; 4] = [
+const RUN_LEFTOVERS: [&str; 5] = [
     CHECKPOINT_FILE,
     CHECKPOINT_TMP,
     INCOMPLETE_TMP,
+    owned::MANIFEST_TMP,
     INCOMPLETE_FILE,
 ];
 
@@ -1258,7 +1283,11 @@ fn cut(path: &Path, bytes: u64) -> io::Result<File> {
         .append(true)
         .open(path)
         .map_err(at(format_args!("open {}", path.display())))?;
-    if file.metadata()?.len() < bytes {
+    let len = file
+        .metadata()
+        .map_err(at(format_args!("read {}", path.display())))?
+        .len();
+    if len < bytes {
         return Err(io::Error::new(
             io::ErrorKind::UnexpectedEof,
             format!(

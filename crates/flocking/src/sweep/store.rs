@@ -178,8 +178,11 @@ pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<DirLock, StoreError> {
 /// A missing or invalid `sweep.ron`.
 pub fn read_sweep(dir: &Path) -> Result<Sweep, StoreError> {
     let file = dir.join(SWEEP_FILE);
+    // issue 27: a file given as the directory said "D/sweep.ron: Not a directory (os error 20)"
     let text = fs::read_to_string(&file).map_err(|e| match e.kind() {
-        io::ErrorKind::NotFound => StoreError::NotASweep(dir.to_owned()),
+        io::ErrorKind::NotFound | io::ErrorKind::NotADirectory => {
+            StoreError::NotASweep(dir.to_owned())
+        }
         _ => io_error(&file)(e),
     })?;
     Sweep::parse(&text, &file.display().to_string(), dir).map_err(StoreError::Sweep)

@@ -20,7 +20,12 @@
 //! - [`write_file`]: a file written where a user names it (a figure, a table) never replaces a
 //!   file that flocking did not write, nor one of the files a directory of flocking's is made of
 //!   ([`DirError::Reserved`]: a sweep's `runs.csv`).
+//! - [`manifest`]: the size and content hash of every file flocking wrote into a directory, at
+//!   every depth, so that a file the user saved over one of flocking's names is told from
+//!   flocking's ([`DirError::Changed`]) and never replaced or removed.
 //! - [`at`]: every I/O error of these paths says what was being done to which path.
+
+pub mod manifest;
 
 use std::fmt;
 use std::fs::{self, File, OpenOptions};
@@ -28,6 +33,9 @@ use std::io::{self, Read as _, Seek as _, Write as _};
 use std::os::unix::fs::MetadataExt as _;
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
+
+use manifest::{Digest, Listed, Manifest};
+pub use manifest::{MANIFEST_FILE, MANIFEST_TMP};
 
 /// The marker file of every directory flocking writes.
 pub const MARKER_FILE: &str = ".flocking";
@@ -88,6 +96,8 @@ impl Kind {
                 "INCOMPLETE",
                 "INCOMPLETE.tmp",
                 "controls.txt",
+                MANIFEST_FILE,
+                MANIFEST_TMP,
             ],
             // Sweeps and galleries are written into, never removed.
             Self::Sweep | Self::Figures => &[],
@@ -112,6 +122,8 @@ impl Kind {
                 "INCOMPLETE",
                 "INCOMPLETE.tmp",
                 "controls.txt",
+                MANIFEST_FILE,
+                MANIFEST_TMP,
             ],
             Self::Sweep => &[
                 MARKER_FILE,
@@ -125,7 +137,14 @@ impl Kind {
                 "rows",
                 "runs",
             ],
-            Self::Figures => &[MARKER_FILE, LOCK_FILE, "index.html", "functions"],
+            Self::Figures => &[
+                MARKER_FILE,
+                LOCK_FILE,
+                MANIFEST_FILE,
+                MANIFEST_TMP,
+                "index.html",
+                "functions",
+            ],
         }
     }
 
@@ -169,6 +188,14 @@ pub enum DirError {
         /// An entry of it that flocking did not write.
         entry: String,
     },
+    /// The directory's manifest lists the entry, but its size or content is not what flocking
+    /// wrote: the user saved over it ([`manifest`]).
+    Changed {
+        /// The directory.
+        dir: PathBuf,
+        /// The file, relative to `dir`.
+        entry: String,
+    },
     /// The directory is flocking's, but of another kind (a run directory given as a sweep's).
     OtherKind {
         /// The directory.
@@ -210,6 +237,11 @@ impl fmt::Display for DirError {
             Self::Foreign { dir, entry } => write!(
                 f,
                 "{} holds {entry}, which flocking did not write; choose another output directory or move it",
+                dir.display()
+            ),
+            Self::Changed { dir, entry } => write!(
+                f,
+                "{} holds {entry}, which is not the file flocking wrote there (its size or content changed since): it is yours now, and flocking never replaces it; choose another output directory or move it",
                 dir.display()
             ),
             Self::OtherKind { dir, is, wanted } => write!(
@@ -328,44 +360,116 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
                 ),
             });
         }
+        Err(e) if e.kind() == io::ErrorKind::NotFound => {
+            // issue 27: "No such file or directory (os error 2)" named neither the cause nor
+            // the fix
+            return Err(io::Error::new(
+                e.kind(),
+                format!(
+                    "cannot create {}: the directory {} does not exist; create it, or choose another output file",
+                    path.display(),
+                    dir.display()
+                ),
+            )
+            .into());
+        }
         Err(e) => return Err(at(format_args!("create {}", path.display()))(e).into()),
     };
     file.write_all(bytes)
         .map_err(|e| at(format_args!("write {}", path.display()))(e).into())
 }
 
-/// Writes `bytes` to the file `path` (created, or cut and rewritten), never through a link: a
-/// link at `path` is refused (`O_NOFOLLOW`) and what it points to left untouched, as is a
-/// directory at `path` that is a link (issue 27: `flocking plot r` with `r/figures` a link to a
-/// user's directory).
+/// Writes `bytes` to the file `path` (created, or replaced whole), never through a link: a link
+/// at `path` is refused and what it points to left untouched, as is a directory at `path` that
+/// is a link (issue 27: `flocking plot r` with `r/figures` a link to a user's directory).
+///
+/// When the directory of `path` or its parent keeps a [`manifest`] (a run's `figures/`, a
+/// gallery's `index.html` and `functions/`), an existing `path` is replaced only if the manifest
+/// lists it with its size and content, and the new content is recorded: first beside the old
+/// one, then alone once the file is in place, so that a failure at any instant leaves a file
+/// the manifest accepts. The bytes go to `path.tmp` first and are renamed over `path`.
 ///
 /// # Errors
-/// A link (naming it and what to do); any I/O error, with its path.
+/// A link, or a file the user saved over flocking's (naming it and what to do); any I/O error,
+/// with its path.
 pub fn write_no_follow(path: &Path, bytes: &[u8]) -> io::Result<()> {
     use std::os::unix::fs::OpenOptionsExt as _;
     let parent = parent_of(path);
     if fs::symlink_metadata(parent).is_ok_and(|m| m.file_type().is_symlink()) {
         return Err(link_refused(parent));
     }
-    let flags = rustix::fs::OFlags::NOFOLLOW.bits();
-    let mut file = OpenOptions::new()
-        .write(true)
-        .create(true)
-        .truncate(false)
-        .custom_flags(flags.cast_signed())
-        .open(path)
-        .map_err(|e| {
-            if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
-                link_refused(path)
-            } else {
-                at(format_args!("create {}", path.display()))(e)
-            }
-        })?;
-    let write = |file: &mut File| {
-        file.set_len(0)?;
-        file.write_all(bytes)
+    if fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(link_refused(path));
+    }
+    let tracked = tracking_manifest(path)?;
+    let digest = Digest::of(bytes);
+    if let Some((root, relative, manifest)) = &tracked {
+        if manifest.check(root, relative)? != Listed::Matches {
+            let error = DirError::Changed {
+                dir: root.clone(),
+                entry: relative.clone(),
+            };
+            return Err(io::Error::new(
+                io::ErrorKind::AlreadyExists,
+                error.to_string(),
+            ));
+        }
+        let mut accepting = manifest.clone();
+        accepting.accept(relative, digest);
+        accepting.write(root)?;
+    }
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = PathBuf::from(tmp);
+    let write = || {
+        let mut file = OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed())
+            .open(&tmp)?;
+        file.write_all(bytes)?;
+        file.sync_data()
     };
-    write(&mut file).map_err(at(format_args!("write {}", path.display())))
+    write().map_err(|e| {
+        if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
+            link_refused(&tmp)
+        } else {
+            let _ = fs::remove_file(&tmp);
+            at(format_args!("write {}", tmp.display()))(e)
+        }
+    })?;
+    fs::rename(&tmp, path).map_err(at(format_args!(
+        "rename {} to {}",
+        tmp.display(),
+        path.display()
+    )))?;
+    if let Some((root, relative, mut manifest)) = tracked {
+        manifest.settle(&relative, digest);
+        manifest.write(&root)?;
+    }
+    Ok(())
+}
+
+/// The directory whose [`manifest`] tracks the file `path` (the directory of `path`, or its
+/// parent: a run's `figures/metrics.svg`), with `path` relative to it and the manifest; `None`
+/// when neither keeps one.
+fn tracking_manifest(path: &Path) -> io::Result<Option<(PathBuf, String, Manifest)>> {
+    let Some(name) = path.file_name() else {
+        return Ok(None);
+    };
+    let parent = parent_of(path);
+    let mut relative = name.to_string_lossy().into_owned();
+    for root in [parent, parent_of(parent)] {
+        if let Some(manifest) = Manifest::read(root)? {
+            return Ok(Some((root.to_owned(), relative, manifest)));
+        }
+        let Some(dir) = root.file_name() else {
+            return Ok(None);
+        };
+        relative = format!("{}/{relative}", dir.to_string_lossy());
+    }
+    Ok(None)
 }
 
 /// The error of a link that flocking would have written through.
@@ -447,14 +551,39 @@ pub fn check_removable(dir: &Path, kind: Kind) -> Result<(), DirError> {
 
 /// The first entry of `dir`, at any depth, that a directory of `kind` does not hold: a name it
 /// never writes, a link, a file where it writes a directory or the reverse, anything inside a
-/// subdirectory but the files it writes there. Named by its path relative to `dir`; `None`
+/// subdirectory but the files it writes there ([`DirError::Foreign`]); and, when `dir` has a
+/// [`manifest`], a file of flocking's name that the manifest does not list or whose size or
+/// content differs from it ([`DirError::Changed`]). Named by its path relative to `dir`; `None`
 /// when every entry is one flocking writes.
-fn foreign_entry(dir: &Path, kind: Kind) -> io::Result<Option<String>> {
+fn foreign_entry(dir: &Path, kind: Kind) -> io::Result<Option<DirError>> {
     let kind_of = |path: &Path| fs::symlink_metadata(path).map(|m| m.file_type());
+    let foreign = |entry: String| {
+        Some(DirError::Foreign {
+            dir: dir.to_owned(),
+            entry,
+        })
+    };
+    let manifest = Manifest::read(dir)?;
+    // a file of flocking's name: by its content when there is a manifest, by its name otherwise
+    let changed = |relative: String, name: &str| -> io::Result<Option<DirError>> {
+        let Some(manifest) = &manifest else {
+            return Ok(None);
+        };
+        if manifest::is_transient(name) || manifest.check(dir, &relative)? == Listed::Matches {
+            return Ok(None);
+        }
+        Ok(Some(DirError::Changed {
+            dir: dir.to_owned(),
+            entry: relative,
+        }))
+    };
     for name in entries(dir)? {
         let path = dir.join(&name);
         let file_type = kind_of(&path)?;
         if kind.entries().contains(&name.as_str()) && file_type.is_file() {
+            if let Some(error) = changed(name.clone(), &name)? {
+                return Ok(Some(error));
+            }
             continue;
         }
         let Some((_, files)) = kind
@@ -463,12 +592,19 @@ fn foreign_entry(dir: &Path, kind: Kind) -> io::Result<Option<String>> {
             .find(|(sub, _)| *sub == name)
             .filter(|_| file_type.is_dir())
         else {
-            return Ok(Some(name));
+            return Ok(foreign(name));
         };
         for inner in entries(&path)? {
             let inner_path = path.join(&inner);
-            if !(files.contains(&inner.as_str()) && kind_of(&inner_path)?.is_file()) {
-                return Ok(Some(format!("{name}/{inner}")));
+            let own = |file: &str| files.contains(&file);
+            // `NAME.tmp`: a figure being replaced when the writer was stopped
+            let own_name = own(&inner) || inner.strip_suffix(".tmp").is_some_and(own);
+            let relative = format!("{name}/{inner}");
+            if !(own_name && kind_of(&inner_path)?.is_file()) {
+                return Ok(foreign(relative));
+            }
+            if let Some(error) = changed(relative, &inner)? {
+                return Ok(Some(error));
             }
         }
     }
@@ -476,21 +612,114 @@ fn foreign_entry(dir: &Path, kind: Kind) -> io::Result<Option<String>> {
 }
 
 /// Checks that `dir` carries the marker of `kind` and holds, at every depth, only what `kind`
-/// writes (regular files of its names, never a link or a FIFO): what a writer may cut back or
-/// rewrite (`flocking run --resume`).
+/// writes (regular files of its names, never a link or a FIFO), each, when `dir` has a
+/// [`manifest`], with the size and content flocking wrote: what a writer may cut back, rewrite or
+/// remove (`flocking run --resume`, `--force`).
 ///
 /// # Errors
-/// [`DirError::Foreign`] naming the first entry flocking did not write, [`DirError::OtherKind`],
-/// or an I/O error naming its path.
+/// [`DirError::Foreign`] naming the first entry flocking did not write, [`DirError::Changed`]
+/// naming one the user saved over, [`DirError::OtherKind`], or an I/O error naming its path.
 pub fn check_only_own(dir: &Path, kind: Kind) -> Result<(), DirError> {
     check_owned(dir, kind)?;
     match foreign_entry(dir, kind).map_err(at(format_args!("list {}", dir.display())))? {
-        Some(entry) => Err(DirError::Foreign {
-            dir: dir.to_owned(),
-            entry,
-        }),
+        Some(error) => Err(error),
         None => Ok(()),
     }
+}
+
+/// Checks that each file `relatives` of `dir` that exists may be replaced: when `dir` has a
+/// [`manifest`], the manifest lists it with its size and content (a directory without one, of
+/// an older flocking, is judged by names alone, as its writer checks them).
+///
+/// # Errors
+/// [`DirError::Foreign`] naming the first that is not a regular file (a link),
+/// [`DirError::Changed`] the first file that is not flocking's, or an I/O error naming its path.
+pub fn check_files<S: AsRef<str>>(dir: &Path, relatives: &[S]) -> Result<(), DirError> {
+    let Some(manifest) = Manifest::read(dir)? else {
+        return Ok(());
+    };
+    for relative in relatives {
+        let relative = relative.as_ref();
+        if fs::symlink_metadata(dir.join(relative)).is_ok_and(|m| !m.is_file()) {
+            // a link, a directory or a FIFO in place of one of flocking's files
+            return Err(DirError::Foreign {
+                dir: dir.to_owned(),
+                entry: relative.to_owned(),
+            });
+        }
+        if manifest.check(dir, relative)? != Listed::Matches {
+            return Err(DirError::Changed {
+                dir: dir.to_owned(),
+                entry: relative.to_owned(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Records in the [`manifest`] of `dir` every file flocking wrote there, at every depth: a run's
+/// files once it is finished, just before it is moved into place.
+///
+/// # Errors
+/// Any I/O error, naming its path.
+pub fn record_manifest(dir: &Path) -> io::Result<()> {
+    Manifest::of_dir(dir)?.write(dir)
+}
+
+/// Removes the manifest of `dir`, if any: a run being resumed cuts back and appends to its
+/// files, and records its manifest again when it finishes.
+///
+/// # Errors
+/// The I/O error of the removal, naming the path.
+pub fn drop_manifest(dir: &Path) -> io::Result<()> {
+    let path = dir.join(MANIFEST_FILE);
+    match fs::remove_file(&path) {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => {
+            Err(at(format_args!("remove {}", path.display()))(e))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Removes the file `relative` of `dir` that flocking wrote (checked as [`check_files`]) and
+/// forgets it in the manifest; an absent file is fine.
+///
+/// # Errors
+/// [`DirError::Changed`] (nothing removed), or an I/O error naming its path.
+pub fn remove_file(dir: &Path, relative: &str) -> Result<(), DirError> {
+    check_files(dir, &[relative])?;
+    let path = dir.join(relative);
+    match fs::remove_file(&path) {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => {
+            return Err(at(format_args!("remove {}", path.display()))(e).into());
+        }
+        _ => {}
+    }
+    // removed first, forgotten after: a file absent from the disk is never the user's
+    if let Some(mut manifest) = Manifest::read(dir)? {
+        manifest.forget(relative);
+        manifest.write(dir)?;
+    }
+    Ok(())
+}
+
+/// Starts the manifest of `dir` when it has none: records the files `relatives` that exist,
+/// recognised by their names as flocking's (a gallery of an older flocking, or a new one).
+///
+/// # Errors
+/// Any I/O error, naming its path.
+pub fn start_manifest<S: AsRef<str>>(dir: &Path, relatives: &[S]) -> io::Result<()> {
+    if Manifest::read(dir)?.is_some() {
+        return Ok(());
+    }
+    let mut manifest = Manifest::default();
+    for relative in relatives {
+        let path = dir.join(relative.as_ref());
+        if fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+            manifest.settle(relative.as_ref(), Digest::of_file(&path)?);
+        }
+    }
+    manifest.write(dir)
 }
 
 /// Removes the directory `dir` that flocking wrote as `kind`, and nothing else
