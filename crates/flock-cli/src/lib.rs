@@ -1,6 +1,6 @@
 //! The `flocking` command line: what is about the terminal — the progress bar of a run
 //! ([`Progress`]), the printed summary ([`Report`]), `flocking figures` ([`figures()`]) and
-//! `flocking bench` ([`bench::bench()`]), `flocking sweep` ([`sweep`]), the resource estimate and bounds ([`resources`]). Scenarios, runs and run directories are the `flocking`
+//! `flocking bench` ([`mod@bench`]), `flocking sweep` ([`sweep`]), the resource estimate and bounds ([`resources`]). Scenarios, runs and run directories are the `flocking`
 //! library's; figures are `flock-viz`'s.
 
 #[macro_use]

@@ -11,7 +11,7 @@
 //!   directory of `flocking sweep`.
 //! - [`player`]: the HTML player of a run held in memory (`Run.player()`).
 //! - [`progress`]: the progress line of `flocking.run` and `flocking.resume`.
-//! - [`bench`]: `flocking.bench`, the engine of `flocking bench` with the same report.
+//! - [`mod@bench`]: `flocking.bench`, the engine of `flocking bench` with the same report.
 //! - [`errors`]: flocking's errors as the Python exceptions of `flocking._errors`, with the CLI's
 //!   messages; [`interrupt`]: Ctrl-C between steps while the GIL is released.
 
