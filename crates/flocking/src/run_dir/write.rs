@@ -985,7 +985,7 @@ fn check_scenario(
     // issue 31: the random draws changed generator (ChaCha8 → Philox4x32-10)
     if checkpoint.draws_from_chacha8 && scenario.draws_at_random() {
         return Err(ResumeError::Refused(format!(
-            "the checkpoint in {} was written by a flocking that drew its random numbers with ChaCha8; this one draws them with Philox4x32-10, so the run's random draws cannot continue bit for bit. Resume it with the flocking that started it, or start the run again (with --out elsewhere, or --force to replace it)",
+            "the checkpoint in {} was written by a flocking that drew its random numbers with ChaCha8; this one draws them with Philox4x32-10, so the run's random draws cannot continue bit for bit. Resume it with the flocking that started it, or start the run again with --out elsewhere",
             partial.display()
         )));
     }
