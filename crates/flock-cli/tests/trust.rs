@@ -950,6 +950,66 @@ fn issue_20_resume_refuses_an_edited_scenario_naming_the_field() {
     assert_eq!(after, before, "the refused resume changes nothing");
 }
 
+/// `dir`'s checkpoint rewritten with the magic `magic` (and its hash recomputed): the checkpoint
+/// an older flocking would have written of the same state.
+fn remagic_checkpoint(dir: &Path, magic: &[u8; 8]) {
+    let path = dir.join("checkpoint.bin");
+    let mut bytes = fs::read(&path).expect("a checkpoint");
+    bytes.truncate(bytes.len() - 8);
+    bytes[..8].copy_from_slice(magic);
+    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |hash, &b| {
+        (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    bytes.extend_from_slice(&hash.to_le_bytes());
+    fs::write(&path, bytes).expect("rewritten");
+}
+
+/// Issue 31: the random draws moved from ChaCha8 to Philox4x32-10, so a checkpoint of the older
+/// format (`FLOCKCK3`) of a run that draws at random cannot continue bit for bit: its resume is
+/// refused, naming why and the fix, and changes nothing; a run without random draws resumes
+/// from it.
+#[test]
+fn issue_31_a_checkpoint_of_chacha8_draws_is_refused_for_a_random_run_only() {
+    let tmp = temp_dir("chacha8_checkpoint");
+    for (name, text, random) in [
+        ("conditioned", long_conditioned(), true),
+        ("ideal", LONG_2D.to_owned(), false),
+    ] {
+        let file = write(tmp.path(), &format!("{name}.ron"), &text);
+        let out = tmp.path().join(name);
+        let args = [
+            "run",
+            &file,
+            "--out",
+            name,
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ];
+        let mut child = spawn(tmp.path(), &args);
+        wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+        child.kill().expect("SIGKILL");
+        child.wait().expect("reaped");
+        remagic_checkpoint(&partial(&out), b"FLOCKCK3");
+        let before = files(&partial(&out));
+        let output = flocking(tmp.path(), &["run", "--resume", name]);
+        if random {
+            refused(
+                &output,
+                &["ChaCha8", "Philox4x32-10", "start the run again"],
+            );
+            let mut after = files(&partial(&out));
+            after.remove(".flocking.lock");
+            let mut before = before;
+            before.remove(".flocking.lock");
+            assert_eq!(after, before, "the refused resume changes nothing");
+        } else {
+            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+            assert!(!partial(&out).exists());
+        }
+    }
+}
+
 /// A file of the test's own that fills the filesystem of its directory but `pages` pages; it
 /// is created new (never a file that was there) and removed when dropped, only if the path still
 /// names that very file (its device and inode).

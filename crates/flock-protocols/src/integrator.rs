@@ -476,9 +476,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             self.swarm = self.swarm().into_owned();
         }
         self.net = empty_net(&self.protocol);
-        if let Some(rk) = self.rk.as_mut() {
-            rk.net = empty_net(&self.protocol);
-        }
+        // the stage holds its own inputs and integrates itself: the ideal loop's buffers go
+        self.inputs = Vec::new();
+        self.rk = None;
         self.conditions = Some(Box::new(stage));
         self.rebuild_net();
         Ok(self)

@@ -602,6 +602,18 @@ impl Algorithm {
         }
     }
 
+    /// Whether the algorithm draws random numbers of its own (Vicsek's and Couzin's angular
+    /// noise, the boids' activation order).
+    #[must_use]
+    pub fn draws_at_random(&self) -> bool {
+        match *self {
+            Self::Vicsek { eta, .. } => eta > 0.0,
+            Self::Couzin { noise, .. } => noise > 0.0,
+            Self::Boids { .. } => true,
+            _ => false,
+        }
+    }
+
     /// Whether the algorithm is one of the classic models (Cucker–Smale, Vicsek, boids, Couzin,
     /// Vásárhelyi; docs/models.md) rather than Olfati-Saber's, Tanner's or consensus.
     #[must_use]
@@ -819,6 +831,13 @@ impl Scenario {
                 Algorithm::Vicsek { r, .. } => COLLISION_FRACTION * r,
                 _ => COLLISION_FRACTION * self.alpha.d,
             })
+    }
+
+    /// Whether a run of the scenario draws random numbers as it steps (its algorithm's or its
+    /// conditions'; a random initial state is drawn before the first step).
+    #[must_use]
+    pub fn draws_at_random(&self) -> bool {
+        self.algorithm.draws_at_random() || self.conditions.draws_at_random()
     }
 
     /// The number of steps ⌈T / h⌉ (rounded to the nearest when T/h is within round-off of an integer).

@@ -144,7 +144,7 @@ impl<V: Vector> Stage<V> {
         };
         check_len("dim", s.dim, V::DIM)?;
         check_len("failed", s.failed.len(), n)?;
-        check_len("links", s.links.len(), n)?;
+        check_len("links", s.links.len(), self.links.len())?;
         check_len("history", s.history.len(), self.history.slots.len())?;
         self.measured.positions = vectors("measured", &s.measured.0, n).map_err(within)?;
         self.measured.velocities = vectors("measured", &s.measured.1, n).map_err(within)?;

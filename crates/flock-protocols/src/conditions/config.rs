@@ -360,6 +360,20 @@ impl Conditions {
         *self == Self::default()
     }
 
+    /// Whether a condition draws random numbers: jitter, packet loss, sensing noise, wind gusts,
+    /// process noise, random failures.
+    #[must_use]
+    pub fn draws_at_random(&self) -> bool {
+        let communication = self
+            .communication
+            .is_some_and(|c| c.jitter > 0.0 || c.loss != Loss::None);
+        let disturbance = self.disturbance.as_ref().is_some_and(|d| {
+            d.process_noise > 0.0 || d.wind.as_ref().is_some_and(|w| w.gust > 0.0)
+        });
+        let faults = self.faults.as_ref().is_some_and(|f| f.rate > 0.0);
+        communication || self.sensing.is_some() || disturbance || faults
+    }
+
     /// Checks every parameter for a run of `agents` agents in `dim` dimensions at step `h`;
     /// fields are named from `conditions`, e.g. `conditions.communication.loss.p`.
     ///

@@ -38,11 +38,20 @@ impl<V: Vector> History<V> {
         }
     }
 
+    /// The positions and velocities recorded at step `k` − `lag` (`lag` ≤ D), or at step 0
+    /// before it.
+    #[inline]
+    #[must_use]
+    pub fn slot(&self, k: u64, lag: u64) -> (&[V], &[V]) {
+        let slot = &self.slots[(k.saturating_sub(lag) % self.depth()) as usize];
+        (&slot.0, &slot.1)
+    }
+
     /// Agent `j`'s state recorded at step `k` − `lag` (`lag` ≤ D), or at step 0 before it.
     #[inline]
     #[must_use]
     pub fn at(&self, k: u64, lag: u64, j: usize) -> (V, V) {
-        let slot = &self.slots[(k.saturating_sub(lag) % self.depth()) as usize];
-        (slot.0[j], slot.1[j])
+        let (q, p) = self.slot(k, lag);
+        (q[j], p[j])
     }
 }

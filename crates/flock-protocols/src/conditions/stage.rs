@@ -7,7 +7,9 @@ use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
 
 use super::actuation::{Lag, clip};
-use super::config::{Conditions, Delayed, FaultMode, Loss, WhenLost, period_steps, whole_steps};
+use super::config::{
+    Conditions, Delayed, FaultMode, Loss, Noise, WhenLost, period_steps, whole_steps,
+};
 use super::faults;
 use super::history::History;
 use super::links::{Held, Link, lost};
@@ -54,6 +56,7 @@ pub struct Stage<V> {
     pub(crate) measured: Swarm<V>,
     pub(crate) noise: Vec<(V, V)>,
     pub(crate) history: History<V>,
+    /// What each receiver keeps of its links (empty when links keep nothing).
     pub(crate) links: Vec<Vec<Link<V>>>,
     pub(crate) inputs: Vec<V>,
     pub(crate) delivered: Vec<V>,
@@ -137,22 +140,47 @@ pub fn depth(conditions: &Conditions, h: f64) -> Result<u64, ParamError> {
     })
 }
 
-/// The bytes per agent that `conditions` keep in a `dim`-dimensional run at step `h`: the
-/// delay line (D + 1 measured states of 2·dim f64 when a condition changes perception) and the
-/// per-agent vectors (measured state, noise, held input, delivered acceleration, gust), links
-/// not counted (≤ one per neighbour, only for Gilbert–Elliott loss or `Hold`).
+/// The bytes per agent that `conditions` keep in a `dim`-dimensional run at step `h`, as
+/// [`Stage::new`] allocates them: the delay line (D + 1 measured states of 2·dim f64 when a
+/// condition changes perception, else one), the measured state, the Ornstein–Uhlenbeck sensor
+/// offsets, the held input and the delivered acceleration, per-agent gusts, the failure flag,
+/// and each receiver's list of links (its entries not counted: ≤ one per neighbour) for
+/// Gilbert–Elliott loss or `Hold`.
 #[must_use]
 pub fn bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
     if conditions.is_ideal() {
         return 0;
     }
-    let state = 2 * dim * 8;
-    let history = if perception_field(conditions).is_some() {
-        (depth(conditions, h).unwrap_or(0) as usize + 1) * state
+    let vector = dim * 8;
+    let states = if perception_field(conditions).is_some() {
+        depth(conditions, h).unwrap_or(0) as usize + 1
     } else {
-        0
+        1
     };
-    history + 5 * state + 1
+    let ornstein_uhlenbeck = conditions
+        .sensing
+        .is_some_and(|s| matches!(s.noise, Noise::OrnsteinUhlenbeck { .. }));
+    let gusts = conditions
+        .disturbance
+        .as_ref()
+        .and_then(|d| d.wind.as_ref())
+        .is_some_and(|w| w.gust > 0.0 && w.per_agent);
+    let links = keeps_links(conditions);
+    (states + 1 + usize::from(ornstein_uhlenbeck)) * 2 * vector
+        + (2 + usize::from(gusts)) * vector
+        + 1
+        + usize::from(links) * size_of::<Vec<Link<V0>>>()
+}
+
+/// A vector type for the size of a list of links (a `Vec`'s size does not depend on it).
+type V0 = glam::DVec2;
+
+/// Whether receivers keep a state per link: for Gilbert–Elliott loss or `Hold` when lost.
+fn keeps_links(conditions: &Conditions) -> bool {
+    conditions.communication.is_some_and(|m| {
+        matches!(m.loss, Loss::GilbertElliott { .. })
+            || matches!(m.when_lost, WhenLost::Hold { .. })
+    })
 }
 
 impl<V: Vector> Stage<V> {
@@ -204,6 +232,11 @@ impl<V: Vector> Stage<V> {
             _ => 0,
         };
         let perceives = perception_field(c).is_some();
+        let sensor = c
+            .sensing
+            .map(|s| SensorNoise::new(&s.noise, sensor_period as f64 * h));
+        // receivers keep a state per link for Gilbert–Elliott loss or `Hold`: none otherwise
+        let keeps_links = keeps_links(c);
         Ok(Self {
             conditions: c.clone(),
             streams: Streams::new(seed),
@@ -214,16 +247,22 @@ impl<V: Vector> Stage<V> {
             control_period,
             perceives,
             own_range,
-            sensor: c
-                .sensing
-                .map(|s| SensorNoise::new(&s.noise, sensor_period as f64 * h)),
+            sensor,
             lag: c.actuation.and_then(|a| a.lag).map(|tau| Lag::new(tau, h)),
             gusts,
             started: false,
             measured: Swarm::new(vec![V::ZERO; n], vec![V::ZERO; n]),
-            noise: vec![(V::ZERO, V::ZERO); if c.sensing.is_some() { n } else { 0 }],
+            // white noise is drawn afresh at each update: only Ornstein–Uhlenbeck offsets are kept
+            noise: vec![
+                (V::ZERO, V::ZERO);
+                if matches!(sensor, Some(SensorNoise::OrnsteinUhlenbeck { .. })) {
+                    n
+                } else {
+                    0
+                }
+            ],
             history: History::new(if perceives { delay + jitter } else { 0 }, n),
-            links: vec![Vec::new(); n],
+            links: vec![Vec::new(); if keeps_links { n } else { 0 }],
             inputs: vec![V::ZERO; n],
             delivered: vec![V::ZERO; n],
             gust: vec![V::ZERO; gust_count],
@@ -347,16 +386,30 @@ impl<V: Vector> Stage<V> {
         if self.started && !k.is_multiple_of(self.sensor_period) {
             return;
         }
-        let (started, streams, noise) = (self.started, &self.streams, &self.noise);
-        let fresh = map_agents(swarm.len(), |i| {
+        let (started, streams) = (self.started, &self.streams);
+        let Swarm {
+            positions,
+            velocities,
+        } = &mut self.measured;
+        let measure = |i: usize, q: &mut V, p: &mut V, previous: Option<(V, V)>| {
             let mut draws = streams.draws(Purpose::Sensing, i as u64, k);
             let (xi_q, xi_p) = (draws.normal_vector(), draws.normal_vector());
-            sensor.update(started.then_some(noise[i]), xi_q, xi_p)
-        });
-        for (i, offsets) in fresh.into_iter().enumerate() {
-            self.noise[i] = offsets;
-            self.measured.positions[i] = swarm.positions[i] + offsets.0;
-            self.measured.velocities[i] = swarm.velocities[i] + offsets.1;
+            let offsets = sensor.update(previous, xi_q, xi_p);
+            *q = swarm.positions[i] + offsets.0;
+            *p = swarm.velocities[i] + offsets.1;
+            offsets
+        };
+        if self.noise.is_empty() {
+            let n = positions.len();
+            for_each_agent(positions, velocities, &mut vec![(); n], |i, q, p, ()| {
+                measure(i, q, p, None);
+                0
+            });
+        } else {
+            for_each_agent(positions, velocities, &mut self.noise, |i, q, p, noise| {
+                *noise = measure(i, q, p, started.then_some(*noise));
+                0
+            });
         }
     }
 
@@ -392,17 +445,23 @@ impl<V: Vector> Stage<V> {
         let graph_range = comm
             .range
             .filter(|_| protocol.interaction_graph().is_some());
-        let keeps_links = matches!(comm.loss, Loss::GilbertElliott { .. })
-            || matches!(comm.when_lost, WhenLost::Hold { .. });
         let t = k as f64 * self.h;
         let mut links = core::mem::take(&mut self.links);
+        let mut inputs = core::mem::take(&mut self.inputs);
         let this = &*self;
-        // each worker's candidate and heard lists, reused from agent to agent
-        let scratch = || (Vec::new(), Vec::new());
-        let results = map_agents_mut(&mut links, scratch, |i, links_i, (js, heard)| {
+        // the state of the neighbours without jitter, all of the same step
+        let delayed = this.history.slot(k, this.delay);
+        let all_heard = this.conditions.faults.is_none();
+        let loss_by_length = matches!(comm.loss, Loss::Distance { .. });
+        // each worker's candidate, heard and old link lists, reused from agent to agent
+        let scratch = || (Vec::new(), Vec::new(), Vec::new());
+        let counts = control_agents(&mut inputs, &mut links, scratch, |i, mut links_i, w| {
+            let (js, heard, old) = w;
             if !this.moves(i) {
-                links_i.clear();
-                return (V::ZERO, 0, 0, 0, 0);
+                if let Some(links_i) = links_i {
+                    links_i.clear();
+                }
+                return (V::ZERO, Counts::default());
             }
             let own_lag = if comm.delayed == Delayed::All {
                 this.delay
@@ -421,7 +480,7 @@ impl<V: Vector> Stage<V> {
                     .neighbours(i)
                     .iter()
                     .copied()
-                    .filter(|&j| j as usize != i && this.is_heard(j as usize))
+                    .filter(|&j| j as usize != i && (all_heard || this.is_heard(j as usize)))
                     .filter(|&j| {
                         // a fixed graph's link is cut beyond an explicit communication range
                         graph_range.is_none_or(|rc| {
@@ -433,7 +492,10 @@ impl<V: Vector> Stage<V> {
                     }),
             );
             js.sort_unstable();
-            let old = core::mem::take(links_i);
+            old.clear();
+            if let Some(links_i) = links_i.as_deref_mut() {
+                old.append(links_i);
+            }
             heard.clear();
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             for &j in js.iter() {
@@ -456,9 +518,14 @@ impl<V: Vector> Stage<V> {
                 } else {
                     directed
                 };
-                let length = domain
-                    .displacement(swarm.positions[i], swarm.positions[ju])
-                    .length();
+                // the link's length, read by distance loss only
+                let length = if loss_by_length {
+                    domain
+                        .displacement(swarm.positions[i], swarm.positions[ju])
+                        .length()
+                } else {
+                    f64::NAN
+                };
                 let dropped = lost(
                     &comm.loss,
                     &this.streams,
@@ -480,7 +547,11 @@ impl<V: Vector> Stage<V> {
                         _ => None,
                     }
                 } else {
-                    let (position, velocity) = this.history.at(k, lag, ju);
+                    let (position, velocity) = if lag == this.delay {
+                        (delayed.0[ju], delayed.1[ju])
+                    } else {
+                        this.history.at(k, lag, ju)
+                    };
                     let held = Held {
                         position,
                         velocity,
@@ -497,25 +568,22 @@ impl<V: Vector> Stage<V> {
                         velocity: held.velocity,
                     });
                 }
-                if keeps_links {
+                if let Some(links_i) = links_i.as_deref_mut() {
                     links_i.push(link);
                 }
             }
-            let used = heard.len();
-            let u = local.local_input(t, &own, heard);
-            (u, js.len(), lost_count, age_sum, used)
+            let counts = Counts {
+                candidates: js.len(),
+                lost: lost_count,
+                age: age_sum,
+                used: heard.len(),
+            };
+            (local.local_input(t, &own, heard), counts)
         });
         self.links = links;
-        let (mut candidates, mut lost_total, mut age, mut used) = (0usize, 0usize, 0u64, 0usize);
-        for (i, (u, c, l, a, s)) in results.into_iter().enumerate() {
-            self.inputs[i] = u;
-            candidates += c;
-            lost_total += l;
-            age += a;
-            used += s;
-        }
-        self.readings.links_lost = ratio(lost_total as f64, candidates);
-        self.readings.information_age = ratio(age as f64 * self.h, used);
+        self.inputs = inputs;
+        self.readings.links_lost = ratio(counts.lost as f64, counts.candidates);
+        self.readings.information_age = ratio(counts.age as f64 * self.h, counts.used);
     }
 
     /// Actuate: the commanded acceleration clipped to a_max, then the first-order lag.
@@ -553,31 +621,26 @@ impl<V: Vector> Stage<V> {
         self.advance_gusts(k);
         let max_speed = self.conditions.actuation.and_then(|a| a.max_speed);
         let this = &*self;
-        let next = map_agents(swarm.len(), |i| {
-            let (q, p) = (swarm.positions[i], swarm.velocities[i]);
+        let Swarm {
+            positions,
+            velocities,
+        } = swarm;
+        let n = positions.len();
+        let clipped = for_each_agent(positions, velocities, &mut vec![(); n], |i, q, p, ()| {
             if !this.moves(i) {
-                return (q, V::ZERO, false);
+                *p = V::ZERO;
+                return 0;
             }
             let (wind, noise) = this.disturbance(i, k);
             let a = this.delivered[i] + wind;
-            match integrator {
-                Integrator::SymplecticEuler => {
-                    let (p, clipped) = clip(p + a * h + noise, max_speed);
-                    (domain.wrap(q + p * h), p, clipped)
-                }
-                Integrator::Rk4 => {
-                    let q = q + p * h + a * (0.5 * h * h);
-                    let (p, clipped) = clip(p + a * h + noise, max_speed);
-                    (domain.wrap(q), p, clipped)
-                }
-            }
+            let (next_p, clipped) = clip(*p + a * h + noise, max_speed);
+            *q = match integrator {
+                Integrator::SymplecticEuler => domain.wrap(*q + next_p * h),
+                Integrator::Rk4 => domain.wrap(*q + *p * h + a * (0.5 * h * h)),
+            };
+            *p = next_p;
+            usize::from(clipped)
         });
-        let mut clipped = 0usize;
-        for (i, (q, p, c)) in next.into_iter().enumerate() {
-            swarm.positions[i] = q;
-            swarm.velocities[i] = p;
-            clipped += usize::from(c);
-        }
         self.readings.at_speed_limit = clipped as f64;
     }
 
@@ -660,15 +723,101 @@ fn ratio(x: f64, n: usize) -> f64 {
     if n == 0 { 0.0 } else { x / n as f64 }
 }
 
-/// `f(i)` for every agent i < n, in parallel with the `parallel` feature; in index order.
-fn map_agents<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+/// `f(i, &mut a[i], &mut b[i], &mut c[i])` for every agent i (the three slices of one length;
+/// `&mut vec![(); n]` for one unused, which allocates nothing), in parallel with the `parallel`
+/// feature, and the sum of what `f` returns (a count: the same for any split).
+fn for_each_agent<A: Send, B: Send, C: Send>(
+    a: &mut [A],
+    b: &mut [B],
+    c: &mut [C],
+    f: impl Fn(usize, &mut A, &mut B, &mut C) -> usize + Sync + Send,
+) -> usize {
+    debug_assert!(a.len() == b.len() && b.len() == c.len());
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        (0..n).into_par_iter().with_min_len(1024).map(f).collect()
+        a.par_iter_mut()
+            .zip(b.par_iter_mut())
+            .zip(c.par_iter_mut())
+            .enumerate()
+            .with_min_len(1024)
+            .map(|(i, ((a, b), c))| f(i, a, b, c))
+            .sum()
     }
     #[cfg(not(feature = "parallel"))]
-    (0..n).map(f).collect()
+    a.iter_mut()
+        .zip(b.iter_mut())
+        .zip(c.iter_mut())
+        .enumerate()
+        .map(|(i, ((a, b), c))| f(i, a, b, c))
+        .sum()
+}
+
+/// The counts of one control update, summed over the receivers.
+#[derive(Clone, Copy, Debug, Default)]
+struct Counts {
+    /// Candidate links.
+    candidates: usize,
+    /// Candidate links whose packet was lost.
+    lost: usize,
+    /// The ages (steps) of the states used.
+    age: u64,
+    /// States used.
+    used: usize,
+}
+
+impl core::ops::Add for Counts {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            candidates: self.candidates + o.candidates,
+            lost: self.lost + o.lost,
+            age: self.age + o.age,
+            used: self.used + o.used,
+        }
+    }
+}
+
+/// Each moving receiver's input `inputs[i]` and counts from `f(i, links_i, scratch)`, with
+/// `links_i` its kept links (`None` when `links` is empty: links keep nothing); the counts
+/// summed. In parallel with the `parallel` feature, each worker's `scratch` made by `init`
+/// and passed from agent to agent (`f`'s result must not depend on what it held before).
+fn control_agents<V: Vector, W>(
+    inputs: &mut [V],
+    links: &mut [Vec<Link<V>>],
+    init: impl Fn() -> W + Sync + Send,
+    f: impl Fn(usize, Option<&mut Vec<Link<V>>>, &mut W) -> (V, Counts) + Sync + Send,
+) -> Counts {
+    let each = |w: &mut W, i: usize, u: &mut V, l: Option<&mut Vec<Link<V>>>| {
+        let (input, counts) = f(i, l, w);
+        *u = input;
+        counts
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        let inputs = inputs.par_iter_mut().enumerate().with_min_len(256);
+        if links.is_empty() {
+            inputs
+                .map_init(&init, |w, (i, u)| each(w, i, u, None))
+                .reduce(Counts::default, core::ops::Add::add)
+        } else {
+            inputs
+                .zip(links.par_iter_mut())
+                .map_init(&init, |w, ((i, u), l)| each(w, i, u, Some(l)))
+                .reduce(Counts::default, core::ops::Add::add)
+        }
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let mut w = init();
+        let mut links = links.iter_mut();
+        inputs
+            .iter_mut()
+            .enumerate()
+            .map(|(i, u)| each(&mut w, i, u, links.next()))
+            .fold(Counts::default(), core::ops::Add::add)
+    }
 }
 
 /// `f(i, &mut items[i], scratch)` for every item, in parallel with the `parallel` feature; in

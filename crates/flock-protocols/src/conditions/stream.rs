@@ -3,16 +3,18 @@
 //! draws are made. A run is therefore bit-identical for any thread count, any storage order of
 //! the agents, and after an interruption and resume: no generator state is carried between steps.
 //!
-//! The generator is ChaCha8 (`chacha20::ChaCha8Rng`, the counter-based generator of the `rand`
-//! family): the seed is its key, the purpose and index its 64-bit stream (nonce), and the step
-//! its position in the stream ([`WORDS_PER_STEP`] 32-bit words per step).
+//! The generator is Philox4x32-10 (Salmon, Moraes, Dror & Shaw, "Parallel random numbers: as
+//! easy as 1, 2, 3", SC'11; the block function of `rand_philox`, pinned by Random123's
+//! known-answer vectors), made for keyed draws: a block of 128 bits is a bijection of a 128-bit
+//! counter under a 64-bit key, with nothing to set up. The key is `splitmix64(seed)`; the counter
+//! is (purpose, index, step, block) ([`counter`]). A block gives two `u64`, i.e. two uniforms
+//! or, by Box–Muller, two normals: a draw computes only the blocks it takes from, and uses
+//! every word of them but for an odd last one.
 
-use chacha20::ChaCha8Rng;
 use flock_math::Vector;
-use rand_core::{Rng, SeedableRng};
-use rand_distr::{Distribution, StandardNormal, StandardUniform};
+use rand_philox::{philox4x32_10, splitmix64};
 
-/// What a draw is for: the top 8 bits of its stream.
+/// What a draw is for: the top 8 bits of its counter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub enum Purpose {
@@ -34,28 +36,45 @@ pub enum Purpose {
     Activation = 8,
 }
 
-/// 32-bit words of the stream reserved for each step of each key (512 `u64`s: far more than any
-/// draw uses, so two steps' draws never overlap).
-pub const WORDS_PER_STEP: u128 = 1 << 10;
+/// The low 56 bits of a counter's index: an agent, or a directed link i n + j.
+const INDEX_BITS: u32 = 56;
+/// The low 48 bits of a counter's step (2⁴⁸ steps: 89,000 years at h = 0.01 s).
+const STEP_BITS: u32 = 48;
+/// The blocks a key may draw from (2¹⁶, far more than any draw takes: at most 3).
+const BLOCK_BITS: u32 = 16;
 
-/// The indices of a stream: the low 56 bits.
-const INDEX_MASK: u64 = (1 << 56) - 1;
+/// The 128-bit Philox counter of block `block` of the draws for (`purpose`, `index`, `step`):
+/// purpose in bits 120–127, index in 64–119, step in 16–63, block in 0–15, as four
+/// little-endian 32-bit words.
+#[must_use]
+pub fn counter(purpose: Purpose, index: u64, step: u64, block: u16) -> [u32; 4] {
+    let mask = |bits: u32| (1u64 << bits) - 1;
+    let high = ((purpose as u64) << INDEX_BITS) | (index & mask(INDEX_BITS));
+    let low = ((step & mask(STEP_BITS)) << BLOCK_BITS) | u64::from(block);
+    [
+        low as u32,
+        (low >> 32) as u32,
+        high as u32,
+        (high >> 32) as u32,
+    ]
+}
 
 /// The streams of one run, from its seed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Streams {
     seed: u64,
-    /// The generator's key, `ChaCha8Rng::seed_from_u64(seed)`'s, expanded once.
-    key: [u8; 32],
+    /// The Philox key, `splitmix64(seed)` as two 32-bit words (low first).
+    key: [u32; 2],
 }
 
 impl Streams {
     /// The streams of the run with scenario seed `seed`.
     #[must_use]
     pub fn new(seed: u64) -> Self {
+        let k = splitmix64(seed);
         Self {
             seed,
-            key: ChaCha8Rng::seed_from_u64(seed).get_seed(),
+            key: [k as u32, (k >> 32) as u32],
         }
     }
 
@@ -65,25 +84,75 @@ impl Streams {
         self.seed
     }
 
-    /// The draws for `purpose`, agent or link `index` (< 2⁵⁶) and `step`.
+    /// The draws for `purpose`, agent or link `index` (< 2⁵⁶) and `step` (< 2⁴⁸). Nothing is
+    /// computed until a draw is taken.
+    #[inline]
     #[must_use]
     pub fn draws(&self, purpose: Purpose, index: u64, step: u64) -> Draws {
-        let mut rng = ChaCha8Rng::from_seed(self.key);
-        rng.set_stream(((purpose as u64) << 56) | (index & INDEX_MASK));
-        rng.set_word_pos(u128::from(step) * WORDS_PER_STEP);
-        Draws(rng)
+        Draws {
+            key: self.key,
+            counter: counter(purpose, index, step, 0),
+            words: [0; 2],
+            taken: 2,
+            spare: None,
+        }
     }
 }
 
-/// The draws of one key, in the order they are taken.
+/// The draws of one key, in the order they are taken: `u64` words two by two from the blocks
+/// (purpose, index, step, 0), (…, 1), …
 #[derive(Debug)]
-pub struct Draws(ChaCha8Rng);
+pub struct Draws {
+    key: [u32; 2],
+    /// The counter of the next block to compute (its block number in word 0).
+    counter: [u32; 4],
+    /// The current block as two `u64` (low word first).
+    words: [u64; 2],
+    /// The words of `words` already taken (2: none left).
+    taken: usize,
+    /// The second normal of the last Box–Muller pair.
+    spare: Option<f64>,
+}
 
 impl Draws {
-    /// A standard normal ξ ~ N(0, 1) (`rand_distr`'s ziggurat).
+    /// The next 64 random bits.
+    #[inline]
+    pub fn next_u64(&mut self) -> u64 {
+        if self.taken >= 2 {
+            debug_assert!(self.counter[0] & 0xffff != 0xffff, "2¹⁶ blocks drawn");
+            let [a, b, c, d] = philox4x32_10(self.counter, self.key);
+            self.words = [
+                u64::from(a) | (u64::from(b) << 32),
+                u64::from(c) | (u64::from(d) << 32),
+            ];
+            self.counter[0] += 1;
+            self.taken = 0;
+        }
+        self.taken += 1;
+        self.words[self.taken - 1]
+    }
+
+    /// A uniform number in [0, 1): the top 53 bits of a word, times 2⁻⁵³.
+    #[inline]
+    pub fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * f64::EPSILON / 2.0
+    }
+
+    /// A standard normal ξ ~ N(0, 1), by Box–Muller (Box & Muller, Ann. Math. Statist. 29,
+    /// 1958): from two uniforms u₁ ∈ (0, 1], u₂ ∈ [0, 1), the independent normals
+    /// √(−2 ln u₁) cos 2πu₂ and √(−2 ln u₁) sin 2πu₂ — one block, two normals, a fixed number of
+    /// words (the second is kept for the next call).
     #[inline]
     pub fn normal(&mut self) -> f64 {
-        StandardNormal.sample(&mut self.0)
+        if let Some(z) = self.spare.take() {
+            return z;
+        }
+        let u1 = 1.0 - self.uniform();
+        let u2 = self.uniform();
+        let r = (-2.0 * u1.ln()).sqrt();
+        let (sin, cos) = (core::f64::consts::TAU * u2).sin_cos();
+        self.spare = Some(r * sin);
+        r * cos
     }
 
     /// A vector of independent standard normals, one per coordinate.
@@ -92,22 +161,85 @@ impl Draws {
         V::from_fn(|_| self.normal())
     }
 
-    /// A uniform number in [0, 1).
-    #[inline]
-    pub fn uniform(&mut self) -> f64 {
-        StandardUniform.sample(&mut self.0)
-    }
-
     /// A uniform whole number in [0, `n`] (`n` small: the modulo bias is below 2⁻⁴⁰).
     #[inline]
     pub fn up_to(&mut self, n: u64) -> u64 {
-        self.0.next_u64() % (n + 1)
+        self.next_u64() % (n + 1)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_block_function_gives_random123s_known_answers() {
+        // Random123's published known-answer vectors for philox4x32_10 (kat_vectors)
+        let kat = [
+            (
+                [0; 4],
+                [0; 2],
+                [0x6627_e8d5, 0xe169_c58d, 0xbc57_ac4c, 0x9b00_dbd8],
+            ),
+            (
+                [0xffff_ffff; 4],
+                [0xffff_ffff; 2],
+                [0x408f_276d, 0x41c8_3b0e, 0xa20b_c7c6, 0x6d54_51fd],
+            ),
+            (
+                [0x243f_6a88, 0x85a3_08d3, 0x1319_8a2e, 0x0370_7344],
+                [0xa409_3822, 0x299f_31d0],
+                [0xd16c_fe09, 0x94fd_cceb, 0x5001_e420, 0x2412_6ea1],
+            ),
+        ];
+        for (ctr, key, out) in kat {
+            assert_eq!(philox4x32_10(ctr, key), out);
+        }
+    }
+
+    #[test]
+    fn a_draw_takes_the_words_of_its_own_counters_in_order() {
+        let s = Streams::new(5);
+        let k = splitmix64(5);
+        let key = [k as u32, (k >> 32) as u32];
+        let word = |block: u16, w: usize| {
+            let b = philox4x32_10(counter(Purpose::Jitter, 9, 77, block), key);
+            u64::from(b[2 * w]) | (u64::from(b[2 * w + 1]) << 32)
+        };
+        let mut d = s.draws(Purpose::Jitter, 9, 77);
+        let taken: Vec<u64> = (0..5).map(|_| d.next_u64()).collect();
+        let expected = [word(0, 0), word(0, 1), word(1, 0), word(1, 1), word(2, 0)];
+        assert_eq!(taken, expected);
+        // purpose, index, step and block each have their own bits
+        assert_eq!(
+            counter(Purpose::Loss, (1 << 56) - 1, (1 << 48) - 1, 0xffff),
+            [0xffff_ffff, 0xffff_ffff, 0xffff_ffff, 0x03ff_ffff]
+        );
+        assert_eq!(
+            counter(Purpose::Sensing, 0, 1, 2),
+            [0x0001_0002, 0, 0, 1 << 24]
+        );
+    }
+
+    #[test]
+    fn a_pair_of_normals_takes_one_block() {
+        let s = Streams::new(3);
+        let mut two = s.draws(Purpose::Sensing, 1, 2);
+        let (a, b) = (two.normal(), two.normal());
+        let mut words = s.draws(Purpose::Sensing, 1, 2);
+        let u1 = 1.0 - (words.next_u64() >> 11) as f64 * f64::EPSILON / 2.0;
+        let u2 = (words.next_u64() >> 11) as f64 * f64::EPSILON / 2.0;
+        let r = (-2.0 * u1.ln()).sqrt();
+        let theta = core::f64::consts::TAU * u2;
+        assert_eq!((a, b), (r * theta.cos(), r * theta.sin()));
+        // the third normal starts the next block
+        assert_eq!(two.normal().to_bits(), {
+            let mut d = s.draws(Purpose::Sensing, 1, 2);
+            d.next_u64();
+            d.next_u64();
+            d.normal().to_bits()
+        });
+    }
 
     #[test]
     fn a_draw_depends_on_its_key_only() {
@@ -140,13 +272,30 @@ mod tests {
     }
 
     #[test]
-    fn normals_have_unit_variance() {
+    fn normals_have_the_moments_and_tails_of_the_standard_law() {
+        // both normals of each pair, across steps: mean 0, variance 1, kurtosis 3, and
+        // P(|ξ| > 2) = 0.0455, each within 4 standard errors; the pair is uncorrelated
         let s = Streams::new(1);
-        let n = 20_000;
-        let var = (0..n)
-            .map(|k| s.draws(Purpose::Sensing, 0, k).normal().powi(2))
-            .sum::<f64>()
-            / n as f64;
-        assert!((var - 1.0).abs() < 0.05, "{var}");
+        let pairs: Vec<(f64, f64)> = (0..50_000)
+            .map(|k| {
+                let mut d = s.draws(Purpose::Sensing, 0, k);
+                (d.normal(), d.normal())
+            })
+            .collect();
+        let xs: Vec<f64> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+        let n = xs.len() as f64;
+        let moment = |p: i32| xs.iter().map(|x| x.powi(p)).sum::<f64>() / n;
+        assert!(moment(1).abs() < 4.0 / n.sqrt(), "{}", moment(1));
+        assert!((moment(2) - 1.0).abs() < 4.0 * 2f64.sqrt() / n.sqrt());
+        assert!((moment(4) - 3.0).abs() < 4.0 * 96f64.sqrt() / n.sqrt());
+        let tail = xs.iter().filter(|x| x.abs() > 2.0).count() as f64 / n;
+        let p = 0.045_500_263_896_358_42;
+        assert!(
+            (tail - p).abs() < 4.0 * (p * (1.0 - p) / n).sqrt(),
+            "{tail}"
+        );
+        let m = pairs.len() as f64;
+        let r = pairs.iter().map(|(a, b)| a * b).sum::<f64>() / m;
+        assert!(r.abs() < 4.0 / m.sqrt(), "{r}");
     }
 }

@@ -2,15 +2,18 @@
 //! the outputs had been written then, so that `flocking run --resume DIR` cuts the outputs back to
 //! that point and continues bit-identically.
 //!
-//! The file is little-endian: the magic `FLOCKCK3`, then as u64 the dimension, the number of
+//! The file is little-endian: the magic `FLOCKCK4`, then as u64 the dimension, the number of
 //! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
 //! trajectory, the bytes of the scenario's text and the number of vehicle state values; then the
 //! positions and the velocities as f64 (`dim` per agent), the vehicles' states as f64 (none for
 //! point masses), the resolved scenario as RON text (so that a resume can refuse a
 //! `scenario.ron` edited since), the state of the run's conditions as RON text (empty for an
 //! ideal run), and last an
-//! FNV-1a hash of everything before it. A checkpoint of the previous format, `FLOCKCK2`, is the
-//! same without the vehicle count and states, and is still read. It is written to `checkpoint.tmp`, flushed to the disk, and
+//! FNV-1a hash of everything before it. `FLOCKCK3` is the same layout from a flocking whose
+//! random draws came from ChaCha8 (before issue 31's Philox4x32-10), and `FLOCKCK2` the same
+//! without the vehicle count and states: both are still read, marked
+//! [`Checkpoint::draws_from_chacha8`], and a run that draws at random is not resumed from them
+//! (its draws could not continue bit for bit). It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
 
@@ -27,9 +30,13 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 /// The temporary file a checkpoint is written to before its rename.
 pub const CHECKPOINT_TMP: &str = "checkpoint.tmp";
 
-const MAGIC: &[u8; 8] = b"FLOCKCK3";
+const MAGIC: &[u8; 8] = b"FLOCKCK4";
 
-/// The magic of the format before vehicles, read as one without vehicle states.
+/// The magic of the format whose random draws came from ChaCha8, same layout.
+const MAGIC_CHACHA8: &[u8; 8] = b"FLOCKCK3";
+
+/// The magic of the format before vehicles (draws from ChaCha8), read as one without vehicle
+/// states.
 const MAGIC_WITHOUT_VEHICLES: &[u8; 8] = b"FLOCKCK2";
 
 /// A run's state and the lengths of its outputs at that state.
@@ -47,6 +54,9 @@ pub struct Checkpoint {
     pub trajectory_bytes: u64,
     /// The resolved scenario of the run, as RON.
     pub scenario: String,
+    /// Whether the checkpoint is of a format whose random draws came from ChaCha8 (`FLOCKCK2`,
+    /// `FLOCKCK3`): the draws of this version (Philox4x32-10) cannot continue its run.
+    pub draws_from_chacha8: bool,
 }
 
 impl Checkpoint {
@@ -123,7 +133,7 @@ impl Checkpoint {
         let (body, hash) = bytes
             .split_last_chunk::<8>()
             .ok_or_else(|| corrupt("too short"))?;
-        let words = if body.starts_with(MAGIC) {
+        let words = if body.starts_with(MAGIC) || body.starts_with(MAGIC_CHACHA8) {
             9
         } else if body.starts_with(MAGIC_WITHOUT_VEHICLES) {
             8
@@ -204,6 +214,7 @@ impl Checkpoint {
             metrics_bytes: *metrics_bytes,
             trajectory_bytes: *trajectory_bytes,
             scenario: text(scenario, "scenario")?,
+            draws_from_chacha8: !body.starts_with(MAGIC),
         })
     }
 }

@@ -1006,6 +1006,13 @@ fn check_scenario(
             changed_fields(&started, scenario).join(", ")
         )));
     }
+    // issue 31: the random draws changed generator (ChaCha8 → Philox4x32-10)
+    if checkpoint.draws_from_chacha8 && scenario.draws_at_random() {
+        return Err(ResumeError::Refused(format!(
+            "the checkpoint in {} was written by a flocking that drew its random numbers with ChaCha8; this one draws them with Philox4x32-10, so the run's random draws cannot continue bit for bit. Resume it with the flocking that started it, or start the run again with --out elsewhere",
+            partial.display()
+        )));
+    }
     // issue 27: a step count past the scenario's end would stop the output short and judge it
     if checkpoint.start.steps > scenario.steps() {
         return Err(ResumeError::Refused(format!(
@@ -1433,6 +1440,7 @@ impl Recorder for RunDirectory {
             metrics_bytes: self.metrics_bytes,
             trajectory_bytes,
             scenario: self.scenario.clone(),
+            draws_from_chacha8: false,
         }
         .write(&self.partial)?;
         let whole = format!(
