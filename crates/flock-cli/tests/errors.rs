@@ -651,6 +651,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
         names,
         [
             ".flocking",
+            ".flocking.manifest",
             "final.csv",
             "flocking.txt",
             "metrics.csv",
