@@ -139,7 +139,6 @@ impl NeighbourSearch {
             );
             return;
         }
-        self.grid.copy_positions(positions);
         let grid = &self.grid;
         let slots = grid.order.len();
         let count = slots.div_ceil(block_len);
@@ -200,8 +199,6 @@ impl NeighbourSearch {
             self.blocks = Vec::new();
         }
         self.blocks.resize_with(WINDOW_BLOCKS, Block::default);
-        // the positions are read where they are: no copy in cell order is kept
-        self.grid.coords = Vec::new();
         let with_distances = distances.is_some();
         offsets.clear();
         offsets.push(0);
@@ -264,7 +261,6 @@ impl NeighbourSearch {
         }
         loop {
             self.grid.rebuild(positions, threshold.sqrt());
-            self.grid.copy_positions(positions);
             if let Some(d2) = self.grid.min_squared_distance::<V>(threshold) {
                 return Some(d2.sqrt());
             }
@@ -289,7 +285,6 @@ impl NeighbourSearch {
         found: &mut [f64],
     ) {
         self.grid.rebuild(positions, reach);
-        self.grid.copy_positions(positions);
         let grid = &self.grid;
         fill_indexed(found, |p| {
             let slot = grid.slot_of[pending[p] as usize] as usize;
@@ -450,17 +445,7 @@ impl Block {
                 (rows_of, rows) = (cell, grid.candidate_rows(cells.coords()));
                 candidates = rows.iter().map(|row| row.len()).sum();
             }
-            let qi = grid.position::<V>(slot);
-            self.find(
-                grid,
-                r2,
-                numbering,
-                (slot, qi),
-                &rows,
-                candidates,
-                end,
-                |t, _| grid.position(t),
-            );
+            self.find::<V>(grid, r2, numbering, slot, &rows, candidates, end);
             for (out, &key) in self.neighbours[end..].iter_mut().zip(&self.keyed) {
                 // the slot: t < n ≤ u32::MAX
                 *out = key as u32;
@@ -498,26 +483,14 @@ impl Block {
                     (rows_of, rows) = (Some(coords), grid.candidate_rows(coords));
                     candidates = rows.iter().map(|row| row.len()).sum();
                 }
-                // agents numbered along space: positions[j] of nearby slots are near in memory
-                self.find(
-                    grid,
-                    r2,
-                    numbering,
-                    (slot, qi),
-                    &rows,
-                    candidates,
-                    end,
-                    |_, j| positions[j],
-                );
+                self.find::<V>(grid, r2, numbering, slot, &rows, candidates, end);
                 for (out, &key) in self.neighbours[end..].iter_mut().zip(&self.keyed) {
                     *out = grid.order[key as u32 as usize];
                 }
                 if with_distances {
-                    self.lengths.extend(
-                        self.neighbours[end..end + self.keyed.len()]
-                            .iter()
-                            .map(|&j| squared_distance(qi, positions[j as usize]).sqrt()),
-                    );
+                    self.lengths.extend(self.keyed.iter().map(|&key| {
+                        squared_distance(qi, grid.position::<V>(key as u32 as usize)).sqrt()
+                    }));
                 }
                 end += self.keyed.len();
             }
@@ -525,10 +498,9 @@ impl Block {
         }
     }
 
-    /// The neighbours of the agent at `qi` in `slot` (predicate `d² < r2`) among the
-    /// `candidates` slots of `rows`, in `keyed` as (original index << 32 | slot) sorted, so in
-    /// ascending original index; `position(t, j)` is the position of agent j in slot t.
-    /// `neighbours` holds at least `candidates` entries from `end` on.
+    /// The neighbours of the agent in `slot` (predicate `d² < r2`) among the `candidates` slots
+    /// of `rows`, in `keyed` as (original index << 32 | slot) sorted, so in ascending original
+    /// index; `neighbours` holds at least `candidates` entries from `end` on.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn find<V: Vector>(
@@ -536,12 +508,12 @@ impl Block {
         grid: &CellGrid,
         r2: f64,
         numbering: &Numbering,
-        (slot, qi): (usize, V),
+        slot: usize,
         rows: &CandidateRows,
         candidates: usize,
         end: usize,
-        position: impl Fn(usize, usize) -> V,
     ) {
+        let qi = grid.position::<V>(slot);
         // `neighbours` beyond `end` is only grown (and zeroed) when too short
         if self.neighbours.len() < end + candidates {
             // grow by a quarter at least: fewer reallocations than exact growth, less
@@ -553,8 +525,13 @@ impl Block {
         }
         self.keyed.clear();
         for row in rows.iter() {
-            for (t, &j) in row.clone().zip(&grid.order[row]) {
-                let d2 = squared_distance(qi, position(t, j as usize));
+            let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
+            for ((t, c), &j) in row
+                .clone()
+                .zip(coords.chunks_exact(V::DIM))
+                .zip(&grid.order[row])
+            {
+                let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
                 if in_range(d2, r2) && t != slot {
                     let k = numbering.original(j as usize) as u64;
                     self.keyed.push(k << 32 | t as u64);
@@ -728,8 +705,7 @@ struct CellGrid {
     /// Agent in each slot.
     order: Vec<u32>,
     /// Coordinates of the agent in each slot, m per slot (m = `V::DIM` of the last rebuild), for a
-    /// contiguous candidate scan in cell order ([`CellGrid::copy_positions`]; those of an earlier
-    /// rebuild until then).
+    /// contiguous candidate scan.
     coords: Vec<f64>,
     /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
     slot_of: Vec<u32>,
@@ -808,28 +784,25 @@ impl CellGrid {
             self.cell_start[c + 1] += self.cell_start[c];
         }
         self.order.resize(bounds.finite, 0);
-        for (i, slot_of) in self.slot_of.iter_mut().enumerate() {
+        self.coords.resize(bounds.finite * V::DIM, 0.0);
+        for (i, (slot_of, q)) in self.slot_of.iter_mut().zip(positions).enumerate() {
             let c = *slot_of;
             if c != NO_SLOT {
                 let slot = self.cell_start[c as usize];
                 self.cell_start[c as usize] += 1;
                 self.order[slot] = node_index(i);
+                for (k, x) in self.coords[slot * V::DIM..(slot + 1) * V::DIM]
+                    .iter_mut()
+                    .enumerate()
+                {
+                    *x = q.coord(k);
+                }
                 // slot < n ≤ u32::MAX
                 *slot_of = slot as u32;
             }
         }
         self.cell_start.copy_within(0..cells, 1);
         self.cell_start[0] = 0;
-    }
-
-    /// Copies the positions in cell order ([`CellGrid::position`]), for a scan of the grid in
-    /// that order: agents near in it are then near in memory, however they are numbered.
-    fn copy_positions<V: Vector>(&mut self, positions: &[V]) {
-        let order = &self.order;
-        self.coords.resize(order.len() * V::DIM, 0.0);
-        fill_indexed(&mut self.coords, |x| {
-            positions[order[x / V::DIM] as usize].coord(x % V::DIM)
-        });
     }
 
     /// Whether agents of consecutive index are mostly far apart in the cell order (at least
@@ -1031,7 +1004,6 @@ mod tests {
         assert_eq!(grid.cells_of(2).cell_of(2), slot_cell[2]);
         let first = slot_cell[0];
         assert_eq!(grid.cell_start[first]..grid.cell_start[first + 1], 0..2);
-        grid.copy_positions(&q);
         for (slot, &i) in grid.order.iter().enumerate() {
             assert_eq!(grid.position::<DVec2>(slot), q[i as usize]);
         }
