@@ -34,16 +34,6 @@ use crate::torus::{TorusBlock, TorusGrid};
 /// rayon work with the `parallel` feature.
 const BLOCK_SHIFT: u32 = 10;
 
-/// Blocks of agents made in parallel before they are appended to the net
-/// ([`NeighbourSearch::assemble_in_windows`]).
-const WINDOW_BLOCKS: usize = 16;
-
-/// Agents sampled by [`CellGrid::is_scattered`].
-const SAMPLED: usize = 256;
-
-/// Slot distance beyond which two agents of consecutive index count as far apart in the grid.
-const SCATTERED_SLOTS: usize = 4096;
-
 /// Agents per chunk of the parallel bounds.
 const BOUNDS_CHUNK: usize = 1 << 16;
 
@@ -131,14 +121,6 @@ impl NeighbourSearch {
             return;
         }
         self.grid.rebuild(positions, r);
-        // a net with no lists yet has no buffer to reuse: the blocks of slots would add one
-        let fresh = neighbours.capacity() == 0;
-        if fresh || !self.grid.is_scattered() {
-            self.assemble_in_windows::<V>(
-                positions, r2, block_len, offsets, neighbours, distances, numbering,
-            );
-            return;
-        }
         let grid = &self.grid;
         let slots = grid.order.len();
         let count = slots.div_ceil(block_len);
@@ -172,59 +154,6 @@ impl NeighbourSearch {
             }
         };
         assemble(n, offsets, neighbours, distances, &list, &write);
-    }
-
-    /// The lists of agents whose index follows space ([`CellGrid::is_scattered`] is false), or of
-    /// a net built for the first time, straight into the net: the agents are taken in windows of
-    /// [`WINDOW_BLOCKS`] blocks of `block_len` consecutive agents, each block's lists (and
-    /// distances) made in parallel, then appended in agent order. No list is held twice (the
-    /// block buffers of a window are ≈ 0.1 % of the net at n = 10⁶), where the blocks of slots
-    /// hold every list before the gather (≈ 38 bytes per agent in 2D at the papers' density). The
-    /// net is the same: each list depends on its agent only.
-    #[allow(clippy::too_many_arguments)]
-    fn assemble_in_windows<V: Vector>(
-        &mut self,
-        positions: &[V],
-        r2: f64,
-        block_len: usize,
-        offsets: &mut Vec<usize>,
-        neighbours: &mut Vec<u32>,
-        mut distances: Option<&mut Vec<f64>>,
-        numbering: &Numbering,
-    ) {
-        let n = positions.len();
-        let window = block_len.saturating_mul(WINDOW_BLOCKS);
-        // blocks of slots of a scattered net before are dropped: their lists are the net's size
-        if self.blocks.len() > WINDOW_BLOCKS {
-            self.blocks = Vec::new();
-        }
-        self.blocks.resize_with(WINDOW_BLOCKS, Block::default);
-        let with_distances = distances.is_some();
-        offsets.clear();
-        offsets.push(0);
-        neighbours.clear();
-        if let Some(distances) = distances.as_deref_mut() {
-            distances.clear();
-        }
-        let grid = &self.grid;
-        for start in (0..n).step_by(window) {
-            let end = (start + window).min(n);
-            let count = (end - start).div_ceil(block_len);
-            for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
-                let first = start + b * block_len;
-                let agents = first..(first + block_len).min(end);
-                block.fill_agents(grid, positions, r2, numbering, agents, with_distances);
-            });
-            for block in &self.blocks[..count] {
-                let base = neighbours.len();
-                offsets.extend(block.ends.iter().map(|&e| base + e));
-                let len = block.ends.last().copied().unwrap_or(0);
-                neighbours.extend_from_slice(&block.neighbours[..len]);
-                if let Some(distances) = distances.as_deref_mut() {
-                    distances.extend_from_slice(&block.lengths);
-                }
-            }
-        }
     }
 
     /// The agents with a finite position, in the order of the cells of side at least `r` of a
@@ -419,8 +348,6 @@ struct Block {
     neighbours: Vec<u32>,
     /// Scratch: one slot's neighbours keyed by agent, to be sorted.
     keyed: Vec<u64>,
-    /// The lists' distances, for [`Block::fill_agents`] into a net with distances.
-    lengths: Vec<f64>,
 }
 
 impl Block {
@@ -445,100 +372,42 @@ impl Block {
                 (rows_of, rows) = (cell, grid.candidate_rows(cells.coords()));
                 candidates = rows.iter().map(|row| row.len()).sum();
             }
-            self.find::<V>(grid, r2, numbering, slot, &rows, candidates, end);
-            for (out, &key) in self.neighbours[end..].iter_mut().zip(&self.keyed) {
+            let qi = grid.position::<V>(slot);
+            // `neighbours` beyond `end` is only grown (and zeroed) when too short
+            if self.neighbours.len() < end + candidates {
+                // grow by a quarter at least: fewer reallocations than exact growth, less
+                // unused memory than doubling
+                let len = self.neighbours.len();
+                let grown = (end + candidates).max(len + len / 4);
+                self.neighbours.reserve_exact(grown - len);
+                self.neighbours.resize(grown, 0);
+            }
+            // each neighbour as (original index << 32 | slot), so that a plain sort orders by
+            // original index
+            self.keyed.clear();
+            for row in rows.iter() {
+                let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
+                for ((t, c), &j) in row
+                    .clone()
+                    .zip(coords.chunks_exact(V::DIM))
+                    .zip(&grid.order[row])
+                {
+                    let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
+                    if in_range(d2, r2) && t != slot {
+                        let k = numbering.original(j as usize) as u64;
+                        self.keyed.push(k << 32 | t as u64);
+                    }
+                }
+            }
+            self.keyed.sort_unstable();
+            let len = self.keyed.len();
+            for (out, &key) in self.neighbours[end..end + len].iter_mut().zip(&self.keyed) {
                 // the slot: t < n ≤ u32::MAX
                 *out = key as u32;
             }
-            end += self.keyed.len();
+            end += len;
             self.ends.push(end);
         }
-    }
-
-    /// Refills the block with the lists of the agents `agents` (consecutive indices, each list
-    /// as agent indices in ascending original index of `numbering`), and their distances when
-    /// `with_distances`, each recomputed with the predicate's own squared length.
-    fn fill_agents<V: Vector>(
-        &mut self,
-        grid: &CellGrid,
-        positions: &[V],
-        r2: f64,
-        numbering: &Numbering,
-        agents: Range<usize>,
-        with_distances: bool,
-    ) {
-        self.ends.clear();
-        self.lengths.clear();
-        let mut end = 0;
-        // consecutive agents mostly share their cell, and so its candidate rows
-        let (mut rows_of, mut rows) = (None, CandidateRows::default());
-        let mut candidates = 0;
-        for i in agents {
-            let slot = grid.slot_of[i];
-            if slot != NO_SLOT {
-                let slot = slot as usize;
-                let qi = positions[i];
-                let coords = grid.layout.cell_coords(qi);
-                if rows_of != Some(coords) {
-                    (rows_of, rows) = (Some(coords), grid.candidate_rows(coords));
-                    candidates = rows.iter().map(|row| row.len()).sum();
-                }
-                self.find::<V>(grid, r2, numbering, slot, &rows, candidates, end);
-                for (out, &key) in self.neighbours[end..].iter_mut().zip(&self.keyed) {
-                    *out = grid.order[key as u32 as usize];
-                }
-                if with_distances {
-                    self.lengths.extend(self.keyed.iter().map(|&key| {
-                        squared_distance(qi, grid.position::<V>(key as u32 as usize)).sqrt()
-                    }));
-                }
-                end += self.keyed.len();
-            }
-            self.ends.push(end);
-        }
-    }
-
-    /// The neighbours of the agent in `slot` (predicate `d² < r2`) among the `candidates` slots
-    /// of `rows`, in `keyed` as (original index << 32 | slot) sorted, so in ascending original
-    /// index; `neighbours` holds at least `candidates` entries from `end` on.
-    #[allow(clippy::too_many_arguments)]
-    #[inline]
-    fn find<V: Vector>(
-        &mut self,
-        grid: &CellGrid,
-        r2: f64,
-        numbering: &Numbering,
-        slot: usize,
-        rows: &CandidateRows,
-        candidates: usize,
-        end: usize,
-    ) {
-        let qi = grid.position::<V>(slot);
-        // `neighbours` beyond `end` is only grown (and zeroed) when too short
-        if self.neighbours.len() < end + candidates {
-            // grow by a quarter at least: fewer reallocations than exact growth, less
-            // unused memory than doubling
-            let len = self.neighbours.len();
-            let grown = (end + candidates).max(len + len / 4);
-            self.neighbours.reserve_exact(grown - len);
-            self.neighbours.resize(grown, 0);
-        }
-        self.keyed.clear();
-        for row in rows.iter() {
-            let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
-            for ((t, c), &j) in row
-                .clone()
-                .zip(coords.chunks_exact(V::DIM))
-                .zip(&grid.order[row])
-            {
-                let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
-                if in_range(d2, r2) && t != slot {
-                    let k = numbering.original(j as usize) as u64;
-                    self.keyed.push(k << 32 | t as u64);
-                }
-            }
-        }
-        self.keyed.sort_unstable();
     }
 
     /// The range of the `k`-th slot's list in the block.
@@ -671,12 +540,6 @@ impl Layout {
         t.min(self.dims[axis] - 1)
     }
 
-    /// The cell coordinates of a finite `q`, those [`Layout::cell_of`] indexes.
-    #[inline]
-    fn cell_coords<V: Vector>(&self, q: V) -> [usize; 3] {
-        core::array::from_fn(|k| self.axis_cell(q, k))
-    }
-
     /// Linear index of the cell with coordinates `c`.
     #[inline]
     fn cell(&self, c: [usize; 3]) -> usize {
@@ -688,7 +551,7 @@ impl Layout {
     fn cell_of<V: Vector>(&self, q: V) -> u32 {
         if q.is_finite() {
             // below MAX_CELLS
-            self.cell(self.cell_coords(q)) as u32
+            self.cell(core::array::from_fn(|k| self.axis_cell(q, k))) as u32
         } else {
             NO_SLOT
         }
@@ -803,28 +666,6 @@ impl CellGrid {
         }
         self.cell_start.copy_within(0..cells, 1);
         self.cell_start[0] = 0;
-    }
-
-    /// Whether agents of consecutive index are mostly far apart in the cell order (at least
-    /// [`SCATTERED_SLOTS`] slots, among [`SAMPLED`] pairs): agents numbered with no relation to
-    /// space, whose lists are best made in cell order and gathered. Deterministic.
-    fn is_scattered(&self) -> bool {
-        let n = self.slot_of.len();
-        let sampled = SAMPLED.min(n.saturating_sub(1));
-        let (mut near, mut far) = (0_usize, 0_usize);
-        for s in 0..sampled {
-            let i = s * (n - 1) / sampled;
-            let (a, b) = (self.slot_of[i], self.slot_of[i + 1]);
-            if a == NO_SLOT || b == NO_SLOT {
-                continue;
-            }
-            if (a as usize).abs_diff(b as usize) >= SCATTERED_SLOTS {
-                far += 1;
-            } else {
-                near += 1;
-            }
-        }
-        far > near
     }
 
     /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
@@ -1089,54 +930,6 @@ mod tests {
         let lengths: Vec<u64> = lean.edge_lengths(&stored).map(f64::to_bits).collect();
         let distances: Vec<u64> = net.distances().iter().map(|d| d.to_bits()).collect();
         assert_eq!(lengths, distances);
-    }
-
-    /// Agents numbered along space (here by rows of cells) have their lists made straight into
-    /// the net, whose lists the search then does not hold a second time; agents numbered at
-    /// random, past the net's first build, have them made in cell order and gathered. Both give
-    /// the brute-force net, with and without distances, on one thread and on three.
-    #[cfg(feature = "parallel")]
-    #[test]
-    fn lists_of_agents_numbered_along_space_are_not_held_twice() {
-        let scattered = uniform_square(30_000, 1000.0, 3);
-        let mut along = scattered.clone();
-        along.sort_by(|a, b| {
-            ((a.y / 8.4).floor(), a.x)
-                .partial_cmp(&((b.y / 8.4).floor(), b.x))
-                .unwrap()
-        });
-        let held = |search: &NeighbourSearch| -> usize {
-            search.blocks.iter().map(|b| b.neighbours.capacity()).sum()
-        };
-        for threads in [1, 3] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            for (q, held_twice) in [(&along, false), (&scattered, true)] {
-                let expected = ProximityNet::brute_force(q, 8.4);
-                let edges = expected.graph().directed_edge_count();
-                assert!(edges > 4 * q.len());
-                let mut search = NeighbourSearch::new();
-                for mut net in [ProximityNet::new(), ProximityNet::without_distances()] {
-                    for build in 0..2 {
-                        pool.install(|| search.build(q, 8.4, &mut net));
-                        assert_eq!(net.graph(), expected.graph());
-                        let lengths: Vec<u64> = net.edge_lengths(q).map(f64::to_bits).collect();
-                        let exact: Vec<u64> =
-                            expected.distances().iter().map(|d| d.to_bits()).collect();
-                        assert_eq!(lengths, exact);
-                        // a net's first build never holds its lists twice
-                        let twice = held_twice && build == 1;
-                        assert_eq!(
-                            held(&search) >= edges,
-                            twice,
-                            "build {build}, {threads} threads"
-                        );
-                    }
-                }
-            }
-        }
     }
 
     /// The blocks only partition the work: any block length, and any rayon pool size, gives the
