@@ -9,12 +9,11 @@
 //! agents are spread thin the cell is enlarged until there are at most 4n cells: memory stays O(n)
 //! whatever the configuration.
 //!
-//! Each list is sorted by neighbour index (original index, for a net with a [`Numbering`]). For
-//! agents numbered along space (and at a net's first build) the lists are made agent by agent, in
-//! windows of consecutive agents, straight into the net; for agents numbered at random they are
-//! made in cell order (so that consecutive agents scan the same memory) into per-block buffers of
-//! slots, then gathered in agent order into the net as agent indices. Each distance is recomputed
-//! with the predicate's own squared length. The net is canonical: equal to [`ProximityNet::brute_force`] edge for edge and bit for
+//! The lists are built agent by agent in cell order (so that consecutive agents scan the same
+//! memory), each as slots sorted by neighbour index (original index, for a net with a
+//! [`Numbering`]), into per-block buffers; they are then gathered in agent order
+//! into the net as agent indices, each distance recomputed there with the predicate's own squared
+//! length. The net is canonical: equal to [`ProximityNet::brute_force`] edge for edge and bit for
 //! bit (for a numbering, to the brute-force net of the agents in original order, relabelled). With
 //! the `parallel` feature the blocks are filled, and the net gathered, on the rayon pool; since the
 //! blocks and gather ranges only partition the work, the net is identical with or without it, for
