@@ -18,7 +18,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::fs::{self, File, OpenOptions};
-use std::io::{self, Read as _, Write as _};
+use std::io::{self, Read as _};
 use std::path::Path;
 
 use super::at;
@@ -240,15 +240,7 @@ impl Manifest {
         }
         let tmp = dir.join(MANIFEST_TMP);
         let path = dir.join(MANIFEST_FILE);
-        let write = || {
-            let mut file = File::create(&tmp)?;
-            file.write_all(text.as_bytes())?;
-            file.sync_all()
-        };
-        write().map_err(|e| {
-            let _ = fs::remove_file(&tmp);
-            at(format_args!("write {}", tmp.display()))(e)
-        })?;
+        super::write_tmp(&tmp, text.as_bytes())?;
         fs::rename(&tmp, &path).map_err(at(format_args!(
             "rename {} to {}",
             tmp.display(),

@@ -398,7 +398,6 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
 /// A link, or a file the user saved over flocking's (naming it and what to do); any I/O error,
 /// with its path.
 pub fn write_no_follow(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    use std::os::unix::fs::OpenOptionsExt as _;
     let parent = parent_of(path);
     if fs::symlink_metadata(parent).is_ok_and(|m| m.file_type().is_symlink()) {
         return Err(link_refused(parent));
@@ -426,24 +425,7 @@ pub fn write_no_follow(path: &Path, bytes: &[u8]) -> io::Result<()> {
     let mut tmp = path.as_os_str().to_owned();
     tmp.push(".tmp");
     let tmp = PathBuf::from(tmp);
-    let write = || {
-        let mut file = OpenOptions::new()
-            .write(true)
-            .create(true)
-            .truncate(true)
-            .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed())
-            .open(&tmp)?;
-        file.write_all(bytes)?;
-        file.sync_data()
-    };
-    write().map_err(|e| {
-        if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
-            link_refused(&tmp)
-        } else {
-            let _ = fs::remove_file(&tmp);
-            at(format_args!("write {}", tmp.display()))(e)
-        }
-    })?;
+    write_tmp(&tmp, bytes)?;
     fs::rename(&tmp, path).map_err(at(format_args!(
         "rename {} to {}",
         tmp.display(),
@@ -478,6 +460,36 @@ fn tracking_manifest(path: &Path) -> io::Result<Option<(PathBuf, String, Manifes
 }
 
 /// The error of a link that flocking would have written through.
+/// Writes `bytes` into `tmp`, one of flocking's own `.tmp` names, flushed, never through a link
+/// (`O_NOFOLLOW`). Only a file this call opened is removed when the write fails: a failure to
+/// open (a link, a directory in its place) removes nothing.
+///
+/// # Errors
+/// A link in `tmp`'s place, or any I/O error, with its path.
+pub(crate) fn write_tmp(tmp: &Path, bytes: &[u8]) -> io::Result<()> {
+    use std::os::unix::fs::OpenOptionsExt as _;
+    let mut file = OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(true)
+        .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed())
+        .open(tmp)
+        .map_err(|e| {
+            if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
+                link_refused(tmp)
+            } else {
+                at(format_args!("write {}", tmp.display()))(e)
+            }
+        })?;
+    file.write_all(bytes)
+        .and_then(|()| file.sync_all())
+        .map_err(|e| {
+            // the file cut short is the one opened above: flocking's
+            let _ = fs::remove_file(tmp);
+            at(format_args!("write {}", tmp.display()))(e)
+        })
+}
+
 fn link_refused(path: &Path) -> io::Error {
     io::Error::new(
         io::ErrorKind::AlreadyExists,
@@ -678,6 +690,18 @@ pub fn record_manifest(dir: &Path) -> io::Result<()> {
 /// The I/O error of the removal, naming the path.
 pub fn drop_manifest(dir: &Path) -> io::Result<()> {
     let path = dir.join(MANIFEST_FILE);
+    if !marked(dir, Kind::Run) {
+        return Err(io::Error::new(
+            io::ErrorKind::PermissionDenied,
+            format!(
+                "{} is not a run of flocking's: its manifest is kept",
+                dir.display()
+            ),
+        ));
+    }
+    if fs::symlink_metadata(&path).is_ok_and(|m| !m.is_file()) {
+        return Err(link_refused(&path));
+    }
     match fs::remove_file(&path) {
         Err(e) if e.kind() != io::ErrorKind::NotFound => {
             Err(at(format_args!("remove {}", path.display()))(e))
@@ -692,6 +716,16 @@ pub fn drop_manifest(dir: &Path) -> io::Result<()> {
 /// # Errors
 /// [`DirError::Changed`] (nothing removed), or an I/O error naming its path.
 pub fn remove_file(dir: &Path, relative: &str) -> Result<(), DirError> {
+    // only below a marked directory, and only a plain relative name (no `..`, no root)
+    let plain = Path::new(relative)
+        .components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)));
+    if !plain || !marked_by_flocking(dir) {
+        return Err(DirError::Foreign {
+            dir: dir.to_owned(),
+            entry: relative.to_owned(),
+        });
+    }
     check_files(dir, &[relative])?;
     let path = dir.join(relative);
     match fs::remove_file(&path) {
@@ -1064,5 +1098,32 @@ mod tests {
         // another kind's marker is still replaced by the one asked for
         mark(dir.path(), Kind::Sweep).expect("marked as a sweep");
         assert!(marked(dir.path(), Kind::Sweep));
+    }
+
+    /// `remove_file` and `drop_manifest` remove nothing from a directory without flocking's
+    /// marker, nor a name that leaves the directory.
+    #[test]
+    fn removals_need_the_marker_and_a_plain_name() {
+        use super::{DirError, Kind, MANIFEST_FILE, drop_manifest, mark, remove_file};
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let run = dir.path().join("run");
+        std::fs::create_dir(&run).expect("mkdir");
+        std::fs::write(run.join("final.csv"), "mine\n").expect("a user's file");
+        std::fs::write(run.join(MANIFEST_FILE), "mine\n").expect("a user's file");
+        std::fs::write(dir.path().join("notes.txt"), "mine\n").expect("a user's file");
+        assert!(matches!(
+            remove_file(&run, "final.csv"),
+            Err(DirError::Foreign { .. })
+        ));
+        assert!(drop_manifest(&run).is_err());
+        mark(&run, Kind::Run).expect("marked");
+        for name in ["../notes.txt", "/etc/hostname", "figures/../../notes.txt"] {
+            assert!(
+                matches!(remove_file(&run, name), Err(DirError::Foreign { .. })),
+                "{name}"
+            );
+        }
+        assert!(run.join("final.csv").is_file() && run.join(MANIFEST_FILE).is_file());
+        assert!(dir.path().join("notes.txt").is_file());
     }
 }
