@@ -426,6 +426,13 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         self.fleet.as_deref()
     }
 
+    /// Which agents have failed (original order), when the simulation runs under conditions
+    /// with `faults` ([`Stage::failed`](crate::conditions::stage::Stage::failed)); `None` otherwise.
+    #[must_use]
+    pub fn failed(&self) -> Option<&[bool]> {
+        self.conditions.as_ref().and_then(|c| c.failed())
+    }
+
     /// The simulation under real `conditions` (validated for its agents, dimension and step),
     /// every random draw keyed from `seed`. With `Conditions::default()` it is the ideal
     /// simulation, unchanged. Otherwise agents are kept in original order (not stored by cell).

@@ -56,6 +56,9 @@ struct Memory {
     /// The recorded vehicle states (frames of n rows of k) when the trajectory is kept, else
     /// the last.
     vehicle: Vec<f64>,
+    /// Which agents have failed (frames of n when the trajectory is kept, else the last), when
+    /// the scenario has `faults`.
+    failed: Option<Vec<bool>>,
 }
 
 /// The real columns before the diagnostics: t, the real metrics, the energy, the extra metrics.
@@ -111,6 +114,13 @@ impl Memory {
             self.vehicle.clear();
         }
         self.vehicle.extend_from_slice(&state.vehicle);
+        if let Some(flags) = &state.failed {
+            let failed = self.failed.get_or_insert_with(Vec::new);
+            if !self.keep_trajectory {
+                failed.clear();
+            }
+            failed.extend_from_slice(flags);
+        }
         self.last.0 = record.t;
         if self.keep_trajectory {
             self.positions.extend_from_slice(&state.positions);
@@ -184,8 +194,39 @@ impl Memory {
         let columns: Vec<String> = self.vehicle_columns.iter().map(|&c| c.to_owned()).collect();
         let kept = self.keep_trajectory.then_some(self.vehicle.clone());
         set_vehicle(&dict, &columns, kept, &self.vehicle, self.agents)?;
+        set_failed(&dict, self.failed, self.keep_trajectory, self.agents)?;
         Ok(dict)
     }
+}
+
+/// Which agents have failed, in the result dict, from `failed` (frames of n when `frames`, else
+/// the last frame's n): `failed` ((T, n) booleans when the frames are kept, else `None`) and
+/// `final["failed"]` ((n,)); both `None` for a scenario without `faults`.
+fn set_failed(
+    dict: &Bound<'_, PyDict>,
+    failed: Option<Vec<bool>>,
+    frames: bool,
+    agents: usize,
+) -> PyResult<()> {
+    let py = dict.py();
+    let last = failed
+        .as_ref()
+        .map(|f| f[f.len() - agents.min(f.len())..].to_vec());
+    match failed.filter(|_| frames) {
+        Some(failed) => {
+            let count = failed.len() / agents.max(1);
+            let array = PyArray1::from_vec(py, failed).reshape([count, agents])?;
+            dict.set_item("failed", array)?;
+        }
+        None => dict.set_item("failed", py.None())?,
+    }
+    if let Some(last_frame) = dict.get_item("final")? {
+        match last {
+            Some(last) => last_frame.set_item("failed", PyArray1::from_vec(py, last))?,
+            None => last_frame.set_item("failed", py.None())?,
+        }
+    }
+    Ok(())
 }
 
 /// The vehicles' states in the result dict: `vehicle_columns` (their names, empty for point
@@ -635,6 +676,7 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         .collect();
     let vehicle_columns = trajectory.vehicle_columns.clone();
     let vehicle = trajectory.vehicle;
+    let failed = (!trajectory.failed.is_empty()).then_some(trajectory.failed);
     let dict = result(
         py,
         &files.scenario,
@@ -655,5 +697,6 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         &vehicle,
         agents,
     )?;
+    set_failed(&dict, failed, true, agents)?;
     Ok(dict)
 }

@@ -75,6 +75,23 @@ def test_a_conditioned_run_has_its_diagnostics_and_the_bits_of_the_cli(tmp_path)
             assert (tmp_path / "py" / name).read_bytes() == (cli / name).read_bytes(), name
 
 
+def test_failed_agents_are_marked_in_the_trajectory_the_final_state_and_read_run(tmp_path):
+    # issue 28: the marks of trajectory.csv's `failed` column, in memory and read back
+    scenario = conditioned(short(CYCLE, records=40))
+    result = flocking.run(scenario, out=tmp_path / "run")
+    failed = result.trajectory.failed
+    assert failed is not None and failed.dtype == np.bool_
+    assert failed.shape == result.trajectory.positions.shape[:2]
+    np.testing.assert_array_equal(failed.sum(axis=1), result.metrics["failed"])
+    assert not failed[0].any() and failed[-1][3] and failed[-1].sum() == 1
+    np.testing.assert_array_equal(result.final.failed, failed[-1])
+    again = flocking.read_run(tmp_path / "run")
+    np.testing.assert_array_equal(again.trajectory.failed, failed)
+    np.testing.assert_array_equal(again.final.failed, failed[-1])
+    ideal = flocking.run(short(CYCLE, records=40))
+    assert ideal.trajectory.failed is None and ideal.final.failed is None
+
+
 def test_a_delay_of_every_state_is_warned_above_the_consensus_bound_only():
     # C₂₀ with gain c: λ_max(L) = 4, so τ* = π / (8 c)
     scenario = flocking.Scenario.load(CYCLE)

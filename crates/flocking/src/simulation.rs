@@ -53,6 +53,9 @@ pub struct State<'a> {
     /// The vehicles' states: agent i's at `vehicle[i * k..(i + 1) * k]`, k the number of
     /// `vehicle_columns`.
     pub vehicle: Cow<'a, [f64]>,
+    /// Which agents have failed, agent i at `failed[i]`, when the scenario's conditions have
+    /// `faults` (the `failed` column of the trajectory and `final.csv`); `None` otherwise.
+    pub failed: Option<Cow<'a, [bool]>>,
 }
 
 impl State<'_> {
@@ -71,6 +74,7 @@ impl State<'_> {
             velocities: Cow::Owned(self.velocities.into_owned()),
             vehicle_columns: self.vehicle_columns,
             vehicle: Cow::Owned(self.vehicle.into_owned()),
+            failed: self.failed.map(|f| Cow::Owned(f.into_owned())),
         }
     }
 }
@@ -151,6 +155,7 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
             velocities: rows(velocities),
             vehicle_columns,
             vehicle: Cow::Borrowed(vehicle),
+            failed: self.failed().map(Cow::Borrowed),
         }
     }
 

@@ -80,7 +80,14 @@ impl Recorder for Bits {
             .chain(record.diagnostics.iter().map(|(_, x)| *x))
             .chain(state.positions.iter().copied())
             .chain(state.velocities.iter().copied())
-            .chain(state.vehicle.iter().copied());
+            .chain(state.vehicle.iter().copied())
+            .chain(
+                state
+                    .failed
+                    .iter()
+                    .flat_map(|f| f.iter())
+                    .map(|&f| f64::from(u8::from(f))),
+            );
         self.records.push(numbers.map(f64::to_bits).collect());
         Ok(())
     }

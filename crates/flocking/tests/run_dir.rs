@@ -344,3 +344,79 @@ fn the_read_records_fuzz_corpus_reads_back() {
         assert_eq!(records.len(), rows, "{}", path.display());
     }
 }
+
+/// Issue 28: a failed agent is marked in the trajectory and `final.csv`, not only counted in
+/// `metrics.csv`. Agents fail at random (rate 0.5/s) and two at given times, `Removed`: at
+/// every record of the CSV and the `.npy` trajectory, the marked agents are exactly as many as
+/// `metrics.csv`'s `failed`, a mark never clears, a marked `Removed` agent stands still with
+/// velocity 0, and `final.csv` ends with the last record's marks. Without faults the files have
+/// no such column.
+#[test]
+fn failed_agents_are_marked_in_the_trajectory_and_the_final_state() {
+    let tmp = temp_dir("run_dir_failed_marks");
+    let base = short("tac2006_fig11_alg2_n100", 2.0);
+    let scenario = base
+        .clone()
+        .with_values([(
+            "conditions.faults",
+            flocking::serde_json::json!({
+                "at": [{"agent": 7, "time": 0.5}, {"agent": 42, "time": 1.2}],
+                "rate": 0.5,
+                "mode": "Removed",
+            }),
+        )])
+        .expect("faults");
+    write(&scenario, &tmp, "csv", TrajectoryFormat::Csv);
+    write(&scenario, &tmp, "npy", TrajectoryFormat::Npy);
+    let csv = read_run(&tmp.path().join("csv")).expect("the CSV run reads back");
+    let npy = read_run(&tmp.path().join("npy")).expect("the .npy run reads back");
+    assert_eq!(csv.trajectory, npy.trajectory);
+    let trajectory = &csv.trajectory;
+    let counted = &csv
+        .metrics
+        .iter()
+        .find(|(name, _)| name == "failed")
+        .expect("metrics.csv counts the failed agents")
+        .1;
+    let frames = trajectory.frames();
+    assert_eq!(counted.len(), frames);
+    let mut before = vec![false; trajectory.agents];
+    for (k, &count) in counted.iter().enumerate() {
+        let marks = trajectory
+            .failed_at(k)
+            .expect("the trajectory marks failures");
+        let marked = marks.iter().filter(|&&f| f).count();
+        assert_eq!(marked as f64, count, "record {k}");
+        for (i, (&now, &was)) in marks.iter().zip(&before).enumerate() {
+            assert!(now || !was, "agent {i}'s mark cleared at record {k}");
+            if was {
+                let p = &trajectory.velocities_at(k)[2 * i..2 * i + 2];
+                assert_eq!(p, [0.0, 0.0], "removed agent {i} moves at record {k}");
+                assert_eq!(
+                    trajectory.positions_at(k)[2 * i..2 * i + 2],
+                    trajectory.positions_at(k - 1)[2 * i..2 * i + 2],
+                    "removed agent {i} moved at record {k}"
+                );
+            }
+        }
+        before = marks.to_vec();
+    }
+    let last = trajectory.failed_at(frames - 1).expect("marks");
+    // both scheduled failures and at least one random one (rate 0.5/s, 100 agents, 2 s)
+    assert!(last[7] && last[42], "{last:?}");
+    assert!(counted[frames - 1] >= 3.0, "{}", counted[frames - 1]);
+    let final_csv = std::fs::read_to_string(tmp.path().join("csv/final.csv")).expect("final.csv");
+    let mut lines = final_csv.lines();
+    assert_eq!(lines.next(), Some("id,x,y,vx,vy,failed"));
+    let final_marks: Vec<bool> = lines
+        .map(|line| line.rsplit(',').next() == Some("1"))
+        .collect();
+    assert_eq!(final_marks, last);
+    // a scenario without faults: no column, nothing marked
+    write(&base, &tmp, "ideal", TrajectoryFormat::Csv);
+    let ideal = read_run(&tmp.path().join("ideal")).expect("reads back");
+    assert!(ideal.trajectory.failed.is_empty());
+    assert_eq!(ideal.trajectory.failed_at(0), None);
+    let header = std::fs::read_to_string(tmp.path().join("ideal/trajectory.csv")).expect("csv");
+    assert!(header.starts_with("t,id,x,y,vx,vy\n"), "{}", &header[..40]);
+}

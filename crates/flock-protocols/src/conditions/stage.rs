@@ -296,6 +296,13 @@ impl<V: Vector> Stage<V> {
         !self.failed[j] || faults::heard(self.mode())
     }
 
+    /// Which agents have failed (original order), when the conditions have `faults`: the
+    /// `failed` column of the trajectory and `final.csv`, whose sum is the `failed` diagnostic.
+    #[must_use]
+    pub fn failed(&self) -> Option<&[bool]> {
+        self.conditions.faults.is_some().then_some(&self.failed[..])
+    }
+
     /// The agents removed from the run (failed in mode `Removed`), if any.
     #[must_use]
     pub fn removed(&self) -> Option<&[bool]> {

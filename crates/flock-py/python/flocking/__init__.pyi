@@ -170,14 +170,16 @@ class Simulation:
         """The energy H of the current state."""
 
 class State:
-    """The state of every agent at time ``t``: (n, dim) positions and velocities, and (n, k)
-    vehicle states named by ``vehicle_columns`` (None for point masses)."""
+    """The state of every agent at time ``t``: (n, dim) positions and velocities, (n, k)
+    vehicle states named by ``vehicle_columns`` (None for point masses), and with
+    ``conditions.faults`` which agents have failed, (n,) booleans (None without)."""
 
     t: float
     positions: npt.NDArray[np.float64]
     velocities: npt.NDArray[np.float64]
     vehicle: Optional[npt.NDArray[np.float64]]
     vehicle_columns: Tuple[str, ...]
+    failed: Optional[npt.NDArray[np.bool_]]
     def __init__(
         self,
         t: float,
@@ -185,17 +187,20 @@ class State:
         velocities: npt.NDArray[np.float64],
         vehicle: Optional[npt.NDArray[np.float64]] = None,
         vehicle_columns: Tuple[str, ...] = (),
+        failed: Optional[npt.NDArray[np.bool_]] = None,
     ) -> None: ...
 
 class Trajectory:
-    """The recorded states: times (T,), positions and velocities (T, n, dim), and the vehicle
-    states (T, n, k) named by ``vehicle_columns`` (None for point masses)."""
+    """The recorded states: times (T,), positions and velocities (T, n, dim), the vehicle
+    states (T, n, k) named by ``vehicle_columns`` (None for point masses), and with
+    ``conditions.faults`` which agents have failed, (T, n) booleans (None without)."""
 
     times: npt.NDArray[np.float64]
     positions: npt.NDArray[np.float64]
     velocities: npt.NDArray[np.float64]
     vehicle: Optional[npt.NDArray[np.float64]]
     vehicle_columns: Tuple[str, ...]
+    failed: Optional[npt.NDArray[np.bool_]]
     def __init__(
         self,
         times: npt.NDArray[np.float64],
@@ -203,6 +208,7 @@ class Trajectory:
         velocities: npt.NDArray[np.float64],
         vehicle: Optional[npt.NDArray[np.float64]] = None,
         vehicle_columns: Tuple[str, ...] = (),
+        failed: Optional[npt.NDArray[np.bool_]] = None,
     ) -> None: ...
 
 class Run:

@@ -171,13 +171,16 @@ class State:
     float64 arrays, agent i on row i (its original index). With a ``vehicle`` other than
     ``PointMass``, the positions and velocities are the reference point's and ``vehicle`` is
     the (n, k) array of each vehicle's state, named by ``vehicle_columns`` (``heading``,
-    ``bank``, ``attitude_w``…, docs/vehicles.md); None for point masses."""
+    ``bank``, ``attitude_w``…, docs/vehicles.md); None for point masses. With
+    ``conditions.faults``, ``failed`` (n,) is True for each agent that has failed (the
+    ``failed`` column of ``final.csv``); None without faults."""
 
     t: float
     positions: _np.ndarray
     velocities: _np.ndarray
     vehicle: Optional[_np.ndarray] = None
     vehicle_columns: Tuple[str, ...] = ()
+    failed: Optional[_np.ndarray] = None
 
     def __repr__(self) -> str:
         n, dim = self.positions.shape
@@ -188,13 +191,16 @@ class State:
 class Trajectory:
     """The recorded states: ``times`` (T,), ``positions`` and ``velocities`` (T, n, dim) float64
     arrays; frame k is the state at ``times[k]``. ``vehicle`` (T, n, k) holds the vehicles'
-    states named by ``vehicle_columns`` (None for point masses)."""
+    states named by ``vehicle_columns`` (None for point masses). With ``conditions.faults``,
+    ``failed`` (T, n) is True where an agent has failed (the ``failed`` column of
+    ``trajectory.csv``; its sum over a frame is that record's ``failed`` metric); None without."""
 
     times: _np.ndarray
     positions: _np.ndarray
     velocities: _np.ndarray
     vehicle: Optional[_np.ndarray] = None
     vehicle_columns: Tuple[str, ...] = ()
+    failed: Optional[_np.ndarray] = None
 
     def __repr__(self) -> str:
         frames, n, dim = self.positions.shape
@@ -253,7 +259,8 @@ class Run:
         - Dimensions ``time`` × ``agent`` × ``axis`` (coordinates: the record times, agent
           indices 0..n−1, and ``"x"``, ``"y"`` (, ``"z"``)).
         - ``q`` and ``p``: positions and velocities (time, agent, axis), when the run kept its
-          trajectory.
+          trajectory; with ``conditions.faults`` also ``agent_failed`` (time, agent), True
+          where the agent has failed (its sum over ``agent`` is the metric ``failed``).
         - Units (``units`` attributes, UDUNITS): ``time`` in s, ``q`` in m, ``p`` in m s-1, and
           every metric's, "1" for ratios and counts (``docs/outputs.md``).
         - Every column of ``metrics.csv`` but ``t`` as a variable over ``time``: a run records
@@ -289,6 +296,12 @@ class Run:
                 trajectory.velocities,
                 {"long_name": "velocity p_i", "units": "m s-1"},
             )
+            if trajectory.failed is not None:
+                data["agent_failed"] = (
+                    ("time", "agent"),
+                    trajectory.failed,
+                    {"long_name": "agent i has failed", "units": "1"},
+                )
         same = trajectory is None or _np.array_equal(trajectory.times, times)
         metrics_time = "time" if same else "metrics_time"
         coords[metrics_time] = times
@@ -383,7 +396,7 @@ class Run:
         columns = tuple(raw["vehicle_columns"])
         if raw["times"] is not None:
             trajectory = Trajectory(
-                raw["times"], raw["positions"], raw["velocities"], raw["vehicle"], columns
+                raw["times"], raw["positions"], raw["velocities"], raw["vehicle"], columns, raw["failed"]
             )
         final = raw["final"]
         vehicle = final["vehicle"] if columns else None
@@ -391,7 +404,9 @@ class Run:
             scenario=raw["scenario"],
             metrics=raw["metrics"],
             trajectory=trajectory,
-            final=State(final["t"], final["positions"], final["velocities"], vehicle, columns),
+            final=State(
+                final["t"], final["positions"], final["velocities"], vehicle, columns, final["failed"]
+            ),
             path=raw["path"],
             verdict=raw["verdict"],
         )

@@ -4,9 +4,9 @@
 //! | file | contents |
 //! | --- | --- |
 //! | `metrics.csv` | `t`, the metrics of [`METRICS_HEADER`], then the protocol's diagnostics |
-//! | `trajectory.csv` | `t,id,x,y[,z],vx,vy[,vz]`, every agent at every recorded step |
-//! | `trajectory.npy` | instead of `trajectory.csv`: records `t`, `q` (n × dim), `p` (n × dim) |
-//! | `final.csv` | `id,x,y[,z],vx,vy[,vz]`, the final state |
+//! | `trajectory.csv` | `t,id,x,y[,z],vx,vy[,vz]`, the vehicle's state, `failed` (with faults), every agent at every recorded step |
+//! | `trajectory.npy` | instead of `trajectory.csv`: records `t`, `q` (n × dim), `p` (n × dim), `s` (n × k), `failed` (n bytes) |
+//! | `final.csv` | the columns of `trajectory.csv` without `t`, the final state |
 //! | `scenario.ron` | the scenario with every default filled in |
 //! | `flocking.txt` | TAC 2006 Definition 5 judged on `metrics.csv` ([`verdict`]) |
 
@@ -19,8 +19,8 @@ pub mod write;
 
 pub use checkpoint::{CHECKPOINT_FILE, Checkpoint};
 pub use read::{
-    Columns, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run, read_trajectory_csv,
-    read_trajectory_npy, trajectory_header, trajectory_header_with,
+    Columns, FAILED_COLUMN, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run,
+    read_trajectory_csv, read_trajectory_npy, trajectory_header, trajectory_header_with,
 };
 pub use verdict::{VERDICT_FILE, judge_metrics_file, read_records, verdict_text};
 pub use write::{

@@ -142,14 +142,22 @@ impl NpyFile {
 }
 
 /// The dtype of a trajectory record: `t` and the `n × dim` positions `q` and velocities `p`,
-/// and with `vehicle` > 0 state values per agent the `n × vehicle` vehicle states `s`.
+/// with `vehicle` > 0 state values per agent the `n × vehicle` vehicle states `s`, and with
+/// `failed` the `n` bytes `failed` (1: the agent has failed, 0: it works).
 #[must_use]
-pub fn trajectory_dtype(agents: usize, dim: usize, vehicle: usize) -> (String, u64) {
+pub fn trajectory_dtype(agents: usize, dim: usize, vehicle: usize, failed: bool) -> (String, u64) {
     let mut descr =
         format!("[('t', '<f8'), ('q', '<f8', ({agents}, {dim})), ('p', '<f8', ({agents}, {dim}))");
     if vehicle > 0 {
         descr.push_str(&format!(", ('s', '<f8', ({agents}, {vehicle}))"));
     }
+    if failed {
+        descr.push_str(&format!(", ('failed', '|u1', ({agents},))"));
+    }
     descr.push(']');
-    (descr, 8 * (1 + agents * (2 * dim + vehicle)) as u64)
+    let flags = if failed { agents } else { 0 };
+    (
+        descr,
+        (8 * (1 + agents * (2 * dim + vehicle)) + flags) as u64,
+    )
 }

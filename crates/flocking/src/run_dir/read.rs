@@ -13,6 +13,10 @@ use crate::scenario::Scenario;
 /// The name of the time column of `metrics.csv`.
 pub const TIME: &str = "t";
 
+/// The last column of a trajectory row when the scenario has `faults`: 1 when the agent has
+/// failed (in any mode, `docs/conditions.md`), else 0.
+pub const FAILED_COLUMN: &str = "failed";
+
 /// Why a run directory could not be read.
 #[derive(Debug)]
 pub enum ReadError {
@@ -92,6 +96,9 @@ pub struct Trajectory {
     pub vehicle_columns: Vec<String>,
     /// The vehicles' states, frame by frame, agent by agent, `vehicle_columns.len()` each.
     pub vehicle: Vec<f64>,
+    /// Whether each agent has failed, frame by frame, agent by agent, when the trajectory
+    /// marks it (the scenario has `faults`); empty otherwise.
+    pub failed: Vec<bool>,
 }
 
 impl Trajectory {
@@ -120,6 +127,12 @@ impl Trajectory {
     pub fn vehicle_at(&self, k: usize) -> &[f64] {
         let size = self.agents * self.vehicle_columns.len();
         &self.vehicle[k * size..(k + 1) * size]
+    }
+
+    /// Which agents of frame `k` have failed, when the trajectory marks it.
+    #[must_use]
+    pub fn failed_at(&self, k: usize) -> Option<&[bool]> {
+        (!self.failed.is_empty()).then(|| &self.failed[k * self.agents..(k + 1) * self.agents])
     }
 }
 
@@ -207,7 +220,7 @@ pub fn trajectory_header_with(dim: usize, vehicle: &[&str]) -> Vec<String> {
 }
 
 /// Reads a `trajectory.csv` (`t,id,x,y,vx,vy` or `t,id,x,y,z,vx,vy,vz`, then the vehicle's
-/// state columns if any): rows grouped by t, each
+/// state columns if any, then [`FAILED_COLUMN`] if the run has faults): rows grouped by t, each
 /// frame listing every agent once (in any order).
 ///
 /// # Errors
@@ -229,9 +242,11 @@ pub fn read_trajectory_csv(path: &Path) -> Result<Trajectory, ReadError> {
             ),
         ));
     };
+    let rest = &table.header[2 + 2 * dim..];
+    let marks_failed = rest.last().is_some_and(|c| c == FAILED_COLUMN);
     let mut trajectory = Trajectory {
         dim,
-        vehicle_columns: table.header[2 + 2 * dim..].to_vec(),
+        vehicle_columns: rest[..rest.len() - usize::from(marks_failed)].to_vec(),
         ..Trajectory::default()
     };
     let mut start = 0;
@@ -263,21 +278,37 @@ pub fn read_trajectory_csv(path: &Path) -> Result<Trajectory, ReadError> {
                 ),
             ));
         }
-        push_frame(&table, &table.rows[start..end], &mut trajectory)?;
+        push_frame(
+            &table,
+            &table.rows[start..end],
+            marks_failed,
+            &mut trajectory,
+        )?;
         start = end;
     }
     Ok(trajectory)
 }
 
-/// Appends the frame of the rows of one time, agents in id order.
+/// Appends the frame of the rows of one time, agents in id order; with `marks_failed`, each
+/// row ends with [`FAILED_COLUMN`], 0 or 1.
 fn push_frame(
     table: &Table,
     rows: &[(usize, Vec<f64>)],
+    marks_failed: bool,
     trajectory: &mut Trajectory,
 ) -> Result<(), ReadError> {
     let (n, dim) = (rows.len(), trajectory.dim);
     let mut slots: Vec<Option<&[f64]>> = vec![None; n];
     for (line, row) in rows {
+        if let Some(&flag) = row.last().filter(|_| marks_failed)
+            && flag != 0.0
+            && flag != 1.0
+        {
+            return Err(table.error_at(
+                *line,
+                format!("{FAILED_COLUMN} is {flag}: it is 1 for an agent that has failed, else 0"),
+            ));
+        }
         let id = row[1];
         if !(id >= 0.0 && id < n as f64 && id.fract() == 0.0) {
             return Err(table.error_at(
@@ -298,18 +329,21 @@ fn push_frame(
     trajectory.times.push(rows[0].1[0]);
     // n rows, ids in 0..n, none twice: every slot is filled
     for state in slots.into_iter().flatten() {
+        let (state, flag) = state.split_at(state.len() - usize::from(marks_failed));
         trajectory.positions.extend_from_slice(&state[..dim]);
         trajectory
             .velocities
             .extend_from_slice(&state[dim..2 * dim]);
         trajectory.vehicle.extend_from_slice(&state[2 * dim..]);
+        trajectory.failed.extend(flag.iter().map(|&f| f == 1.0));
     }
     Ok(())
 }
 
 /// Reads a `trajectory.npy` as [`RunDirectory`](super::RunDirectory) writes it: a NumPy 1.0 file of
-/// records `[('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))]`, one per frame (only
-/// the records its header counts).
+/// records `[('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))]`, then the vehicles'
+/// `('s', '<f8', (n, k))` and the marks `('failed', '|u1', (n,))` when the run has them, one
+/// record per frame (only the records its header counts).
 ///
 /// # Errors
 /// As [`read_run`] (line 1: the header) when it is not such a file.
@@ -363,16 +397,17 @@ pub fn read_trajectory_npy(path: &Path) -> Result<Trajectory, ReadError> {
         Some(s) if s.len() == 2 && s[0] == agents => s[1],
         _ => 0,
     };
-    let record = 1 + agents * (2 * dim + vehicle);
-    let data: Vec<f64> = bytes[header_end..]
-        .chunks_exact(8)
-        .take(records * record)
-        .map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default()))
-        .collect();
-    if data.len() < records * record {
+    let flags = match numbers_after(&format!("('{FAILED_COLUMN}', '|u1', (")) {
+        Some(s) if s == [agents] => agents,
+        _ => 0,
+    };
+    let reals = 1 + agents * (2 * dim + vehicle);
+    let record = 8 * reals + flags;
+    let data = &bytes[header_end..];
+    if data.len() / record.max(1) < records {
         return Err(bad(format!(
             "the header counts {records} records but the file holds {}",
-            data.len() / record
+            data.len() / record.max(1)
         )));
     }
     let mut trajectory = Trajectory {
@@ -381,13 +416,25 @@ pub fn read_trajectory_npy(path: &Path) -> Result<Trajectory, ReadError> {
         vehicle_columns: (1..=vehicle).map(|k| format!("s{k}")).collect(),
         ..Trajectory::default()
     };
-    for r in data.chunks_exact(record) {
-        let (q, rest) = r[1..].split_at(agents * dim);
+    for r in data.chunks_exact(record).take(records) {
+        let (values, failed) = r.split_at(8 * reals);
+        if let Some(flag) = failed.iter().find(|&&f| f > 1) {
+            return Err(bad(format!(
+                "record {} has {FAILED_COLUMN} = {flag}: it is 1 for an agent that has failed, else 0",
+                trajectory.times.len()
+            )));
+        }
+        let values: Vec<f64> = values
+            .chunks_exact(8)
+            .map(|b| f64::from_le_bytes(b.try_into().unwrap_or_default()))
+            .collect();
+        let (q, rest) = values[1..].split_at(agents * dim);
         let (p, s) = rest.split_at(agents * dim);
-        trajectory.times.push(r[0]);
+        trajectory.times.push(values[0]);
         trajectory.positions.extend_from_slice(q);
         trajectory.velocities.extend_from_slice(p);
         trajectory.vehicle.extend_from_slice(s);
+        trajectory.failed.extend(failed.iter().map(|&f| f == 1));
     }
     Ok(trajectory)
 }

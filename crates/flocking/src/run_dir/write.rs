@@ -40,12 +40,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, sync_dir};
 use super::npy::{NpyFile, trajectory_dtype};
-use super::read::trajectory_header_with;
+use super::read::{FAILED_COLUMN, trajectory_header_with};
 use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
 use crate::error::ScenarioError;
 use crate::owned::{self, DirError, DirLock, Kind, at, parent_of};
 use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
+use crate::simulation::State;
 use flock_metrics::{FlockingCriteria, FlockingVerdict};
 
 /// The header of `metrics.csv`: t, [`FlockMetrics::REAL_COLUMNS`](flock_metrics::FlockMetrics::REAL_COLUMNS),
@@ -158,11 +159,13 @@ pub struct RunDirectory {
     stop: Option<&'static AtomicBool>,
     /// One trajectory record's bytes (CSV text or `.npy` row), reused.
     buffer: Vec<u8>,
-    /// The last recorded state (dim coordinates of q, then of p, then the vehicle's state, per
-    /// agent) for `final.csv`.
+    /// The last recorded state (dim coordinates of q, then of p, then the vehicle's state, then
+    /// 0 or 1 for `failed` when it is marked, per agent) for `final.csv`.
     last_state: Vec<f64>,
     /// The names of each agent's vehicle state (empty for point masses).
     vehicle_columns: &'static [&'static str],
+    /// Whether each agent's row ends with `failed` (0 or 1): the scenario has `faults`.
+    marks_failed: bool,
     /// The diagnostic columns of the header of `metrics.csv`, once written.
     columns: Option<Vec<String>>,
     /// The number of agents.
@@ -523,6 +526,7 @@ impl RunDirectory {
                     scenario.agents,
                     scenario.dim,
                     scenario.vehicle.state_columns(scenario.dim).len(),
+                    marks_failed(scenario),
                 );
                 let path = partial.join("trajectory.npy");
                 Trajectory::Npy(
@@ -544,6 +548,7 @@ impl RunDirectory {
             buffer: Vec::new(),
             last_state: Vec::new(),
             vehicle_columns: scenario.vehicle.state_columns(scenario.dim),
+            marks_failed: marks_failed(scenario),
             columns: None,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
@@ -711,6 +716,7 @@ impl RunDirectory {
                     scenario.agents,
                     scenario.dim,
                     scenario.vehicle.state_columns(scenario.dim).len(),
+                    marks_failed(&scenario),
                 );
                 let path = partial.join("trajectory.npy");
                 Trajectory::Npy(
@@ -733,6 +739,7 @@ impl RunDirectory {
             buffer: Vec::new(),
             last_state: Vec::new(),
             vehicle_columns: scenario.vehicle.state_columns(scenario.dim),
+            marks_failed: marks_failed(&scenario),
             columns,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
@@ -817,9 +824,9 @@ impl RunDirectory {
     }
 
     fn complete(&mut self) -> io::Result<Option<FlockingVerdict>> {
-        let header = trajectory_header_with(self.dim, self.vehicle_columns);
+        let header = agent_header(self.dim, self.vehicle_columns, self.marks_failed);
         let mut last = format!("{}\n", header[1..].join(",")).into_bytes();
-        let coordinates = 2 * self.dim + self.vehicle_columns.len();
+        let coordinates = self.row_width();
         for (i, state) in self.last_state.chunks_exact(coordinates).enumerate() {
             write_state(&mut last, i, state);
         }
@@ -940,12 +947,28 @@ impl RunDirectory {
     }
 }
 
+/// Whether the trajectory and `final.csv` of `scenario` mark each agent `failed`: its conditions
+/// have `faults` (issue 28; the column's sum at a record is `metrics.csv`'s `failed`).
+fn marks_failed(scenario: &Scenario) -> bool {
+    scenario.conditions.faults.is_some()
+}
+
+/// The columns of a trajectory row: [`trajectory_header_with`], then [`FAILED_COLUMN`] when
+/// `failed`.
+fn agent_header(dim: usize, vehicle: &[&str], failed: bool) -> Vec<String> {
+    let mut header = trajectory_header_with(dim, vehicle);
+    if failed {
+        header.push(FAILED_COLUMN.to_owned());
+    }
+    header
+}
+
 /// The header line of the `trajectory.csv` of `scenario`.
 fn trajectory_csv_header(scenario: &Scenario) -> String {
     let vehicle = scenario.vehicle.state_columns(scenario.dim);
     format!(
         "{}\n",
-        trajectory_header_with(scenario.dim, vehicle).join(",")
+        agent_header(scenario.dim, vehicle, marks_failed(scenario)).join(",")
     )
 }
 
@@ -1308,6 +1331,11 @@ fn cut(path: &Path, bytes: u64) -> io::Result<File> {
     Ok(file)
 }
 
+/// Whether agent `i` of `state` has failed (never, when its run marks no failures).
+fn failed(state: &State<'_>, i: usize) -> bool {
+    state.failed.as_ref().is_some_and(|failed| failed[i])
+}
+
 /// Appends `id,x,y[,z],vx,vy[,vz]` of agent `i` (shortest round-trip decimal forms).
 fn write_state(out: &mut Vec<u8>, i: usize, state: &[f64]) {
     // Writing to a Vec cannot fail.
@@ -1319,6 +1347,11 @@ fn write_state(out: &mut Vec<u8>, i: usize, state: &[f64]) {
 }
 
 impl RunDirectory {
+    /// The values of one agent's row after its id: q, p, the vehicle's state, `failed`.
+    const fn row_width(&self) -> usize {
+        2 * self.dim + self.vehicle_columns.len() + self.marks_failed as usize
+    }
+
     /// Writes the header of `metrics.csv` with the first record's diagnostic columns, or checks
     /// that a later record names the same columns.
     fn check_columns(&mut self, record: &Record<'_>) -> io::Result<()> {
@@ -1383,11 +1416,15 @@ impl Recorder for RunDirectory {
             self.last_state.extend_from_slice(p);
             self.last_state
                 .extend_from_slice(&state.vehicle[i * width..(i + 1) * width]);
+            if self.marks_failed {
+                self.last_state.push(f64::from(u8::from(failed(state, i))));
+            }
         }
+        let row = self.row_width();
         match &mut self.trajectory {
             Trajectory::Csv { file, bytes } => {
                 self.buffer.clear();
-                for (i, agent) in self.last_state.chunks_exact(2 * dim + width).enumerate() {
+                for (i, agent) in self.last_state.chunks_exact(row).enumerate() {
                     let _ = write!(self.buffer, "{},", record.t);
                     write_state(&mut self.buffer, i, agent);
                 }
@@ -1404,6 +1441,11 @@ impl Recorder for RunDirectory {
                     for x in rows.iter() {
                         self.buffer.extend_from_slice(&x.to_le_bytes());
                     }
+                }
+                if self.marks_failed {
+                    let agents = state.agents();
+                    self.buffer
+                        .extend((0..agents).map(|i| u8::from(failed(state, i))));
                 }
                 file.append(&self.buffer).map_err(at(format_args!(
                     "write {}",
