@@ -455,6 +455,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         }
         let n = self.swarm.len();
         let range = self.protocol.interaction_range();
+        // the stage holds its own inputs and integrates itself: the ideal loop's buffers go
+        // before it is allocated (at the peak of memory), and the agents into original order
+        if self.stored_by_cell() {
+            self.swarm = self.swarm().into_owned();
+        }
+        self.net = empty_net(&self.protocol);
+        self.inputs = Vec::new();
+        self.rk = None;
         let stage = Stage::new(conditions, seed, n, self.step, range)?;
         if self.protocol.update().sets_velocity()
             && let Some(field) = stage::acceleration_field(conditions)
@@ -479,13 +487,6 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 "remove this condition, or use a distributed protocol (Algorithms 1-3, Consensus)",
             ));
         }
-        if self.stored_by_cell() {
-            self.swarm = self.swarm().into_owned();
-        }
-        self.net = empty_net(&self.protocol);
-        // the stage holds its own inputs and integrates itself: the ideal loop's buffers go
-        self.inputs = Vec::new();
-        self.rk = None;
         self.conditions = Some(Box::new(stage));
         self.rebuild_net();
         Ok(self)

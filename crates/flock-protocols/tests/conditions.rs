@@ -736,10 +736,11 @@ fn bytes_per_agent_counts_the_delay_line() {
 }
 
 /// Issue 31: what `flocking bench --delay 0.1 --loss 0.1 --sensing-noise 0.1` keeps in 2D at
-/// h = 0.01 s: the delay line's 11 states and the measured one (12 × 32 B), the held input and
-/// the delivered acceleration (2 × 16 B) and the failure flag; white noise keeps no offsets and
-/// Bernoulli loss with dropped packets no links. Ornstein–Uhlenbeck noise adds its offsets (32 B),
-/// holding a lost packet a list of links per receiver (24 B).
+/// h = 0.01 s: the delay line's 11 states, the newest the measured one (11 × 32 B), the input,
+/// delivered in place (16 B), and the failure flag; white noise keeps no offsets and Bernoulli
+/// loss with dropped packets no links. Ornstein–Uhlenbeck noise adds its offsets (32 B), holding
+/// a lost packet a list of links per receiver (24 B), an actuator lag the delivered acceleration
+/// apart from the input (16 B).
 #[test]
 fn bytes_per_agent_of_the_benchmarks_conditions() {
     let mut c = Conditions {
@@ -757,7 +758,7 @@ fn bytes_per_agent_of_the_benchmarks_conditions() {
         }),
         ..Conditions::default()
     };
-    assert_eq!(bytes_per_agent(&c, 2, 0.01), 12 * 32 + 2 * 16 + 1);
+    assert_eq!(bytes_per_agent(&c, 2, 0.01), 11 * 32 + 16 + 1);
     if let Some(s) = c.sensing.as_mut() {
         s.noise = Noise::OrnsteinUhlenbeck {
             sigma_q: 0.1,
@@ -768,7 +769,12 @@ fn bytes_per_agent_of_the_benchmarks_conditions() {
     if let Some(m) = c.communication.as_mut() {
         m.when_lost = WhenLost::Hold { max_age: 0.5 };
     }
-    assert_eq!(bytes_per_agent(&c, 2, 0.01), 13 * 32 + 2 * 16 + 1 + 24);
+    assert_eq!(bytes_per_agent(&c, 2, 0.01), 12 * 32 + 16 + 1 + 24);
+    c.actuation = Some(Actuation {
+        lag: Some(0.5),
+        ..Actuation::default()
+    });
+    assert_eq!(bytes_per_agent(&c, 2, 0.01), 12 * 32 + 2 * 16 + 1 + 24);
 }
 
 /// Every condition in 3D: the limits hold and a resumed run keeps the bits.

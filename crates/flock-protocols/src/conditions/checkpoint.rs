@@ -29,17 +29,18 @@ pub struct ConditionsState {
     pub dim: usize,
     /// Whether a step has been taken (the noise, gusts and history are initialised).
     pub started: bool,
-    /// The measured positions and velocities (held between sensor updates).
-    pub measured: (Vec<f64>, Vec<f64>),
     /// The sensor noise offsets (position, velocity) per agent.
     pub noise: (Vec<f64>, Vec<f64>),
-    /// The delay line, slot by slot (positions, velocities).
+    /// The delay line, slot by slot (positions, velocities); its newest slot is the measured
+    /// state, held between sensor updates. (Checkpoints written before it held that state also
+    /// kept a `measured` field, the same numbers, which is not read.)
     pub history: Vec<(Vec<f64>, Vec<f64>)>,
     /// The links each receiver keeps, by receiver.
     pub links: Vec<Vec<LinkState>>,
     /// The held commanded inputs.
     pub inputs: Vec<f64>,
-    /// The delivered (lagged) accelerations.
+    /// The delivered (lagged) accelerations; empty when the run delivers the inputs of each
+    /// step (no lag, no sampled control), whose older checkpoints' values are not read.
     pub delivered: Vec<f64>,
     /// The wind gusts (one shared, or one per agent).
     pub gust: Vec<f64>,
@@ -83,10 +84,6 @@ impl<V: Vector> Stage<V> {
             seed: self.streams.seed(),
             dim: V::DIM,
             started: self.started,
-            measured: (
-                flat(&self.measured.positions),
-                flat(&self.measured.velocities),
-            ),
             noise: (flat(&nq), flat(&np)),
             history: self
                 .history
@@ -146,15 +143,17 @@ impl<V: Vector> Stage<V> {
         check_len("failed", s.failed.len(), n)?;
         check_len("links", s.links.len(), self.links.len())?;
         check_len("history", s.history.len(), self.history.slots.len())?;
-        self.measured.positions = vectors("measured", &s.measured.0, n).map_err(within)?;
-        self.measured.velocities = vectors("measured", &s.measured.1, n).map_err(within)?;
         let noise_len = self.noise.len();
         let nq: Vec<V> = vectors("noise", &s.noise.0, noise_len).map_err(within)?;
         let np: Vec<V> = vectors("noise", &s.noise.1, noise_len).map_err(within)?;
         self.noise = nq.into_iter().zip(np).collect();
-        for (slot, (q, p)) in self.history.slots.iter_mut().zip(&s.history) {
-            slot.0 = vectors("history", q, n).map_err(within)?;
-            slot.1 = vectors("history", p, n).map_err(within)?;
+        // a run whose agents perceive the truth keeps no agent's state in it (read by none)
+        let width = self.history.agents();
+        if width > 0 {
+            for (slot, (q, p)) in self.history.slots.iter_mut().zip(&s.history) {
+                slot.0 = vectors("history", q, width).map_err(within)?;
+                slot.1 = vectors("history", p, width).map_err(within)?;
+            }
         }
         let mut links = Vec::with_capacity(n);
         for ls in &s.links {
@@ -178,7 +177,9 @@ impl<V: Vector> Stage<V> {
         }
         self.links = links;
         self.inputs = vectors("inputs", &s.inputs, n).map_err(within)?;
-        self.delivered = vectors("delivered", &s.delivered, n).map_err(within)?;
+        if !self.delivered.is_empty() {
+            self.delivered = vectors("delivered", &s.delivered, n).map_err(within)?;
+        }
         self.gust = vectors("gust", &s.gust, self.gust.len()).map_err(within)?;
         self.failed = s.failed;
         self.started = s.started;

@@ -21,19 +21,43 @@ impl<V: Vector> History<V> {
         }
     }
 
+    /// The number of agents whose states it holds.
+    #[must_use]
+    pub fn agents(&self) -> usize {
+        self.slots.first().map_or(0, |slot| slot.0.len())
+    }
+
     /// The number of steps held, D + 1 (never 0).
     #[must_use]
     pub fn depth(&self) -> u64 {
         self.slots.len() as u64
     }
 
-    /// Records the state of step `k`; at the first step, every slot.
-    pub fn record(&mut self, k: u64, first: bool, positions: &[V], velocities: &[V]) {
-        let len = self.depth();
-        for (s, slot) in self.slots.iter_mut().enumerate() {
-            if first || s as u64 == k % len {
-                slot.0.copy_from_slice(positions);
-                slot.1.copy_from_slice(velocities);
+    /// The slot of step `k`, to write the state measured at step `k` into, and the state of
+    /// step `k` − 1 (held by a sensor between its updates; the same slot when D = 0).
+    pub fn newest(&mut self, k: u64) -> (&mut (Vec<V>, Vec<V>), Option<&(Vec<V>, Vec<V>)>) {
+        let len = self.slots.len();
+        let s = (k % self.depth()) as usize;
+        let before = (s + len - 1) % len;
+        if before == s {
+            return (&mut self.slots[s], None);
+        }
+        let (low, high) = self.slots.split_at_mut(s.max(before));
+        if s < before {
+            (&mut low[s], Some(&high[0]))
+        } else {
+            (&mut high[0], Some(&low[before]))
+        }
+    }
+
+    /// Fills every slot with the state of step `k` (at the first step: a constant history).
+    pub fn fill_from(&mut self, k: u64) {
+        let s = (k % self.depth()) as usize;
+        let (older, rest) = self.slots.split_at_mut(s);
+        if let Some((newest, newer)) = rest.split_first_mut() {
+            for slot in older.iter_mut().chain(newer) {
+                slot.0.copy_from_slice(&newest.0);
+                slot.1.copy_from_slice(&newest.1);
             }
         }
     }

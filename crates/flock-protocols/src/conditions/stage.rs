@@ -53,8 +53,9 @@ pub struct Stage<V> {
     gusts: Option<OrnsteinUhlenbeck>,
     // the state carried between steps (checkpointed)
     pub(crate) started: bool,
-    pub(crate) measured: Swarm<V>,
     pub(crate) noise: Vec<(V, V)>,
+    /// The measured states of the last D + 1 steps, the newest the current one (no agent's
+    /// when no condition changes perception).
     pub(crate) history: History<V>,
     /// What each receiver keeps of its links (empty when links keep nothing).
     pub(crate) links: Vec<Vec<Link<V>>>,
@@ -141,9 +142,10 @@ pub fn depth(conditions: &Conditions, h: f64) -> Result<u64, ParamError> {
 }
 
 /// The bytes per agent that `conditions` keep in a `dim`-dimensional run at step `h`, as
-/// [`Stage::new`] allocates them: the delay line (D + 1 measured states of 2·dim f64 when a
-/// condition changes perception, else one), the measured state, the Ornstein–Uhlenbeck sensor
-/// offsets, the held input and the delivered acceleration, per-agent gusts, the failure flag,
+/// [`Stage::new`] allocates them: the delay line (D + 1 measured states of 2·dim f64, the newest
+/// the current one, when a condition changes perception, else none), the Ornstein–Uhlenbeck
+/// sensor offsets, the input (and apart from it the delivered acceleration with a lag or sampled
+/// control: [`holds_delivered`]), per-agent gusts, the failure flag,
 /// and each receiver's list of links (its entries not counted: ≤ one per neighbour) for
 /// Gilbert–Elliott loss or `Hold`.
 #[must_use]
@@ -155,7 +157,7 @@ pub fn bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
     let states = if perception_field(conditions).is_some() {
         depth(conditions, h).unwrap_or(0) as usize + 1
     } else {
-        1
+        0
     };
     let ornstein_uhlenbeck = conditions
         .sensing
@@ -166,10 +168,16 @@ pub fn bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
         .and_then(|d| d.wind.as_ref())
         .is_some_and(|w| w.gust > 0.0 && w.per_agent);
     let links = keeps_links(conditions);
-    (states + 1 + usize::from(ornstein_uhlenbeck)) * 2 * vector
-        + (2 + usize::from(gusts)) * vector
+    (states + usize::from(ornstein_uhlenbeck)) * 2 * vector
+        + (1 + usize::from(holds_delivered(conditions)) + usize::from(gusts)) * vector
         + 1
         + usize::from(links) * size_of::<Vec<Link<V0>>>()
+}
+
+/// Whether the delivered accelerations are kept apart from the commanded inputs: with a lag
+/// (its state), or with sampled control (the input is held, clipped afresh at each step).
+fn holds_delivered(conditions: &Conditions) -> bool {
+    conditions.actuation.and_then(|a| a.lag).is_some() || conditions.control.is_some()
 }
 
 /// A vector type for the size of a list of links (a `Vec`'s size does not depend on it).
@@ -251,7 +259,6 @@ impl<V: Vector> Stage<V> {
             lag: c.actuation.and_then(|a| a.lag).map(|tau| Lag::new(tau, h)),
             gusts,
             started: false,
-            measured: Swarm::new(vec![V::ZERO; n], vec![V::ZERO; n]),
             // white noise is drawn afresh at each update: only Ornstein–Uhlenbeck offsets are kept
             noise: vec![
                 (V::ZERO, V::ZERO);
@@ -261,10 +268,14 @@ impl<V: Vector> Stage<V> {
                     0
                 }
             ],
-            history: History::new(if perceives { delay + jitter } else { 0 }, n),
+            history: if perceives {
+                History::new(delay + jitter, n)
+            } else {
+                History::new(0, 0)
+            },
             links: vec![Vec::new(); if keeps_links { n } else { 0 }],
             inputs: vec![V::ZERO; n],
-            delivered: vec![V::ZERO; n],
+            delivered: vec![V::ZERO; if holds_delivered(c) { n } else { 0 }],
             gust: vec![V::ZERO; gust_count],
             failed: vec![false; n],
             readings: Readings::default(),
@@ -354,9 +365,6 @@ impl<V: Vector> Stage<V> {
         }
         if self.perceives {
             self.sense(swarm, k);
-            let first = !self.started;
-            let m = &self.measured;
-            self.history.record(k, first, &m.positions, &m.velocities);
         }
         if k.is_multiple_of(self.control_period) {
             match protocol.local_form().filter(|_| self.perceives) {
@@ -384,20 +392,34 @@ impl<V: Vector> Stage<V> {
     }
 
     /// Sense: each agent's measured state is its true state plus the sensor noise, refreshed
-    /// every sensor period and held between (the true state at every step without sensing).
+    /// every sensor period and held between (the true state at every step without sensing),
+    /// written into the delay line's slot of step `k`; at the first step, into every slot.
     fn sense(&mut self, swarm: &Swarm<V>, k: u64) {
+        let started = self.started;
+        self.measure(swarm, k);
+        if !started {
+            self.history.fill_from(k);
+        }
+    }
+
+    /// The measured state of step `k`, into its slot of the delay line.
+    fn measure(&mut self, swarm: &Swarm<V>, k: u64) {
+        let (slot, before) = self.history.newest(k);
         let Some(sensor) = self.sensor else {
-            self.measured.clone_from(swarm);
+            slot.0.copy_from_slice(&swarm.positions);
+            slot.1.copy_from_slice(&swarm.velocities);
             return;
         };
         if self.started && !k.is_multiple_of(self.sensor_period) {
+            // held: the state of step k − 1 (already in place when D = 0)
+            if let Some(before) = before {
+                slot.0.copy_from_slice(&before.0);
+                slot.1.copy_from_slice(&before.1);
+            }
             return;
         }
         let (started, streams) = (self.started, &self.streams);
-        let Swarm {
-            positions,
-            velocities,
-        } = &mut self.measured;
+        let (positions, velocities) = (&mut slot.0, &mut slot.1);
         let measure = |i: usize, q: &mut V, p: &mut V, previous: Option<(V, V)>| {
             let mut draws = streams.draws(Purpose::Sensing, i as u64, k);
             let (xi_q, xi_p) = (draws.normal_vector(), draws.normal_vector());
@@ -593,22 +615,40 @@ impl<V: Vector> Stage<V> {
         self.readings.information_age = ratio(counts.age as f64 * self.h, counts.used);
     }
 
-    /// Actuate: the commanded acceleration clipped to a_max, then the first-order lag.
+    /// Actuate: the commanded acceleration clipped to a_max, then the first-order lag. The
+    /// delivered accelerations replace the inputs when no input is held past this step (no lag,
+    /// control at every step: [`holds_delivered`]).
     fn actuate(&mut self) {
         let actuation = self.conditions.actuation.unwrap_or_default();
         let mut clipped = 0usize;
+        let in_place = self.delivered.is_empty();
         for i in 0..self.inputs.len() {
             let (u, at_limit) = clip(self.inputs[i], actuation.max_acceleration);
             clipped += usize::from(at_limit);
-            self.delivered[i] = match self.lag {
-                Some(lag) => lag.advance(self.delivered[i], u),
+            let moves = self.moves(i);
+            let delivered = if in_place {
+                &mut self.inputs[i]
+            } else {
+                &mut self.delivered[i]
+            };
+            *delivered = match self.lag {
+                Some(lag) => lag.advance(*delivered, u),
                 None => u,
             };
-            if !self.moves(i) {
-                self.delivered[i] = V::ZERO;
+            if !moves {
+                *delivered = V::ZERO;
             }
         }
         self.readings.at_acceleration_limit = clipped as f64;
+    }
+
+    /// The accelerations delivered at this step (after [`Stage::actuate`]).
+    fn delivered(&self) -> &[V] {
+        if self.delivered.is_empty() {
+            &self.inputs
+        } else {
+            &self.delivered
+        }
     }
 
     /// Disturb and integrate: wind w_i = mean + gusts, and with the process noise σ √h ξ
@@ -639,7 +679,7 @@ impl<V: Vector> Stage<V> {
                 return 0;
             }
             let (wind, noise) = this.disturbance(i, k);
-            let a = this.delivered[i] + wind;
+            let a = this.delivered()[i] + wind;
             let (next_p, clipped) = clip(*p + a * h + noise, max_speed);
             *q = match integrator {
                 Integrator::SymplecticEuler => domain.wrap(*q + next_p * h),
@@ -662,7 +702,7 @@ impl<V: Vector> Stage<V> {
             wind + noise * (1.0 / this.h)
         };
         let moves = |i: usize| this.moves(i);
-        fleet.advance(this.h, domain, swarm, &this.delivered, disturbance, moves);
+        fleet.advance(this.h, domain, swarm, this.delivered(), disturbance, moves);
     }
 
     /// The wind gusts of step `k` (Ornstein–Uhlenbeck, started in its stationary law).
@@ -717,7 +757,7 @@ impl<V: Vector> Stage<V> {
         for i in 0..swarm.len() {
             let (q, p) = (swarm.positions[i], swarm.velocities[i]);
             (swarm.positions[i], swarm.velocities[i]) = if self.moves(i) {
-                advance(update, domain, self.h, q, p, self.delivered[i])
+                advance(update, domain, self.h, q, p, self.delivered()[i])
             } else {
                 (q, V::ZERO)
             };
