@@ -2,13 +2,16 @@
 
 use flock_math::Vector;
 
+/// One slot of the ring: every agent's positions, then their velocities.
+pub type Slot<V> = (Vec<V>, Vec<V>);
+
 /// A ring of the measured positions and velocities of the last `len` steps; the state of step k
 /// is in slot k mod len. Before the first step the history is the first state (a constant
 /// initial history, x(t) = x(0) for t < 0).
 #[derive(Clone, Debug, PartialEq)]
 pub struct History<V> {
     /// Per slot, the positions then the velocities of every agent.
-    pub(crate) slots: Vec<(Vec<V>, Vec<V>)>,
+    pub(crate) slots: Vec<Slot<V>>,
 }
 
 impl<V: Vector> History<V> {
@@ -35,7 +38,7 @@ impl<V: Vector> History<V> {
 
     /// The slot of step `k`, to write the state measured at step `k` into, and the state of
     /// step `k` − 1 (held by a sensor between its updates; the same slot when D = 0).
-    pub fn newest(&mut self, k: u64) -> (&mut (Vec<V>, Vec<V>), Option<&(Vec<V>, Vec<V>)>) {
+    pub fn newest(&mut self, k: u64) -> (&mut Slot<V>, Option<&Slot<V>>) {
         let len = self.slots.len();
         let s = (k % self.depth()) as usize;
         let before = (s + len - 1) % len;
