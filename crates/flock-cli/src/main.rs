@@ -260,7 +260,9 @@ fn dispatch(command: Command) -> ExitCode {
                 Err(e) => {
                     errln!("error: {e}");
                     match e {
-                        flock_viz::PlotError::Scenario(_) => ExitCode::from(INVALID),
+                        flock_viz::PlotError::Scenario(_) | flock_viz::PlotError::Dir(_) => {
+                            ExitCode::from(INVALID)
+                        }
                         flock_viz::PlotError::Viz(_) => ExitCode::FAILURE,
                     }
                 }

@@ -2,7 +2,7 @@
 
 use std::fs;
 
-use crate::common::{flocking, temp_dir};
+use crate::common::{flocking, stderr, temp_dir};
 
 /// A short Algorithm 3 run in 2D with one ball in the way.
 const SCENARIO: &str = r#"Scenario(
@@ -170,4 +170,30 @@ fn plot_draws_the_reynolds_reading_of_an_alpha_alpha_run() {
             .len()
             > 500
     );
+}
+
+/// A second writer is refused: `plot` takes the run directory's lock, so a `plot` while another
+/// process holds it (a resume, another `plot`) exits 2 naming the holder and writes nothing
+/// (before, two `plot`s of one run could interleave their updates of the manifest).
+#[test]
+fn plot_of_a_directory_another_process_writes_is_refused() {
+    let tmp = temp_dir("plot_locked");
+    fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
+    let output = flocking(tmp.path(), &["run", "s.ron", "--out", "o"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let run = tmp.path().join("o");
+    let lock = flocking::owned::DirLock::acquire(&run).expect("the test holds the lock");
+    let refused = flocking(tmp.path(), &["plot", "o"]);
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    let holder = format!("process {}", std::process::id());
+    assert!(
+        message.contains("o is being written by") && message.contains(&holder),
+        "{message}"
+    );
+    assert!(!run.join("figures").exists(), "nothing drawn");
+    drop(lock);
+    let drawn = flocking(tmp.path(), &["plot", "o"]);
+    assert!(drawn.status.success(), "{}", stderr(&drawn));
+    assert!(run.join("figures/snapshots.svg").is_file());
 }

@@ -24,6 +24,9 @@ pub enum PlotError {
     Scenario(flocking::ScenarioError),
     /// Reading the run's CSV files or drawing failed.
     Viz(VizError),
+    /// The run directory is being written by another process (a run, a resume, another
+    /// `plot`), or its lock could not be taken.
+    Dir(flocking::owned::DirError),
 }
 
 impl std::fmt::Display for PlotError {
@@ -31,6 +34,7 @@ impl std::fmt::Display for PlotError {
         match self {
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Viz(e) => write!(f, "{e}"),
+            Self::Dir(e) => write!(f, "{e}; plot it once that process is done"),
         }
     }
 }
@@ -56,6 +60,8 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
 /// As [`plot_run`].
 pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>, PlotError> {
     let scenario = Scenario::load(dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
+    // one writer at a time: the figures and the manifest's record of them (issue 27)
+    let _lock = flocking::owned::DirLock::acquire(dir).map_err(PlotError::Dir)?;
     let run = RunData::load(dir).map_err(PlotError::Viz)?;
     let scene = run_scene(&scenario, run.scene(scenario.range())).map_err(PlotError::Scenario)?;
     let mut options = options.clone();
