@@ -1158,3 +1158,60 @@ fn issue_27_a_disk_too_small_is_named() {
     let output = flocking(tmp.path(), &["run", &file, "--out", "/proc/x"]);
     refused(&output, &["0 B is free for /proc/x"]);
 }
+
+/// `flocking sweep plot --out FILE` inside a sweep's directory judges an existing `FILE` by its
+/// content, not by its name: the sweep's directory keeps a manifest of the plots flocking drew
+/// there, so a plot is replaced by the next one, while a user's file put there under any name,
+/// or a plot the user edited, is refused (exit 2, kept); a sweep directory of an older flocking
+/// (no manifest) replaces a plot by its name, as before. Before, any file of a marked directory
+/// but the reserved names was replaced.
+#[test]
+fn issue_27_sweep_plot_in_a_sweep_directory_replaces_only_its_own_plots() {
+    let tmp = temp_dir("sweep_plot_manifest");
+    write(tmp.path(), "short.ron", SHORT_2D);
+    let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
+    complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
+    let plot = |out: &str| {
+        let args = [
+            "sweep",
+            "plot",
+            "sw",
+            "--x",
+            "seed",
+            "--metric",
+            "alpha_flock",
+            "--out",
+            out,
+        ];
+        flocking(tmp.path(), &args)
+    };
+    let sw = tmp.path().join("sw");
+    // the user's own file in the sweep's directory, under a name a plot could take
+    fs::write(sw.join("mine.svg"), "mine\n").expect("a user's file");
+    refused(
+        &plot("sw/mine.svg"),
+        &["sw holds mine.svg, which flocking did not write"],
+    );
+    assert_eq!(fs::read(sw.join("mine.svg")).expect("kept"), b"mine\n");
+    // flocking's plot is replaced by the next one
+    assert!(plot("sw/seed.svg").status.success());
+    assert!(plot("sw/seed.svg").status.success());
+    // a plot the user edited is theirs
+    fs::write(sw.join("seed.svg"), "annotated\n").expect("an edited plot");
+    refused(
+        &plot("sw/seed.svg"),
+        &["sw holds seed.svg, which is not the file flocking wrote there"],
+    );
+    assert_eq!(fs::read(sw.join("seed.svg")).expect("kept"), b"annotated\n");
+    // a directory of an older flocking (no manifest): a plot replaced by its name, as before
+    let manifest = sw.join(".flocking.manifest");
+    let recorded = fs::read(&manifest).expect("the sweep keeps a manifest");
+    assert!(String::from_utf8_lossy(&recorded).contains("seed.svg"));
+    remove_own_file(tmp.path(), &manifest, &recorded);
+    fs::write(sw.join("old.svg"), "an older flocking's plot\n").expect("an old plot");
+    assert!(plot("sw/old.svg").status.success());
+    assert!(
+        !manifest.exists(),
+        "no manifest is made up for an older directory"
+    );
+}

@@ -136,6 +136,8 @@ impl Kind {
                 "times.tmp",
                 "rows",
                 "runs",
+                MANIFEST_FILE,
+                MANIFEST_TMP,
             ],
             Self::Figures => &[
                 MARKER_FILE,
@@ -318,53 +320,46 @@ pub fn marked_by_flocking(dir: &Path) -> bool {
         .any(|kind| marked(dir, kind))
 }
 
-/// Writes `bytes` to the file `path`, never over a file that flocking did not write: in a
-/// directory that carries flocking's marker an existing `path` is replaced; anywhere else `path`
-/// is created new, and an existing one is refused (atomically: `O_EXCL`).
+/// Writes `bytes` to the file `path`, never over a file that flocking did not write. In a
+/// directory that carries flocking's marker, the names it is made of are refused, and an existing
+/// `path` is replaced only when the directory's [`manifest`] lists it with its content (a file
+/// the user saved there, or over a figure flocking drew, is the user's); the new file is
+/// recorded in the manifest, as [`write_no_follow`] does. A marked directory of an older flocking,
+/// without a manifest (or a copy of one: the committed sweeps of `docs/figures/sweeps`), judges
+/// an existing `path` by its name.
+/// Anywhere else `path` is created new, and an existing one is refused (atomically: `O_EXCL`).
 ///
 /// # Errors
-/// [`DirError::Foreign`] naming the existing file (nothing is written); any I/O error, with its
-/// path.
+/// [`DirError::Reserved`], [`DirError::Foreign`] (an existing file flocking did not write, or a
+/// link), [`DirError::Changed`] (one whose content changed since flocking wrote it): nothing is
+/// written; any I/O error, with its path.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
-    use std::os::unix::fs::OpenOptionsExt as _;
     let dir = parent_of(path);
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
     let marker = [Kind::Run, Kind::Sweep, Kind::Figures]
         .into_iter()
         .find(|&kind| marked(dir, kind));
-    if let (Some(kind), Some(name)) = (marker, &name)
-        && kind.reserved().contains(&name.as_str())
-    {
-        return Err(DirError::Reserved {
-            path: path.to_owned(),
-            of: kind.what(),
-        });
-    }
-    let mut options = OpenOptions::new();
-    options.write(true);
-    if marker.is_some() {
-        // never through a link (a user's file it points to)
-        options
-            .create(true)
-            .truncate(true)
-            .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed());
-    } else {
-        options.create_new(true);
-    }
-    let mut file = match options.open(path) {
-        Ok(file) => file,
-        Err(e)
-            if e.kind() == io::ErrorKind::AlreadyExists
-                || e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) =>
-        {
-            return Err(DirError::Foreign {
-                dir: dir.to_owned(),
-                entry: path.file_name().map_or_else(
-                    || path.display().to_string(),
-                    |name| name.to_string_lossy().into_owned(),
-                ),
+    let foreign = || DirError::Foreign {
+        dir: dir.to_owned(),
+        entry: name.clone().unwrap_or_else(|| path.display().to_string()),
+    };
+    if let (Some(kind), Some(name)) = (marker, &name) {
+        if kind.reserved().contains(&name.as_str()) {
+            return Err(DirError::Reserved {
+                path: path.to_owned(),
+                of: kind.what(),
             });
         }
+        if fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
+            // a link (to a user's file) or a directory: never written through or over
+            return Err(foreign());
+        }
+        // without a manifest (a directory of an older flocking): by its name, as before
+        return write_tracked(path, bytes, tracking_manifest(path)?);
+    }
+    let mut file = match OpenOptions::new().write(true).create_new(true).open(path) {
+        Ok(file) => file,
+        Err(e) if e.kind() == io::ErrorKind::AlreadyExists => return Err(foreign()),
         Err(e) if e.kind() == io::ErrorKind::NotFound => {
             // issue 27: "No such file or directory (os error 2)" named neither the cause nor
             // the fix
@@ -405,18 +400,36 @@ pub fn write_no_follow(path: &Path, bytes: &[u8]) -> io::Result<()> {
     if fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
         return Err(link_refused(path));
     }
-    let tracked = tracking_manifest(path)?;
+    write_tracked(path, bytes, tracking_manifest(path)?).map_err(|e| match e {
+        DirError::Io(e) => e,
+        refused => io::Error::new(io::ErrorKind::AlreadyExists, refused.to_string()),
+    })
+}
+
+/// Writes `bytes` to `path` through `path.tmp` and a rename, `O_NOFOLLOW`; with the manifest
+/// that `tracked` names (its directory, `path` relative to it), only over a file it lists with
+/// its content, recording the new content beside the old before the rename and alone after it.
+fn write_tracked(
+    path: &Path,
+    bytes: &[u8],
+    tracked: Option<(PathBuf, String, Manifest)>,
+) -> Result<(), DirError> {
     let digest = Digest::of(bytes);
     if let Some((root, relative, manifest)) = &tracked {
-        if manifest.check(root, relative)? != Listed::Matches {
-            let error = DirError::Changed {
-                dir: root.clone(),
-                entry: relative.clone(),
-            };
-            return Err(io::Error::new(
-                io::ErrorKind::AlreadyExists,
-                error.to_string(),
-            ));
+        match manifest.check(root, relative)? {
+            Listed::Matches => {}
+            Listed::Differs => {
+                return Err(DirError::Changed {
+                    dir: root.clone(),
+                    entry: relative.clone(),
+                });
+            }
+            Listed::Unlisted => {
+                return Err(DirError::Foreign {
+                    dir: root.clone(),
+                    entry: relative.clone(),
+                });
+            }
         }
         let mut accepting = manifest.clone();
         accepting.accept(relative, digest);

@@ -157,6 +157,8 @@ pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<DirLock, StoreError> {
     // marked before it is locked, so that a second writer meets the lock, not a stranger's file
     if !owned::marked(dir, Kind::Sweep) {
         owned::mark(dir, Kind::Sweep).map_err(io_error(dir))?;
+        // the plots `sweep plot --out` draws here are recorded in it (issue 27)
+        owned::start_manifest::<&str>(dir, &[]).map_err(io_error(dir))?;
     }
     let lock = DirLock::acquire(dir)?;
     fs::create_dir_all(dir.join(ROWS_DIR)).map_err(io_error(dir))?;
