@@ -123,10 +123,10 @@ fn bench_runs_under_delay_loss_and_sensing_noise() {
     for line in [
         "  conditions            delay 0.1 s (neighbours), loss 0.1 (Bernoulli), \
          sensing noise 0.05 m, 0.02 m/s (white), control at 50 Hz, acceleration ≤ 10 m/s²",
-        // a delay line of 0.1 / 0.01 + 1 = 11 states of 32 B, the measured state (32 B), the held
-        // input and the delivered acceleration (16 B each) and a flag (issue 31: white noise keeps
-        // no offsets, Bernoulli loss with dropped packets no links)
-        "  conditions' state     417 bytes/agent",
+        // a delay line of 0.1 / 0.01 + 1 = 11 states of 32 B (its newest the measured state),
+        // the input held by sampled control and the delivered acceleration (16 B each) and a flag
+        // (issue 31: white noise keeps no offsets, Bernoulli loss with dropped packets no links)
+        "  conditions' state     385 bytes/agent",
         "  agent-steps/s ",
     ] {
         assert!(report.contains(line), "{line}\n{report}");
