@@ -125,6 +125,16 @@ impl BumpedAction {
         (rho * self.profile(z), rho)
     }
 
+    /// [`BumpedAction::action_and_bump`] of four arguments at once, one vector cosine for the
+    /// four ([`Bump::values`]): lane k is `action_and_bump(z[k])` bit for bit, whatever the other
+    /// lanes hold.
+    #[inline]
+    #[must_use]
+    pub fn actions_and_bumps(&self, z: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+        let rho = self.bump.values(z.map(|z| z / self.range));
+        (core::array::from_fn(|k| rho[k] * self.profile(z[k])), rho)
+    }
+
     /// φ′(z) = ρ_h′(z / R) g(z) / R + ρ_h(z / R) s σ₁′(z − z₀), with σ₁′(x) = (1 + x²)^(−3/2).
     #[must_use]
     pub fn action_derivative(&self, z: f64) -> f64 {

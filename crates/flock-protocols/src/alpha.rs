@@ -309,26 +309,57 @@ impl AlphaInteraction {
     fn sum<V: Vector>(&self, qi: V, pi: V, others: impl Iterator<Item = (V, V)>) -> V {
         let mut gradient = V::ZERO;
         let mut consensus = V::ZERO;
-        for (qj, pj) in others {
-            let (g, c) = self.pair(qi, pi, qj, pj);
+        let pairs = others.map(|(qj, pj)| ((), qi, pi, qj, pj));
+        self.for_each_term(pairs, |(), g, c| {
             gradient += g;
             consensus += c;
-        }
+        });
         gradient * self.c1 + consensus * self.c2
     }
 
-    /// The two terms agent i receives from neighbour j: (φ_α(‖q_j − q_i‖_σ) n_ij,
-    /// a_ij (p_j − p_i)).
+    /// `apply(key, g, c)` for each pair `(key, q_i, p_i, q_j, p_j)` in their order, with the two
+    /// terms agent i receives from neighbour j: g = φ_α(‖q_j − q_i‖_σ) n_ij and
+    /// c = a_ij (p_j − p_i).
     ///
-    /// Swapping i and j negates both exactly: IEEE subtraction is antisymmetric (up to the sign of
-    /// an exact zero), ‖·‖² and hence the scalar factors are the same bits, and so is the product
-    /// of a negated vector.
+    /// The pairs are taken four at a time: their σ-norms one by one, then φ_α and a_ij of the four
+    /// with one vector cosine ([`BumpedAction::actions_and_bumps`]); the last, shorter run goes
+    /// through the same call with the lanes it does not fill left as they were. A lane is a
+    /// function of its own argument only, so a pair's terms are the same bits wherever it falls
+    /// in a run, whatever the other pairs, the thread count or the storage order.
+    ///
+    /// Swapping i and j negates both terms exactly: IEEE subtraction is antisymmetric (up to the
+    /// sign of an exact zero), ‖·‖² and hence the scalar factors are the same bits, and so is the
+    /// product of a negated vector.
     #[inline]
-    fn pair<V: Vector>(&self, qi: V, pi: V, qj: V, pj: V) -> (V, V) {
-        let dq = qj - qi;
-        let (z, scale) = self.sigma.norm_and_gradient_scale(dq.length_squared());
-        let (phi, a_ij) = self.action.action_and_bump(z);
-        (dq * (phi * scale), (pj - pi) * a_ij)
+    fn for_each_term<V: Vector, K: Copy + Default>(
+        &self,
+        pairs: impl Iterator<Item = (K, V, V, V, V)>,
+        mut apply: impl FnMut(K, V, V),
+    ) {
+        let mut keys = [K::default(); 4];
+        let mut dq = [V::ZERO; 4];
+        let mut dp = [V::ZERO; 4];
+        let mut filled = 0;
+        let mut flush = |keys: &[K; 4], dq: &[V; 4], dp: &[V; 4], filled: usize| {
+            let norms = dq.map(|d| self.sigma.norm_and_gradient_scale(d.length_squared()));
+            let (phi, a) = self.action.actions_and_bumps(norms.map(|(z, _)| z));
+            for k in 0..filled {
+                apply(keys[k], dq[k] * (phi[k] * norms[k].1), dp[k] * a[k]);
+            }
+        };
+        for (key, qi, pi, qj, pj) in pairs {
+            keys[filled] = key;
+            dq[filled] = qj - qi;
+            dp[filled] = pj - pi;
+            filled += 1;
+            if filled == 4 {
+                flush(&keys, &dq, &dp, 4);
+                filled = 0;
+            }
+        }
+        if filled > 0 {
+            flush(&keys, &dq, &dp, filled);
+        }
     }
 
     /// `out[i] = finish(i, u_i^α)` for every agent, with u_i^α bit-identical to
@@ -403,24 +434,24 @@ impl AlphaInteraction {
         let chunk = start..start + out.len();
         let base = graph.offsets()[chunk.start];
         let mut terms = vec![(V::ZERO, V::ZERO); graph.offsets()[chunk.end] - base];
-        for i in chunk.clone() {
-            let (qi, pi) = (q[i], p[i]);
-            for (e, &j) in graph.edge_range(i).zip(graph.neighbours(i)) {
-                let j = j as usize;
-                if (chunk.start..i).contains(&j) {
-                    continue; // j computed the pair
-                }
-                let (g, c) = self.pair(qi, pi, q[j], p[j]);
-                terms[e - base] = (g, c);
-                if j > i && j < chunk.end {
-                    let Some(back) = graph.neighbours(j).iter().position(|&k| k as usize == i)
-                    else {
-                        unreachable!("a net's neighbour lists are symmetric");
-                    };
-                    terms[graph.edge_range(j).start + back - base] = (-g, -c);
-                }
+        // each pair once, by its agent of lower storage index when both are in the chunk
+        let first = chunk.start;
+        let pairs = chunk.clone().flat_map(|i| {
+            let edges = graph.edge_range(i).zip(graph.neighbours(i));
+            edges
+                .map(move |(e, &j)| (i, e, j as usize))
+                .filter(move |&(i, _, j)| !(first..i).contains(&j))
+        });
+        let pairs = pairs.map(|(i, e, j)| ((i, e, j), q[i], p[i], q[j], p[j]));
+        self.for_each_term(pairs, |(i, e, j), g, c| {
+            terms[e - base] = (g, c);
+            if j > i && j < chunk.end {
+                let Some(back) = graph.neighbours(j).iter().position(|&k| k as usize == i) else {
+                    unreachable!("a net's neighbour lists are symmetric");
+                };
+                terms[graph.edge_range(j).start + back - base] = (-g, -c);
             }
-        }
+        });
         for (u, i) in out.iter_mut().zip(chunk) {
             let edges = graph.edge_range(i);
             let (mut gradient, mut consensus) = (V::ZERO, V::ZERO);
@@ -447,33 +478,29 @@ impl AlphaInteraction {
         // `out` holds the gradient sums until the end.
         out.fill(V::ZERO);
         let mut consensus = vec![V::ZERO; out.len()];
-        for (k, i) in (start..end).enumerate() {
-            let (qi, pi) = (q[i], p[i]);
-            for &j in graph.neighbours(i) {
-                let j = j as usize;
-                if j >= start {
-                    break;
-                }
-                let (g, c) = self.pair(qi, pi, q[j], p[j]);
-                out[k] += g;
-                consensus[k] += c;
-            }
-        }
-        for (k, i) in (start..end).enumerate() {
-            let (qi, pi) = (q[i], p[i]);
+        let state = |(i, j): (usize, usize)| ((i, j), q[i], p[i], q[j], p[j]);
+        let below = (start..end).flat_map(|i| {
+            let neighbours = graph.neighbours(i);
+            let below = neighbours.partition_point(|&j| (j as usize) < start);
+            neighbours[..below].iter().map(move |&j| (i, j as usize))
+        });
+        self.for_each_term(below.map(state), |(i, _), g, c| {
+            out[i - start] += g;
+            consensus[i - start] += c;
+        });
+        let above = (start..end).flat_map(|i| {
             let neighbours = graph.neighbours(i);
             let upper = neighbours.partition_point(|&j| (j as usize) < i);
-            for &j in &neighbours[upper..] {
-                let j = j as usize;
-                let (g, c) = self.pair(qi, pi, q[j], p[j]);
-                out[k] += g;
-                consensus[k] += c;
-                if j < end {
-                    out[j - start] -= g;
-                    consensus[j - start] -= c;
-                }
+            neighbours[upper..].iter().map(move |&j| (i, j as usize))
+        });
+        self.for_each_term(above.map(state), |(i, j), g, c| {
+            out[i - start] += g;
+            consensus[i - start] += c;
+            if j < end {
+                out[j - start] -= g;
+                consensus[j - start] -= c;
             }
-        }
+        });
         for (k, (u, &c)) in out.iter_mut().zip(&consensus).enumerate() {
             *u = finish(start + k, *u * self.c1 + c * self.c2);
         }
@@ -580,6 +607,51 @@ mod tests {
                 let got: Vec<[u64; 2]> =
                     stored_back(&order, &out).iter().map(|&u| bits(u)).collect();
                 assert!(got == expected, "stored by cell, {threads} threads");
+            }
+        }
+    }
+
+    /// A pair's terms are the same bits wherever it falls in a run of four pairs (first, last, or
+    /// in the short run at the end) and whatever pairs share its run: pairs in the flat part of
+    /// ρ_h, across its cosine part, at r and beyond, each alone and behind 0–3 others.
+    #[test]
+    fn a_pairs_terms_do_not_depend_on_its_place_in_a_run() {
+        let alpha =
+            AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0).expect("valid α-parameters");
+        let mut q = vec![DVec2::new(1.0, -2.0)];
+        let mut p = vec![DVec2::new(0.3, 0.1)];
+        for (k, distance) in [0.5, 1.5, 3.0, 5.5, 7.0, 8.0, 8.39, 8.4, 9.0, 12.0]
+            .into_iter()
+            .enumerate()
+        {
+            let angle = 0.7 * k as f64;
+            q.push(q[0] + DVec2::new(angle.cos(), angle.sin()) * distance);
+            p.push(DVec2::new(0.2 * k as f64, -0.1));
+        }
+        let terms = |run: &[(usize, usize)]| {
+            let mut out = Vec::new();
+            let pairs = run.iter().map(|&(i, j)| ((i, j), q[i], p[i], q[j], p[j]));
+            alpha.for_each_term(pairs, |key, g: DVec2, c: DVec2| {
+                out.push((
+                    key,
+                    g.to_array().map(f64::to_bits),
+                    c.to_array().map(f64::to_bits),
+                ));
+            });
+            out
+        };
+        let pairs: Vec<(usize, usize)> = (1..q.len()).map(|j| (0, j)).collect();
+        let alone: Vec<_> = pairs.iter().map(|&pair| terms(&[pair])[0]).collect();
+        assert!(
+            alone.iter().any(|(_, g, _)| g[0] != 0),
+            "some pairs interact"
+        );
+        let reversed: Vec<(usize, usize)> = pairs.iter().map(|&(i, j)| (j, i)).rev().collect();
+        for lead in 0..4 {
+            for (others, ours) in [(&reversed, &pairs), (&pairs, &reversed)] {
+                let run: Vec<(usize, usize)> = others[..lead].iter().chain(ours).copied().collect();
+                let expected: Vec<_> = ours.iter().map(|&pair| terms(&[pair])[0]).collect();
+                assert_eq!(terms(&run)[lead..], expected[..], "behind {lead} pairs");
             }
         }
     }

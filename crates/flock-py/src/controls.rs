@@ -8,17 +8,18 @@
 //! - [`PyNeighbours`]: the net handed to `f` — CSR arrays `indptr`, `indices`, `distances`.
 //! - [`Failure`]: an exception raised by `f` (or a result of the wrong shape, or not finite), with
 //!   the state the failed step started from, so that a run stops there as after Ctrl-C.
+//! - [`bump`]: `flocking.bump`, the built-in ρ_h for an `f` written in numpy.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use flocking::graph::Graph;
 use flocking::graph::ProximityNet;
-use flocking::math::Vector;
+use flocking::math::{Bump, Vector};
 use flocking::obstacles::Space;
 use flocking::protocols::{DynProtocol, Integrator, Protocol, Swarm};
 use flocking::{MapProtocol, Scenario};
-use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
+use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -365,4 +366,35 @@ impl PyNeighbours {
             self.agents
         ))
     }
+}
+
+/// `flocking.bump(x, h)`: ρ_h(x) of TAC 2006 eq. 10 — 1 on [0, h), ½(1 + cos(π(x − h)/(1 − h)))
+/// on [h, 1], 0 elsewhere — for every element of `x` (any shape, as float64), with the bits of
+/// the built-in protocols ([`Bump::values`], four elements at a time: each lane is its element
+/// alone), so that an `f` written in numpy can reproduce a built-in algorithm bit for bit.
+///
+/// # Errors
+/// `ValueError` naming `h` when h is not in (0, 1), or `x` not an array of floats.
+#[pyfunction]
+pub fn bump<'py>(
+    py: Python<'py>,
+    x: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    h: f64,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    if !(h > 0.0 && h < 1.0) {
+        return Err(PyValueError::new_err(format!(
+            "h = {h}: the flat part [0, h) of the bump must end inside (0, 1); use 0 < h < 1 \
+             (TAC 2006 uses h = 0.2 for α-agents, 0.9 for β-agents)"
+        )));
+    }
+    let rho = Bump::tac(h);
+    let x = x.as_array();
+    let elements: Vec<f64> = x.iter().copied().collect();
+    let mut out = Vec::with_capacity(elements.len());
+    for run in elements.chunks(4) {
+        let mut lanes = [0.0; 4];
+        lanes[..run.len()].copy_from_slice(run);
+        out.extend_from_slice(&rho.values(lanes)[..run.len()]);
+    }
+    PyArray1::from_vec(py, out).reshape(x.shape())
 }

@@ -38,6 +38,7 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<bench::PyBenchReport>()?;
     module.add_class::<bench::PyWorkloadReport>()?;
     module.add_function(wrap_pyfunction!(bench::bench, module)?)?;
+    module.add_function(wrap_pyfunction!(controls::bump, module)?)?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;

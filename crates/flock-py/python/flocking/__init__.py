@@ -17,6 +17,7 @@ and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python
   ``flocking sweep`` writes, byte for byte (:class:`SweepResult`).
 - :func:`bench`: ``flocking bench`` from Python, the same engine and report
   (:class:`BenchReport`, :class:`WorkloadReport`).
+- :func:`bump`: the built-in bump ρ_h, for ``controls`` functions written in numpy.
 - Errors: :class:`FlockError`, :class:`ScenarioError` (a ``ValueError``, with ``field``),
   :class:`NumericalError`, :class:`RunDirectoryError` (an ``OSError``), :class:`ControlsError`.
 
@@ -31,7 +32,7 @@ Example::
 
 from ._bench import BenchReport, WorkloadReport, bench
 from ._errors import ControlsError, FlockError, NumericalError, RunDirectoryError, ScenarioError
-from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__
+from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__, bump
 from ._run import Run, State, Trajectory, read_run, resume, run
 from ._sweep import SweepResult, sweep
 
@@ -52,6 +53,7 @@ __all__ = [
     "Trajectory",
     "WorkloadReport",
     "bench",
+    "bump",
     "read_run",
     "resume",
     "run",

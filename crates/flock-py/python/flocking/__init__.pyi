@@ -238,6 +238,10 @@ class Run:
         """The run in the self-contained canvas player of ``flocking plot``."""
     def _repr_html_(self) -> str: ...
 
+def bump(x: npt.ArrayLike, h: float) -> npt.NDArray[np.float64]:
+    """ρ_h(x) of TAC 2006 eq. 10 for every element of ``x``, with the bits of the built-in
+    protocols (for a ``controls`` function written in numpy); ``ValueError`` unless 0 < h < 1."""
+
 def run(
     scenario: Scenario,
     out: Optional[_Path] = None,
