@@ -9,7 +9,7 @@ use crate::common::{
     files, flocking, remove_own_empty_dir, remove_own_file, remove_own_link, stderr, temp_dir,
     write,
 };
-use crate::trust::{SHORT_2D, complete, refused, seeds_sweep};
+use crate::trust::{PLOT_SEEDS, SHORT_2D, complete, refused, seeds_sweep};
 
 /// The one kept run directory of the sweep in `sw`.
 fn kept_run(sw: &Path) -> std::path::PathBuf {
@@ -267,20 +267,7 @@ fn issue_27_a_users_copy_of_a_sweep_and_its_own_files_are_never_written() {
         "sw/times.csv",
         "sw/.flocking",
     ] {
-        let output = flocking(
-            tmp.path(),
-            &[
-                "sweep",
-                "plot",
-                "sw",
-                "--x",
-                "seed",
-                "--metric",
-                "alpha_flock",
-                "--out",
-                name,
-            ],
-        );
+        let output = flocking(tmp.path(), &[&PLOT_SEEDS[..], &["--out", name]].concat());
         refused(
             &output,
             &[name, "is one of the files of a sweep's output directory"],
@@ -1171,20 +1158,7 @@ fn issue_27_sweep_plot_in_a_sweep_directory_replaces_only_its_own_plots() {
     write(tmp.path(), "short.ron", SHORT_2D);
     let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
     complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
-    let plot = |out: &str| {
-        let args = [
-            "sweep",
-            "plot",
-            "sw",
-            "--x",
-            "seed",
-            "--metric",
-            "alpha_flock",
-            "--out",
-            out,
-        ];
-        flocking(tmp.path(), &args)
-    };
+    let plot = |out: &str| flocking(tmp.path(), &[&PLOT_SEEDS[..], &["--out", out]].concat());
     let sw = tmp.path().join("sw");
     // the user's own file in the sweep's directory, under a name a plot could take
     fs::write(sw.join("mine.svg"), "mine\n").expect("a user's file");

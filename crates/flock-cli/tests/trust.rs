@@ -1158,6 +1158,17 @@ fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
     assert!(err.contains("the same command resumes"), "{err}");
 }
 
+/// `flocking sweep plot sw` of the fraction of α-flocks over the seeds of [`seeds_sweep`].
+pub(crate) const PLOT_SEEDS: [&str; 7] = [
+    "sweep",
+    "plot",
+    "sw",
+    "--x",
+    "seed",
+    "--metric",
+    "alpha_flock",
+];
+
 /// A sweep of `seeds` runs of `base` (a file in the same directory), no axes.
 pub(crate) fn seeds_sweep(dir: &Path, base: &str, seeds: usize) -> String {
     write(
@@ -1371,15 +1382,7 @@ fn issue_20_plot_never_overwrites_a_file_flocking_did_not_write() {
     write(tmp.path(), "short.ron", SHORT_2D);
     let sweep = seeds_sweep(tmp.path(), "short.ron", 2);
     complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
-    let plot = [
-        "sweep",
-        "plot",
-        "sw",
-        "--x",
-        "seed",
-        "--metric",
-        "alpha_flock",
-    ];
+    let plot = PLOT_SEEDS;
     complete(tmp.path(), &plot);
     complete(tmp.path(), &plot);
     assert!(tmp.path().join("sw/alpha_flock.svg").is_file());
