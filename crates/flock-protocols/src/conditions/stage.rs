@@ -145,7 +145,7 @@ pub fn depth(conditions: &Conditions, h: f64) -> Result<u64, ParamError> {
 /// [`Stage::new`] allocates them: the delay line (D + 1 measured states of 2·dim f64, the newest
 /// the current one, when a condition changes perception, else none), the Ornstein–Uhlenbeck
 /// sensor offsets, the input (and apart from it the delivered acceleration with a lag or sampled
-/// control: [`holds_delivered`]), per-agent gusts, the failure flag,
+/// control), per-agent gusts, the failure flag,
 /// and each receiver's list of links (its entries not counted: ≤ one per neighbour) for
 /// Gilbert–Elliott loss or `Hold`.
 #[must_use]
