@@ -153,6 +153,20 @@ fn a_record_naming_other_columns_is_refused() {
     dir.abandon();
 }
 
+/// A run `out` killed after its `checkpoint` of the scenario `text` (empty records): its
+/// `DIR.partial` as a run leaves it, marked, with its note; returns `out`.
+fn interrupted_run(out: &std::path::Path, text: &str, checkpoint: &[u8]) -> std::path::PathBuf {
+    let partial = flocking::run_dir::partial_path(out);
+    std::fs::create_dir(&partial).expect("mkdir");
+    std::fs::write(partial.join(".flocking"), "written by flocking run\n").expect("marker");
+    std::fs::write(partial.join("scenario.ron"), format!("{text}\n")).expect("scenario");
+    std::fs::write(partial.join("INCOMPLETE"), "incomplete: killed\n").expect("note");
+    std::fs::write(partial.join("metrics.csv"), "").expect("metrics");
+    std::fs::write(partial.join("trajectory.csv"), "").expect("trajectory");
+    std::fs::write(partial.join("checkpoint.bin"), checkpoint).expect("the checkpoint");
+    out.to_owned()
+}
+
 /// The bytes of a checkpoint with the header words `words` (dim, agents, steps, energy bits,
 /// records, metrics bytes, trajectory bytes; the scenario's length is added), the state
 /// `state`, the scenario `scenario`, and a valid FNV-1a hash: a forged checkpoint.
@@ -207,19 +221,11 @@ fn issue_27_a_forged_checkpoint_is_refused_not_trusted() {
         ),
     ];
     for (k, (words, state, message)) in cases.into_iter().enumerate() {
-        let out = tmp.path().join(format!("r{k}"));
-        let partial = flocking::run_dir::partial_path(&out);
-        std::fs::create_dir(&partial).expect("mkdir");
-        std::fs::write(partial.join(".flocking"), "written by flocking run\n").expect("marker");
-        std::fs::write(partial.join("scenario.ron"), format!("{text}\n")).expect("scenario");
-        std::fs::write(partial.join("INCOMPLETE"), "incomplete: killed\n").expect("note");
-        std::fs::write(partial.join("metrics.csv"), "").expect("metrics");
-        std::fs::write(partial.join("trajectory.csv"), "").expect("trajectory");
-        std::fs::write(
-            partial.join("checkpoint.bin"),
-            forged_checkpoint(words, state, &text),
-        )
-        .expect("a forged checkpoint");
+        let out = interrupted_run(
+            &tmp.path().join(format!("r{k}")),
+            &text,
+            &forged_checkpoint(words, state, &text),
+        );
         let Err(error) = RunDirectory::resume(&out, 1000) else {
             panic!("case {k}: a forged checkpoint was resumed");
         };
@@ -309,15 +315,7 @@ fn the_checkpoint_fuzz_corpus_and_regressions_are_read_or_refused() {
             );
             continue;
         }
-        let out = tmp.path().join(format!("r{k}"));
-        let partial = flocking::run_dir::partial_path(&out);
-        std::fs::create_dir(&partial).expect("mkdir");
-        std::fs::write(partial.join(".flocking"), "written by flocking run\n").expect("marker");
-        std::fs::write(partial.join("scenario.ron"), format!("{text}\n")).expect("scenario");
-        std::fs::write(partial.join("INCOMPLETE"), "incomplete: killed\n").expect("note");
-        std::fs::write(partial.join("metrics.csv"), "").expect("metrics");
-        std::fs::write(partial.join("trajectory.csv"), "").expect("trajectory");
-        std::fs::write(partial.join("checkpoint.bin"), &bytes).expect("the regression");
+        let out = interrupted_run(&tmp.path().join(format!("r{k}")), &text, &bytes);
         assert!(
             RunDirectory::resume(&out, 1000).is_err(),
             "{}: a forged checkpoint was resumed",

@@ -207,6 +207,12 @@ impl Manifest {
         })
     }
 
+    /// Whether it lists `relative`: flocking wrote a file there.
+    #[must_use]
+    pub fn lists(&self, relative: &str) -> bool {
+        self.files.contains_key(relative)
+    }
+
     /// Accepts `digest` for `relative` besides what it accepted before: written before the file
     /// is replaced, so that either content matches whenever the replacement is cut short.
     pub fn accept(&mut self, relative: &str, digest: Digest) {
@@ -240,7 +246,9 @@ impl Manifest {
         }
         let tmp = dir.join(MANIFEST_TMP);
         let path = dir.join(MANIFEST_FILE);
-        super::write_tmp(&tmp, text.as_bytes())?;
+        // the manifest is written only in directories of flocking's: its temporary file there
+        // is flocking's own name
+        super::write_tmp(&tmp, text.as_bytes(), super::marked_by_flocking(dir))?;
         fs::rename(&tmp, &path).map_err(at(format_args!(
             "rename {} to {}",
             tmp.display(),

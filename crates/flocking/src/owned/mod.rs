@@ -438,7 +438,11 @@ fn write_tracked(
     let mut tmp = path.as_os_str().to_owned();
     tmp.push(".tmp");
     let tmp = PathBuf::from(tmp);
-    write_tmp(&tmp, bytes)?;
+    // a `tmp` beside a file the manifest lists is a replacement of flocking's cut short
+    let leftover_is_ours = tracked
+        .as_ref()
+        .is_some_and(|(_, relative, manifest)| manifest.lists(relative));
+    write_tmp(&tmp, bytes, leftover_is_ours)?;
     fs::rename(&tmp, path).map_err(at(format_args!(
         "rename {} to {}",
         tmp.display(),
@@ -474,31 +478,58 @@ fn tracking_manifest(path: &Path) -> io::Result<Option<(PathBuf, String, Manifes
 
 /// The error of a link that flocking would have written through.
 /// Writes `bytes` into `tmp`, one of flocking's own `.tmp` names, flushed, never through a link
-/// (`O_NOFOLLOW`). Only a file this call opened is removed when the write fails: a failure to
-/// open (a link, a directory in its place) removes nothing.
+/// (`O_NOFOLLOW`) and never over a file it finds there (`O_EXCL`) unless `leftover_is_ours`: the
+/// caller knows a `tmp` there can only be a write of flocking's cut short (the manifest's own
+/// temporary file in a directory of flocking's, or `NAME.tmp` beside a `NAME` its manifest
+/// lists), which is then removed first. When the write fails, the file this call created is
+/// removed, and only while `tmp` still names it.
 ///
 /// # Errors
-/// A link in `tmp`'s place, or any I/O error, with its path.
-pub(crate) fn write_tmp(tmp: &Path, bytes: &[u8]) -> io::Result<()> {
-    use std::os::unix::fs::OpenOptionsExt as _;
-    let mut file = OpenOptions::new()
-        .write(true)
-        .create(true)
-        .truncate(true)
-        .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed())
-        .open(tmp)
-        .map_err(|e| {
-            if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
-                link_refused(tmp)
-            } else {
-                at(format_args!("write {}", tmp.display()))(e)
-            }
-        })?;
+/// A link or a file flocking did not leave in `tmp`'s place, or any I/O error, with its path.
+pub(crate) fn write_tmp(tmp: &Path, bytes: &[u8], leftover_is_ours: bool) -> io::Result<()> {
+    use std::os::unix::fs::{MetadataExt as _, OpenOptionsExt as _};
+    let create = || {
+        OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .custom_flags(rustix::fs::OFlags::NOFOLLOW.bits().cast_signed())
+            .open(tmp)
+    };
+    let found = || fs::symlink_metadata(tmp);
+    let opened = match create() {
+        Err(e)
+            if e.kind() == io::ErrorKind::AlreadyExists
+                && leftover_is_ours
+                && found().is_ok_and(|m| m.is_file()) =>
+        {
+            fs::remove_file(tmp).map_err(at(format_args!("remove {}", tmp.display())))?;
+            create()
+        }
+        opened => opened,
+    };
+    let mut file = opened.map_err(|e| {
+        if e.kind() == io::ErrorKind::AlreadyExists {
+            io::Error::new(
+                e.kind(),
+                format!(
+                    "{} exists and flocking did not leave it there: flocking never writes over it; move it away",
+                    tmp.display()
+                ),
+            )
+        } else if e.raw_os_error() == Some(rustix::io::Errno::LOOP.raw_os_error()) {
+            link_refused(tmp)
+        } else {
+            at(format_args!("write {}", tmp.display()))(e)
+        }
+    })?;
     file.write_all(bytes)
         .and_then(|()| file.sync_all())
         .map_err(|e| {
-            // the file cut short is the one opened above: flocking's
-            let _ = fs::remove_file(tmp);
+            // only the file created above, while `tmp` still names it
+            let created = file.metadata().map(|m| (m.dev(), m.ino()));
+            if found().is_ok_and(|m| created.is_ok_and(|c| c == (m.dev(), m.ino()))) {
+                let _ = fs::remove_file(tmp);
+            }
             at(format_args!("write {}", tmp.display()))(e)
         })
 }
@@ -1111,6 +1142,48 @@ mod tests {
         // another kind's marker is still replaced by the one asked for
         mark(dir.path(), Kind::Sweep).expect("marked as a sweep");
         assert!(marked(dir.path(), Kind::Sweep));
+    }
+
+    /// A `NAME.tmp` that flocking did not leave is never written over: a user's file in its place
+    /// is refused and kept, whether or not flocking wrote `NAME` before (then the manifest lists
+    /// `NAME`, and a `NAME.tmp` beside it is flocking's own replacement cut short, replaced);
+    /// outside a directory with a manifest an existing `NAME.tmp` is always refused.
+    #[test]
+    fn a_temporary_name_flocking_did_not_leave_is_never_written_over() {
+        use super::{Kind, mark, write_file, write_no_follow};
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let plain = dir.path().join("plain");
+        std::fs::create_dir(&plain).expect("mkdir");
+        std::fs::write(plain.join("a.svg.tmp"), "mine\n").expect("a user's file");
+        let refused = write_no_follow(&plain.join("a.svg"), b"<svg/>").expect_err("refused");
+        assert!(
+            refused
+                .to_string()
+                .contains("flocking did not leave it there"),
+            "{refused}"
+        );
+        assert_eq!(
+            std::fs::read(plain.join("a.svg.tmp")).expect("kept"),
+            b"mine\n"
+        );
+        assert!(!plain.join("a.svg").exists());
+        // a sweep's directory: a first plot beside a user's `.tmp` is refused
+        let sweep = dir.path().join("sweep");
+        std::fs::create_dir(&sweep).expect("mkdir");
+        mark(&sweep, Kind::Sweep).expect("marked");
+        super::start_manifest::<&str>(&sweep, &[]).expect("a manifest");
+        std::fs::write(sweep.join("b.svg.tmp"), "mine\n").expect("a user's file");
+        assert!(write_file(&sweep.join("b.svg"), b"1").is_err());
+        assert_eq!(
+            std::fs::read(sweep.join("b.svg.tmp")).expect("kept"),
+            b"mine\n"
+        );
+        // once flocking wrote `c.svg`, a `c.svg.tmp` beside it is its own write cut short
+        write_file(&sweep.join("c.svg"), b"1").expect("written");
+        std::fs::write(sweep.join("c.svg.tmp"), "cut sh").expect("a write cut short");
+        write_file(&sweep.join("c.svg"), b"2").expect("replaced");
+        assert_eq!(std::fs::read(sweep.join("c.svg")).expect("written"), b"2");
+        assert!(!sweep.join("c.svg.tmp").exists());
     }
 
     /// `remove_file` and `drop_manifest` remove nothing from a directory without flocking's
