@@ -16,7 +16,7 @@ pub fn update(faults: &Faults, streams: &Streams, k: u64, h: f64, failed: &mut [
     if faults.rate > 0.0 {
         let p = -(-faults.rate * h).exp_m1();
         for (i, f) in failed.iter_mut().enumerate() {
-            if !*f && streams.draws(Purpose::Failure, i as u64, k).uniform() < p {
+            if !*f && streams.uniform(Purpose::Failure, i as u64, k) < p {
                 *f = true;
             }
         }

@@ -60,7 +60,7 @@ pub fn lost(
     length: f64,
     channel: &mut Option<(bool, u64)>,
 ) -> bool {
-    let u = || streams.draws(Purpose::Loss, key, k).uniform();
+    let u = || streams.uniform(Purpose::Loss, key, k);
     match *loss {
         Loss::None => false,
         Loss::Bernoulli { p } => u() < p,

@@ -529,9 +529,12 @@ impl<V: Vector> Stage<V> {
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             for &j in js.iter() {
                 let ju = j as usize;
-                let mut link = old
-                    .binary_search_by_key(&j, |l| l.sender)
-                    .map_or(Link::new(j), |s| old[s]);
+                // what i keeps of the link (Gilbert–Elliott's channel, the state held), when
+                // links keep anything
+                let mut link = links_i.is_some().then(|| {
+                    old.binary_search_by_key(&j, |l| l.sender)
+                        .map_or(Link::new(j), |s| old[s])
+                });
                 let directed = (i * n + ju) as u64;
                 let lag = if this.jitter > 0 {
                     this.delay
@@ -555,19 +558,13 @@ impl<V: Vector> Stage<V> {
                 } else {
                     f64::NAN
                 };
-                let dropped = lost(
-                    &comm.loss,
-                    &this.streams,
-                    key,
-                    k,
-                    this.h,
-                    length,
-                    &mut link.channel,
-                );
+                let mut no_channel = None;
+                let channel = link.as_mut().map_or(&mut no_channel, |l| &mut l.channel);
+                let dropped = lost(&comm.loss, &this.streams, key, k, this.h, length, channel);
                 let stamp = k.saturating_sub(lag);
                 let used = if dropped {
                     lost_count += 1;
-                    match (comm.when_lost, link.held) {
+                    match (comm.when_lost, link.and_then(|l| l.held)) {
                         (WhenLost::Hold { max_age }, Some(held))
                             if (k - held.stamp) as f64 * this.h <= max_age * (1.0 + 1e-12) =>
                         {
@@ -586,7 +583,9 @@ impl<V: Vector> Stage<V> {
                         velocity,
                         stamp,
                     };
-                    link.held = Some(held);
+                    if let Some(link) = link.as_mut() {
+                        link.held = Some(held);
+                    }
                     Some(held)
                 };
                 if let Some(held) = used {
@@ -597,7 +596,7 @@ impl<V: Vector> Stage<V> {
                         velocity: held.velocity,
                     });
                 }
-                if let Some(links_i) = links_i.as_deref_mut() {
+                if let (Some(links_i), Some(link)) = (links_i.as_deref_mut(), link) {
                     links_i.push(link);
                 }
             }
