@@ -1010,6 +1010,69 @@ fn issue_31_a_checkpoint_of_chacha8_draws_is_refused_for_a_random_run_only() {
     }
 }
 
+/// The normal draws moved from Box–Muller to the ziggurat, so a checkpoint of the older format
+/// (`FLOCKCK4`) of a run that draws normals (sensing noise, gusts, process noise) cannot continue
+/// bit for bit: its resume is refused, naming why and the fix, and changes nothing. A run whose
+/// draws are all uniforms (jitter, Bernoulli loss, random failures) resumes from it to the bytes
+/// of the uninterrupted run.
+#[test]
+fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_only() {
+    let tmp = temp_dir("box_muller_checkpoint");
+    let uniforms = LONG_2D.replacen(
+        "    record_every: 10,\n",
+        "    record_every: 10,
+    conditions: (
+        communication: (delay: 0.1, jitter: 0.05, loss: Bernoulli(p: 0.2)),
+        faults: (rate: 0.002, mode: Removed),
+    ),
+",
+        1,
+    );
+    for (name, text, normals) in [
+        ("normals", long_conditioned(), true),
+        ("uniforms", uniforms, false),
+    ] {
+        let file = write(tmp.path(), &format!("{name}.ron"), &text);
+        let out = tmp.path().join(name);
+        let args = [
+            "run",
+            &file,
+            "--out",
+            name,
+            "--quiet",
+            "--checkpoint-every",
+            "50",
+        ];
+        let mut child = spawn(tmp.path(), &args);
+        wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+        child.kill().expect("SIGKILL");
+        child.wait().expect("reaped");
+        remagic_checkpoint(&partial(&out), b"FLOCKCK4");
+        let before = files(&partial(&out));
+        let output = flocking(tmp.path(), &["run", "--resume", name]);
+        if normals {
+            refused(&output, &["Box–Muller", "ziggurat", "start the run again"]);
+            let mut after = files(&partial(&out));
+            after.remove(".flocking.lock");
+            let mut before = before;
+            before.remove(".flocking.lock");
+            assert_eq!(after, before, "the refused resume changes nothing");
+        } else {
+            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+            let whole = format!("{name}_whole");
+            let output = flocking(tmp.path(), &["run", &file, "--out", &whole, "--quiet"]);
+            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+            for f in ["metrics.csv", "trajectory.csv", "final.csv"] {
+                assert!(
+                    fs::read(out.join(f)).expect("resumed")
+                        == fs::read(tmp.path().join(&whole).join(f)).expect("whole"),
+                    "{f} of the resumed run differs from the uninterrupted run's"
+                );
+            }
+        }
+    }
+}
+
 /// A file of the test's own that fills the filesystem of its directory but `pages` pages; it
 /// is created new (never a file that was there) and removed when dropped, only if the path still
 /// names that very file (its device and inode).

@@ -614,6 +614,12 @@ impl Algorithm {
         }
     }
 
+    /// Whether the algorithm draws normal random numbers of its own (Couzin's angular noise).
+    #[must_use]
+    pub fn draws_normals(&self) -> bool {
+        matches!(*self, Self::Couzin { noise, .. } if noise > 0.0)
+    }
+
     /// Whether the algorithm is one of the classic models (Cucker–Smale, Vicsek, boids, Couzin,
     /// Vásárhelyi; docs/models.md) rather than Olfati-Saber's, Tanner's or consensus.
     #[must_use]
@@ -838,6 +844,13 @@ impl Scenario {
     #[must_use]
     pub fn draws_at_random(&self) -> bool {
         self.algorithm.draws_at_random() || self.conditions.draws_at_random()
+    }
+
+    /// Whether a run of the scenario draws normal random numbers as it steps (Couzin's angular
+    /// noise, sensing noise, wind gusts, process noise).
+    #[must_use]
+    pub fn draws_normals(&self) -> bool {
+        self.algorithm.draws_normals() || self.conditions.draws_normals()
     }
 
     /// The number of steps ⌈T / h⌉ (rounded to the nearest when T/h is within round-off of an integer).

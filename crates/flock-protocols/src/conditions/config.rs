@@ -367,11 +367,18 @@ impl Conditions {
         let communication = self
             .communication
             .is_some_and(|c| c.jitter > 0.0 || c.loss != Loss::None);
+        let faults = self.faults.as_ref().is_some_and(|f| f.rate > 0.0);
+        communication || self.draws_normals() || faults
+    }
+
+    /// Whether a condition draws normal random numbers: sensing noise, wind gusts, process
+    /// noise.
+    #[must_use]
+    pub fn draws_normals(&self) -> bool {
         let disturbance = self.disturbance.as_ref().is_some_and(|d| {
             d.process_noise > 0.0 || d.wind.as_ref().is_some_and(|w| w.gust > 0.0)
         });
-        let faults = self.faults.as_ref().is_some_and(|f| f.rate > 0.0);
-        communication || self.sensing.is_some() || disturbance || faults
+        self.sensing.is_some() || disturbance
     }
 
     /// Checks every parameter for a run of `agents` agents in `dim` dimensions at step `h`;

@@ -2,18 +2,20 @@
 //! the outputs had been written then, so that `flocking run --resume DIR` cuts the outputs back to
 //! that point and continues bit-identically.
 //!
-//! The file is little-endian: the magic `FLOCKCK4`, then as u64 the dimension, the number of
+//! The file is little-endian: the magic `FLOCKCK5`, then as u64 the dimension, the number of
 //! agents, the steps, the bits of H(0), the records written, the bytes of `metrics.csv` and of the
 //! trajectory, the bytes of the scenario's text and the number of vehicle state values; then the
 //! positions and the velocities as f64 (`dim` per agent), the vehicles' states as f64 (none for
 //! point masses), the resolved scenario as RON text (so that a resume can refuse a
 //! `scenario.ron` edited since), the state of the run's conditions as RON text (empty for an
 //! ideal run), and last an
-//! FNV-1a hash of everything before it. `FLOCKCK3` is the same layout from a flocking whose
+//! FNV-1a hash of everything before it. `FLOCKCK4` is the same layout from a flocking whose
+//! normal draws came from Box–Muller (before the ziggurat), `FLOCKCK3` the same from one whose
 //! random draws came from ChaCha8 (before issue 31's Philox4x32-10), and `FLOCKCK2` the same
-//! without the vehicle count and states: both are still read, marked
-//! [`Checkpoint::draws_from_chacha8`], and a run that draws at random is not resumed from them
-//! (its draws could not continue bit for bit). It is written to `checkpoint.tmp`, flushed to the disk, and
+//! without the vehicle count and states: all are still read, marked
+//! [`Checkpoint::normals_by_box_muller`] or [`Checkpoint::draws_from_chacha8`], and a run whose
+//! draws could not continue bit for bit from them (one that draws normals, one that draws at
+//! random) is not resumed. It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
 
@@ -30,7 +32,10 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 /// The temporary file a checkpoint is written to before its rename.
 pub const CHECKPOINT_TMP: &str = "checkpoint.tmp";
 
-const MAGIC: &[u8; 8] = b"FLOCKCK4";
+const MAGIC: &[u8; 8] = b"FLOCKCK5";
+
+/// The magic of the format whose normal draws came from Box–Muller, same layout.
+const MAGIC_BOX_MULLER: &[u8; 8] = b"FLOCKCK4";
 
 /// The magic of the format whose random draws came from ChaCha8, same layout.
 const MAGIC_CHACHA8: &[u8; 8] = b"FLOCKCK3";
@@ -57,6 +62,9 @@ pub struct Checkpoint {
     /// Whether the checkpoint is of a format whose random draws came from ChaCha8 (`FLOCKCK2`,
     /// `FLOCKCK3`): the draws of this version (Philox4x32-10) cannot continue its run.
     pub draws_from_chacha8: bool,
+    /// Whether the checkpoint is of the format whose normal draws came from Box–Muller
+    /// (`FLOCKCK4`): this version's normals (the ziggurat) cannot continue a run that draws them.
+    pub normals_by_box_muller: bool,
 }
 
 impl Checkpoint {
@@ -133,7 +141,10 @@ impl Checkpoint {
         let (body, hash) = bytes
             .split_last_chunk::<8>()
             .ok_or_else(|| corrupt("too short"))?;
-        let words = if body.starts_with(MAGIC) || body.starts_with(MAGIC_CHACHA8) {
+        let words = if [MAGIC, MAGIC_BOX_MULLER, MAGIC_CHACHA8]
+            .iter()
+            .any(|magic| body.starts_with(*magic))
+        {
             9
         } else if body.starts_with(MAGIC_WITHOUT_VEHICLES) {
             8
@@ -214,7 +225,8 @@ impl Checkpoint {
             metrics_bytes: *metrics_bytes,
             trajectory_bytes: *trajectory_bytes,
             scenario: text(scenario, "scenario")?,
-            draws_from_chacha8: !body.starts_with(MAGIC),
+            draws_from_chacha8: !body.starts_with(MAGIC) && !body.starts_with(MAGIC_BOX_MULLER),
+            normals_by_box_muller: body.starts_with(MAGIC_BOX_MULLER),
         })
     }
 }

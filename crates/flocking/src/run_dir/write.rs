@@ -1036,6 +1036,13 @@ fn check_scenario(
             partial.display()
         )));
     }
+    // the normal draws changed method (Box–Muller → the ziggurat)
+    if checkpoint.normals_by_box_muller && scenario.draws_normals() {
+        return Err(ResumeError::Refused(format!(
+            "the checkpoint in {} was written by a flocking that drew its normal random numbers by Box–Muller; this one draws them by the ziggurat, so the run's noise cannot continue bit for bit. Resume it with the flocking that started it, or start the run again with --out elsewhere",
+            partial.display()
+        )));
+    }
     // issue 27: a step count past the scenario's end would stop the output short and judge it
     if checkpoint.start.steps > scenario.steps() {
         return Err(ResumeError::Refused(format!(
@@ -1483,6 +1490,7 @@ impl Recorder for RunDirectory {
             trajectory_bytes,
             scenario: self.scenario.clone(),
             draws_from_chacha8: false,
+            normals_by_box_muller: false,
         }
         .write(&self.partial)?;
         let whole = format!(
