@@ -964,6 +964,56 @@ fn remagic_checkpoint(dir: &Path, magic: &[u8; 8]) {
     fs::write(&path, bytes).expect("rewritten");
 }
 
+/// Runs `text` (as `name`) in `dir` until its first checkpoint, kills it, rewrites the
+/// checkpoint with the older format's `magic`, and resumes it. A resume that `refuses` must name
+/// `words` and change nothing; otherwise it must end the run with the bytes of an uninterrupted
+/// one.
+fn resume_from_older_checkpoint(
+    dir: &Path,
+    name: &str,
+    text: &str,
+    magic: &[u8; 8],
+    refuses: Option<&[&str]>,
+) {
+    let file = write(dir, &format!("{name}.ron"), text);
+    let out = dir.join(name);
+    let args = [
+        "run",
+        &file,
+        "--out",
+        name,
+        "--quiet",
+        "--checkpoint-every",
+        "50",
+    ];
+    let mut child = spawn(dir, &args);
+    wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
+    child.kill().expect("SIGKILL");
+    child.wait().expect("reaped");
+    remagic_checkpoint(&partial(&out), magic);
+    let mut before = files(&partial(&out));
+    let output = flocking(dir, &["run", "--resume", name]);
+    if let Some(words) = refuses {
+        refused(&output, words);
+        let mut after = files(&partial(&out));
+        after.remove(".flocking.lock");
+        before.remove(".flocking.lock");
+        assert_eq!(after, before, "the refused resume changes nothing");
+    } else {
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        assert!(!partial(&out).exists());
+        let whole = format!("{name}_whole");
+        complete(dir, &["run", &file, "--out", &whole, "--quiet"]);
+        for f in ["metrics.csv", "trajectory.csv", "final.csv"] {
+            assert!(
+                fs::read(out.join(f)).expect("resumed")
+                    == fs::read(dir.join(&whole).join(f)).expect("whole"),
+                "{f} of the resumed run {name} differs from the uninterrupted run's"
+            );
+        }
+    }
+}
+
 /// Issue 31: the random draws moved from ChaCha8 to Philox4x32-10, so a checkpoint of the older
 /// format (`FLOCKCK3`) of a run that draws at random cannot continue bit for bit: its resume is
 /// refused, naming why and the fix, and changes nothing; a run without random draws resumes
@@ -971,43 +1021,15 @@ fn remagic_checkpoint(dir: &Path, magic: &[u8; 8]) {
 #[test]
 fn issue_31_a_checkpoint_of_chacha8_draws_is_refused_for_a_random_run_only() {
     let tmp = temp_dir("chacha8_checkpoint");
-    for (name, text, random) in [
-        ("conditioned", long_conditioned(), true),
-        ("ideal", LONG_2D.to_owned(), false),
-    ] {
-        let file = write(tmp.path(), &format!("{name}.ron"), &text);
-        let out = tmp.path().join(name);
-        let args = [
-            "run",
-            &file,
-            "--out",
-            name,
-            "--quiet",
-            "--checkpoint-every",
-            "50",
-        ];
-        let mut child = spawn(tmp.path(), &args);
-        wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
-        child.kill().expect("SIGKILL");
-        child.wait().expect("reaped");
-        remagic_checkpoint(&partial(&out), b"FLOCKCK3");
-        let before = files(&partial(&out));
-        let output = flocking(tmp.path(), &["run", "--resume", name]);
-        if random {
-            refused(
-                &output,
-                &["ChaCha8", "Philox4x32-10", "start the run again"],
-            );
-            let mut after = files(&partial(&out));
-            after.remove(".flocking.lock");
-            let mut before = before;
-            before.remove(".flocking.lock");
-            assert_eq!(after, before, "the refused resume changes nothing");
-        } else {
-            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-            assert!(!partial(&out).exists());
-        }
-    }
+    let why: &[&str] = &["ChaCha8", "Philox4x32-10", "start the run again"];
+    resume_from_older_checkpoint(
+        tmp.path(),
+        "conditioned",
+        &long_conditioned(),
+        b"FLOCKCK3",
+        Some(why),
+    );
+    resume_from_older_checkpoint(tmp.path(), "ideal", LONG_2D, b"FLOCKCK3", None);
 }
 
 /// The normal draws moved from Box–Muller to the ziggurat, so a checkpoint of the older format
@@ -1028,49 +1050,15 @@ fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_on
 ",
         1,
     );
-    for (name, text, normals) in [
-        ("normals", long_conditioned(), true),
-        ("uniforms", uniforms, false),
-    ] {
-        let file = write(tmp.path(), &format!("{name}.ron"), &text);
-        let out = tmp.path().join(name);
-        let args = [
-            "run",
-            &file,
-            "--out",
-            name,
-            "--quiet",
-            "--checkpoint-every",
-            "50",
-        ];
-        let mut child = spawn(tmp.path(), &args);
-        wait_for(&partial(&out).join("checkpoint.bin"), &mut child);
-        child.kill().expect("SIGKILL");
-        child.wait().expect("reaped");
-        remagic_checkpoint(&partial(&out), b"FLOCKCK4");
-        let before = files(&partial(&out));
-        let output = flocking(tmp.path(), &["run", "--resume", name]);
-        if normals {
-            refused(&output, &["Box–Muller", "ziggurat", "start the run again"]);
-            let mut after = files(&partial(&out));
-            after.remove(".flocking.lock");
-            let mut before = before;
-            before.remove(".flocking.lock");
-            assert_eq!(after, before, "the refused resume changes nothing");
-        } else {
-            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-            let whole = format!("{name}_whole");
-            let output = flocking(tmp.path(), &["run", &file, "--out", &whole, "--quiet"]);
-            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-            for f in ["metrics.csv", "trajectory.csv", "final.csv"] {
-                assert!(
-                    fs::read(out.join(f)).expect("resumed")
-                        == fs::read(tmp.path().join(&whole).join(f)).expect("whole"),
-                    "{f} of the resumed run differs from the uninterrupted run's"
-                );
-            }
-        }
-    }
+    let why: &[&str] = &["Box–Muller", "ziggurat", "start the run again"];
+    resume_from_older_checkpoint(
+        tmp.path(),
+        "normals",
+        &long_conditioned(),
+        b"FLOCKCK4",
+        Some(why),
+    );
+    resume_from_older_checkpoint(tmp.path(), "uniforms", &uniforms, b"FLOCKCK4", None);
 }
 
 /// A file of the test's own that fills the filesystem of its directory but `pages` pages; it
