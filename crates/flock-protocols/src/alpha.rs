@@ -304,6 +304,42 @@ impl AlphaInteraction {
         self.sum(own.position, own.velocity, others)
     }
 
+    /// [`AlphaInteraction::local_input`] of several receivers, bit for bit: `out[r]` from
+    /// `owns[r]` and the states it perceives, `heard[ends[r − 1]..ends[r]]` (from 0 for the
+    /// first). The pairs of all the receivers go through one run of fours, so a receiver's last
+    /// pairs share a vector cosine with the next one's first instead of leaving lanes empty;
+    /// each receiver's sums still start at zero and add its terms in its list's order.
+    pub fn local_inputs<V: Vector>(
+        &self,
+        owns: &[crate::Perceived<V>],
+        heard: &[crate::Perceived<V>],
+        ends: &[usize],
+        out: &mut [V],
+    ) {
+        let finish = |g: V, c: V| g * self.c1 + c * self.c2;
+        out.fill(finish(V::ZERO, V::ZERO));
+        let pairs = owns.iter().enumerate().flat_map(|(r, own)| {
+            let start = if r == 0 { 0 } else { ends[r - 1] };
+            heard[start..ends[r]]
+                .iter()
+                .map(move |o| (r, own.position, own.velocity, o.position, o.velocity))
+        });
+        let (mut current, mut gradient, mut consensus) = (None, V::ZERO, V::ZERO);
+        self.for_each_term(pairs, |r, g, c| {
+            if current != Some(r) {
+                if let Some(done) = current {
+                    out[done] = finish(gradient, consensus);
+                }
+                (current, gradient, consensus) = (Some(r), V::ZERO, V::ZERO);
+            }
+            gradient += g;
+            consensus += c;
+        });
+        if let Some(done) = current {
+            out[done] = finish(gradient, consensus);
+        }
+    }
+
     /// c₁ Σ_j φ_α(‖q_j − q_i‖_σ) n_ij + c₂ Σ_j a_ij (p_j − p_i) over `others` in their order.
     #[inline]
     fn sum<V: Vector>(&self, qi: V, pi: V, others: impl Iterator<Item = (V, V)>) -> V {

@@ -185,6 +185,17 @@ impl<V: Vector> LocalForm<V> for Algorithm1 {
     fn local_input(&self, _t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V {
         self.alpha.local_input(own, heard)
     }
+
+    fn local_inputs(
+        &self,
+        _t: f64,
+        owns: &[Perceived<V>],
+        heard: &[Perceived<V>],
+        ends: &[usize],
+        out: &mut [V],
+    ) {
+        self.alpha.local_inputs(owns, heard, ends, out);
+    }
 }
 
 /// u_i = u_i^α + f_i^γ (eq. 25–26) from agent i's perception; the γ-agent's state at t is known
@@ -194,6 +205,21 @@ impl<V: Vector> LocalForm<V> for Algorithm2<V> {
         let reference = self.navigation.gamma.state(t);
         self.alpha.local_input(own, heard)
             + self.navigation.input(own.position, own.velocity, reference)
+    }
+
+    fn local_inputs(
+        &self,
+        t: f64,
+        owns: &[Perceived<V>],
+        heard: &[Perceived<V>],
+        ends: &[usize],
+        out: &mut [V],
+    ) {
+        let reference = self.navigation.gamma.state(t);
+        self.alpha.local_inputs(owns, heard, ends, out);
+        for (u, own) in out.iter_mut().zip(owns) {
+            *u += self.navigation.input(own.position, own.velocity, reference);
+        }
     }
 }
 
@@ -207,5 +233,21 @@ impl<V: Space> LocalForm<V> for Algorithm3<V> {
         self.flock.alpha.local_input(own, heard)
             + self.flock.navigation.input(q, p, reference)
             + self.beta.input(q, p)
+    }
+
+    fn local_inputs(
+        &self,
+        t: f64,
+        owns: &[Perceived<V>],
+        heard: &[Perceived<V>],
+        ends: &[usize],
+        out: &mut [V],
+    ) {
+        let reference = self.flock.navigation.gamma.state(t);
+        self.flock.alpha.local_inputs(owns, heard, ends, out);
+        for (u, own) in out.iter_mut().zip(owns) {
+            let (q, p) = (own.position, own.velocity);
+            *u = *u + self.flock.navigation.input(q, p, reference) + self.beta.input(q, p);
+        }
     }
 }

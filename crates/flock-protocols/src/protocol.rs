@@ -151,6 +151,24 @@ pub trait LocalForm<V: Vector>: Sync {
     /// the communication range): the protocol keeps those within r by their perceived distance.
     /// For a protocol of a fixed graph it holds the graph neighbours whose messages arrived.
     fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V;
+
+    /// [`LocalForm::local_input`] of several receivers at time `t`: `out[r]` for `owns[r]`, which
+    /// heard `heard[ends[r − 1]..ends[r]]` (from 0 for the first). A protocol whose pair terms
+    /// batch across receivers computes them together, with the bits of `local_input`.
+    fn local_inputs(
+        &self,
+        t: f64,
+        owns: &[Perceived<V>],
+        heard: &[Perceived<V>],
+        ends: &[usize],
+        out: &mut [V],
+    ) {
+        let mut start = 0;
+        for ((own, &end), u) in owns.iter().zip(ends).zip(out) {
+            *u = self.local_input(t, own, &heard[start..end]);
+            start = end;
+        }
+    }
 }
 
 /// A protocol chosen at run time.

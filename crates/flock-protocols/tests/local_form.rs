@@ -37,6 +37,11 @@ fn local_is_controls<V: Vector, P: Protocol<V>>(protocol: &P, swarm: &Swarm<V>, 
     protocol.controls(t, swarm, &net, &mut inputs);
     let mut wide = ProximityNet::new();
     NeighbourSearch::new().build(&swarm.positions, r.max(extra), &mut wide);
+    let bits = |v: V| {
+        (0..V::DIM)
+            .map(|k| v.coord(k).to_bits())
+            .collect::<Vec<_>>()
+    };
     for (i, &u) in inputs.iter().enumerate() {
         let graph = protocol.interaction_graph().unwrap_or(net.graph());
         let heard: Vec<_> = graph
@@ -45,11 +50,6 @@ fn local_is_controls<V: Vector, P: Protocol<V>>(protocol: &P, swarm: &Swarm<V>, 
             .map(|&j| exact(swarm, j as usize))
             .collect();
         let own = exact(swarm, i);
-        let bits = |v: V| {
-            (0..V::DIM)
-                .map(|k| v.coord(k).to_bits())
-                .collect::<Vec<_>>()
-        };
         assert_eq!(
             bits(local.local_input(t, &own, &heard)),
             bits(u),
@@ -69,6 +69,33 @@ fn local_is_controls<V: Vector, P: Protocol<V>>(protocol: &P, swarm: &Swarm<V>, 
                 epsilon = 1e-12
             );
         }
+    }
+    // every receiver at once through `local_inputs`, the odd ones having heard nothing: the
+    // bits of `local_input` of each (the pair terms of one receiver run on into the next one's)
+    let graph = protocol.interaction_graph().unwrap_or(net.graph());
+    let owns: Vec<_> = (0..swarm.len()).map(|i| exact(swarm, i)).collect();
+    let (mut heard, mut ends) = (Vec::new(), Vec::new());
+    for i in 0..swarm.len() {
+        if i % 2 == 0 {
+            heard.extend(
+                graph
+                    .neighbours(i)
+                    .iter()
+                    .map(|&j| exact(swarm, j as usize)),
+            );
+        }
+        ends.push(heard.len());
+    }
+    let mut out = vec![V::ZERO; swarm.len()];
+    local.local_inputs(t, &owns, &heard, &ends, &mut out);
+    let mut start = 0;
+    for (i, (&u, &end)) in out.iter().zip(&ends).enumerate() {
+        let alone = local.local_input(t, &owns[i], &heard[start..end]);
+        assert_eq!(bits(u), bits(alone), "agent {i} in a batch");
+        if i % 2 == 0 {
+            assert_eq!(bits(u), bits(inputs[i]), "agent {i} in a batch");
+        }
+        start = end;
     }
 }
 

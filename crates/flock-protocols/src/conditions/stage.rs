@@ -482,16 +482,13 @@ impl<V: Vector> Stage<V> {
         let delayed = this.history.slot(k, this.delay);
         let all_heard = this.conditions.faults.is_none();
         let loss_by_length = matches!(comm.loss, Loss::Distance { .. });
-        // each worker's candidate, heard and old link lists, reused from agent to agent
-        let scratch = || (Vec::new(), Vec::new(), Vec::new());
-        let counts = control_agents(&mut inputs, &mut links, scratch, |i, mut links_i, w| {
-            let (js, heard, old) = w;
-            if !this.moves(i) {
-                if let Some(links_i) = links_i {
-                    links_i.clear();
-                }
-                return (V::ZERO, Counts::default());
-            }
+        // receiver i's own perceived state and what it hears, appended to `heard`: candidates,
+        // each packet delayed, lost, dropped or replaced by the last value received
+        let receive = |i: usize,
+                       mut links_i: Option<&mut Vec<Link<V>>>,
+                       js: &mut Vec<u32>,
+                       old: &mut Vec<Link<V>>,
+                       heard: &mut Vec<Perceived<V>>| {
             let own_lag = if comm.delayed == Delayed::All {
                 this.delay
             } else {
@@ -525,7 +522,7 @@ impl<V: Vector> Stage<V> {
             if let Some(links_i) = links_i.as_deref_mut() {
                 old.append(links_i);
             }
-            heard.clear();
+            let first = heard.len();
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             for &j in js.iter() {
                 let ju = j as usize;
@@ -604,9 +601,48 @@ impl<V: Vector> Stage<V> {
                 candidates: js.len(),
                 lost: lost_count,
                 age: age_sum,
-                used: heard.len(),
+                used: heard.len() - first,
             };
-            (local.local_input(t, &own, heard), counts)
+            (own, counts)
+        };
+        let counts = control_blocks(&mut inputs, &mut links, |start, inputs, mut links, w| {
+            let Scratch {
+                js,
+                old,
+                owns,
+                heard,
+                ends,
+                receivers,
+                out,
+            } = w;
+            heard.clear();
+            owns.clear();
+            ends.clear();
+            receivers.clear();
+            let mut counts = Counts::default();
+            for (r, u) in inputs.iter_mut().enumerate() {
+                let i = start + r;
+                let links_i = links.as_deref_mut().map(|l| &mut l[r]);
+                if !this.moves(i) {
+                    if let Some(links_i) = links_i {
+                        links_i.clear();
+                    }
+                    *u = V::ZERO;
+                    continue;
+                }
+                let (own, received) = receive(i, links_i, js, old, heard);
+                counts = counts + received;
+                owns.push(own);
+                ends.push(heard.len());
+                receivers.push(r);
+            }
+            out.clear();
+            out.resize(owns.len(), V::ZERO);
+            local.local_inputs(t, owns, heard, ends, out);
+            for (&r, &u) in receivers.iter().zip(out.iter()) {
+                inputs[r] = u;
+            }
+            counts
         });
         self.links = links;
         self.inputs = inputs;
@@ -824,44 +860,78 @@ impl core::ops::Add for Counts {
     }
 }
 
-/// Each moving receiver's input `inputs[i]` and counts from `f(i, links_i, scratch)`, with
-/// `links_i` its kept links (`None` when `links` is empty: links keep nothing); the counts
-/// summed. In parallel with the `parallel` feature, each worker's `scratch` made by `init`
-/// and passed from agent to agent (`f`'s result must not depend on what it held before).
-fn control_agents<V: Vector, W>(
+/// Receivers are controlled in blocks of this many consecutive agents, their inputs computed
+/// together ([`LocalForm::local_inputs`]: the pair terms of a block go through one batch).
+const CONTROL_BLOCK: usize = 64;
+
+/// What a worker reuses from block to block (the buffers keep their capacity): one receiver's
+/// candidates `js` and last step's links `old`, and the block's moving receivers — their own
+/// perceived states, the states each heard (`heard[ends[r − 1]..ends[r]]`), their places in the
+/// block and their inputs.
+struct Scratch<V> {
+    js: Vec<u32>,
+    old: Vec<Link<V>>,
+    owns: Vec<Perceived<V>>,
+    heard: Vec<Perceived<V>>,
+    ends: Vec<usize>,
+    receivers: Vec<usize>,
+    out: Vec<V>,
+}
+
+impl<V> Default for Scratch<V> {
+    fn default() -> Self {
+        Self {
+            js: Vec::new(),
+            old: Vec::new(),
+            owns: Vec::new(),
+            heard: Vec::new(),
+            ends: Vec::new(),
+            receivers: Vec::new(),
+            out: Vec::new(),
+        }
+    }
+}
+
+/// The counts of `f(start, inputs, links, scratch)` summed over the blocks of
+/// [`CONTROL_BLOCK`] receivers from `start`, `f` setting each receiver's input in `inputs`,
+/// with `links` their kept links (`None` when `links` is empty: links keep nothing). In
+/// parallel with the `parallel` feature, each worker's scratch passed from block to block (`f`'s
+/// result must not depend on what it held before).
+fn control_blocks<V: Vector>(
     inputs: &mut [V],
     links: &mut [Vec<Link<V>>],
-    init: impl Fn() -> W + Sync + Send,
-    f: impl Fn(usize, Option<&mut Vec<Link<V>>>, &mut W) -> (V, Counts) + Sync + Send,
+    f: impl Fn(usize, &mut [V], Option<&mut [Vec<Link<V>>]>, &mut Scratch<V>) -> Counts + Sync + Send,
 ) -> Counts {
-    let each = |w: &mut W, i: usize, u: &mut V, l: Option<&mut Vec<Link<V>>>| {
-        let (input, counts) = f(i, l, w);
-        *u = input;
-        counts
-    };
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        let inputs = inputs.par_iter_mut().enumerate().with_min_len(256);
+        let blocks = inputs
+            .par_chunks_mut(CONTROL_BLOCK)
+            .enumerate()
+            .with_min_len(4);
         if links.is_empty() {
-            inputs
-                .map_init(&init, |w, (i, u)| each(w, i, u, None))
+            blocks
+                .map_init(Scratch::default, |w, (b, u)| {
+                    f(b * CONTROL_BLOCK, u, None, w)
+                })
                 .reduce(Counts::default, core::ops::Add::add)
         } else {
-            inputs
-                .zip(links.par_iter_mut())
-                .map_init(&init, |w, ((i, u), l)| each(w, i, u, Some(l)))
+            blocks
+                .zip(links.par_chunks_mut(CONTROL_BLOCK))
+                .map_init(Scratch::default, |w, ((b, u), l)| {
+                    f(b * CONTROL_BLOCK, u, Some(l), w)
+                })
                 .reduce(Counts::default, core::ops::Add::add)
         }
     }
     #[cfg(not(feature = "parallel"))]
     {
-        let mut w = init();
-        let mut links = links.iter_mut();
+        let mut w = Scratch::default();
+        let mut links = links.chunks_mut(CONTROL_BLOCK);
         inputs
-            .iter_mut()
+            .chunks_mut(CONTROL_BLOCK)
             .enumerate()
-            .map(|(i, u)| each(&mut w, i, u, links.next()))
+            .map(|(b, u)| f(b * CONTROL_BLOCK, u, links.next(), &mut w))
             .fold(Counts::default(), core::ops::Add::add)
     }
 }
