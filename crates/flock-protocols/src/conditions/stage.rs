@@ -445,8 +445,10 @@ impl<V: Vector> Stage<V> {
     /// Communicate and control: each moving agent i hears its candidates (fixed graph
     /// neighbours, within the communication range if one is given; or, for a protocol of the
     /// proximity net, the agents within the communication range, by default the interaction
-    /// range, at their true positions; less the failed agents not heard), each packet delayed by τ (+ jitter), lost by the loss model, dropped or
-    /// replaced by the last value received; u_i = local_input(t, own, heard).
+    /// range, at their true positions; less the failed agents not heard), each packet delayed
+    /// by τ (+ jitter), lost by the loss model, dropped or replaced by the last value received;
+    /// u_i = local_input(t, own, heard), computed for [`CONTROL_BLOCK`] receivers at a time
+    /// ([`LocalForm::local_inputs`]).
     fn communicate_and_control<P: Protocol<V> + ?Sized>(
         &mut self,
         protocol: &P,
