@@ -304,23 +304,15 @@ impl AlphaInteraction {
         self.sum(own.position, own.velocity, others)
     }
 
-    /// [`AlphaInteraction::local_input`] of several receivers, bit for bit: `out[r]` from
-    /// `owns[r]` and the states it perceives, `heard[ends[r − 1]..ends[r]]` (from 0 for the
-    /// first). The pairs of all the receivers go through one run of fours, so a receiver's last
-    /// pairs share a vector cosine with the next one's first instead of leaving lanes empty;
-    /// each receiver's sums still start at zero and add its terms in its list's order.
-    pub fn local_inputs<V: Vector>(
-        &self,
-        owns: &[crate::Perceived<V>],
-        heard: &[crate::Perceived<V>],
-        ends: &[usize],
-        out: &mut [V],
-    ) {
+    /// [`AlphaInteraction::local_input`] of each receiver of `block`, bit for bit, into `out`.
+    /// The pairs of all the receivers go through one run of fours, so a receiver's last pairs
+    /// share a vector cosine with the next one's first instead of leaving lanes empty; each
+    /// receiver's sums still start at zero and add its terms in its list's order.
+    pub fn local_inputs<V: Vector>(&self, block: crate::Perceptions<'_, V>, out: &mut [V]) {
         let finish = |g: V, c: V| g * self.c1 + c * self.c2;
         out.fill(finish(V::ZERO, V::ZERO));
-        let pairs = owns.iter().enumerate().flat_map(|(r, own)| {
-            let start = if r == 0 { 0 } else { ends[r - 1] };
-            heard[start..ends[r]]
+        let pairs = block.receivers().enumerate().flat_map(|(r, (own, heard))| {
+            heard
                 .iter()
                 .map(move |o| (r, own.position, own.velocity, o.position, o.velocity))
         });

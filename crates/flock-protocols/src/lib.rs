@@ -77,7 +77,7 @@ pub use olfati_saber2004_reynolds::{
 #[cfg(feature = "obstacles")]
 pub use olfati_saber2006::Algorithm3;
 pub use olfati_saber2006::{Algorithm1, Algorithm2};
-pub use protocol::{DynProtocol, LocalForm, Perceived, Protocol, Update};
+pub use protocol::{DynProtocol, LocalForm, Perceived, Perceptions, Protocol, Update};
 pub use reynolds1987::{Boids, BoidsParams};
 pub use swarm::Swarm;
 pub use tanner2003::{

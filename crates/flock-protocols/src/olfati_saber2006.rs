@@ -11,7 +11,9 @@ use flock_obstacles::Space;
 #[cfg(feature = "obstacles")]
 use crate::BetaInteraction;
 use crate::swarm::kinetic;
-use crate::{AlphaInteraction, LocalForm, NavigationalFeedback, Perceived, Protocol, Swarm};
+use crate::{
+    AlphaInteraction, LocalForm, NavigationalFeedback, Perceived, Perceptions, Protocol, Swarm,
+};
 
 /// Algorithm 1 (eq. 24): u_i = u_i^α, the α-interaction alone. Total momentum is preserved
 /// (Σ_i u_i = 0) and, in the frame of the centre of mass, H = V(q) + ½ Σ ‖p_i − p_c‖² is
@@ -186,15 +188,8 @@ impl<V: Vector> LocalForm<V> for Algorithm1 {
         self.alpha.local_input(own, heard)
     }
 
-    fn local_inputs(
-        &self,
-        _t: f64,
-        owns: &[Perceived<V>],
-        heard: &[Perceived<V>],
-        ends: &[usize],
-        out: &mut [V],
-    ) {
-        self.alpha.local_inputs(owns, heard, ends, out);
+    fn local_inputs(&self, _t: f64, block: Perceptions<'_, V>, out: &mut [V]) {
+        self.alpha.local_inputs(block, out);
     }
 }
 
@@ -207,17 +202,10 @@ impl<V: Vector> LocalForm<V> for Algorithm2<V> {
             + self.navigation.input(own.position, own.velocity, reference)
     }
 
-    fn local_inputs(
-        &self,
-        t: f64,
-        owns: &[Perceived<V>],
-        heard: &[Perceived<V>],
-        ends: &[usize],
-        out: &mut [V],
-    ) {
+    fn local_inputs(&self, t: f64, block: Perceptions<'_, V>, out: &mut [V]) {
         let reference = self.navigation.gamma.state(t);
-        self.alpha.local_inputs(owns, heard, ends, out);
-        for (u, own) in out.iter_mut().zip(owns) {
+        self.alpha.local_inputs(block, out);
+        for (u, own) in out.iter_mut().zip(block.owns) {
             *u += self.navigation.input(own.position, own.velocity, reference);
         }
     }
@@ -235,17 +223,10 @@ impl<V: Space> LocalForm<V> for Algorithm3<V> {
             + self.beta.input(q, p)
     }
 
-    fn local_inputs(
-        &self,
-        t: f64,
-        owns: &[Perceived<V>],
-        heard: &[Perceived<V>],
-        ends: &[usize],
-        out: &mut [V],
-    ) {
+    fn local_inputs(&self, t: f64, block: Perceptions<'_, V>, out: &mut [V]) {
         let reference = self.flock.navigation.gamma.state(t);
-        self.flock.alpha.local_inputs(owns, heard, ends, out);
-        for (u, own) in out.iter_mut().zip(owns) {
+        self.flock.alpha.local_inputs(block, out);
+        for (u, own) in out.iter_mut().zip(block.owns) {
             let (q, p) = (own.position, own.velocity);
             *u = *u + self.flock.navigation.input(q, p, reference) + self.beta.input(q, p);
         }

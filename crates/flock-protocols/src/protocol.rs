@@ -152,22 +152,39 @@ pub trait LocalForm<V: Vector>: Sync {
     /// For a protocol of a fixed graph it holds the graph neighbours whose messages arrived.
     fn local_input(&self, t: f64, own: &Perceived<V>, heard: &[Perceived<V>]) -> V;
 
-    /// [`LocalForm::local_input`] of several receivers at time `t`: `out[r]` for `owns[r]`, which
-    /// heard `heard[ends[r − 1]..ends[r]]` (from 0 for the first). A protocol whose pair terms
-    /// batch across receivers computes them together, with the bits of `local_input`.
-    fn local_inputs(
-        &self,
-        t: f64,
-        owns: &[Perceived<V>],
-        heard: &[Perceived<V>],
-        ends: &[usize],
-        out: &mut [V],
-    ) {
-        let mut start = 0;
-        for ((own, &end), u) in owns.iter().zip(ends).zip(out) {
-            *u = self.local_input(t, own, &heard[start..end]);
-            start = end;
+    /// [`LocalForm::local_input`] of a block of receivers at time `t`: `out[r]` for receiver r
+    /// of `block`. A protocol whose pair terms batch across receivers computes them together,
+    /// with the bits of `local_input`.
+    fn local_inputs(&self, t: f64, block: Perceptions<'_, V>, out: &mut [V]) {
+        for ((own, heard), u) in block.receivers().zip(out) {
+            *u = self.local_input(t, own, heard);
         }
+    }
+}
+
+/// What a block of receivers perceives: receiver r perceives itself as `owns[r]` and heard
+/// `heard[ends[r − 1]..ends[r]]` (from 0 for the first), in ascending agent index.
+#[derive(Clone, Copy, Debug)]
+pub struct Perceptions<'a, V> {
+    /// Each receiver's own perceived state.
+    pub owns: &'a [Perceived<V>],
+    /// What the receivers heard, one after the other.
+    pub heard: &'a [Perceived<V>],
+    /// The end in `heard` of each receiver's states.
+    pub ends: &'a [usize],
+}
+
+impl<'a, V> Perceptions<'a, V> {
+    /// Each receiver's own perceived state and the states it heard, in order.
+    pub fn receivers(
+        self,
+    ) -> impl Iterator<Item = (&'a Perceived<V>, &'a [Perceived<V>])> + Clone + 'a {
+        let starts = core::iter::once(0).chain(self.ends.iter().copied());
+        self.owns.iter().zip(
+            starts
+                .zip(self.ends)
+                .map(|(start, &end)| &self.heard[start..end]),
+        )
     }
 }
 

@@ -8,7 +8,7 @@ use flock_obstacles::{ObstacleSpec, Space};
 use flock_protocols::{
     Algorithm1, AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, BallObstacle,
     CentralisedTracking2003, Consensus, Flocking2003, GammaAgent, NavigationalFeedback,
-    ObstacleFlocking2003, ObstacleParams, Perceived, Protocol, StressForm, Swarm,
+    ObstacleFlocking2003, ObstacleParams, Perceived, Perceptions, Protocol, StressForm, Swarm,
     TannerJadbabaiePappas, TranslationalController, random_connected_graph,
 };
 use glam::{DVec2, DVec3};
@@ -87,15 +87,22 @@ fn local_is_controls<V: Vector, P: Protocol<V>>(protocol: &P, swarm: &Swarm<V>, 
         ends.push(heard.len());
     }
     let mut out = vec![V::ZERO; swarm.len()];
-    local.local_inputs(t, &owns, &heard, &ends, &mut out);
-    let mut start = 0;
-    for (i, (&u, &end)) in out.iter().zip(&ends).enumerate() {
-        let alone = local.local_input(t, &owns[i], &heard[start..end]);
-        assert_eq!(bits(u), bits(alone), "agent {i} in a batch");
+    let block = Perceptions {
+        owns: &owns,
+        heard: &heard,
+        ends: &ends,
+    };
+    local.local_inputs(t, block, &mut out);
+    for (i, (&u, (own, heard))) in out.iter().zip(block.receivers()).enumerate() {
+        assert!(i % 2 == 0 || heard.is_empty());
+        assert_eq!(
+            bits(u),
+            bits(local.local_input(t, own, heard)),
+            "agent {i} in a batch"
+        );
         if i % 2 == 0 {
             assert_eq!(bits(u), bits(inputs[i]), "agent {i} in a batch");
         }
-        start = end;
     }
 }
 

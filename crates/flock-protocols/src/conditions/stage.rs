@@ -18,7 +18,7 @@ use super::stream::{Purpose, Streams};
 use crate::error::ParamError;
 use crate::integrator::{advance, controls_in};
 use crate::vehicle::{Fleet, VehicleKind};
-use crate::{Integrator, LocalForm, Perceived, Protocol, Swarm, Update};
+use crate::{Integrator, LocalForm, Perceived, Perceptions, Protocol, Swarm, Update};
 
 /// The readings of the last step, for the diagnostics columns.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -640,7 +640,8 @@ impl<V: Vector> Stage<V> {
             }
             out.clear();
             out.resize(owns.len(), V::ZERO);
-            local.local_inputs(t, owns, heard, ends, out);
+            let block = Perceptions { owns, heard, ends };
+            local.local_inputs(t, block, out);
             for (&r, &u) in receivers.iter().zip(out.iter()) {
                 inputs[r] = u;
             }
