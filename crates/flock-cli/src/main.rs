@@ -263,6 +263,13 @@ fn dispatch(command: Command) -> ExitCode {
                         flock_viz::PlotError::Scenario(_) | flock_viz::PlotError::Dir(_) => {
                             ExitCode::from(INVALID)
                         }
+                        // a file flocking never writes through or over (`write_no_follow`'s
+                        // refusals: a link, a user's file, a user's `NAME.tmp`)
+                        flock_viz::PlotError::Viz(flock_viz::VizError::Io { source, .. })
+                            if source.kind() == std::io::ErrorKind::AlreadyExists =>
+                        {
+                            ExitCode::from(INVALID)
+                        }
                         flock_viz::PlotError::Viz(_) => ExitCode::FAILURE,
                     }
                 }

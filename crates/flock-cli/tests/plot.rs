@@ -197,3 +197,28 @@ fn plot_of_a_directory_another_process_writes_is_refused() {
     assert!(drawn.status.success(), "{}", stderr(&drawn));
     assert!(run.join("figures/snapshots.svg").is_file());
 }
+
+/// A user's `metrics.svg.tmp` beside the `metrics.svg` flocking drew and settled is the user's,
+/// not a write of flocking's cut short: `plot` keeps it and refuses (exit 2, naming the file and
+/// the fix).
+#[test]
+fn a_users_tmp_beside_a_figure_is_kept_and_plot_refuses() {
+    let tmp = temp_dir("plot_users_tmp");
+    fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
+    let output = flocking(tmp.path(), &["run", "s.ron", "--out", "o", "--plot"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let mine = tmp.path().join("o/figures/metrics.svg.tmp");
+    fs::write(&mine, "mine\n").expect("a user's file");
+    let refused = flocking(tmp.path(), &["plot", "o"]);
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    assert!(
+        message.contains("metrics.svg.tmp exists and flocking did not leave it there")
+            && message.contains("move it away"),
+        "{message}"
+    );
+    assert_eq!(fs::read(&mine).expect("kept"), b"mine\n");
+    fs::remove_file(&mine).expect("the user moves it away");
+    let drawn = flocking(tmp.path(), &["plot", "o"]);
+    assert!(drawn.status.success(), "{}", stderr(&drawn));
+}

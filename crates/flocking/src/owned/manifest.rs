@@ -213,6 +213,15 @@ impl Manifest {
         self.files.contains_key(relative)
     }
 
+    /// Whether a replacement of `relative` is under way: more than one content accepted (between
+    /// [`Manifest::accept`] and [`Manifest::settle`]).
+    #[must_use]
+    pub fn replacing(&self, relative: &str) -> bool {
+        self.files
+            .get(relative)
+            .is_some_and(|accepted| accepted.len() > 1)
+    }
+
     /// Accepts `digest` for `relative` besides what it accepted before: written before the file
     /// is replaced, so that either content matches whenever the replacement is cut short.
     pub fn accept(&mut self, relative: &str, digest: Digest) {

@@ -438,10 +438,12 @@ fn write_tracked(
     let mut tmp = path.as_os_str().to_owned();
     tmp.push(".tmp");
     let tmp = PathBuf::from(tmp);
-    // a `tmp` beside a file the manifest lists is a replacement of flocking's cut short
-    let leftover_is_ours = tracked
-        .as_ref()
-        .is_some_and(|(_, relative, manifest)| manifest.lists(relative));
+    // a `tmp` is a write of flocking's cut short only while the manifest records one: the new
+    // content accepted beside the old (a replacement), or a file it lists that is not there yet
+    // (a first write); beside a file it settled, a `tmp` is the user's
+    let leftover_is_ours = tracked.as_ref().is_some_and(|(_, relative, manifest)| {
+        manifest.replacing(relative) || (manifest.lists(relative) && !path.exists())
+    });
     write_tmp(&tmp, bytes, leftover_is_ours)?;
     fs::rename(&tmp, path).map_err(at(format_args!(
         "rename {} to {}",
@@ -1178,8 +1180,23 @@ mod tests {
             std::fs::read(sweep.join("b.svg.tmp")).expect("kept"),
             b"mine\n"
         );
-        // once flocking wrote `c.svg`, a `c.svg.tmp` beside it is its own write cut short
+        // beside a `c.svg` flocking wrote and settled, a `c.svg.tmp` is the user's: kept
         write_file(&sweep.join("c.svg"), b"1").expect("written");
+        std::fs::write(sweep.join("c.svg.tmp"), "mine\n").expect("a user's file");
+        assert!(write_file(&sweep.join("c.svg"), b"2").is_err());
+        assert_eq!(
+            std::fs::read(sweep.join("c.svg.tmp")).expect("kept"),
+            b"mine\n"
+        );
+        assert_eq!(std::fs::read(sweep.join("c.svg")).expect("kept"), b"1");
+        // a replacement cut short (the manifest accepting the new content beside the old, and
+        // the temporary file half written) is flocking's own: the next write replaces it
+        std::fs::remove_file(sweep.join("c.svg.tmp")).expect("the user moves it away");
+        let mut manifest = super::Manifest::read(&sweep)
+            .expect("read")
+            .expect("a manifest");
+        manifest.accept("c.svg", super::manifest::Digest::of(b"2"));
+        manifest.write(&sweep).expect("written");
         std::fs::write(sweep.join("c.svg.tmp"), "cut sh").expect("a write cut short");
         write_file(&sweep.join("c.svg"), b"2").expect("replaced");
         assert_eq!(std::fs::read(sweep.join("c.svg")).expect("written"), b"2");
