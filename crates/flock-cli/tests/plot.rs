@@ -213,8 +213,8 @@ fn a_users_tmp_beside_a_figure_is_kept_and_plot_refuses() {
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
     let message = stderr(&refused);
     assert!(
-        message.contains("metrics.svg.tmp exists and flocking did not leave it there")
-            && message.contains("move it away"),
+        message.contains("holds metrics.svg.tmp, which flocking did not write")
+            && message.contains("move it"),
         "{message}"
     );
     assert_eq!(fs::read(&mine).expect("kept"), b"mine\n");

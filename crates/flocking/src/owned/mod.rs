@@ -444,7 +444,19 @@ fn write_tracked(
     let leftover_is_ours = tracked.as_ref().is_some_and(|(_, relative, manifest)| {
         manifest.replacing(relative) || (manifest.lists(relative) && !path.exists())
     });
-    write_tmp(&tmp, bytes, leftover_is_ours)?;
+    write_tmp(&tmp, bytes, leftover_is_ours).map_err(|e| {
+        // a `tmp` flocking did not leave (or a link there) is a refusal, not an I/O failure
+        if e.kind() == io::ErrorKind::AlreadyExists {
+            DirError::Foreign {
+                dir: parent_of(&tmp).to_owned(),
+                entry: tmp
+                    .file_name()
+                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+            }
+        } else {
+            DirError::Io(e)
+        }
+    })?;
     fs::rename(&tmp, path).map_err(at(format_args!(
         "rename {} to {}",
         tmp.display(),
@@ -1161,7 +1173,7 @@ mod tests {
         assert!(
             refused
                 .to_string()
-                .contains("flocking did not leave it there"),
+                .contains("holds a.svg.tmp, which flocking did not write"),
             "{refused}"
         );
         assert_eq!(
@@ -1175,7 +1187,11 @@ mod tests {
         mark(&sweep, Kind::Sweep).expect("marked");
         super::start_manifest::<&str>(&sweep, &[]).expect("a manifest");
         std::fs::write(sweep.join("b.svg.tmp"), "mine\n").expect("a user's file");
-        assert!(write_file(&sweep.join("b.svg"), b"1").is_err());
+        // a refusal (exit code 2 in the commands), not an I/O failure
+        assert!(matches!(
+            write_file(&sweep.join("b.svg"), b"1"),
+            Err(super::DirError::Foreign { entry, .. }) if entry == "b.svg.tmp"
+        ));
         assert_eq!(
             std::fs::read(sweep.join("b.svg.tmp")).expect("kept"),
             b"mine\n"
@@ -1183,7 +1199,10 @@ mod tests {
         // beside a `c.svg` flocking wrote and settled, a `c.svg.tmp` is the user's: kept
         write_file(&sweep.join("c.svg"), b"1").expect("written");
         std::fs::write(sweep.join("c.svg.tmp"), "mine\n").expect("a user's file");
-        assert!(write_file(&sweep.join("c.svg"), b"2").is_err());
+        assert!(matches!(
+            write_file(&sweep.join("c.svg"), b"2"),
+            Err(super::DirError::Foreign { .. })
+        ));
         assert_eq!(
             std::fs::read(sweep.join("c.svg.tmp")).expect("kept"),
             b"mine\n"
