@@ -1116,17 +1116,7 @@ fn issue_27_a_figure_into_a_missing_directory_names_it() {
     complete(tmp.path(), &["sweep", &sweep, "--out", "sw", "--quiet"]);
     let output = flocking(
         tmp.path(),
-        &[
-            "sweep",
-            "plot",
-            "sw",
-            "--x",
-            "seed",
-            "--metric",
-            "connectivity",
-            "--out",
-            "zz/yy.svg",
-        ],
+        &[&PLOT_SEEDS[..], &["--out", "zz/yy.svg"]].concat(),
     );
     let err = stderr(&output);
     assert_ne!(output.status.code(), Some(0), "{err}");

@@ -871,6 +871,7 @@ const CONTROL_BLOCK: usize = 64;
 /// candidates `js` and last step's links `old`, and the block's moving receivers — their own
 /// perceived states, the states each heard (`heard[ends[r − 1]..ends[r]]`), their places in the
 /// block and their inputs.
+#[derive(Default)]
 struct Scratch<V> {
     js: Vec<u32>,
     old: Vec<Link<V>>,
@@ -879,20 +880,6 @@ struct Scratch<V> {
     ends: Vec<usize>,
     receivers: Vec<usize>,
     out: Vec<V>,
-}
-
-impl<V> Default for Scratch<V> {
-    fn default() -> Self {
-        Self {
-            js: Vec::new(),
-            old: Vec::new(),
-            owns: Vec::new(),
-            heard: Vec::new(),
-            ends: Vec::new(),
-            receivers: Vec::new(),
-            out: Vec::new(),
-        }
-    }
 }
 
 /// The counts of `f(start, inputs, links, scratch)` summed over the blocks of

@@ -441,8 +441,9 @@ fn write_tracked(
     // a `tmp` is a write of flocking's cut short only while the manifest records one: the new
     // content accepted beside the old (a replacement), or a file it lists that is not there yet
     // (a first write); beside a file it settled, a `tmp` is the user's
-    let leftover_is_ours = tracked.as_ref().is_some_and(|(_, relative, manifest)| {
-        manifest.replacing(relative) || (manifest.lists(relative) && !path.exists())
+    let leftover_is_ours = tracked.as_ref().is_some_and(|(root, relative, manifest)| {
+        marked_by_flocking(root)
+            && (manifest.replacing(relative) || (manifest.lists(relative) && !path.exists()))
     });
     write_tmp(&tmp, bytes, leftover_is_ours).map_err(|e| {
         // a `tmp` flocking did not leave (or a link there) is a refusal, not an I/O failure
@@ -493,10 +494,11 @@ fn tracking_manifest(path: &Path) -> io::Result<Option<(PathBuf, String, Manifes
 /// The error of a link that flocking would have written through.
 /// Writes `bytes` into `tmp`, one of flocking's own `.tmp` names, flushed, never through a link
 /// (`O_NOFOLLOW`) and never over a file it finds there (`O_EXCL`) unless `leftover_is_ours`: the
-/// caller knows a `tmp` there can only be a write of flocking's cut short (the manifest's own
-/// temporary file in a directory of flocking's, or `NAME.tmp` beside a `NAME` its manifest
-/// lists), which is then removed first. When the write fails, the file this call created is
-/// removed, and only while `tmp` still names it.
+/// caller has checked flocking's marker and knows a `tmp` there can only be a write of
+/// flocking's cut short (the manifest's own temporary file, or a `NAME.tmp` whose write the
+/// manifest records), which is then removed first, and only a regular file that is no mount
+/// point. When the write fails, the file this call created is removed, and only while `tmp`
+/// still names it.
 ///
 /// # Errors
 /// A link or a file flocking did not leave in `tmp`'s place, or any I/O error, with its path.
@@ -514,7 +516,8 @@ pub(crate) fn write_tmp(tmp: &Path, bytes: &[u8], leftover_is_ours: bool) -> io:
         Err(e)
             if e.kind() == io::ErrorKind::AlreadyExists
                 && leftover_is_ours
-                && found().is_ok_and(|m| m.is_file()) =>
+                && found().is_ok_and(|m| m.is_file())
+                && !is_mount_point(tmp) =>
         {
             fs::remove_file(tmp).map_err(at(format_args!("remove {}", tmp.display())))?;
             create()
@@ -1159,9 +1162,10 @@ mod tests {
     }
 
     /// A `NAME.tmp` that flocking did not leave is never written over: a user's file in its place
-    /// is refused and kept, whether or not flocking wrote `NAME` before (then the manifest lists
-    /// `NAME`, and a `NAME.tmp` beside it is flocking's own replacement cut short, replaced);
-    /// outside a directory with a manifest an existing `NAME.tmp` is always refused.
+    /// is refused and kept, whether or not flocking wrote `NAME` before. Only in a marked
+    /// directory whose manifest records the write of `NAME` under way (the new content accepted
+    /// beside the old) is a `NAME.tmp` flocking's own replacement cut short, and replaced;
+    /// elsewhere an existing `NAME.tmp` is always refused, even beside a copied manifest.
     #[test]
     fn a_temporary_name_flocking_did_not_leave_is_never_written_over() {
         use super::{Kind, mark, write_file, write_no_follow};
@@ -1220,6 +1224,22 @@ mod tests {
         write_file(&sweep.join("c.svg"), b"2").expect("replaced");
         assert_eq!(std::fs::read(sweep.join("c.svg")).expect("written"), b"2");
         assert!(!sweep.join("c.svg.tmp").exists());
+        // the same records copied into a directory without flocking's marker: the `.tmp` there
+        // is kept and the write refused
+        let copy = dir.path().join("copy");
+        std::fs::create_dir(&copy).expect("mkdir");
+        std::fs::write(copy.join("c.svg"), b"2").expect("a copy");
+        let mut manifest = super::Manifest::read(&sweep)
+            .expect("read")
+            .expect("a manifest");
+        manifest.accept("c.svg", super::manifest::Digest::of(b"3"));
+        manifest.write(&copy).expect("a copied manifest");
+        std::fs::write(copy.join("c.svg.tmp"), "mine\n").expect("a user's file");
+        assert!(write_no_follow(&copy.join("c.svg"), b"3").is_err());
+        assert_eq!(
+            std::fs::read(copy.join("c.svg.tmp")).expect("kept"),
+            b"mine\n"
+        );
     }
 
     /// `remove_file` and `drop_manifest` remove nothing from a directory without flocking's

@@ -1029,17 +1029,23 @@ fn check_scenario(
             changed_fields(&started, scenario).join(", ")
         )));
     }
-    // issue 31: the random draws changed generator (ChaCha8 → Philox4x32-10)
-    if checkpoint.draws_from_chacha8 && scenario.draws_at_random() {
+    // the draws of an older flocking cannot continue the run's: its random numbers came from
+    // ChaCha8 (before issue 31's Philox4x32-10), or its normal ones from Box–Muller (before the
+    // ziggurat)
+    let older_draws = if checkpoint.draws_from_chacha8 && scenario.draws_at_random() {
+        Some(
+            "drew its random numbers with ChaCha8; this one draws them with Philox4x32-10, so the run's random draws",
+        )
+    } else if checkpoint.normals_by_box_muller && scenario.draws_normals() {
+        Some(
+            "drew its normal random numbers by Box–Muller; this one draws them by the ziggurat, so the run's noise",
+        )
+    } else {
+        None
+    };
+    if let Some(why) = older_draws {
         return Err(ResumeError::Refused(format!(
-            "the checkpoint in {} was written by a flocking that drew its random numbers with ChaCha8; this one draws them with Philox4x32-10, so the run's random draws cannot continue bit for bit. Resume it with the flocking that started it, or start the run again with --out elsewhere",
-            partial.display()
-        )));
-    }
-    // the normal draws changed method (Box–Muller → the ziggurat)
-    if checkpoint.normals_by_box_muller && scenario.draws_normals() {
-        return Err(ResumeError::Refused(format!(
-            "the checkpoint in {} was written by a flocking that drew its normal random numbers by Box–Muller; this one draws them by the ziggurat, so the run's noise cannot continue bit for bit. Resume it with the flocking that started it, or start the run again with --out elsewhere",
+            "the checkpoint in {} was written by a flocking that {why} cannot continue bit for bit. Resume it with the flocking that started it, or start the run again with --out elsewhere",
             partial.display()
         )));
     }
