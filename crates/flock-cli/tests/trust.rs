@@ -1035,8 +1035,8 @@ fn issue_31_a_checkpoint_of_chacha8_draws_is_refused_for_a_random_run_only() {
 /// The normal draws moved from Box–Muller to the ziggurat, so a checkpoint of the older format
 /// (`FLOCKCK4`) of a run that draws normals (sensing noise, gusts, process noise) cannot continue
 /// bit for bit: its resume is refused, naming why and the fix, and changes nothing. A run whose
-/// draws are all uniforms (jitter, Bernoulli loss, random failures) resumes from it to the bytes
-/// of the uninterrupted run.
+/// draws are all uniforms drawn as then (symmetric Bernoulli loss, random failures) resumes from
+/// it to the bytes of the uninterrupted run.
 #[test]
 fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_only() {
     let tmp = temp_dir("box_muller_checkpoint");
@@ -1044,7 +1044,7 @@ fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_on
         "    record_every: 10,\n",
         "    record_every: 10,
     conditions: (
-        communication: (delay: 0.1, jitter: 0.05, loss: Bernoulli(p: 0.2)),
+        communication: (delay: 0.1, loss: Bernoulli(p: 0.2), symmetric: true),
         faults: (rate: 0.002, mode: Removed),
     ),
 ",
@@ -1059,6 +1059,37 @@ fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_on
         Some(why),
     );
     resume_from_older_checkpoint(tmp.path(), "uniforms", &uniforms, b"FLOCKCK4", None);
+}
+
+/// A receiver's links now draw their loss and jitter from the receiver's shared Philox blocks,
+/// so a checkpoint of the older format (`FLOCKCK5`, a block per link) of a run that draws per
+/// link (jitter, loss that is not symmetric) cannot continue bit for bit: its resume is refused,
+/// naming why and the fix, and changes nothing. A run whose draws are per agent or per pair
+/// (sensing noise, symmetric loss, random failures) resumes from it to the bytes of the
+/// uninterrupted run.
+#[test]
+fn a_checkpoint_of_a_block_per_link_is_refused_for_a_run_that_draws_per_link_only() {
+    let tmp = temp_dir("block_per_link_checkpoint");
+    let per_agent = LONG_2D.replacen(
+        "    record_every: 10,\n",
+        "    record_every: 10,
+    conditions: (
+        communication: (delay: 0.1, loss: Bernoulli(p: 0.2), symmetric: true),
+        sensing: (noise: White(sigma_q: 0.1, sigma_p: 0.05)),
+        faults: (rate: 0.002, mode: Removed),
+    ),
+",
+        1,
+    );
+    let why: &[&str] = &["a block of its own", "shared blocks", "start the run again"];
+    resume_from_older_checkpoint(
+        tmp.path(),
+        "per_link",
+        &long_conditioned(),
+        b"FLOCKCK5",
+        Some(why),
+    );
+    resume_from_older_checkpoint(tmp.path(), "per_agent", &per_agent, b"FLOCKCK5", None);
 }
 
 /// A file of the test's own that fills the filesystem of its directory but `pages` pages; it

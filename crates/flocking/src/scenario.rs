@@ -846,6 +846,13 @@ impl Scenario {
         self.algorithm.draws_at_random() || self.conditions.draws_at_random()
     }
 
+    /// Whether a run of the scenario draws random numbers per link (jitter, packet loss that is
+    /// not symmetric).
+    #[must_use]
+    pub fn draws_per_link(&self) -> bool {
+        self.conditions.draws_per_link()
+    }
+
     /// Whether a run of the scenario draws normal random numbers as it steps (Couzin's angular
     /// noise, sensing noise, wind gusts, process noise).
     #[must_use]

@@ -371,6 +371,16 @@ impl Conditions {
         communication || self.draws_normals() || faults
     }
 
+    /// Whether a condition draws random numbers per link: jitter, packet loss that is not
+    /// symmetric (drawn from the receiver's words, [`Streams::link_words`]).
+    ///
+    /// [`Streams::link_words`]: super::stream::Streams::link_words
+    #[must_use]
+    pub fn draws_per_link(&self) -> bool {
+        self.communication
+            .is_some_and(|c| c.jitter > 0.0 || (c.loss != Loss::None && !c.symmetric))
+    }
+
     /// Whether a condition draws normal random numbers: sensing noise, wind gusts, process
     /// noise.
     #[must_use]

@@ -4,7 +4,6 @@
 //! [`WhenLost::Hold`]: super::config::WhenLost::Hold
 
 use super::config::Loss;
-use super::stream::{Purpose, Streams};
 
 /// The last state received on a link: position, velocity, and the step it was measured at.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,8 +39,8 @@ impl<V> Link<V> {
     }
 }
 
-/// Whether the packet of a link is lost at step `k`, the draw keyed by `key` (the directed link,
-/// or the unordered pair when losses are symmetric), the link `length` ℓ apart.
+/// Whether the packet of a link is lost at step `k`, `draw` giving the link's uniform of the step
+/// (taken only when the loss model needs it), the link `length` ℓ apart.
 ///
 /// - Bernoulli p: lost with probability p.
 /// - Gilbert–Elliott (rates a = p_fail, b = p_recover per second): the channel state moves from
@@ -53,14 +52,12 @@ impl<V> Link<V> {
 #[must_use]
 pub fn lost(
     loss: &Loss,
-    streams: &Streams,
-    key: u64,
+    u: impl FnOnce() -> f64,
     k: u64,
     h: f64,
     length: f64,
     channel: &mut Option<(bool, u64)>,
 ) -> bool {
-    let u = || streams.uniform(Purpose::Loss, key, k);
     match *loss {
         Loss::None => false,
         Loss::Bernoulli { p } => u() < p,
@@ -89,6 +86,7 @@ pub fn lost(
 
 #[cfg(test)]
 mod tests {
+    use super::super::stream::{Purpose, Streams};
     use super::*;
 
     fn fraction(loss: &Loss, length: f64, gap: u64) -> f64 {
@@ -96,7 +94,10 @@ mod tests {
         let mut channel = None;
         let n = 20_000u64;
         let lost_count = (0..n)
-            .filter(|&k| lost(loss, &streams, 5, k * gap, 0.1, length, &mut channel))
+            .filter(|&k| {
+                let u = || streams.uniform(Purpose::Loss, 5, k * gap);
+                lost(loss, u, k * gap, 0.1, length, &mut channel)
+            })
             .count();
         lost_count as f64 / n as f64
     }

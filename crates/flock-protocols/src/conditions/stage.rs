@@ -14,7 +14,7 @@ use super::faults;
 use super::history::History;
 use super::links::{Held, Link, lost};
 use super::noise::{OrnsteinUhlenbeck, SensorNoise};
-use super::stream::{Purpose, Streams};
+use super::stream::{Purpose, Streams, word_uniform, word_up_to};
 use crate::error::ParamError;
 use crate::integrator::{advance, controls_in};
 use crate::vehicle::{Fleet, VehicleKind};
@@ -484,11 +484,15 @@ impl<V: Vector> Stage<V> {
         let delayed = this.history.slot(k, this.delay);
         let all_heard = this.conditions.faults.is_none();
         let loss_by_length = matches!(comm.loss, Loss::Distance { .. });
+        // a proximity net lists no agent as its own neighbour
+        let unfiltered =
+            all_heard && graph_range.is_none() && protocol.interaction_graph().is_none();
         // receiver i's own perceived state and what it hears, appended to `heard`: candidates,
         // each packet delayed, lost, dropped or replaced by the last value received
         let receive = |i: usize,
                        mut links_i: Option<&mut Vec<Link<V>>>,
                        js: &mut Vec<u32>,
+                       words: &mut [Vec<u32>; 2],
                        old: &mut Vec<Link<V>>,
                        heard: &mut Vec<Perceived<V>>| {
             let own_lag = if comm.delayed == Delayed::All {
@@ -502,31 +506,46 @@ impl<V: Vector> Stage<V> {
                 position: q,
                 velocity: p,
             };
-            js.clear();
-            js.extend(
-                candidates
-                    .neighbours(i)
-                    .iter()
-                    .copied()
-                    .filter(|&j| j as usize != i && (all_heard || this.is_heard(j as usize)))
-                    .filter(|&j| {
+            // the candidates heard, ascending (a graph's lists are): the list itself unless
+            // failed agents or a communication range leave some out
+            let list = candidates.neighbours(i);
+            let js: &[u32] = if unfiltered {
+                list
+            } else {
+                js.clear();
+                js.extend(list.iter().copied().filter(|&j| {
+                    j as usize != i
+                        && (all_heard || this.is_heard(j as usize))
                         // a fixed graph's link is cut beyond an explicit communication range
-                        graph_range.is_none_or(|rc| {
+                        && graph_range.is_none_or(|rc| {
                             domain
                                 .displacement(swarm.positions[i], swarm.positions[j as usize])
                                 .length_squared()
                                 < rc * rc
                         })
-                    }),
-            );
-            js.sort_unstable();
+                }));
+                js
+            };
+            debug_assert!(js.is_sorted());
             old.clear();
             if let Some(links_i) = links_i.as_deref_mut() {
                 old.append(links_i);
             }
             let first = heard.len();
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
-            for &j in js.iter() {
+            // the link from i's m-th candidate takes word m of i's words of the step
+            let [jitter_words, loss_words] = words;
+            if this.jitter > 0 {
+                let purpose = Purpose::Jitter;
+                this.streams
+                    .link_words(purpose, i as u64, k, js.len(), jitter_words);
+            }
+            if !comm.symmetric && comm.loss != Loss::None {
+                let purpose = Purpose::Loss;
+                this.streams
+                    .link_words(purpose, i as u64, k, js.len(), loss_words);
+            }
+            for (m, &j) in js.iter().enumerate() {
                 let ju = j as usize;
                 // what i keeps of the link (Gilbert–Elliott's channel, the state held), when
                 // links keep anything
@@ -534,20 +553,19 @@ impl<V: Vector> Stage<V> {
                     old.binary_search_by_key(&j, |l| l.sender)
                         .map_or(Link::new(j), |s| old[s])
                 });
-                let directed = (i * n + ju) as u64;
                 let lag = if this.jitter > 0 {
-                    this.delay
-                        + this
-                            .streams
-                            .draws(Purpose::Jitter, directed, k)
-                            .up_to(this.jitter)
+                    this.delay + word_up_to(jitter_words[m], this.jitter)
                 } else {
                     this.delay
                 };
-                let key = if comm.symmetric {
-                    (i.min(ju) * n + i.max(ju)) as u64
-                } else {
-                    directed
+                // a symmetric loss draws once for the unordered pair, both ends alike
+                let draw = || {
+                    if comm.symmetric {
+                        let pair = (i.min(ju) * n + i.max(ju)) as u64;
+                        this.streams.uniform(Purpose::Loss, pair, k)
+                    } else {
+                        word_uniform(loss_words[m])
+                    }
                 };
                 // the link's length, read by distance loss only
                 let length = if loss_by_length {
@@ -559,7 +577,7 @@ impl<V: Vector> Stage<V> {
                 };
                 let mut no_channel = None;
                 let channel = link.as_mut().map_or(&mut no_channel, |l| &mut l.channel);
-                let dropped = lost(&comm.loss, &this.streams, key, k, this.h, length, channel);
+                let dropped = lost(&comm.loss, draw, k, this.h, length, channel);
                 let stamp = k.saturating_sub(lag);
                 let used = if dropped {
                     lost_count += 1;
@@ -610,6 +628,7 @@ impl<V: Vector> Stage<V> {
         let counts = control_blocks(&mut inputs, &mut links, |start, inputs, mut links, w| {
             let Scratch {
                 js,
+                words,
                 old,
                 owns,
                 heard,
@@ -632,7 +651,7 @@ impl<V: Vector> Stage<V> {
                     *u = V::ZERO;
                     continue;
                 }
-                let (own, received) = receive(i, links_i, js, old, heard);
+                let (own, received) = receive(i, links_i, js, words, old, heard);
                 counts = counts + received;
                 owns.push(own);
                 ends.push(heard.len());
@@ -868,12 +887,13 @@ impl core::ops::Add for Counts {
 const CONTROL_BLOCK: usize = 64;
 
 /// What a worker reuses from block to block (the buffers keep their capacity): one receiver's
-/// candidates `js` and last step's links `old`, and the block's moving receivers — their own
-/// perceived states, the states each heard (`heard[ends[r − 1]..ends[r]]`), their places in the
+/// candidates `js`, the words of its links' jitter and loss draws and last step's links `old`,
+/// and the block's moving receivers — their own perceived states, the states each heard (`heard[ends[r − 1]..ends[r]]`), their places in the
 /// block and their inputs.
 #[derive(Default)]
 struct Scratch<V> {
     js: Vec<u32>,
+    words: [Vec<u32>; 2],
     old: Vec<Link<V>>,
     owns: Vec<Perceived<V>>,
     heard: Vec<Perceived<V>>,

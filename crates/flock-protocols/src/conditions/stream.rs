@@ -109,6 +109,53 @@ impl Streams {
     }
 }
 
+impl Streams {
+    /// The words of the draws of the links into `receiver` at `step` for `purpose` (packet
+    /// loss, jitter), into `words` (replacing what it held): the link from the receiver's m-th
+    /// candidate sender, in ascending order of the senders' indices, takes 32-bit word m of the
+    /// blocks (purpose, receiver, step, 0), (…, 1), …, four words a block; `count` candidates
+    /// take ⌈count / 4⌉ blocks, computed one after the other so that the processor overlaps
+    /// them. A receiver with 6 candidates computes 2 blocks where one block per directed link
+    /// would compute 6 and use half of each. The words of a step are fresh for every link, so
+    /// a link's draws are independent across links and steps whatever the candidates; they are
+    /// keyed by purpose, receiver, step and the sender's place among the receiver's candidates,
+    /// which depends on the agents' indices only (not on threads or storage order).
+    pub fn link_words(
+        &self,
+        purpose: Purpose,
+        receiver: u64,
+        step: u64,
+        count: usize,
+        words: &mut Vec<u32>,
+    ) {
+        words.clear();
+        let first = counter(purpose, receiver, step, 0);
+        for block in 0..count.div_ceil(4) {
+            debug_assert!(block < 1 << BLOCK_BITS, "2¹⁶ blocks drawn");
+            let mut counter = first;
+            counter[0] |= block as u32;
+            words.extend(philox4x32_10(counter, self.key));
+        }
+    }
+}
+
+/// A uniform number in [0, 1) from a 32-bit word of [`Streams::link_words`]: the word times
+/// 2⁻³² (a loss probability is resolved to 2.3·10⁻¹⁰).
+#[inline]
+#[must_use]
+pub fn word_uniform(word: u32) -> f64 {
+    f64::from(word) * (1.0 / 4_294_967_296.0)
+}
+
+/// A uniform whole number in [0, `n`] from a 32-bit word of [`Streams::link_words`], by
+/// Lemire's multiply and shift ⌊w (n + 1) / 2³²⌋ (Lemire, ACM TOMACS 29(1), 2019, without the
+/// rejection step: each value's probability is off by at most 2⁻³², relatively (n + 1) 2⁻³²).
+#[inline]
+#[must_use]
+pub fn word_up_to(word: u32, n: u64) -> u64 {
+    ((u128::from(word) * (u128::from(n) + 1)) >> 32) as u64
+}
+
 /// The Philox block of `counter` under `key` as two `u64`, low word first.
 ///
 /// The block function is not inlined (10 rounds) and leaves its four words in memory by 32-bit
@@ -260,6 +307,62 @@ mod tests {
             counter(Purpose::Sensing, 0, 1, 2),
             [0x0001_0002, 0, 0, 1 << 24]
         );
+    }
+
+    #[test]
+    fn a_receivers_link_words_are_its_blocks_words_in_order() {
+        let s = Streams::new(5);
+        let k = splitmix64(5);
+        let key = [k as u32, (k >> 32) as u32];
+        let block = |b: u16| philox4x32_10(counter(Purpose::Loss, 9, 77, b), key);
+        let mut words = vec![1, 2, 3];
+        s.link_words(Purpose::Loss, 9, 77, 0, &mut words);
+        assert!(words.is_empty(), "no candidate, no block");
+        for (count, blocks) in [(1, 1), (4, 1), (5, 2), (8, 2), (9, 3)] {
+            s.link_words(Purpose::Loss, 9, 77, count, &mut words);
+            let expected: Vec<u32> = (0..blocks).flat_map(block).collect();
+            assert_eq!(words, expected, "{count} candidates take {blocks} blocks");
+        }
+        // another receiver, step or purpose has other words
+        let mut other = Vec::new();
+        for (purpose, receiver, step) in [
+            (Purpose::Loss, 10, 77),
+            (Purpose::Loss, 9, 78),
+            (Purpose::Jitter, 9, 77),
+        ] {
+            s.link_words(purpose, receiver, step, 9, &mut other);
+            assert_ne!(other, words);
+        }
+    }
+
+    #[test]
+    fn word_uniforms_and_whole_numbers_are_uniform_on_their_ranges() {
+        assert_eq!(word_uniform(0), 0.0);
+        assert!(word_uniform(u32::MAX) < 1.0);
+        assert_eq!(word_uniform(1 << 31), 0.5);
+        // Lemire's map sends [0, 2³²) onto [0, n] in n + 1 runs of equal length (± 1)
+        assert_eq!(word_up_to(0, 3), 0);
+        assert_eq!(word_up_to(u32::MAX, 3), 3);
+        assert_eq!(word_up_to(u32::MAX, 0), 0);
+        let s = Streams::new(17);
+        let (n, receivers) = (4u64, 5_000u64);
+        let mut words = Vec::new();
+        let mut counts = [0usize; 5];
+        let mut below = 0usize;
+        for i in 0..receivers {
+            s.link_words(Purpose::Jitter, i, 3, 8, &mut words);
+            for &w in &words {
+                counts[word_up_to(w, n) as usize] += 1;
+                below += usize::from(word_uniform(w) < 0.1);
+            }
+        }
+        let draws = (8 * receivers) as f64;
+        for c in counts {
+            let (p, se) = (0.2, (0.2 * 0.8 / draws).sqrt());
+            assert!((c as f64 / draws - p).abs() < 4.0 * se, "{counts:?}");
+        }
+        let se = (0.1 * 0.9 / draws).sqrt();
+        assert!((below as f64 / draws - 0.1).abs() < 4.0 * se, "{below}");
     }
 
     #[test]

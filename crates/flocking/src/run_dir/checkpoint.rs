@@ -9,12 +9,14 @@
 //! point masses), the resolved scenario as RON text (so that a resume can refuse a
 //! `scenario.ron` edited since), the state of the run's conditions as RON text (empty for an
 //! ideal run), and last an
-//! FNV-1a hash of everything before it. `FLOCKCK4` is the same layout from a flocking whose
-//! normal draws came from Box–Muller (before the ziggurat), `FLOCKCK3` the same from one whose
-//! random draws came from ChaCha8 (before issue 31's Philox4x32-10), and `FLOCKCK2` the same
-//! without the vehicle count and states: all are still read, marked
-//! [`Checkpoint::normals_by_box_muller`] or [`Checkpoint::draws_from_chacha8`], and a run whose
-//! draws could not continue bit for bit from them (one that draws normals, one that draws at
+//! FNV-1a hash of everything before it. `FLOCKCK5` is the same layout from a flocking that drew
+//! each link's packet loss and jitter from a Philox block of its own (before a receiver's links
+//! shared its blocks), `FLOCKCK4` the same from one whose normal draws came from Box–Muller
+//! (before the ziggurat), `FLOCKCK3` the same from one whose random draws came from ChaCha8
+//! (before issue 31's Philox4x32-10), and `FLOCKCK2` the same without the vehicle count and
+//! states: all are still read, their [`Checkpoint::draws`] marking whose draws they continue, and
+//! a run whose draws could not continue bit for bit from them (one that draws per link, one that
+//! draws normals, one that draws at
 //! random) is not resumed. It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
@@ -32,7 +34,10 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
 /// The temporary file a checkpoint is written to before its rename.
 pub const CHECKPOINT_TMP: &str = "checkpoint.tmp";
 
-const MAGIC: &[u8; 8] = b"FLOCKCK5";
+const MAGIC: &[u8; 8] = b"FLOCKCK6";
+
+/// The magic of the format whose link draws took a block per link, same layout.
+const MAGIC_BLOCK_PER_LINK: &[u8; 8] = b"FLOCKCK5";
 
 /// The magic of the format whose normal draws came from Box–Muller, same layout.
 const MAGIC_BOX_MULLER: &[u8; 8] = b"FLOCKCK4";
@@ -59,12 +64,23 @@ pub struct Checkpoint {
     pub trajectory_bytes: u64,
     /// The resolved scenario of the run, as RON.
     pub scenario: String,
-    /// Whether the checkpoint is of a format whose random draws came from ChaCha8 (`FLOCKCK2`,
-    /// `FLOCKCK3`): the draws of this version (Philox4x32-10) cannot continue its run.
-    pub draws_from_chacha8: bool,
-    /// Whether the checkpoint is of the format whose normal draws came from Box–Muller
-    /// (`FLOCKCK4`): this version's normals (the ziggurat) cannot continue a run that draws them.
-    pub normals_by_box_muller: bool,
+    /// The random draws of the flocking that wrote it.
+    pub draws: DrawsOf,
+}
+
+/// The random draws of the flocking that wrote a checkpoint, oldest first: a run continues bit
+/// for bit only from a checkpoint whose draws are this version's for every kind it draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum DrawsOf {
+    /// ChaCha8 (`FLOCKCK2`, `FLOCKCK3`).
+    ChaCha8,
+    /// Philox4x32-10 with normals by Box–Muller (`FLOCKCK4`).
+    BoxMuller,
+    /// Philox4x32-10, normals by the ziggurat, a block per link's loss or jitter draw
+    /// (`FLOCKCK5`).
+    BlockPerLink,
+    /// This version's: a receiver's links share its blocks (`FLOCKCK6`).
+    Current,
 }
 
 impl Checkpoint {
@@ -141,7 +157,7 @@ impl Checkpoint {
         let (body, hash) = bytes
             .split_last_chunk::<8>()
             .ok_or_else(|| corrupt("too short"))?;
-        let words = if [MAGIC, MAGIC_BOX_MULLER, MAGIC_CHACHA8]
+        let words = if [MAGIC, MAGIC_BLOCK_PER_LINK, MAGIC_BOX_MULLER, MAGIC_CHACHA8]
             .iter()
             .any(|magic| body.starts_with(*magic))
         {
@@ -225,8 +241,15 @@ impl Checkpoint {
             metrics_bytes: *metrics_bytes,
             trajectory_bytes: *trajectory_bytes,
             scenario: text(scenario, "scenario")?,
-            draws_from_chacha8: !body.starts_with(MAGIC) && !body.starts_with(MAGIC_BOX_MULLER),
-            normals_by_box_muller: body.starts_with(MAGIC_BOX_MULLER),
+            draws: if body.starts_with(MAGIC) {
+                DrawsOf::Current
+            } else if body.starts_with(MAGIC_BLOCK_PER_LINK) {
+                DrawsOf::BlockPerLink
+            } else if body.starts_with(MAGIC_BOX_MULLER) {
+                DrawsOf::BoxMuller
+            } else {
+                DrawsOf::ChaCha8
+            },
         })
     }
 }

@@ -17,7 +17,7 @@ mod table;
 pub mod verdict;
 pub mod write;
 
-pub use checkpoint::{CHECKPOINT_FILE, Checkpoint};
+pub use checkpoint::{CHECKPOINT_FILE, Checkpoint, DrawsOf};
 pub use read::{
     Columns, FAILED_COLUMN, ReadError, RunFiles, TIME, Trajectory, read_metrics, read_run,
     read_trajectory_csv, read_trajectory_npy, trajectory_header, trajectory_header_with,

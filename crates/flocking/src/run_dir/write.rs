@@ -38,7 +38,7 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, sync_dir};
+use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, DrawsOf, sync_dir};
 use super::npy::{NpyFile, trajectory_dtype};
 use super::read::{FAILED_COLUMN, trajectory_header_with};
 use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
@@ -1030,15 +1030,19 @@ fn check_scenario(
         )));
     }
     // the draws of an older flocking cannot continue the run's: its random numbers came from
-    // ChaCha8 (before issue 31's Philox4x32-10), or its normal ones from Box–Muller (before the
-    // ziggurat)
-    let older_draws = if checkpoint.draws_from_chacha8 && scenario.draws_at_random() {
+    // ChaCha8 (before issue 31's Philox4x32-10), its normal ones from Box–Muller (before the
+    // ziggurat), or each link's from a block of its own (before a receiver's links shared them)
+    let older_draws = if checkpoint.draws <= DrawsOf::ChaCha8 && scenario.draws_at_random() {
         Some(
             "drew its random numbers with ChaCha8; this one draws them with Philox4x32-10, so the run's random draws",
         )
-    } else if checkpoint.normals_by_box_muller && scenario.draws_normals() {
+    } else if checkpoint.draws <= DrawsOf::BoxMuller && scenario.draws_normals() {
         Some(
             "drew its normal random numbers by Box–Muller; this one draws them by the ziggurat, so the run's noise",
+        )
+    } else if checkpoint.draws <= DrawsOf::BlockPerLink && scenario.draws_per_link() {
+        Some(
+            "drew each link's packet loss and jitter from a block of its own; this one draws a receiver's links from its shared blocks, so the run's losses and jitter",
         )
     } else {
         None
@@ -1495,8 +1499,7 @@ impl Recorder for RunDirectory {
             metrics_bytes: self.metrics_bytes,
             trajectory_bytes,
             scenario: self.scenario.clone(),
-            draws_from_chacha8: false,
-            normals_by_box_muller: false,
+            draws: DrawsOf::Current,
         }
         .write(&self.partial)?;
         let whole = format!(
