@@ -41,9 +41,8 @@ pub(crate) const LONG_2D: &str = r#"Scenario(
 /// actuation, gusty wind, process noise and faults at a rate. Each draw is keyed by purpose, agent
 /// or link and step, and the checkpoint carries the history, the link, noise and lag states.
 fn long_conditioned() -> String {
-    let conditions = "    record_every: 10,
-    conditions: (
-        communication: (
+    let text = with_conditions(
+        "        communication: (
             delay: 0.1,
             jitter: 0.05,
             delayed: Neighbours,
@@ -56,9 +55,8 @@ fn long_conditioned() -> String {
         actuation: (max_acceleration: 6.0, max_speed: 8.0, lag: 0.5),
         disturbance: (wind: (mean: [0.3, 0.0], gust: 0.2), process_noise: 0.05),
         faults: (rate: 0.002, mode: Silent),
-    ),
-";
-    let text = LONG_2D.replacen("    record_every: 10,\n", conditions, 1);
+",
+    );
     assert_ne!(text, LONG_2D);
     text
 }
@@ -1014,22 +1012,33 @@ fn resume_from_older_checkpoint(
     }
 }
 
+/// Resumes `long_conditioned()` (every condition) and `accepted` from checkpoints rewritten
+/// with an older format's `magic`: the first refused, naming `why`, the second resumed bit for
+/// bit ([`resume_from_older_checkpoint`]).
+fn older_checkpoint(name: &str, magic: &[u8; 8], why: &[&str], accepted: &str) {
+    let tmp = temp_dir(name);
+    let dir = tmp.path();
+    resume_from_older_checkpoint(dir, "refused", &long_conditioned(), magic, Some(why));
+    resume_from_older_checkpoint(dir, "accepted", accepted, magic, None);
+}
+
+/// `LONG_2D` with `conditions` (the lines inside `conditions: ( … )`).
+fn with_conditions(conditions: &str) -> String {
+    LONG_2D.replacen(
+        "    record_every: 10,\n",
+        &format!("    record_every: 10,\n    conditions: (\n{conditions}    ),\n"),
+        1,
+    )
+}
+
 /// Issue 31: the random draws moved from ChaCha8 to Philox4x32-10, so a checkpoint of the older
 /// format (`FLOCKCK3`) of a run that draws at random cannot continue bit for bit: its resume is
 /// refused, naming why and the fix, and changes nothing; a run without random draws resumes
 /// from it.
 #[test]
 fn issue_31_a_checkpoint_of_chacha8_draws_is_refused_for_a_random_run_only() {
-    let tmp = temp_dir("chacha8_checkpoint");
-    let why: &[&str] = &["ChaCha8", "Philox4x32-10", "start the run again"];
-    resume_from_older_checkpoint(
-        tmp.path(),
-        "conditioned",
-        &long_conditioned(),
-        b"FLOCKCK3",
-        Some(why),
-    );
-    resume_from_older_checkpoint(tmp.path(), "ideal", LONG_2D, b"FLOCKCK3", None);
+    let why = ["ChaCha8", "Philox4x32-10", "start the run again"];
+    older_checkpoint("chacha8_checkpoint", b"FLOCKCK3", &why, LONG_2D);
 }
 
 /// The normal draws moved from Box–Muller to the ziggurat, so a checkpoint of the older format
@@ -1039,26 +1048,13 @@ fn issue_31_a_checkpoint_of_chacha8_draws_is_refused_for_a_random_run_only() {
 /// it to the bytes of the uninterrupted run.
 #[test]
 fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_only() {
-    let tmp = temp_dir("box_muller_checkpoint");
-    let uniforms = LONG_2D.replacen(
-        "    record_every: 10,\n",
-        "    record_every: 10,
-    conditions: (
-        communication: (delay: 0.1, loss: Bernoulli(p: 0.2), symmetric: true),
+    let uniforms = with_conditions(
+        "        communication: (delay: 0.1, loss: Bernoulli(p: 0.2), symmetric: true),
         faults: (rate: 0.002, mode: Removed),
-    ),
 ",
-        1,
     );
-    let why: &[&str] = &["Box–Muller", "ziggurat", "start the run again"];
-    resume_from_older_checkpoint(
-        tmp.path(),
-        "normals",
-        &long_conditioned(),
-        b"FLOCKCK4",
-        Some(why),
-    );
-    resume_from_older_checkpoint(tmp.path(), "uniforms", &uniforms, b"FLOCKCK4", None);
+    let why = ["Box–Muller", "ziggurat", "start the run again"];
+    older_checkpoint("box_muller_checkpoint", b"FLOCKCK4", &why, &uniforms);
 }
 
 /// A receiver's links now draw their loss and jitter from the receiver's shared Philox blocks,
@@ -1069,27 +1065,14 @@ fn a_checkpoint_of_box_muller_normals_is_refused_for_a_run_that_draws_normals_on
 /// uninterrupted run.
 #[test]
 fn a_checkpoint_of_a_block_per_link_is_refused_for_a_run_that_draws_per_link_only() {
-    let tmp = temp_dir("block_per_link_checkpoint");
-    let per_agent = LONG_2D.replacen(
-        "    record_every: 10,\n",
-        "    record_every: 10,
-    conditions: (
-        communication: (delay: 0.1, loss: Bernoulli(p: 0.2), symmetric: true),
+    let per_agent = with_conditions(
+        "        communication: (delay: 0.1, loss: Bernoulli(p: 0.2), symmetric: true),
         sensing: (noise: White(sigma_q: 0.1, sigma_p: 0.05)),
         faults: (rate: 0.002, mode: Removed),
-    ),
 ",
-        1,
     );
-    let why: &[&str] = &["a block of its own", "shared blocks", "start the run again"];
-    resume_from_older_checkpoint(
-        tmp.path(),
-        "per_link",
-        &long_conditioned(),
-        b"FLOCKCK5",
-        Some(why),
-    );
-    resume_from_older_checkpoint(tmp.path(), "per_agent", &per_agent, b"FLOCKCK5", None);
+    let why = ["a block of its own", "shared blocks", "start the run again"];
+    older_checkpoint("block_per_link_checkpoint", b"FLOCKCK5", &why, &per_agent);
 }
 
 /// A file of the test's own that fills the filesystem of its directory but `pages` pages; it

@@ -9,7 +9,8 @@
 //! counter under a 64-bit key, with nothing to set up. The key is `splitmix64(seed)`; the counter
 //! is (purpose, index, step, block) ([`counter`]). A block gives two `u64`, i.e. two uniforms
 //! or, by the ziggurat, two normals: a draw computes only the blocks it takes from, and uses
-//! every word of them but for an odd last one.
+//! every word of them but for an odd last one. The packets a receiver gets at a step take one
+//! 32-bit word each of the receiver's blocks ([`Streams::link_words`]), four to a block.
 
 use core::convert::Infallible;
 
@@ -23,9 +24,10 @@ use rand_philox::{philox4x32_10, splitmix64};
 pub enum Purpose {
     /// The sensor noise of an agent.
     Sensing = 1,
-    /// The jitter of a directed link's packet.
+    /// The jitter of a packet (the receiver's words, [`Streams::link_words`]).
     Jitter = 2,
-    /// The loss of a link's packet (directed, or of an unordered pair when symmetric).
+    /// The loss of a packet (the receiver's words, [`Streams::link_words`]; the unordered pair's
+    /// draw when losses are symmetric).
     Loss = 3,
     /// Wind gusts (index 0 when shared, the agent when per agent).
     Wind = 4,
@@ -39,7 +41,7 @@ pub enum Purpose {
     Activation = 8,
 }
 
-/// The low 56 bits of a counter's index: an agent, or a directed link i n + j.
+/// The low 56 bits of a counter's index: an agent, or an unordered pair i n + j (i < j).
 const INDEX_BITS: u32 = 56;
 /// The low 48 bits of a counter's step (2⁴⁸ steps: 89,000 years at h = 0.01 s).
 const STEP_BITS: u32 = 48;
