@@ -218,7 +218,9 @@ fn a_users_tmp_beside_a_figure_is_kept_and_plot_refuses() {
         "{message}"
     );
     assert_eq!(fs::read(&mine).expect("kept"), b"mine\n");
-    fs::remove_file(&mine).expect("the user moves it away");
+    let moved = tmp.path().join("metrics.svg.tmp.mine");
+    fs::rename(&mine, &moved).expect("the user moves it away");
     let drawn = flocking(tmp.path(), &["plot", "o"]);
     assert!(drawn.status.success(), "{}", stderr(&drawn));
+    assert_eq!(fs::read(&moved).expect("kept"), b"mine\n");
 }

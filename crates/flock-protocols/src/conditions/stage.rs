@@ -535,15 +535,14 @@ impl<V: Vector> Stage<V> {
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             // the link from i's m-th candidate takes word m of i's words of the step
             let [jitter_words, loss_words] = words;
+            let (receiver, count) = (i as u64, js.len());
             if this.jitter > 0 {
-                let purpose = Purpose::Jitter;
                 this.streams
-                    .link_words(purpose, i as u64, k, js.len(), jitter_words);
+                    .link_words(Purpose::Jitter, receiver, k, count, jitter_words);
             }
             if !comm.symmetric && comm.loss != Loss::None {
-                let purpose = Purpose::Loss;
                 this.streams
-                    .link_words(purpose, i as u64, k, js.len(), loss_words);
+                    .link_words(Purpose::Loss, receiver, k, count, loss_words);
             }
             for (m, &j) in js.iter().enumerate() {
                 let ju = j as usize;
@@ -888,8 +887,8 @@ const CONTROL_BLOCK: usize = 64;
 
 /// What a worker reuses from block to block (the buffers keep their capacity): one receiver's
 /// candidates `js`, the words of its links' jitter and loss draws and last step's links `old`,
-/// and the block's moving receivers — their own perceived states, the states each heard (`heard[ends[r − 1]..ends[r]]`), their places in the
-/// block and their inputs.
+/// and the block's moving receivers — their own perceived states, the states each heard
+/// (`heard[ends[r − 1]..ends[r]]`), their places in the block and their inputs.
 #[derive(Default)]
 struct Scratch<V> {
     js: Vec<u32>,

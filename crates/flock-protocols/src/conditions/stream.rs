@@ -109,9 +109,7 @@ impl Streams {
     pub fn uniform(&self, purpose: Purpose, index: u64, step: u64) -> f64 {
         uniform(block(counter(purpose, index, step, 0), self.key)[0])
     }
-}
 
-impl Streams {
     /// The words of the draws of the links into `receiver` at `step` for `purpose` (packet
     /// loss, jitter), into `words` (replacing what it held): the link from the receiver's m-th
     /// candidate sender, in ascending order of the senders' indices, takes 32-bit word m of the

@@ -1214,26 +1214,28 @@ mod tests {
         assert_eq!(std::fs::read(sweep.join("c.svg")).expect("kept"), b"1");
         // a replacement cut short (the manifest accepting the new content beside the old, and
         // the temporary file half written) is flocking's own: the next write replaces it
-        std::fs::remove_file(sweep.join("c.svg.tmp")).expect("the user moves it away");
-        let mut manifest = super::Manifest::read(&sweep)
-            .expect("read")
-            .expect("a manifest");
-        manifest.accept("c.svg", super::manifest::Digest::of(b"2"));
-        manifest.write(&sweep).expect("written");
+        let moved = dir.path().join("c.svg.tmp.mine");
+        std::fs::rename(sweep.join("c.svg.tmp"), &moved).expect("the user moves it away");
+        // the sweep's manifest accepting `content` for c.svg beside what it already holds
+        let accepting = |content: &[u8]| {
+            let mut manifest = super::Manifest::read(&sweep)
+                .expect("read")
+                .expect("a manifest");
+            manifest.accept("c.svg", super::manifest::Digest::of(content));
+            manifest
+        };
+        accepting(b"2").write(&sweep).expect("written");
         std::fs::write(sweep.join("c.svg.tmp"), "cut sh").expect("a write cut short");
         write_file(&sweep.join("c.svg"), b"2").expect("replaced");
         assert_eq!(std::fs::read(sweep.join("c.svg")).expect("written"), b"2");
         assert!(!sweep.join("c.svg.tmp").exists());
+        assert_eq!(std::fs::read(&moved).expect("kept"), b"mine\n");
         // the same records copied into a directory without flocking's marker: the `.tmp` there
         // is kept and the write refused
         let copy = dir.path().join("copy");
         std::fs::create_dir(&copy).expect("mkdir");
         std::fs::write(copy.join("c.svg"), b"2").expect("a copy");
-        let mut manifest = super::Manifest::read(&sweep)
-            .expect("read")
-            .expect("a manifest");
-        manifest.accept("c.svg", super::manifest::Digest::of(b"3"));
-        manifest.write(&copy).expect("a copied manifest");
+        accepting(b"3").write(&copy).expect("a copied manifest");
         std::fs::write(copy.join("c.svg.tmp"), "mine\n").expect("a user's file");
         assert!(write_no_follow(&copy.join("c.svg"), b"3").is_err());
         assert_eq!(
