@@ -51,6 +51,32 @@ pub fn for_each_chunk_mut<T: Send>(
     }
 }
 
+/// [`for_each_chunk_mut`] with `f(c, chunk, scratch)`, `scratch` a buffer made by `init` and
+/// reused from one chunk to the next on the same thread (rayon's `for_each_init`): its content
+/// at the start of a chunk is whatever the last chunk left.
+pub fn for_each_chunk_mut_with<T: Send, S>(
+    items: &mut [T],
+    chunk: usize,
+    init: impl Fn() -> S + Sync + Send,
+    f: impl Fn(usize, &mut [T], &mut S) + Sync,
+) {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        items
+            .par_chunks_mut(chunk)
+            .enumerate()
+            .for_each_init(init, |scratch, (c, items)| f(c, items, scratch));
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let mut scratch = init();
+        for (c, items) in items.chunks_mut(chunk).enumerate() {
+            f(c, items, &mut scratch);
+        }
+    }
+}
+
 /// The number of threads that work of this module runs on: the rayon pool's with the `parallel`
 /// feature, 1 without it.
 #[must_use]

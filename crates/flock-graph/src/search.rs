@@ -359,6 +359,29 @@ impl Block {
         numbering: &Numbering,
         slots: Range<usize>,
     ) {
+        if numbering.is_identity() {
+            self.fill_keyed::<V, false>(grid, r2, slots, |j| j);
+        } else {
+            let original = |j| numbering.original(j as usize) as u32;
+            self.fill_keyed::<V, true>(grid, r2, slots, original);
+        }
+    }
+
+    /// [`Block::fill`] with the original index `original(j)` of each agent j. `SCATTERED` says
+    /// whether the original indices of agents near in space are unrelated (agents stored by cell
+    /// under a numbering): then whether a candidate is in range, and where it falls in its list,
+    /// are unpredictable to the processor, and the lists are built without branching on either
+    /// (measured: 2D, 10⁶ agents at random, 220 → 172 ms per plain step on one thread). Agents
+    /// stored in original order numbered along space follow the scan, whose branches the processor
+    /// predicts: branching is faster there (104–107 ms against 116–117).
+    #[inline]
+    fn fill_keyed<V: Vector, const SCATTERED: bool>(
+        &mut self,
+        grid: &CellGrid,
+        r2: f64,
+        slots: Range<usize>,
+        original: impl Fn(u32) -> u32,
+    ) {
         self.ends.clear();
         let mut end = 0;
         // consecutive slots share their cell, and so its candidate rows
@@ -382,8 +405,10 @@ impl Block {
                 self.neighbours.resize(grown, 0);
             }
             // each neighbour as (original index << 32 | slot), so that a plain sort orders by
-            // original index
-            self.keyed.clear();
+            // original index; scattered, every candidate is written and kept by advancing the
+            // length
+            self.keyed.resize(candidates, 0);
+            let mut len = 0;
             for row in rows.iter() {
                 let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
                 for ((t, c), &j) in row
@@ -392,18 +417,15 @@ impl Block {
                     .zip(&grid.order[row])
                 {
                     let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
-                    if in_range(d2, r2) && t != slot {
-                        let k = numbering.original(j as usize) as u64;
-                        self.keyed.push(k << 32 | t as u64);
+                    let keep = in_range(d2, r2) & (t != slot);
+                    if SCATTERED || keep {
+                        self.keyed[len] = u64::from(original(j)) << 32 | t as u64;
+                        len += usize::from(keep);
                     }
                 }
             }
-            self.keyed.sort_unstable();
-            let len = self.keyed.len();
-            for (out, &key) in self.neighbours[end..end + len].iter_mut().zip(&self.keyed) {
-                // the slot: t < n ≤ u32::MAX
-                *out = key as u32;
-            }
+            let (keyed, out) = (&mut self.keyed[..len], &mut self.neighbours[end..end + len]);
+            order_slots::<SCATTERED>(keyed, out);
             end += len;
             self.ends.push(end);
         }
@@ -413,6 +435,39 @@ impl Block {
     #[inline]
     fn edges(&self, k: usize) -> Range<usize> {
         (if k == 0 { 0 } else { self.ends[k - 1] })..self.ends[k]
+    }
+}
+
+/// Writes the slots of `keyed` (each `original index << 32 | slot`, all distinct) into `out` in
+/// ascending key. A `SCATTERED` list of at most 16 places each key at its rank, the number of
+/// smaller keys: no branch depends on the keys, whose order a sort would mispredict.
+fn order_slots<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u32]) {
+    if SCATTERED && keyed.len() <= 8 {
+        rank_slots::<8>(keyed, out);
+    } else if SCATTERED && keyed.len() <= 16 {
+        rank_slots::<16>(keyed, out);
+    } else {
+        keyed.sort_unstable();
+        for (out, &key) in out.iter_mut().zip(&*keyed) {
+            *out = key as u32;
+        }
+    }
+}
+
+/// [`order_slots`] of at most `N` keys by their ranks among the original indices, counted over
+/// `N` lanes (those beyond the list hold `u32::MAX`, above every original index).
+fn rank_slots<const N: usize>(keyed: &[u64], out: &mut [u32]) {
+    let mut originals = [u32::MAX; N];
+    for (lane, &key) in originals.iter_mut().zip(keyed) {
+        *lane = (key >> 32) as u32;
+    }
+    for (&key, &original) in keyed.iter().zip(&originals) {
+        let rank: usize = originals
+            .iter()
+            .map(|&other| usize::from(other < original))
+            .sum();
+        // the slot: t < n ≤ u32::MAX
+        out[rank] = key as u32;
     }
 }
 
@@ -987,5 +1042,30 @@ mod tests {
         }
         search.build(&configurations[0], 0.0, &mut full);
         assert_eq!(full, ProximityNet::brute_force(&configurations[0], 0.0));
+    }
+
+    proptest::proptest! {
+        /// A list of any length, its keys in any order, comes out in ascending original index
+        /// whether placed by ranks (lists of up to 8 and of 9–16) or sorted, with its slots.
+        #[test]
+        fn lists_come_out_in_ascending_original_index(
+            originals in proptest::collection::hash_set(0..u32::MAX, 0..40),
+            slots in proptest::collection::vec(proptest::num::u32::ANY, 40),
+        ) {
+            let keyed: Vec<u64> = originals
+                .iter()
+                .zip(&slots)
+                .map(|(&k, &t)| u64::from(k) << 32 | u64::from(t))
+                .collect();
+            let mut sorted = keyed.clone();
+            sorted.sort_unstable();
+            let expected: Vec<u32> = sorted.iter().map(|&key| key as u32).collect();
+            let mut scattered = vec![0; keyed.len()];
+            order_slots::<true>(&mut keyed.clone(), &mut scattered);
+            proptest::prop_assert_eq!(&scattered, &expected);
+            let mut along = vec![0; keyed.len()];
+            order_slots::<false>(&mut keyed.clone(), &mut along);
+            proptest::prop_assert_eq!(&along, &expected);
+        }
     }
 }

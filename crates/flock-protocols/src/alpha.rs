@@ -1,7 +1,7 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::{fill_indexed, for_each_chunk_mut, threads};
+use flock_graph::parallel::{fill_indexed, for_each_chunk_mut, for_each_chunk_mut_with, threads};
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
 use crate::error::{ParamError, check};
@@ -14,6 +14,15 @@ const SWEEP_CHUNK: (usize, usize) = (1024, 1 << 17);
 /// chunk are computed twice, and a chunk keeps two vectors per edge (about 3 MB in 2D, 9 MB in
 /// 3D at the papers' density).
 const PAIRED_CHUNK: usize = 1 << 14;
+
+/// A thread's buffers for [`AlphaInteraction::paired`], reused from chunk to chunk.
+#[derive(Default)]
+struct Paired<V> {
+    /// The terms each edge of the chunk receives, and one where reverse terms leaving it go.
+    terms: Vec<(V, V)>,
+    /// (i, e, j) of each pair the chunk computes: i's edge e to j.
+    pairs: Vec<(usize, usize, usize)>,
+}
 
 /// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
 /// [`SWEEP_CHUNK`].
@@ -416,7 +425,10 @@ impl AlphaInteraction {
     /// are cut into chunks of 16,384 storage indices instead; a chunk computes each pair
     /// inside it once and keeps both directions' terms (the second negated) in a buffer aligned
     /// with its edges, each pair leaving the chunk directly, then sums every agent's terms in list
-    /// order, as [`AlphaInteraction::input`] does. In 3D such a chunk of agents in cell order is
+    /// order, as [`AlphaInteraction::input`] does. The pairs are listed, and each one's reverse
+    /// edge found, without branching on the agents' indices, which are unrelated to their places
+    /// (measured: 2D, 10⁶ agents at random, one thread, 170 → 139 ms per plain step), in buffers
+    /// each thread keeps from one chunk to the next. In 3D such a chunk of agents in cell order is
     /// a thin slab that most pairs leave, and each agent's terms are computed directly as by
     /// [`AlphaInteraction::input`], in parallel (measured ≈ 8 % faster at 10⁶ agents).
     ///
@@ -436,8 +448,8 @@ impl AlphaInteraction {
                 self.sweep(c * chunk, q, p, net, out, &finish);
             });
         } else if V::DIM == 2 {
-            for_each_chunk_mut(out, PAIRED_CHUNK, |c, out| {
-                self.paired(c * PAIRED_CHUNK, q, p, net, out, &finish);
+            for_each_chunk_mut_with(out, PAIRED_CHUNK, Paired::default, |c, out, scratch| {
+                self.paired(c * PAIRED_CHUNK, q, p, net, out, &finish, scratch);
             });
         } else {
             fill_indexed(out, |i| finish(i, self.input(i, q, p, net)));
@@ -449,6 +461,7 @@ impl AlphaInteraction {
     /// lower storage index), its terms kept for both directions; each agent's terms then summed
     /// in list order. Negating a term changes at most the sign of an exact zero, which a sum
     /// starting at +0 never keeps, so the sums are the bits of [`AlphaInteraction::input`].
+    #[allow(clippy::too_many_arguments)]
     fn paired<V: Vector>(
         &self,
         start: usize,
@@ -457,28 +470,43 @@ impl AlphaInteraction {
         net: &ProximityNet,
         out: &mut [V],
         finish: &impl Fn(usize, V) -> V,
+        scratch: &mut Paired<V>,
     ) {
         let graph = net.graph();
         let chunk = start..start + out.len();
         let base = graph.offsets()[chunk.start];
-        let mut terms = vec![(V::ZERO, V::ZERO); graph.offsets()[chunk.end] - base];
-        // each pair once, by its agent of lower storage index when both are in the chunk
+        let edges = graph.offsets()[chunk.end] - base;
+        let Paired { terms, pairs } = scratch;
+        // one more term than edges: where a pair leaving the chunk writes its reverse term
+        terms.resize(edges + 1, (V::ZERO, V::ZERO));
+        // each pair once, by its agent of lower storage index when both are in the chunk; the
+        // pairs are listed without branching on which (agents at random make it unpredictable)
         let first = chunk.start;
-        let pairs = chunk.clone().flat_map(|i| {
-            let edges = graph.edge_range(i).zip(graph.neighbours(i));
-            edges
-                .map(move |(e, &j)| (i, e, j as usize))
-                .filter(move |&(i, _, j)| !(first..i).contains(&j))
-        });
-        let pairs = pairs.map(|(i, e, j)| ((i, e, j), q[i], p[i], q[j], p[j]));
+        pairs.resize(edges, (0, 0, 0));
+        let mut len = 0;
+        for i in chunk.clone() {
+            for (e, &j) in graph.edge_range(i).zip(graph.neighbours(i)) {
+                let j = j as usize;
+                pairs[len] = (i, e, j);
+                len += usize::from(!(first..i).contains(&j));
+            }
+        }
+        let pairs = pairs[..len]
+            .iter()
+            .map(|&(i, e, j)| ((i, e, j), q[i], p[i], q[j], p[j]));
         self.for_each_term(pairs, |(i, e, j), g, c| {
             terms[e - base] = (g, c);
-            if j > i && j < chunk.end {
-                let Some(back) = graph.neighbours(j).iter().position(|&k| k as usize == i) else {
-                    unreachable!("a net's neighbour lists are symmetric");
-                };
-                terms[graph.edge_range(j).start + back - base] = (-g, -c);
-            }
+            // the reverse edge: i's place in j's list, found without branching on it
+            debug_assert!(
+                graph.neighbours(j).contains(&(i as u32)),
+                "lists are symmetric"
+            );
+            let back = graph.edge_range(j).zip(graph.neighbours(j));
+            let back = back
+                .map(|(f, &k)| if k as usize == i { f } else { 0 })
+                .sum::<usize>();
+            let inside = j > i && j < chunk.end;
+            terms[if inside { back - base } else { edges }] = (-g, -c);
         });
         for (u, i) in out.iter_mut().zip(chunk) {
             let edges = graph.edge_range(i);
