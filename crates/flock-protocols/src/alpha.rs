@@ -20,8 +20,9 @@ const PAIRED_CHUNK: usize = 1 << 14;
 struct Paired<V> {
     /// The terms each edge of the chunk receives, and one where reverse terms leaving it go.
     terms: Vec<(V, V)>,
-    /// (i, e, j) of each pair the chunk computes: i's edge e to j.
-    pairs: Vec<(usize, usize, usize)>,
+    /// (e, i, j) of each pair the chunk computes: i's edge e to j (agent indices as a net
+    /// stores them).
+    pairs: Vec<(usize, u32, u32)>,
 }
 
 /// Agents per chunk of [`AlphaInteraction::inputs`]: about four chunks per thread, within
@@ -486,14 +487,15 @@ impl AlphaInteraction {
         let mut len = 0;
         for i in chunk.clone() {
             for (e, &j) in graph.edge_range(i).zip(graph.neighbours(i)) {
-                let j = j as usize;
-                pairs[len] = (i, e, j);
-                len += usize::from(!(first..i).contains(&j));
+                // i < n ≤ u32::MAX, as in a net
+                pairs[len] = (e, i as u32, j);
+                len += usize::from(!(first..i).contains(&(j as usize)));
             }
         }
-        let pairs = pairs[..len]
-            .iter()
-            .map(|&(i, e, j)| ((i, e, j), q[i], p[i], q[j], p[j]));
+        let pairs = pairs[..len].iter().map(|&(e, i, j)| {
+            let (i, j) = (i as usize, j as usize);
+            ((i, e, j), q[i], p[i], q[j], p[j])
+        });
         self.for_each_term(pairs, |(i, e, j), g, c| {
             terms[e - base] = (g, c);
             // the reverse edge: i's place in j's list, found without branching on it
