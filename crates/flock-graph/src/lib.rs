@@ -39,6 +39,6 @@ pub use laplacian::{
     weighted_laplacian_eigenvalues,
 };
 pub use net::ProximityNet;
-pub use numbering::Numbering;
+pub use numbering::{Numbering, Ordered};
 pub use search::{NeighbourSearch, nearest_pair_distance};
 pub use stress::{Friends, StressWeights};

@@ -35,6 +35,52 @@ pub struct Numbering {
     stored: Vec<u32>,
 }
 
+/// Elements per batch of [`Numbering::ordered`].
+const GATHER: usize = 64;
+
+/// The iterator of [`Numbering::ordered`].
+#[derive(Clone, Debug)]
+pub struct Ordered<'a, T> {
+    numbering: &'a Numbering,
+    stored: &'a [T],
+    /// The original index of the next element to read from `stored`.
+    next: usize,
+    /// Elements read ahead, agents stored out of order.
+    batch: [T; GATHER],
+    /// The part of `batch` not yet yielded.
+    unread: Range<usize>,
+}
+
+impl<T: Copy> Iterator for Ordered<'_, T> {
+    type Item = T;
+
+    #[inline]
+    fn next(&mut self) -> Option<T> {
+        if self.numbering.is_identity() {
+            let element = self.stored.get(self.next).copied();
+            self.next += usize::from(element.is_some());
+            return element;
+        }
+        if self.unread.is_empty() {
+            let end = (self.next + GATHER).min(self.stored.len());
+            for (slot, k) in self.batch.iter_mut().zip(self.next..end) {
+                *slot = self.stored[self.numbering.stored(k)];
+            }
+            self.unread = 0..end - self.next;
+            self.next = end;
+        }
+        self.unread.next().map(|m| self.batch[m])
+    }
+
+    #[inline]
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.unread.len() + (self.stored.len() - self.next);
+        (left, Some(left))
+    }
+}
+
+impl<T: Copy> ExactSizeIterator for Ordered<'_, T> {}
+
 impl Numbering {
     /// Storage index = original index.
     #[must_use]
@@ -80,12 +126,19 @@ impl Numbering {
     }
 
     /// The elements of `stored` (one per agent, in storage order) in ascending original index.
+    ///
+    /// Agents stored out of order are read in batches of [`GATHER`] (their reads, at random in
+    /// memory, issued back to back so that the processor overlaps them, instead of one per
+    /// element of whatever computation consumes them): the same elements in the same order.
     #[inline]
-    pub fn ordered<'a, T: Copy>(
-        &'a self,
-        stored: &'a [T],
-    ) -> impl ExactSizeIterator<Item = T> + Clone + 'a {
-        self.stored_of(0..stored.len()).map(|s| stored[s])
+    pub fn ordered<'a, T: Copy + Default>(&'a self, stored: &'a [T]) -> Ordered<'a, T> {
+        Ordered {
+            numbering: self,
+            stored,
+            next: 0,
+            batch: [T::default(); GATHER],
+            unread: 0..0,
+        }
     }
 
     /// Σ_k value(s_k) over the `n` agents, k the original index and s_k its storage index: the
@@ -220,5 +273,28 @@ mod tests {
     #[should_panic(expected = "not a permutation")]
     fn repeated_agents_are_rejected() {
         Numbering::identity().permute(&[0, 0, 1]);
+    }
+
+    use proptest::prelude::{Just, Strategy};
+
+    proptest::proptest! {
+        /// `ordered` yields each stored element in ascending original index, across batches of
+        /// any length (a whole number of them or not), its length exact at every point.
+        #[test]
+        fn ordered_gathers_every_element_in_original_order(
+            order in (0..300_u32).prop_flat_map(|n| Just((0..n).collect::<Vec<_>>()).prop_shuffle()),
+        ) {
+            let mut numbering = Numbering::identity();
+            numbering.permute(&order);
+            // the element of original index k is 10 k + 1
+            let stored: Vec<u64> = order.iter().map(|&k| 10 * u64::from(k) + 1).collect();
+            let mut ordered = numbering.ordered(&stored);
+            for k in 0..stored.len() {
+                proptest::prop_assert_eq!(ordered.len(), stored.len() - k);
+                proptest::prop_assert_eq!(ordered.next(), Some(10 * k as u64 + 1));
+            }
+            proptest::prop_assert_eq!(ordered.len(), 0);
+            proptest::prop_assert_eq!(ordered.next(), None);
+        }
     }
 }
