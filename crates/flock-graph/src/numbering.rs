@@ -199,6 +199,7 @@ impl Numbering {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::{Just, Strategy};
 
     #[test]
     fn permutations_compose_and_invert() {
@@ -274,8 +275,6 @@ mod tests {
     fn repeated_agents_are_rejected() {
         Numbering::identity().permute(&[0, 0, 1]);
     }
-
-    use proptest::prelude::{Just, Strategy};
 
     proptest::proptest! {
         /// `ordered` yields each stored element in ascending original index, across batches of
