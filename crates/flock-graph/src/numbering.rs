@@ -127,7 +127,7 @@ impl Numbering {
 
     /// The elements of `stored` (one per agent, in storage order) in ascending original index.
     ///
-    /// Agents stored out of order are read in batches of [`GATHER`] (their reads, at random in
+    /// Agents stored out of order are read in batches of 64 (their reads, at random in
     /// memory, issued back to back so that the processor overlaps them, instead of one per
     /// element of whatever computation consumes them): the same elements in the same order.
     #[inline]
