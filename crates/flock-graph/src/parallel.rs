@@ -37,18 +37,7 @@ pub fn for_each_chunk_mut<T: Send>(
     chunk: usize,
     f: impl Fn(usize, &mut [T]) + Sync,
 ) {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        items
-            .par_chunks_mut(chunk)
-            .enumerate()
-            .for_each(|(c, items)| f(c, items));
-    }
-    #[cfg(not(feature = "parallel"))]
-    for (c, items) in items.chunks_mut(chunk).enumerate() {
-        f(c, items);
-    }
+    for_each_chunk_mut_with(items, chunk, || (), |c, items, ()| f(c, items));
 }
 
 /// [`for_each_chunk_mut`] with `f(c, chunk, scratch)`, `scratch` a buffer made by `init` and

@@ -438,10 +438,11 @@ impl Block {
     }
 }
 
-/// Writes the slots of `keyed` (each `original index << 32 | slot`, all distinct) into `out` in
-/// ascending key. A `SCATTERED` list of at most 16 places each key at its rank, the number of
-/// smaller keys: no branch depends on the keys, whose order a sort would mispredict.
-fn order_slots<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u32]) {
+/// Writes the low halves of `keyed` (each `original index << 32 | slot or agent`, all distinct)
+/// into `out` in ascending key. A `SCATTERED` list of at most 16 places each key at its rank,
+/// the number of smaller keys: no branch depends on the keys, whose order a sort would
+/// mispredict.
+pub(crate) fn order_slots<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u32]) {
     if SCATTERED && keyed.len() <= 8 {
         rank_slots::<8>(keyed, out);
     } else if SCATTERED && keyed.len() <= 16 {

@@ -22,7 +22,7 @@ use flock_math::{Domain, Vector};
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut};
-use crate::search::{NeighbourSearch, assemble, padded_side};
+use crate::search::{NeighbourSearch, assemble, order_slots, padded_side};
 
 /// log₂ of the slots per block of work.
 const BLOCK_SHIFT: u32 = 10;
@@ -232,10 +232,11 @@ impl TorusBlock {
                     }
                 }
             }
-            self.keyed.sort_unstable();
-            // the storage index: j < n ≤ u32::MAX
-            self.neighbours
-                .extend(self.keyed.iter().map(|&key| key as u32));
+            // sorted: a simulation keeps agents on a torus in original order, so that the keys
+            // follow the scan
+            let end = self.neighbours.len();
+            self.neighbours.resize(end + self.keyed.len(), 0);
+            order_slots::<false>(&mut self.keyed, &mut self.neighbours[end..]);
             self.ends.push(self.neighbours.len());
         }
     }

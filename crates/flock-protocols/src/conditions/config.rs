@@ -378,7 +378,7 @@ impl Conditions {
     #[must_use]
     pub fn draws_per_link(&self) -> bool {
         self.communication
-            .is_some_and(|c| c.jitter > 0.0 || (c.loss != Loss::None && !c.symmetric))
+            .is_some_and(|c| c.jitter > 0.0 || c.loss_per_link())
     }
 
     /// Whether a condition draws normal random numbers: sensing noise, wind gusts, process
@@ -423,6 +423,15 @@ impl Conditions {
 }
 
 impl Communication {
+    /// Whether each packet's loss is drawn on its own (from the receiver's words,
+    /// [`Streams::link_words`]): a loss that is not symmetric.
+    ///
+    /// [`Streams::link_words`]: super::stream::Streams::link_words
+    #[must_use]
+    pub fn loss_per_link(&self) -> bool {
+        self.loss != Loss::None && !self.symmetric
+    }
+
     fn validate(&self, h: f64) -> Result<(), ParamError> {
         whole_steps("delay", self.delay, h)?;
         whole_steps("jitter", self.jitter, h)?;

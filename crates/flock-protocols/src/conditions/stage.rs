@@ -540,7 +540,7 @@ impl<V: Vector> Stage<V> {
                 this.streams
                     .link_words(Purpose::Jitter, receiver, k, count, jitter_words);
             }
-            if !comm.symmetric && comm.loss != Loss::None {
+            if comm.loss_per_link() {
                 this.streams
                     .link_words(Purpose::Loss, receiver, k, count, loss_words);
             }
