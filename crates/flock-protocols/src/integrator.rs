@@ -8,7 +8,7 @@ use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
 
-use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field};
+use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field, permute_in_place};
 use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
@@ -43,7 +43,8 @@ const RESORT_EVERY: u64 = 16;
 /// simulation that kept them in that order.
 ///
 /// Under real conditions ([`Simulation::with_conditions`]) each step is the conditioned stage
-/// ([`Stage::step`]), and the agents stay in original order. An agent *removed* by a fault
+/// ([`Stage::step`]); agents numbered at random are stored by cell there too, their conditions'
+/// state moving with them ([`Stage::permute`]). An agent *removed* by a fault
 /// stays in the state at the position where it failed, with zero velocity; the metrics leave it
 /// out (they are those of the other agents, of their proximity net and of the interaction graph
 /// without it), while the protocol's energy and diagnostics still see the whole state.
@@ -367,10 +368,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                     "run this protocol in open space (domain: Open)",
                 ));
             }
-            if self.stored_by_cell() {
-                self.swarm = self.swarm().into_owned();
-            }
-            self.net = empty_net(&self.protocol);
+            self.back_to_original_order();
             for q in &mut self.swarm.positions {
                 *q = domain.wrap(*q);
             }
@@ -378,6 +376,20 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         self.domain = domain;
         self.rebuild_net();
         Ok(self)
+    }
+
+    /// Puts the agents stored by cell, and their conditions' state, back in original order,
+    /// with an empty net (its numbering gone) that [`Simulation::rebuild_net`] must rebuild.
+    fn back_to_original_order(&mut self) {
+        if self.stored_by_cell() {
+            self.swarm = self.swarm().into_owned();
+            let numbering = self.net.numbering();
+            if let Some(stage) = self.conditions.as_mut() {
+                // index k now holds agent k, which was stored at `stored(k)`
+                stage.permute(|k| numbering.stored(k));
+            }
+        }
+        self.net = empty_net(&self.protocol);
     }
 
     /// The domain.
@@ -407,10 +419,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             self.integrator,
             &*vehicle,
         )?;
-        if self.stored_by_cell() {
-            self.swarm = self.swarm().into_owned();
-            self.net = empty_net(&self.protocol);
-        }
+        self.back_to_original_order();
         let fleet = Fleet::new(vehicle, &mut self.swarm, self.step, states)?;
         if let Some(stage) = &self.conditions {
             stage::check_vehicle(stage.conditions(), fleet.vehicle())?;
@@ -428,14 +437,23 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
 
     /// Which agents have failed (original order), when the simulation runs under conditions
     /// with `faults` ([`Stage::failed`](crate::conditions::stage::Stage::failed)); `None` otherwise.
+    /// Borrowed when the agents are stored in original order, otherwise a copy in that order.
     #[must_use]
-    pub fn failed(&self) -> Option<&[bool]> {
-        self.conditions.as_ref().and_then(|c| c.failed())
+    pub fn failed(&self) -> Option<Cow<'_, [bool]>> {
+        let failed = self.conditions.as_ref().and_then(|c| c.failed())?;
+        let numbering = self.net.numbering();
+        Some(if numbering.is_identity() {
+            Cow::Borrowed(failed)
+        } else {
+            Cow::Owned(numbering.ordered(failed).collect())
+        })
     }
 
     /// The simulation under real `conditions` (validated for its agents, dimension and step),
     /// every random draw keyed from `seed`. With `Conditions::default()` it is the ideal
-    /// simulation, unchanged. Otherwise agents are kept in original order (not stored by cell).
+    /// simulation, unchanged. Agents numbered at random are stored by cell as in the ideal run
+    /// (every draw of the conditions is keyed by original indices, so the bits are those of the
+    /// agents kept in original order).
     ///
     /// When no condition changes what agents perceive (no communication or sensing section, no
     /// silent or removed faults), inputs are [`Protocol::controls`] of the true state; otherwise
@@ -457,10 +475,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let range = self.protocol.interaction_range();
         // the stage holds its own inputs and integrates itself: the ideal loop's buffers go
         // before it is allocated (at the peak of memory), and the agents into original order
-        if self.stored_by_cell() {
-            self.swarm = self.swarm().into_owned();
-        }
-        self.net = empty_net(&self.protocol);
+        // (the net's first build sorts them again when scattered)
+        self.back_to_original_order();
         self.inputs = Vec::new();
         self.rk = None;
         let stage = Stage::new(conditions, seed, n, self.step, range)?;
@@ -496,7 +512,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// the step count, all a resumed run needs to continue with the same bits.
     #[must_use]
     pub fn conditions_state(&self) -> Option<ConditionsState> {
-        self.conditions.as_ref().map(|c| c.state())
+        self.conditions
+            .as_ref()
+            .map(|c| c.state(self.net.numbering()))
     }
 
     /// Restores the checkpointed state of the conditions into a simulation resumed with the same
@@ -506,7 +524,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// A simulation without conditions (field `conditions`), or a state of another run.
     pub fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError> {
         match self.conditions.as_mut() {
-            Some(stage) => stage.restore(state),
+            Some(stage) => stage.restore(state, self.net.numbering()),
             None => Err(ParamError::new(
                 "conditions",
                 "none",
@@ -518,19 +536,25 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
 
     /// The metrics of the agents not removed (removed agents stay in the state, at the
     /// position where they failed, with zero velocity, but leave every metric).
+    /// `removed` is in storage order; the agents kept are measured in original order.
     fn metrics_without(&self, removed: &[bool], params: &MetricParams) -> FlockMetrics {
-        let kept: Vec<usize> = (0..removed.len()).filter(|&i| !removed[i]).collect();
+        let numbering = self.net.numbering();
+        let kept: Vec<usize> = numbering
+            .stored_of(0..removed.len())
+            .filter(|&s| !removed[s])
+            .collect();
         if kept.is_empty() {
             // every agent removed: undefined, also on a fixed interaction graph
             return FlockMetrics::EMPTY;
         }
-        let pick = |x: &[V]| kept.iter().map(|&i| x[i]).collect::<Vec<V>>();
+        let pick = |x: &[V]| kept.iter().map(|&s| x[s]).collect::<Vec<V>>();
         let (q, p) = (pick(&self.swarm.positions), pick(&self.swarm.velocities));
         let mut net = empty_net(&self.protocol);
         let r = self.protocol.interaction_range();
         NeighbourSearch::new().build_in(&self.domain, &q, r, &mut net);
         let metrics = FlockMetrics::measure_in(&self.domain, &q, &p, &net, params);
         match self.protocol.interaction_graph() {
+            // a fixed graph's agents stay in original order: storage index = original index
             Some(graph) => {
                 let mut index = vec![usize::MAX; removed.len()];
                 for (new, &old) in kept.iter().enumerate() {
@@ -617,7 +641,6 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let r = self.protocol.interaction_range();
         let sorts = self.protocol.follows_numbering()
             && self.protocol.interaction_graph().is_none()
-            && self.conditions.is_none()
             && self.fleet.is_none()
             && !self.domain.is_periodic();
         let sorted = !self.net.numbering().is_identity();
@@ -649,10 +672,18 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 .collect();
             &completed
         };
-        // the inputs are free between steps: each array is gathered there and swapped in
-        for x in [&mut self.swarm.positions, &mut self.swarm.velocities] {
-            fill_indexed(&mut self.inputs, |s| x[order[s] as usize]);
-            core::mem::swap(x, &mut self.inputs);
+        let from = |s: usize| order[s] as usize;
+        if let Some(stage) = self.conditions.as_mut() {
+            // a conditioned run keeps no inputs here, and the delay line: each array in place
+            permute_in_place(&mut self.swarm.positions, from);
+            permute_in_place(&mut self.swarm.velocities, from);
+            stage.permute(from);
+        } else {
+            // the inputs are free between steps: each array is gathered there and swapped in
+            for x in [&mut self.swarm.positions, &mut self.swarm.velocities] {
+                fill_indexed(&mut self.inputs, |s| x[from(s)]);
+                core::mem::swap(x, &mut self.inputs);
+            }
         }
         self.net.permute(order);
         if let Some(rk) = self.rk.as_mut() {

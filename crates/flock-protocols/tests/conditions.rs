@@ -478,7 +478,7 @@ fn frozen_and_silent_faults() {
 }
 
 /// Every condition on at once.
-fn everything() -> Conditions {
+pub fn everything() -> Conditions {
     Conditions {
         communication: Some(Communication {
             delay: 0.05,

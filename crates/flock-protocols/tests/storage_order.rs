@@ -2,14 +2,18 @@
 //! the agents kept in their original order.
 
 use flock_graph::ProximityNet;
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, MetricParams};
 use flock_obstacles::ObstacleSpec;
-use flock_protocols::{GammaAgent, Integrator, Protocol, Simulation, Swarm};
+use flock_protocols::conditions::{
+    Communication, Conditions, Delayed, FaultMode, Faults, Loss, Noise, Sensing,
+};
+use flock_protocols::{GammaAgent, Integrator, LocalForm, Protocol, Simulation, Swarm, Update};
 use glam::{DVec2, DVec3};
 
 use crate::algorithm3::algorithm3;
 use crate::common::{following, random_swarm};
+use crate::conditions::everything;
 
 /// `P` kept in original order: its [`Protocol::follows_numbering`] is the default, false.
 struct InOriginalOrder<P>(P);
@@ -38,6 +42,14 @@ impl<V: Vector, P: Protocol<V>> Protocol<V> for InOriginalOrder<P> {
 
     fn uses_net_distances(&self) -> bool {
         self.0.uses_net_distances()
+    }
+
+    fn local_form(&self) -> Option<&dyn LocalForm<V>> {
+        self.0.local_form()
+    }
+
+    fn update(&self) -> Update {
+        self.0.update()
     }
 }
 
@@ -162,4 +174,184 @@ fn algorithm3_stored_by_cell_is_bit_identical_3d() {
     };
     let protocol = algorithm3::<DVec3>(&specs, gamma);
     stored_by_cell_is_bit_identical(&protocol, 80.0);
+}
+
+/// Symmetric Bernoulli loss, white sensing noise, the delay applied to the own state too, and
+/// agents removed at a rate: the conditions `everything` leaves out.
+fn removing() -> Conditions {
+    Conditions {
+        communication: Some(Communication {
+            delay: 0.02,
+            delayed: Delayed::All,
+            loss: Loss::Bernoulli { p: 0.1 },
+            symmetric: true,
+            ..Communication::default()
+        }),
+        sensing: Some(Sensing {
+            noise: Noise::White {
+                sigma_q: 0.05,
+                sigma_p: 0.02,
+            },
+            rate: None,
+        }),
+        faults: Some(Faults {
+            at: Vec::new(),
+            rate: 2.0,
+            mode: FaultMode::Removed,
+        }),
+        ..Conditions::default()
+    }
+}
+
+/// 20 steps (a re-sort at step 16) of Algorithm 2 under `conditions`, stored by cell against the
+/// same protocol kept in original order, from 20,000 agents numbered at random: the same state,
+/// failures, diagnostics, metrics and checkpointed state of the conditions after every step; and
+/// a run resumed after step 17 (sorted afresh from the original order) continues with the same
+/// bits.
+fn conditioned_stored_by_cell_is_bit_identical(conditions: &Conditions) {
+    let params = MetricParams {
+        d: 7.0,
+        collision_distance: 1.75,
+    };
+    let protocol = following(DVec2::new(1.0, 0.5));
+    let start: Swarm<DVec2> = random_swarm(20_000, 200.0, 2.0, 23);
+    let new = |swarm: Swarm<DVec2>, steps| {
+        Simulation::resume(
+            protocol.clone(),
+            Integrator::SymplecticEuler,
+            swarm,
+            0.01,
+            steps,
+        )
+        .expect("a valid simulation")
+        .with_conditions(conditions, 5)
+        .expect("valid conditions")
+    };
+    let mut sorted = new(start.clone(), 0);
+    let mut original = Simulation::new(
+        InOriginalOrder(protocol.clone()),
+        Integrator::SymplecticEuler,
+        start,
+        0.01,
+    )
+    .expect("a valid simulation")
+    .with_conditions(conditions, 5)
+    .expect("valid conditions");
+    assert!(!original.stored_by_cell() && sorted.stored_by_cell());
+    let mut resumed = None;
+    for step in 1..=20 {
+        sorted.step();
+        original.step();
+        if let Some(resumed) = resumed.as_mut() {
+            Simulation::step(resumed);
+        }
+        let context = format!("step {step}");
+        assert!(
+            bits(&sorted.swarm()) == bits(&original.swarm()),
+            "{context}"
+        );
+        assert_eq!(sorted.failed(), original.failed(), "{context}");
+        assert_eq!(sorted.diagnostics(), original.diagnostics(), "{context}");
+        let state = sorted.conditions_state().expect("conditions");
+        assert!(
+            state == original.conditions_state().expect("conditions"),
+            "{context}"
+        );
+        if step == 17 {
+            let mut from = new(sorted.swarm().into_owned(), sorted.steps());
+            assert!(from.stored_by_cell(), "sorted again");
+            from.restore_conditions(state).expect("the same run");
+            resumed = Some(from);
+        }
+    }
+    let resumed = resumed.expect("resumed after step 17");
+    assert!(bits(&resumed.swarm()) == bits(&sorted.swarm()), "resumed");
+    assert_eq!(resumed.diagnostics(), sorted.diagnostics(), "resumed");
+    let failed = sorted
+        .failed()
+        .expect("faults")
+        .iter()
+        .filter(|&&f| f)
+        .count();
+    assert!(failed > 0, "the test wants failed agents");
+    let (a, b) = (sorted.metrics(&params), original.metrics(&params));
+    assert!(
+        a.reals().map(f64::to_bits) == b.reals().map(f64::to_bits)
+            && a.collisions == b.collisions
+            && a.components == b.components,
+        "{a:?} {b:?}"
+    );
+}
+
+#[test]
+fn every_condition_stored_by_cell_is_bit_identical() {
+    conditioned_stored_by_cell_is_bit_identical(&everything());
+}
+
+#[test]
+fn removed_agents_and_symmetric_loss_stored_by_cell_are_bit_identical() {
+    conditioned_stored_by_cell_is_bit_identical(&removing());
+}
+
+/// A run resumed with its conditions' state restored (agents stored by cell, the state moved
+/// with them) and then put in a periodic domain, which keeps agents in original order: the
+/// state goes back with the agents, and the run continues as the uninterrupted one and as the
+/// one resumed with the domain set first.
+#[test]
+fn a_domain_set_after_restored_conditions_moves_their_state_back() {
+    let protocol = following(DVec2::new(1.0, 0.5));
+    let domain = Domain::Periodic {
+        size: DVec2::splat(400.0),
+    };
+    let conditions = everything();
+    let resume = |swarm: Swarm<DVec2>, steps| {
+        Simulation::resume(
+            protocol.clone(),
+            Integrator::SymplecticEuler,
+            swarm,
+            0.01,
+            steps,
+        )
+        .expect("a valid simulation")
+    };
+    let mut whole = resume(random_swarm(20_000, 200.0, 2.0, 29), 0)
+        .with_domain(domain)
+        .expect("a valid domain")
+        .with_conditions(&conditions, 5)
+        .expect("valid conditions");
+    for _ in 0..10 {
+        whole.step();
+    }
+    let state = whole.conditions_state().expect("conditions");
+    let swarm = whole.swarm().into_owned();
+    let mut first = resume(swarm.clone(), 10)
+        .with_conditions(&conditions, 5)
+        .expect("valid conditions");
+    assert!(
+        first.stored_by_cell(),
+        "the test wants agents stored by cell"
+    );
+    first
+        .restore_conditions(state.clone())
+        .expect("the same run");
+    let mut first = first.with_domain(domain).expect("a valid domain");
+    let mut last = resume(swarm, 10)
+        .with_domain(domain)
+        .expect("a valid domain")
+        .with_conditions(&conditions, 5)
+        .expect("valid conditions");
+    last.restore_conditions(state).expect("the same run");
+    for _ in 0..10 {
+        whole.step();
+        first.step();
+        last.step();
+    }
+    assert!(
+        bits(&first.swarm()) == bits(&whole.swarm()),
+        "domain set last"
+    );
+    assert!(
+        bits(&last.swarm()) == bits(&whole.swarm()),
+        "domain set first"
+    );
 }

@@ -155,7 +155,7 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
             velocities: rows(velocities),
             vehicle_columns,
             vehicle: Cow::Borrowed(vehicle),
-            failed: self.failed().map(Cow::Borrowed),
+            failed: self.failed(),
         }
     }
 

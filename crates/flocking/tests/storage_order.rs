@@ -1,6 +1,7 @@
 //! A run of agents numbered at random, which the simulation stores by cell: its records are in
 //! original order, and a run resumed from a checkpoint (sorted again from the original order, at
-//! another step) records the same bits.
+//! another step) records the same bits; under real conditions too (their state checkpointed in
+//! original order and moved back by cell on resume).
 
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flocking::initial::initial_swarm;
@@ -49,8 +50,19 @@ impl Recorder for Bits {
             .iter()
             .chain(state.velocities.iter())
             .copied();
-        self.records
-            .push(numbers.chain(coordinates).map(f64::to_bits).collect());
+        let failed = state
+            .failed
+            .iter()
+            .flat_map(|f| f.iter().map(|&f| f64::from(f)));
+        let diagnostics = record.diagnostics.iter().map(|&(_, x)| x);
+        self.records.push(
+            numbers
+                .chain(coordinates)
+                .chain(failed)
+                .chain(diagnostics)
+                .map(f64::to_bits)
+                .collect(),
+        );
         Ok(())
     }
 
@@ -64,9 +76,37 @@ impl Recorder for Bits {
     }
 }
 
+/// The cloud under every kind of condition that keeps a state: a delay line with jitter,
+/// Gilbert–Elliott loss holding the last value, Ornstein–Uhlenbeck sensing at 50 Hz, per-agent
+/// gusts and agents failing at a rate.
+const CONDITIONS: &str = r#"    conditions: (
+        communication: (
+            delay: 0.03,
+            jitter: 0.02,
+            loss: GilbertElliott(p_fail: 0.3, p_recover: 2.0),
+            when_lost: Hold(max_age: 0.1),
+        ),
+        sensing: (noise: OrnsteinUhlenbeck(sigma_q: 0.05, sigma_p: 0.02, correlation_time: 0.5), rate: 50.0),
+        disturbance: (wind: (mean: [0.1, 0.0], gust: 0.2, per_agent: true), process_noise: 0.05),
+        faults: (at: [(agent: 3, time: 0.05)], rate: 1.0, mode: Silent),
+    ),
+)"#;
+
 #[test]
 fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identically() {
-    let scenario = Scenario::parse(CLOUD, "cloud.ron").expect("valid");
+    stored_by_cell_records_and_resumes(CLOUD);
+}
+
+#[test]
+fn under_conditions_records_of_agents_stored_by_cell_resume_bit_identically() {
+    let cloud = CLOUD.strip_suffix(')').expect("a scenario");
+    stored_by_cell_records_and_resumes(&format!("{cloud}{CONDITIONS}"));
+}
+
+/// `text`, a run of the cloud, recorded from its initial state in original order and resumed
+/// from its checkpoint after 12 steps to the bits of the rest of the run.
+fn stored_by_cell_records_and_resumes(text: &str) {
+    let scenario = Scenario::parse(text, "cloud.ron").expect("valid");
     let mut whole = Bits::default();
     flocking::run(&scenario, &mut whole).expect("the run");
     assert_eq!(whole.records.len(), 5, "t = 0 and four records");
@@ -81,7 +121,7 @@ fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identic
         .collect();
     assert!(
         // after t, the energy, the six reals and the four extras
-        whole.records[0][12..] == drawn[..],
+        whole.records[0][12..12 + drawn.len()] == drawn[..],
         "t = 0 is recorded in original order"
     );
     // the net of the drawn state is scattered in memory: the simulation stores it by cell

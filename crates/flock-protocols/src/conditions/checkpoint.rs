@@ -2,6 +2,7 @@
 //! continues with the bits of the uninterrupted one, since every random draw is keyed by step
 //! ([`stream`](super::stream)) and this is all the state the conditions carry between steps.
 
+use flock_graph::Numbering;
 use flock_math::Vector;
 
 use super::links::{Held, Link};
@@ -74,10 +75,46 @@ fn vectors<V: Vector>(field: &str, x: &[f64], len: usize) -> Result<Vec<V>, Para
         .collect())
 }
 
+/// The per-agent entries of `x` (`width` each, agents stored as `numbering` says) in original
+/// order; `x` itself when it is not per agent (a shared gust, or nothing kept).
+fn in_original_order<T: Clone>(x: Vec<T>, width: usize, n: usize, numbering: &Numbering) -> Vec<T> {
+    if numbering.is_identity() || x.len() != n * width {
+        return x;
+    }
+    (0..n)
+        .flat_map(|k| {
+            let s = numbering.stored(k) * width;
+            x[s..s + width].iter().cloned()
+        })
+        .collect()
+}
+
 impl<V: Vector> Stage<V> {
-    /// The state to checkpoint.
+    /// The state to checkpoint, agent by agent in original order (the agents stored as
+    /// `numbering` says).
     #[must_use]
-    pub fn state(&self) -> ConditionsState {
+    pub fn state(&self, numbering: &Numbering) -> ConditionsState {
+        let n = self.failed.len();
+        let agents = |x: Vec<f64>| in_original_order(x, V::DIM, n, numbering);
+        let stored = self.state_as_stored();
+        ConditionsState {
+            noise: (agents(stored.noise.0), agents(stored.noise.1)),
+            history: stored
+                .history
+                .into_iter()
+                .map(|(q, p)| (agents(q), agents(p)))
+                .collect(),
+            links: in_original_order(stored.links, 1, n, numbering),
+            inputs: agents(stored.inputs),
+            delivered: agents(stored.delivered),
+            gust: agents(stored.gust),
+            failed: in_original_order(stored.failed, 1, n, numbering),
+            ..stored
+        }
+    }
+
+    /// The state to checkpoint, agent by agent in storage order.
+    fn state_as_stored(&self) -> ConditionsState {
         let (nq, np): (Vec<V>, Vec<V>) = self.noise.iter().copied().unzip();
         let r = self.readings;
         ConditionsState {
@@ -119,11 +156,21 @@ impl<V: Vector> Stage<V> {
         }
     }
 
-    /// Restores a checkpointed state into this stage (built from the same conditions).
+    /// Restores a checkpointed state (agents in original order) into this stage (built from the
+    /// same conditions) of agents stored as `numbering` says.
     ///
     /// # Errors
     /// A state of another dimension, number of agents, delay or wind (field `conditions_state.…`).
-    pub fn restore(&mut self, s: ConditionsState) -> Result<(), ParamError> {
+    pub fn restore(&mut self, s: ConditionsState, numbering: &Numbering) -> Result<(), ParamError> {
+        self.restore_as_stored(s)?;
+        if !numbering.is_identity() {
+            self.permute(|s| numbering.original(s));
+        }
+        Ok(())
+    }
+
+    /// [`Stage::restore`] into agents stored in original order.
+    fn restore_as_stored(&mut self, s: ConditionsState) -> Result<(), ParamError> {
         let n = self.failed.len();
         let within = |e: ParamError| e.within("conditions_state");
         let check_len = |field: &str, got: usize, want: usize| {

@@ -19,7 +19,7 @@ pub struct Held<V> {
 /// What receiver i keeps of its link from `sender`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Link<V> {
-    /// The sending agent j.
+    /// The sending agent j, by original index (whatever order the agents are stored in).
     pub sender: u32,
     /// The Gilbert–Elliott state (true: bad, packets lost) and the step it was drawn at.
     pub channel: Option<(bool, u64)>,

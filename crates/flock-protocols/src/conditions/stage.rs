@@ -3,7 +3,7 @@
 //! to compute u_i from what agent i perceives ([`LocalForm`]), or, when no condition changes
 //! what agents perceive, from the true state ([`Protocol::controls`]).
 
-use flock_graph::{NeighbourSearch, ProximityNet};
+use flock_graph::{NeighbourSearch, Numbering, ProximityNet};
 use flock_math::{Domain, Vector};
 
 use super::actuation::{Lag, clip};
@@ -33,8 +33,11 @@ pub struct Readings {
     pub at_speed_limit: f64,
 }
 
-/// The conditions of a run and everything they carry from step to step. Agents are in original
-/// order (a simulation with conditions does not store them by cell).
+/// The conditions of a run and everything they carry from step to step, agent by agent in the
+/// order the simulation stores them (by cell when they were numbered at random: the net's
+/// [`Numbering`]). Every draw is keyed by original indices and every list is in ascending
+/// original index, so the bits do not depend on that order; [`Stage::permute`] moves the state
+/// with the agents.
 #[derive(Debug)]
 pub struct Stage<V> {
     pub(crate) conditions: Conditions,
@@ -307,18 +310,40 @@ impl<V: Vector> Stage<V> {
         !self.failed[j] || faults::heard(self.mode())
     }
 
-    /// Which agents have failed (original order), when the conditions have `faults`: the
-    /// `failed` column of the trajectory and `final.csv`, whose sum is the `failed` diagnostic.
+    /// Which agents have failed (in storage order), when the conditions have `faults`: the
+    /// `failed` column of the trajectory and `final.csv` once in original order
+    /// ([`Simulation::failed`](crate::Simulation::failed)), whose sum is the `failed` diagnostic.
     #[must_use]
     pub fn failed(&self) -> Option<&[bool]> {
         self.conditions.faults.is_some().then_some(&self.failed[..])
     }
 
-    /// The agents removed from the run (failed in mode `Removed`), if any.
+    /// The agents removed from the run (failed in mode `Removed`; in storage order), if any.
     #[must_use]
     pub fn removed(&self) -> Option<&[bool]> {
         (self.mode() == FaultMode::Removed && self.failed.iter().any(|&f| f))
             .then_some(&self.failed[..])
+    }
+
+    /// Moves each agent's state with the agents: what agent `from(s)` carried goes to index s,
+    /// for every s (`from` a permutation of the agents). The delay line, the sensor offsets,
+    /// the links kept, the inputs and delivered accelerations, per-agent gusts and the failure
+    /// flags move, each in place ([`permute_in_place`]: no array is held twice); what is shared
+    /// or drawn afresh does not.
+    pub(crate) fn permute(&mut self, from: impl Fn(usize) -> usize + Copy) {
+        let n = self.failed.len();
+        for (q, p) in &mut self.history.slots {
+            permute_in_place(q, from);
+            permute_in_place(p, from);
+        }
+        permute_in_place(&mut self.inputs, from);
+        permute_in_place(&mut self.delivered, from);
+        if self.gust.len() == n {
+            permute_in_place(&mut self.gust, from);
+        }
+        permute_in_place(&mut self.noise, from);
+        permute_in_place(&mut self.links, from);
+        permute_in_place(&mut self.failed, from);
     }
 
     /// The diagnostics columns of the conditions that are on, the same at every record.
@@ -346,8 +371,8 @@ impl<V: Vector> Stage<V> {
         columns
     }
 
-    /// One step h from step `k` of the true state `swarm` (original order) whose proximity net
-    /// is `net`: fail → sense → communicate → control → actuate → disturb and integrate; with a
+    /// One step h from step `k` of the true state `swarm` (stored as the numbering of `net`
+    /// says) whose proximity net is `net`: fail → sense → communicate → control → actuate → disturb and integrate; with a
     /// `fleet`, its vehicles follow the delivered accelerations under the disturbance.
     #[allow(clippy::too_many_arguments)]
     pub fn step<P: Protocol<V> + ?Sized>(
@@ -360,11 +385,12 @@ impl<V: Vector> Stage<V> {
         integrator: Integrator,
         fleet: Option<&mut Fleet<V>>,
     ) {
+        let numbering = net.numbering();
         if let Some(f) = &self.conditions.faults {
-            faults::update(f, &self.streams, k, self.h, &mut self.failed);
+            faults::update(f, &self.streams, k, self.h, numbering, &mut self.failed);
         }
         if self.perceives {
-            self.sense(swarm, k);
+            self.sense(swarm, numbering, k);
         }
         if k.is_multiple_of(self.control_period) {
             match protocol.local_form().filter(|_| self.perceives) {
@@ -382,9 +408,9 @@ impl<V: Vector> Stage<V> {
         }
         self.actuate();
         match (protocol.update(), fleet) {
-            (Update::Acceleration, Some(fleet)) => self.drive(fleet, swarm, domain, k),
+            (Update::Acceleration, Some(fleet)) => self.drive(fleet, swarm, domain, numbering, k),
             (Update::Acceleration, None) => {
-                self.disturb_and_integrate(swarm, domain, k, integrator);
+                self.disturb_and_integrate(swarm, domain, numbering, k, integrator);
             }
             (update, _) => self.set_velocities(swarm, domain, update),
         }
@@ -394,16 +420,16 @@ impl<V: Vector> Stage<V> {
     /// Sense: each agent's measured state is its true state plus the sensor noise, refreshed
     /// every sensor period and held between (the true state at every step without sensing),
     /// written into the delay line's slot of step `k`; at the first step, into every slot.
-    fn sense(&mut self, swarm: &Swarm<V>, k: u64) {
+    fn sense(&mut self, swarm: &Swarm<V>, numbering: &Numbering, k: u64) {
         let started = self.started;
-        self.measure(swarm, k);
+        self.measure(swarm, numbering, k);
         if !started {
             self.history.fill_from(k);
         }
     }
 
     /// The measured state of step `k`, into its slot of the delay line.
-    fn measure(&mut self, swarm: &Swarm<V>, k: u64) {
+    fn measure(&mut self, swarm: &Swarm<V>, numbering: &Numbering, k: u64) {
         let (slot, before) = self.history.newest(k);
         let Some(sensor) = self.sensor else {
             slot.0.copy_from_slice(&swarm.positions);
@@ -421,7 +447,8 @@ impl<V: Vector> Stage<V> {
         let (started, streams) = (self.started, &self.streams);
         let (positions, velocities) = (&mut slot.0, &mut slot.1);
         let measure = |i: usize, q: &mut V, p: &mut V, previous: Option<(V, V)>| {
-            let mut draws = streams.draws(Purpose::Sensing, i as u64, k);
+            let agent = numbering.original(i) as u64;
+            let mut draws = streams.draws(Purpose::Sensing, agent, k);
             let (xi_q, xi_p) = (draws.normal_vector(), draws.normal_vector());
             let offsets = sensor.update(previous, xi_q, xi_p);
             *q = swarm.positions[i] + offsets.0;
@@ -459,10 +486,13 @@ impl<V: Vector> Stage<V> {
         k: u64,
     ) {
         let n = swarm.len();
+        let numbering = net.numbering();
         if let Some(range) = self
             .own_range
             .filter(|_| protocol.interaction_graph().is_none())
         {
+            // its lists in ascending original index, as the simulation's net lists them
+            self.net.share_numbering(net);
             self.search.build(&swarm.positions, range, &mut self.net);
         }
         let candidates = protocol
@@ -501,12 +531,14 @@ impl<V: Vector> Stage<V> {
                 0
             };
             let (q, p) = this.history.at(k, own_lag, i);
+            let original = |j: usize| numbering.original(j) as u32;
             let own = Perceived {
-                agent: i as u32,
+                agent: original(i),
                 position: q,
                 velocity: p,
             };
-            // the candidates heard, ascending (a graph's lists are): the list itself unless
+            // the candidates heard, in ascending original index (a net's and a graph's lists
+            // are): the list itself unless
             // failed agents or a communication range leave some out
             let list = candidates.neighbours(i);
             let js: &[u32] = if unfiltered {
@@ -526,7 +558,7 @@ impl<V: Vector> Stage<V> {
                 }));
                 js
             };
-            debug_assert!(js.is_sorted());
+            debug_assert!(js.is_sorted_by_key(|&j| original(j as usize)));
             old.clear();
             if let Some(links_i) = links_i.as_deref_mut() {
                 old.append(links_i);
@@ -535,7 +567,7 @@ impl<V: Vector> Stage<V> {
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             // the link from i's m-th candidate takes word m of i's words of the step
             let [jitter_words, loss_words] = words;
-            let (receiver, count) = (i as u64, js.len());
+            let (receiver, count) = (u64::from(original(i)), js.len());
             if this.jitter > 0 {
                 this.streams
                     .link_words(Purpose::Jitter, receiver, k, count, jitter_words);
@@ -544,10 +576,10 @@ impl<V: Vector> Stage<V> {
                 this.streams
                     .link_words(Purpose::Loss, receiver, k, count, loss_words);
             }
-            for (m, &j) in js.iter().enumerate() {
-                let ju = j as usize;
+            for (m, &ju) in js.iter().enumerate() {
+                let (ju, j) = (ju as usize, original(ju as usize));
                 // what i keeps of the link (Gilbert–Elliott's channel, the state held), when
-                // links keep anything
+                // links keep anything; senders by original index, ascending as the list
                 let mut link = links_i.is_some().then(|| {
                     old.binary_search_by_key(&j, |l| l.sender)
                         .map_or(Link::new(j), |s| old[s])
@@ -560,7 +592,8 @@ impl<V: Vector> Stage<V> {
                 // a symmetric loss draws once for the unordered pair, both ends alike
                 let draw = || {
                     if comm.symmetric {
-                        let pair = (i.min(ju) * n + i.max(ju)) as u64;
+                        let (a, b) = (original(i) as usize, j as usize);
+                        let pair = (a.min(b) * n + a.max(b)) as u64;
                         this.streams.uniform(Purpose::Loss, pair, k)
                     } else {
                         word_uniform(loss_words[m])
@@ -717,11 +750,12 @@ impl<V: Vector> Stage<V> {
         &mut self,
         swarm: &mut Swarm<V>,
         domain: &Domain<V>,
+        numbering: &Numbering,
         k: u64,
         integrator: Integrator,
     ) {
         let h = self.h;
-        self.advance_gusts(k);
+        self.advance_gusts(numbering, k);
         let max_speed = self.conditions.actuation.and_then(|a| a.max_speed);
         let this = &*self;
         let Swarm {
@@ -734,7 +768,7 @@ impl<V: Vector> Stage<V> {
                 *p = V::ZERO;
                 return 0;
             }
-            let (wind, noise) = this.disturbance(i, k);
+            let (wind, noise) = this.disturbance(i, numbering, k);
             let a = this.delivered()[i] + wind;
             let (next_p, clipped) = clip(*p + a * h + noise, max_speed);
             *q = match integrator {
@@ -750,26 +784,36 @@ impl<V: Vector> Stage<V> {
     /// Disturb and integrate with vehicles: each moving agent's vehicle follows its delivered
     /// acceleration under the external acceleration wind + σ ξ/√h (the process noise's kick
     /// σ √h ξ spread over the step); agents that do not move keep their place and state.
-    fn drive(&mut self, fleet: &mut Fleet<V>, swarm: &mut Swarm<V>, domain: &Domain<V>, k: u64) {
-        self.advance_gusts(k);
+    fn drive(
+        &mut self,
+        fleet: &mut Fleet<V>,
+        swarm: &mut Swarm<V>,
+        domain: &Domain<V>,
+        numbering: &Numbering,
+        k: u64,
+    ) {
+        self.advance_gusts(numbering, k);
         let this = &*self;
         let disturbance = |i: usize| {
-            let (wind, noise) = this.disturbance(i, k);
+            let (wind, noise) = this.disturbance(i, numbering, k);
             wind + noise * (1.0 / this.h)
         };
         let moves = |i: usize| this.moves(i);
         fleet.advance(this.h, domain, swarm, this.delivered(), disturbance, moves);
     }
 
-    /// The wind gusts of step `k` (Ornstein–Uhlenbeck, started in its stationary law).
-    fn advance_gusts(&mut self, k: u64) {
+    /// The wind gusts of step `k` (Ornstein–Uhlenbeck, started in its stationary law): one
+    /// for all, or one per agent keyed by its original index.
+    fn advance_gusts(&mut self, numbering: &Numbering, k: u64) {
         let Some(gusts) = self.gusts else {
             return;
         };
+        let per_agent = self.gust.len() > 1;
         for (g, x) in self.gust.iter_mut().enumerate() {
+            let key = if per_agent { numbering.original(g) } else { g };
             let xi = self
                 .streams
-                .draws(Purpose::Wind, g as u64, k)
+                .draws(Purpose::Wind, key as u64, k)
                 .normal_vector();
             *x = if self.started {
                 gusts.advance(*x, xi)
@@ -780,8 +824,8 @@ impl<V: Vector> Stage<V> {
     }
 
     /// Agent i's disturbance at step `k`: the wind w_i = mean + gusts (an acceleration) and the
-    /// process noise's velocity kick σ √h ξ (Euler–Maruyama).
-    fn disturbance(&self, i: usize, k: u64) -> (V, V) {
+    /// process noise's velocity kick σ √h ξ (Euler–Maruyama), keyed by its original index.
+    fn disturbance(&self, i: usize, numbering: &Numbering, k: u64) -> (V, V) {
         let Some(disturbance) = &self.conditions.disturbance else {
             return (V::ZERO, V::ZERO);
         };
@@ -798,7 +842,7 @@ impl<V: Vector> Stage<V> {
         let noise = if kick > 0.0 {
             let xi: V = self
                 .streams
-                .draws(Purpose::ProcessNoise, i as u64, k)
+                .draws(Purpose::ProcessNoise, numbering.original(i) as u64, k)
                 .normal_vector();
             xi * kick
         } else {
@@ -817,6 +861,30 @@ impl<V: Vector> Stage<V> {
             } else {
                 (q, V::ZERO)
             };
+        }
+    }
+}
+
+/// `x` with what entry `from(s)` held at index s, for every s (`from` a permutation of
+/// `0..x.len()`; nothing is done to an empty `x`), moved in place cycle by cycle: one flag per
+/// entry is all it allocates.
+pub(crate) fn permute_in_place<T: Default>(x: &mut [T], from: impl Fn(usize) -> usize) {
+    let mut done = vec![false; x.len()];
+    for start in 0..x.len() {
+        if done[start] {
+            continue;
+        }
+        let first = core::mem::take(&mut x[start]);
+        let mut s = start;
+        loop {
+            done[s] = true;
+            let next = from(s);
+            if next == start {
+                x[s] = first;
+                break;
+            }
+            x[s] = core::mem::take(&mut x[next]);
+            s = next;
         }
     }
 }
