@@ -329,8 +329,12 @@ impl<V: Vector> Stage<V> {
     /// for every s (`from` a permutation of the agents). The delay line, the sensor offsets,
     /// the links kept, the inputs and delivered accelerations, per-agent gusts and the failure
     /// flags move, each in place ([`permute_in_place`]: no array is held twice); what is shared
-    /// or drawn afresh does not.
+    /// or drawn afresh does not. Before the first step every agent carries the same (zero)
+    /// state, and nothing is moved.
     pub(crate) fn permute(&mut self, from: impl Fn(usize) -> usize + Copy) {
+        if !self.started {
+            return;
+        }
         let n = self.failed.len();
         for (q, p) in &mut self.history.slots {
             permute_in_place(q, from);
