@@ -8,10 +8,11 @@ use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
 
-use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field, permute_in_place};
+use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field};
 use crate::conditions::{Conditions, ConditionsState};
 use crate::error::{ParamError, check};
 use crate::health::{AgentFault, first_fault};
+use crate::permutation::permute_in_place;
 use crate::vehicle::{DynVehicle, Fleet, VehicleKind};
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
@@ -378,15 +379,20 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         Ok(self)
     }
 
-    /// Puts the agents stored by cell, and their conditions' state, back in original order,
+    /// Puts the agents stored by cell, their conditions' state and their vehicles' states back
+    /// in original order,
     /// with an empty net (its numbering gone) that [`Simulation::rebuild_net`] must rebuild.
     fn back_to_original_order(&mut self) {
         if self.stored_by_cell() {
             self.swarm = self.swarm().into_owned();
             let numbering = self.net.numbering();
+            // index k now holds agent k, which was stored at `stored(k)`
+            let from = |k| numbering.stored(k);
             if let Some(stage) = self.conditions.as_mut() {
-                // index k now holds agent k, which was stored at `stored(k)`
-                stage.permute(|k| numbering.stored(k));
+                stage.permute(from);
+            }
+            if let Some(fleet) = self.fleet.as_mut() {
+                fleet.permute(from);
             }
         }
         self.net = empty_net(&self.protocol);
@@ -402,8 +408,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// protocol's input u_i is the commanded acceleration of agent i's reference point, which
     /// its vehicle follows through its controller and dynamics, integrated at the vehicle's inner
     /// step. Every agent starts in its vehicle's equilibrium ([`Vehicle::start`](crate::Vehicle::start),
-    /// which may change its velocity), or, resuming, in the checkpointed `states`. Agents are
-    /// then kept in original order.
+    /// which may change its velocity), or, resuming, in the checkpointed `states` (original
+    /// order). Agents numbered at random are stored by cell as in the ideal run, each vehicle's
+    /// state moving with its agent.
     ///
     /// # Errors
     /// As [`Fleet::new`]; a protocol that sets velocities (`vehicle`: it has no acceleration to
@@ -427,6 +434,15 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         self.fleet = Some(Box::new(fleet));
         self.rebuild_net();
         Ok(self)
+    }
+
+    /// The vehicles' states in original order ([`Fleet::states`], agent i at
+    /// `[i * k..(i + 1) * k]`), `None` for point masses: borrowed when the agents are stored in
+    /// original order, otherwise a copy in that order.
+    #[must_use]
+    pub fn vehicle_states(&self) -> Option<Cow<'_, [f64]>> {
+        let fleet = self.fleet.as_ref()?;
+        Some(fleet.states_in_original_order(self.net.numbering()))
     }
 
     /// The agents' vehicles, `None` for point masses.
@@ -620,6 +636,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                     &self.inputs,
                     |_| V::ZERO,
                     |_| true,
+                    self.net.numbering(),
                 );
             }
         } else {
@@ -641,7 +658,6 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         let r = self.protocol.interaction_range();
         let sorts = self.protocol.follows_numbering()
             && self.protocol.interaction_graph().is_none()
-            && self.fleet.is_none()
             && !self.domain.is_periodic();
         let sorted = !self.net.numbering().is_identity();
         if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {
@@ -684,6 +700,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 fill_indexed(&mut self.inputs, |s| x[from(s)]);
                 core::mem::swap(x, &mut self.inputs);
             }
+        }
+        if let Some(fleet) = self.fleet.as_mut() {
+            fleet.permute(from);
         }
         self.net.permute(order);
         if let Some(rk) = self.rk.as_mut() {

@@ -43,6 +43,7 @@ pub mod olfati_saber2003_tracking;
 pub mod olfati_saber2004;
 pub mod olfati_saber2004_reynolds;
 pub mod olfati_saber2006;
+mod permutation;
 pub mod protocol;
 pub mod reynolds1987;
 pub mod swarm;

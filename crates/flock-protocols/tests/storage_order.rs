@@ -6,9 +6,12 @@ use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, MetricParams};
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::conditions::{
-    Communication, Conditions, Delayed, FaultMode, Faults, Loss, Noise, Sensing,
+    Communication, Conditions, Delayed, FaultMode, Faults, Loss, Noise, Sensing, WhenLost,
 };
-use flock_protocols::{GammaAgent, Integrator, LocalForm, Protocol, Simulation, Swarm, Update};
+use flock_protocols::vehicle::{Unicycle, UnicycleParams};
+use flock_protocols::{
+    DynVehicle, GammaAgent, Integrator, LocalForm, Protocol, Simulation, Swarm, Update,
+};
 use glam::{DVec2, DVec3};
 
 use crate::algorithm3::algorithm3;
@@ -354,4 +357,129 @@ fn a_domain_set_after_restored_conditions_moves_their_state_back() {
         bits(&last.swarm()) == bits(&whole.swarm()),
         "domain set first"
     );
+}
+
+/// The conditions a unicycle takes that keep a state: a delay line with jitter, Gilbert–Elliott
+/// loss holding the last value, Ornstein–Uhlenbeck sensing, agents failing silent at a rate.
+fn for_unicycles() -> Conditions {
+    Conditions {
+        communication: Some(Communication {
+            delay: 0.03,
+            jitter: 0.02,
+            loss: Loss::GilbertElliott {
+                p_fail: 0.3,
+                p_recover: 2.0,
+            },
+            when_lost: WhenLost::Hold { max_age: 0.1 },
+            ..Communication::default()
+        }),
+        sensing: Some(Sensing {
+            noise: Noise::OrnsteinUhlenbeck {
+                sigma_q: 0.05,
+                sigma_p: 0.02,
+                correlation_time: 0.5,
+            },
+            rate: None,
+        }),
+        faults: Some(Faults {
+            at: Vec::new(),
+            rate: 2.0,
+            mode: FaultMode::Silent,
+        }),
+        ..Conditions::default()
+    }
+}
+
+/// 20 steps (a re-sort at step 16) of 20,000 unicycles at random under `conditions`, stored by
+/// cell against the same protocol kept in original order: the same state, vehicle states,
+/// failures and diagnostics (limits hit, tracking error) after every step; a run resumed after
+/// step 17 from the vehicle states (and the conditions' state) continues with the same bits.
+fn unicycles_stored_by_cell_are_bit_identical(conditions: &Conditions) {
+    let protocol = following(DVec2::new(1.0, 0.5));
+    let start: Swarm<DVec2> = random_swarm(20_000, 200.0, 2.0, 31);
+    fn fly<P: Protocol<DVec2>>(
+        sim: Simulation<DVec2, P>,
+        states: Option<Vec<f64>>,
+        conditions: &Conditions,
+    ) -> Simulation<DVec2, P> {
+        let unicycle: DynVehicle<DVec2> =
+            Box::new(Unicycle::new(UnicycleParams::default()).expect("valid"));
+        sim.with_vehicle(unicycle, states)
+            .expect("a valid vehicle")
+            .with_conditions(conditions, 5)
+            .expect("valid conditions")
+    }
+    let resume = |swarm, steps| {
+        Simulation::resume(
+            protocol.clone(),
+            Integrator::SymplecticEuler,
+            swarm,
+            0.01,
+            steps,
+        )
+        .expect("a valid simulation")
+    };
+    let mut sorted = fly(resume(start.clone(), 0), None, conditions);
+    let original = Simulation::new(
+        InOriginalOrder(protocol.clone()),
+        Integrator::SymplecticEuler,
+        start,
+        0.01,
+    )
+    .expect("a valid simulation");
+    let mut original = fly(original, None, conditions);
+    assert!(sorted.stored_by_cell() && !original.stored_by_cell());
+    let vehicle_bits = |states: Option<std::borrow::Cow<'_, [f64]>>| -> Vec<u64> {
+        states
+            .expect("vehicles")
+            .iter()
+            .map(|x| x.to_bits())
+            .collect()
+    };
+    let mut resumed = None;
+    for step in 1..=20 {
+        sorted.step();
+        original.step();
+        if let Some(resumed) = resumed.as_mut() {
+            Simulation::step(resumed);
+        }
+        let context = format!("step {step}");
+        assert!(
+            bits(&sorted.swarm()) == bits(&original.swarm()),
+            "{context}"
+        );
+        assert!(
+            vehicle_bits(sorted.vehicle_states()) == vehicle_bits(original.vehicle_states()),
+            "{context}"
+        );
+        assert_eq!(sorted.failed(), original.failed(), "{context}");
+        assert_eq!(sorted.diagnostics(), original.diagnostics(), "{context}");
+        if step == 17 {
+            let states = sorted.vehicle_states().map(std::borrow::Cow::into_owned);
+            let swarm = sorted.swarm().into_owned();
+            let mut from = fly(resume(swarm, sorted.steps()), states, conditions);
+            assert!(from.stored_by_cell(), "sorted again");
+            if let Some(state) = sorted.conditions_state() {
+                from.restore_conditions(state).expect("the same run");
+            }
+            resumed = Some(from);
+        }
+    }
+    let resumed = resumed.expect("resumed after step 17");
+    assert!(bits(&resumed.swarm()) == bits(&sorted.swarm()), "resumed");
+    assert!(
+        vehicle_bits(resumed.vehicle_states()) == vehicle_bits(sorted.vehicle_states()),
+        "resumed"
+    );
+    assert_eq!(resumed.diagnostics(), sorted.diagnostics(), "resumed");
+}
+
+#[test]
+fn unicycles_stored_by_cell_are_bit_identical_ideal() {
+    unicycles_stored_by_cell_are_bit_identical(&Conditions::default());
+}
+
+#[test]
+fn unicycles_stored_by_cell_are_bit_identical_under_conditions() {
+    unicycles_stored_by_cell_are_bit_identical(&for_unicycles());
 }

@@ -145,16 +145,16 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
             ),
             Cow::Owned(swarm) => (Cow::Owned(swarm.positions), Cow::Owned(swarm.velocities)),
         };
-        let (vehicle_columns, vehicle) = match self.fleet() {
-            Some(fleet) => (fleet.vehicle().state_columns(), fleet.states()),
-            None => (&[][..], &[][..]),
+        let (vehicle_columns, vehicle) = match (self.fleet(), self.vehicle_states()) {
+            (Some(fleet), Some(states)) => (fleet.vehicle().state_columns(), states),
+            _ => (&[][..], Cow::Borrowed(&[][..])),
         };
         State {
             dim: V::DIM,
             positions: rows(positions),
             velocities: rows(velocities),
             vehicle_columns,
-            vehicle: Cow::Borrowed(vehicle),
+            vehicle,
             failed: self.failed(),
         }
     }

@@ -1,7 +1,7 @@
 //! A run of agents numbered at random, which the simulation stores by cell: its records are in
 //! original order, and a run resumed from a checkpoint (sorted again from the original order, at
-//! another step) records the same bits; under real conditions too (their state checkpointed in
-//! original order and moved back by cell on resume).
+//! another step) records the same bits; under real conditions and on vehicles too (their state
+//! checkpointed in original order and moved back by cell on resume).
 
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flocking::initial::initial_swarm;
@@ -54,11 +54,13 @@ impl Recorder for Bits {
             .failed
             .iter()
             .flat_map(|f| f.iter().map(|&f| f64::from(f)));
+        let vehicles = state.vehicle.iter().copied();
         let diagnostics = record.diagnostics.iter().map(|&(_, x)| x);
         self.records.push(
             numbers
                 .chain(coordinates)
                 .chain(failed)
+                .chain(vehicles)
                 .chain(diagnostics)
                 .map(f64::to_bits)
                 .collect(),
@@ -103,6 +105,12 @@ fn under_conditions_records_of_agents_stored_by_cell_resume_bit_identically() {
     stored_by_cell_records_and_resumes(&format!("{cloud}{CONDITIONS}"));
 }
 
+#[test]
+fn records_of_unicycles_stored_by_cell_resume_bit_identically() {
+    let cloud = CLOUD.strip_suffix(')').expect("a scenario");
+    stored_by_cell_records_and_resumes(&format!("{cloud}    vehicle: Unicycle(()),\n)"));
+}
+
 /// `text`, a run of the cloud, recorded from its initial state in original order and resumed
 /// from its checkpoint after 12 steps to the bits of the rest of the run.
 fn stored_by_cell_records_and_resumes(text: &str) {
@@ -110,12 +118,12 @@ fn stored_by_cell_records_and_resumes(text: &str) {
     let mut whole = Bits::default();
     flocking::run(&scenario, &mut whole).expect("the run");
     assert_eq!(whole.records.len(), 5, "t = 0 and four records");
-    // the first record is the initial state as drawn, in its order
+    // the first record is the initial state as drawn, in its order (the positions: a vehicle
+    // starts at the velocity of its equilibrium)
     let start = initial_swarm::<DVec2>(&scenario);
     let drawn: Vec<u64> = start
         .positions
         .iter()
-        .chain(&start.velocities)
         .flat_map(|v| [v.x, v.y])
         .map(f64::to_bits)
         .collect();

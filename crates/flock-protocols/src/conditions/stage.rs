@@ -17,6 +17,7 @@ use super::noise::{OrnsteinUhlenbeck, SensorNoise};
 use super::stream::{Purpose, Streams, word_uniform, word_up_to};
 use crate::error::ParamError;
 use crate::integrator::{advance, controls_in};
+use crate::permutation::permute_in_place;
 use crate::vehicle::{Fleet, VehicleKind};
 use crate::{Integrator, LocalForm, Perceived, Perceptions, Protocol, Swarm, Update};
 
@@ -328,7 +329,7 @@ impl<V: Vector> Stage<V> {
     /// Moves each agent's state with the agents: what agent `from(s)` carried goes to index s,
     /// for every s (`from` a permutation of the agents). The delay line, the sensor offsets,
     /// the links kept, the inputs and delivered accelerations, per-agent gusts and the failure
-    /// flags move, each in place ([`permute_in_place`]: no array is held twice); what is shared
+    /// flags move, each in place (no array is held twice); what is shared
     /// or drawn afresh does not. Before the first step every agent carries the same (zero)
     /// state, and nothing is moved.
     pub(crate) fn permute(&mut self, from: impl Fn(usize) -> usize + Copy) {
@@ -803,7 +804,16 @@ impl<V: Vector> Stage<V> {
             wind + noise * (1.0 / this.h)
         };
         let moves = |i: usize| this.moves(i);
-        fleet.advance(this.h, domain, swarm, this.delivered(), disturbance, moves);
+        let delivered = this.delivered();
+        fleet.advance(
+            this.h,
+            domain,
+            swarm,
+            delivered,
+            disturbance,
+            moves,
+            numbering,
+        );
     }
 
     /// The wind gusts of step `k` (Ornstein–Uhlenbeck, started in its stationary law): one
@@ -865,30 +875,6 @@ impl<V: Vector> Stage<V> {
             } else {
                 (q, V::ZERO)
             };
-        }
-    }
-}
-
-/// `x` with what entry `from(s)` held at index s, for every s (`from` a permutation of
-/// `0..x.len()`; nothing is done to an empty `x`), moved in place cycle by cycle: one flag per
-/// entry is all it allocates.
-pub(crate) fn permute_in_place<T: Default>(x: &mut [T], from: impl Fn(usize) -> usize) {
-    let mut done = vec![false; x.len()];
-    for start in 0..x.len() {
-        if done[start] {
-            continue;
-        }
-        let first = core::mem::take(&mut x[start]);
-        let mut s = start;
-        loop {
-            done[s] = true;
-            let next = from(s);
-            if next == start {
-                x[s] = first;
-                break;
-            }
-            x[s] = core::mem::take(&mut x[next]);
-            s = next;
         }
     }
 }

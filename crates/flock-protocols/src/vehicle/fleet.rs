@@ -1,14 +1,19 @@
 //! [`Fleet`]: every agent's vehicle in a run, the one [`Vehicle`] and each agent's state, and
 //! what the vehicles measured over the last step.
 
+use std::borrow::Cow;
+
+use flock_graph::Numbering;
 use flock_math::{Domain, Vector};
 
 use super::{DynVehicle, Vehicle, VehicleKind};
 use crate::Swarm;
 use crate::error::{ParamError, check};
+use crate::permutation::permute_rows_in_place;
 
-/// The vehicles of a run: one [`Vehicle`], the agents' states (agents in original order, each
-/// [`Vehicle::state_columns`]`.len()` numbers) and the readings of the last step.
+/// The vehicles of a run: one [`Vehicle`], the agents' states (agents in the simulation's
+/// storage order, each [`Vehicle::state_columns`]`.len()` numbers) and the readings of the last
+/// step.
 #[derive(Debug)]
 pub struct Fleet<V> {
     vehicle: DynVehicle<V>,
@@ -130,16 +135,43 @@ impl<V: Vector> Fleet<V> {
     }
 
     /// Every agent's state, agent i at `states()[i * k..(i + 1) * k]` with k the number of
-    /// [`Vehicle::state_columns`].
+    /// [`Vehicle::state_columns`] (agents as the simulation stores them:
+    /// [`Simulation::vehicle_states`](crate::Simulation::vehicle_states) gives original order).
     #[must_use]
     pub fn states(&self) -> &[f64] {
         &self.states
     }
 
+    /// The states in original order, agents stored as `numbering` says: borrowed when that is
+    /// their order, otherwise a copy.
+    #[must_use]
+    pub fn states_in_original_order(&self, numbering: &Numbering) -> Cow<'_, [f64]> {
+        if numbering.is_identity() || self.width == 0 {
+            return Cow::Borrowed(&self.states);
+        }
+        let w = self.width;
+        let stored = numbering.stored_of(0..self.states.len() / w);
+        Cow::Owned(
+            stored
+                .flat_map(|s| &self.states[s * w..(s + 1) * w])
+                .copied()
+                .collect(),
+        )
+    }
+
+    /// Moves each agent's vehicle state with the agents: what agent `from(s)` carried goes to
+    /// index s, for every s, in place. (The outcomes are rewritten at every step before they
+    /// are read, and the readings are sums over all agents.)
+    pub(crate) fn permute(&mut self, from: impl Fn(usize) -> usize) {
+        permute_rows_in_place(&mut self.states, self.width, from);
+    }
+
     /// One step h of every agent: agent i, if it `moves(i)`, follows the command `commands[i]`
     /// under the external acceleration `disturbance(i)` ([`Vehicle::advance`]); one that does
     /// not keeps its position and state, with zero velocity. Positions are wrapped into a
-    /// periodic `domain`.
+    /// periodic `domain`. The agents are stored as `numbering` says; the tracking error is their
+    /// mean in original order.
+    #[allow(clippy::too_many_arguments)]
     pub fn advance(
         &mut self,
         h: f64,
@@ -148,6 +180,7 @@ impl<V: Vector> Fleet<V> {
         commands: &[V],
         disturbance: impl Fn(usize) -> V + Sync,
         moves: impl Fn(usize) -> bool + Sync,
+        numbering: &Numbering,
     ) {
         let vehicle = &*self.vehicle;
         let limits = self.at_limit.len();
@@ -193,11 +226,11 @@ impl<V: Vector> Fleet<V> {
             .for_each(agent);
         self.at_limit.fill(0);
         let (mut sum, mut moving) = (0.0, 0usize);
-        for (hit, error) in &self.outcomes {
-            for (count, &hit) in self.at_limit.iter_mut().zip(hit) {
+        for (hit, error) in numbering.ordered(&self.outcomes) {
+            for (count, hit) in self.at_limit.iter_mut().zip(hit) {
                 *count += usize::from(hit);
             }
-            if let Some(error) = *error {
+            if let Some(error) = error {
                 sum += error;
                 moving += 1;
             }
