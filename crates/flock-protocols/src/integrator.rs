@@ -45,7 +45,7 @@ const RESORT_EVERY: u64 = 16;
 ///
 /// Under real conditions ([`Simulation::with_conditions`]) each step is the conditioned stage
 /// ([`Stage::step`]); agents numbered at random are stored by cell there too, their conditions'
-/// state moving with them ([`Stage::permute`]). An agent *removed* by a fault
+/// state moving with them at each re-sort. An agent *removed* by a fault
 /// stays in the state at the position where it failed, with zero velocity; the metrics leave it
 /// out (they are those of the other agents, of their proximity net and of the interaction graph
 /// without it), while the protocol's energy and diagnostics still see the whole state.
