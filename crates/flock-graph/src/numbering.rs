@@ -10,6 +10,7 @@
 //! stored.
 
 use core::ops::Range;
+use std::borrow::Cow;
 
 use crate::parallel::{chunked_sum, fill_indexed};
 
@@ -139,6 +140,27 @@ impl Numbering {
             batch: [T::default(); GATHER],
             unread: 0..0,
         }
+    }
+
+    /// The rows of `width` entries of `stored` (one row per agent, in storage order) in
+    /// ascending original index: `stored` itself when the agents are stored in original order or
+    /// it holds nothing (`width` 0, or an array not kept), otherwise a copy.
+    #[must_use]
+    pub fn rows_in_original_order<'a, T: Clone>(
+        &self,
+        stored: &'a [T],
+        width: usize,
+    ) -> Cow<'a, [T]> {
+        if self.is_identity() || stored.is_empty() || width == 0 {
+            return Cow::Borrowed(stored);
+        }
+        debug_assert_eq!(stored.len(), self.ids.len() * width, "one row per agent");
+        let rows = self.stored_of(0..self.ids.len());
+        Cow::Owned(
+            rows.flat_map(|s| &stored[s * width..(s + 1) * width])
+                .cloned()
+                .collect(),
+        )
     }
 
     /// Σ_k value(s_k) over the `n` agents, k the original index and s_k its storage index: the
@@ -294,6 +316,28 @@ mod tests {
             }
             proptest::prop_assert_eq!(ordered.len(), 0);
             proptest::prop_assert_eq!(ordered.next(), None);
+        }
+
+        /// `rows_in_original_order` puts row k (of any width) at place k; empty arrays and width
+        /// 0 come back as they are.
+        #[test]
+        fn rows_come_out_in_original_order(
+            order in (0..300_u32).prop_flat_map(|n| Just((0..n).collect::<Vec<_>>()).prop_shuffle()),
+            width in 0..4_usize,
+        ) {
+            let mut numbering = Numbering::identity();
+            numbering.permute(&order);
+            // entry c of the row of original index k is 10 k + c
+            let stored: Vec<u64> = order
+                .iter()
+                .flat_map(|&k| (0..width as u64).map(move |c| 10 * u64::from(k) + c))
+                .collect();
+            let rows = numbering.rows_in_original_order(&stored, width);
+            let expected: Vec<u64> = (0..order.len() as u64)
+                .flat_map(|k| (0..width as u64).map(move |c| 10 * k + c))
+                .collect();
+            proptest::prop_assert_eq!(&rows[..], &expected[..]);
+            proptest::prop_assert!(numbering.rows_in_original_order::<u64>(&[], 1).is_empty());
         }
     }
 }

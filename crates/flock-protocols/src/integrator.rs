@@ -107,6 +107,34 @@ pub struct Observation {
     pub diagnostics: Vec<(&'static str, f64)>,
 }
 
+/// Moves every per-agent array of a run with its agent, index s getting what index `from(s)`
+/// held: the swarm, gathered into `spare` and swapped in when `spare` holds one vector per agent
+/// (the ideal run's inputs, free between steps), otherwise permuted in place as the conditions'
+/// state and the vehicles' states are (a conditioned run keeps no inputs there, and holds the
+/// delay line: no array is held twice).
+fn move_agents<V: Vector>(
+    swarm: &mut Swarm<V>,
+    spare: &mut Vec<V>,
+    stage: Option<&mut Stage<V>>,
+    fleet: Option<&mut Fleet<V>>,
+    from: impl Fn(usize) -> usize + Copy + Sync,
+) {
+    for x in [&mut swarm.positions, &mut swarm.velocities] {
+        if spare.len() == x.len() {
+            fill_indexed(spare, |s| x[from(s)]);
+            core::mem::swap(x, spare);
+        } else {
+            permute_in_place(x, from);
+        }
+    }
+    if let Some(stage) = stage {
+        stage.permute(from);
+    }
+    if let Some(fleet) = fleet {
+        fleet.permute(from);
+    }
+}
+
 /// An empty net for `protocol`: without distances when it does not read them.
 fn empty_net<V: Vector, P: Protocol<V>>(protocol: &P) -> ProximityNet {
     if protocol.uses_net_distances() {
@@ -379,21 +407,20 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         Ok(self)
     }
 
-    /// Puts the agents stored by cell, their conditions' state and their vehicles' states back
-    /// in original order,
-    /// with an empty net (its numbering gone) that [`Simulation::rebuild_net`] must rebuild.
+    /// Puts the agents stored by cell back in original order, with their conditions' and
+    /// vehicles' states, and leaves an empty net (its numbering gone) that
+    /// [`Simulation::rebuild_net`] must rebuild.
     fn back_to_original_order(&mut self) {
         if self.stored_by_cell() {
-            self.swarm = self.swarm().into_owned();
             let numbering = self.net.numbering();
             // index k now holds agent k, which was stored at `stored(k)`
-            let from = |k| numbering.stored(k);
-            if let Some(stage) = self.conditions.as_mut() {
-                stage.permute(from);
-            }
-            if let Some(fleet) = self.fleet.as_mut() {
-                fleet.permute(from);
-            }
+            move_agents(
+                &mut self.swarm,
+                &mut self.inputs,
+                self.conditions.as_deref_mut(),
+                self.fleet.as_deref_mut(),
+                |k| numbering.stored(k),
+            );
         }
         self.net = empty_net(&self.protocol);
     }
@@ -442,7 +469,12 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     #[must_use]
     pub fn vehicle_states(&self) -> Option<Cow<'_, [f64]>> {
         let fleet = self.fleet.as_ref()?;
-        Some(fleet.states_in_original_order(self.net.numbering()))
+        let width = fleet.vehicle().state_columns().len();
+        Some(
+            self.net
+                .numbering()
+                .rows_in_original_order(fleet.states(), width),
+        )
     }
 
     /// The agents' vehicles, `None` for point masses.
@@ -457,12 +489,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     #[must_use]
     pub fn failed(&self) -> Option<Cow<'_, [bool]>> {
         let failed = self.conditions.as_ref().and_then(|c| c.failed())?;
-        let numbering = self.net.numbering();
-        Some(if numbering.is_identity() {
-            Cow::Borrowed(failed)
-        } else {
-            Cow::Owned(numbering.ordered(failed).collect())
-        })
+        Some(self.net.numbering().rows_in_original_order(failed, 1))
     }
 
     /// The simulation under real `conditions` (validated for its agents, dimension and step),
@@ -688,22 +715,13 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 .collect();
             &completed
         };
-        let from = |s: usize| order[s] as usize;
-        if let Some(stage) = self.conditions.as_mut() {
-            // a conditioned run keeps no inputs here, and the delay line: each array in place
-            permute_in_place(&mut self.swarm.positions, from);
-            permute_in_place(&mut self.swarm.velocities, from);
-            stage.permute(from);
-        } else {
-            // the inputs are free between steps: each array is gathered there and swapped in
-            for x in [&mut self.swarm.positions, &mut self.swarm.velocities] {
-                fill_indexed(&mut self.inputs, |s| x[from(s)]);
-                core::mem::swap(x, &mut self.inputs);
-            }
-        }
-        if let Some(fleet) = self.fleet.as_mut() {
-            fleet.permute(from);
-        }
+        move_agents(
+            &mut self.swarm,
+            &mut self.inputs,
+            self.conditions.as_deref_mut(),
+            self.fleet.as_deref_mut(),
+            |s| order[s] as usize,
+        );
         self.net.permute(order);
         if let Some(rk) = self.rk.as_mut() {
             rk.net.share_numbering(&self.net);

@@ -75,47 +75,15 @@ fn vectors<V: Vector>(field: &str, x: &[f64], len: usize) -> Result<Vec<V>, Para
         .collect())
 }
 
-/// The per-agent entries of `x` (`width` each, agents stored as `numbering` says) in original
-/// order; `x` itself when it is not per agent (a shared gust, or nothing kept).
-fn in_original_order<T: Clone>(x: Vec<T>, width: usize, n: usize, numbering: &Numbering) -> Vec<T> {
-    if numbering.is_identity() || x.len() != n * width {
-        return x;
-    }
-    (0..n)
-        .flat_map(|k| {
-            let s = numbering.stored(k) * width;
-            x[s..s + width].iter().cloned()
-        })
-        .collect()
-}
-
 impl<V: Vector> Stage<V> {
     /// The state to checkpoint, agent by agent in original order (the agents stored as
     /// `numbering` says).
     #[must_use]
     pub fn state(&self, numbering: &Numbering) -> ConditionsState {
-        let n = self.failed.len();
-        let agents = |x: Vec<f64>| in_original_order(x, V::DIM, n, numbering);
-        let stored = self.state_as_stored();
-        ConditionsState {
-            noise: (agents(stored.noise.0), agents(stored.noise.1)),
-            history: stored
-                .history
-                .into_iter()
-                .map(|(q, p)| (agents(q), agents(p)))
-                .collect(),
-            links: in_original_order(stored.links, 1, n, numbering),
-            inputs: agents(stored.inputs),
-            delivered: agents(stored.delivered),
-            gust: agents(stored.gust),
-            failed: in_original_order(stored.failed, 1, n, numbering),
-            ..stored
-        }
-    }
-
-    /// The state to checkpoint, agent by agent in storage order.
-    fn state_as_stored(&self) -> ConditionsState {
-        let (nq, np): (Vec<V>, Vec<V>) = self.noise.iter().copied().unzip();
+        // one row per agent, in original order
+        let ordered = |x: &[V]| flat(&numbering.rows_in_original_order(x, 1));
+        let noise = numbering.rows_in_original_order(&self.noise, 1);
+        let (nq, np): (Vec<V>, Vec<V>) = noise.iter().copied().unzip();
         let r = self.readings;
         ConditionsState {
             seed: self.streams.seed(),
@@ -126,10 +94,10 @@ impl<V: Vector> Stage<V> {
                 .history
                 .slots
                 .iter()
-                .map(|(q, p)| (flat(q), flat(p)))
+                .map(|(q, p)| (ordered(q), ordered(p)))
                 .collect(),
-            links: self
-                .links
+            links: numbering
+                .rows_in_original_order(&self.links, 1)
                 .iter()
                 .map(|ls| {
                     ls.iter()
@@ -143,10 +111,16 @@ impl<V: Vector> Stage<V> {
                         .collect()
                 })
                 .collect(),
-            inputs: flat(&self.inputs),
-            delivered: flat(&self.delivered),
-            gust: flat(&self.gust),
-            failed: self.failed.clone(),
+            inputs: ordered(&self.inputs),
+            delivered: ordered(&self.delivered),
+            gust: if self.gusts_per_agent() {
+                ordered(&self.gust)
+            } else {
+                flat(&self.gust)
+            },
+            failed: numbering
+                .rows_in_original_order(&self.failed, 1)
+                .into_owned(),
             readings: [
                 r.links_lost,
                 r.information_age,

@@ -326,24 +326,27 @@ impl<V: Vector> Stage<V> {
             .then_some(&self.failed[..])
     }
 
+    /// Whether each agent has a gust of its own (else one gust is shared, or there is none).
+    pub(crate) fn gusts_per_agent(&self) -> bool {
+        self.gust.len() > 1
+    }
+
     /// Moves each agent's state with the agents: what agent `from(s)` carried goes to index s,
     /// for every s (`from` a permutation of the agents). The delay line, the sensor offsets,
     /// the links kept, the inputs and delivered accelerations, per-agent gusts and the failure
-    /// flags move, each in place (no array is held twice); what is shared
-    /// or drawn afresh does not. Before the first step every agent carries the same (zero)
-    /// state, and nothing is moved.
+    /// flags move, each in place (no array is held twice); what is shared or drawn afresh does
+    /// not. Before the first step every agent carries the same (zero) state: nothing moves.
     pub(crate) fn permute(&mut self, from: impl Fn(usize) -> usize + Copy) {
         if !self.started {
             return;
         }
-        let n = self.failed.len();
         for (q, p) in &mut self.history.slots {
             permute_in_place(q, from);
             permute_in_place(p, from);
         }
         permute_in_place(&mut self.inputs, from);
         permute_in_place(&mut self.delivered, from);
-        if self.gust.len() == n {
+        if self.gusts_per_agent() {
             permute_in_place(&mut self.gust, from);
         }
         permute_in_place(&mut self.noise, from);
@@ -376,9 +379,10 @@ impl<V: Vector> Stage<V> {
         columns
     }
 
-    /// One step h from step `k` of the true state `swarm` (stored as the numbering of `net`
-    /// says) whose proximity net is `net`: fail → sense → communicate → control → actuate → disturb and integrate; with a
-    /// `fleet`, its vehicles follow the delivered accelerations under the disturbance.
+    /// One step h from step `k` of the true state `swarm` whose proximity net is `net` (agents
+    /// stored as its numbering says): fail → sense → communicate → control → actuate → disturb
+    /// and integrate; with a `fleet`, its vehicles follow the delivered accelerations under the
+    /// disturbance.
     #[allow(clippy::too_many_arguments)]
     pub fn step<P: Protocol<V> + ?Sized>(
         &mut self,
@@ -822,7 +826,7 @@ impl<V: Vector> Stage<V> {
         let Some(gusts) = self.gusts else {
             return;
         };
-        let per_agent = self.gust.len() > 1;
+        let per_agent = self.gusts_per_agent();
         for (g, x) in self.gust.iter_mut().enumerate() {
             let key = if per_agent { numbering.original(g) } else { g };
             let xi = self

@@ -1,8 +1,6 @@
 //! [`Fleet`]: every agent's vehicle in a run, the one [`Vehicle`] and each agent's state, and
 //! what the vehicles measured over the last step.
 
-use std::borrow::Cow;
-
 use flock_graph::Numbering;
 use flock_math::{Domain, Vector};
 
@@ -140,23 +138,6 @@ impl<V: Vector> Fleet<V> {
     #[must_use]
     pub fn states(&self) -> &[f64] {
         &self.states
-    }
-
-    /// The states in original order, agents stored as `numbering` says: borrowed when that is
-    /// their order, otherwise a copy.
-    #[must_use]
-    pub fn states_in_original_order(&self, numbering: &Numbering) -> Cow<'_, [f64]> {
-        if numbering.is_identity() || self.width == 0 {
-            return Cow::Borrowed(&self.states);
-        }
-        let w = self.width;
-        let stored = numbering.stored_of(0..self.states.len() / w);
-        Cow::Owned(
-            stored
-                .flat_map(|s| &self.states[s * w..(s + 1) * w])
-                .copied()
-                .collect(),
-        )
     }
 
     /// Moves each agent's vehicle state with the agents: what agent `from(s)` carried goes to
