@@ -145,14 +145,15 @@ enum Command {
         #[arg(long, value_parser = flock_cli::bench::vehicle_parser())]
         vehicle: Option<flocking::bench::BenchVehicle>,
         /// Instead of the α-lattice, a workload of the ABM frameworks' boids benchmark
-        /// (ABMFrameworksComparison's Flocking/DECLARATION.md): 100 steps timed from a fresh start
-        /// per seed, the median printed.
+        /// (ABMFrameworksComparison's Flocking/DECLARATION.md), or the Vicsek model at its paper's
+        /// density (fixtures/vicsek1995_fig2a_n400.ron): 100 steps timed from a fresh start per
+        /// seed, the median printed.
         #[arg(long, value_parser = flock_cli::bench::workload_parser())]
         workload: Option<flocking::workload::Workload>,
         /// With --workload: the number of seeds timed.
         #[arg(long, default_value_t = 10, requires = "workload")]
         seeds: u64,
-        /// With --workload: this many birds at the workload's density (its box grown to hold them).
+        /// With --workload: this many agents at the workload's density (its box grown to hold them).
         #[arg(long, requires = "workload")]
         scale_to: Option<usize>,
     },

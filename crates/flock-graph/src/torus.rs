@@ -164,9 +164,13 @@ impl TorusGrid {
         V::from_fn(|k| c[k])
     }
 
-    /// The coordinates of the cell holding `slot`.
-    fn cell_coords(&self, slot: usize) -> [usize; 3] {
-        let cell = self.cell_start.partition_point(|&s| s <= slot) - 1;
+    /// The cell holding `slot`.
+    fn cell_of_slot(&self, slot: usize) -> usize {
+        self.cell_start.partition_point(|&s| s <= slot) - 1
+    }
+
+    /// The coordinates of `cell`.
+    fn cell_coords(&self, cell: usize) -> [usize; 3] {
         let [dx, dy, _] = self.dims;
         [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
     }
@@ -214,11 +218,16 @@ impl TorusBlock {
     ) {
         self.ends.clear();
         self.neighbours.clear();
-        let (mut cell, mut candidates) = ([usize::MAX; 3], CandidateCells::default());
+        // consecutive slots share their cell, and so its candidates
+        let mut cell = grid.cell_of_slot(slots.start);
+        let mut candidates = grid.candidates(grid.cell_coords(cell));
         for slot in slots {
-            let coords = grid.cell_coords(slot);
-            if coords != cell {
-                (cell, candidates) = (coords, grid.candidates(coords));
+            if slot >= grid.cell_start[cell + 1] {
+                // the next cell holding an agent
+                while slot >= grid.cell_start[cell + 1] {
+                    cell += 1;
+                }
+                candidates = grid.candidates(grid.cell_coords(cell));
             }
             let qi = grid.position::<V>(slot);
             self.keyed.clear();
@@ -232,11 +241,15 @@ impl TorusBlock {
                     }
                 }
             }
-            // sorted: a simulation keeps agents on a torus in original order, so that the keys
-            // follow the scan
+            // agents stored by cell under a numbering have original indices unrelated to the
+            // scan: short lists are then ranked without branching on the keys
             let end = self.neighbours.len();
             self.neighbours.resize(end + self.keyed.len(), 0);
-            order_slots::<false>(&mut self.keyed, &mut self.neighbours[end..]);
+            if numbering.is_identity() {
+                order_slots::<false>(&mut self.keyed, &mut self.neighbours[end..]);
+            } else {
+                order_slots::<true>(&mut self.keyed, &mut self.neighbours[end..]);
+            }
             self.ends.push(self.neighbours.len());
         }
     }
@@ -289,6 +302,24 @@ impl NeighbourSearch {
             Domain::Open => self.build(positions, r, net),
             Domain::Periodic { size } => {
                 self.build_on_torus(domain, *size, positions, r, net, BLOCK_SHIFT);
+            }
+        }
+    }
+
+    /// The agents with a finite position in the order of the cells of `domain`'s grid for range
+    /// `r` (ascending index within a cell): [`NeighbourSearch::cell_order`] in open space, and on
+    /// a torus the order [`NeighbourSearch::build_in`] visits them in. Its buffer is reused.
+    pub fn cell_order_in<V: Vector>(
+        &mut self,
+        domain: &Domain<V>,
+        positions: &[V],
+        r: f64,
+    ) -> &[u32] {
+        match domain {
+            Domain::Open => self.cell_order(positions, r),
+            Domain::Periodic { size } => {
+                self.torus.rebuild(*size, positions, r);
+                &self.torus.order
             }
         }
     }
@@ -443,7 +474,10 @@ impl NeighbourSearch {
                         let slot = grid.slot_of[pending[p] as usize] as usize;
                         let qi = grid.position::<V>(slot);
                         let mut best = f64::INFINITY;
-                        for range in grid.candidates(grid.cell_coords(slot)).iter() {
+                        for range in grid
+                            .candidates(grid.cell_coords(grid.cell_of_slot(slot)))
+                            .iter()
+                        {
                             for t in range {
                                 let d2 = squared_distance_in(domain, qi, grid.position::<V>(t));
                                 if t != slot && in_range(d2, threshold) && d2 < best {

@@ -35,14 +35,39 @@ pub enum Domain<V> {
 #[inline]
 #[must_use]
 pub fn minimum_image(x: f64, period: f64) -> f64 {
-    x - period * (x / period).round()
+    x - period * round_near_zero(x / period)
+}
+
+/// `x.round()` (half away from zero, the sign of a zero kept), bit for bit, without the library
+/// call that baseline x86-64 (no SSE4.1 `roundsd`) makes for it when |x| < 1.5, as for the
+/// difference of two coordinates in a box: comparisons give −1, ±0 or 1. A periodic
+/// neighbour search takes one per candidate pair and axis, 21 % of a Vicsek step at 10⁵ agents
+/// before.
+#[inline]
+fn round_near_zero(x: f64) -> f64 {
+    if x.abs() < 1.5 {
+        (f64::from(u8::from(x >= 0.5)) - f64::from(u8::from(x <= -0.5))).copysign(x)
+    } else {
+        x.round()
+    }
+}
+
+/// `x.floor()`, bit for bit, without the library call for −1 ≤ x < 2, as for a coordinate in
+/// or next to its box divided by the side: comparisons give −1, ±0 or 1.
+#[inline]
+fn floor_near_zero(x: f64) -> f64 {
+    if (-1.0..2.0).contains(&x) {
+        (f64::from(u8::from(x >= 1.0)) - f64::from(u8::from(x < 0.0))).copysign(x)
+    } else {
+        x.floor()
+    }
 }
 
 /// `x` reduced to [0, L) by whole periods.
 #[inline]
 #[must_use]
 pub fn wrap_coordinate(x: f64, period: f64) -> f64 {
-    let y = x - period * (x / period).floor();
+    let y = x - period * floor_near_zero(x / period);
     // x just below 0 rounds to y = L; the box is half-open
     if y >= period { y - period } else { y }
 }
@@ -147,7 +172,7 @@ impl<V: Vector> Domain<V> {
             Self::Open => to,
             Self::Periodic { size } => V::from_fn(|k| {
                 let (x, period) = (to.coord(k), size.coord(k));
-                let shift = ((x - from.coord(k)) / period).round();
+                let shift = round_near_zero((x - from.coord(k)) / period);
                 if shift == 0.0 { x } else { x - shift * period }
             }),
         }
@@ -244,6 +269,26 @@ mod tests {
             let w = torus.wrap(moved);
             prop_assert!((0.0..10.0).contains(&w.x) && (0.0..10.0).contains(&w.y));
             assert_abs_diff_eq!(w, b, epsilon = 1e-12);
+        }
+
+        /// The comparisons give `round` and `floor` bit for bit: near zero, where they replace
+        /// them, at the half-integers and integers where they change, and anywhere else.
+        #[test]
+        fn rounding_near_zero_is_the_library_rounding(
+            x in prop_oneof![
+                -3.0f64..3.0,
+                prop::sample::select(vec![
+                    -2.0, -1.5, -1.0, -0.5, -0.0, 0.0, 0.5, 1.0, 1.5, 2.0,
+                    0.499_999_999_999_999_94, -0.499_999_999_999_999_94,
+                    1.499_999_999_999_999_8, -1.499_999_999_999_999_8,
+                    1.999_999_999_999_999_8, -1e-300, 1e-300,
+                    f64::NAN, f64::INFINITY, f64::NEG_INFINITY,
+                ]),
+                any::<f64>(),
+            ],
+        ) {
+            prop_assert_eq!(round_near_zero(x).to_bits(), x.round().to_bits(), "round({})", x);
+            prop_assert_eq!(floor_near_zero(x).to_bits(), x.floor().to_bits(), "floor({})", x);
         }
     }
 }

@@ -224,20 +224,27 @@ impl<V: Vector> Protocol<V> for Couzin<V> {
 
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
+        let numbering = net.numbering();
         fill_indexed(inputs, |i| {
             let others = net
                 .graph()
                 .neighbours(i)
                 .iter()
                 .map(|&j| (q[j as usize], p[j as usize]));
-            self.turn(i as u32, t, q[i], p[i], others)
+            self.turn(numbering.original(i) as u32, t, q[i], p[i], others)
         });
+    }
+
+    /// The zones' sums run over each individual's list in ascending original index and the
+    /// noise is keyed by original index: individuals at random are stored by cell.
+    fn follows_numbering(&self) -> bool {
+        true
     }
 
     /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no
     /// energy.
-    fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        heading_mismatch(&swarm.velocities)
+    fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        heading_mismatch(&swarm.velocities, net.numbering())
     }
 
     fn update(&self) -> Update {

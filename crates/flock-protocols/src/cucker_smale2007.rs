@@ -163,6 +163,13 @@ impl<V: Vector> Protocol<V> for CuckerSmale<V> {
         kinetic(&swarm.velocities, numbering, p_bar)
     }
 
+    /// With a cut-off: each agent's sum runs over its list in ascending original index. The
+    /// paper's all-to-all sum runs over every agent in storage order, so it keeps its agents in
+    /// original order.
+    fn follows_numbering(&self) -> bool {
+        self.params.cutoff.is_some()
+    }
+
     fn measures_in_domain(&self) -> bool {
         true
     }

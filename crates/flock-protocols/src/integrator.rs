@@ -683,9 +683,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// re-sort even if still scattered, e.g. thousands in one cell: no sort at every step.)
     fn rebuild_net(&mut self) {
         let r = self.protocol.interaction_range();
-        let sorts = self.protocol.follows_numbering()
-            && self.protocol.interaction_graph().is_none()
-            && !self.domain.is_periodic();
+        let sorts =
+            self.protocol.follows_numbering() && self.protocol.interaction_graph().is_none();
         let sorted = !self.net.numbering().is_identity();
         if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {
             self.sort_by_cell();
@@ -694,7 +693,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             .build_in(&self.domain, &self.swarm.positions, r, &mut self.net);
         if sorts && !sorted && self.net.is_scattered() {
             self.sort_by_cell();
-            self.search.build(&self.swarm.positions, r, &mut self.net);
+            self.search
+                .build_in(&self.domain, &self.swarm.positions, r, &mut self.net);
         }
     }
 
@@ -702,7 +702,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// last, in their storage order) and renumbers the nets, which must then be rebuilt.
     fn sort_by_cell(&mut self) {
         let q = &self.swarm.positions;
-        let cells = self.search.cell_order(q, self.protocol.interaction_range());
+        let r = self.protocol.interaction_range();
+        let cells = self.search.cell_order_in(&self.domain, q, r);
         let completed: Vec<u32>;
         let order = if cells.len() == q.len() {
             cells
@@ -885,7 +886,8 @@ pub(crate) fn controls_in<V: Vector, P: Protocol<V> + ?Sized>(
     }
 }
 
-/// u_i = local_input(t, own, heard) with the true states, neighbours at their nearest image.
+/// u_i = local_input(t, own, heard) with the true states, neighbours at their nearest image,
+/// in the net's order (ascending original index), each agent named by its original index.
 fn local_controls<V: Vector>(
     local: &dyn LocalForm<V>,
     domain: &Domain<V>,
@@ -895,20 +897,19 @@ fn local_controls<V: Vector>(
     inputs: &mut [V],
 ) {
     let (q, p) = (&swarm.positions, &swarm.velocities);
+    let numbering = net.numbering();
     let perceived = |i: usize, position: V| Perceived {
-        agent: i as u32,
+        agent: numbering.original(i) as u32,
         position,
         velocity: p[i],
     };
-    // each worker's neighbour and heard lists, reused from agent to agent
-    let scratch = || (Vec::new(), Vec::new());
-    map_agents_mut(inputs, scratch, |i, u, (js, heard)| {
-        js.clear();
-        js.extend_from_slice(net.graph().neighbours(i));
-        js.sort_unstable();
+    // each worker's heard list, reused from agent to agent
+    map_agents_mut(inputs, Vec::new, |i, u, heard| {
         heard.clear();
         heard.extend(
-            js.iter()
+            net.graph()
+                .neighbours(i)
+                .iter()
                 .map(|&j| perceived(j as usize, domain.image_near(q[i], q[j as usize]))),
         );
         *u = local.local_input(t, &perceived(i, q[i]), heard);

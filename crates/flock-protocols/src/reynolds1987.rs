@@ -193,8 +193,8 @@ impl<V: Vector> Protocol<V> for Boids<V> {
 
     /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no
     /// energy.
-    fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        heading_mismatch(&swarm.velocities)
+    fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        heading_mismatch(&swarm.velocities, net.numbering())
     }
 
     fn update(&self) -> Update {

@@ -63,10 +63,10 @@ pub(crate) fn kinetic<V: Vector>(velocities: &[V], numbering: &Numbering, refere
 
 /// The heading mismatch n − ‖Σ_i p̂_i‖ ≥ 0 (p̂_i = p_i/‖p_i‖, 0 at rest): 0 when every agent
 /// heads alike, n (1 − polarisation). The `energy` column of the models that decrease no
-/// energy (Vicsek, boids, Couzin).
-pub(crate) fn heading_mismatch<V: Vector>(velocities: &[V]) -> f64 {
-    let total = velocities
-        .iter()
-        .fold(V::ZERO, |acc, &p| acc + p.normalize_or_zero());
+/// energy (Vicsek, boids, Couzin, Vásárhelyi), the headings added in ascending original index.
+pub(crate) fn heading_mismatch<V: Vector>(velocities: &[V], numbering: &Numbering) -> f64 {
+    let total = numbering
+        .ordered(velocities)
+        .fold(V::ZERO, |acc, p| acc + p.normalize_or_zero());
     velocities.len() as f64 - total.length()
 }

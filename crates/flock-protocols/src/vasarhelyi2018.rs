@@ -340,21 +340,24 @@ impl<V: Vector> Vasarhelyi<V> {
 
     /// The paper's order parameters of a state (see [`Vasarhelyi`]) in the order
     /// φ^corr, φ^vel / v^flock, φ^coll, φ^wall; pairs closer than r^coll counted over `net`.
+    /// Sums over the agents run in ascending original index (the net's numbering), so agents
+    /// stored in any order give the same bits.
     #[must_use]
     pub fn order_parameters(&self, swarm: &Swarm<V>, net: &ProximityNet) -> [f64; 4] {
         let (q, v) = (&swarm.positions, &swarm.velocities);
+        let numbering = net.numbering();
         let n = q.len();
         let pairs = (n * n.saturating_sub(1)) as f64;
-        let headings = v
-            .iter()
-            .fold(V::ZERO, |acc, &p| acc + p.normalize_or_zero());
+        let headings = numbering
+            .ordered(v)
+            .fold(V::ZERO, |acc, p| acc + p.normalize_or_zero());
         let moving = v.iter().filter(|p| **p != V::ZERO).count() as f64;
         let correlation = if n < 2 {
             1.0
         } else {
             (headings.length_squared() - moving) / pairs
         };
-        let speed = v.iter().map(|p| p.length()).sum::<f64>() / n.max(1) as f64;
+        let speed = numbering.ordered(v).map(|p| p.length()).sum::<f64>() / n.max(1) as f64;
         let mut close = 0usize;
         for i in 0..n {
             for &j in net.graph().neighbours(i) {
@@ -369,7 +372,11 @@ impl<V: Vector> Vasarhelyi<V> {
         } else {
             2.0 * close as f64 / pairs
         };
-        let wall = q.iter().map(|&x| self.arena.outside(x)).sum::<f64>() / n.max(1) as f64;
+        let wall = numbering
+            .ordered(q)
+            .map(|x| self.arena.outside(x))
+            .sum::<f64>()
+            / n.max(1) as f64;
         [correlation, speed / self.params.v_flock, collisions, wall]
     }
 }
@@ -394,6 +401,12 @@ impl<V: Vector> Protocol<V> for Vasarhelyi<V> {
         false
     }
 
+    /// Each agent's terms summed over its list in ascending original index: agents at random
+    /// are stored by cell.
+    fn follows_numbering(&self) -> bool {
+        true
+    }
+
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         fill_indexed(inputs, |i| {
@@ -407,8 +420,8 @@ impl<V: Vector> Protocol<V> for Vasarhelyi<V> {
     }
 
     /// The heading mismatch n − ‖Σ_i p̂_i‖: the model decreases no energy.
-    fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        heading_mismatch(&swarm.velocities)
+    fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        heading_mismatch(&swarm.velocities, net.numbering())
     }
 
     fn diagnostics(

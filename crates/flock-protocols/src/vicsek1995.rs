@@ -110,22 +110,29 @@ impl<V: Vector> Protocol<V> for Vicsek<V> {
     }
 
     /// Each particle's new velocity from the velocities of its neighbours within r (the net's
-    /// edges, ascending index) and its own.
+    /// edges, ascending original index) and its own, its noise keyed by its original index.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let p = &swarm.velocities;
+        let numbering = net.numbering();
         fill_indexed(inputs, |i| {
             let mut sum = p[i];
             for &j in net.graph().neighbours(i) {
                 sum += p[j as usize];
             }
-            self.heading(i as u32, t, p[i], sum)
+            self.heading(numbering.original(i) as u32, t, p[i], sum)
         });
+    }
+
+    /// The sums run over each particle's list in ascending original index and the noise is
+    /// keyed by original index: particles at random are stored by cell.
+    fn follows_numbering(&self) -> bool {
+        true
     }
 
     /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no
     /// energy.
-    fn energy(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet) -> f64 {
-        heading_mismatch(&swarm.velocities)
+    fn energy(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet) -> f64 {
+        heading_mismatch(&swarm.velocities, net.numbering())
     }
 
     fn update(&self) -> Update {

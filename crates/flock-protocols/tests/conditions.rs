@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 
 use flock_graph::{Graph, ProximityNet};
+use flock_math::Domain;
 use flock_metrics::MetricParams;
 #[cfg(feature = "serde")]
 use flock_protocols::conditions::ConditionsState;
@@ -14,7 +15,7 @@ use flock_protocols::conditions::{
 };
 use flock_protocols::{
     Algorithm1, Algorithm2, Consensus, GammaAgent, Integrator, NavigationalFeedback, Protocol,
-    Simulation, Swarm,
+    Simulation, Swarm, Vicsek, VicsekParams,
 };
 use glam::DVec2;
 use proptest::prelude::*;
@@ -661,6 +662,44 @@ fn exact_perception_on_the_local_path_is_the_ideal_run() {
         .fold(0.0, f64::max);
     println!("exact perception: largest position difference {worst:.2e}");
     assert!(worst < 1e-9, "{worst}");
+}
+
+/// On a torus, a communication range beyond r reaches across the wrap: with exact perception
+/// (no delay, no loss, no noise) Vicsek's particles hear within the range and keep those within
+/// r, so the run is the ideal one, bit for bit. (Its own net was once built in open space, and
+/// particles near an edge missed their neighbours across it.)
+#[test]
+fn a_communication_range_on_a_torus_reaches_across_the_wrap() {
+    let torus = Domain::Periodic {
+        size: DVec2::splat(20.0),
+    };
+    let params = VicsekParams {
+        v0: 0.03,
+        r: 1.0,
+        eta: 0.5,
+    };
+    let model = || Vicsek::new(params, 1.0, 9, torus).expect("valid");
+    let start = random_swarm::<DVec2>(2_000, 10.0, 0.03, 61);
+    let run = |conditions: &Conditions| {
+        let mut sim = Simulation::new(model(), Integrator::SymplecticEuler, start.clone(), 1.0)
+            .expect("valid")
+            .with_domain(torus)
+            .expect("a valid domain")
+            .with_conditions(conditions, 0)
+            .expect("valid");
+        for _ in 0..30 {
+            sim.step();
+        }
+        bits(&sim.swarm())
+    };
+    let ranged = Conditions {
+        communication: Some(Communication {
+            range: Some(1.5),
+            ..Communication::default()
+        }),
+        ..Conditions::default()
+    };
+    assert!(run(&ranged) == run(&Conditions::default()));
 }
 
 /// `Conditions::default()` is the ideal run, bit for bit.

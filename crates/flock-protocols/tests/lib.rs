@@ -14,5 +14,6 @@ mod olfati_saber2003_tracking;
 mod properties;
 mod reynolds_reading;
 mod storage_order;
+mod storage_order_models;
 mod tanner2003;
 mod theory;

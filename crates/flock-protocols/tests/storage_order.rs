@@ -19,7 +19,7 @@ use crate::common::{following, random_swarm};
 use crate::conditions::everything;
 
 /// `P` kept in original order: its [`Protocol::follows_numbering`] is the default, false.
-struct InOriginalOrder<P>(P);
+pub struct InOriginalOrder<P>(pub P);
 
 impl<V: Vector, P: Protocol<V>> Protocol<V> for InOriginalOrder<P> {
     fn interaction_range(&self) -> f64 {
@@ -54,10 +54,14 @@ impl<V: Vector, P: Protocol<V>> Protocol<V> for InOriginalOrder<P> {
     fn update(&self) -> Update {
         self.0.update()
     }
+
+    fn measures_in_domain(&self) -> bool {
+        self.0.measures_in_domain()
+    }
 }
 
 /// The state's bits in original order.
-fn bits<V: Vector>(swarm: &Swarm<V>) -> Vec<u64> {
+pub fn bits<V: Vector>(swarm: &Swarm<V>) -> Vec<u64> {
     swarm
         .positions
         .iter()
@@ -335,9 +339,9 @@ fn unicycles_under_conditions_stored_by_cell_are_bit_identical() {
 }
 
 /// A run resumed with its conditions' state restored (agents stored by cell, the state moved
-/// with them) and then put in a periodic domain, which keeps agents in original order: the
-/// state goes back with the agents, and the run continues as the uninterrupted one and as the
-/// one resumed with the domain set first.
+/// with them) and then put in a periodic domain, which puts the agents back in original order
+/// before wrapping them (and sorts them again): the state goes back with the agents, and the run
+/// continues as the uninterrupted one and as the one resumed with the domain set first.
 #[test]
 fn a_domain_set_after_restored_conditions_moves_their_state_back() {
     let domain = Domain::Periodic {

@@ -1,7 +1,8 @@
 //! The workloads of the agent-based modelling frameworks' boids benchmark (JuliaDynamics
 //! ABMFrameworksComparison, `Flocking/DECLARATION.md`), timed as the frameworks time them: 100
 //! steps of the model from a fresh random start, the median over seeds, so that our figures
-//! stand beside their published ones. `flocking bench --workload` prints them.
+//! stand beside their published ones; and the Vicsek model at its paper's density, timed the
+//! same way. `flocking bench --workload` prints them.
 
 use std::fmt;
 use std::str::FromStr;
@@ -10,6 +11,7 @@ use std::time::{Duration, Instant};
 use serde_json::json;
 
 use crate::error::ScenarioError;
+use crate::scenario::{Algorithm, DomainSpec};
 use crate::{DynSimulation, Scenario};
 
 /// A workload of the boids benchmark.
@@ -19,16 +21,20 @@ pub enum Workload {
     BoidsSmall,
     /// 400 birds in a 150 × 150 periodic box, visual distance 15, 100 steps.
     BoidsLarge,
+    /// The Vicsek model of `fixtures/vicsek1995_fig2a_n400.ron` (Vicsek et al. 1995 Fig. 2(a):
+    /// 400 particles at density 4, r = 1, v₀ = 0.03, η = 2), 100 steps.
+    Vicsek,
 }
 
 impl Workload {
     /// Every workload, in the order of [`Self::NAMES`].
-    pub const ALL: [Self; 2] = [Self::BoidsSmall, Self::BoidsLarge];
+    pub const ALL: [Self; 3] = [Self::BoidsSmall, Self::BoidsLarge, Self::Vicsek];
 
     /// The names `flocking bench --workload` and Python's `workload=` take.
-    pub const NAMES: [&'static str; 2] = ["boids-small", "boids-large"];
+    pub const NAMES: [&'static str; 3] = ["boids-small", "boids-large", "vicsek"];
 
-    /// Its scenario: `fixtures/boids_small_n200.ron` or `fixtures/boids_large_n400.ron`.
+    /// Its scenario: `fixtures/boids_small_n200.ron`, `fixtures/boids_large_n400.ron`, or
+    /// `fixtures/vicsek1995_fig2a_n400.ron` cut to 100 steps.
     ///
     /// # Panics
     /// Never: the fixtures are compiled in and checked by the tests.
@@ -43,21 +49,30 @@ impl Workload {
                 include_str!("../../../fixtures/boids_large_n400.ron"),
                 "boids_large_n400.ron",
             ),
+            Self::Vicsek => (
+                include_str!("../../../fixtures/vicsek1995_fig2a_n400.ron"),
+                "vicsek1995_fig2a_n400.ron",
+            ),
         };
-        Scenario::parse(text, name).unwrap_or_else(|e| unreachable!("{name}: {e}"))
+        let scenario = Scenario::parse(text, name).unwrap_or_else(|e| unreachable!("{name}: {e}"));
+        let steps = 100.0 * scenario.step;
+        scenario
+            .with_values([("duration", json!(steps))])
+            .unwrap_or_else(|e| unreachable!("{name} over 100 steps: {e}"))
     }
 
-    /// The workload with `agents` birds at its own density (the box grown to keep the birds per
+    /// The workload with `agents` agents at its own density (the box grown to keep the birds per
     /// unit area of the declaration), positions uniform in the box.
     ///
     /// # Errors
     /// A number of agents the scenario refuses (0, or too many).
     pub fn scaled(self, agents: usize) -> Result<Scenario, ScenarioError> {
         let scenario = self.scenario();
-        let crate::scenario::DomainSpec::Periodic { size } = &scenario.domain else {
-            unreachable!("the boids workloads are periodic");
+        let density = match &scenario.domain {
+            DomainSpec::Periodic { size } => scenario.agents as f64 / size.iter().product::<f64>(),
+            DomainSpec::PeriodicAtDensity { density } => *density,
+            DomainSpec::Open => unreachable!("the workloads are periodic"),
         };
-        let density = scenario.agents as f64 / size.iter().product::<f64>();
         scenario.with_values([
             ("agents", json!(agents)),
             ("domain", json!({"PeriodicAtDensity": {"density": density}})),
@@ -114,12 +129,16 @@ impl WorkloadReport {
 impl fmt::Display for WorkloadReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = &self.scenario;
+        let agents = match s.algorithm {
+            Algorithm::Boids { .. } => "birds",
+            _ => "agents",
+        };
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let least = self.times.iter().min().copied().unwrap_or_default();
         let most = self.times.iter().max().copied().unwrap_or_default();
         write!(
             f,
-            "{}: {} birds, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s)",
+            "{}: {} {agents}, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s)",
             s.name,
             s.agents,
             s.box_size().unwrap_or_default(),
@@ -188,6 +207,15 @@ mod tests {
             "{report}"
         );
         assert_eq!("Boids_Large".parse(), Ok(Workload::BoidsLarge));
+        // Vicsek's Fig. 2(a) over 100 steps of Δt = 1, scaled at ρ = 4
+        let vicsek = Workload::Vicsek.scenario();
+        assert_eq!((vicsek.agents, vicsek.steps()), (400, 100));
+        assert_eq!(vicsek.box_size(), Some(vec![10.0, 10.0]));
+        let side = Workload::Vicsek
+            .scaled(1_000_000)
+            .expect("valid")
+            .box_size();
+        assert_eq!(side, Some(vec![500.0, 500.0]));
         assert!("boids".parse::<Workload>().is_err());
         assert!(report.median() <= *report.times.iter().max().expect("three"));
     }

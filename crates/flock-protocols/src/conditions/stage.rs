@@ -502,7 +502,8 @@ impl<V: Vector> Stage<V> {
         {
             // its lists in ascending original index, as the simulation's net lists them
             self.net.share_numbering(net);
-            self.search.build(&swarm.positions, range, &mut self.net);
+            self.search
+                .build_in(domain, &swarm.positions, range, &mut self.net);
         }
         let candidates = protocol
             .interaction_graph()
