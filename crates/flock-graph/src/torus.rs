@@ -17,7 +17,7 @@
 
 use core::ops::Range;
 
-use flock_math::{Domain, Vector};
+use flock_math::{Domain, Vector, minimum_image};
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
@@ -65,6 +65,11 @@ impl CandidateCells {
     #[inline]
     fn iter(&self) -> impl Iterator<Item = Range<usize>> + '_ {
         self.ranges[..self.count].iter().map(|&(a, b)| a..b)
+    }
+
+    /// The number of agents in the cells.
+    fn len(&self) -> usize {
+        self.iter().map(|range| range.len()).sum()
     }
 }
 
@@ -208,19 +213,42 @@ pub(crate) struct TorusBlock {
 }
 
 impl TorusBlock {
+    /// The lists of `slots` (agents in the box of sides `size`).
     fn fill<V: Vector>(
         &mut self,
         grid: &TorusGrid,
-        domain: &Domain<V>,
+        size: V,
         r2: f64,
         numbering: &Numbering,
         slots: Range<usize>,
+    ) {
+        if numbering.is_identity() {
+            self.fill_keyed::<V, false>(grid, size, r2, slots, |j| j);
+        } else {
+            let original = |j| numbering.original(j as usize) as u32;
+            self.fill_keyed::<V, true>(grid, size, r2, slots, original);
+        }
+    }
+
+    /// [`TorusBlock::fill`] with the original index `original(j)` of each agent j. `SCATTERED`
+    /// (agents stored by cell under a numbering, whose original indices are unrelated to the
+    /// scan) builds each list without branching on whether a candidate is in range or where it
+    /// ranks, as [`NeighbourSearch::build`] does.
+    #[inline]
+    fn fill_keyed<V: Vector, const SCATTERED: bool>(
+        &mut self,
+        grid: &TorusGrid,
+        size: V,
+        r2: f64,
+        slots: Range<usize>,
+        original: impl Fn(u32) -> u32,
     ) {
         self.ends.clear();
         self.neighbours.clear();
         // consecutive slots share their cell, and so its candidates
         let mut cell = grid.cell_of_slot(slots.start);
         let mut candidates = grid.candidates(grid.cell_coords(cell));
+        let mut count = candidates.len();
         for slot in slots {
             if slot >= grid.cell_start[cell + 1] {
                 // the next cell holding an agent
@@ -228,28 +256,29 @@ impl TorusBlock {
                     cell += 1;
                 }
                 candidates = grid.candidates(grid.cell_coords(cell));
+                count = candidates.len();
+            }
+            if self.keyed.len() < count {
+                self.keyed.resize(count, 0);
             }
             let qi = grid.position::<V>(slot);
-            self.keyed.clear();
+            let mut len = 0;
             for range in candidates.iter() {
                 for t in range {
-                    let d2 = squared_distance_in(domain, qi, grid.position::<V>(t));
-                    if in_range(d2, r2) && t != slot {
+                    // the minimum image of `Domain::displacement`, bit for bit
+                    let qj = grid.position::<V>(t);
+                    let d = V::from_fn(|k| minimum_image(qj.coord(k) - qi.coord(k), size.coord(k)));
+                    let keep = in_range(d.length_squared(), r2) & (t != slot);
+                    if SCATTERED || keep {
                         let j = grid.order[t];
-                        let k = numbering.original(j as usize) as u64;
-                        self.keyed.push(k << 32 | u64::from(j));
+                        self.keyed[len] = u64::from(original(j)) << 32 | u64::from(j);
+                        len += usize::from(keep);
                     }
                 }
             }
-            // agents stored by cell under a numbering have original indices unrelated to the
-            // scan: short lists are then ranked without branching on the keys
             let end = self.neighbours.len();
-            self.neighbours.resize(end + self.keyed.len(), 0);
-            if numbering.is_identity() {
-                order_slots::<false>(&mut self.keyed, &mut self.neighbours[end..]);
-            } else {
-                order_slots::<true>(&mut self.keyed, &mut self.neighbours[end..]);
-            }
+            self.neighbours.resize(end + len, 0);
+            order_slots::<SCATTERED>(&mut self.keyed[..len], &mut self.neighbours[end..]);
             self.ends.push(self.neighbours.len());
         }
     }
@@ -365,7 +394,7 @@ impl NeighbourSearch {
         for_each_indexed_mut(&mut blocks[..count], 1, |b, block| {
             let start = b * block_len;
             let slots = start..start + (slots - start).min(block_len);
-            block.fill::<V>(grid, domain, r2, numbering, slots);
+            block.fill::<V>(grid, size, r2, numbering, slots);
         });
         let blocks = &blocks[..count];
         let list = |i: usize| {

@@ -68,6 +68,13 @@ def test_a_workload_reports_its_seeds():
     assert str(report).startswith("boids_small_n200: 200 birds, box [100.0, 100.0], 100 steps, 3 seed(s)")
 
 
+def test_the_vicsek_workload_scales_at_the_papers_density():
+    report = flocking.bench(workload="vicsek", seeds=1, scale_to=2500, threads=1)
+    assert report.n == 2500 and len(report.times) == 1
+    # ρ = 4: a box of side √(2500 / 4) = 25
+    assert str(report).startswith("vicsek1995_fig2a_n400: 2500 agents, box [25.0, 25.0], 100 steps")
+
+
 @pytest.mark.parametrize(
     "keywords, named",
     [

@@ -32,7 +32,8 @@ def bench(
     (``agent_steps_per_second``, ``bytes_per_agent``, ``ms_per_step``, …).
 
     ``workload="boids-small"`` or ``"boids-large"`` times the ABM frameworks' boids benchmark
-    instead (``seeds``, ``scale_to``) and returns a :class:`WorkloadReport`. ``threads`` runs on a
+    instead, and ``"vicsek"`` the Vicsek model at its paper's density (``seeds``, ``scale_to``);
+    either returns a :class:`WorkloadReport`. ``threads`` runs on a
     pool of that many workers (default: all cores). ``peak_memory`` is the interpreter's whole
     process. Invalid values raise ``ValueError`` naming the keyword.
     """
