@@ -368,7 +368,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// each step, the net holds the pairs within r by the minimum image, and a protocol that does
     /// not measure displacements in the domain itself ([`Protocol::measures_in_domain`]) computes
     /// each agent's input from its [`LocalForm`] with every neighbour at its image nearest the
-    /// agent. Agents are then kept in original order. `Domain::Open` changes nothing.
+    /// agent. Agents stored by cell are put back in original order to be wrapped, and sorted
+    /// again by the cells of the torus when they are scattered. `Domain::Open` changes nothing.
     ///
     /// # Errors
     /// A side of the box not positive and finite or shorter than 2r (`domain.size`), or a protocol

@@ -1,10 +1,11 @@
 //! Shared fixtures: seeded random swarms and exact α-lattices.
 
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 use flock_protocols::{
     Algorithm2, AlphaInteraction, AlphaParams, GammaAgent, NavigationalFeedback, Protocol,
-    Simulation, Swarm,
+    Simulation, Swarm, Vicsek, VicsekParams,
 };
+use glam::DVec2;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -15,6 +16,20 @@ pub fn random_swarm<V: Vector>(n: usize, half: f64, speed: f64, seed: u64) -> Sw
     let positions = (0..n).map(|_| draw(half)).collect();
     let velocities = (0..n).map(|_| draw(speed)).collect();
     Swarm::new(positions, velocities)
+}
+
+/// The Vicsek model (v₀ = 0.03, r = 1, Δt = 1, noise η drawn from the streams of `seed`) on a
+/// torus of side `side`, and the torus.
+pub fn vicsek_on_a_torus(side: f64, eta: f64, seed: u64) -> (Vicsek<DVec2>, Domain<DVec2>) {
+    let torus = Domain::Periodic {
+        size: DVec2::splat(side),
+    };
+    let params = VicsekParams {
+        v0: 0.03,
+        r: 1.0,
+        eta,
+    };
+    (Vicsek::new(params, 1.0, seed, torus).expect("valid"), torus)
 }
 
 /// The papers' α-interaction (d = 7, r = 8.4, ε = 0.1, a = b = 5, h = 0.2) with unit gains.

@@ -5,7 +5,6 @@
 use std::f64::consts::PI;
 
 use flock_graph::{Graph, ProximityNet};
-use flock_math::Domain;
 use flock_metrics::MetricParams;
 #[cfg(feature = "serde")]
 use flock_protocols::conditions::ConditionsState;
@@ -15,12 +14,12 @@ use flock_protocols::conditions::{
 };
 use flock_protocols::{
     Algorithm1, Algorithm2, Consensus, GammaAgent, Integrator, NavigationalFeedback, Protocol,
-    Simulation, Swarm, Vicsek, VicsekParams,
+    Simulation, Swarm,
 };
 use glam::DVec2;
 use proptest::prelude::*;
 
-use crate::common::{papers_alpha, random_swarm};
+use crate::common::{papers_alpha, random_swarm, vicsek_on_a_torus};
 
 /// The cycle C_n: λ_k = 2 − 2 cos(2πk/n).
 fn cycle(n: usize) -> Graph {
@@ -670,23 +669,20 @@ fn exact_perception_on_the_local_path_is_the_ideal_run() {
 /// particles near an edge missed their neighbours across it.)
 #[test]
 fn a_communication_range_on_a_torus_reaches_across_the_wrap() {
-    let torus = Domain::Periodic {
-        size: DVec2::splat(20.0),
-    };
-    let params = VicsekParams {
-        v0: 0.03,
-        r: 1.0,
-        eta: 0.5,
-    };
-    let model = || Vicsek::new(params, 1.0, 9, torus).expect("valid");
+    let (model, torus) = vicsek_on_a_torus(20.0, 0.5, 9);
     let start = random_swarm::<DVec2>(2_000, 10.0, 0.03, 61);
     let run = |conditions: &Conditions| {
-        let mut sim = Simulation::new(model(), Integrator::SymplecticEuler, start.clone(), 1.0)
-            .expect("valid")
-            .with_domain(torus)
-            .expect("a valid domain")
-            .with_conditions(conditions, 0)
-            .expect("valid");
+        let mut sim = Simulation::new(
+            model.clone(),
+            Integrator::SymplecticEuler,
+            start.clone(),
+            1.0,
+        )
+        .expect("valid")
+        .with_domain(torus)
+        .expect("a valid domain")
+        .with_conditions(conditions, 0)
+        .expect("valid");
         for _ in 0..30 {
             sim.step();
         }

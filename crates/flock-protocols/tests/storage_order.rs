@@ -70,6 +70,35 @@ pub fn bits<V: Vector>(swarm: &Swarm<V>) -> Vec<u64> {
         .collect()
 }
 
+/// The state, energy, failures and diagnostics of `sorted` and `original` have the same bits.
+pub fn assert_same_step<V: Vector, P: Protocol<V>, Q: Protocol<V>>(
+    sorted: &Simulation<V, P>,
+    original: &Simulation<V, Q>,
+    context: &str,
+) {
+    assert!(
+        bits(&sorted.swarm()) == bits(&original.swarm()),
+        "{context}"
+    );
+    assert_eq!(
+        sorted.energy().to_bits(),
+        original.energy().to_bits(),
+        "{context}"
+    );
+    assert_eq!(sorted.failed(), original.failed(), "{context}");
+    assert_eq!(sorted.diagnostics(), original.diagnostics(), "{context}");
+}
+
+/// The metrics have the same bits.
+pub fn assert_same_metrics(a: &FlockMetrics, b: &FlockMetrics) {
+    assert!(
+        a.reals().map(f64::to_bits) == b.reals().map(f64::to_bits)
+            && a.collisions == b.collisions
+            && a.components == b.components,
+        "{a:?} {b:?}"
+    );
+}
+
 /// 17 steps (a re-sort at step 16) of `protocol` stored by cell against the same protocol kept in
 /// original order, from 20,000 agents numbered at random: the same state, graph, energy, metrics
 /// and diagnostics bits after every step, with both integrators.
@@ -92,16 +121,7 @@ fn stored_by_cell_is_bit_identical<V: Vector, P: Protocol<V> + Clone>(protocol: 
                 sorted.step();
                 original.step();
             }
-            let context = format!("{integrator:?}, step {step}");
-            assert!(
-                bits(&sorted.swarm()) == bits(&original.swarm()),
-                "{context}"
-            );
-            assert_eq!(
-                sorted.energy().to_bits(),
-                original.energy().to_bits(),
-                "{context}"
-            );
+            assert_same_step(&sorted, &original, &format!("{integrator:?}, step {step}"));
         }
         assert_eq!(sorted.graph(), original.graph());
         assert!(
@@ -109,12 +129,7 @@ fn stored_by_cell_is_bit_identical<V: Vector, P: Protocol<V> + Clone>(protocol: 
             "the test wants neighbours"
         );
         let (a, b) = (sorted.observe(&params), original.observe(&params));
-        assert!(
-            a.metrics.reals().map(f64::to_bits) == b.metrics.reals().map(f64::to_bits)
-                && a.metrics.collisions == b.metrics.collisions
-                && a.metrics.components == b.metrics.components,
-            "{a:?} {b:?}"
-        );
+        assert_same_metrics(&a.metrics, &b.metrics);
         assert_eq!(a.diagnostics, b.diagnostics);
         assert_eq!(
             sorted.component_velocity_mismatch().to_bits(),
@@ -309,13 +324,7 @@ fn stored_by_cell_under(conditions: &Conditions, unicycles: bool) {
     if let Some(failed) = sorted.failed() {
         assert!(failed.contains(&true), "the test wants failed agents");
     }
-    let (a, b) = (sorted.metrics(&params), original.metrics(&params));
-    assert!(
-        a.reals().map(f64::to_bits) == b.reals().map(f64::to_bits)
-            && a.collisions == b.collisions
-            && a.components == b.components,
-        "{a:?} {b:?}"
-    );
+    assert_same_metrics(&sorted.metrics(&params), &original.metrics(&params));
 }
 
 #[test]

@@ -7,12 +7,12 @@ use flock_metrics::MetricParams;
 use flock_protocols::conditions::{Communication, Conditions, Loss, Noise, Sensing};
 use flock_protocols::{
     Arena, ArenaShape, Couzin, CouzinParams, CuckerSmale, CuckerSmaleParams, Integrator, Protocol,
-    Simulation, Swarm, Vasarhelyi, VasarhelyiParams, Vicsek, VicsekParams,
+    Simulation, Swarm, Vasarhelyi, VasarhelyiParams, Vicsek,
 };
 use glam::{DVec2, DVec3};
 
-use crate::common::{following, random_swarm};
-use crate::storage_order::{InOriginalOrder, bits};
+use crate::common::{following, random_swarm, vicsek_on_a_torus};
+use crate::storage_order::{InOriginalOrder, assert_same_metrics, assert_same_step};
 
 /// 20 steps of `step` (a re-sort at step 16) of `protocol` in `domain` under `conditions`, from
 /// `start` (agents numbered at random), stored by cell against the same protocol kept in
@@ -52,18 +52,7 @@ fn model_stored_by_cell<V: Vector, P: Protocol<V> + Clone>(
     for k in 1..=20 {
         sorted.step();
         original.step();
-        let context = format!("step {k}");
-        assert!(
-            bits(&sorted.swarm()) == bits(&original.swarm()),
-            "{context}"
-        );
-        assert_eq!(
-            sorted.energy().to_bits(),
-            original.energy().to_bits(),
-            "{context}"
-        );
-        assert_eq!(sorted.failed(), original.failed(), "{context}");
-        assert_eq!(sorted.diagnostics(), original.diagnostics(), "{context}");
+        assert_same_step(&sorted, &original, &format!("step {k}"));
     }
     assert_eq!(sorted.graph(), original.graph());
     let n = start.len();
@@ -75,13 +64,7 @@ fn model_stored_by_cell<V: Vector, P: Protocol<V> + Clone>(
         d: 1.0,
         collision_distance: 0.25,
     };
-    let (a, b) = (sorted.metrics(&params), original.metrics(&params));
-    assert!(
-        a.reals().map(f64::to_bits) == b.reals().map(f64::to_bits)
-            && a.collisions == b.collisions
-            && a.components == b.components,
-        "{a:?} {b:?}"
-    );
+    assert_same_metrics(&sorted.metrics(&params), &original.metrics(&params));
 }
 
 /// A delay of two steps of `step`, 10 % Bernoulli loss, a communication range of 1.5 `r` and
@@ -105,19 +88,11 @@ fn lossy(step: f64, r: f64) -> Conditions {
     }
 }
 
-/// The paper's Fig. 1(d) density: 20,000 particles at ρ = 4 on a torus of side 70, r = 1,
-/// v₀ = 0.03, η = 2, Δt = 1.
+/// 20,000 particles at the density ρ = 4 of `fixtures/vicsek1995_fig2a_n400.ron` (the paper's
+/// Fig. 2(a)) on a torus of side 70, η = 2.
 fn vicsek() -> (Vicsek<DVec2>, Swarm<DVec2>, Domain<DVec2>) {
-    let domain = Domain::Periodic {
-        size: DVec2::splat(70.0),
-    };
-    let params = VicsekParams {
-        v0: 0.03,
-        r: 1.0,
-        eta: 2.0,
-    };
-    let model = Vicsek::new(params, 1.0, 3, domain).expect("valid");
-    (model, random_swarm(20_000, 35.0, 0.03, 41), domain)
+    let (model, torus) = vicsek_on_a_torus(70.0, 2.0, 3);
+    (model, random_swarm(20_000, 35.0, 0.03, 41), torus)
 }
 
 #[test]
