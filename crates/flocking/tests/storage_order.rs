@@ -1,7 +1,8 @@
 //! A run of agents numbered at random, which the simulation stores by cell: its records are in
 //! original order, and a run resumed from a checkpoint (sorted again from the original order, at
 //! another step) records the same bits; under real conditions and on vehicles too (their state
-//! checkpointed in original order and moved back by cell on resume).
+//! checkpointed in original order and moved back by cell on resume), and for Vicsek's particles
+//! on a torus.
 
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flocking::initial::initial_swarm;
@@ -94,26 +95,59 @@ const CONDITIONS: &str = r#"    conditions: (
     ),
 )"#;
 
+/// 20,000 Vicsek particles at ρ = 4 on a torus (`fixtures/vicsek1995_fig2a_n400.ron` grown),
+/// numbered at random as drawn; 24 steps recorded every 6, a checkpoint after 12.
+const VICSEK: &str = r#"Scenario(
+    name: "vicsek",
+    dim: 2,
+    agents: 20000,
+    seed: 3,
+    algorithm: Vicsek(v0: 0.03, r: 1.0, eta: 2.0),
+    domain: PeriodicAtDensity(density: 4.0),
+    initial: (
+        positions: Domain,
+        velocities: Headings(speed: 0.03),
+    ),
+    step: 1.0,
+    duration: 24.0,
+    record_every: 6,
+)"#;
+
 #[test]
 fn records_of_agents_stored_by_cell_are_in_original_order_and_resume_bit_identically() {
-    stored_by_cell_records_and_resumes(CLOUD);
+    stored_by_cell_records_and_resumes(CLOUD, 8.4);
+}
+
+/// Particles on a torus are stored by its cells, ideal and under a delay of two steps, 10 %
+/// loss, a communication range and sensing noise (their noise keyed by original index).
+#[test]
+fn vicsek_particles_stored_by_cell_on_a_torus_resume_bit_identically() {
+    stored_by_cell_records_and_resumes(VICSEK, 1.0);
+    let vicsek = VICSEK.strip_suffix(')').expect("a scenario");
+    let conditions = r#"    conditions: (
+        communication: (delay: 2.0, range: Some(1.5), loss: Bernoulli(p: 0.1)),
+        sensing: (noise: White(sigma_q: 0.01, sigma_p: 0.001)),
+    ),
+)"#;
+    stored_by_cell_records_and_resumes(&format!("{vicsek}{conditions}"), 1.0);
 }
 
 #[test]
 fn under_conditions_records_of_agents_stored_by_cell_resume_bit_identically() {
     let cloud = CLOUD.strip_suffix(')').expect("a scenario");
-    stored_by_cell_records_and_resumes(&format!("{cloud}{CONDITIONS}"));
+    stored_by_cell_records_and_resumes(&format!("{cloud}{CONDITIONS}"), 8.4);
 }
 
 #[test]
 fn records_of_unicycles_stored_by_cell_resume_bit_identically() {
     let cloud = CLOUD.strip_suffix(')').expect("a scenario");
-    stored_by_cell_records_and_resumes(&format!("{cloud}    vehicle: Unicycle(()),\n)"));
+    stored_by_cell_records_and_resumes(&format!("{cloud}    vehicle: Unicycle(()),\n)"), 8.4);
 }
 
-/// `text`, a run of the cloud, recorded from its initial state in original order and resumed
-/// from its checkpoint after 12 steps to the bits of the rest of the run.
-fn stored_by_cell_records_and_resumes(text: &str) {
+/// `text`, a run of 20,000 agents at random (interaction range `r`), recorded from its initial
+/// state in original order and resumed from its checkpoint after 12 steps to the bits of the
+/// rest of the run.
+fn stored_by_cell_records_and_resumes(text: &str, r: f64) {
     let scenario = Scenario::parse(text, "cloud.ron").expect("valid");
     let mut whole = Bits::default();
     flocking::run(&scenario, &mut whole).expect("the run");
@@ -134,7 +168,7 @@ fn stored_by_cell_records_and_resumes(text: &str) {
     );
     // the net of the drawn state is scattered in memory: the simulation stores it by cell
     let mut net = ProximityNet::without_distances();
-    NeighbourSearch::new().build(&start.positions, 8.4, &mut net);
+    NeighbourSearch::new().build(&start.positions, r, &mut net);
     assert!(net.is_scattered() && net.graph().directed_edge_count() > 2 * 20_000);
     let checkpoint = whole
         .checkpoint
