@@ -17,7 +17,7 @@
 
 use core::ops::Range;
 
-use flock_math::{Domain, Vector, minimum_image};
+use flock_math::{Domain, Vector, periodic_displacement};
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
@@ -251,10 +251,7 @@ impl TorusBlock {
         let mut count = candidates.len();
         for slot in slots {
             if slot >= grid.cell_start[cell + 1] {
-                // the next cell holding an agent
-                while slot >= grid.cell_start[cell + 1] {
-                    cell += 1;
-                }
+                cell = grid.cell_of_slot(slot);
                 candidates = grid.candidates(grid.cell_coords(cell));
                 count = candidates.len();
             }
@@ -265,9 +262,7 @@ impl TorusBlock {
             let mut len = 0;
             for range in candidates.iter() {
                 for t in range {
-                    // the minimum image of `Domain::displacement`, bit for bit
-                    let qj = grid.position::<V>(t);
-                    let d = V::from_fn(|k| minimum_image(qj.coord(k) - qi.coord(k), size.coord(k)));
+                    let d = periodic_displacement(qi, grid.position::<V>(t), size);
                     let keep = in_range(d.length_squared(), r2) & (t != slot);
                     if SCATTERED || keep {
                         let j = grid.order[t];

@@ -67,6 +67,16 @@ fn floor_near_zero(x: f64) -> f64 {
     }
 }
 
+/// The minimum image of `to − from` in the periodic box of sides `size`, each component in
+/// [−L_k/2, L_k/2]: [`Domain::displacement`] on a torus, for a caller that holds the sides
+/// (a neighbour search, per candidate pair, without matching the domain).
+#[inline]
+#[must_use]
+pub fn periodic_displacement<V: Vector>(from: V, to: V, size: V) -> V {
+    let d = to - from;
+    V::from_fn(|k| minimum_image(d.coord(k), size.coord(k)))
+}
+
 /// `x` reduced to [0, L) by whole periods.
 #[inline]
 #[must_use]
@@ -91,10 +101,7 @@ impl<V: Vector> Domain<V> {
     pub fn displacement(&self, from: V, to: V) -> V {
         match self {
             Self::Open => to - from,
-            Self::Periodic { size } => {
-                let d = to - from;
-                V::from_fn(|k| minimum_image(d.coord(k), size.coord(k)))
-            }
+            Self::Periodic { size } => periodic_displacement(from, to, *size),
         }
     }
 

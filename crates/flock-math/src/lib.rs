@@ -22,7 +22,7 @@ pub mod vector;
 
 pub use action::BumpedAction;
 pub use bump::Bump;
-pub use domain::{Domain, minimum_image, wrap_coordinate};
+pub use domain::{Domain, minimum_image, periodic_displacement, wrap_coordinate};
 pub use potential::Potential;
 pub use quadrature::{CumulativeIntegral, GaussLegendre};
 pub use sigma::{SigmaNorm, sigma1, sigma1_vec};

@@ -14,7 +14,7 @@ use crate::error::ScenarioError;
 use crate::scenario::{Algorithm, DomainSpec};
 use crate::{DynSimulation, Scenario};
 
-/// A workload of the boids benchmark.
+/// A workload: the boids benchmark's two, or Vicsek's model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Workload {
     /// 200 birds in a 100 × 100 periodic box, visual distance 5, 100 steps.
@@ -61,8 +61,8 @@ impl Workload {
             .unwrap_or_else(|e| unreachable!("{name} over 100 steps: {e}"))
     }
 
-    /// The workload with `agents` agents at its own density (the box grown to keep the birds per
-    /// unit area of the declaration), positions uniform in the box.
+    /// The workload with `agents` agents at its own density (the box grown to keep the agents per
+    /// unit area of its scenario), positions uniform in the box.
     ///
     /// # Errors
     /// A number of agents the scenario refuses (0, or too many).
