@@ -200,7 +200,45 @@ impl NeighbourSearch {
     }
 }
 
+/// Slots per task of the pair counts ([`NeighbourSearch::count_pairs_in`]).
+pub(crate) const PAIR_CHUNK: usize = 4096;
+
 impl NeighbourSearch {
+    /// [`NeighbourSearch::count_pairs_in`] in open space.
+    pub(crate) fn count_open_pairs<V: Vector>(
+        &mut self,
+        positions: &[V],
+        r: f64,
+        accept: &(impl Fn(usize, usize) -> bool + Sync),
+    ) -> usize {
+        let r2 = range_squared(r);
+        if positions.len() < 2 || r2 == 0.0 {
+            return 0;
+        }
+        self.grid.rebuild(positions, r);
+        let grid = &self.grid;
+        let counts = map_chunks(grid.order.len(), PAIR_CHUNK, |slots| {
+            let mut cells = grid.cells_of(slots.start);
+            let mut count = 0;
+            for slot in slots {
+                cells.cell_of(slot);
+                let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
+                for row in grid.candidate_rows(cells.coords()).iter() {
+                    // each pair of slots once, from the lower one
+                    for t in row.start.max(slot + 1)..row.end {
+                        let j = grid.order[t] as usize;
+                        let d2 = squared_distance(qi, grid.position::<V>(t));
+                        if in_range(d2, r2) && accept(i.min(j), i.max(j)) {
+                            count += 1;
+                        }
+                    }
+                }
+            }
+            count
+        });
+        counts.iter().sum()
+    }
+
     /// For each agent `pending[p]`, the least squared distance below `threshold` to another finite
     /// agent, +∞ when there is none, in `found[p]`; the grid is rebuilt with `reach`, and
     /// `threshold` must not exceed `reach²`.

@@ -21,8 +21,8 @@ use flock_math::{Domain, Vector, periodic_displacement};
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
-use crate::parallel::{fill_indexed, for_each_indexed_mut};
-use crate::search::{NeighbourSearch, assemble, order_slots, padded_side};
+use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
+use crate::search::{NeighbourSearch, PAIR_CHUNK, assemble, order_slots, padded_side};
 
 /// log₂ of the slots per block of work.
 const BLOCK_SHIFT: u32 = 10;
@@ -328,6 +328,74 @@ impl NeighbourSearch {
                 self.build_on_torus(domain, *size, positions, r, net, BLOCK_SHIFT);
             }
         }
+    }
+
+    /// The number of edges {i, j} (i < j, agent indices) of the net that
+    /// [`NeighbourSearch::build_in`]`(domain, positions, r, …)` builds for which `accept(i, j)`
+    /// holds, counted pair by pair without building the net: memory O(n) whatever the agents'
+    /// degree, where the net holds every list. For counts over dense nets, such as the crossings
+    /// of a net's edges, whose midpoints can have thousands of neighbours each. The count is the
+    /// same for any rayon pool size.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_graph::{NeighbourSearch, ProximityNet};
+    /// use flock_math::Domain;
+    /// use glam::DVec2;
+    ///
+    /// let q: Vec<DVec2> = (0..10).map(|k| DVec2::new(k as f64, 0.0)).collect();
+    /// let torus = Domain::Periodic { size: DVec2::new(10.0, 10.0) };
+    /// let mut search = NeighbourSearch::new();
+    /// // the ring's 10 links, of which those of an even agent with an odd one: all of them
+    /// assert_eq!(search.count_pairs_in(&torus, &q, 1.5, |_, _| true), 10);
+    /// // in open space the line has 9 links, 5 of them from an even agent up
+    /// assert_eq!(search.count_pairs_in(&Domain::Open, &q, 1.5, |i, _| i % 2 == 0), 5);
+    /// ```
+    ///
+    /// # Panics
+    /// When `positions.len()` exceeds `u32::MAX`.
+    pub fn count_pairs_in<V: Vector>(
+        &mut self,
+        domain: &Domain<V>,
+        positions: &[V],
+        r: f64,
+        accept: impl Fn(usize, usize) -> bool + Sync,
+    ) -> usize {
+        let size = match domain {
+            Domain::Open => return self.count_open_pairs(positions, r, &accept),
+            Domain::Periodic { size } => *size,
+        };
+        let r2 = range_squared(r);
+        if positions.len() < 2 || r2 == 0.0 {
+            return 0;
+        }
+        let grid = &mut self.torus;
+        grid.rebuild(size, positions, r);
+        let grid = &*grid;
+        let counts = map_chunks(grid.order.len(), PAIR_CHUNK, |slots| {
+            let mut cell = grid.cell_of_slot(slots.start);
+            let mut candidates = grid.candidates(grid.cell_coords(cell));
+            let mut count = 0;
+            for slot in slots {
+                if slot >= grid.cell_start[cell + 1] {
+                    cell = grid.cell_of_slot(slot);
+                    candidates = grid.candidates(grid.cell_coords(cell));
+                }
+                let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
+                for range in candidates.iter() {
+                    // each pair of slots once (every cell is a candidate once), from the lower one
+                    for t in range.start.max(slot + 1)..range.end {
+                        let j = grid.order[t] as usize;
+                        let d = periodic_displacement(qi, grid.position::<V>(t), size);
+                        if in_range(d.length_squared(), r2) && accept(i.min(j), i.max(j)) {
+                            count += 1;
+                        }
+                    }
+                }
+            }
+            count
+        });
+        counts.iter().sum()
     }
 
     /// The agents with a finite position in the order of the cells of `domain`'s grid for range

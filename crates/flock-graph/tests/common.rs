@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 
 use flock_graph::{NeighbourSearch, ProximityNet};
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -51,9 +51,46 @@ pub fn assert_identical(actual: &ProximityNet, expected: &ProximityNet) {
     assert_eq!(bits(actual), bits(expected), "distances");
 }
 
-/// Asserts the neighbour search reproduces the brute-force net exactly; returns the net.
+/// Asserts the neighbour search reproduces the brute-force net exactly, and counts its pairs
+/// without building it ([`assert_pair_counts`]); returns the net.
 pub fn assert_search_matches_brute_force<V: Vector>(positions: &[V], r: f64) -> ProximityNet {
     let net = searched(positions, r);
-    assert_identical(&net, &ProximityNet::brute_force(positions, r));
+    let expected = ProximityNet::brute_force(positions, r);
+    assert_identical(&net, &expected);
+    assert_pair_counts(&Domain::Open, positions, r, &expected);
     net
+}
+
+/// Asserts [`NeighbourSearch::count_pairs_in`] counts the edges of `expected` (the brute-force
+/// net of `positions` in `domain` with range `r`): all of them, and those a predicate mixing both
+/// indices accepts, each offered once as (lower, higher).
+pub fn assert_pair_counts<V: Vector>(
+    domain: &Domain<V>,
+    positions: &[V],
+    r: f64,
+    expected: &ProximityNet,
+) {
+    let graph = expected.graph();
+    let picked = |i: usize, j: usize| (7 * i + 3 * j) % 5 < 2;
+    let edges = || {
+        (0..graph.len()).flat_map(move |i| {
+            graph
+                .neighbours(i)
+                .iter()
+                .map(move |&j| (i, j as usize))
+                .filter(|&(i, j)| i < j)
+        })
+    };
+    let mut search = NeighbourSearch::new();
+    let all = search.count_pairs_in(domain, positions, r, |i, j| {
+        assert!(i < j, "pair ({i}, {j}) offered out of order");
+        true
+    });
+    assert_eq!(all, graph.undirected_edge_count(), "every pair");
+    let some = search.count_pairs_in(domain, positions, r, picked);
+    assert_eq!(
+        some,
+        edges().filter(|&(i, j)| picked(i, j)).count(),
+        "picked pairs"
+    );
 }

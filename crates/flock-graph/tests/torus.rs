@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use rand::RngExt;
 
-use crate::common::{assert_identical, cloud, rng};
+use crate::common::{assert_identical, assert_pair_counts, cloud, rng};
 
 /// `n` agents in the box of sides `size`: a share `near` of them within `band` of a face on every
 /// axis (so at the corners), the others uniform.
@@ -44,6 +44,7 @@ fn check_against_brute_force<V: Vector>(size: V, q: &[V], r: f64) -> ProximityNe
     let expected = ProximityNet::brute_force_in(&domain, q, r);
     let net = searched_in(&domain, q, r);
     assert_identical(&net, &expected);
+    assert_pair_counts(&domain, q, r, &expected);
     let mut lean = ProximityNet::without_distances();
     NeighbourSearch::new().build_in(&domain, q, r, &mut lean);
     assert_eq!(lean.graph(), expected.graph());
