@@ -203,20 +203,41 @@ impl NeighbourSearch {
 /// Slots per task of the pair counts ([`NeighbourSearch::count_pairs_in`]).
 pub(crate) const PAIR_CHUNK: usize = 4096;
 
+/// Σ over the cells c of a grid (`cell_start` its slot ranges) of n_c · `candidates(c)`, the
+/// agents of c times those of c's candidate cells: the ordered pairs (self pairs included) a scan
+/// of the grid tests, at least twice the tests of [`NeighbourSearch::count_pairs_in`]. Saturates.
+pub(crate) fn candidate_tests(cell_start: &[usize], candidates: impl Fn(usize) -> usize) -> usize {
+    cell_start
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| w[1] > w[0])
+        .fold(0_usize, |tests, (cell, w)| {
+            tests.saturating_add((w[1] - w[0]).saturating_mul(candidates(cell)))
+        })
+}
+
 impl NeighbourSearch {
     /// [`NeighbourSearch::count_pairs_in`] in open space.
     pub(crate) fn count_open_pairs<V: Vector>(
         &mut self,
         positions: &[V],
         r: f64,
+        most_tests: usize,
         accept: &(impl Fn(usize, usize) -> bool + Sync),
-    ) -> usize {
+    ) -> Option<usize> {
         let r2 = range_squared(r);
         if positions.len() < 2 || r2 == 0.0 {
-            return 0;
+            return Some(0);
         }
         self.grid.rebuild(positions, r);
         let grid = &self.grid;
+        let tests = candidate_tests(&grid.cell_start, |cell| {
+            let c = grid.layout.coords(cell);
+            grid.candidate_rows(c).iter().map(|row| row.len()).sum()
+        });
+        if tests > most_tests {
+            return None;
+        }
         let counts = map_chunks(grid.order.len(), PAIR_CHUNK, |slots| {
             let mut cells = grid.cells_of(slots.start);
             let mut count = 0;
@@ -236,7 +257,7 @@ impl NeighbourSearch {
             }
             count
         });
-        counts.iter().sum()
+        Some(counts.iter().sum())
     }
 
     /// For each agent `pending[p]`, the least squared distance below `threshold` to another finite
@@ -639,6 +660,12 @@ impl Layout {
         c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
     }
 
+    /// The coordinates of the cell of linear index `cell`.
+    fn coords(&self, cell: usize) -> [usize; 3] {
+        let [dx, dy, _] = self.dims;
+        [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
+    }
+
     /// Linear cell of a finite `q` ([`NO_SLOT`] for a non-finite one).
     #[inline]
     fn cell_of<V: Vector>(&self, q: V) -> u32 {
@@ -772,12 +799,11 @@ impl CellGrid {
     fn cells_of(&self, slot: usize) -> SlotCells<'_> {
         // the last cell starting at or before `slot` (cell_start[0] = 0)
         let cell = self.cell_start.partition_point(|&s| s <= slot) - 1;
-        let [dx, dy, _] = self.layout.dims;
         SlotCells {
             cell_start: &self.cell_start,
             dims: self.layout.dims,
             cell,
-            coords: [cell % dx, (cell / dx) % dy, cell / (dx * dy)],
+            coords: self.layout.coords(cell),
         }
     }
 

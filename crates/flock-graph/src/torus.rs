@@ -22,7 +22,9 @@ use flock_math::{Domain, Vector, periodic_displacement};
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
-use crate::search::{NeighbourSearch, PAIR_CHUNK, assemble, order_slots, padded_side};
+use crate::search::{
+    NeighbourSearch, PAIR_CHUNK, assemble, candidate_tests, order_slots, padded_side,
+};
 
 /// log₂ of the slots per block of work.
 const BLOCK_SHIFT: u32 = 10;
@@ -337,6 +339,12 @@ impl NeighbourSearch {
     /// of a net's edges, whose midpoints can have thousands of neighbours each. The count is the
     /// same for any rayon pool size.
     ///
+    /// `None`, before any pair is tested, when the grid's candidate pairs exceed `most_tests`:
+    /// Σ over its cells c of n_c times the agents of c and of its adjacent cells (ordered pairs,
+    /// each agent with itself included; about twice the pairs the count tests, and n² when every
+    /// agent is within r of every other). A bound on the work for callers that must not hang on
+    /// a crowd.
+    ///
     /// # Example
     /// ```
     /// use flock_graph::{NeighbourSearch, ProximityNet};
@@ -346,10 +354,15 @@ impl NeighbourSearch {
     /// let q: Vec<DVec2> = (0..10).map(|k| DVec2::new(k as f64, 0.0)).collect();
     /// let torus = Domain::Periodic { size: DVec2::new(10.0, 10.0) };
     /// let mut search = NeighbourSearch::new();
-    /// // the ring's 10 links, of which those of an even agent with an odd one: all of them
-    /// assert_eq!(search.count_pairs_in(&torus, &q, 1.5, |_, _| true), 10);
+    /// let all = usize::MAX;
+    /// // the ring's 10 links
+    /// assert_eq!(search.count_pairs_in(&torus, &q, 1.5, all, |_, _| true), Some(10));
     /// // in open space the line has 9 links, 5 of them from an even agent up
-    /// assert_eq!(search.count_pairs_in(&Domain::Open, &q, 1.5, |i, _| i % 2 == 0), 5);
+    /// let even = |i: usize, _| i % 2 == 0;
+    /// assert_eq!(search.count_pairs_in(&Domain::Open, &q, 1.5, all, even), Some(5));
+    /// // with a range of 20 every pair of the 10 agents is a candidate: 100 tests
+    /// assert_eq!(search.count_pairs_in(&Domain::Open, &q, 20.0, 99, even), None);
+    /// assert_eq!(search.count_pairs_in(&Domain::Open, &q, 20.0, 100, even), Some(25));
     /// ```
     ///
     /// # Panics
@@ -359,19 +372,26 @@ impl NeighbourSearch {
         domain: &Domain<V>,
         positions: &[V],
         r: f64,
+        most_tests: usize,
         accept: impl Fn(usize, usize) -> bool + Sync,
-    ) -> usize {
+    ) -> Option<usize> {
         let size = match domain {
-            Domain::Open => return self.count_open_pairs(positions, r, &accept),
+            Domain::Open => return self.count_open_pairs(positions, r, most_tests, &accept),
             Domain::Periodic { size } => *size,
         };
         let r2 = range_squared(r);
         if positions.len() < 2 || r2 == 0.0 {
-            return 0;
+            return Some(0);
         }
         let grid = &mut self.torus;
         grid.rebuild(size, positions, r);
         let grid = &*grid;
+        let tests = candidate_tests(&grid.cell_start, |cell| {
+            grid.candidates(grid.cell_coords(cell)).len()
+        });
+        if tests > most_tests {
+            return None;
+        }
         let counts = map_chunks(grid.order.len(), PAIR_CHUNK, |slots| {
             let mut cell = grid.cell_of_slot(slots.start);
             let mut candidates = grid.candidates(grid.cell_coords(cell));
@@ -395,7 +415,7 @@ impl NeighbourSearch {
             }
             count
         });
-        counts.iter().sum()
+        Some(counts.iter().sum())
     }
 
     /// The agents with a finite position in the order of the cells of `domain`'s grid for range

@@ -63,7 +63,8 @@ pub fn assert_search_matches_brute_force<V: Vector>(positions: &[V], r: f64) -> 
 
 /// Asserts [`NeighbourSearch::count_pairs_in`] counts the edges of `expected` (the brute-force
 /// net of `positions` in `domain` with range `r`): all of them, and those a predicate mixing both
-/// indices accepts, each offered once as (lower, higher).
+/// indices accepts, each offered once as (lower, higher); within the budget of every ordered pair
+/// of finite agents (n²), and refused below one test per finite agent (each is its own candidate).
 pub fn assert_pair_counts<V: Vector>(
     domain: &Domain<V>,
     positions: &[V],
@@ -81,16 +82,20 @@ pub fn assert_pair_counts<V: Vector>(
                 .filter(|&(i, j)| i < j)
         })
     };
+    let finite = positions.iter().filter(|q| q.is_finite()).count();
     let mut search = NeighbourSearch::new();
-    let all = search.count_pairs_in(domain, positions, r, |i, j| {
+    let all = search.count_pairs_in(domain, positions, r, finite * finite, |i, j| {
         assert!(i < j, "pair ({i}, {j}) offered out of order");
         true
     });
-    assert_eq!(all, graph.undirected_edge_count(), "every pair");
-    let some = search.count_pairs_in(domain, positions, r, picked);
-    assert_eq!(
-        some,
-        edges().filter(|&(i, j)| picked(i, j)).count(),
-        "picked pairs"
-    );
+    assert_eq!(all, Some(graph.undirected_edge_count()), "every pair");
+    let some = search.count_pairs_in(domain, positions, r, finite * finite, picked);
+    let picked_edges = edges().filter(|&(i, j)| picked(i, j)).count();
+    assert_eq!(some, Some(picked_edges), "picked pairs");
+    if finite >= 2 && r > 0.0 {
+        let refused = search.count_pairs_in(domain, positions, r, finite - 1, |_, _| {
+            panic!("a pair tested beyond the budget")
+        });
+        assert_eq!(refused, None, "below one test per agent");
+    }
 }

@@ -12,6 +12,13 @@
 //! - Theorem 5 ii)'s bound 3n − 6 (2D, n ≥ 3) and the crossings of the straight-line drawing of the
 //!   net (2D): an exact α-lattice has none (Theorem 5 i).
 //!
+//! Both counts cost more than the net as it grows dense (O(Σ_i deg_i²) for the triangles, and
+//! for the crossings the pairs of edges whose midpoints are within the longest edge: thousands per
+//! edge with Vásárhelyi's r_c = 100 m, |E|² when every agent sees every other). Each is counted
+//! when its work is at most [`WORK_BUDGET`] pair tests, or [`WORK_PER_EDGE`] per edge (so every
+//! net near a lattice, of any size); beyond that it is `None`, and the summary says the net was too
+//! dense. A summary computed once at the end of a run must not outlast the run, nor exhaust memory.
+//!
 //! In 3D neither statement holds: the face-centred cubic lattice of spacing d with r = 1.2 d is an
 //! α-lattice with twelve neighbours per agent, |E| → 6n, so [`LatticeSummary::edge_bound`] is
 //! `None` there (the seed states ii) for dimension 2 only; its "planar in dimensions m = 2, 3" of i)
@@ -21,6 +28,14 @@ use core::fmt;
 
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
+
+/// The pair tests each count of [`LatticeSummary::measure`] may take whatever the net's size (about
+/// a second on one core of a 2026 machine).
+pub const WORK_BUDGET: usize = 1 << 30;
+
+/// The pair tests per edge each count may take: a lattice's crossings take ≈ 45 (midpoints at
+/// about five per cell of side r, their own and the eight adjacent cells), its triangles ≈ 6.
+pub const WORK_PER_EDGE: usize = 128;
 
 /// The default tolerance of [`LatticeSummary::measure`]: an edge is "at d" when its length is within
 /// ±10 % of d.
@@ -40,7 +55,7 @@ pub const EDGE_TOLERANCE: f64 = 0.1;
 /// let net = ProximityNet::brute_force(&q, 8.4);
 /// let lattice = LatticeSummary::measure(&q, &net, 7.0, 0.1);
 /// assert_eq!((lattice.edges, lattice.near_edges), (5, 5));
-/// assert_eq!((lattice.triangles, lattice.equilateral_triangles), (2, 2));
+/// assert_eq!((lattice.triangles, lattice.equilateral_triangles), (Some(2), Some(2)));
 /// assert_eq!(lattice.edge_bound, Some(6)); // 3n − 6
 /// assert_eq!(lattice.crossings, Some(0));
 /// ```
@@ -52,15 +67,18 @@ pub struct LatticeSummary {
     pub edges: usize,
     /// The edges whose length ℓ satisfies |ℓ − d| ≤ tolerance · d.
     pub near_edges: usize,
-    /// The triangles of the net: unordered triples of agents linked pairwise.
-    pub triangles: usize,
-    /// The triangles whose three edges are all within the tolerance of d.
-    pub equilateral_triangles: usize,
+    /// The triangles of the net: unordered triples of agents linked pairwise; `None` when the net
+    /// is too dense to count them (see the [module](self)).
+    pub triangles: Option<usize>,
+    /// The triangles whose three edges are all within the tolerance of d; `None` with
+    /// `triangles`.
+    pub equilateral_triangles: Option<usize>,
     /// TAC 2006 Theorem 5 ii): an α-lattice of n ≥ 3 agents in 2D has at most 3n − 6 edges; `None`
     /// in 3D (no such bound, see the [module](self)) or for n < 3.
     pub edge_bound: Option<usize>,
     /// In 2D, the pairs of edges without a common agent whose segments cross (zero for an α-lattice,
-    /// Theorem 5 i); `None` in 3D.
+    /// Theorem 5 i); `None` in 3D, and when the net is too dense to count them (see the
+    /// [module](self)).
     pub crossings: Option<usize>,
 }
 
@@ -72,7 +90,8 @@ impl LatticeSummary {
     /// Cost: O(Σ_i deg_i²) for the triangles, and in 2D a neighbour search on the edges'
     /// midpoints for the crossings (two crossing edges shorter than r have midpoints closer than
     /// r): time O(|E| k), k the midpoints within the longest edge of each (a few for a lattice,
-    /// thousands for a net of 100 neighbours per agent), memory O(n + |E|) either way.
+    /// thousands for a net of 100 neighbours per agent), each count within its work budget (see
+    /// the [module](self)); memory O(n + |E|).
     #[must_use]
     pub fn measure<V: Vector>(q: &[V], net: &ProximityNet, d: f64, tolerance: f64) -> Self {
         Self::measure_in(&Domain::Open, q, net, d, tolerance)
@@ -90,6 +109,20 @@ impl LatticeSummary {
         d: f64,
         tolerance: f64,
     ) -> Self {
+        let edges = net.graph().undirected_edge_count();
+        let budget = WORK_BUDGET.max(WORK_PER_EDGE.saturating_mul(edges));
+        Self::measure_within(domain, q, net, d, tolerance, budget)
+    }
+
+    /// [`LatticeSummary::measure_in`] with at most `budget` pair tests for each count.
+    fn measure_within<V: Vector>(
+        domain: &Domain<V>,
+        q: &[V],
+        net: &ProximityNet,
+        d: f64,
+        tolerance: f64,
+        budget: usize,
+    ) -> Self {
         let graph = net.graph();
         let n = graph.len();
         let near: Vec<bool> = net
@@ -97,16 +130,18 @@ impl LatticeSummary {
             .map(|length| (length - d).abs() <= tolerance * d)
             .collect();
         let near_directed = near.iter().filter(|&&x| x).count();
-        let (triangles, equilateral_triangles) = count_triangles(net, &near);
+        let triangles = count_triangles(net, &near, budget);
         let planar = V::DIM == 2;
         Self {
             agents: n,
             edges: graph.undirected_edge_count(),
             near_edges: near_directed / 2,
-            triangles,
-            equilateral_triangles,
+            triangles: triangles.map(|(all, _)| all),
+            equilateral_triangles: triangles.map(|(_, equilateral)| equilateral),
             edge_bound: (planar && n >= 3).then(|| 3 * n - 6),
-            crossings: planar.then(|| count_crossings(domain, q, net)),
+            crossings: planar
+                .then(|| count_crossings(domain, q, net, budget))
+                .flatten(),
         }
     }
 
@@ -116,10 +151,31 @@ impl LatticeSummary {
         fraction(self.near_edges, self.edges)
     }
 
-    /// The fraction of triangles that are equilateral within the tolerance (0 without triangles).
+    /// The fraction of triangles that are equilateral within the tolerance (0 without triangles),
+    /// `None` when they were not counted.
     #[must_use]
-    pub fn equilateral_fraction(&self) -> f64 {
-        fraction(self.equilateral_triangles, self.triangles)
+    pub fn equilateral_fraction(&self) -> Option<f64> {
+        Some(fraction(self.equilateral_triangles?, self.triangles?))
+    }
+
+    /// The mean number of neighbours per agent, 2|E|/n (0 without agents).
+    #[must_use]
+    pub fn mean_degree(&self) -> f64 {
+        fraction(2 * self.edges, self.agents)
+    }
+
+    /// Whether the crossings are missing because the net was too dense to count them, rather than
+    /// because they are not defined (3D). In 2D they are always counted for n < 3 (none), and for
+    /// n ≥ 3 the edge bound is given.
+    #[must_use]
+    pub fn crossings_too_dense(&self) -> bool {
+        self.crossings.is_none() && self.edge_bound.is_some()
+    }
+
+    /// Why a count is missing: the net's density (`"mean degree 94.0: too dense to count"`).
+    #[must_use]
+    pub fn too_dense(&self) -> String {
+        format!("mean degree {:.1}: too dense to count", self.mean_degree())
     }
 
     /// Whether |E| ≤ 3n − 6 (Theorem 5 ii), when the bound applies.
@@ -131,7 +187,9 @@ impl LatticeSummary {
 
 impl fmt::Display for LatticeSummary {
     /// One line: `259 edges (95.4 % near d, bound 3n − 6 = 294), 157 triangles (141 equilateral),
-    /// 0 crossings`.
+    /// 0 crossings`; a count left out for a net too dense is named with its reason, `899075
+    /// edges (0.2 % near d, bound 3n − 6 = 59994), 16142014 triangles (10 equilateral), crossings
+    /// not counted (mean degree 89.9: too dense to count)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
@@ -142,15 +200,20 @@ impl fmt::Display for LatticeSummary {
         if let Some(bound) = self.edge_bound {
             write!(f, ", bound 3n − 6 = {bound}")?;
         }
-        write!(
-            f,
-            "), {} triangles ({} equilateral)",
-            self.triangles, self.equilateral_triangles
-        )?;
+        write!(f, ")")?;
+        if let (Some(all), Some(equilateral)) = (self.triangles, self.equilateral_triangles) {
+            write!(f, ", {all} triangles ({equilateral} equilateral)")?;
+        }
         if let Some(crossings) = self.crossings {
             write!(f, ", {crossings} crossings")?;
         }
-        Ok(())
+        let missing = match (self.triangles.is_none(), self.crossings_too_dense()) {
+            (true, true) => "triangles and crossings",
+            (true, false) => "triangles",
+            (false, true) => "crossings",
+            (false, false) => return Ok(()),
+        };
+        write!(f, ", {missing} not counted ({})", self.too_dense())
     }
 }
 
@@ -163,10 +226,20 @@ fn fraction(part: usize, whole: usize) -> f64 {
 }
 
 /// (triangles, equilateral triangles): each triple i < j < k (storage indices) linked pairwise is
-/// found once, from i through j; `near` flags the directed edges within the tolerance.
-fn count_triangles(net: &ProximityNet, near: &[bool]) -> (usize, usize) {
+/// found once, from i through j; `near` flags the directed edges within the tolerance. `None` when
+/// that search would test more than `budget` pairs (i, j, k): Σ over the edges i → j, j > i, of
+/// deg j.
+fn count_triangles(net: &ProximityNet, near: &[bool], budget: usize) -> Option<(usize, usize)> {
     let graph = net.graph();
     let neighbours = graph.neighbour_indices();
+    let tests = (0..graph.len())
+        .flat_map(|i| graph.neighbours(i).iter().filter(move |&&j| j as usize > i))
+        .fold(0_usize, |tests, &j| {
+            tests.saturating_add(graph.neighbours(j as usize).len())
+        });
+    if tests > budget {
+        return None;
+    }
     // slot[k] = the directed edge i → k while i's neighbours are marked
     let mut slot = vec![usize::MAX; graph.len()];
     let (mut triangles, mut equilateral) = (0, 0);
@@ -193,14 +266,20 @@ fn count_triangles(net: &ProximityNet, near: &[bool]) -> (usize, usize) {
             slot[neighbours[e] as usize] = usize::MAX;
         }
     }
-    (triangles, equilateral)
+    Some((triangles, equilateral))
 }
 
 /// The pairs of edges without a common endpoint whose segments properly cross, in the plane of the
 /// first two coordinates. Candidates come from a neighbour search on the edges' midpoints: a
 /// crossing point is within half an edge of both midpoints, so crossing edges have midpoints closer
-/// than the longest edge.
-fn count_crossings<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet) -> usize {
+/// than the longest edge. `None` when the search's candidate pairs exceed `budget`
+/// ([`NeighbourSearch::count_pairs_in`]).
+fn count_crossings<V: Vector>(
+    domain: &Domain<V>,
+    q: &[V],
+    net: &ProximityNet,
+    budget: usize,
+) -> Option<usize> {
     let graph = net.graph();
     // each edge (i, j), i < j, as the segment from q_i to q_j's image nearest it
     let mut ends = Vec::with_capacity(graph.undirected_edge_count());
@@ -216,7 +295,7 @@ fn count_crossings<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet) -
         }
     }
     if ends.len() < 2 || longest == 0.0 {
-        return 0;
+        return Some(0);
     }
     let midpoints: Vec<V> = ends
         .iter()
@@ -225,7 +304,7 @@ fn count_crossings<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet) -
     // the candidate pairs are counted as they are found: a net of them would hold every
     // midpoint's list, E × thousands of entries for a dense net (r_c = 100 m of Vásárhelyi's drones)
     let search_range = longest * (1.0 + 1e-9);
-    NeighbourSearch::new().count_pairs_in(domain, &midpoints, search_range, |a, b| {
+    NeighbourSearch::new().count_pairs_in(domain, &midpoints, search_range, budget, |a, b| {
         let ((i, j, qi, qj), (k, l, qk, ql)) = (ends[a], ends[b]);
         if i == k || i == l || j == k || j == l {
             return false;
@@ -311,10 +390,10 @@ mod tests {
         assert_eq!((s.edges, s.near_edges), (edges, edges));
         assert_eq!(
             (s.triangles, s.equilateral_triangles),
-            (triangles, triangles)
+            (Some(triangles), Some(triangles))
         );
         assert_eq!(s.near_fraction(), 1.0);
-        assert_eq!(s.equilateral_fraction(), 1.0);
+        assert_eq!(s.equilateral_fraction(), Some(1.0));
         if V::DIM == 2 {
             assert_eq!(s.edge_bound, Some(84));
             assert_eq!(s.within_edge_bound(), Some(true));
@@ -348,7 +427,7 @@ mod tests {
         assert_eq!(s.near_edges, exact.edges - 2);
         // of the six triangles around agent 14, the four with an edge along x are no longer
         // equilateral
-        assert_eq!(s.equilateral_triangles, exact.triangles - 4);
+        assert_eq!(s.equilateral_triangles, exact.triangles.map(|t| t - 4));
         assert!(s.near_fraction() < 1.0);
     }
 
@@ -359,7 +438,7 @@ mod tests {
         let q = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
         let s = LatticeSummary::measure(&q, &ProximityNet::brute_force(&q, 1.5), 1.0, 0.1);
         assert_eq!((s.edges, s.near_edges), (6, 4));
-        assert_eq!((s.triangles, s.equilateral_triangles), (4, 0));
+        assert_eq!((s.triangles, s.equilateral_triangles), (Some(4), Some(0)));
         assert_eq!(s.crossings, Some(1));
         assert_eq!(s.within_edge_bound(), Some(true));
     }
@@ -395,6 +474,72 @@ mod tests {
             q.len()
         );
         assert_eq!(s.edge_bound, None);
+    }
+
+    /// A lattice's counts take fewer than [`WORK_PER_EDGE`] tests per edge, so the budget never
+    /// leaves them out, whatever the lattice's size: 10,000 agents measured with the per-edge
+    /// budget alone (no floor) keep both counts.
+    #[test]
+    fn a_lattice_is_counted_within_the_budget_per_edge() {
+        let q: Vec<DVec2> = triangular_lattice(100, 100, 7.0);
+        let net = ProximityNet::brute_force(&q, 8.4);
+        let edges = net.graph().undirected_edge_count();
+        let s = LatticeSummary::measure_within(
+            &Domain::Open,
+            &q,
+            &net,
+            7.0,
+            0.1,
+            WORK_PER_EDGE * edges,
+        );
+        assert_eq!(s.crossings, Some(0));
+        assert_eq!(s.triangles, Some(2 * 99 * 99));
+    }
+
+    /// The complete net of 30 agents: its triangle search tests Σ_{i<j} deg j = 29 · 435 = 12,615
+    /// triples (C(30, 3) = 4,060 triangles); a budget of exactly that counts them, one less does
+    /// not, and the summary says why. Its crossings need every midpoint with every other, far more
+    /// than 12,615.
+    #[test]
+    fn a_net_too_dense_for_the_budget_leaves_its_counts_out() {
+        let q: Vec<DVec2> = (0..30)
+            .map(|k| {
+                let t = f64::from(k) * 2.399_963;
+                DVec2::new(t.cos(), t.sin()) * (1.0 + f64::from(k) / 30.0)
+            })
+            .collect();
+        let net = ProximityNet::brute_force(&q, 10.0);
+        assert_eq!(net.graph().undirected_edge_count(), 435);
+        let measure =
+            |budget| LatticeSummary::measure_within(&Domain::Open, &q, &net, 100.0, 0.1, budget);
+        let all = measure(usize::MAX);
+        assert_eq!(all.triangles, Some(4060));
+        assert!(all.crossings > Some(0), "{all}");
+        let at = measure(12_615);
+        assert_eq!(at.triangles, Some(4060));
+        assert_eq!(at.crossings, None);
+        assert!(at.crossings_too_dense());
+        let below = measure(12_614);
+        assert_eq!((below.triangles, below.equilateral_triangles), (None, None));
+        assert_eq!(below.equilateral_fraction(), None);
+        assert_eq!(
+            below.to_string(),
+            "435 edges (0.0 % near d, bound 3n − 6 = 84), triangles and crossings not counted \
+             (mean degree 29.0: too dense to count)"
+        );
+        assert_eq!(
+            at.to_string(),
+            "435 edges (0.0 % near d, bound 3n − 6 = 84), 4060 triangles (0 equilateral), \
+             crossings not counted (mean degree 29.0: too dense to count)"
+        );
+        // in 3D the crossings are not defined, not missing
+        let flat: Vec<DVec3> = q.iter().map(|p| p.extend(0.0)).collect();
+        let s = LatticeSummary::measure_within(&Domain::Open, &flat, &net, 100.0, 0.1, 0);
+        assert!(!s.crossings_too_dense());
+        assert!(
+            s.to_string()
+                .ends_with("), triangles not counted (mean degree 29.0: too dense to count)")
+        );
     }
 
     #[test]

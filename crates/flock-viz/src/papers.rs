@@ -160,11 +160,19 @@ impl Measure {
             ),
             Self::Triangles => {
                 let lattice = &summary.lattice;
-                format!(
-                    "{} of {} triangles equilateral ({:.0} %), {:.0} % of {} edges within ±10 % of d",
+                let triangles = match (
                     lattice.equilateral_triangles,
                     lattice.triangles,
-                    100.0 * lattice.equilateral_fraction(),
+                    lattice.equilateral_fraction(),
+                ) {
+                    (Some(equilateral), Some(all), Some(fraction)) => format!(
+                        "{equilateral} of {all} triangles equilateral ({:.0} %)",
+                        100.0 * fraction
+                    ),
+                    _ => format!("triangles not counted ({})", lattice.too_dense()),
+                };
+                format!(
+                    "{triangles}, {:.0} % of {} edges within ±10 % of d",
                     100.0 * lattice.near_fraction(),
                     lattice.edges
                 )

@@ -124,15 +124,22 @@ pub fn whole_run_rows(
     rows.push((
         format!("lattice at t = {} s", seconds(summary.t)),
         format!(
-            "{} of {} edges within ±10 % of d; {} of {} triangles equilateral; {}",
+            "{} of {} edges within ±10 % of d; {}; {}",
             lattice.near_edges,
             lattice.edges,
-            lattice.equilateral_triangles,
-            lattice.triangles,
-            lattice.crossings.map_or_else(
-                || "crossing edges not counted (3D)".to_owned(),
-                |c| format!("{c} crossing edges")
-            )
+            match (lattice.equilateral_triangles, lattice.triangles) {
+                (Some(equilateral), Some(all)) => {
+                    format!("{equilateral} of {all} triangles equilateral")
+                }
+                _ => format!("triangles not counted ({})", lattice.too_dense()),
+            },
+            match lattice.crossings {
+                Some(c) => format!("{c} crossing edges"),
+                None if lattice.crossings_too_dense() => {
+                    format!("crossing edges not counted ({})", lattice.too_dense())
+                }
+                None => "crossing edges not counted (3D)".to_owned(),
+            }
         ),
     ));
     rows.push((
@@ -201,8 +208,8 @@ mod tests {
                 agents: 4,
                 edges: 5,
                 near_edges: 4,
-                triangles: 2,
-                equilateral_triangles: 1,
+                triangles: Some(2),
+                equilateral_triangles: Some(1),
                 edge_bound: Some(6),
                 crossings: Some(0),
             },
@@ -249,6 +256,22 @@ mod tests {
         assert_eq!(
             rows[5].1,
             "edge set still changing at t = 5 s: the last record changed it"
+        );
+        // a net too dense to count, and one in 3D
+        let mut dense = summary(4.0);
+        dense.lattice.triangles = None;
+        dense.lattice.equilateral_triangles = None;
+        dense.lattice.crossings = None;
+        assert_eq!(
+            whole_run_rows(&dense, &metrics, "")[4].1,
+            "4 of 5 edges within ±10 % of d; triangles not counted (mean degree 2.5: too dense to \
+             count); crossing edges not counted (mean degree 2.5: too dense to count)"
+        );
+        dense.lattice.edge_bound = None;
+        assert!(
+            whole_run_rows(&dense, &metrics, "")[4]
+                .1
+                .ends_with("not counted (3D)")
         );
     }
 
