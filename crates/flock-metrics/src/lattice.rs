@@ -33,8 +33,9 @@ use flock_math::{Domain, Vector};
 /// a second on one core of a 2026 machine).
 pub const WORK_BUDGET: usize = 1 << 30;
 
-/// The pair tests per edge each count may take: a lattice's crossings take ≈ 45 (midpoints at
-/// about five per cell of side r, their own and the eight adjacent cells), its triangles ≈ 6.
+/// The pair tests per edge each count may take: a triangular lattice's crossings take ≈ 31 (its
+/// edges' midpoints in cells of side d, times those of their own and the eight adjacent cells),
+/// its triangles ≈ 6.
 pub const WORK_PER_EDGE: usize = 128;
 
 /// The default tolerance of [`LatticeSummary::measure`]: an edge is "at d" when its length is within
