@@ -59,7 +59,8 @@ function rgb(hex) {
 function colours(data) {
   check(data.colours, 'the player data defines no colours');
   const out = {};
-  for (const key of ['background', 'agent', 'edge', 'gamma', 'ink']) {
+  const keys = ['background', 'agent', 'edge', 'gamma', 'ink'].concat(data.failed ? ['failed'] : []);
+  for (const key of keys) {
     check(/^#[0-9A-Fa-f]{6}$/.test(data.colours[key] || ''), `colours.${key} missing`);
     out[key] = rgb(data.colours[key]);
   }
@@ -190,14 +191,19 @@ async function look(page, colours, points = []) {
   );
 }
 
-/** The canvas points of the agents of frame k in view v (unzoomed), without those the γ-agent covers. */
-function agentPoints(data, size, k, v) {
+/**
+ * The canvas points of the agents of frame k in view v (unzoomed), without those the γ-agent covers:
+ * the working agents, or with `failed` the agents failed by then (a run with faults).
+ */
+function agentPoints(data, size, k, v, failed = false) {
   const view = data.views[v];
   const gamma = data.g[k] ? project(data, view, data.g[k], 0) : null;
   const g = gamma && toCanvas(view, size, gamma);
+  const down = new Set(data.failed ? data.failed[k] : []);
   const points = [];
   const n = data.q[k].length / data.dim;
   for (let i = 0; i < n; i++) {
+    if (down.has(i) !== failed) continue;
     const c = project(data, view, data.q[k], i);
     if (!c) continue;
     const [x, y] = toCanvas(view, size, c);
@@ -213,7 +219,11 @@ async function checkAgents(page, colours, data, size, k, v, what) {
   const seen = await look(page, colours, points);
   const n = data.q[k].length / data.dim;
   check(seen.frame === k, `${what}: canvas shows frame ${seen.frame}, expected ${k}`);
-  check(points.length >= n / 2, `${what}: only ${points.length} of ${n} agents are not under the γ-agent`);
+  const down = data.failed ? data.failed[k].length : 0;
+  check(
+    points.length >= (n - down) / 2,
+    `${what}: only ${points.length} of ${n - down} working agents are not under the γ-agent`,
+  );
   check(
     seen.missed.length === 0,
     `${what}: ${seen.missed.length} of ${points.length} agents have no agent-coloured pixel at their ` +
@@ -228,22 +238,50 @@ async function checkAgents(page, colours, data, size, k, v, what) {
     seen.blobs >= 0.5 * points.length && seen.blobs <= n + 1,
     `${what}: ${seen.blobs} separate agent markers drawn for ${n} agents`,
   );
+  if (down > 0) {
+    // each failed agent is a cross of the failed colour through its position
+    const failed = agentPoints(data, size, k, v, true);
+    const crossed = await page.evaluate(
+      ({ colour, points }) => {
+        const canvas = document.getElementById('canvas');
+        const copy = document.createElement('canvas');
+        copy.width = canvas.width;
+        copy.height = canvas.height;
+        const context = copy.getContext('2d', { willReadFrequently: true });
+        context.drawImage(canvas, 0, 0);
+        return points.map(([i, cx, cy]) => {
+          const px = context.getImageData(Math.floor(cx) - 1, Math.floor(cy) - 1, 3, 3).data;
+          for (let o = 0; o < px.length; o += 4) {
+            if (px[o] === colour[0] && px[o + 1] === colour[1] && px[o + 2] === colour[2]) return -1;
+          }
+          return i;
+        }).filter((i) => i >= 0);
+      },
+      { colour: colours.failed, points: failed },
+    );
+    check(
+      crossed.length === 0,
+      `${what}: failed agents ${JSON.stringify(crossed.slice(0, 5))} have no cross at their position`,
+    );
+  }
   return seen;
 }
 
-/** The time in `t = 1.2 s` (the #time label). */
+/** The time in `t = 1.2 s` (the #time label) and the failed agents of `t = 1.2 s, 3 failed (×)`. */
 function shownTime(text) {
-  const m = /^t = (-?[0-9.e+-]+) s$/.exec(text);
-  check(m, `#time reads "${text}", expected "t = <number> s"`);
-  return Number(m[1]);
+  const m = /^t = (-?[0-9.e+-]+) s(?:, ([0-9]+) failed \(×\))?$/.exec(text);
+  check(m, `#time reads "${text}", expected "t = <number> s" (", <count> failed (×)" with failures)`);
+  return [Number(m[1]), Number(m[2] || 0)];
 }
 
 function checkTime(data, seen, what) {
-  const t = shownTime(seen.time);
+  const [t, failed] = shownTime(seen.time);
   check(
     Math.abs(t - data.t[seen.frame]) <= 0.006,
     `${what}: #time reads ${t} s but frame ${seen.frame} is at t = ${data.t[seen.frame]} s`,
   );
+  const down = data.failed ? data.failed[seen.frame].length : 0;
+  check(failed === down, `${what}: #time counts ${failed} failed agents, frame ${seen.frame} has ${down}`);
 }
 
 /** Shows frame k with the scrub slider, as a user dragging it would (value set, input event). */

@@ -8,6 +8,7 @@
 //! installs the tools) runs them with `cargo test -p flock-cli --test lib browser -- --ignored`,
 //! where a missing tool fails them. See `docs/figures.md`.
 
+use flocking::serde_json::{Value, json};
 use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -59,9 +60,10 @@ fn missing_tools() -> Vec<String> {
     missing
 }
 
-/// Plots a short run of `fixtures/{name}.ron` and checks its player in headless Chromium
-/// (`mode` is `2d` or `3d`), keeping the screenshot as `target/browser-artifacts/{artefact}`.
-fn check_player(name: &str, mode: &str, artefact: &str) {
+/// Plots a short run of `fixtures/{name}.ron`, with the scenario values `changes`, and checks its
+/// player in headless Chromium (`mode` is `2d` or `3d`), keeping the screenshot as
+/// `target/browser-artifacts/{artefact}`.
+fn check_player(name: &str, changes: &[(&str, Value)], mode: &str, artefact: &str) {
     let missing = missing_tools();
     if !missing.is_empty() {
         panic!(
@@ -71,7 +73,9 @@ fn check_player(name: &str, mode: &str, artefact: &str) {
     }
 
     let tmp = temp_dir(&format!("browser_{mode}"));
-    let mut scenario = fixture(name);
+    let mut scenario = fixture(name)
+        .with_values(changes.iter().cloned())
+        .expect("valid changes");
     scenario.duration = DURATION;
     assert_eq!(scenario.validate(), Ok(()));
     let text = scenario.to_ron().expect("the scenario serialises");
@@ -125,11 +129,26 @@ fn check_player(name: &str, mode: &str, artefact: &str) {
 #[test]
 #[ignore = "needs headless Chromium, node and playwright-core; .ci/run runs it with --ignored (docs/figures.md)"]
 fn player_2d_works_in_headless_chromium() {
-    check_player("tac2006_fig11_alg2_n100", "2d", "player-2d.png");
+    check_player("tac2006_fig11_alg2_n100", &[], "2d", "player-2d.png");
+}
+
+/// Agents 5 and 40 fail (frozen) at t = 4 s: from then on the page draws each as a cross at its
+/// position and counts them in `#time`, and draws the others as before.
+#[test]
+#[ignore = "needs headless Chromium, node and playwright-core; .ci/run runs it with --ignored (docs/figures.md)"]
+fn player_with_failed_agents_works_in_headless_chromium() {
+    let faults = json!({"faults": {"at": [{"agent": 5, "time": 4.0}, {"agent": 40, "time": 4.0}], "mode": "Frozen"}});
+    let changes = [("conditions", faults)];
+    check_player(
+        "tac2006_fig11_alg2_n100",
+        &changes,
+        "2d",
+        "player-failed.png",
+    );
 }
 
 #[test]
 #[ignore = "needs headless Chromium, node and playwright-core; .ci/run runs it with --ignored (docs/figures.md)"]
 fn player_3d_works_in_headless_chromium() {
-    check_player("tac2006_fig13_alg2_3d_n50", "3d", "player-3d.png");
+    check_player("tac2006_fig13_alg2_3d_n50", &[], "3d", "player-3d.png");
 }

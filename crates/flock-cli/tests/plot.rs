@@ -65,6 +65,41 @@ fn run_with_plot_writes_every_figure() {
     assert_eq!(fs::read(figures.join("snapshots.svg")).expect("svg"), first);
 }
 
+/// A run with faults draws its failed agents as crosses in the snapshots (each panel after the
+/// failure says how many) and lists them for the player, which draws them so too.
+#[test]
+fn failed_agents_are_marked_in_the_snapshots_and_the_player() {
+    let tmp = temp_dir("plot_failed");
+    let scenario = SCENARIO.replace(
+        "    step: 0.02,",
+        "    conditions: (faults: (at: [(agent: 3, time: 0.5)], mode: Frozen)),\n    step: 0.02,",
+    );
+    fs::write(tmp.path().join("s.ron"), scenario).expect("write the scenario");
+    let output = flocking(tmp.path(), &["run", "s.ron", "--out", "o", "--plot"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let figures = tmp.path().join("o/figures");
+    let svg = fs::read_to_string(figures.join("snapshots.svg")).expect("the snapshots");
+    let cross = format!(
+        "stroke=\"{}\"",
+        flock_viz::style::hex(flock_viz::style::FAILED)
+    );
+    assert!(svg.contains(&cross), "a failed agent's cross");
+    assert!(
+        svg.contains("t = 0 s") && !svg.contains("t = 0 s,"),
+        "t = 0: none failed yet"
+    );
+    assert!(
+        svg.contains("s, 1 failed (×)"),
+        "a later panel counts the failed agent"
+    );
+    let player = fs::read_to_string(figures.join("player.html")).expect("the player");
+    assert!(
+        player.contains("\"failed\":[[]"),
+        "no agent failed in the first frame"
+    );
+    assert!(player.contains("[3]"), "agent 3 failed in a later frame");
+}
+
 #[test]
 fn plot_of_a_directory_that_is_not_a_run_fails_clearly() {
     let tmp = temp_dir("plot_missing");

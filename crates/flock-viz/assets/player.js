@@ -1,7 +1,7 @@
 // The player of `flocking run --plot` (crates/flock-viz/src/player.rs embeds this file in the page):
 // draws one frame of the run data in <script id="flock-data"> on the canvas — agents as oriented
-// triangles, the proximity net's edges (|q_j - q_i| < r; a fixed graph's `edges` if the data has
-// them), obstacles, the gamma-agent, a scale bar —
+// triangles (failed ones as crosses), the proximity net's edges (|q_j - q_i| < r; a fixed graph's
+// `edges` if the data has them), obstacles, the gamma-agent, a scale bar —
 // and plays, scrubs, zooms and (3D) switches views. Colours come from the data (`colours`).
 'use strict';
 (function () {
@@ -131,10 +131,24 @@ function draw() {
 
   ctx.fillStyle = COLOURS.agent;
   const L = 10;
+  // failed agents (a run with faults) as crosses, the others as triangles
+  const failed = new Set(data.failed ? data.failed[current] : []);
   for (let i = 0; i < n; i++) {
     if (q[i * dim] === null) continue;
     const c = project(view, q, i), h = project(view, p, i);
     const cx = X(c[0]), cy = Y(c[1]);
+    if (failed.has(i)) {
+      const a = 0.35 * L;
+      ctx.save();
+      ctx.strokeStyle = COLOURS.failed;
+      ctx.lineWidth = 2;
+      ctx.beginPath();
+      ctx.moveTo(cx - a, cy - a); ctx.lineTo(cx + a, cy + a);
+      ctx.moveTo(cx - a, cy + a); ctx.lineTo(cx + a, cy - a);
+      ctx.stroke();
+      ctx.restore();
+      continue;
+    }
     const len = Math.hypot(h[0], h[1]);
     ctx.beginPath();
     if (len > 0) {
@@ -178,7 +192,8 @@ function draw() {
   ctx.font = '13px sans-serif';
   ctx.fillText(fmt(bar) + ' ' + data.unit, 16, H - 22);
 
-  timeLabel.textContent = 't = ' + fmt(data.t[current]) + ' s';
+  timeLabel.textContent = 't = ' + fmt(data.t[current]) + ' s' +
+    (failed.size > 0 ? ', ' + failed.size + ' failed (×)' : '');
   scrub.value = String(current);
   canvas.dataset.frame = String(current);
 }

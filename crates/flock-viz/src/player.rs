@@ -29,7 +29,7 @@ use crate::format;
 use crate::framing::Framer;
 use crate::scene::Scene;
 use crate::style::{
-    self, AGENT, BACKGROUND, EDGE, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, WALL_PLANE,
+    self, AGENT, BACKGROUND, EDGE, FAILED, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, WALL_PLANE,
 };
 use crate::view::View;
 
@@ -187,6 +187,7 @@ struct Colours {
     plane: String,
     outline: String,
     gamma: String,
+    failed: String,
 }
 
 impl Colours {
@@ -200,12 +201,14 @@ impl Colours {
             plane: style::hex(WALL_PLANE),
             outline: style::hex(OBSTACLE_OUTLINE),
             gamma: style::hex(GAMMA),
+            failed: style::hex(FAILED),
         }
     }
 }
 
 /// The data the script reads: per frame its time `t`, positions `q` and velocities `p` (flat,
-/// `dim` numbers per agent, `null` where not finite) and the γ-agent `g`; the views.
+/// `dim` numbers per agent, `null` where not finite), the γ-agent `g` and, for a run with faults,
+/// the agents failed by then (`failed`); the views.
 #[derive(Serialize)]
 struct PlayerData<'a> {
     title: &'a str,
@@ -221,6 +224,9 @@ struct PlayerData<'a> {
     /// The fixed interaction graph's edges (i, j) flattened, drawn instead of the proximity net.
     #[serde(skip_serializing_if = "Option::is_none")]
     edges: Option<Vec<u32>>,
+    /// Per frame, the agents that have failed, when any frame has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    failed: Option<Vec<Vec<u32>>>,
 }
 
 /// A view: its projection basis (`u`, `v`), the run's window `[x0, y0, x1, y1]` and the obstacles
@@ -348,6 +354,21 @@ fn data_json(scene: &Scene, frames: &[usize], options: &PlayerOptions) -> String
             .interaction_graph
             .as_ref()
             .map(|edges| edges.iter().flat_map(|&(i, j)| [i, j]).collect()),
+        failed: frames
+            .iter()
+            .any(|&f| scene.frames[f].failed_count() > 0)
+            .then(|| {
+                frames
+                    .iter()
+                    .map(|&f| {
+                        let frame = &scene.frames[f];
+                        (0..frame.positions.len())
+                            .filter(|&i| frame.has_failed(i))
+                            .map(|i| i as u32)
+                            .collect()
+                    })
+                    .collect()
+            }),
     };
     let json = serde_json::to_string(&data).expect("plain data serializes");
     // In JSON these characters can only stand inside strings, where the escapes mean the same.

@@ -121,6 +121,11 @@ fn frames_of(trajectory: &Trajectory, vehicle: Option<&VehicleSpec>) -> (usize, 
                     .map(vector)
                     .collect(),
             );
+            let frame = frame.with_failed(
+                trajectory
+                    .failed_at(k)
+                    .map_or_else(Vec::new, <[bool]>::to_vec),
+            );
             match headings {
                 Some(rows) => frame.with_headings(rows.chunks_exact(dim).map(vector).collect()),
                 None => frame,

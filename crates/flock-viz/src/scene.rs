@@ -42,6 +42,9 @@ pub struct Frame {
     /// The direction each vehicle points (its body's forward axis), aligned with `positions`,
     /// for agents that are vehicles; `None` for point masses, which point along their velocity.
     pub headings: Option<Vec<DVec3>>,
+    /// Whether each agent has failed (the trajectory's `failed` column of a run with
+    /// `conditions.faults`), aligned with `positions`; empty for a run without faults.
+    pub failed: Vec<bool>,
 }
 
 impl Frame {
@@ -54,7 +57,27 @@ impl Frame {
             velocities,
             gamma: None,
             headings: None,
+            failed: Vec::new(),
         }
+    }
+
+    /// The frame with each agent's failure flag (aligned with the positions).
+    #[must_use]
+    pub fn with_failed(mut self, failed: Vec<bool>) -> Self {
+        self.failed = failed;
+        self
+    }
+
+    /// Whether agent `i` has failed.
+    #[must_use]
+    pub fn has_failed(&self, i: usize) -> bool {
+        self.failed.get(i).copied().unwrap_or(false)
+    }
+
+    /// How many agents have failed.
+    #[must_use]
+    pub fn failed_count(&self) -> usize {
+        self.failed.iter().filter(|&&f| f).count()
     }
 
     /// The frame with each vehicle pointing along `headings` (aligned with the positions).

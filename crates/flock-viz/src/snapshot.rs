@@ -25,8 +25,8 @@ use crate::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_se
 use crate::render::{self, Figure, TextMode};
 use crate::scene::Scene;
 use crate::style::{
-    self, AGENT, ATTRACTION, BACKGROUND, EDGE, GAMMA, INK, NEAR_EDGE, OBSTACLE, OBSTACLE_OUTLINE,
-    PERIODIC_BOX, REPULSION, TRAIL, VELOCITY, WALL_PLANE,
+    self, AGENT, ATTRACTION, BACKGROUND, EDGE, FAILED, GAMMA, INK, NEAR_EDGE, OBSTACLE,
+    OBSTACLE_OUTLINE, PERIODIC_BOX, REPULSION, TRAIL, VELOCITY, WALL_PLANE,
 };
 use crate::view::View;
 
@@ -271,7 +271,12 @@ pub(crate) fn tuple(p: DVec2) -> (f64, f64) {
 
 /// A panel's title: the time of its frame, `t = … s`.
 pub(crate) fn time_title(scene: &Scene, frame: usize) -> String {
-    format!("t = {} s", format::number(scene.frames[frame].t, 2))
+    let frame = &scene.frames[frame];
+    let t = format::number(frame.t, 2);
+    match frame.failed_count() {
+        0 => format!("t = {t} s"),
+        failed => format!("t = {t} s, {failed} failed (×)"),
+    }
 }
 
 /// Draws frame `frame` of the framer's scene in `area`: `title`, axes, obstacles, edges, trails,
@@ -730,7 +735,8 @@ fn draw_trails<DB: DrawingBackend>(
 }
 
 /// The α-agents, far ones first (faded by `cue`), as triangles of length `length` (data units)
-/// along their (projected) velocity; agents at rest as dots of a quarter of `marker_px` pixels.
+/// along their (projected) velocity; agents at rest as dots of a quarter of `marker_px` pixels;
+/// failed agents as crosses of [`FAILED`] as wide as a triangle is long, below the others.
 fn draw_agents<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     framer: &Framer<'_>,
@@ -747,9 +753,21 @@ fn draw_agents<DB: DrawingBackend>(
     }
     let mut triangles = Vec::new();
     let mut dots = Vec::new();
+    let mut crosses = Vec::new();
     for i in order {
         let centre = framer.project(state.positions[i]);
         if !window.contains(centre) {
+            continue;
+        }
+        if state.has_failed(i) {
+            let stroke = style::rgb(cue.fade(FAILED, cue.depth(i))).stroke_width(2);
+            for arm in [DVec2::new(1.0, 1.0), DVec2::new(1.0, -1.0)] {
+                let arm = 0.35 * length * arm;
+                crosses.push(PathElement::new(
+                    vec![tuple(centre - arm), tuple(centre + arm)],
+                    stroke,
+                ));
+            }
             continue;
         }
         let agent = style::rgb(cue.fade(AGENT, cue.depth(i))).filled();
@@ -770,6 +788,7 @@ fn draw_agents<DB: DrawingBackend>(
             )),
         }
     }
+    chart.draw_series(crosses).map_err(VizError::draw)?;
     chart.draw_series(triangles).map_err(VizError::draw)?;
     chart.draw_series(dots).map_err(VizError::draw)?;
     Ok(())

@@ -3,7 +3,8 @@
 //!
 //! Every kind of mark has a colour of its own, so the marks of an SVG can be found by colour: an
 //! agent is a `<polygon>` (a triangle; a `<circle>` when it does not move) with
-//! `fill="#1F4E9C"` ([`hex`]`(`[`AGENT`]`)`), the γ-agent a `<polygon>` with `fill="#D62728"`.
+//! `fill="#1F4E9C"` ([`hex`]`(`[`AGENT`]`)`), the γ-agent a `<polygon>` with `fill="#D62728"`, a
+//! failed agent two `<polyline>`s with `stroke="#C2185B"` ([`FAILED`]).
 
 use plotters::style::RGBColor;
 
@@ -13,6 +14,8 @@ pub const BACKGROUND: [u8; 3] = [0xFF, 0xFF, 0xFF];
 pub const INK: [u8; 3] = [0x00, 0x00, 0x00];
 /// The α-agents' markers.
 pub const AGENT: [u8; 3] = [0x1F, 0x4E, 0x9C];
+/// A failed agent's marker, a cross (`conditions.faults`: the trajectory's `failed` column).
+pub const FAILED: [u8; 3] = [0xC2, 0x18, 0x5B];
 /// The edges of the proximity net.
 pub const EDGE: [u8; 3] = [0x96, 0x96, 0x96];
 /// An edge of a depth-cued 3D panel at the nearest agent's depth, faded towards the background

@@ -54,6 +54,25 @@ fn the_embedded_data_describes_every_frame() {
     assert_eq!(views[0].get("window").unwrap().array().len(), 4);
 }
 
+/// A run with faults lists each frame's failed agents for the script, which draws them as
+/// crosses; a run without failures has no such list.
+#[test]
+fn the_data_lists_each_frames_failed_agents() {
+    let html = player_html(&lattice_scene(), &PlayerOptions::default()).unwrap();
+    assert_eq!(data(&html).get("failed"), None);
+    let mut scene = lattice_scene();
+    let mut failed = vec![false; AGENTS];
+    failed[5] = true;
+    scene.frames[3] = scene.frames[3].clone().with_failed(failed);
+    let html = player_html(&scene, &PlayerOptions::default()).unwrap();
+    let data = data(&html);
+    let lists = data.get("failed").expect("the failed agents").array();
+    assert_eq!(lists.len(), FRAMES);
+    assert!(lists[2].array().is_empty());
+    assert_eq!(lists[3].array(), [Json::Number(5.0)]);
+    assert!(data.get("colours").unwrap().get("failed").is_some());
+}
+
 #[test]
 fn three_d_pages_offer_a_top_view() {
     let html = player_html(&cube_scene(), &PlayerOptions::default()).unwrap();

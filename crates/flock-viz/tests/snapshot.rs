@@ -2,7 +2,7 @@
 
 use approx::assert_abs_diff_eq;
 use flock_viz::snapshot::DEPTH_FADE;
-use flock_viz::style::{BACKGROUND, EDGE, GAMMA, NEAR_EDGE, OBSTACLE, TRAIL, blend};
+use flock_viz::style::{BACKGROUND, EDGE, FAILED, GAMMA, NEAR_EDGE, OBSTACLE, TRAIL, blend};
 use flock_viz::{Frame, Scene, SnapshotOptions, View, VizError, snapshot_png, snapshot_svg};
 use glam::DVec2;
 
@@ -22,6 +22,29 @@ fn one_marker_per_agent_and_one_line_per_edge_in_each_panel() {
     assert_eq!(count_marks(&svg, "polygon", "fill", GAMMA), 2);
     // The disc obstacle is within the window of the last frame only.
     assert_eq!(count_marks(&svg, "polygon", "fill", OBSTACLE), 1);
+}
+
+/// A run with faults: the failed agents of a frame are crosses (two strokes of [`FAILED`] each)
+/// instead of triangles, and the panel's title counts them; a frame without failures is drawn as
+/// before.
+#[test]
+fn failed_agents_are_crosses_and_the_title_counts_them() {
+    let mut scene = lattice_scene();
+    let mut failed = vec![false; AGENTS];
+    failed[0] = true;
+    failed[7] = true;
+    scene.frames[2] = scene.frames[2].clone().with_failed(failed);
+    let svg = snapshot_svg(&scene, &[2], &SnapshotOptions::default()).unwrap();
+    assert_eq!(agent_markers(&svg), AGENTS - 2);
+    assert_eq!(count_marks(&svg, "polyline", "stroke", FAILED), 4);
+    assert!(
+        svg.contains("t = 2 s, 2 failed (×)"),
+        "the title counts them"
+    );
+    let svg = snapshot_svg(&scene, &[1], &SnapshotOptions::default()).unwrap();
+    assert_eq!(agent_markers(&svg), AGENTS);
+    assert_eq!(count_marks(&svg, "polyline", "stroke", FAILED), 0);
+    assert!(svg.contains("t = 1 s") && !svg.contains("failed"));
 }
 
 #[test]
