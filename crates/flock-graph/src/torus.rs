@@ -56,10 +56,15 @@ pub(crate) struct TorusGrid {
     slot_of: Vec<u32>,
 }
 
-/// The slot ranges of up to 27 cells: a cell and its neighbours across the wrap, each once.
+/// The slot ranges of up to 27 cells: a cell and its neighbours across the wrap, each once, with
+/// the whole periods that take each one's agents to their images next to the cell.
 #[derive(Clone, Copy, Debug, Default)]
 struct CandidateCells {
     ranges: [(usize, usize); 27],
+    /// Per range, per axis, the periods the displacement to its agents loses across the wrap: 1
+    /// for the cell before the first (the last cell), −1 for the one after the last (the first
+    /// cell), 0 otherwise.
+    shifts: [[f64; 3]; 27],
     count: usize,
 }
 
@@ -67,6 +72,12 @@ impl CandidateCells {
     #[inline]
     fn iter(&self) -> impl Iterator<Item = Range<usize>> + '_ {
         self.ranges[..self.count].iter().map(|&(a, b)| a..b)
+    }
+
+    /// The ranges with their shifts.
+    #[inline]
+    fn shifted(&self) -> impl Iterator<Item = (Range<usize>, [f64; 3])> + '_ {
+        self.iter().zip(self.shifts.iter().copied())
     }
 
     /// The number of agents in the cells.
@@ -182,10 +193,19 @@ impl TorusGrid {
         [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
     }
 
-    /// The slot ranges of the cell `[cx, cy, cz]` and of its neighbours across the wrap.
+    /// The slot ranges of the cell `[cx, cy, cz]` and of its neighbours across the wrap, with
+    /// their shifts (meaningful on the axes of at least three cells: see
+    /// [`TorusGrid::shifts_are_exact`]).
     fn candidates(&self, [cx, cy, cz]: [usize; 3]) -> CandidateCells {
         let [dx, dy, dz] = self.dims;
         let ((xs, nx), (ys, ny), (zs, nz)) = (around(cx, dx), around(cy, dy), around(cz, dz));
+        // with three cells or more on axis k: the last cell seen from the first, and the first
+        // seen from the last
+        let shift = |k: usize, c: usize, neighbour: usize| match (c, neighbour) {
+            (0, n) if n + 1 == self.dims[k] && n > 1 => 1.0,
+            (c, 0) if c + 1 == self.dims[k] && c > 1 => -1.0,
+            _ => 0.0,
+        };
         let mut out = CandidateCells::default();
         for &z in &zs[..nz] {
             for &y in &ys[..ny] {
@@ -194,12 +214,32 @@ impl TorusGrid {
                     let (a, b) = (self.cell_start[cell], self.cell_start[cell + 1]);
                     if a < b {
                         out.ranges[out.count] = (a, b);
+                        out.shifts[out.count] = [shift(0, cx, x), shift(1, cy, y), shift(2, cz, z)];
                         out.count += 1;
                     }
                 }
             }
         }
         out
+    }
+
+    /// Whether every axis of an m-dimensional box has at least three cells. Then the agents of a
+    /// candidate cell within range r of an agent of cell c are at their minimum image once the
+    /// cell's shift is taken off their difference, and every other candidate stays beyond r:
+    ///
+    /// - along an axis, a candidate in c or in a neighbour not across the wrap is less than two
+    ///   cells away: |d| < 2w ≤ L − w (w = L/c_k ≤ L/3, and w > r). Its minimum image is d when
+    ///   |d| < L/2; otherwise it is L − |d| > w > r, and d itself is at least L/2 > r: out of range
+    ///   both ways;
+    /// - across the wrap, d ∈ (L − 2w, L) (or its negative): the minimum image is d − L when
+    ///   d ≥ L/2; otherwise it is d, with |d| > L − 2w ≥ w > r, and |d − L| > L/2 > r: out of range
+    ///   both ways.
+    ///
+    /// Where the shift is the minimum image's, `d − k·L` is `minimum_image`'s bit for bit (k·L is
+    /// exact), up to the sign of a zero, which the squared length drops. An in-range pair is far
+    /// from the threshold L/2 (|d| < r or |d − L| < r), so rounding cannot tell the two apart.
+    fn shifts_are_exact(&self, dim: usize) -> bool {
+        self.dims[..dim].iter().all(|&c| c >= 3)
     }
 }
 
@@ -245,6 +285,24 @@ impl TorusBlock {
         slots: Range<usize>,
         original: impl Fn(u32) -> u32,
     ) {
+        if grid.shifts_are_exact(V::DIM) {
+            self.fill_shifted::<V, SCATTERED, true>(grid, size, r2, slots, original);
+        } else {
+            self.fill_shifted::<V, SCATTERED, false>(grid, size, r2, slots, original);
+        }
+    }
+
+    /// [`TorusBlock::fill_keyed`] with each candidate's displacement its difference less its
+    /// cell's shift (`SHIFTED`, when [`TorusGrid::shifts_are_exact`]) or its minimum image.
+    #[inline]
+    fn fill_shifted<V: Vector, const SCATTERED: bool, const SHIFTED: bool>(
+        &mut self,
+        grid: &TorusGrid,
+        size: V,
+        r2: f64,
+        slots: Range<usize>,
+        original: impl Fn(u32) -> u32,
+    ) {
         self.ends.clear();
         self.neighbours.clear();
         // consecutive slots share their cell, and so its candidates
@@ -262,9 +320,15 @@ impl TorusBlock {
             }
             let qi = grid.position::<V>(slot);
             let mut len = 0;
-            for range in candidates.iter() {
+            for (range, periods) in candidates.shifted() {
+                let shift = V::from_fn(|k| periods[k] * size.coord(k));
                 for t in range {
-                    let d = periodic_displacement(qi, grid.position::<V>(t), size);
+                    let qt = grid.position::<V>(t);
+                    let d = if SHIFTED {
+                        (qt - qi) - shift
+                    } else {
+                        periodic_displacement(qi, qt, size)
+                    };
                     let keep = in_range(d.length_squared(), r2) & (t != slot);
                     if SCATTERED || keep {
                         let j = grid.order[t];
