@@ -264,38 +264,23 @@ impl TorusBlock {
         numbering: &Numbering,
         slots: Range<usize>,
     ) {
-        if numbering.is_identity() {
-            self.fill_keyed::<V, false>(grid, size, r2, slots, |j| j);
-        } else {
-            let original = |j| numbering.original(j as usize) as u32;
-            self.fill_keyed::<V, true>(grid, size, r2, slots, original);
+        let original = |j| numbering.original(j as usize) as u32;
+        match (numbering.is_identity(), grid.shifts_are_exact(V::DIM)) {
+            (true, true) => self.fill_keyed::<V, false, true>(grid, size, r2, slots, |j| j),
+            (true, false) => self.fill_keyed::<V, false, false>(grid, size, r2, slots, |j| j),
+            (false, true) => self.fill_keyed::<V, true, true>(grid, size, r2, slots, original),
+            (false, false) => self.fill_keyed::<V, true, false>(grid, size, r2, slots, original),
         }
     }
 
     /// [`TorusBlock::fill`] with the original index `original(j)` of each agent j. `SCATTERED`
     /// (agents stored by cell under a numbering, whose original indices are unrelated to the
     /// scan) builds each list without branching on whether a candidate is in range or where it
-    /// ranks, as [`NeighbourSearch::build`] does.
+    /// ranks, as [`NeighbourSearch::build`] does. `SHIFTED` (when
+    /// [`TorusGrid::shifts_are_exact`]) takes each candidate's displacement as its difference less
+    /// its cell's shift, instead of its minimum image.
     #[inline]
-    fn fill_keyed<V: Vector, const SCATTERED: bool>(
-        &mut self,
-        grid: &TorusGrid,
-        size: V,
-        r2: f64,
-        slots: Range<usize>,
-        original: impl Fn(u32) -> u32,
-    ) {
-        if grid.shifts_are_exact(V::DIM) {
-            self.fill_shifted::<V, SCATTERED, true>(grid, size, r2, slots, original);
-        } else {
-            self.fill_shifted::<V, SCATTERED, false>(grid, size, r2, slots, original);
-        }
-    }
-
-    /// [`TorusBlock::fill_keyed`] with each candidate's displacement its difference less its
-    /// cell's shift (`SHIFTED`, when [`TorusGrid::shifts_are_exact`]) or its minimum image.
-    #[inline]
-    fn fill_shifted<V: Vector, const SCATTERED: bool, const SHIFTED: bool>(
+    fn fill_keyed<V: Vector, const SCATTERED: bool, const SHIFTED: bool>(
         &mut self,
         grid: &TorusGrid,
         size: V,
