@@ -33,7 +33,9 @@ fn write_run(dir: &Path, metrics: &str, trajectory: &str) {
 /// A run with faults reads back each frame's failed agents from the trajectory's last column.
 #[test]
 fn failed_agents_read_back_frame_by_frame() {
-    let dir = temp_dir("run-failed");
+    // a directory of its own, created and removed by tempfile alone
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let trajectory = "\
 t,id,x,y,vx,vy,failed
 0,0,0,0,1,0,0
@@ -41,17 +43,16 @@ t,id,x,y,vx,vy,failed
 0.2,0,0.2,0,1,0,0
 0.2,1,10,0,0,0,1
 ";
-    write_run(&dir, METRICS, trajectory);
-    let run = RunData::load(&dir).unwrap();
+    write_run(dir, METRICS, trajectory);
+    let run = RunData::load(dir).unwrap();
     assert_eq!(run.frames[0].failed, [false, false]);
     assert_eq!(run.frames[1].failed, [false, true]);
     assert!(run.frames[1].has_failed(1) && !run.frames[1].has_failed(0));
     assert_eq!(run.frames[1].failed_count(), 1);
     // without the column, no agent has failed
-    write_run(&dir, METRICS, TRAJECTORY_2D);
-    let run = RunData::load(&dir).unwrap();
+    write_run(dir, METRICS, TRAJECTORY_2D);
+    let run = RunData::load(dir).unwrap();
     assert!(run.frames[1].failed.is_empty() && !run.frames[1].has_failed(2));
-    fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
