@@ -662,8 +662,7 @@ impl Layout {
 
     /// The coordinates of the cell of linear index `cell`.
     fn coords(&self, cell: usize) -> [usize; 3] {
-        let [dx, dy, _] = self.dims;
-        [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
+        cell_coords(cell, self.dims)
     }
 
     /// Linear cell of a finite `q` ([`NO_SLOT`] for a non-finite one).
@@ -843,6 +842,13 @@ impl CellGrid {
         }
         best
     }
+}
+
+/// The coordinates of the cell of linear index `cell` in a grid of `dims` cells per axis, x fastest:
+/// the one numbering of the open and the periodic grids.
+#[inline]
+pub(crate) fn cell_coords(cell: usize, [dx, dy, _]: [usize; 3]) -> [usize; 3] {
+    [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
 }
 
 /// The cell side for a given reach: the reach padded against rounding.

@@ -189,8 +189,7 @@ impl TorusGrid {
 
     /// The coordinates of `cell`.
     fn cell_coords(&self, cell: usize) -> [usize; 3] {
-        let [dx, dy, _] = self.dims;
-        [cell % dx, (cell / dx) % dy, cell / (dx * dy)]
+        crate::search::cell_coords(cell, self.dims)
     }
 
     /// The slot ranges of the cell `[cx, cy, cz]` and of its neighbours across the wrap, with
