@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::{Progress, Report, errln, out, outln};
 use flock_viz::{FigureOptions, plot_run_with};
-use flocking::estimate::Outputs;
+use flocking::estimate::{Outputs, Resources};
 use flocking::metrics::{Closest, FlockingCriteria};
 use flocking::run_dir::{CreateError, ResumeError, read_records};
 use flocking::workload::{Workload, time_seeds};
@@ -297,7 +297,8 @@ fn dispatch(command: Command) -> ExitCode {
                 outln!("{}: valid", scenario.display());
                 out!("{}", s.to_ron().unwrap_or_default());
                 outln!();
-                let estimate = s.estimate(&Outputs::RUN);
+                let memory = Resources::of_machine(Path::new(".")).memory_bytes;
+                let estimate = s.estimate_at_start(&Outputs::RUN, memory);
                 if let Err(e) = flock_cli::resources::announce(&estimate, None, (false, false)) {
                     errln!("warning: {e}");
                     // the stable step and the warnings build the initial net of every agent,
@@ -432,12 +433,14 @@ fn create_directory(
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
         ..Outputs::RUN
     };
-    // before the warnings, which build the initial net of every agent (issue 27)
-    flock_cli::resources::announce(&scenario.estimate(&outputs), Some(out), (unchecked, false))
-        .map_err(|e| {
-            errln!("error: {e}");
-            ExitCode::from(INVALID)
-        })?;
+    // before the warnings, which build the initial net of every agent (issue 27); the start's
+    // net is counted (in constant memory per agent) only when the estimate without it fits
+    let memory = Resources::of_machine(out).memory_bytes;
+    let estimate = scenario.estimate_at_start(&outputs, memory);
+    flock_cli::resources::announce(&estimate, Some(out), (unchecked, false)).map_err(|e| {
+        errln!("error: {e}");
+        ExitCode::from(INVALID)
+    })?;
     for warning in scenario.warnings() {
         errln!("{warning}");
     }

@@ -750,9 +750,53 @@ fn issue_27_the_estimate_is_checked_first_and_counts_ulimit() {
         .expect("sh runs");
     refused(
         &output,
-        &["a run needs about 25.0 GB of memory but", "is available"],
+        &["a run needs about 51.0 GB of memory but", "is available"],
     );
     assert!(!tmp.path().join("o").exists() && !tmp.path().join("o.partial").exists());
+}
+
+/// The estimate counts the start's net: 12,000 agents within 5 m of each other (r = 8.4) hold
+/// 7.2·10⁷ edges, some 7.9 GB, where the lattice's 6 neighbours each would fit in 25 MB. Under a
+/// 4 GiB limit the crowd is refused with its estimate (exit 2) before anything is written, where
+/// it would have started and been killed.
+#[test]
+fn a_crowd_is_estimated_from_its_start_and_refused_before_it_starts() {
+    let tmp = temp_dir("crowd");
+    let crowd = SHORT_2D.replace("agents: 20", "agents: 12000").replace(
+        "[-15.0, -15.0], max: [15.0, 15.0]",
+        "[0.0, 0.0], max: [5.0, 5.0]",
+    );
+    let file = write(tmp.path(), "crowd.ron", &crowd);
+    let output = std::process::Command::new("sh")
+        .current_dir(tmp.path())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 4194304 && exec {} run {file} --out o",
+            env!("CARGO_BIN_EXE_flocking")
+        ))
+        .output()
+        .expect("sh runs");
+    refused(
+        &output,
+        &["a run needs about 7.9 GB of memory but", "is available"],
+    );
+    let said = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        said.contains("start's net of mean degree 11999.0"),
+        "{said}"
+    );
+    assert!(!tmp.path().join("o").exists() && !tmp.path().join("o.partial").exists());
+    // 70,000 agents in 1 m²: 4.9·10⁹ pairs to test each step, refused before any test
+    let packed = crowd
+        .replace("agents: 12000", "agents: 70000")
+        .replace("max: [5.0, 5.0]", "max: [1.0, 1.0]");
+    let file = write(tmp.path(), "packed.ron", &packed);
+    let output = flocking(tmp.path(), &["run", &file, "--out", "p"]);
+    refused(
+        &output,
+        &["the start is too dense to estimate", "fewer agents"],
+    );
+    assert!(!tmp.path().join("p").exists() && !tmp.path().join("p.partial").exists());
 }
 
 /// Issue 27: the gallery's `index.html` and `functions/` are never written through a link.
@@ -807,7 +851,7 @@ fn issue_27_validate_of_a_scenario_that_does_not_fit_does_not_abort() {
     let err = stderr(&output);
     assert_eq!(output.status.code(), Some(0), "{err}");
     assert!(
-        err.contains("warning: a run needs about 25.0 GB of memory"),
+        err.contains("warning: a run needs about 51.0 GB of memory"),
         "{err}"
     );
     assert!(

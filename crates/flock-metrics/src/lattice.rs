@@ -282,36 +282,39 @@ fn count_crossings<V: Vector>(
     budget: usize,
 ) -> Option<usize> {
     let graph = net.graph();
-    // each edge (i, j), i < j, as the segment from q_i to q_j's image nearest it
+    // each edge (i, j), i < j, as the segment from q_i to q_j's image nearest it; kept as its two
+    // indices (8 bytes an edge, its ends found again when it is tested) beside its midpoint
+    let segment = |i: usize, j: usize| (q[i], domain.image_near(q[i], q[j]));
     let mut ends = Vec::with_capacity(graph.undirected_edge_count());
+    let mut midpoints = Vec::with_capacity(graph.undirected_edge_count());
     let mut longest: f64 = 0.0;
     for i in 0..graph.len() {
         for &j in graph.neighbours(i) {
-            let j = j as usize;
-            if j > i {
-                let far = domain.image_near(q[i], q[j]);
-                ends.push((i, j, q[i], far));
-                longest = longest.max((far - q[i]).length());
+            if j as usize > i {
+                let (a, b) = segment(i, j as usize);
+                ends.push((i as u32, j));
+                midpoints.push(domain.wrap((a + b) * 0.5));
+                longest = longest.max((b - a).length());
             }
         }
     }
     if ends.len() < 2 || longest == 0.0 {
         return Some(0);
     }
-    let midpoints: Vec<V> = ends
-        .iter()
-        .map(|&(_, _, a, b)| domain.wrap((a + b) * 0.5))
-        .collect();
     // the candidate pairs are counted as they are found: a net of them would hold every
     // midpoint's list, E × thousands of entries for a dense net (r_c = 100 m of Vásárhelyi's drones)
     let search_range = longest * (1.0 + 1e-9);
-    NeighbourSearch::new().count_pairs_in(domain, &midpoints, search_range, budget, |a, b| {
-        let ((i, j, qi, qj), (k, l, qk, ql)) = (ends[a], ends[b]);
+    NeighbourSearch::new().count_pairs_in(domain, &midpoints, search_range, budget, |e, f| {
+        let ((i, j), (k, l)) = (ends[e], ends[f]);
         if i == k || i == l || j == k || j == l {
             return false;
         }
-        // segment b moved to the image of its midpoint nearest segment a's
-        let shift = domain.image_near(midpoints[a], midpoints[b]) - midpoints[b];
+        let ((qi, qj), (qk, ql)) = (
+            segment(i as usize, j as usize),
+            segment(k as usize, l as usize),
+        );
+        // segment f moved to the image of its midpoint nearest segment e's
+        let shift = domain.image_near(midpoints[e], midpoints[f]) - midpoints[f];
         cross(qi, qj, qk + shift, ql + shift)
     })
 }

@@ -125,7 +125,8 @@ pub fn check_resources(
             ..Resources::of_machine(Path::new("."))
         },
     };
-    let Err(why) = scenario.estimate(outputs).check(&resources) else {
+    let estimate = scenario.estimate_at_start(outputs, resources.memory_bytes);
+    let Err(why) = estimate.check(&resources) else {
         return Ok(());
     };
     let why = why.replace(", or --no-resource-check to try anyway", "");

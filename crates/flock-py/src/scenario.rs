@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use flocking::estimate::Outputs;
+use flocking::estimate::{Density, Outputs, Resources};
 use flocking::serde_json::{Map, Number, Value};
 use flocking::{Cloud, Scenario, ScenarioError};
 use numpy::{AllowTypeChange, PyArrayLike2};
@@ -132,7 +132,10 @@ impl PyScenario {
     /// The estimated cost of one run of this scenario, before it starts (what `flocking run`
     /// prints): a dict of `steps`, `records`, `agent_steps`, `memory_bytes` (peak, one run),
     /// `disk_bytes` (what the chosen outputs write into `out`; 0 for a run in memory) and
-    /// `seconds` (on one thread, from the rates measured in docs/performance.md).
+    /// `seconds` (on one thread, from the rates measured in docs/performance.md), and
+    /// `start_mean_degree`: the mean degree of the start's net within the sensing range, which
+    /// scales memory and time when it exceeds the α-lattice's (`None` when too dense to count:
+    /// `flocking run` then refuses the scenario).
     ///
     /// `out` says whether the run writes a directory (`flocking.run(scenario, out=...)`), with
     /// `trajectory` and `trajectory_format` as `flocking.run` takes them.
@@ -162,7 +165,8 @@ impl PyScenario {
         } else {
             Outputs::NONE
         };
-        let estimate = self.inner.estimate(&outputs);
+        let memory = Resources::of_machine(std::path::Path::new(".")).memory_bytes;
+        let estimate = self.inner.estimate_at_start(&outputs, memory);
         let dict = PyDict::new(py);
         dict.set_item("steps", estimate.steps)?;
         dict.set_item("records", estimate.records)?;
@@ -170,6 +174,11 @@ impl PyScenario {
         dict.set_item("memory_bytes", estimate.memory_bytes)?;
         dict.set_item("disk_bytes", estimate.disk_bytes)?;
         dict.set_item("seconds", estimate.seconds)?;
+        let degree = match estimate.density {
+            Density::Start(degree) => Some(degree),
+            Density::Lattice | Density::TooDense => None,
+        };
+        dict.set_item("start_mean_degree", degree)?;
         Ok(dict)
     }
 

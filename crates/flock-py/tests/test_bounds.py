@@ -171,7 +171,10 @@ def test_estimate_is_the_clis():
         "memory_bytes",
         "disk_bytes",
         "seconds",
+        "start_mean_degree",
     }
+    # 100 agents of a Gaussian cloud of σ = 50 m: about one neighbour within r = 8.4 m each
+    assert 0.2 < estimate["start_mean_degree"] < 6
     assert estimate["steps"] == scenario.steps == 10_000
     assert estimate["records"] == 501
     assert estimate["agent_steps"] == 100 * 10_000
@@ -187,3 +190,7 @@ def test_estimate_is_the_clis():
     assert huge.estimate()["memory_bytes"] > 2e8
     assert huge.estimate()["seconds"] > 3600
     assert math.isfinite(huge.estimate(out=True)["disk_bytes"])
+    # 10⁶ agents in the same cloud see thousands each: too dense to count, and refused
+    assert huge.estimate()["start_mean_degree"] is None
+    with pytest.raises(MemoryError, match="the start is too dense to estimate"):
+        flocking.Simulation(huge)

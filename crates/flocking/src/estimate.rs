@@ -27,7 +27,12 @@
 use std::fmt;
 use std::path::Path;
 
+use flock_graph::NeighbourSearch;
+use flock_obstacles::Space;
+use glam::{DVec2, DVec3};
+
 use crate::Scenario;
+use crate::initial::initial_positions;
 use crate::protocols::conditions;
 
 /// The most threads (or sweep workers) per available core: more only adds switching.
@@ -55,16 +60,33 @@ pub fn check_threads(threads: usize) -> Result<usize, String> {
     }
 }
 
-/// Memory of the process without agents (docs/performance.md: ≈ 4–5 MB).
-pub const FIXED_BYTES: f64 = 5e6;
+/// Memory of the process without agents: its code and the output buffers (peak RSS of `flocking
+/// run` of 10 agents: 11.5 MB; docs/performance.md, "Crowds in the estimate").
+pub const FIXED_BYTES: f64 = 20e6;
 
-/// Memory per agent in 2D and 3D, the largest measured in docs/performance.md (n = 10⁵: 224 B
-/// in 2D, 308 B in 3D) with a margin: state, neighbour lists, cells and metrics.
-pub const BYTES_PER_AGENT: [f64; 2] = [250.0, 320.0];
+/// Memory per agent in 2D and 3D besides the net: state, inputs, cells, metrics and the summary
+/// (peak RSS of `flocking run` less its edges' [`BYTES_PER_EDGE`], fitted in docs/performance.md:
+/// 156 B in 2D at n = 10⁶, 357 B in 3D at 2·10⁵, both from sparse starts), with a margin.
+pub const BYTES_PER_AGENT: [f64; 2] = [180.0, 380.0];
+
+/// Memory per undirected edge of the net within the sensing range r, in 2D and 3D: the neighbour
+/// lists of the step and of its search, the net of each record and of the summary, and in 2D the
+/// edges' midpoints for their crossings (peak RSS of crowds of Algorithm 2, boids, Vicsek, Couzin
+/// and Vásárhelyi's drones in docs/performance.md: 79–122 B in 2D, 25–38 B in 3D), with a margin.
+pub const BYTES_PER_EDGE: [f64; 2] = [110.0, 45.0];
+
+/// The mean degree every estimate assumes at least: the α-lattice's (6 neighbours in the plane,
+/// 12 in space), which a flock reaches wherever it starts.
+pub const LATTICE_DEGREE: [f64; 2] = [6.0, 12.0];
 
 /// Agent-steps per second of one thread in 2D and 3D (docs/performance.md, `flocking bench`,
-/// n = 10⁶, Algorithm 2, the slower of the measured rates): time is estimated from these.
+/// n = 10⁶, Algorithm 2, the slower of the measured rates) at [`LATTICE_DEGREE`]; a denser start
+/// takes longer in proportion to its mean degree.
 pub const AGENT_STEPS_PER_SECOND: [f64; 2] = [3.4e6, 1.13e6];
+
+/// The most pair tests [`Scenario::estimate_at_start`] spends counting the start's net (2³²):
+/// each step of the run tests as many, so a start past it is too dense to run in reasonable time.
+pub const START_COUNT_BUDGET: usize = 1 << 32;
 
 /// Bytes of a `metrics.csv` row (nine columns, shortest round-trip f64: ≈ 115 B in the gallery)
 /// with room for a protocol's diagnostics.
@@ -122,6 +144,20 @@ pub struct Estimate {
     pub disk_bytes: f64,
     /// Time on one thread, in seconds.
     pub seconds: f64,
+    /// The density of the net the memory and time assume.
+    pub density: Density,
+}
+
+/// The mean degree of the net within the sensing range r that an [`Estimate`] assumes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Density {
+    /// [`LATTICE_DEGREE`]: the start was not counted.
+    Lattice,
+    /// The start's net was counted: its mean degree (the estimate takes at least the lattice's).
+    Start(f64),
+    /// The start's net has more candidate pairs than [`START_COUNT_BUDGET`]: too dense to count
+    /// (or to run), so the estimate does not fit any machine.
+    TooDense,
 }
 
 impl Scenario {
@@ -154,16 +190,73 @@ impl Scenario {
         let agent_steps = n * steps as f64;
         // the conditions' state (mostly the delay line), none for an ideal run
         let conditions_bytes = conditions::bytes_per_agent(&self.conditions, dim, self.step);
+        let degree = LATTICE_DEGREE[dim - 2];
         Estimate {
             runs: 1,
             steps,
             records,
             agent_steps,
-            memory_bytes: FIXED_BYTES + n * (BYTES_PER_AGENT[dim - 2] + conditions_bytes as f64),
+            memory_bytes: FIXED_BYTES
+                + n * (BYTES_PER_AGENT[dim - 2]
+                    + conditions_bytes as f64
+                    + degree / 2.0 * BYTES_PER_EDGE[dim - 2]),
             disk_bytes: trajectory + metrics + checkpoint,
             seconds: agent_steps / AGENT_STEPS_PER_SECOND[dim - 2],
+            density: Density::Lattice,
         }
     }
+
+    /// [`Scenario::estimate`] with the net of the start counted (within the sensing range r,
+    /// [`Scenario::range`], in the scenario's domain) when it is denser than the lattice: memory
+    /// grows by [`BYTES_PER_EDGE`] and time in proportion to the mean degree. A start of thousands
+    /// of neighbours per agent needs hundreds of times the memory of a lattice, which
+    /// [`Estimate::check`] must know before the run allocates it.
+    ///
+    /// The count holds the start's positions and a cell grid (≈ 40 bytes per agent, far below
+    /// the estimate without it), and is made only when that estimate fits in `memory` (bytes
+    /// available, `None`: unknown), so that it cannot exhaust memory itself.
+    #[must_use]
+    pub fn estimate_at_start(&self, outputs: &Outputs, memory: Option<f64>) -> Estimate {
+        let estimate = self.estimate(outputs);
+        if memory.is_some_and(|memory| estimate.memory_bytes > memory) {
+            return estimate;
+        }
+        let edges = match self.dim {
+            2 => start_edges::<DVec2>(self),
+            _ => start_edges::<DVec3>(self),
+        };
+        let dim = self.dim.clamp(2, 3);
+        match edges {
+            None => Estimate {
+                density: Density::TooDense,
+                ..estimate
+            },
+            Some(edges) => {
+                let n = self.agents.max(1) as f64;
+                let degree = 2.0 * edges as f64 / n;
+                let lattice = LATTICE_DEGREE[dim - 2];
+                let extra = (degree - lattice).max(0.0);
+                Estimate {
+                    memory_bytes: estimate.memory_bytes + n * extra / 2.0 * BYTES_PER_EDGE[dim - 2],
+                    seconds: estimate.seconds * degree.max(lattice) / lattice,
+                    density: Density::Start(degree),
+                    ..estimate
+                }
+            }
+        }
+    }
+}
+
+/// The undirected edges of the start's net within r, `None` past [`START_COUNT_BUDGET`] tests.
+fn start_edges<V: Space>(scenario: &Scenario) -> Option<usize> {
+    let q: Vec<V> = initial_positions(scenario).collect();
+    NeighbourSearch::new().count_pairs_in(
+        &scenario.domain(),
+        &q,
+        scenario.range(),
+        START_COUNT_BUDGET,
+        |_, _| true,
+    )
 }
 
 impl Estimate {
@@ -191,6 +284,11 @@ impl Estimate {
             memory_bytes: self.memory_bytes.max(other.memory_bytes),
             disk_bytes: self.disk_bytes + other.disk_bytes,
             seconds: self.seconds + other.seconds,
+            density: if self.memory_bytes >= other.memory_bytes {
+                self.density
+            } else {
+                other.density
+            },
         }
     }
 
@@ -244,6 +342,14 @@ impl Estimate {
     }
 
     fn check_fixed_by(&self, resources: &Resources, fixes: &Fixes) -> Result<(), String> {
+        if self.density == Density::TooDense {
+            return Err(format!(
+                "the start is too dense to estimate: its net within the sensing range has more \
+                 than {START_COUNT_BUDGET} candidate pairs to test, and every step tests them \
+                 all; use fewer agents or a larger start region, or --no-resource-check to try \
+                 anyway"
+            ));
+        }
         if let Some(memory) = resources.memory_bytes
             && self.memory_bytes > memory
         {
@@ -295,7 +401,8 @@ impl Fixes {
     };
 }
 
-/// One line: `estimate: 10000 steps, 501 records, memory 5.0 MB, disk 4.3 MB, about 0.3 s`.
+/// One line: `estimate: 10000 steps, 501 records; memory 5.0 MB, disk 4.3 MB, about 0.3 s on one
+/// thread (1.00e6 agent-steps)`, and the density of the start's net when it was counted.
 impl fmt::Display for Estimate {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "estimate: ")?;
@@ -312,7 +419,12 @@ impl fmt::Display for Estimate {
             bytes(self.disk_bytes),
             duration(self.seconds),
             self.agent_steps
-        )
+        )?;
+        match self.density {
+            Density::Lattice => Ok(()),
+            Density::Start(degree) => write!(f, "; start's net of mean degree {degree:.1}"),
+            Density::TooDense => write!(f, "; start's net too dense to count"),
+        }
     }
 }
 
@@ -446,6 +558,8 @@ fn duration(seconds: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+    use approx::assert_relative_eq;
+
     use super::*;
 
     fn scenario(agents: usize, duration: f64) -> Scenario {
@@ -496,21 +610,21 @@ mod tests {
     }
 
     #[test]
-    fn ten_million_agents_need_gigabytes_and_are_refused_under_two() {
+    fn ten_million_agents_need_gigabytes_and_are_refused_under_five() {
         let estimate = scenario(10_000_000, 1.0).estimate(&Outputs::RUN);
         assert_eq!(estimate.steps, 100);
         assert!(
-            (2.5e9..2.6e9).contains(&estimate.memory_bytes),
+            (5.1e9..5.2e9).contains(&estimate.memory_bytes),
             "{estimate}"
         );
         let small = Resources {
-            memory_bytes: Some(2e9),
+            memory_bytes: Some(5e9),
             disk_bytes: None,
             disk_path: None,
         };
         let error = estimate.check(&small).unwrap_err();
         assert!(
-            error.contains("2.5 GB") && error.contains("2.0 GB"),
+            error.contains("5.1 GB") && error.contains("5.0 GB"),
             "{error}"
         );
         assert!(estimate.check(&Resources::default()).is_ok());
@@ -552,6 +666,91 @@ mod tests {
             369
         );
         assert!((extra - 369e6).abs() < 1.0, "{extra}");
+    }
+
+    /// `agents` of Algorithm 1 (r = 8.4) drawn uniformly in a square of side `side`.
+    fn crowd(agents: usize, side: f64) -> Scenario {
+        let mut s = scenario(agents, 1.0);
+        s.initial.positions = crate::scenario::Cloud::Box {
+            min: vec![0.0, 0.0],
+            max: vec![side, side],
+        };
+        s
+    }
+
+    #[test]
+    fn a_dense_start_scales_memory_and_time_by_its_mean_degree() {
+        // 10⁴ agents in 100 × 100: π r² ρ = 221.7 neighbours inside, fewer near the sides
+        let dense = crowd(10_000, 100.0);
+        let lattice = dense.estimate(&Outputs::NONE);
+        let start = dense.estimate_at_start(&Outputs::NONE, None);
+        let Density::Start(degree) = start.density else {
+            panic!("{start}");
+        };
+        let inside = std::f64::consts::PI * 8.4 * 8.4;
+        assert!((0.85 * inside..inside).contains(&degree), "{degree}");
+        // the edges above the lattice's 3 per agent, at BYTES_PER_EDGE each
+        let extra = 10_000.0 * (degree - 6.0) / 2.0 * BYTES_PER_EDGE[0];
+        assert_relative_eq!(
+            start.memory_bytes - lattice.memory_bytes,
+            extra,
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            start.seconds / lattice.seconds,
+            degree / 6.0,
+            max_relative = 1e-12
+        );
+        assert!(
+            start.to_string().contains("start's net of mean degree"),
+            "{start}"
+        );
+        // a machine with room for the lattice estimate and not for the crowd refuses it
+        let room = Resources {
+            memory_bytes: Some(lattice.memory_bytes * 2.0),
+            disk_bytes: None,
+            disk_path: None,
+        };
+        assert!(lattice.check(&room).is_ok());
+        assert!(start.memory_bytes > lattice.memory_bytes * 2.0, "{start}");
+        assert!(start.check(&room).unwrap_err().contains("of memory but"));
+    }
+
+    #[test]
+    fn a_sparse_start_keeps_the_lattice_estimate() {
+        // 10⁴ agents in 10⁴ × 10⁴: 0.022 neighbours each, the lattice's 6 assumed
+        let sparse = crowd(10_000, 10_000.0);
+        let start = sparse.estimate_at_start(&Outputs::NONE, None);
+        assert!(
+            matches!(start.density, Density::Start(k) if (0.01..0.03).contains(&k)),
+            "{start}"
+        );
+        let lattice = sparse.estimate(&Outputs::NONE);
+        assert_eq!(
+            (start.memory_bytes, start.seconds),
+            (lattice.memory_bytes, lattice.seconds)
+        );
+        // not counted when the estimate without the count does not fit
+        let unaffordable = sparse.estimate_at_start(&Outputs::NONE, Some(1e6));
+        assert_eq!(unaffordable, lattice);
+    }
+
+    #[test]
+    fn a_start_too_dense_to_count_is_refused_before_testing() {
+        // 70,000 agents in one cell of the grid: 70,000² = 4.9·10⁹ candidate pairs > 2³²
+        let estimate = crowd(70_000, 1.0).estimate_at_start(&Outputs::NONE, None);
+        assert_eq!(estimate.density, Density::TooDense);
+        let error = estimate.check(&Resources::default()).unwrap_err();
+        assert!(
+            error.contains("too dense to estimate") && error.contains("fewer agents"),
+            "{error}"
+        );
+        assert!(
+            estimate
+                .to_string()
+                .ends_with("start's net too dense to count"),
+            "{estimate}"
+        );
     }
 
     #[test]

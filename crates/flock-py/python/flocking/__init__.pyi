@@ -88,11 +88,13 @@ class Scenario:
         another shape (a transposed (dim, n) array) raises :class:`ScenarioError` naming both."""
     def estimate(
         self, *, out: bool = False, trajectory: bool = True, trajectory_format: str = "csv"
-    ) -> Dict[str, float]:
+    ) -> Dict[str, Optional[float]]:
         """The estimated cost of one run: ``steps``, ``records``, ``agent_steps``,
         ``memory_bytes`` (peak), ``disk_bytes`` (written into ``out`` when ``out`` is True, with
-        ``trajectory`` and ``trajectory_format`` as :func:`run` takes them) and ``seconds`` (one
-        thread)."""
+        ``trajectory`` and ``trajectory_format`` as :func:`run` takes them), ``seconds`` (one
+        thread) and ``start_mean_degree``: the mean degree of the start's net within the sensing
+        range, which scales memory and time above the α-lattice's (None when too dense to count,
+        which :func:`run` refuses)."""
     def warnings(self) -> List[str]:
         """The warnings of ``flocking validate`` for this scenario."""
     @property
