@@ -8,7 +8,7 @@ use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
 use flock_viz::phase::{Band, Bound, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
-use flocking::estimate::{Estimate, Outputs};
+use flocking::estimate::{Outputs, Resources};
 use flocking::owned::{self, DirError};
 use flocking::sweep::store::{self, RUNS_FILE, StoreError};
 use flocking::sweep::{
@@ -253,19 +253,10 @@ fn run(
         },
         |(_, pending)| pending,
     );
-    let estimate = pending
-        .iter()
-        .filter_map(|run| sweep.scenario(run).ok())
-        .map(|scenario| scenario.estimate(&outputs))
-        .reduce(Estimate::and);
-    match estimate {
+    let workers = options.jobs;
+    let memory = Resources::of_machine(out).memory_bytes;
+    match flocking::sweep::estimate(&sweep, &pending, &outputs, workers, memory) {
         Some(estimate) => {
-            // the workers run at once: each needs its run's memory
-            let workers = options.jobs.min(pending.len()).max(1) as f64;
-            let estimate = Estimate {
-                memory_bytes: estimate.memory_bytes * workers,
-                ..estimate
-            };
             crate::resources::announce(&estimate, Some(out), (unchecked, true))
                 .map_err(Failure::Usage)?;
         }

@@ -64,6 +64,46 @@ fn the_estimate_counts_only_the_runs_left_in_this_share() {
     assert!(!again.contains("runs of"), "{again}");
 }
 
+/// Each run's start is counted: a sweep whose one cell packs 12,000 agents into a cloud of
+/// σ = 5 cm (each sees all the others: 7.2·10⁷ edges) needs the memory of that crowd, and under a
+/// 4 GiB limit is refused before its directory exists, where its worker would have been killed.
+#[test]
+fn a_sweep_with_a_crowded_cell_is_estimated_by_it() {
+    let tmp = temp_dir("sweep_crowd");
+    let text = format!(
+        r#"Sweep(
+    name: "crowd",
+    base: Path("{}"),
+    set: {{"duration": 1.0, "agents": 12000}},
+    axes: [(path: "initial.positions.std", values: List([500.0, 0.05]))],
+    seeds: 1,
+)"#,
+        fixtures_dir().join("tac2006_fig11_alg2_n100.ron").display()
+    );
+    fs::write(tmp.path().join("crowd.ron"), text).expect("write the sweep");
+    let output = Command::new("sh")
+        .current_dir(tmp.path())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 4194304 && exec {} sweep crowd.ron --out s --jobs 1 --quiet",
+            env!("CARGO_BIN_EXE_flocking")
+        ))
+        .output()
+        .expect("sh runs");
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("a run needs about 7.9 GB of memory but"),
+        "{err}"
+    );
+    let said = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        said.contains("2 runs of") && said.contains("mean degree 11999.0"),
+        "{said}"
+    );
+    assert!(!tmp.path().join("s").exists());
+}
+
 #[test]
 fn a_killed_sweep_resumes_to_the_same_runs_csv() {
     let tmp = temp_dir("sweep_kill");

@@ -107,15 +107,27 @@ pub fn read_error(py: Python<'_>, error: &ReadError) -> PyErr {
 }
 
 /// The CLI's resource check before a run or a simulation (issue 27: `Simulation` with a 10⁶ s
-/// delay, `run` with 10⁸ agents aborted the interpreter): the scenario's estimate with `outputs`
-/// must fit in this machine's memory and, with `out`, in the free space there. Raises
-/// `MemoryError` (memory) or `RunDirectoryError` (disk) with the CLI's figures, before anything is
-/// allocated or written.
+/// delay, `run` with 10⁸ agents aborted the interpreter): the scenario's estimate with `outputs`,
+/// its start counted, must fit in this machine's memory and, with `out`, in the free space
+/// there. Raises `MemoryError` (memory) or `RunDirectoryError` (disk) with the CLI's figures,
+/// before anything is allocated or written.
 pub fn check_resources(
     py: Python<'_>,
     scenario: &flocking::Scenario,
     outputs: &flocking::estimate::Outputs,
     out: Option<&Path>,
+) -> PyResult<()> {
+    check_estimate(py, out, |memory| {
+        Some(scenario.estimate_at_start(outputs, memory))
+    })
+}
+
+/// [`check_resources`] of the estimate `estimate` makes given the memory available (`None`:
+/// nothing to run, nothing to check).
+pub fn check_estimate(
+    py: Python<'_>,
+    out: Option<&Path>,
+    estimate: impl FnOnce(Option<f64>) -> Option<flocking::estimate::Estimate>,
 ) -> PyResult<()> {
     use flocking::estimate::Resources;
     let resources = match out {
@@ -125,8 +137,7 @@ pub fn check_resources(
             ..Resources::of_machine(Path::new("."))
         },
     };
-    let estimate = scenario.estimate_at_start(outputs, resources.memory_bytes);
-    let Err(why) = estimate.check(&resources) else {
+    let Some(Err(why)) = estimate(resources.memory_bytes).map(|e| e.check(&resources)) else {
         return Ok(());
     };
     let why = why.replace(", or --no-resource-check to try anyway", "");

@@ -46,6 +46,7 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(sweep::sweep_read, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_load, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_run, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_check, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_prepare, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_write_row, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_assemble, module)?)?;

@@ -103,6 +103,20 @@ pub fn sweep_run(
     Ok((row.index, row.id.clone(), row.fields(), row.wall_time))
 }
 
+/// The resource check of `flocking sweep` before the self-contained sweep `text` runs its runs
+/// not found finished in `dir` on `workers` processes of this machine: each worker needs the
+/// memory of its run, the start of every run counted. Raises `MemoryError` with the figures.
+#[pyfunction]
+pub fn sweep_check(py: Python<'_>, text: &str, dir: PathBuf, workers: usize) -> PyResult<()> {
+    let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
+    let pending = flocking::sweep::share(&sweep, &dir, None)
+        .map_or_else(|_| sweep.runs(), |(_, pending)| pending);
+    let outputs = flocking::estimate::Outputs::NONE;
+    crate::errors::check_estimate(py, None, |memory| {
+        py.detach(|| flocking::sweep::estimate(&sweep, &pending, &outputs, workers, memory))
+    })
+}
+
 /// The lock of a sweep's output directory ([`store::prepare`]), held until
 /// its `release` method is called (or until the process ends): another writer of the directory is
 /// refused meanwhile.

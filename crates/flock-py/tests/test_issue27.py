@@ -3,6 +3,7 @@ is not resumed without them, ``out='pydir/'`` just works, an ``out`` that is not
 refused before the run."""
 
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -114,6 +115,21 @@ def test_issue_27_a_sweep_file_is_read_as_the_cli_reads_it(tmp_path):
         code, said = refused_in_a_child(spec, tmp_path / "out")
         assert code == 3, said
         assert "not a regular file" in said and str(spec) in said, said
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_sweep_with_a_crowded_run_is_refused_before_out_is_made(tmp_path):
+    # one run packs 12,000 agents into a cloud of 5 cm (each sees all the others, some 7.9 GB);
+    # its worker was started and killed: the local pool's memory is now checked first, as the CLI's
+    spec = tmp_path / "crowd.ron"
+    spec.write_text(
+        f"""Sweep(name: "crowd", base: Path("{FIG11}"),
+        set: {{"duration": 1.0, "agents": 12000}},
+        axes: [(path: "initial.positions.std", values: List([500.0, 0.05]))], seeds: 1)"""
+    )
+    code, said = refused_in_a_child(spec, tmp_path / "out")
+    assert code == 1, said
+    assert re.search(r"MemoryError: a run needs about [0-9.]+ GB of memory but", said), said
     assert not (tmp_path / "out").exists()
 
 

@@ -273,7 +273,8 @@ impl Estimate {
         }
     }
 
-    /// The two runs together: the larger memory, the sums of the rest.
+    /// The two runs together: the larger memory and its density (too dense if either is), the
+    /// sums of the rest.
     #[must_use]
     pub fn and(self, other: Self) -> Self {
         Self {
@@ -284,10 +285,10 @@ impl Estimate {
             memory_bytes: self.memory_bytes.max(other.memory_bytes),
             disk_bytes: self.disk_bytes + other.disk_bytes,
             seconds: self.seconds + other.seconds,
-            density: if self.memory_bytes >= other.memory_bytes {
-                self.density
-            } else {
-                other.density
+            density: match (self.density, other.density) {
+                (Density::TooDense, _) | (_, Density::TooDense) => Density::TooDense,
+                _ if self.memory_bytes >= other.memory_bytes => self.density,
+                _ => other.density,
             },
         }
     }

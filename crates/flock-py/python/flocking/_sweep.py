@@ -208,9 +208,11 @@ def sweep(
     ``.flocking`` file); one holding files flocking did not write is refused, and so is one that
     another process is writing (its lock is held until ``runs.csv`` is written).
 
-    Raises :class:`ScenarioError` for a bad sweep file and :class:`RunDirectoryError` for a
-    directory of another sweep, of files flocking did not write, or being written; a run that
-    fails (an invalid value, a blow-up) is a row with its error, not an exception.
+    Raises :class:`ScenarioError` for a bad sweep file, :class:`RunDirectoryError` for a
+    directory of another sweep, of files flocking did not write, or being written, and, with the
+    default local pool, ``MemoryError`` when its workers' runs do not fit in this machine's memory
+    (the CLI's estimate, each run's start counted); a run that fails (an invalid value, a blow-up)
+    is a row with its error, not an exception.
     """
     if isinstance(spec, Scenario):
         if axes is None:
@@ -231,6 +233,10 @@ def sweep(
             _os.path.dirname(_os.path.abspath(spec_path)),
         )
     out_path = _os.fspath(out)
+    if executor is None:
+        # the local pool's workers each hold a run: refused before ``out`` is made when they
+        # do not fit (a remote executor's workers are not this machine's)
+        _flocking.sweep_check(text, out_path, _os.cpu_count() or 1)
     # the lock of ``out`` is held until runs.csv is written: a second writer is refused
     finished, lock = _flocking.sweep_prepare(out_path, text)
     try:

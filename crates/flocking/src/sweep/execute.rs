@@ -7,6 +7,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use super::row::{RunRow, run_one};
 use super::store::{self, RUNS_DIR, StoreError};
 use super::{RunSpec, Sweep};
+use crate::estimate::{Estimate, Outputs};
 
 /// A slice of a sweep: run k belongs to shard k mod `count` (for Slurm job arrays).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -157,6 +158,31 @@ pub fn execute(
         unwritten,
         rows,
         stopped: ran + unwritten < pending.len(),
+    })
+}
+
+/// The cost of running `runs` of `sweep` on `workers` at once, each writing `outputs`: the runs'
+/// estimates with their starts counted ([`Scenario::estimate_at_start`](crate::Scenario), one
+/// crowded run needs a crowd's memory in its worker), their memory that of `workers` such runs.
+/// `memory`: the bytes available, as [`Scenario::estimate_at_start`](crate::Scenario) takes it.
+/// `None` when no run is left.
+#[must_use]
+pub fn estimate(
+    sweep: &Sweep,
+    runs: &[RunSpec],
+    outputs: &Outputs,
+    workers: usize,
+    memory: Option<f64>,
+) -> Option<Estimate> {
+    let estimate = runs
+        .iter()
+        .filter_map(|run| sweep.scenario(run).ok())
+        .map(|scenario| scenario.estimate_at_start(outputs, memory))
+        .reduce(Estimate::and)?;
+    let workers = workers.min(runs.len()).max(1) as f64;
+    Some(Estimate {
+        memory_bytes: estimate.memory_bytes * workers,
+        ..estimate
     })
 }
 

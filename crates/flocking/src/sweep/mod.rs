@@ -49,7 +49,7 @@ use serde_json::Value;
 use crate::Scenario;
 use crate::error::ScenarioError;
 
-pub use execute::{ExecuteOptions, Executed, Shard, execute, share};
+pub use execute::{ExecuteOptions, Executed, Shard, estimate, execute, share};
 pub use labels::ParameterLabel;
 pub use row::{Outcome, RunRow, header, metric_label, run_one, run_one_with, value_field};
 
