@@ -500,19 +500,29 @@ impl Block {
 /// Writes the low halves of `keyed` (each `original index << 32 | slot or agent`, all distinct)
 /// into `out` in ascending key. A `SCATTERED` list of at most 16 places each key at its rank,
 /// the number of smaller keys: no branch depends on the keys, whose order a sort would
-/// mispredict.
+/// mispredict. A list of [`RADIX_MIN`] or more (a dense crowd's) is sorted by radix on its
+/// original indices, which are distinct: the same order.
 pub(crate) fn order_slots<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u32]) {
     if SCATTERED && keyed.len() <= 8 {
         rank_slots::<8>(keyed, out);
     } else if SCATTERED && keyed.len() <= 16 {
         rank_slots::<16>(keyed, out);
     } else {
-        keyed.sort_unstable();
+        if keyed.len() >= RADIX_MIN {
+            radsort::sort_by_key(keyed, |&key| (key >> 32) as u32);
+        } else {
+            keyed.sort_unstable();
+        }
         for (out, &key) in out.iter_mut().zip(&*keyed) {
             *out = key as u32;
         }
     }
 }
+
+/// The shortest list [`order_slots`] sorts by radix (`radsort`, by the original index): measured
+/// on lists of random original indices below 10⁶ (2026-11-28), radix takes 4.9 ns a key against
+/// pdqsort's 5.7 at 128 keys, 3.5 against 7.3 at 512, and loses below 96 (6.9 against 4.9 at 64).
+const RADIX_MIN: usize = 128;
 
 /// [`order_slots`] of at most `N` keys by their ranks among the original indices, counted over
 /// `N` lanes (those beyond the list hold `u32::MAX`, above every original index).
@@ -1117,11 +1127,12 @@ mod tests {
 
     proptest::proptest! {
         /// A list of any length, its keys in any order, comes out in ascending original index
-        /// whether placed by ranks (lists of up to 8 and of 9–16) or sorted, with its slots.
+        /// whether placed by ranks (lists of up to 8 and of 9–16), sorted, or sorted by radix
+        /// (from 128), with its slots.
         #[test]
         fn lists_come_out_in_ascending_original_index(
-            originals in proptest::collection::hash_set(0..u32::MAX, 0..40),
-            slots in proptest::collection::vec(proptest::num::u32::ANY, 40),
+            originals in proptest::collection::hash_set(0..u32::MAX, 0..300),
+            slots in proptest::collection::vec(proptest::num::u32::ANY, 300),
         ) {
             let keyed: Vec<u64> = originals
                 .iter()
