@@ -346,9 +346,9 @@ impl Estimate {
         if self.density == Density::TooDense {
             return Err(format!(
                 "the start is too dense to estimate: its net within the sensing range has more \
-                 than {START_COUNT_BUDGET} candidate pairs to test, and every step tests them \
-                 all; use fewer agents or a larger start region, or --no-resource-check to try \
-                 anyway"
+                 than 2^32 ({START_COUNT_BUDGET}) candidate pairs to test, and every step tests \
+                 them all; use fewer agents or a larger start region, or --no-resource-check to \
+                 try anyway"
             ));
         }
         if let Some(memory) = resources.memory_bytes
@@ -410,11 +410,20 @@ impl fmt::Display for Estimate {
         if self.runs > 1 {
             write!(f, "{} runs of ", self.runs)?;
         }
+        write!(f, "{} steps, {} records; ", self.steps, self.records)?;
+        if self.density == Density::TooDense {
+            // the lattice's figures would understate both by orders of magnitude
+            return write!(
+                f,
+                "disk {}, {:.2e} agent-steps; memory and time not estimated: the start's net is \
+                 too dense to count",
+                bytes(self.disk_bytes),
+                self.agent_steps
+            );
+        }
         write!(
             f,
-            "{} steps, {} records; memory {}{}, disk {}, about {} on one thread ({:.2e} agent-steps)",
-            self.steps,
-            self.records,
+            "memory {}{}, disk {}, about {} on one thread ({:.2e} agent-steps)",
             bytes(self.memory_bytes),
             if self.runs > 1 { " per worker" } else { "" },
             bytes(self.disk_bytes),
@@ -422,9 +431,8 @@ impl fmt::Display for Estimate {
             self.agent_steps
         )?;
         match self.density {
-            Density::Lattice => Ok(()),
             Density::Start(degree) => write!(f, "; start's net of mean degree {degree:.1}"),
-            Density::TooDense => write!(f, "; start's net too dense to count"),
+            Density::Lattice | Density::TooDense => Ok(()),
         }
     }
 }
@@ -749,7 +757,7 @@ mod tests {
         assert!(
             estimate
                 .to_string()
-                .ends_with("start's net too dense to count"),
+                .ends_with("memory and time not estimated: the start's net is too dense to count"),
             "{estimate}"
         );
     }
