@@ -51,6 +51,20 @@ pub fn flocking(dir: &Path, args: &[&str]) -> std::process::Output {
         .expect("the flocking binary runs")
 }
 
+/// `flocking args` run in `dir` under a 4 GiB address-space limit (`ulimit -v`), which the
+/// resource check counts: what does not fit there is refused before anything is written.
+pub fn flocking_under_4_gib(dir: &Path, args: &str) -> std::process::Output {
+    std::process::Command::new("sh")
+        .current_dir(dir)
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 4194304 && exec {} {args}",
+            env!("CARGO_BIN_EXE_flocking")
+        ))
+        .output()
+        .expect("sh runs")
+}
+
 /// The standard error of a finished command, as text.
 pub fn stderr(output: &std::process::Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()

@@ -6,8 +6,8 @@ use std::fs;
 use std::path::Path;
 
 use crate::common::{
-    files, flocking, remove_own_empty_dir, remove_own_file, remove_own_link, stderr, temp_dir,
-    write,
+    files, flocking, flocking_under_4_gib, remove_own_empty_dir, remove_own_file, remove_own_link,
+    stderr, temp_dir, write,
 };
 use crate::trust::{PLOT_SEEDS, SHORT_2D, complete, refused, seeds_sweep};
 
@@ -739,15 +739,7 @@ fn issue_27_the_estimate_is_checked_first_and_counts_ulimit() {
     let tmp = temp_dir("ulimit");
     let text = SHORT_2D.replace("agents: 20", "agents: 100000000");
     let file = write(tmp.path(), "big.ron", &text);
-    let output = std::process::Command::new("sh")
-        .current_dir(tmp.path())
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v 4194304 && exec {} run {file} --out o",
-            env!("CARGO_BIN_EXE_flocking")
-        ))
-        .output()
-        .expect("sh runs");
+    let output = flocking_under_4_gib(tmp.path(), &format!("run {file} --out o"));
     refused(
         &output,
         &["a run needs about 51.0 GB of memory but", "is available"],
@@ -767,15 +759,7 @@ fn a_crowd_is_estimated_from_its_start_and_refused_before_it_starts() {
         "[0.0, 0.0], max: [5.0, 5.0]",
     );
     let file = write(tmp.path(), "crowd.ron", &crowd);
-    let output = std::process::Command::new("sh")
-        .current_dir(tmp.path())
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v 4194304 && exec {} run {file} --out o",
-            env!("CARGO_BIN_EXE_flocking")
-        ))
-        .output()
-        .expect("sh runs");
+    let output = flocking_under_4_gib(tmp.path(), &format!("run {file} --out o"));
     refused(
         &output,
         &["a run needs about 7.9 GB of memory but", "is available"],
@@ -839,15 +823,7 @@ fn issue_27_validate_of_a_scenario_that_does_not_fit_does_not_abort() {
     let tmp = temp_dir("validate_ulimit");
     let text = SHORT_2D.replace("agents: 20", "agents: 100000000");
     let file = write(tmp.path(), "big.ron", &text);
-    let output = std::process::Command::new("sh")
-        .current_dir(tmp.path())
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v 4194304 && exec {} validate {file}",
-            env!("CARGO_BIN_EXE_flocking")
-        ))
-        .output()
-        .expect("sh runs");
+    let output = flocking_under_4_gib(tmp.path(), &format!("validate {file}"));
     let err = stderr(&output);
     assert_eq!(output.status.code(), Some(0), "{err}");
     assert!(

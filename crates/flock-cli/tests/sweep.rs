@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{csv_column, fixtures_dir, flocking, stderr, temp_dir};
+use crate::common::{csv_column, fixtures_dir, flocking, flocking_under_4_gib, stderr, temp_dir};
 
 /// Fig. 11 cut to 30 agents and 20 s (some 10–20 ms a run), over 4 × 2 values × 3 seeds (24 runs).
 fn write_sweep(dir: &Path) -> String {
@@ -81,15 +81,7 @@ fn a_sweep_with_a_crowded_cell_is_estimated_by_it() {
         fixtures_dir().join("tac2006_fig11_alg2_n100.ron").display()
     );
     fs::write(tmp.path().join("crowd.ron"), text).expect("write the sweep");
-    let output = Command::new("sh")
-        .current_dir(tmp.path())
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v 4194304 && exec {} sweep crowd.ron --out s --jobs 1 --quiet",
-            env!("CARGO_BIN_EXE_flocking")
-        ))
-        .output()
-        .expect("sh runs");
+    let output = flocking_under_4_gib(tmp.path(), "sweep crowd.ron --out s --jobs 1 --quiet");
     let err = stderr(&output);
     assert_eq!(output.status.code(), Some(2), "{err}");
     assert!(
