@@ -53,7 +53,8 @@ enum Command {
         /// Worker threads (default: all cores; at most 4 per core); results are identical for any count.
         #[arg(long, value_parser = flock_cli::resources::parse_threads)]
         threads: Option<usize>,
-        /// Start even when the estimated memory or disk exceeds what this machine has free.
+        /// Start even when the estimated memory or disk exceeds what this machine has free, or the
+        /// start is too dense to estimate.
         #[arg(long)]
         no_resource_check: bool,
         /// Also draw the run's figures into DIR/figures (as `flocking plot DIR`).

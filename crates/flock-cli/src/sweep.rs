@@ -34,7 +34,8 @@ pub struct SweepArgs {
     /// per core).
     #[arg(long, value_parser = crate::resources::parse_threads)]
     jobs: Option<usize>,
-    /// Start even when the estimated memory or disk exceeds what this machine has free.
+    /// Start even when the estimated memory or disk exceeds what this machine has free, or a
+    /// run's start is too dense to estimate.
     #[arg(long)]
     no_resource_check: bool,
     /// Keep each run's directory in `DIR/runs/<id>` (as `flocking run` writes it).
