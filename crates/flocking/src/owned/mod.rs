@@ -82,49 +82,17 @@ impl Kind {
     /// (each a regular file, never a link), besides the subdirectories of [`Kind::subdirectories`].
     fn entries(self) -> &'static [&'static str] {
         match self {
-            Self::Run => &[
-                MARKER_FILE,
-                LOCK_FILE,
-                "metrics.csv",
-                "trajectory.csv",
-                "trajectory.npy",
-                "final.csv",
-                "scenario.ron",
-                "flocking.txt",
-                "checkpoint.bin",
-                "checkpoint.tmp",
-                "INCOMPLETE",
-                "INCOMPLETE.tmp",
-                "controls.txt",
-                MANIFEST_FILE,
-                MANIFEST_TMP,
-            ],
+            Self::Run => RUN_FILES,
             // Sweeps and galleries are written into, never removed.
             Self::Sweep | Self::Figures => &[],
         }
     }
 
-    /// The names a directory of this kind is made of, which [`write_file`] never replaces.
-    fn reserved(self) -> &'static [&'static str] {
-        match self {
-            Self::Run => &[
-                MARKER_FILE,
-                LOCK_FILE,
-                "metrics.csv",
-                "trajectory.csv",
-                "trajectory.npy",
-                "final.csv",
-                "scenario.ron",
-                "flocking.txt",
-                FIGURES_DIR,
-                "checkpoint.bin",
-                "checkpoint.tmp",
-                "INCOMPLETE",
-                "INCOMPLETE.tmp",
-                "controls.txt",
-                MANIFEST_FILE,
-                MANIFEST_TMP,
-            ],
+    /// Whether `name` is one of the names a directory of this kind is made of, which
+    /// [`write_file`] never replaces: its files and subdirectories.
+    fn is_reserved(self, name: &str) -> bool {
+        let files: &[&str] = match self {
+            Self::Run => RUN_FILES,
             Self::Sweep => &[
                 MARKER_FILE,
                 LOCK_FILE,
@@ -147,7 +115,8 @@ impl Kind {
                 "index.html",
                 "functions",
             ],
-        }
+        };
+        files.contains(&name) || self.subdirectories().iter().any(|&(dir, _)| dir == name)
     }
 
     /// The subdirectories a directory of this kind may hold when [`remove`] removes it, each
@@ -159,6 +128,25 @@ impl Kind {
         }
     }
 }
+
+/// Every file flocking writes at the top of a run directory.
+const RUN_FILES: &[&str] = &[
+    MARKER_FILE,
+    LOCK_FILE,
+    "metrics.csv",
+    "trajectory.csv",
+    "trajectory.npy",
+    "final.csv",
+    "scenario.ron",
+    "flocking.txt",
+    "checkpoint.bin",
+    "checkpoint.tmp",
+    "INCOMPLETE",
+    "INCOMPLETE.tmp",
+    "controls.txt",
+    MANIFEST_FILE,
+    MANIFEST_TMP,
+];
 
 /// The subdirectory of a run directory that `flocking plot` draws into.
 pub const FIGURES_DIR: &str = "figures";
@@ -344,7 +332,7 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
         entry: name.clone().unwrap_or_else(|| path.display().to_string()),
     };
     if let (Some(kind), Some(name)) = (marker, &name) {
-        if kind.reserved().contains(&name.as_str()) {
+        if kind.is_reserved(name) {
             return Err(DirError::Reserved {
                 path: path.to_owned(),
                 of: kind.what(),
@@ -1129,6 +1117,34 @@ mod tests {
             std::fs::read(run.join("notes.txt")).expect("kept"),
             b"mine too\n"
         );
+    }
+
+    /// A figure or table written into a marked directory never takes one of its own names: a
+    /// run's files and its `figures` subdirectory, a sweep's `runs.csv`, a gallery's
+    /// `index.html`; another name is written.
+    #[test]
+    fn a_directorys_own_names_are_never_written_over() {
+        use super::{DirError, Kind, mark, write_file};
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        for (kind, own) in [
+            (Kind::Run, ["metrics.csv", "figures", "INCOMPLETE"]),
+            (Kind::Sweep, ["runs.csv", "rows", "sweep.ron"]),
+            (Kind::Figures, ["index.html", "functions", ".flocking"]),
+        ] {
+            let marked = dir.path().join(kind.what().replace(' ', "_"));
+            std::fs::create_dir(&marked).expect("mkdir");
+            mark(&marked, kind).expect("marked");
+            for name in own {
+                assert!(
+                    matches!(
+                        write_file(&marked.join(name), b"plot\n"),
+                        Err(DirError::Reserved { .. })
+                    ),
+                    "{name}"
+                );
+            }
+            write_file(&marked.join("plot.svg"), b"plot\n").expect("another name is written");
+        }
     }
 
     #[test]
