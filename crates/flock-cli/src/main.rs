@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::{Progress, Report, errln, out, outln};
 use flock_viz::{FigureOptions, plot_run_with};
-use flocking::estimate::{Outputs, Resources};
+use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
 use flocking::run_dir::{CreateError, ResumeError, read_records};
 use flocking::workload::{Workload, time_seeds};
@@ -298,8 +298,7 @@ fn dispatch(command: Command) -> ExitCode {
                 outln!("{}: valid", scenario.display());
                 out!("{}", s.to_ron().unwrap_or_default());
                 outln!();
-                let memory = Resources::of_machine(Path::new(".")).memory_bytes;
-                let estimate = s.estimate_at_start(&Outputs::RUN, memory);
+                let estimate = s.estimate_at_start(&Outputs::RUN);
                 if let Err(e) = flock_cli::resources::announce(&estimate, None, (false, false)) {
                     errln!("warning: {e}");
                     // the stable step and the warnings build the initial net of every agent,
@@ -436,8 +435,7 @@ fn create_directory(
     };
     // before the warnings, which build the initial net of every agent (issue 27); the start's
     // net is counted (in constant memory per agent) only when the estimate without it fits
-    let memory = Resources::of_machine(out).memory_bytes;
-    let estimate = scenario.estimate_at_start(&outputs, memory);
+    let estimate = scenario.estimate_at_start(&outputs);
     flock_cli::resources::announce(&estimate, Some(out), (unchecked, false)).map_err(|e| {
         errln!("error: {e}");
         ExitCode::from(INVALID)

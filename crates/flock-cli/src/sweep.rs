@@ -8,7 +8,7 @@ use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
 use flock_viz::phase::{Band, Bound, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
-use flocking::estimate::{Outputs, Resources};
+use flocking::estimate::Outputs;
 use flocking::owned::{self, DirError};
 use flocking::sweep::store::{self, RUNS_FILE, StoreError};
 use flocking::sweep::{
@@ -254,9 +254,7 @@ fn run(
         },
         |(_, pending)| pending,
     );
-    let workers = options.jobs;
-    let memory = Resources::of_machine(out).memory_bytes;
-    match flocking::sweep::estimate(&sweep, &pending, &outputs, workers, memory) {
+    match flocking::sweep::estimate(&sweep, &pending, &outputs, options.jobs) {
         Some(estimate) => {
             crate::resources::announce(&estimate, Some(out), (unchecked, true))
                 .map_err(Failure::Usage)?;

@@ -117,17 +117,14 @@ pub fn check_resources(
     outputs: &flocking::estimate::Outputs,
     out: Option<&Path>,
 ) -> PyResult<()> {
-    check_estimate(py, out, |memory| {
-        Some(scenario.estimate_at_start(outputs, memory))
-    })
+    check_estimate(py, Some(scenario.estimate_at_start(outputs)), out)
 }
 
-/// [`check_resources`] of the estimate `estimate` makes given the memory available (`None`:
-/// nothing to run, nothing to check).
+/// [`check_resources`] of `estimate` (`None`: nothing to run, nothing to check).
 pub fn check_estimate(
     py: Python<'_>,
+    estimate: Option<flocking::estimate::Estimate>,
     out: Option<&Path>,
-    estimate: impl FnOnce(Option<f64>) -> Option<flocking::estimate::Estimate>,
 ) -> PyResult<()> {
     use flocking::estimate::Resources;
     let resources = match out {
@@ -137,7 +134,7 @@ pub fn check_estimate(
             ..Resources::of_machine(Path::new("."))
         },
     };
-    let Some(Err(why)) = estimate(resources.memory_bytes).map(|e| e.check(&resources)) else {
+    let Some(Err(why)) = estimate.map(|e| e.check(&resources)) else {
         return Ok(());
     };
     let why = why.replace(", or --no-resource-check to try anyway", "");

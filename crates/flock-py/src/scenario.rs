@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use flocking::estimate::{Density, Outputs, Resources};
+use flocking::estimate::{Density, Outputs};
 use flocking::serde_json::{Map, Number, Value};
 use flocking::{Cloud, Scenario, ScenarioError};
 use numpy::{AllowTypeChange, PyArrayLike2};
@@ -165,8 +165,7 @@ impl PyScenario {
         } else {
             Outputs::NONE
         };
-        let memory = Resources::of_machine(std::path::Path::new(".")).memory_bytes;
-        let estimate = self.inner.estimate_at_start(&outputs, memory);
+        let estimate = self.inner.estimate_at_start(&outputs);
         let dict = PyDict::new(py);
         dict.set_item("steps", estimate.steps)?;
         dict.set_item("records", estimate.records)?;

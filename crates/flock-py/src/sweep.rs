@@ -112,9 +112,8 @@ pub fn sweep_check(py: Python<'_>, text: &str, dir: PathBuf, workers: usize) -> 
     let pending = flocking::sweep::share(&sweep, &dir, None)
         .map_or_else(|_| sweep.runs(), |(_, pending)| pending);
     let outputs = flocking::estimate::Outputs::NONE;
-    crate::errors::check_estimate(py, None, |memory| {
-        py.detach(|| flocking::sweep::estimate(&sweep, &pending, &outputs, workers, memory))
-    })
+    let estimate = py.detach(|| flocking::sweep::estimate(&sweep, &pending, &outputs, workers));
+    crate::errors::check_estimate(py, estimate, None)
 }
 
 /// The lock of a sweep's output directory ([`store::prepare`]), held until

@@ -213,10 +213,15 @@ impl Scenario {
     /// [`Estimate::check`] must know before the run allocates it.
     ///
     /// The count holds the start's positions and a cell grid (≈ 40 bytes per agent, far below
-    /// the estimate without it), and is made only when that estimate fits in `memory` (bytes
-    /// available, `None`: unknown), so that it cannot exhaust memory itself.
+    /// the estimate without it), and is made only when that estimate fits in the memory available
+    /// ([`Resources::of_machine`]), so that it cannot exhaust memory itself.
     #[must_use]
-    pub fn estimate_at_start(&self, outputs: &Outputs, memory: Option<f64>) -> Estimate {
+    pub fn estimate_at_start(&self, outputs: &Outputs) -> Estimate {
+        self.estimate_counted_within(outputs, available_memory())
+    }
+
+    /// [`Scenario::estimate_at_start`] with `memory` bytes available (`None`: unknown).
+    fn estimate_counted_within(&self, outputs: &Outputs, memory: Option<f64>) -> Estimate {
         let estimate = self.estimate(outputs);
         if memory.is_some_and(|memory| estimate.memory_bytes > memory) {
             return estimate;
@@ -225,24 +230,22 @@ impl Scenario {
             2 => start_edges::<DVec2>(self),
             _ => start_edges::<DVec3>(self),
         };
-        let dim = self.dim.clamp(2, 3);
-        match edges {
-            None => Estimate {
+        let Some(edges) = edges else {
+            return Estimate {
                 density: Density::TooDense,
                 ..estimate
-            },
-            Some(edges) => {
-                let n = self.agents.max(1) as f64;
-                let degree = 2.0 * edges as f64 / n;
-                let lattice = LATTICE_DEGREE[dim - 2];
-                let extra = (degree - lattice).max(0.0);
-                Estimate {
-                    memory_bytes: estimate.memory_bytes + n * extra / 2.0 * BYTES_PER_EDGE[dim - 2],
-                    seconds: estimate.seconds * degree.max(lattice) / lattice,
-                    density: Density::Start(degree),
-                    ..estimate
-                }
-            }
+            };
+        };
+        let dim = self.dim.clamp(2, 3);
+        let n = self.agents.max(1) as f64;
+        let degree = 2.0 * edges as f64 / n;
+        let lattice = LATTICE_DEGREE[dim - 2];
+        let extra = (degree - lattice).max(0.0);
+        Estimate {
+            memory_bytes: estimate.memory_bytes + n * extra / 2.0 * BYTES_PER_EDGE[dim - 2],
+            seconds: estimate.seconds * degree.max(lattice) / lattice,
+            density: Density::Start(degree),
+            ..estimate
         }
     }
 }
@@ -692,7 +695,7 @@ mod tests {
         // 10⁴ agents in 100 × 100: π r² ρ = 221.7 neighbours inside, fewer near the sides
         let dense = crowd(10_000, 100.0);
         let lattice = dense.estimate(&Outputs::NONE);
-        let start = dense.estimate_at_start(&Outputs::NONE, None);
+        let start = dense.estimate_counted_within(&Outputs::NONE, None);
         let Density::Start(degree) = start.density else {
             panic!("{start}");
         };
@@ -729,7 +732,7 @@ mod tests {
     fn a_sparse_start_keeps_the_lattice_estimate() {
         // 10⁴ agents in 10⁴ × 10⁴: 0.022 neighbours each, the lattice's 6 assumed
         let sparse = crowd(10_000, 10_000.0);
-        let start = sparse.estimate_at_start(&Outputs::NONE, None);
+        let start = sparse.estimate_counted_within(&Outputs::NONE, None);
         assert!(
             matches!(start.density, Density::Start(k) if (0.01..0.03).contains(&k)),
             "{start}"
@@ -740,14 +743,14 @@ mod tests {
             (lattice.memory_bytes, lattice.seconds)
         );
         // not counted when the estimate without the count does not fit
-        let unaffordable = sparse.estimate_at_start(&Outputs::NONE, Some(1e6));
+        let unaffordable = sparse.estimate_counted_within(&Outputs::NONE, Some(1e6));
         assert_eq!(unaffordable, lattice);
     }
 
     #[test]
     fn a_start_too_dense_to_count_is_refused_before_testing() {
         // 70,000 agents in one cell of the grid: 70,000² = 4.9·10⁹ candidate pairs > 2³²
-        let estimate = crowd(70_000, 1.0).estimate_at_start(&Outputs::NONE, None);
+        let estimate = crowd(70_000, 1.0).estimate_counted_within(&Outputs::NONE, None);
         assert_eq!(estimate.density, Density::TooDense);
         let error = estimate.check(&Resources::default()).unwrap_err();
         assert!(

@@ -164,7 +164,6 @@ pub fn execute(
 /// The cost of running `runs` of `sweep` on `workers` at once, each writing `outputs`: the runs'
 /// estimates with their starts counted ([`Scenario::estimate_at_start`](crate::Scenario), one
 /// crowded run needs a crowd's memory in its worker), their memory that of `workers` such runs.
-/// `memory`: the bytes available, as [`Scenario::estimate_at_start`](crate::Scenario) takes it.
 /// `None` when no run is left.
 #[must_use]
 pub fn estimate(
@@ -172,12 +171,11 @@ pub fn estimate(
     runs: &[RunSpec],
     outputs: &Outputs,
     workers: usize,
-    memory: Option<f64>,
 ) -> Option<Estimate> {
     let estimate = runs
         .iter()
         .filter_map(|run| sweep.scenario(run).ok())
-        .map(|scenario| scenario.estimate_at_start(outputs, memory))
+        .map(|scenario| scenario.estimate_at_start(outputs))
         .reduce(Estimate::and)?;
     let workers = workers.min(runs.len()).max(1) as f64;
     Some(Estimate {
