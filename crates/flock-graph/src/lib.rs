@@ -28,6 +28,7 @@ pub mod net;
 pub mod numbering;
 pub mod parallel;
 pub mod search;
+mod skin;
 pub mod stress;
 mod torus;
 

@@ -10,6 +10,7 @@
 //! stored.
 
 use core::ops::Range;
+use core::sync::atomic::{AtomicU64, Ordering};
 use std::borrow::Cow;
 
 use crate::parallel::{chunked_sum, fill_indexed};
@@ -28,13 +29,31 @@ use crate::parallel::{chunked_sum, fill_indexed};
 /// assert_eq!(numbering.stored_of(0..3).collect::<Vec<_>>(), [1, 2, 0]);
 /// assert_eq!(numbering.ordered(&['c', 'a', 'b']).collect::<String>(), "abc");
 /// ```
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+///
+/// Two numberings are equal when they map the agents alike.
+#[derive(Clone, Debug, Default)]
 pub struct Numbering {
     /// The original index of the agent at each storage index (empty for the identity).
     ids: Vec<u32>,
     /// The storage index of each original index (empty for the identity).
     stored: Vec<u32>,
+    /// Changed by every [`Numbering::permute`] to a value no other permutation of the process
+    /// gave (0 for a numbering never permuted); copied with the numbering. A search that keeps
+    /// lists between builds ([`crate::NeighbourSearch`]) tells by it, in O(1), that they still
+    /// name the agents of the numbering they were built with.
+    stamp: u64,
 }
+
+impl PartialEq for Numbering {
+    fn eq(&self, other: &Self) -> bool {
+        self.ids == other.ids
+    }
+}
+
+impl Eq for Numbering {}
+
+/// The last stamp given by [`Numbering::permute`].
+static STAMPS: AtomicU64 = AtomicU64::new(0);
 
 /// Elements per batch of [`Numbering::ordered`].
 const GATHER: usize = 64;
@@ -94,6 +113,13 @@ impl Numbering {
     #[must_use]
     pub fn is_identity(&self) -> bool {
         self.ids.is_empty()
+    }
+
+    /// The stamp of the numbering's last permutation: equal stamps are equal numberings.
+    #[inline]
+    #[must_use]
+    pub(crate) fn stamp(&self) -> u64 {
+        self.stamp
     }
 
     /// Whether the numbering applies to `n` agents (the identity applies to any number).
@@ -196,6 +222,7 @@ impl Numbering {
             order.len(),
             self.ids.len()
         );
+        self.stamp = STAMPS.fetch_add(1, Ordering::Relaxed) + 1;
         // the new ids, built in `stored` (the inverse is recomputed below)
         let ids = &self.ids;
         self.stored.clear();

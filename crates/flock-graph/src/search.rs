@@ -27,11 +27,15 @@ use flock_math::Vector;
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, join, map_chunks};
+use crate::skin::Skin;
 use crate::torus::{TorusBlock, TorusGrid};
 
 /// log₂ of the agents per block of work (any value gives the same net): 1,024 agents, a unit of
 /// rayon work with the `parallel` feature.
 const BLOCK_SHIFT: u32 = 10;
+
+/// Agents per chunk of the parallel displacement check ([`CellGrid::moved_within`]).
+const MOVED_CHUNK: usize = 1 << 14;
 
 /// Agents per chunk of the parallel bounds.
 const BOUNDS_CHUNK: usize = 1 << 16;
@@ -70,6 +74,8 @@ pub struct NeighbourSearch {
     pub(crate) torus: TorusGrid,
     /// Neighbour lists of blocks of slots of the periodic grid.
     pub(crate) torus_blocks: Vec<TorusBlock>,
+    /// Whether `grid` and `blocks` hold lists the next open-space build may reuse.
+    pub(crate) skin: Skin,
 }
 
 impl NeighbourSearch {
@@ -96,6 +102,10 @@ impl NeighbourSearch {
     }
 
     /// [`NeighbourSearch::build`] with blocks of 2^`block_shift` slots (`block_shift` < 64).
+    ///
+    /// The lists of the last build are kept, built out to the range plus a skin ([`Skin`]), and
+    /// serve the next builds while no agent has moved more than half the skin: the net is then
+    /// those lists filtered by the predicate. Same net either way.
     fn build_in_blocks<V: Vector>(
         &mut self,
         positions: &[V],
@@ -109,58 +119,99 @@ impl NeighbourSearch {
         // Every array is resized and overwritten below: the retained part is not zeroed first.
         let (offsets, neighbours, distances, numbering) = net.arrays_for_rebuild(n, r);
         if n < 2 || r2 == 0.0 {
+            self.skin.forget();
+            assemble(n, offsets, neighbours, distances, &|_| 0, &|_, _, _| {});
+            return;
+        }
+        let stamp = numbering.stamp();
+        let kept = self.skin.kept_for(n, r, stamp, block_shift);
+        if kept.is_some_and(|kept| self.grid.moved_within(positions, kept.limit)) {
+            self.skin.reused();
+        } else {
+            if kept.is_some() {
+                self.skin.outgrown();
+            }
+            let reach = self.skin.reach_for_build(r);
+            self.grid.rebuild(positions, reach);
+            let (grid, reach2) = (&self.grid, range_squared(reach));
+            let count = grid.order.len().div_ceil(block_len);
+            if self.blocks.len() < count {
+                self.blocks.resize_with(count, Block::default);
+            }
+            for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
+                let start = b * block_len;
+                let slots = start..start + (grid.order.len() - start).min(block_len);
+                block.fill::<V>(grid, reach2, numbering, slots);
+            });
+            self.skin.built(n, r, reach, stamp, block_shift);
+        }
+        let grid = &self.grid;
+        let blocks = &self.blocks[..grid.order.len().div_ceil(block_len)];
+        // agent i's list: slots, in the net's order
+        let slots = |i: usize| -> &[u32] {
+            let slot = grid.slot_of[i];
+            if slot == NO_SLOT {
+                return &[];
+            }
+            let slot = slot as usize;
+            let block = &blocks[slot >> block_shift];
+            &block.neighbours[block.edges(slot & (block_len - 1))]
+        };
+        // the distances recomputed with the predicate's own squared length (so bit-identical)
+        if self.skin.has_kept() {
+            // the lists reach beyond r, and the grid holds the positions of their build: the
+            // agents in range now, from the positions now
+            let near = |i: usize| {
+                let qi = positions[i];
+                slots(i).iter().filter_map(move |&t| {
+                    let j = grid.order[t as usize];
+                    let d2 = squared_distance(qi, positions[j as usize]);
+                    in_range(d2, r2).then_some((j, d2))
+                })
+            };
+            let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
+                for (k, (j, d2)) in near(i).enumerate() {
+                    out[k] = j;
+                    if let Some(l) = lengths.get_mut(k) {
+                        *l = d2.sqrt();
+                    }
+                }
+            };
             assemble(
                 n,
                 offsets,
                 neighbours,
                 distances,
-                &|_| None,
-                &|_, _, _, _| {},
+                &|i| near(i).count(),
+                &write,
             );
-            return;
+        } else {
+            let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
+                let list = slots(i);
+                for (o, &t) in out.iter_mut().zip(list) {
+                    *o = grid.order[t as usize];
+                }
+                let qi = positions[i];
+                for (l, &t) in lengths.iter_mut().zip(list) {
+                    *l = squared_distance(qi, grid.position::<V>(t as usize)).sqrt();
+                }
+            };
+            assemble(
+                n,
+                offsets,
+                neighbours,
+                distances,
+                &|i| slots(i).len(),
+                &write,
+            );
         }
-        self.grid.rebuild(positions, r);
-        let grid = &self.grid;
-        let slots = grid.order.len();
-        let count = slots.div_ceil(block_len);
-        if self.blocks.len() < count {
-            self.blocks.resize_with(count, Block::default);
-        }
-        for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
-            let start = b * block_len;
-            let slots = start..start + (slots - start).min(block_len);
-            block.fill::<V>(grid, r2, numbering, slots);
-        });
-        // the lists in agent order, their distances recomputed with the predicate's own squared
-        // length (so bit-identical)
-        let slot_of = &grid.slot_of;
-        let blocks = &self.blocks[..count];
-        let list = |i: usize| {
-            let slot = slot_of[i];
-            (slot != NO_SLOT).then(|| {
-                let slot = slot as usize;
-                let block = &blocks[slot >> block_shift];
-                &block.neighbours[block.edges(slot & (block_len - 1))]
-            })
-        };
-        let write = |i: usize, list: &[u32], out: &mut [u32], lengths: &mut [f64]| {
-            for (o, &t) in out.iter_mut().zip(list) {
-                *o = grid.order[t as usize];
-            }
-            let qi = positions[i];
-            for (l, &t) in lengths.iter_mut().zip(list) {
-                *l = squared_distance(qi, grid.position::<V>(t as usize)).sqrt();
-            }
-        };
-        assemble(n, offsets, neighbours, distances, &list, &write);
     }
 
     /// The agents with a finite position, in the order of the cells of side at least `r` of a
     /// grid over them (ascending index within a cell): agents near in that order are near in
     /// space. The order [`NeighbourSearch::build`] visits them in; its buffer is reused.
     pub fn cell_order<V: Vector>(&mut self, positions: &[V], r: f64) -> &[u32] {
-        self.grid.rebuild(positions, r);
-        &self.grid.order
+        &self.regrid(positions, r).order
     }
 
     /// The exact minimum distance over all pairs of finite agents, `None` when there are fewer
@@ -188,8 +239,8 @@ impl NeighbourSearch {
             threshold = upper;
         }
         loop {
-            self.grid.rebuild(positions, threshold.sqrt());
-            if let Some(d2) = self.grid.min_squared_distance::<V>(threshold) {
+            let grid = self.regrid(positions, threshold.sqrt());
+            if let Some(d2) = grid.min_squared_distance::<V>(threshold) {
                 return Some(d2.sqrt());
             }
             if threshold >= upper {
@@ -217,6 +268,14 @@ pub(crate) fn candidate_tests(cell_start: &[usize], candidates: impl Fn(usize) -
 }
 
 impl NeighbourSearch {
+    /// The grid rebuilt for `positions` and `reach` for a use other than a net: the lists it
+    /// held are no longer reusable.
+    fn regrid<V: Vector>(&mut self, positions: &[V], reach: f64) -> &CellGrid {
+        self.skin.forget();
+        self.grid.rebuild(positions, reach);
+        &self.grid
+    }
+
     /// [`NeighbourSearch::count_pairs_in`] in open space.
     pub(crate) fn count_open_pairs<V: Vector>(
         &mut self,
@@ -229,8 +288,7 @@ impl NeighbourSearch {
         if positions.len() < 2 || r2 == 0.0 {
             return Some(0);
         }
-        self.grid.rebuild(positions, r);
-        let grid = &self.grid;
+        let grid = self.regrid(positions, r);
         let tests = candidate_tests(&grid.cell_start, |cell| {
             let c = grid.layout.coords(cell);
             grid.candidate_rows(c).iter().map(|row| row.len()).sum()
@@ -271,8 +329,7 @@ impl NeighbourSearch {
         pending: &[u32],
         found: &mut [f64],
     ) {
-        self.grid.rebuild(positions, reach);
-        let grid = &self.grid;
+        let grid = self.regrid(positions, reach);
         fill_indexed(found, |p| {
             let slot = grid.slot_of[pending[p] as usize] as usize;
             let mut cells = grid.cells_of(slot);
@@ -292,23 +349,22 @@ impl NeighbourSearch {
     }
 }
 
-/// Writes the arrays of a net of `n` agents from each agent's list of neighbours in the search's
-/// own terms (`list(i)`, `None` for an agent with none): the offsets first, as the running sum of
-/// the lengths, then, in parallel ranges of agents, `write(i, list, neighbours_i, distances_i)`
-/// (`distances_i` empty for a net without distances). The one assembly of the open and the
-/// periodic search.
-pub(crate) fn assemble<'a>(
+/// Writes the arrays of a net of `n` agents: the offsets first, as the running sum of each
+/// agent's number of neighbours `len(i)`, then, in parallel ranges of agents, `write(i,
+/// neighbours_i, distances_i)` (`distances_i` empty for a net without distances). The one assembly
+/// of the open and the periodic search.
+pub(crate) fn assemble(
     n: usize,
     offsets: &mut Vec<usize>,
     neighbours: &mut Vec<u32>,
     distances: Option<&mut Vec<f64>>,
-    list: &(impl Fn(usize) -> Option<&'a [u32]> + Sync),
-    write: &(impl Fn(usize, &[u32], &mut [u32], &mut [f64]) + Sync),
+    len: &(impl Fn(usize) -> usize + Sync),
+    write: &(impl Fn(usize, &mut [u32], &mut [f64]) + Sync),
 ) {
     // offsets[i + 1] = |N_i| (in parallel), then the running sum
     offsets.resize(n + 1, 0);
     offsets[0] = 0;
-    fill_indexed(&mut offsets[1..], |i| list(i).map_or(0, <[u32]>::len));
+    fill_indexed(&mut offsets[1..], len);
     for i in 0..n {
         offsets[i + 1] += offsets[i];
     }
@@ -329,10 +385,8 @@ pub(crate) fn assemble<'a>(
         neighbours,
         distances,
         &|i, out, lengths| {
-            if let Some(list) = list(i) {
-                write(i, list, out, lengths);
-            }
             debug_assert_eq!(out.len(), offsets[i + 1] - offsets[i]);
+            write(i, out, lengths);
         },
         offsets,
     );
@@ -795,6 +849,20 @@ impl CellGrid {
         }
         self.cell_start.copy_within(0..cells, 1);
         self.cell_start[0] = 0;
+    }
+
+    /// Whether every agent of `positions` (as many as at the last rebuild) is within squared
+    /// distance `limit` of where it was then, and every agent then without a cell still has a
+    /// non-finite position (a NaN displacement is not within).
+    fn moved_within<V: Vector>(&self, positions: &[V], limit: f64) -> bool {
+        map_chunks(positions.len(), MOVED_CHUNK, |agents| {
+            agents.into_iter().all(|i| match self.slot_of[i] {
+                NO_SLOT => !positions[i].is_finite(),
+                slot => squared_distance(self.position::<V>(slot as usize), positions[i]) <= limit,
+            })
+        })
+        .into_iter()
+        .all(|within| within)
     }
 
     /// The position of the agent in `slot`, bit-identical to its entry of `positions`.

@@ -504,14 +504,7 @@ impl NeighbourSearch {
         let r2 = range_squared(r);
         let (offsets, neighbours, distances, numbering) = net.arrays_for_rebuild(n, r);
         if n < 2 || r2 == 0.0 {
-            assemble(
-                n,
-                offsets,
-                neighbours,
-                distances,
-                &|_| None,
-                &|_, _, _, _| {},
-            );
+            assemble(n, offsets, neighbours, distances, &|_| 0, &|_, _, _| {});
             return;
         }
         let (grid, blocks) = (&mut self.torus, &mut self.torus_blocks);
@@ -528,22 +521,31 @@ impl NeighbourSearch {
             block.fill::<V>(grid, size, r2, numbering, slots);
         });
         let blocks = &blocks[..count];
-        let list = |i: usize| {
+        let list = |i: usize| -> &[u32] {
             let slot = grid.slot_of[i];
-            (slot != NO_SLOT).then(|| {
-                let slot = slot as usize;
-                let block = &blocks[slot >> block_shift];
-                &block.neighbours[block.edges(slot & (block_len - 1))]
-            })
+            if slot == NO_SLOT {
+                return &[];
+            }
+            let slot = slot as usize;
+            let block = &blocks[slot >> block_shift];
+            &block.neighbours[block.edges(slot & (block_len - 1))]
         };
-        let write = |i: usize, list: &[u32], out: &mut [u32], lengths: &mut [f64]| {
+        let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
+            let list = list(i);
             out.copy_from_slice(list);
             let qi = positions[i];
             for (l, &j) in lengths.iter_mut().zip(list) {
                 *l = squared_distance_in(domain, qi, positions[j as usize]).sqrt();
             }
         };
-        assemble(n, offsets, neighbours, distances, &list, &write);
+        assemble(
+            n,
+            offsets,
+            neighbours,
+            distances,
+            &|i| list(i).len(),
+            &write,
+        );
     }
 
     /// Fills `out` (resized to `positions.len()`) with the distance from each agent to its nearest
