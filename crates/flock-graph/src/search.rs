@@ -10,7 +10,7 @@
 //! whatever the configuration.
 //!
 //! The lists are built agent by agent in cell order (so that consecutive agents scan the same
-//! memory), each as slots sorted by neighbour index (original index, for a net with a
+//! memory), each as agents sorted by neighbour index (original index, for a net with a
 //! [`Numbering`]), into per-block buffers; they are then gathered in agent order
 //! into the net as agent indices, each distance recomputed there with the predicate's own squared
 //! length. The net is canonical: equal to [`ProximityNet::brute_force`] edge for edge and bit for
@@ -147,8 +147,8 @@ impl NeighbourSearch {
         }
         let grid = &self.grid;
         let blocks = &self.blocks[..grid.order.len().div_ceil(block_len)];
-        // agent i's list: slots, in the net's order
-        let slots = |i: usize| -> &[u32] {
+        // agent i's list: agents, in the net's order
+        let list = |i: usize| -> &[u32] {
             let slot = grid.slot_of[i];
             if slot == NO_SLOT {
                 return &[];
@@ -163,8 +163,7 @@ impl NeighbourSearch {
             // agents in range now, from the positions now
             let near = |i: usize| {
                 let qi = positions[i];
-                slots(i).iter().filter_map(move |&t| {
-                    let j = grid.order[t as usize];
+                list(i).iter().filter_map(move |&j| {
                     let d2 = squared_distance(qi, positions[j as usize]);
                     in_range(d2, r2).then_some((j, d2))
                 })
@@ -187,13 +186,11 @@ impl NeighbourSearch {
             );
         } else {
             let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
-                let list = slots(i);
-                for (o, &t) in out.iter_mut().zip(list) {
-                    *o = grid.order[t as usize];
-                }
+                let list = list(i);
+                out.copy_from_slice(list);
                 let qi = positions[i];
-                for (l, &t) in lengths.iter_mut().zip(list) {
-                    *l = squared_distance(qi, grid.position::<V>(t as usize)).sqrt();
+                for (l, &j) in lengths.iter_mut().zip(list) {
+                    *l = squared_distance(qi, positions[j as usize]).sqrt();
                 }
             };
             assemble(
@@ -201,7 +198,7 @@ impl NeighbourSearch {
                 offsets,
                 neighbours,
                 distances,
-                &|i| slots(i).len(),
+                &|i| list(i).len(),
                 &write,
             );
         }
@@ -451,7 +448,7 @@ pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
     NeighbourSearch::new().nearest_pair_distance(positions)
 }
 
-/// The neighbour lists of a block of consecutive slots, as slots in ascending agent index.
+/// The neighbour lists of a block of consecutive slots, as agents in ascending original index.
 #[derive(Clone, Debug, Default)]
 struct Block {
     /// End of each slot's list in `neighbours`.
@@ -517,7 +514,7 @@ impl Block {
                 self.neighbours.reserve_exact(grown - len);
                 self.neighbours.resize(grown, 0);
             }
-            // each neighbour as (original index << 32 | slot), so that a plain sort orders by
+            // each neighbour as (original index << 32 | agent), so that a plain sort orders by
             // original index; scattered, every candidate is written and kept by advancing the
             // length
             self.keyed.resize(candidates, 0);
@@ -532,7 +529,7 @@ impl Block {
                     let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
                     let keep = in_range(d2, r2) & (t != slot);
                     if SCATTERED || keep {
-                        self.keyed[len] = u64::from(original(j)) << 32 | t as u64;
+                        self.keyed[len] = u64::from(original(j)) << 32 | u64::from(j);
                         len += usize::from(keep);
                     }
                 }
