@@ -19,6 +19,11 @@
 //! blocks and gather ranges only partition the work, the net is identical with or without it, for
 //! any pool size. [`NeighbourSearch::cell_order`] gives the cell order itself, for callers that
 //! store their agents in it.
+//!
+//! In open space the lists are built out to a skin beyond r and kept: while no agent has moved
+//! more than half the skin since, the next builds filter them by the predicate instead of
+//! scanning the grid again (Verlet lists; the module `skin` says when, and why the net is the
+//! same bit for bit).
 
 use core::ops::Range;
 
@@ -94,6 +99,11 @@ impl NeighbourSearch {
     /// edges; an infinite range joins every pair of finite agents. Agents with a NaN or infinite
     /// coordinate have no neighbours (and do not panic). A net made by
     /// [`ProximityNet::without_distances`] gets the same graph and no distances.
+    ///
+    /// The search keeps the lists of its last full build, out to 1.1 r, and serves the next
+    /// builds of the same number of agents, range and numbering from them while no agent has
+    /// moved more than 0.05 r since (a simulation's agents, step after step): the same net, in
+    /// about 0.6 of the time of a full build (10⁶ agents on a lattice).
     ///
     /// # Panics
     /// When `positions.len()` exceeds `u32::MAX`.
