@@ -385,6 +385,18 @@ impl ProximityNet {
 /// of 2D positions and velocities away).
 const SCATTERED: usize = 4096;
 
+#[cfg(test)]
+impl ProximityNet {
+    /// The neighbours of the agent stored at `s`, by original index, in list order.
+    pub(crate) fn named_neighbours(&self, s: usize) -> Vec<u32> {
+        self.graph
+            .neighbours(s)
+            .iter()
+            .map(|&t| self.numbering.original(t as usize) as u32)
+            .collect()
+    }
+}
+
 /// Agents sampled by [`ProximityNet::is_scattered`].
 const SAMPLED: usize = 256;
 

@@ -27,9 +27,11 @@
 
 use core::ops::Range;
 
-use flock_math::Vector;
+use flock_math::{Domain, Vector};
 
-use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance};
+use crate::net::{
+    ProximityNet, in_range, node_index, range_squared, squared_distance, squared_distance_in,
+};
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, join, map_chunks};
 use crate::skin::Skin;
@@ -158,15 +160,7 @@ impl NeighbourSearch {
         let grid = &self.grid;
         let blocks = &self.blocks[..grid.order.len().div_ceil(block_len)];
         // agent i's list: agents, in the net's order
-        let list = |i: usize| -> &[u32] {
-            let slot = grid.slot_of[i];
-            if slot == NO_SLOT {
-                return &[];
-            }
-            let slot = slot as usize;
-            let block = &blocks[slot >> block_shift];
-            &block.neighbours[block.edges(slot & (block_len - 1))]
-        };
+        let list = |i| listed(&grid.slot_of, i, block_shift, |b, k| blocks[b].list(k));
         // the distances recomputed with the predicate's own squared length (so bit-identical)
         if self.skin.has_kept() {
             // the lists reach beyond r, and the grid holds the positions of their build: the
@@ -195,21 +189,13 @@ impl NeighbourSearch {
                 &write,
             );
         } else {
-            let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
-                let list = list(i);
-                out.copy_from_slice(list);
-                let qi = positions[i];
-                for (l, &j) in lengths.iter_mut().zip(list) {
-                    *l = squared_distance(qi, positions[j as usize]).sqrt();
-                }
-            };
-            assemble(
-                n,
+            assemble_lists(
+                &Domain::Open,
+                positions,
                 offsets,
                 neighbours,
                 distances,
-                &|i| list(i).len(),
-                &write,
+                &list,
             );
         }
     }
@@ -399,6 +385,36 @@ pub(crate) fn assemble(
     );
 }
 
+/// [`assemble`] from lists that hold exactly each agent's neighbours (`list(i)`, in the net's
+/// order), each distance recomputed from `positions` in `domain` with the predicate's own squared
+/// length (so bit-identical).
+pub(crate) fn assemble_lists<'a, V: Vector>(
+    domain: &Domain<V>,
+    positions: &[V],
+    offsets: &mut Vec<usize>,
+    neighbours: &mut Vec<u32>,
+    distances: Option<&mut Vec<f64>>,
+    list: &(impl Fn(usize) -> &'a [u32] + Sync),
+) {
+    let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
+        let list = list(i);
+        out.copy_from_slice(list);
+        let qi = positions[i];
+        for (l, &j) in lengths.iter_mut().zip(list) {
+            *l = squared_distance_in(domain, qi, positions[j as usize]).sqrt();
+        }
+    };
+    let n = positions.len();
+    assemble(
+        n,
+        offsets,
+        neighbours,
+        distances,
+        &|i| list(i).len(),
+        &write,
+    );
+}
+
 /// Agents per task of the parallel gather.
 const GATHER_LEN: usize = 4096;
 
@@ -551,10 +567,28 @@ impl Block {
         }
     }
 
-    /// The range of the `k`-th slot's list in the block.
+    /// The `k`-th slot's list.
     #[inline]
-    fn edges(&self, k: usize) -> Range<usize> {
-        (if k == 0 { 0 } else { self.ends[k - 1] })..self.ends[k]
+    fn list(&self, k: usize) -> &[u32] {
+        &self.neighbours[if k == 0 { 0 } else { self.ends[k - 1] }..self.ends[k]]
+    }
+}
+
+/// Agent `i`'s list kept in blocks of 2^`block_shift` slots (`slot_of` the grid's slot of each
+/// agent), `list(block, k)` the `k`-th list of a block: empty for an agent in no cell.
+#[inline]
+pub(crate) fn listed<'a>(
+    slot_of: &[u32],
+    i: usize,
+    block_shift: u32,
+    list: impl Fn(usize, usize) -> &'a [u32],
+) -> &'a [u32] {
+    match slot_of[i] {
+        NO_SLOT => &[],
+        slot => list(
+            slot as usize >> block_shift,
+            slot as usize & ((1 << block_shift) - 1),
+        ),
     }
 }
 
@@ -1118,13 +1152,11 @@ mod tests {
         for (s, &k) in order.iter().enumerate() {
             let k = k as usize;
             assert_eq!(numbering.original(s), k);
-            let named: Vec<u32> = net
-                .graph()
-                .neighbours(s)
-                .iter()
-                .map(|&t| numbering.original(t as usize) as u32)
-                .collect();
-            assert_eq!(named, original.graph().neighbours(k), "agent {k}");
+            assert_eq!(
+                net.named_neighbours(s),
+                original.graph().neighbours(k),
+                "agent {k}"
+            );
             let bits = |net: &ProximityNet, i: usize| -> Vec<u64> {
                 net.graph()
                     .edge_range(i)

@@ -287,17 +287,11 @@ mod tests {
         search.build(&q, r, &mut net);
         assert!(built_anew(&search));
         // each list names the original net's agents in the original net's order
-        let numbering = net.numbering();
         for s in 0..q.len() {
-            let named: Vec<u32> = net
-                .graph()
-                .neighbours(s)
-                .iter()
-                .map(|&t| numbering.original(t as usize) as u32)
-                .collect();
+            let k = net.numbering().original(s);
             assert_eq!(
-                named,
-                original.graph().neighbours(numbering.original(s)),
+                net.named_neighbours(s),
+                original.graph().neighbours(k),
                 "agent {s}"
             );
         }

@@ -23,7 +23,8 @@ use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_dist
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
 use crate::search::{
-    NeighbourSearch, PAIR_CHUNK, assemble, candidate_tests, order_slots, padded_side,
+    NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists, candidate_tests, listed, order_slots,
+    padded_side,
 };
 
 /// log₂ of the slots per block of work.
@@ -328,9 +329,10 @@ impl TorusBlock {
         }
     }
 
+    /// The `k`-th slot's list.
     #[inline]
-    fn edges(&self, k: usize) -> Range<usize> {
-        (if k == 0 { 0 } else { self.ends[k - 1] })..self.ends[k]
+    fn list(&self, k: usize) -> &[u32] {
+        &self.neighbours[if k == 0 { 0 } else { self.ends[k - 1] }..self.ends[k]]
     }
 }
 
@@ -521,31 +523,8 @@ impl NeighbourSearch {
             block.fill::<V>(grid, size, r2, numbering, slots);
         });
         let blocks = &blocks[..count];
-        let list = |i: usize| -> &[u32] {
-            let slot = grid.slot_of[i];
-            if slot == NO_SLOT {
-                return &[];
-            }
-            let slot = slot as usize;
-            let block = &blocks[slot >> block_shift];
-            &block.neighbours[block.edges(slot & (block_len - 1))]
-        };
-        let write = |i: usize, out: &mut [u32], lengths: &mut [f64]| {
-            let list = list(i);
-            out.copy_from_slice(list);
-            let qi = positions[i];
-            for (l, &j) in lengths.iter_mut().zip(list) {
-                *l = squared_distance_in(domain, qi, positions[j as usize]).sqrt();
-            }
-        };
-        assemble(
-            n,
-            offsets,
-            neighbours,
-            distances,
-            &|i| list(i).len(),
-            &write,
-        );
+        let list = |i| listed(&grid.slot_of, i, block_shift, |b, k| blocks[b].list(k));
+        assemble_lists(domain, positions, offsets, neighbours, distances, &list);
     }
 
     /// Fills `out` (resized to `positions.len()`) with the distance from each agent to its nearest
