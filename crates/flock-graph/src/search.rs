@@ -35,7 +35,7 @@ use crate::net::{
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, join, map_chunks};
 use crate::skin::Skin;
-use crate::torus::{TorusBlock, TorusGrid};
+use crate::torus::TorusGrid;
 
 /// log₂ of the agents per block of work (any value gives the same net): 1,024 agents, a unit of
 /// rayon work with the `parallel` feature.
@@ -80,7 +80,7 @@ pub struct NeighbourSearch {
     /// The grid of a periodic box ([`NeighbourSearch::build_in`]).
     pub(crate) torus: TorusGrid,
     /// Neighbour lists of blocks of slots of the periodic grid.
-    pub(crate) torus_blocks: Vec<TorusBlock>,
+    pub(crate) torus_blocks: Vec<Block>,
     /// Whether `grid` and `blocks` hold lists the next open-space build may reuse.
     pub(crate) skin: Skin,
 }
@@ -474,15 +474,16 @@ pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
     NeighbourSearch::new().nearest_pair_distance(positions)
 }
 
-/// The neighbour lists of a block of consecutive slots, as agents in ascending original index.
+/// The neighbour lists of a block of consecutive slots of the open or the periodic grid, as
+/// agents in ascending original index.
 #[derive(Clone, Debug, Default)]
-struct Block {
+pub(crate) struct Block {
     /// End of each slot's list in `neighbours`.
-    ends: Vec<usize>,
-    /// The lists, one after the other, followed by unused space.
-    neighbours: Vec<u32>,
+    pub(crate) ends: Vec<usize>,
+    /// The lists, one after the other (followed by unused space in the open grid's blocks).
+    pub(crate) neighbours: Vec<u32>,
     /// Scratch: one slot's neighbours keyed by agent, to be sorted.
-    keyed: Vec<u64>,
+    pub(crate) keyed: Vec<u64>,
 }
 
 impl Block {
@@ -561,7 +562,7 @@ impl Block {
                 }
             }
             let (keyed, out) = (&mut self.keyed[..len], &mut self.neighbours[end..end + len]);
-            order_slots::<SCATTERED>(keyed, out);
+            order_agents::<SCATTERED>(keyed, out);
             end += len;
             self.ends.push(end);
         }
@@ -569,7 +570,7 @@ impl Block {
 
     /// The `k`-th slot's list.
     #[inline]
-    fn list(&self, k: usize) -> &[u32] {
+    pub(crate) fn list(&self, k: usize) -> &[u32] {
         &self.neighbours[if k == 0 { 0 } else { self.ends[k - 1] }..self.ends[k]]
     }
 }
@@ -592,16 +593,16 @@ pub(crate) fn listed<'a>(
     }
 }
 
-/// Writes the low halves of `keyed` (each `original index << 32 | slot or agent`, all distinct)
+/// Writes the low halves of `keyed` (each `original index << 32 | agent`, all distinct)
 /// into `out` in ascending key. A `SCATTERED` list of at most 16 places each key at its rank,
 /// the number of smaller keys: no branch depends on the keys, whose order a sort would
 /// mispredict. A list of [`RADIX_MIN`] or more (a dense crowd's) is sorted by radix on its
 /// original indices, which are distinct: the same order.
-pub(crate) fn order_slots<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u32]) {
+pub(crate) fn order_agents<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u32]) {
     if SCATTERED && keyed.len() <= 8 {
-        rank_slots::<8>(keyed, out);
+        rank_agents::<8>(keyed, out);
     } else if SCATTERED && keyed.len() <= 16 {
-        rank_slots::<16>(keyed, out);
+        rank_agents::<16>(keyed, out);
     } else {
         if keyed.len() >= RADIX_MIN {
             radsort::sort_by_key(keyed, |&key| (key >> 32) as u32);
@@ -614,14 +615,14 @@ pub(crate) fn order_slots<const SCATTERED: bool>(keyed: &mut [u64], out: &mut [u
     }
 }
 
-/// The shortest list [`order_slots`] sorts by radix (`radsort`, by the original index): measured
+/// The shortest list [`order_agents`] sorts by radix (`radsort`, by the original index): measured
 /// on lists of random original indices below 10⁶ (2026-11-28), radix takes 4.9 ns a key against
 /// pdqsort's 5.7 at 128 keys, 3.5 against 7.3 at 512, and loses below 96 (6.9 against 4.9 at 64).
 const RADIX_MIN: usize = 128;
 
-/// [`order_slots`] of at most `N` keys by their ranks among the original indices, counted over
+/// [`order_agents`] of at most `N` keys by their ranks among the original indices, counted over
 /// `N` lanes (those beyond the list hold `u32::MAX`, above every original index).
-fn rank_slots<const N: usize>(keyed: &[u64], out: &mut [u32]) {
+fn rank_agents<const N: usize>(keyed: &[u64], out: &mut [u32]) {
     let mut originals = [u32::MAX; N];
     for (lane, &key) in originals.iter_mut().zip(keyed) {
         *lane = (key >> 32) as u32;
@@ -631,7 +632,7 @@ fn rank_slots<const N: usize>(keyed: &[u64], out: &mut [u32]) {
             .iter()
             .map(|&other| usize::from(other < original))
             .sum();
-        // the slot: t < n ≤ u32::MAX
+        // the agent: below n ≤ u32::MAX
         out[rank] = key as u32;
     }
 }
@@ -1235,7 +1236,7 @@ mod tests {
     proptest::proptest! {
         /// A list of any length, its keys in any order, comes out in ascending original index
         /// whether placed by ranks (lists of up to 8 and of 9–16), sorted, or sorted by radix
-        /// (from 128), with its slots.
+        /// (from 128), with its agents.
         #[test]
         fn lists_come_out_in_ascending_original_index(
             originals in proptest::collection::hash_set(0..u32::MAX, 0..300),
@@ -1250,10 +1251,10 @@ mod tests {
             sorted.sort_unstable();
             let expected: Vec<u32> = sorted.iter().map(|&key| key as u32).collect();
             let mut scattered = vec![0; keyed.len()];
-            order_slots::<true>(&mut keyed.clone(), &mut scattered);
+            order_agents::<true>(&mut keyed.clone(), &mut scattered);
             proptest::prop_assert_eq!(&scattered, &expected);
             let mut along = vec![0; keyed.len()];
-            order_slots::<false>(&mut keyed.clone(), &mut along);
+            order_agents::<false>(&mut keyed.clone(), &mut along);
             proptest::prop_assert_eq!(&along, &expected);
         }
     }

@@ -23,8 +23,8 @@ use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_dist
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
 use crate::search::{
-    NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists, candidate_tests, listed, order_slots,
-    padded_side,
+    Block, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists, candidate_tests, listed,
+    order_agents, padded_side,
 };
 
 /// log₂ of the slots per block of work.
@@ -243,20 +243,9 @@ impl TorusGrid {
     }
 }
 
-/// The neighbour lists of a block of consecutive slots, as storage indices in ascending original
-/// index.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct TorusBlock {
-    /// End of each slot's list in `neighbours`.
-    ends: Vec<usize>,
-    neighbours: Vec<u32>,
-    /// Scratch: one slot's neighbours keyed by original index.
-    keyed: Vec<u64>,
-}
-
-impl TorusBlock {
-    /// The lists of `slots` (agents in the box of sides `size`).
-    fn fill<V: Vector>(
+impl Block {
+    /// The lists of `slots` of the periodic grid (agents in the box of sides `size`).
+    fn fill_in_box<V: Vector>(
         &mut self,
         grid: &TorusGrid,
         size: V,
@@ -266,21 +255,21 @@ impl TorusBlock {
     ) {
         let original = |j| numbering.original(j as usize) as u32;
         match (numbering.is_identity(), grid.shifts_are_exact(V::DIM)) {
-            (true, true) => self.fill_keyed::<V, false, true>(grid, size, r2, slots, |j| j),
-            (true, false) => self.fill_keyed::<V, false, false>(grid, size, r2, slots, |j| j),
-            (false, true) => self.fill_keyed::<V, true, true>(grid, size, r2, slots, original),
-            (false, false) => self.fill_keyed::<V, true, false>(grid, size, r2, slots, original),
+            (true, true) => self.fill_periodic::<V, false, true>(grid, size, r2, slots, |j| j),
+            (true, false) => self.fill_periodic::<V, false, false>(grid, size, r2, slots, |j| j),
+            (false, true) => self.fill_periodic::<V, true, true>(grid, size, r2, slots, original),
+            (false, false) => self.fill_periodic::<V, true, false>(grid, size, r2, slots, original),
         }
     }
 
-    /// [`TorusBlock::fill`] with the original index `original(j)` of each agent j. `SCATTERED`
+    /// [`Block::fill_in_box`] with the original index `original(j)` of each agent j. `SCATTERED`
     /// (agents stored by cell under a numbering, whose original indices are unrelated to the
     /// scan) builds each list without branching on whether a candidate is in range or where it
     /// ranks, as [`NeighbourSearch::build`] does. `SHIFTED` (when
     /// [`TorusGrid::shifts_are_exact`]) takes each candidate's displacement as its difference less
     /// its cell's shift, instead of its minimum image.
     #[inline]
-    fn fill_keyed<V: Vector, const SCATTERED: bool, const SHIFTED: bool>(
+    fn fill_periodic<V: Vector, const SCATTERED: bool, const SHIFTED: bool>(
         &mut self,
         grid: &TorusGrid,
         size: V,
@@ -324,15 +313,9 @@ impl TorusBlock {
             }
             let end = self.neighbours.len();
             self.neighbours.resize(end + len, 0);
-            order_slots::<SCATTERED>(&mut self.keyed[..len], &mut self.neighbours[end..]);
+            order_agents::<SCATTERED>(&mut self.keyed[..len], &mut self.neighbours[end..]);
             self.ends.push(self.neighbours.len());
         }
-    }
-
-    /// The `k`-th slot's list.
-    #[inline]
-    fn list(&self, k: usize) -> &[u32] {
-        &self.neighbours[if k == 0 { 0 } else { self.ends[k - 1] }..self.ends[k]]
     }
 }
 
@@ -515,12 +498,12 @@ impl NeighbourSearch {
         let slots = grid.order.len();
         let count = slots.div_ceil(block_len);
         if blocks.len() < count {
-            blocks.resize_with(count, TorusBlock::default);
+            blocks.resize_with(count, Block::default);
         }
         for_each_indexed_mut(&mut blocks[..count], 1, |b, block| {
             let start = b * block_len;
             let slots = start..start + (slots - start).min(block_len);
-            block.fill::<V>(grid, size, r2, numbering, slots);
+            block.fill_in_box::<V>(grid, size, r2, numbering, slots);
         });
         let blocks = &blocks[..count];
         let list = |i| listed(&grid.slot_of, i, block_shift, |b, k| blocks[b].list(k));
