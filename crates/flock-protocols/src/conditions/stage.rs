@@ -520,8 +520,15 @@ impl<V: Vector> Stage<V> {
         let mut links = core::mem::take(&mut self.links);
         let mut inputs = core::mem::take(&mut self.inputs);
         let this = &*self;
-        // the state of the neighbours without jitter, all of the same step
+        // the state of the neighbours without jitter, all of the same step, and the receivers'
+        // own states
         let delayed = this.history.slot(k, this.delay);
+        let own_lag = if comm.delayed == Delayed::All {
+            this.delay
+        } else {
+            0
+        };
+        let own_states = this.history.slot(k, own_lag);
         let all_heard = this.conditions.faults.is_none();
         let loss_by_length = matches!(comm.loss, Loss::Distance { .. });
         // a proximity net lists no agent as its own neighbour
@@ -529,23 +536,36 @@ impl<V: Vector> Stage<V> {
             all_heard && graph_range.is_none() && protocol.interaction_graph().is_none();
         // receiver i's own perceived state and what it hears, appended to `heard`: candidates,
         // each packet delayed, lost, dropped or replaced by the last value received
+        let original = |j: usize| numbering.original(j) as u32;
+        // the words of the jitter and loss draws of the links into the moving receivers of
+        // `block`, into `words`, receiver after receiver (the candidates of each counted before
+        // any leaves the list: the first words are the same)
+        let draw_words = |block: core::ops::Range<usize>, words: &mut [Vec<u32>; 2]| {
+            let receivers = block
+                .filter(|&i| this.moves(i))
+                .map(|i| (u64::from(original(i)), candidates.neighbours(i).len()));
+            let [jitter_words, loss_words] = words;
+            for (purpose, drawn, words) in [
+                (Purpose::Jitter, this.jitter > 0, jitter_words),
+                (Purpose::Loss, comm.loss_per_link(), loss_words),
+            ] {
+                words.clear();
+                if drawn {
+                    this.streams
+                        .link_words(purpose, k, receivers.clone(), words);
+                }
+            }
+        };
         let receive = |i: usize,
                        mut links_i: Option<&mut Vec<Link<V>>>,
                        js: &mut Vec<u32>,
-                       words: &mut [Vec<u32>; 2],
+                       [jitter_words, loss_words]: [&[u32]; 2],
                        old: &mut Vec<Link<V>>,
                        heard: &mut Vec<Perceived<V>>| {
-            let own_lag = if comm.delayed == Delayed::All {
-                this.delay
-            } else {
-                0
-            };
-            let (q, p) = this.history.at(k, own_lag, i);
-            let original = |j: usize| numbering.original(j) as u32;
             let own = Perceived {
                 agent: original(i),
-                position: q,
-                velocity: p,
+                position: own_states.0[i],
+                velocity: own_states.1[i],
             };
             // the candidates heard, in ascending original index (a net's and a graph's lists
             // are): the list itself unless
@@ -576,16 +596,6 @@ impl<V: Vector> Stage<V> {
             let first = heard.len();
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             // the link from i's m-th candidate takes word m of i's words of the step
-            let [jitter_words, loss_words] = words;
-            let (receiver, count) = (u64::from(original(i)), js.len());
-            if this.jitter > 0 {
-                this.streams
-                    .link_words(Purpose::Jitter, receiver, k, count, jitter_words);
-            }
-            if comm.loss_per_link() {
-                this.streams
-                    .link_words(Purpose::Loss, receiver, k, count, loss_words);
-            }
             for (m, &ju) in js.iter().enumerate() {
                 let (ju, j) = (ju as usize, original(ju as usize));
                 // what i keeps of the link (Gilbert–Elliott's channel, the state held), when
@@ -683,6 +693,9 @@ impl<V: Vector> Stage<V> {
             ends.clear();
             receivers.clear();
             let mut counts = Counts::default();
+            draw_words(start..start + inputs.len(), words);
+            // where the words of the next moving receiver start
+            let mut at = 0;
             for (r, u) in inputs.iter_mut().enumerate() {
                 let i = start + r;
                 let links_i = links.as_deref_mut().map(|l| &mut l[r]);
@@ -693,7 +706,9 @@ impl<V: Vector> Stage<V> {
                     *u = V::ZERO;
                     continue;
                 }
-                let (own, received) = receive(i, links_i, js, words, old, heard);
+                let its_words = words.each_ref().map(|w| w.get(at..).unwrap_or_default());
+                at += 4 * candidates.neighbours(i).len().div_ceil(4);
+                let (own, received) = receive(i, links_i, js, its_words, old, heard);
                 counts = counts + received;
                 owns.push(own);
                 ends.push(heard.len());
