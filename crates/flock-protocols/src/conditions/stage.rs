@@ -14,7 +14,7 @@ use super::faults;
 use super::history::History;
 use super::links::{Held, Link, lost};
 use super::noise::{OrnsteinUhlenbeck, SensorNoise};
-use super::stream::{Purpose, Streams, word_uniform, word_up_to};
+use super::stream::{Purpose, Streams, link_word_count, word_uniform, word_up_to};
 use crate::error::ParamError;
 use crate::integrator::{advance, controls_in};
 use crate::permutation::permute_in_place;
@@ -534,12 +534,11 @@ impl<V: Vector> Stage<V> {
         // a proximity net lists no agent as its own neighbour
         let unfiltered =
             all_heard && graph_range.is_none() && protocol.interaction_graph().is_none();
-        // receiver i's own perceived state and what it hears, appended to `heard`: candidates,
-        // each packet delayed, lost, dropped or replaced by the last value received
         let original = |j: usize| numbering.original(j) as u32;
         // the words of the jitter and loss draws of the links into the moving receivers of
         // `block`, into `words`, receiver after receiver (the candidates of each counted before
-        // any leaves the list: the first words are the same)
+        // any leaves the list: the first words are the same); a purpose not drawn leaves its
+        // words empty
         let draw_words = |block: core::ops::Range<usize>, words: &mut [Vec<u32>; 2]| {
             let receivers = block
                 .filter(|&i| this.moves(i))
@@ -556,6 +555,8 @@ impl<V: Vector> Stage<V> {
                 }
             }
         };
+        // receiver i's own perceived state and what it hears, appended to `heard`: candidates,
+        // each packet delayed, lost, dropped or replaced by the last value received
         let receive = |i: usize,
                        mut links_i: Option<&mut Vec<Link<V>>>,
                        js: &mut Vec<u32>,
@@ -707,7 +708,7 @@ impl<V: Vector> Stage<V> {
                     continue;
                 }
                 let its_words = words.each_ref().map(|w| w.get(at..).unwrap_or_default());
-                at += 4 * candidates.neighbours(i).len().div_ceil(4);
+                at += link_word_count(candidates.neighbours(i).len());
                 let (own, received) = receive(i, links_i, js, its_words, old, heard);
                 counts = counts + received;
                 owns.push(own);

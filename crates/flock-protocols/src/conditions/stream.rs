@@ -112,7 +112,7 @@ impl Streams {
 
     /// The words of the draws of the links into each of `receivers`, given as (receiver,
     /// candidate count), at `step` for `purpose` (packet loss, jitter), appended to `words`
-    /// receiver after receiver, each taking 4 ⌈count / 4⌉ words: the link from a receiver's m-th
+    /// receiver after receiver, each taking [`link_word_count`] words: the link from a receiver's m-th
     /// candidate sender, in ascending order of the senders' indices, takes 32-bit word m of the
     /// blocks (purpose, receiver, step, 0), (…, 1), …, four words a block. A receiver with 6
     /// candidates computes 2 blocks where one block per directed link would compute 6 and use
@@ -123,8 +123,7 @@ impl Streams {
     /// finally heard only computes more words: those of the first candidates are the same.
     ///
     /// The blocks of all the receivers are computed in runs before any is used, side by side
-    /// ([`blocks_in_place`]): a block is a chain of 10 dependent rounds, 15 ns one block after
-    /// the other and 8.3 ns side by side (measured on the machine of `docs/performance.md`).
+    /// ([`blocks_in_place`]).
     pub fn link_words(
         &self,
         purpose: Purpose,
@@ -136,7 +135,7 @@ impl Streams {
         let start = words.len();
         for (receiver, count) in receivers {
             let first = counter(purpose, receiver, step, 0);
-            for block in 0..count.div_ceil(4) {
+            for block in 0..link_word_count(count) / 4 {
                 debug_assert!(block < 1 << BLOCK_BITS, "2¹⁶ blocks drawn");
                 let mut counter = first;
                 counter[0] |= block as u32;
@@ -150,15 +149,25 @@ impl Streams {
     }
 }
 
+/// The words [`Streams::link_words`] gives a receiver with `count` candidates: 4 ⌈count / 4⌉,
+/// whole Philox blocks of four words.
+#[inline]
+#[must_use]
+pub fn link_word_count(count: usize) -> usize {
+    4 * count.div_ceil(4)
+}
+
 /// The blocks [`blocks_in_place`] computes in one run.
 const RUN: usize = 64;
 
 /// Each of `blocks` (at most [`RUN`]), a counter on entry, replaced by its Philox block under
 /// `key`. The counters are laid out word by word (four arrays of `blocks.len()` words) so that
-/// the compiler runs the lanes of the block function side by side in vector registers
-/// (measured: 8.3 ns a block against 15 one block after the other).
+/// the compiler runs the lanes of the block function side by side in vector registers: a block
+/// is a chain of 10 dependent rounds, 15 ns one block after the other and 8.3 ns side by side
+/// (docs/performance.md, "The link words side by side").
 #[inline]
 fn blocks_in_place(blocks: &mut [[u32; 4]], key: [u32; 2]) {
+    debug_assert!(blocks.len() <= RUN, "at most {RUN} blocks a run");
     let mut lanes = [[0u32; RUN]; 4];
     for (l, block) in blocks.iter().enumerate() {
         for (lane, &word) in lanes.iter_mut().zip(block) {
@@ -362,7 +371,7 @@ mod tests {
             let expected: Vec<u32> = (0..blocks).flat_map(|b| block(9, b)).collect();
             assert_eq!(words, expected, "{count} candidates take {blocks} blocks");
         }
-        // several receivers: each one's words in turn, 4 ⌈count / 4⌉ of them
+        // several receivers: each one's words in turn, link_word_count of them
         words.clear();
         s.link_words(Purpose::Loss, 77, [(9, 5), (3, 0), (12, 4)], &mut words);
         let expected: Vec<u32> = [(9, 0), (9, 1), (12, 0)]
