@@ -123,7 +123,7 @@ impl Streams {
     /// finally heard only computes more words: those of the first candidates are the same.
     ///
     /// The blocks of all the receivers are computed in runs before any is used, side by side
-    /// ([`blocks_in_place`]).
+    /// (`blocks_in_place`).
     pub fn link_words(
         &self,
         purpose: Purpose,
