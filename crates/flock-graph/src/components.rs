@@ -40,18 +40,19 @@ impl Components {
             }
         }
         // Label the roots in order of first appearance, i.e. of their component's smallest node.
-        let mut root_label = vec![u32::MAX; n];
-        let mut labels = Vec::with_capacity(n);
+        // A root's label is kept at its own place until the root itself is labelled (with the
+        // same label), so that no second array of n labels is needed.
+        let mut labels = vec![u32::MAX; n];
         let mut sizes = Vec::new();
         for i in 0..n {
             let root = sets.find(i);
-            if root_label[root] == u32::MAX {
-                root_label[root] = sizes.len() as u32;
+            if labels[root] == u32::MAX {
+                labels[root] = sizes.len() as u32;
                 sizes.push(0);
             }
-            let label = root_label[root];
+            let label = labels[root];
             sizes[label as usize] += 1;
-            labels.push(label);
+            labels[i] = label;
         }
         Self { labels, sizes }
     }

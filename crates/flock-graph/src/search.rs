@@ -52,10 +52,10 @@ const CELLS_PER_AGENT: usize = 4;
 
 /// Slot (and cell) of an agent with a non-finite coordinate: it is in no cell. Slots are below
 /// n ≤ `u32::MAX` and cells below [`MAX_CELLS`].
-const NO_SLOT: u32 = u32::MAX;
+pub(crate) const NO_SLOT: u32 = u32::MAX;
 
 /// Most cells of a grid, so that a cell index fits a `u32` other than [`NO_SLOT`].
-const MAX_CELLS: usize = u32::MAX as usize - 1;
+pub(crate) const MAX_CELLS: usize = u32::MAX as usize - 1;
 
 /// Reusable fixed-radius neighbour search. Its buffers (and those of the nets it fills) are kept
 /// between calls, so a warm search allocates nothing while the number of agents does not grow.
@@ -247,17 +247,80 @@ impl NeighbourSearch {
 /// Slots per task of the pair counts ([`NeighbourSearch::count_pairs_in`]).
 pub(crate) const PAIR_CHUNK: usize = 4096;
 
-/// Σ over the cells c of a grid (`cell_start` its slot ranges) of n_c · `candidates(c)`, the
+/// Σ over the cells c of a grid (`starts` its slot ranges) of n_c · `candidates(c)`, the
 /// agents of c times those of c's candidate cells: the ordered pairs (self pairs included) a scan
 /// of the grid tests, at least twice the tests of [`NeighbourSearch::count_pairs_in`]. Saturates.
-pub(crate) fn candidate_tests(cell_start: &[usize], candidates: impl Fn(usize) -> usize) -> usize {
-    cell_start
+pub(crate) fn candidate_tests(starts: &CellStarts, candidates: impl Fn(usize) -> usize) -> usize {
+    starts
+        .0
         .windows(2)
         .enumerate()
         .filter(|(_, w)| w[1] > w[0])
         .fold(0_usize, |tests, (cell, w)| {
-            tests.saturating_add((w[1] - w[0]).saturating_mul(candidates(cell)))
+            tests.saturating_add(((w[1] - w[0]) as usize).saturating_mul(candidates(cell)))
         })
+}
+
+/// Where the slots of each cell start, the agents sorted by cell: the slots of cell c are
+/// `start(c)..start(c + 1)`. Slots are below n ≤ `u32::MAX`, so 4 bytes a cell.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct CellStarts(Vec<u32>);
+
+impl CellStarts {
+    /// Sorts the agents of `positions` into `cells` cells by counting: `slot_of[i]`, agent i's
+    /// cell on entry ([`NO_SLOT`] for none), becomes its slot; `order` and `coords` get the agent
+    /// and its coordinates in each slot, the agents of a cell in ascending index.
+    pub(crate) fn sort<V: Vector>(
+        &mut self,
+        cells: usize,
+        slot_of: &mut [u32],
+        positions: &[V],
+        order: &mut Vec<u32>,
+        coords: &mut Vec<f64>,
+    ) {
+        // count into starts[c + 1], prefix-sum into starts, scatter with starts[c] as cursor
+        // (leaving it at the start of c + 1), then shift back
+        let starts = &mut self.0;
+        starts.clear();
+        starts.resize(cells + 1, 0);
+        for &c in slot_of.iter().filter(|&&c| c != NO_SLOT) {
+            starts[c as usize + 1] += 1;
+        }
+        for c in 0..cells {
+            starts[c + 1] += starts[c];
+        }
+        let placed = starts[cells] as usize;
+        order.resize(placed, 0);
+        coords.resize(placed * V::DIM, 0.0);
+        for (i, (slot_of, q)) in slot_of.iter_mut().zip(positions).enumerate() {
+            let c = *slot_of as usize;
+            if *slot_of != NO_SLOT {
+                let slot = starts[c] as usize;
+                starts[c] += 1;
+                order[slot] = node_index(i);
+                for (k, x) in coords[slot * V::DIM..(slot + 1) * V::DIM]
+                    .iter_mut()
+                    .enumerate()
+                {
+                    *x = q.coord(k);
+                }
+                *slot_of = node_index(slot);
+            }
+        }
+        starts.copy_within(0..cells, 1);
+        starts[0] = 0;
+    }
+
+    /// The first slot of `cell`; for `cell` = the number of cells, the number of slots.
+    #[inline]
+    pub(crate) fn start(&self, cell: usize) -> usize {
+        self.0[cell] as usize
+    }
+
+    /// The cell holding `slot`: the last one starting at or before it.
+    pub(crate) fn cell_of_slot(&self, slot: usize) -> usize {
+        self.0.partition_point(|&s| s as usize <= slot) - 1
+    }
 }
 
 impl NeighbourSearch {
@@ -282,7 +345,7 @@ impl NeighbourSearch {
             return Some(0);
         }
         let grid = self.regrid(positions, r);
-        let tests = candidate_tests(&grid.cell_start, |cell| {
+        let tests = candidate_tests(&grid.starts, |cell| {
             let c = grid.layout.coords(cell);
             grid.candidate_rows(c).iter().map(|row| row.len()).sum()
         });
@@ -478,8 +541,9 @@ pub fn nearest_pair_distance<V: Vector>(positions: &[V]) -> Option<f64> {
 /// agents in ascending original index.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Block {
-    /// End of each slot's list in `neighbours`.
-    pub(crate) ends: Vec<usize>,
+    /// End of each slot's list in `neighbours` (a block's lists hold fewer than 2³² agents: more
+    /// would need 16 GiB for the block alone, and as much for each block of its neighbours).
+    pub(crate) ends: Vec<u32>,
     /// The lists, one after the other (followed by unused space in the open grid's blocks).
     pub(crate) neighbours: Vec<u32>,
     /// Scratch: one slot's neighbours keyed by agent, to be sorted.
@@ -564,14 +628,22 @@ impl Block {
             let (keyed, out) = (&mut self.keyed[..len], &mut self.neighbours[end..end + len]);
             order_agents::<SCATTERED>(keyed, out);
             end += len;
-            self.ends.push(end);
+            self.push_end(end);
         }
+    }
+
+    /// Ends the current slot's list at `end`.
+    #[inline]
+    pub(crate) fn push_end(&mut self, end: usize) {
+        let end = u32::try_from(end).expect("a block's lists hold fewer than 2³² agents");
+        self.ends.push(end);
     }
 
     /// The `k`-th slot's list.
     #[inline]
     pub(crate) fn list(&self, k: usize) -> &[u32] {
-        &self.neighbours[if k == 0 { 0 } else { self.ends[k - 1] }..self.ends[k]]
+        let start = if k == 0 { 0 } else { self.ends[k - 1] };
+        &self.neighbours[start as usize..self.ends[k] as usize]
     }
 }
 
@@ -788,8 +860,8 @@ impl Layout {
 #[derive(Clone, Debug, Default)]
 struct CellGrid {
     layout: Layout,
-    /// The slots of cell c are `cell_start[c]..cell_start[c + 1]`.
-    cell_start: Vec<usize>,
+    /// The slots of each cell.
+    starts: CellStarts,
     /// Agent in each slot.
     order: Vec<u32>,
     /// Coordinates of the agent in each slot, m per slot (m = `V::DIM` of the last rebuild), for a
@@ -817,7 +889,7 @@ impl CandidateRows {
 
 /// The cell of each slot, for slots visited in ascending order.
 struct SlotCells<'a> {
-    cell_start: &'a [usize],
+    starts: &'a CellStarts,
     dims: [usize; 3],
     cell: usize,
     /// The coordinates of `cell`.
@@ -828,7 +900,7 @@ impl SlotCells<'_> {
     /// The cell of `slot`; `slot` must not decrease between calls.
     #[inline]
     fn cell_of(&mut self, slot: usize) -> usize {
-        while self.cell_start[self.cell + 1] <= slot {
+        while self.starts.start(self.cell + 1) <= slot {
             self.cell += 1;
             // the next cell in x-fastest order
             self.coords[0] += 1;
@@ -861,36 +933,13 @@ impl CellGrid {
         self.slot_of.resize(positions.len(), 0);
         fill_indexed(&mut self.slot_of, |i| layout.cell_of(positions[i]));
 
-        // Counting sort: count into cell_start[c + 1], prefix-sum into starts, scatter with
-        // cell_start[c] as cursor (leaving it at the start of c + 1), then shift back.
-        self.cell_start.clear();
-        self.cell_start.resize(cells + 1, 0);
-        for &c in self.slot_of.iter().filter(|&&c| c != NO_SLOT) {
-            self.cell_start[c as usize + 1] += 1;
-        }
-        for c in 0..cells {
-            self.cell_start[c + 1] += self.cell_start[c];
-        }
-        self.order.resize(bounds.finite, 0);
-        self.coords.resize(bounds.finite * V::DIM, 0.0);
-        for (i, (slot_of, q)) in self.slot_of.iter_mut().zip(positions).enumerate() {
-            let c = *slot_of;
-            if c != NO_SLOT {
-                let slot = self.cell_start[c as usize];
-                self.cell_start[c as usize] += 1;
-                self.order[slot] = node_index(i);
-                for (k, x) in self.coords[slot * V::DIM..(slot + 1) * V::DIM]
-                    .iter_mut()
-                    .enumerate()
-                {
-                    *x = q.coord(k);
-                }
-                // slot < n ≤ u32::MAX
-                *slot_of = slot as u32;
-            }
-        }
-        self.cell_start.copy_within(0..cells, 1);
-        self.cell_start[0] = 0;
+        self.starts.sort(
+            cells,
+            &mut self.slot_of,
+            positions,
+            &mut self.order,
+            &mut self.coords,
+        );
     }
 
     /// Whether every agent of `positions` (as many as at the last rebuild) is within squared
@@ -916,10 +965,9 @@ impl CellGrid {
 
     /// The cells of ascending slots from `slot` on.
     fn cells_of(&self, slot: usize) -> SlotCells<'_> {
-        // the last cell starting at or before `slot` (cell_start[0] = 0)
-        let cell = self.cell_start.partition_point(|&s| s <= slot) - 1;
+        let cell = self.starts.cell_of_slot(slot);
         SlotCells {
-            cell_start: &self.cell_start,
+            starts: &self.starts,
             dims: self.layout.dims,
             cell,
             coords: self.layout.coords(cell),
@@ -936,7 +984,8 @@ impl CellGrid {
         for z in cz.saturating_sub(1)..=(cz + 1).min(dz - 1) {
             for y in cy.saturating_sub(1)..=(cy + 1).min(dy - 1) {
                 let row = self.layout.cell([0, y, z]);
-                rows.rows[rows.count] = (self.cell_start[row + x0], self.cell_start[row + x1 + 1]);
+                rows.rows[rows.count] =
+                    (self.starts.start(row + x0), self.starts.start(row + x1 + 1));
                 rows.count += 1;
             }
         }
@@ -1049,7 +1098,7 @@ mod tests {
             cells >= 50,
             "the cap should still separate the agents: {cells} cells"
         );
-        assert_eq!(grid.cell_start.len(), cells + 1);
+        assert_eq!(grid.starts.0.len(), cells + 1);
         assert_eq!(grid.order.len(), 50);
     }
 
@@ -1089,7 +1138,7 @@ mod tests {
         assert_eq!(slot_cell[2], slot_cell[3]);
         assert_eq!(grid.cells_of(2).cell_of(2), slot_cell[2]);
         let first = slot_cell[0];
-        assert_eq!(grid.cell_start[first]..grid.cell_start[first + 1], 0..2);
+        assert_eq!(grid.starts.start(first)..grid.starts.start(first + 1), 0..2);
         for (slot, &i) in grid.order.iter().enumerate() {
             assert_eq!(grid.position::<DVec2>(slot), q[i as usize]);
         }

@@ -23,8 +23,8 @@ use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_dist
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
 use crate::search::{
-    Block, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists, candidate_tests, listed,
-    order_agents, padded_side,
+    Block, CellStarts, MAX_CELLS, NO_SLOT, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists,
+    candidate_tests, listed, order_agents, padded_side,
 };
 
 /// log₂ of the slots per block of work.
@@ -32,12 +32,6 @@ const BLOCK_SHIFT: u32 = 10;
 
 /// Cells allowed per agent.
 const CELLS_PER_AGENT: usize = 4;
-
-/// Slot (and cell) of an agent with a non-finite coordinate: it is in no cell.
-const NO_SLOT: u32 = u32::MAX;
-
-/// Most cells of a grid.
-const MAX_CELLS: usize = u32::MAX as usize - 1;
 
 /// A grid of the periodic box with the finite agents sorted by cell (counting sort, ascending
 /// index within a cell); position `s` in that order is a *slot*.
@@ -47,8 +41,8 @@ pub(crate) struct TorusGrid {
     dims: [usize; 3],
     /// Cell width L_k / c_k per axis.
     width: [f64; 3],
-    /// The slots of cell c are `cell_start[c]..cell_start[c + 1]`.
-    cell_start: Vec<usize>,
+    /// The slots of each cell.
+    starts: CellStarts,
     /// Agent in each slot.
     order: Vec<u32>,
     /// Coordinates of the agent in each slot, m per slot.
@@ -147,33 +141,13 @@ impl TorusGrid {
         };
         self.slot_of.resize(positions.len(), 0);
         fill_indexed(&mut self.slot_of, |i| cell_of(positions[i]));
-        self.cell_start.clear();
-        self.cell_start.resize(cells + 1, 0);
-        for &c in self.slot_of.iter().filter(|&&c| c != NO_SLOT) {
-            self.cell_start[c as usize + 1] += 1;
-        }
-        for c in 0..cells {
-            self.cell_start[c + 1] += self.cell_start[c];
-        }
-        self.order.resize(finite, 0);
-        self.coords.resize(finite * V::DIM, 0.0);
-        for (i, (slot_of, q)) in self.slot_of.iter_mut().zip(positions).enumerate() {
-            let c = *slot_of;
-            if c != NO_SLOT {
-                let slot = self.cell_start[c as usize];
-                self.cell_start[c as usize] += 1;
-                self.order[slot] = node_index(i);
-                for (k, x) in self.coords[slot * V::DIM..(slot + 1) * V::DIM]
-                    .iter_mut()
-                    .enumerate()
-                {
-                    *x = q.coord(k);
-                }
-                *slot_of = slot as u32;
-            }
-        }
-        self.cell_start.copy_within(0..cells, 1);
-        self.cell_start[0] = 0;
+        self.starts.sort(
+            cells,
+            &mut self.slot_of,
+            positions,
+            &mut self.order,
+            &mut self.coords,
+        );
     }
 
     /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
@@ -185,7 +159,7 @@ impl TorusGrid {
 
     /// The cell holding `slot`.
     fn cell_of_slot(&self, slot: usize) -> usize {
-        self.cell_start.partition_point(|&s| s <= slot) - 1
+        self.starts.cell_of_slot(slot)
     }
 
     /// The coordinates of `cell`.
@@ -211,7 +185,7 @@ impl TorusGrid {
             for &y in &ys[..ny] {
                 for &x in &xs[..nx] {
                     let cell = x + dx * (y + dy * z);
-                    let (a, b) = (self.cell_start[cell], self.cell_start[cell + 1]);
+                    let (a, b) = (self.starts.start(cell), self.starts.start(cell + 1));
                     if a < b {
                         out.ranges[out.count] = (a, b);
                         out.shifts[out.count] = [shift(0, cx, x), shift(1, cy, y), shift(2, cz, z)];
@@ -284,7 +258,7 @@ impl Block {
         let mut candidates = grid.candidates(grid.cell_coords(cell));
         let mut count = candidates.len();
         for slot in slots {
-            if slot >= grid.cell_start[cell + 1] {
+            if slot >= grid.starts.start(cell + 1) {
                 cell = grid.cell_of_slot(slot);
                 candidates = grid.candidates(grid.cell_coords(cell));
                 count = candidates.len();
@@ -314,7 +288,7 @@ impl Block {
             let end = self.neighbours.len();
             self.neighbours.resize(end + len, 0);
             order_agents::<SCATTERED>(&mut self.keyed[..len], &mut self.neighbours[end..]);
-            self.ends.push(self.neighbours.len());
+            self.push_end(self.neighbours.len());
         }
     }
 }
@@ -419,7 +393,7 @@ impl NeighbourSearch {
         let grid = &mut self.torus;
         grid.rebuild(size, positions, r);
         let grid = &*grid;
-        let tests = candidate_tests(&grid.cell_start, |cell| {
+        let tests = candidate_tests(&grid.starts, |cell| {
             grid.candidates(grid.cell_coords(cell)).len()
         });
         if tests > most_tests {
@@ -430,7 +404,7 @@ impl NeighbourSearch {
             let mut candidates = grid.candidates(grid.cell_coords(cell));
             let mut count = 0;
             for slot in slots {
-                if slot >= grid.cell_start[cell + 1] {
+                if slot >= grid.starts.start(cell + 1) {
                     cell = grid.cell_of_slot(slot);
                     candidates = grid.candidates(grid.cell_coords(cell));
                 }
