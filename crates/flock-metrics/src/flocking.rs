@@ -1,6 +1,6 @@
 //! The flocking metrics of TAC 2006, Section VIII.
 
-use flock_graph::parallel::{fill_indexed, join, map_chunks};
+use flock_graph::parallel::{join, map_chunks};
 use flock_graph::{Components, NeighbourSearch, Numbering, ProximityNet};
 use flock_math::{Domain, Vector, mean_of};
 
@@ -170,13 +170,15 @@ impl FlockMetrics {
         let numbering = net.numbering();
         let rest = || {
             let centre = domain.centre_of(numbering.ordered(q));
+            let edges = EdgeMetrics::of(domain, q, net, params);
+            let nearest = NearestNeighbours::of(domain, q, net, edges.shortest);
             (
-                EdgeMetrics::of(domain, q, net, params),
+                edges,
                 radius_about(domain, q, centre),
                 mismatch(numbering.ordered(p)),
                 polarisation_of(numbering.ordered(p)),
                 milling_about(domain, centre, numbering.ordered(q), numbering.ordered(p)),
-                NearestNeighbours::of(domain, q, net),
+                nearest,
             )
         };
         let (
@@ -482,8 +484,9 @@ struct NearestNeighbours {
 
 impl NearestNeighbours {
     /// From the net when every agent has a neighbour in it (its nearest is then its shortest
-    /// edge), otherwise from an exact search over all agents; the mean summed in original order.
-    fn of<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet) -> Self {
+    /// edge, and the least of them the net's shortest edge, `shortest_edge`), otherwise from an
+    /// exact search over all agents; the mean summed in original order.
+    fn of<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet, shortest_edge: f64) -> Self {
         let n = q.len();
         if n < 2 {
             return Self {
@@ -492,15 +495,19 @@ impl NearestNeighbours {
             };
         }
         let graph = net.graph();
-        let mut nearest = vec![f64::INFINITY; n];
         if graph.len() == n && (0..n).all(|i| graph.degree(i) > 0) {
-            fill_indexed(&mut nearest, |i| {
+            // no array of n distances: each is computed where the sum takes it
+            let nearest = |i| {
                 net.lengths_of_in(domain, i, q)
                     .fold(f64::INFINITY, f64::min)
-            });
-        } else {
-            NeighbourSearch::new().nearest_distances_in(domain, q, &mut nearest);
+            };
+            return Self {
+                mean: net.numbering().ordered_sum(n, nearest) / n as f64,
+                min: shortest_edge,
+            };
         }
+        let mut nearest = vec![f64::INFINITY; n];
+        NeighbourSearch::new().nearest_distances_in(domain, q, &mut nearest);
         Self {
             mean: net.numbering().ordered_sum(n, |s| nearest[s]) / n as f64,
             min: nearest.iter().copied().fold(f64::INFINITY, f64::min),
