@@ -267,17 +267,19 @@ pub(crate) fn candidate_tests(starts: &CellStarts, candidates: impl Fn(usize) ->
 pub(crate) struct CellStarts(Vec<u32>);
 
 impl CellStarts {
-    /// Sorts the agents of `positions` into `cells` cells by counting: `slot_of[i]`, agent i's
-    /// cell on entry ([`NO_SLOT`] for none), becomes its slot; `order` and `coords` get the agent
-    /// and its coordinates in each slot, the agents of a cell in ascending index.
+    /// Sorts the agents of `positions` into `cells` cells by counting, `cell_of(q)` the cell of
+    /// an agent at q ([`NO_SLOT`] for none): each agent's slot into `slot_of` (the agents of a
+    /// cell in ascending index), the agent in each slot and its coordinates into `order` and
+    /// `coords`.
     pub(crate) fn sort<V: Vector>(
         &mut self,
         cells: usize,
-        slot_of: &mut [u32],
         positions: &[V],
-        order: &mut Vec<u32>,
-        coords: &mut Vec<f64>,
+        cell_of: impl Fn(V) -> u32 + Sync,
+        (slot_of, order, coords): (&mut Vec<u32>, &mut Vec<u32>, &mut Vec<f64>),
     ) {
+        slot_of.resize(positions.len(), 0);
+        fill_indexed(slot_of, |i| cell_of(positions[i]));
         // count into starts[c + 1], prefix-sum into starts, scatter with starts[c] as cursor
         // (leaving it at the start of c + 1), then shift back
         let starts = &mut self.0;
@@ -930,16 +932,9 @@ impl CellGrid {
         let layout = Layout::new(&bounds, reach);
         let cells = layout.cells();
         self.layout = layout;
-        self.slot_of.resize(positions.len(), 0);
-        fill_indexed(&mut self.slot_of, |i| layout.cell_of(positions[i]));
-
-        self.starts.sort(
-            cells,
-            &mut self.slot_of,
-            positions,
-            &mut self.order,
-            &mut self.coords,
-        );
+        let sorted = (&mut self.slot_of, &mut self.order, &mut self.coords);
+        self.starts
+            .sort(cells, positions, |q| layout.cell_of(q), sorted);
     }
 
     /// Whether every agent of `positions` (as many as at the last rebuild) is within squared

@@ -139,15 +139,8 @@ impl TorusGrid {
             });
             (c[0] + dims_[0] * (c[1] + dims_[1] * c[2])) as u32
         };
-        self.slot_of.resize(positions.len(), 0);
-        fill_indexed(&mut self.slot_of, |i| cell_of(positions[i]));
-        self.starts.sort(
-            cells,
-            &mut self.slot_of,
-            positions,
-            &mut self.order,
-            &mut self.coords,
-        );
+        let sorted = (&mut self.slot_of, &mut self.order, &mut self.coords);
+        self.starts.sort(cells, positions, cell_of, sorted);
     }
 
     /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
