@@ -146,21 +146,25 @@ impl NeighbourSearch {
             let reach = self.skin.reach_for_build(r);
             self.grid.rebuild(positions, reach);
             let (grid, reach2) = (&self.grid, range_squared(reach));
-            let count = grid.order.len().div_ceil(block_len);
+            let count = grid.sorted.order.len().div_ceil(block_len);
             if self.blocks.len() < count {
                 self.blocks.resize_with(count, Block::default);
             }
             for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
                 let start = b * block_len;
-                let slots = start..start + (grid.order.len() - start).min(block_len);
+                let slots = start..start + (grid.sorted.order.len() - start).min(block_len);
                 block.fill::<V>(grid, reach2, numbering, slots);
             });
             self.skin.built(n, r, reach, stamp, block_shift);
         }
         let grid = &self.grid;
-        let blocks = &self.blocks[..grid.order.len().div_ceil(block_len)];
+        let blocks = &self.blocks[..grid.sorted.order.len().div_ceil(block_len)];
         // agent i's list: agents, in the net's order
-        let list = |i| listed(&grid.slot_of, i, block_shift, |b, k| blocks[b].list(k));
+        let list = |i| {
+            listed(&grid.sorted.slot_of, i, block_shift, |b, k| {
+                blocks[b].list(k)
+            })
+        };
         // the distances recomputed with the predicate's own squared length (so bit-identical)
         if self.skin.has_kept() {
             // the lists reach beyond r, and the grid holds the positions of their build: the
@@ -204,7 +208,7 @@ impl NeighbourSearch {
     /// grid over them (ascending index within a cell): agents near in that order are near in
     /// space. The order [`NeighbourSearch::build`] visits them in; its buffer is reused.
     pub fn cell_order<V: Vector>(&mut self, positions: &[V], r: f64) -> &[u32] {
-        &self.regrid(positions, r).order
+        &self.regrid(positions, r).sorted.order
     }
 
     /// The exact minimum distance over all pairs of finite agents, `None` when there are fewer
@@ -247,42 +251,41 @@ impl NeighbourSearch {
 /// Slots per task of the pair counts ([`NeighbourSearch::count_pairs_in`]).
 pub(crate) const PAIR_CHUNK: usize = 4096;
 
-/// Σ over the cells c of a grid (`starts` its slot ranges) of n_c · `candidates(c)`, the
-/// agents of c times those of c's candidate cells: the ordered pairs (self pairs included) a scan
-/// of the grid tests, at least twice the tests of [`NeighbourSearch::count_pairs_in`]. Saturates.
-pub(crate) fn candidate_tests(starts: &CellStarts, candidates: impl Fn(usize) -> usize) -> usize {
-    starts
-        .0
-        .windows(2)
-        .enumerate()
-        .filter(|(_, w)| w[1] > w[0])
-        .fold(0_usize, |tests, (cell, w)| {
-            tests.saturating_add(((w[1] - w[0]) as usize).saturating_mul(candidates(cell)))
-        })
+/// The agents of a grid (open or periodic) sorted by cell, by a counting sort with the agents of
+/// a cell in ascending index; position `s` in that order is a *slot*. Slots are below
+/// n ≤ `u32::MAX`, so a cell's start is 4 bytes.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct CellSort {
+    /// The slots of cell c are `starts[c]..starts[c + 1]`.
+    starts: Vec<u32>,
+    /// Agent in each slot.
+    pub(crate) order: Vec<u32>,
+    /// Coordinates of the agent in each slot, m per slot (m = `V::DIM` of the last sort), for a
+    /// contiguous candidate scan.
+    pub(crate) coords: Vec<f64>,
+    /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
+    pub(crate) slot_of: Vec<u32>,
 }
 
-/// Where the slots of each cell start, the agents sorted by cell: the slots of cell c are
-/// `start(c)..start(c + 1)`. Slots are below n ≤ `u32::MAX`, so 4 bytes a cell.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct CellStarts(Vec<u32>);
-
-impl CellStarts {
-    /// Sorts the agents of `positions` into `cells` cells by counting, `cell_of(q)` the cell of
-    /// an agent at q ([`NO_SLOT`] for none): each agent's slot into `slot_of` (the agents of a
-    /// cell in ascending index), the agent in each slot and its coordinates into `order` and
-    /// `coords`.
+impl CellSort {
+    /// Sorts the agents of `positions` into `cells` cells, `cell_of(q)` the cell of an agent at q
+    /// ([`NO_SLOT`] for none).
     pub(crate) fn sort<V: Vector>(
         &mut self,
         cells: usize,
         positions: &[V],
         cell_of: impl Fn(V) -> u32 + Sync,
-        (slot_of, order, coords): (&mut Vec<u32>, &mut Vec<u32>, &mut Vec<f64>),
     ) {
+        let Self {
+            starts,
+            order,
+            coords,
+            slot_of,
+        } = self;
         slot_of.resize(positions.len(), 0);
         fill_indexed(slot_of, |i| cell_of(positions[i]));
         // count into starts[c + 1], prefix-sum into starts, scatter with starts[c] as cursor
         // (leaving it at the start of c + 1), then shift back
-        let starts = &mut self.0;
         starts.clear();
         starts.resize(cells + 1, 0);
         for &c in slot_of.iter().filter(|&&c| c != NO_SLOT) {
@@ -295,10 +298,10 @@ impl CellStarts {
         order.resize(placed, 0);
         coords.resize(placed * V::DIM, 0.0);
         for (i, (slot_of, q)) in slot_of.iter_mut().zip(positions).enumerate() {
-            let c = *slot_of as usize;
-            if *slot_of != NO_SLOT {
-                let slot = starts[c] as usize;
-                starts[c] += 1;
+            let c = *slot_of;
+            if c != NO_SLOT {
+                let slot = starts[c as usize] as usize;
+                starts[c as usize] += 1;
                 order[slot] = node_index(i);
                 for (k, x) in coords[slot * V::DIM..(slot + 1) * V::DIM]
                     .iter_mut()
@@ -316,12 +319,32 @@ impl CellStarts {
     /// The first slot of `cell`; for `cell` = the number of cells, the number of slots.
     #[inline]
     pub(crate) fn start(&self, cell: usize) -> usize {
-        self.0[cell] as usize
+        self.starts[cell] as usize
     }
 
     /// The cell holding `slot`: the last one starting at or before it.
     pub(crate) fn cell_of_slot(&self, slot: usize) -> usize {
-        self.0.partition_point(|&s| s as usize <= slot) - 1
+        self.starts.partition_point(|&s| s as usize <= slot) - 1
+    }
+
+    /// The position of the agent in `slot`, bit-identical to its entry of the positions sorted.
+    #[inline]
+    pub(crate) fn position<V: Vector>(&self, slot: usize) -> V {
+        let c = &self.coords[slot * V::DIM..(slot + 1) * V::DIM];
+        V::from_fn(|k| c[k])
+    }
+
+    /// Σ over the cells c of n_c · `candidates(c)`, the agents of c times those of c's candidate
+    /// cells: the ordered pairs (self pairs included) a scan of the grid tests, at least twice
+    /// the tests of [`NeighbourSearch::count_pairs_in`]. Saturates.
+    pub(crate) fn candidate_tests(&self, candidates: impl Fn(usize) -> usize) -> usize {
+        self.starts
+            .windows(2)
+            .enumerate()
+            .filter(|(_, w)| w[1] > w[0])
+            .fold(0_usize, |tests, (cell, w)| {
+                tests.saturating_add(((w[1] - w[0]) as usize).saturating_mul(candidates(cell)))
+            })
     }
 }
 
@@ -347,24 +370,27 @@ impl NeighbourSearch {
             return Some(0);
         }
         let grid = self.regrid(positions, r);
-        let tests = candidate_tests(&grid.starts, |cell| {
+        let tests = grid.sorted.candidate_tests(|cell| {
             let c = grid.layout.coords(cell);
             grid.candidate_rows(c).iter().map(|row| row.len()).sum()
         });
         if tests > most_tests {
             return None;
         }
-        let counts = map_chunks(grid.order.len(), PAIR_CHUNK, |slots| {
+        let counts = map_chunks(grid.sorted.order.len(), PAIR_CHUNK, |slots| {
             let mut cells = grid.cells_of(slots.start);
             let mut count = 0;
             for slot in slots {
                 cells.cell_of(slot);
-                let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
+                let (i, qi) = (
+                    grid.sorted.order[slot] as usize,
+                    grid.sorted.position::<V>(slot),
+                );
                 for row in grid.candidate_rows(cells.coords()).iter() {
                     // each pair of slots once, from the lower one
                     for t in row.start.max(slot + 1)..row.end {
-                        let j = grid.order[t] as usize;
-                        let d2 = squared_distance(qi, grid.position::<V>(t));
+                        let j = grid.sorted.order[t] as usize;
+                        let d2 = squared_distance(qi, grid.sorted.position::<V>(t));
                         if in_range(d2, r2) && accept(i.min(j), i.max(j)) {
                             count += 1;
                         }
@@ -389,14 +415,14 @@ impl NeighbourSearch {
     ) {
         let grid = self.regrid(positions, reach);
         fill_indexed(found, |p| {
-            let slot = grid.slot_of[pending[p] as usize] as usize;
+            let slot = grid.sorted.slot_of[pending[p] as usize] as usize;
             let mut cells = grid.cells_of(slot);
             cells.cell_of(slot);
-            let qi = grid.position::<V>(slot);
+            let qi = grid.sorted.position::<V>(slot);
             let mut best = f64::INFINITY;
             for row in grid.candidate_rows(cells.coords()).iter() {
                 for t in row {
-                    let d2 = squared_distance(qi, grid.position::<V>(t));
+                    let d2 = squared_distance(qi, grid.sorted.position::<V>(t));
                     if t != slot && in_range(d2, threshold) && d2 < best {
                         best = d2;
                     }
@@ -597,7 +623,7 @@ impl Block {
                 (rows_of, rows) = (cell, grid.candidate_rows(cells.coords()));
                 candidates = rows.iter().map(|row| row.len()).sum();
             }
-            let qi = grid.position::<V>(slot);
+            let qi = grid.sorted.position::<V>(slot);
             // `neighbours` beyond `end` is only grown (and zeroed) when too short
             if self.neighbours.len() < end + candidates {
                 // grow by a quarter at least: fewer reallocations than exact growth, less
@@ -613,11 +639,11 @@ impl Block {
             self.keyed.resize(candidates, 0);
             let mut len = 0;
             for row in rows.iter() {
-                let coords = &grid.coords[row.start * V::DIM..row.end * V::DIM];
+                let coords = &grid.sorted.coords[row.start * V::DIM..row.end * V::DIM];
                 for ((t, c), &j) in row
                     .clone()
                     .zip(coords.chunks_exact(V::DIM))
-                    .zip(&grid.order[row])
+                    .zip(&grid.sorted.order[row])
                 {
                     let d2 = squared_distance(qi, V::from_fn(|k| c[k]));
                     let keep = in_range(d2, r2) & (t != slot);
@@ -862,15 +888,8 @@ impl Layout {
 #[derive(Clone, Debug, Default)]
 struct CellGrid {
     layout: Layout,
-    /// The slots of each cell.
-    starts: CellStarts,
-    /// Agent in each slot.
-    order: Vec<u32>,
-    /// Coordinates of the agent in each slot, m per slot (m = `V::DIM` of the last rebuild), for a
-    /// contiguous candidate scan.
-    coords: Vec<f64>,
-    /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
-    slot_of: Vec<u32>,
+    /// The agents sorted by cell.
+    sorted: CellSort,
 }
 
 /// The candidate slots of the agents of one cell: the runs of slots of the rows of up to 3^m
@@ -891,7 +910,7 @@ impl CandidateRows {
 
 /// The cell of each slot, for slots visited in ascending order.
 struct SlotCells<'a> {
-    starts: &'a CellStarts,
+    sorted: &'a CellSort,
     dims: [usize; 3],
     cell: usize,
     /// The coordinates of `cell`.
@@ -902,7 +921,7 @@ impl SlotCells<'_> {
     /// The cell of `slot`; `slot` must not decrease between calls.
     #[inline]
     fn cell_of(&mut self, slot: usize) -> usize {
-        while self.starts.start(self.cell + 1) <= slot {
+        while self.sorted.start(self.cell + 1) <= slot {
             self.cell += 1;
             // the next cell in x-fastest order
             self.coords[0] += 1;
@@ -932,9 +951,7 @@ impl CellGrid {
         let layout = Layout::new(&bounds, reach);
         let cells = layout.cells();
         self.layout = layout;
-        let sorted = (&mut self.slot_of, &mut self.order, &mut self.coords);
-        self.starts
-            .sort(cells, positions, |q| layout.cell_of(q), sorted);
+        self.sorted.sort(cells, positions, |q| layout.cell_of(q));
     }
 
     /// Whether every agent of `positions` (as many as at the last rebuild) is within squared
@@ -942,27 +959,23 @@ impl CellGrid {
     /// non-finite position (a NaN displacement is not within).
     fn moved_within<V: Vector>(&self, positions: &[V], limit: f64) -> bool {
         map_chunks(positions.len(), MOVED_CHUNK, |agents| {
-            agents.into_iter().all(|i| match self.slot_of[i] {
+            agents.into_iter().all(|i| match self.sorted.slot_of[i] {
                 NO_SLOT => !positions[i].is_finite(),
-                slot => squared_distance(self.position::<V>(slot as usize), positions[i]) <= limit,
+                slot => {
+                    squared_distance(self.sorted.position::<V>(slot as usize), positions[i])
+                        <= limit
+                }
             })
         })
         .into_iter()
         .all(|within| within)
     }
 
-    /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
-    #[inline]
-    fn position<V: Vector>(&self, slot: usize) -> V {
-        let c = &self.coords[slot * V::DIM..(slot + 1) * V::DIM];
-        V::from_fn(|k| c[k])
-    }
-
     /// The cells of ascending slots from `slot` on.
     fn cells_of(&self, slot: usize) -> SlotCells<'_> {
-        let cell = self.starts.cell_of_slot(slot);
+        let cell = self.sorted.cell_of_slot(slot);
         SlotCells {
-            starts: &self.starts,
+            sorted: &self.sorted,
             dims: self.layout.dims,
             cell,
             coords: self.layout.coords(cell),
@@ -980,7 +993,7 @@ impl CellGrid {
             for y in cy.saturating_sub(1)..=(cy + 1).min(dy - 1) {
                 let row = self.layout.cell([0, y, z]);
                 rows.rows[rows.count] =
-                    (self.starts.start(row + x0), self.starts.start(row + x1 + 1));
+                    (self.sorted.start(row + x0), self.sorted.start(row + x1 + 1));
                 rows.count += 1;
             }
         }
@@ -992,13 +1005,13 @@ impl CellGrid {
     fn min_squared_distance<V: Vector>(&self, threshold: f64) -> Option<f64> {
         let mut best: Option<f64> = None;
         let mut cells = self.cells_of(0);
-        for slot in 0..self.order.len() {
-            let (i, qi) = (self.order[slot], self.position::<V>(slot));
+        for slot in 0..self.sorted.order.len() {
+            let (i, qi) = (self.sorted.order[slot], self.sorted.position::<V>(slot));
             cells.cell_of(slot);
             for row in self.candidate_rows(cells.coords()).iter() {
                 for candidate in row {
-                    let d2 = squared_distance(qi, self.position::<V>(candidate));
-                    if self.order[candidate] > i && in_range(d2, threshold) {
+                    let d2 = squared_distance(qi, self.sorted.position::<V>(candidate));
+                    if self.sorted.order[candidate] > i && in_range(d2, threshold) {
                         best = Some(best.map_or(d2, |b| b.min(d2)));
                     }
                 }
@@ -1093,8 +1106,8 @@ mod tests {
             cells >= 50,
             "the cap should still separate the agents: {cells} cells"
         );
-        assert_eq!(grid.starts.0.len(), cells + 1);
-        assert_eq!(grid.order.len(), 50);
+        assert_eq!(grid.sorted.starts.len(), cells + 1);
+        assert_eq!(grid.sorted.order.len(), 50);
     }
 
     #[test]
@@ -1125,17 +1138,17 @@ mod tests {
         ];
         let mut grid = CellGrid::default();
         grid.rebuild(&q, 1.0);
-        assert_eq!(grid.order, [1, 3, 0, 2]);
-        assert_eq!(grid.slot_of, [2, 0, 3, 1]);
+        assert_eq!(grid.sorted.order, [1, 3, 0, 2]);
+        assert_eq!(grid.sorted.slot_of, [2, 0, 3, 1]);
         let mut cells = grid.cells_of(0);
         let slot_cell: Vec<usize> = (0..4).map(|slot| cells.cell_of(slot)).collect();
         assert_eq!(slot_cell[0], slot_cell[1]);
         assert_eq!(slot_cell[2], slot_cell[3]);
         assert_eq!(grid.cells_of(2).cell_of(2), slot_cell[2]);
         let first = slot_cell[0];
-        assert_eq!(grid.starts.start(first)..grid.starts.start(first + 1), 0..2);
-        for (slot, &i) in grid.order.iter().enumerate() {
-            assert_eq!(grid.position::<DVec2>(slot), q[i as usize]);
+        assert_eq!(grid.sorted.start(first)..grid.sorted.start(first + 1), 0..2);
+        for (slot, &i) in grid.sorted.order.iter().enumerate() {
+            assert_eq!(grid.sorted.position::<DVec2>(slot), q[i as usize]);
         }
     }
 
@@ -1149,8 +1162,8 @@ mod tests {
         ];
         let mut grid = CellGrid::default();
         grid.rebuild(&q, 2.0);
-        assert_eq!(grid.slot_of, [0, NO_SLOT, 1, NO_SLOT]);
-        assert_eq!(grid.order, [0, 2]);
+        assert_eq!(grid.sorted.slot_of, [0, NO_SLOT, 1, NO_SLOT]);
+        assert_eq!(grid.sorted.order, [0, 2]);
     }
 
     #[test]

@@ -23,8 +23,8 @@ use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_dist
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
 use crate::search::{
-    Block, CellStarts, MAX_CELLS, NO_SLOT, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists,
-    candidate_tests, listed, order_agents, padded_side,
+    Block, CellSort, MAX_CELLS, NO_SLOT, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists,
+    listed, order_agents, padded_side,
 };
 
 /// log₂ of the slots per block of work.
@@ -33,22 +33,15 @@ const BLOCK_SHIFT: u32 = 10;
 /// Cells allowed per agent.
 const CELLS_PER_AGENT: usize = 4;
 
-/// A grid of the periodic box with the finite agents sorted by cell (counting sort, ascending
-/// index within a cell); position `s` in that order is a *slot*.
+/// A grid of the periodic box, its finite agents sorted by cell ([`CellSort`]).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TorusGrid {
     /// Cells per axis (1 on the unused axis of 2D).
     dims: [usize; 3],
     /// Cell width L_k / c_k per axis.
     width: [f64; 3],
-    /// The slots of each cell.
-    starts: CellStarts,
-    /// Agent in each slot.
-    order: Vec<u32>,
-    /// Coordinates of the agent in each slot, m per slot.
-    coords: Vec<f64>,
-    /// Slot of each agent, [`NO_SLOT`] for non-finite ones (its cell while sorting).
-    slot_of: Vec<u32>,
+    /// The agents sorted by cell.
+    sorted: CellSort,
 }
 
 /// The slot ranges of up to 27 cells: a cell and its neighbours across the wrap, each once, with
@@ -139,20 +132,7 @@ impl TorusGrid {
             });
             (c[0] + dims_[0] * (c[1] + dims_[1] * c[2])) as u32
         };
-        let sorted = (&mut self.slot_of, &mut self.order, &mut self.coords);
-        self.starts.sort(cells, positions, cell_of, sorted);
-    }
-
-    /// The position of the agent in `slot`, bit-identical to its entry of `positions`.
-    #[inline]
-    fn position<V: Vector>(&self, slot: usize) -> V {
-        let c = &self.coords[slot * V::DIM..(slot + 1) * V::DIM];
-        V::from_fn(|k| c[k])
-    }
-
-    /// The cell holding `slot`.
-    fn cell_of_slot(&self, slot: usize) -> usize {
-        self.starts.cell_of_slot(slot)
+        self.sorted.sort(cells, positions, cell_of);
     }
 
     /// The coordinates of `cell`.
@@ -178,7 +158,7 @@ impl TorusGrid {
             for &y in &ys[..ny] {
                 for &x in &xs[..nx] {
                     let cell = x + dx * (y + dy * z);
-                    let (a, b) = (self.starts.start(cell), self.starts.start(cell + 1));
+                    let (a, b) = (self.sorted.start(cell), self.sorted.start(cell + 1));
                     if a < b {
                         out.ranges[out.count] = (a, b);
                         out.shifts[out.count] = [shift(0, cx, x), shift(1, cy, y), shift(2, cz, z)];
@@ -247,24 +227,24 @@ impl Block {
         self.ends.clear();
         self.neighbours.clear();
         // consecutive slots share their cell, and so its candidates
-        let mut cell = grid.cell_of_slot(slots.start);
+        let mut cell = grid.sorted.cell_of_slot(slots.start);
         let mut candidates = grid.candidates(grid.cell_coords(cell));
         let mut count = candidates.len();
         for slot in slots {
-            if slot >= grid.starts.start(cell + 1) {
-                cell = grid.cell_of_slot(slot);
+            if slot >= grid.sorted.start(cell + 1) {
+                cell = grid.sorted.cell_of_slot(slot);
                 candidates = grid.candidates(grid.cell_coords(cell));
                 count = candidates.len();
             }
             if self.keyed.len() < count {
                 self.keyed.resize(count, 0);
             }
-            let qi = grid.position::<V>(slot);
+            let qi = grid.sorted.position::<V>(slot);
             let mut len = 0;
             for (range, periods) in candidates.shifted() {
                 let shift = V::from_fn(|k| periods[k] * size.coord(k));
                 for t in range {
-                    let qt = grid.position::<V>(t);
+                    let qt = grid.sorted.position::<V>(t);
                     let d = if SHIFTED {
                         (qt - qi) - shift
                     } else {
@@ -272,7 +252,7 @@ impl Block {
                     };
                     let keep = in_range(d.length_squared(), r2) & (t != slot);
                     if SCATTERED || keep {
-                        let j = grid.order[t];
+                        let j = grid.sorted.order[t];
                         self.keyed[len] = u64::from(original(j)) << 32 | u64::from(j);
                         len += usize::from(keep);
                     }
@@ -386,27 +366,30 @@ impl NeighbourSearch {
         let grid = &mut self.torus;
         grid.rebuild(size, positions, r);
         let grid = &*grid;
-        let tests = candidate_tests(&grid.starts, |cell| {
-            grid.candidates(grid.cell_coords(cell)).len()
-        });
+        let tests = grid
+            .sorted
+            .candidate_tests(|cell| grid.candidates(grid.cell_coords(cell)).len());
         if tests > most_tests {
             return None;
         }
-        let counts = map_chunks(grid.order.len(), PAIR_CHUNK, |slots| {
-            let mut cell = grid.cell_of_slot(slots.start);
+        let counts = map_chunks(grid.sorted.order.len(), PAIR_CHUNK, |slots| {
+            let mut cell = grid.sorted.cell_of_slot(slots.start);
             let mut candidates = grid.candidates(grid.cell_coords(cell));
             let mut count = 0;
             for slot in slots {
-                if slot >= grid.starts.start(cell + 1) {
-                    cell = grid.cell_of_slot(slot);
+                if slot >= grid.sorted.start(cell + 1) {
+                    cell = grid.sorted.cell_of_slot(slot);
                     candidates = grid.candidates(grid.cell_coords(cell));
                 }
-                let (i, qi) = (grid.order[slot] as usize, grid.position::<V>(slot));
+                let (i, qi) = (
+                    grid.sorted.order[slot] as usize,
+                    grid.sorted.position::<V>(slot),
+                );
                 for range in candidates.iter() {
                     // each pair of slots once (every cell is a candidate once), from the lower one
                     for t in range.start.max(slot + 1)..range.end {
-                        let j = grid.order[t] as usize;
-                        let d = periodic_displacement(qi, grid.position::<V>(t), size);
+                        let j = grid.sorted.order[t] as usize;
+                        let d = periodic_displacement(qi, grid.sorted.position::<V>(t), size);
                         if in_range(d.length_squared(), r2) && accept(i.min(j), i.max(j)) {
                             count += 1;
                         }
@@ -431,7 +414,7 @@ impl NeighbourSearch {
             Domain::Open => self.cell_order(positions, r),
             Domain::Periodic { size } => {
                 self.torus.rebuild(*size, positions, r);
-                &self.torus.order
+                &self.torus.sorted.order
             }
         }
     }
@@ -462,7 +445,7 @@ impl NeighbourSearch {
         let (grid, blocks) = (&mut self.torus, &mut self.torus_blocks);
         grid.rebuild(size, positions, r);
         let grid = &*grid;
-        let slots = grid.order.len();
+        let slots = grid.sorted.order.len();
         let count = slots.div_ceil(block_len);
         if blocks.len() < count {
             blocks.resize_with(count, Block::default);
@@ -473,7 +456,11 @@ impl NeighbourSearch {
             block.fill_in_box::<V>(grid, size, r2, numbering, slots);
         });
         let blocks = &blocks[..count];
-        let list = |i| listed(&grid.slot_of, i, block_shift, |b, k| blocks[b].list(k));
+        let list = |i| {
+            listed(&grid.sorted.slot_of, i, block_shift, |b, k| {
+                blocks[b].list(k)
+            })
+        };
         assemble_lists(domain, positions, offsets, neighbours, distances, &list);
     }
 
@@ -562,15 +549,16 @@ impl NeighbourSearch {
                     grid.rebuild(*size, positions, if last { f64::INFINITY } else { reach });
                     let grid = &*grid;
                     fill_indexed(&mut found, |p| {
-                        let slot = grid.slot_of[pending[p] as usize] as usize;
-                        let qi = grid.position::<V>(slot);
+                        let slot = grid.sorted.slot_of[pending[p] as usize] as usize;
+                        let qi = grid.sorted.position::<V>(slot);
                         let mut best = f64::INFINITY;
                         for range in grid
-                            .candidates(grid.cell_coords(grid.cell_of_slot(slot)))
+                            .candidates(grid.cell_coords(grid.sorted.cell_of_slot(slot)))
                             .iter()
                         {
                             for t in range {
-                                let d2 = squared_distance_in(domain, qi, grid.position::<V>(t));
+                                let d2 =
+                                    squared_distance_in(domain, qi, grid.sorted.position::<V>(t));
                                 if t != slot && in_range(d2, threshold) && d2 < best {
                                     best = d2;
                                 }

@@ -715,6 +715,11 @@ impl<V: Vector> Stage<V> {
                 ends.push(heard.len());
                 receivers.push(r);
             }
+            // the receivers' offsets above follow the receivers `draw_words` drew for
+            debug_assert!(
+                words.iter().all(|w| w.is_empty() || w.len() == at),
+                "every moving receiver's words read where they were drawn"
+            );
             out.clear();
             out.resize(owns.len(), V::ZERO);
             let block = Perceptions { owns, heard, ends };
