@@ -13,7 +13,7 @@ use core::ops::Range;
 use core::sync::atomic::{AtomicU64, Ordering};
 use std::borrow::Cow;
 
-use crate::parallel::{chunked_sum, fill_indexed};
+use crate::parallel::{chunked_fold, fill_indexed};
 
 /// The original index of each stored agent and the storage index of each original one; the
 /// identity (storage index = original index) when empty.
@@ -191,22 +191,48 @@ impl Numbering {
 
     /// Σ_k value(s_k) over the `n` agents, k the original index and s_k its storage index: the
     /// values of chunks of 4,096 consecutive original indices added as running sums from +0, the
-    /// chunk sums then added in order ([`chunked_sum`]). The bits depend only on the values in
+    /// chunk sums then added in order ([`chunked_sum`](crate::parallel::chunked_sum)). The bits depend only on the values in
     /// original order, not on how the agents are stored, nor on the thread count.
     ///
     /// `value` is evaluated once per agent, in storage order (in parallel with the `parallel`
     /// feature): agents stored in space order read their neighbours from nearby memory. Agents
     /// stored out of order keep the values in a buffer of n `f64` until they are added.
     pub fn ordered_sum(&self, n: usize, value: impl Fn(usize) -> f64 + Sync) -> f64 {
-        let running = |values: &mut dyn Iterator<Item = f64>| values.fold(0.0, |sum, v| sum + v);
+        self.ordered_fold(n, value, |sum, _, v| sum + v, |total, sum| total + sum, 0.0)
+    }
+
+    /// [`Numbering::ordered_sum`] for any fold: `add(acc, s_k, value(s_k))` over the `n` agents
+    /// in ascending original index k within chunks of 4,096, from `zero`, and the chunks' results
+    /// then merged in order ([`chunked_fold`]). Several sums over the same agents thus take one
+    /// pass, each with the bits it has alone, however the agents are stored and whatever the
+    /// thread count. `add` is also given the agent's storage index, to look at that agent again
+    /// when its value calls for it.
+    ///
+    /// `value` is evaluated once per agent in storage order, as in [`Numbering::ordered_sum`];
+    /// agents stored out of order keep the values in a buffer of n `T`.
+    pub fn ordered_fold<T, S>(
+        &self,
+        n: usize,
+        value: impl Fn(usize) -> T + Sync,
+        add: impl Fn(S, usize, T) -> S + Sync,
+        merge: impl Fn(S, S) -> S,
+        zero: S,
+    ) -> S
+    where
+        T: Copy + Default + Send + Sync,
+        S: Copy + Send + Sync,
+    {
         if self.is_identity() {
-            return chunked_sum(n, |agents| running(&mut agents.map(&value)));
+            let chunk = |agents: Range<usize>| agents.fold(zero, |acc, s| add(acc, s, value(s)));
+            return chunked_fold(n, chunk, merge, zero);
         }
-        let mut values = vec![0.0; n];
+        let mut values = vec![T::default(); n];
         fill_indexed(&mut values, value);
-        chunked_sum(n, |originals| {
-            running(&mut self.stored_of(originals).map(|s| values[s]))
-        })
+        let chunk = |originals: Range<usize>| {
+            self.stored_of(originals)
+                .fold(zero, |acc, s| add(acc, s, values[s]))
+        };
+        chunked_fold(n, chunk, merge, zero)
     }
 
     /// Moves the agents: the agent at storage index `order[s]` goes to storage index s, for every
@@ -278,6 +304,14 @@ mod tests {
         assert_eq!(numbering, Numbering::identity());
     }
 
+    /// Running sums from +0 over chunks of 4,096 values, then the chunks' sums in order.
+    fn chunked_running_sum(xs: &[f64]) -> f64 {
+        xs.chunks(4096)
+            .map(|c| c.iter().fold(0.0, |s, &v| s + v))
+            .reduce(|a, b| a + b)
+            .unwrap()
+    }
+
     /// The sum has the bits of the values in original order, summed in chunks of 4,096, however
     /// the agents are stored.
     #[test]
@@ -286,13 +320,7 @@ mod tests {
         let values: Vec<f64> = (0..n)
             .map(|k| ((k * 7919) % 1000) as f64 * 0.1 + 1e-3)
             .collect();
-        let chunked = |xs: &[f64]| {
-            xs.chunks(4096)
-                .map(|c| c.iter().fold(0.0, |s, &v| s + v))
-                .reduce(|a, b| a + b)
-                .unwrap()
-        };
-        let expected = chunked(&values);
+        let expected = chunked_running_sum(&values);
         let identity = Numbering::identity();
         assert_eq!(
             identity.ordered_sum(n, |k| values[k]).to_bits(),
@@ -317,6 +345,39 @@ mod tests {
         );
         // a plain running sum of the stored values differs: the order matters
         assert_ne!(stored.iter().sum::<f64>().to_bits(), expected.to_bits());
+    }
+
+    /// Two sums and a least value in one fold have the bits of each alone, whatever the storage
+    /// order; `add` is given the storage index of the value it adds.
+    #[test]
+    fn a_fold_of_several_sums_has_the_bits_of_each_alone() {
+        let n = 9_000;
+        let values: Vec<f64> = (0..n)
+            .map(|k| ((k * 6151) % 977) as f64 * 0.3 - 91.7)
+            .collect();
+        let order: Vec<u32> = (0..n as u32).map(|s| (s * 7) % n as u32).collect();
+        for numbering in [Numbering::identity(), {
+            let mut permuted = Numbering::identity();
+            permuted.permute(&order);
+            permuted
+        }] {
+            let stored: Vec<f64> = (0..n).map(|s| values[numbering.original(s)]).collect();
+            let (sum, squares, least, visited) = numbering.ordered_fold(
+                n,
+                |s| [stored[s], stored[s] * stored[s]],
+                |(sum, squares, least, visited): (f64, f64, f64, usize), s, [v, v2]| {
+                    assert_eq!(v.to_bits(), stored[s].to_bits(), "the storage index of v");
+                    (sum + v, squares + v2, least.min(v), visited + 1)
+                },
+                |a, b| (a.0 + b.0, a.1 + b.1, a.2.min(b.2), a.3 + b.3),
+                (0.0, 0.0, f64::INFINITY, 0),
+            );
+            let squared: Vec<f64> = values.iter().map(|v| v * v).collect();
+            assert_eq!(sum.to_bits(), chunked_running_sum(&values).to_bits());
+            assert_eq!(squares.to_bits(), chunked_running_sum(&squared).to_bits());
+            assert_eq!(least, values.iter().copied().fold(f64::INFINITY, f64::min));
+            assert_eq!(visited, n);
+        }
     }
 
     #[test]

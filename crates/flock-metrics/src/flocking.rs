@@ -1,6 +1,6 @@
 //! The flocking metrics of TAC 2006, Section VIII.
 
-use flock_graph::parallel::{join, map_chunks};
+use flock_graph::parallel::join;
 use flock_graph::{Components, NeighbourSearch, Numbering, ProximityNet};
 use flock_math::{Domain, Vector, mean_of};
 
@@ -13,9 +13,6 @@ pub struct MetricParams {
     /// pair is an edge of the net.
     pub collision_distance: f64,
 }
-
-/// Agents per parallel chunk of the shortest edge and the close pairs.
-const EDGE_CHUNK: usize = 4096;
 
 /// One evaluation of every metric.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,8 +91,9 @@ impl FlockMetrics {
     /// ([`ProximityNet::without_distances`]): the edge lengths are the same bits either way. The
     /// states may be stored in any order with the net's [`Numbering`]: every sum runs in original
     /// order, so the metrics have the bits of the agents in original order. With the `parallel`
-    /// feature the components (union-find) are found while another thread measures the edges,
-    /// the cohesion radius and the velocity mismatch; each is computed as without it.
+    /// feature the components (union-find) are found while another thread measures the cohesion
+    /// radius, the velocity mismatch, the polarisation and the milling, and the edge lengths are
+    /// then measured in one pass on every thread; each is computed as without it.
     ///
     /// A net built by [`NeighbourSearch`] from `q` has the identity
     /// numbering: `q` and `p` are then simply in the order of the agents. A simulation that
@@ -166,38 +164,44 @@ impl FlockMetrics {
         if q.is_empty() {
             return Self::EMPTY;
         }
-        let components = || Components::of(net.graph());
         let numbering = net.numbering();
-        let rest = || {
-            let centre = domain.centre_of(numbering.ordered(q));
-            let edges = EdgeMetrics::of(domain, q, net, params);
-            let nearest = NearestNeighbours::of(domain, q, net, edges.shortest);
+        // the labels of the components are dropped before the edges' buffer is allocated
+        let connectivity = || {
+            let components = Components::of(net.graph());
             (
-                edges,
+                relative_connectivity(&components),
+                components.giant_share(),
+                components.count(),
+            )
+        };
+        let spread = || {
+            let centre = domain.centre_of(numbering.ordered(q));
+            (
                 radius_about(domain, q, centre),
                 mismatch(numbering.ordered(p)),
                 polarisation_of(numbering.ordered(p)),
                 milling_about(domain, centre, numbering.ordered(q), numbering.ordered(p)),
-                nearest,
             )
         };
         let (
-            components,
-            (edges, cohesion_radius, velocity_mismatch, polarisation, milling, nearest),
-        ) = join(components, rest);
+            (connectivity, giant_component, components),
+            (cohesion_radius, velocity_mismatch, polarisation, milling),
+        ) = join(connectivity, spread);
+        let edges = EdgeMetrics::of(domain, q, net, params);
+        let nearest = NearestNeighbours::of(domain, q, net, &edges);
         Self {
-            connectivity: relative_connectivity(&components),
-            giant_component: components.giant_share(),
-            components: components.count(),
+            connectivity,
+            giant_component,
+            components,
             cohesion_radius,
-            deviation_energy: edges.deviation_energy,
+            deviation_energy: edges.deviation_energy(net, params.d),
             velocity_mismatch,
             min_distance: if edges.shortest.is_finite() {
                 edges.shortest
             } else {
                 nearest.min
             },
-            collisions: edges.collisions,
+            collisions: edges.close / 2,
             polarisation,
             milling,
             nearest_neighbour_mean: nearest.mean,
@@ -314,19 +318,40 @@ impl FlockMetrics {
     }
 }
 
-/// The metrics of the edge lengths, from one pass over them: Ẽ, the shortest edge and the
-/// colliding pairs (behind [`FlockMetrics::measure`], [`deviation_energy`] and [`collisions`]).
+/// One agent's edge lengths l: Σ (l − d)² and the shortest (∞ without edges).
+#[derive(Clone, Copy, Debug, Default)]
+struct AgentLengths {
+    squared_errors: f64,
+    nearest: f64,
+}
+
+/// The metrics of the edge lengths, from one pass over them (behind [`FlockMetrics::measure`],
+/// [`deviation_energy`] and [`collisions`]): Ẽ, the sum of the agents' nearest edges, the
+/// shortest edge and the colliding pairs.
+#[derive(Clone, Copy, Debug)]
 struct EdgeMetrics {
-    deviation_energy: f64,
+    /// Σ_i Σ_j (l_ij − d)² over the directed edges, in original order of i.
+    squared_errors: f64,
+    /// Σ_i min_j l_ij in original order of i: ∞ when an agent has no edge.
+    nearest_sum: f64,
     /// The shortest edge, ∞ without edges.
     shortest: f64,
-    collisions: usize,
+    /// The directed edges shorter than the collision distance (each colliding pair twice).
+    close: usize,
 }
 
 impl EdgeMetrics {
-    /// One pass over the edges in storage order for the squared errors of each agent, added in
-    /// original order ([`Numbering::ordered_sum`]), and one, in chunks, for the shortest edge and
-    /// the close pairs (which do not depend on the order).
+    const ZERO: Self = Self {
+        squared_errors: 0.0,
+        nearest_sum: 0.0,
+        shortest: f64::INFINITY,
+        close: 0,
+    };
+
+    /// One pass over each agent's edges in storage order, the agents' sums added in original
+    /// order ([`Numbering::ordered_fold`]), so that each sum has the bits it has alone. Only an
+    /// agent whose nearest edge is shorter than the collision distance has its edges read again,
+    /// to count the close ones.
     fn of<V: Vector>(
         domain: &Domain<V>,
         q: &[V],
@@ -337,30 +362,45 @@ impl EdgeMetrics {
             params.collision_distance <= net.range(),
             "collision distance beyond the net's range"
         );
-        let (d, n) = (params.d, net.graph().len());
-        let sum = net.numbering().ordered_sum(n, |i| {
-            net.lengths_of_in(domain, i, q)
-                .fold(0.0, |sum, l| sum + (l - d) * (l - d))
-        });
-        let (shortest, close) = map_chunks(n, EDGE_CHUNK, |agents| {
-            agents.flat_map(|i| net.lengths_of_in(domain, i, q)).fold(
-                (f64::INFINITY, 0),
-                |(shortest, close), l| {
-                    let colliding = usize::from(l < params.collision_distance);
-                    (shortest.min(l), close + colliding)
+        let (d, c) = (params.d, params.collision_distance);
+        let lengths = |i| {
+            net.lengths_of_in(domain, i, q).fold(
+                AgentLengths {
+                    squared_errors: 0.0,
+                    nearest: f64::INFINITY,
+                },
+                |a, l| AgentLengths {
+                    squared_errors: a.squared_errors + (l - d) * (l - d),
+                    nearest: a.nearest.min(l),
                 },
             )
-        })
-        .into_iter()
-        .fold((f64::INFINITY, 0), |(s, c), (chunk_s, chunk_c)| {
-            (s.min(chunk_s), c + chunk_c)
-        });
+        };
+        let add = |m: Self, i, a: AgentLengths| Self {
+            squared_errors: m.squared_errors + a.squared_errors,
+            nearest_sum: m.nearest_sum + a.nearest,
+            shortest: m.shortest.min(a.nearest),
+            close: m.close
+                + if a.nearest < c {
+                    net.lengths_of_in(domain, i, q).filter(|&l| l < c).count()
+                } else {
+                    0
+                },
+        };
+        let merge = |m: Self, chunk: Self| Self {
+            squared_errors: m.squared_errors + chunk.squared_errors,
+            nearest_sum: m.nearest_sum + chunk.nearest_sum,
+            shortest: m.shortest.min(chunk.shortest),
+            close: m.close + chunk.close,
+        };
+        let n = net.graph().len();
+        net.numbering()
+            .ordered_fold(n, lengths, add, merge, Self::ZERO)
+    }
+
+    /// Ẽ = E / d² (TAC 2006 eq. 82) with E = Σ (l − d)² / (|E| + 1) over the directed edges.
+    fn deviation_energy(&self, net: &ProximityNet, d: f64) -> f64 {
         let edges = net.graph().directed_edge_count();
-        Self {
-            deviation_energy: sum / (edges as f64 + 1.0) / (d * d),
-            shortest,
-            collisions: close / 2,
-        }
+        self.squared_errors / (edges as f64 + 1.0) / (d * d)
     }
 }
 
@@ -483,10 +523,11 @@ struct NearestNeighbours {
 }
 
 impl NearestNeighbours {
-    /// From the net when every agent has a neighbour in it (its nearest is then its shortest
-    /// edge, and the least of them the net's shortest edge, `shortest_edge`), otherwise from an
-    /// exact search over all agents; the mean summed in original order.
-    fn of<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet, shortest_edge: f64) -> Self {
+    /// From the net's edges when every agent has a neighbour in it (its nearest is then its
+    /// shortest edge, summed in original order in `edges`, and the least of them the net's
+    /// shortest edge), otherwise from an exact search over all agents; the mean summed in
+    /// original order.
+    fn of<V: Vector>(domain: &Domain<V>, q: &[V], net: &ProximityNet, edges: &EdgeMetrics) -> Self {
         let n = q.len();
         if n < 2 {
             return Self {
@@ -496,14 +537,9 @@ impl NearestNeighbours {
         }
         let graph = net.graph();
         if graph.len() == n && (0..n).all(|i| graph.degree(i) > 0) {
-            // no array of n distances: each is computed where the sum takes it
-            let nearest = |i| {
-                net.lengths_of_in(domain, i, q)
-                    .fold(f64::INFINITY, f64::min)
-            };
             return Self {
-                mean: net.numbering().ordered_sum(n, nearest) / n as f64,
-                min: shortest_edge,
+                mean: edges.nearest_sum / n as f64,
+                min: edges.shortest,
             };
         }
         let mut nearest = vec![f64::INFINITY; n];
@@ -552,7 +588,7 @@ pub fn deviation_energy<V: Vector>(q: &[V], net: &ProximityNet, d: f64) -> f64 {
             collision_distance: 0.0,
         },
     )
-    .deviation_energy
+    .deviation_energy(net, d)
 }
 
 /// K̃ = K / n with K = ½ Σ ‖p_i − p_c‖² (TAC 2006 eq. 83); 0 for no agent.
@@ -624,7 +660,7 @@ pub fn collisions<V: Vector>(q: &[V], net: &ProximityNet, collision_distance: f6
         d: 1.0,
         collision_distance,
     };
-    EdgeMetrics::of(&Domain::Open, q, net, &params).collisions
+    EdgeMetrics::of(&Domain::Open, q, net, &params).close / 2
 }
 
 #[cfg(test)]
