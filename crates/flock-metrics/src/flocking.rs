@@ -375,26 +375,33 @@ impl EdgeMetrics {
                 },
             )
         };
-        let add = |m: Self, i, a: AgentLengths| Self {
-            squared_errors: m.squared_errors + a.squared_errors,
-            nearest_sum: m.nearest_sum + a.nearest,
-            shortest: m.shortest.min(a.nearest),
-            close: m.close
-                + if a.nearest < c {
-                    net.lengths_of_in(domain, i, q).filter(|&l| l < c).count()
-                } else {
-                    0
-                },
-        };
-        let merge = |m: Self, chunk: Self| Self {
-            squared_errors: m.squared_errors + chunk.squared_errors,
-            nearest_sum: m.nearest_sum + chunk.nearest_sum,
-            shortest: m.shortest.min(chunk.shortest),
-            close: m.close + chunk.close,
+        let add = |m: Self, i, a: AgentLengths| {
+            let close = if a.nearest < c {
+                net.lengths_of_in(domain, i, q).filter(|&l| l < c).count()
+            } else {
+                0
+            };
+            m.merge(Self {
+                squared_errors: a.squared_errors,
+                nearest_sum: a.nearest,
+                shortest: a.nearest,
+                close,
+            })
         };
         let n = net.graph().len();
         net.numbering()
-            .ordered_fold(n, lengths, add, merge, Self::ZERO)
+            .ordered_fold(n, lengths, add, Self::merge, Self::ZERO)
+    }
+
+    /// The metrics of the edges of `self` and then `other`: sums and counts added, the least
+    /// shortest edge.
+    fn merge(self, other: Self) -> Self {
+        Self {
+            squared_errors: self.squared_errors + other.squared_errors,
+            nearest_sum: self.nearest_sum + other.nearest_sum,
+            shortest: self.shortest.min(other.shortest),
+            close: self.close + other.close,
+        }
     }
 
     /// Ẽ = E / d² (TAC 2006 eq. 82) with E = Σ (l − d)² / (|E| + 1) over the directed edges.
