@@ -219,10 +219,13 @@ impl ProximityNet {
         self.graph.clear_for_rebuild();
     }
 
-    /// Gives the net the numbering of `other` (as [`Clone::clone_from`], reusing allocations);
-    /// the net is emptied until its next rebuild.
+    /// Gives the net the numbering of `other` (as [`Clone::clone_from`], reusing allocations, and
+    /// only when the two differ: equal stamps are equal numberings); the net is emptied until its
+    /// next rebuild.
     pub fn share_numbering(&mut self, other: &Self) {
-        self.numbering.clone_from(&other.numbering);
+        if self.numbering.stamp() != other.numbering.stamp() {
+            self.numbering.clone_from(&other.numbering);
+        }
         self.distances.clear();
         self.graph.clear_for_rebuild();
     }
@@ -477,6 +480,22 @@ mod tests {
         assert_eq!(distances.capacity(), capacity);
         assert_eq!(net.range(), 1.5);
         assert!(net.graph().is_empty());
+    }
+
+    /// A shared numbering follows every permutation of its source, and stays equal to it when
+    /// shared again without one.
+    #[test]
+    fn a_shared_numbering_follows_its_source() {
+        let (mut source, mut copy) = (ProximityNet::new(), ProximityNet::new());
+        for order in [[2, 0, 1, 3], [3, 2, 1, 0], [1, 0, 3, 2]] {
+            source.permute(&order);
+            copy.share_numbering(&source);
+            assert_eq!(copy.numbering(), source.numbering());
+            let kept = copy.numbering().clone();
+            copy.share_numbering(&source);
+            assert_eq!(copy.numbering(), &kept);
+            assert_eq!(copy.numbering().stamp(), source.numbering().stamp());
+        }
     }
 
     #[test]
