@@ -191,9 +191,8 @@ impl Numbering {
 
     /// Σ_k value(s_k) over the `n` agents, k the original index and s_k its storage index: the
     /// values of chunks of 4,096 consecutive original indices added as running sums from +0, the
-    /// chunk sums then added in order ([`chunked_sum`](crate::parallel::chunked_sum)). The bits
-    /// depend only on the values in original order, not on how the agents are stored, nor on the
-    /// thread count.
+    /// chunk sums then added in order ([`chunked_fold`]). The bits depend only on the values in
+    /// original order, not on how the agents are stored, nor on the thread count.
     ///
     /// `value` is evaluated once per agent, in storage order (in parallel with the `parallel`
     /// feature): agents stored in space order read their neighbours from nearby memory. Agents

@@ -113,15 +113,8 @@ pub fn map_chunks<T: Send>(
     (0..chunks).map(|c| f(range(c))).collect()
 }
 
-/// Indices per chunk of [`chunked_fold`] and [`chunked_sum`].
-const SUM_CHUNK: usize = 4096;
-
-/// Σ over `0..len` as running sums `f(range)` over chunks of 4,096 indices (in parallel with the
-/// `parallel` feature), added in chunk order: the same bits for any thread count, and the plain
-/// running sum when there is a single chunk.
-pub fn chunked_sum(len: usize, f: impl Fn(core::ops::Range<usize>) -> f64 + Sync) -> f64 {
-    chunked_fold(len, f, |total, sum| total + sum, 0.0)
-}
+/// Indices per chunk of [`chunked_fold`].
+const FOLD_CHUNK: usize = 4096;
 
 /// A fold over `0..len` in chunks of 4,096 indices: `f(range)` folds one chunk (in parallel with
 /// the `parallel` feature) and the chunks' results are merged in chunk order, from the first
@@ -133,7 +126,7 @@ pub fn chunked_fold<S: Send>(
     merge: impl Fn(S, S) -> S,
     empty: S,
 ) -> S {
-    let mut chunks = map_chunks(len, SUM_CHUNK, f).into_iter();
+    let mut chunks = map_chunks(len, FOLD_CHUNK, f).into_iter();
     match chunks.next() {
         Some(first) => chunks.fold(first, merge),
         None => empty,

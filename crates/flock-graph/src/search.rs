@@ -146,19 +146,18 @@ impl NeighbourSearch {
             let reach = self.skin.reach_for_build(r);
             self.grid.rebuild(positions, reach);
             let (grid, reach2) = (&self.grid, range_squared(reach));
-            let count = grid.sorted.order.len().div_ceil(block_len);
-            if self.blocks.len() < count {
-                self.blocks.resize_with(count, Block::default);
-            }
-            for_each_indexed_mut(&mut self.blocks[..count], 1, |b, block| {
-                let start = b * block_len;
-                let slots = start..start + (grid.sorted.order.len() - start).min(block_len);
-                block.fill::<V>(grid, reach2, numbering, slots);
-            });
+            Block::fill_all(
+                &mut self.blocks,
+                grid.sorted.slots(),
+                block_len,
+                |block, slots| {
+                    block.fill::<V>(grid, reach2, numbering, slots);
+                },
+            );
             self.skin.built(n, r, reach, stamp, block_shift);
         }
         let grid = &self.grid;
-        let blocks = &self.blocks[..grid.sorted.order.len().div_ceil(block_len)];
+        let blocks = &self.blocks[..grid.sorted.slots().div_ceil(block_len)];
         // agent i's list: agents, in the net's order
         let list = |i| {
             listed(&grid.sorted.slot_of, i, block_shift, |b, k| {
@@ -316,6 +315,12 @@ impl CellSort {
         starts[0] = 0;
     }
 
+    /// The number of slots: the finite agents sorted.
+    #[inline]
+    pub(crate) fn slots(&self) -> usize {
+        self.order.len()
+    }
+
     /// The first slot of `cell`; for `cell` = the number of cells, the number of slots.
     #[inline]
     pub(crate) fn start(&self, cell: usize) -> usize {
@@ -377,7 +382,7 @@ impl NeighbourSearch {
         if tests > most_tests {
             return None;
         }
-        let counts = map_chunks(grid.sorted.order.len(), PAIR_CHUNK, |slots| {
+        let counts = map_chunks(grid.sorted.slots(), PAIR_CHUNK, |slots| {
             let mut cells = grid.cells_of(slots.start);
             let mut count = 0;
             for slot in slots {
@@ -658,6 +663,26 @@ impl Block {
             end += len;
             self.push_end(end);
         }
+    }
+
+    /// The blocks of `slots` slots in runs of `block_len` (the last one shorter), in `blocks`
+    /// (grown as needed: their buffers are kept between builds), each filled in parallel by
+    /// `fill(block, its slots)`; the blocks in use.
+    pub(crate) fn fill_all(
+        blocks: &mut Vec<Self>,
+        slots: usize,
+        block_len: usize,
+        fill: impl Fn(&mut Self, Range<usize>) + Sync,
+    ) -> &[Self] {
+        let count = slots.div_ceil(block_len);
+        if blocks.len() < count {
+            blocks.resize_with(count, Self::default);
+        }
+        for_each_indexed_mut(&mut blocks[..count], 1, |b, block| {
+            let start = b * block_len;
+            fill(block, start..(start + block_len).min(slots));
+        });
+        &blocks[..count]
     }
 
     /// Ends the current slot's list at `end`.
@@ -1005,7 +1030,7 @@ impl CellGrid {
     fn min_squared_distance<V: Vector>(&self, threshold: f64) -> Option<f64> {
         let mut best: Option<f64> = None;
         let mut cells = self.cells_of(0);
-        for slot in 0..self.sorted.order.len() {
+        for slot in 0..self.sorted.slots() {
             let (i, qi) = (self.sorted.order[slot], self.sorted.position::<V>(slot));
             cells.cell_of(slot);
             for row in self.candidate_rows(cells.coords()).iter() {

@@ -21,7 +21,7 @@ use flock_math::{Domain, Vector, periodic_displacement};
 
 use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
-use crate::parallel::{fill_indexed, for_each_indexed_mut, map_chunks};
+use crate::parallel::{fill_indexed, map_chunks};
 use crate::search::{
     Block, CellSort, MAX_CELLS, NO_SLOT, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists,
     listed, order_agents, padded_side,
@@ -372,7 +372,7 @@ impl NeighbourSearch {
         if tests > most_tests {
             return None;
         }
-        let counts = map_chunks(grid.sorted.order.len(), PAIR_CHUNK, |slots| {
+        let counts = map_chunks(grid.sorted.slots(), PAIR_CHUNK, |slots| {
             let mut cell = grid.sorted.cell_of_slot(slots.start);
             let mut candidates = grid.candidates(grid.cell_coords(cell));
             let mut count = 0;
@@ -445,17 +445,9 @@ impl NeighbourSearch {
         let (grid, blocks) = (&mut self.torus, &mut self.torus_blocks);
         grid.rebuild(size, positions, r);
         let grid = &*grid;
-        let slots = grid.sorted.order.len();
-        let count = slots.div_ceil(block_len);
-        if blocks.len() < count {
-            blocks.resize_with(count, Block::default);
-        }
-        for_each_indexed_mut(&mut blocks[..count], 1, |b, block| {
-            let start = b * block_len;
-            let slots = start..start + (slots - start).min(block_len);
+        let blocks = Block::fill_all(blocks, grid.sorted.slots(), block_len, |block, slots| {
             block.fill_in_box::<V>(grid, size, r2, numbering, slots);
         });
-        let blocks = &blocks[..count];
         let list = |i| {
             listed(&grid.sorted.slot_of, i, block_shift, |b, k| {
                 blocks[b].list(k)
