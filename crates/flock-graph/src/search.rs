@@ -328,8 +328,20 @@ impl CellSort {
     }
 
     /// The cell holding `slot`: the last one starting at or before it.
-    pub(crate) fn cell_of_slot(&self, slot: usize) -> usize {
+    fn cell_of_slot(&self, slot: usize) -> usize {
         self.starts.partition_point(|&s| s as usize <= slot) - 1
+    }
+
+    /// The cells of ascending slots from `slot` on, in a grid of `dims` cells per axis (x
+    /// fastest, [`cell_coords`]): one search for the first, then a walk.
+    pub(crate) fn cells_from(&self, slot: usize, dims: [usize; 3]) -> SlotCells<'_> {
+        let cell = self.cell_of_slot(slot);
+        SlotCells {
+            sorted: self,
+            dims,
+            cell,
+            coords: cell_coords(cell, dims),
+        }
     }
 
     /// The position of the agent in `slot`, bit-identical to its entry of the positions sorted.
@@ -933,8 +945,8 @@ impl CandidateRows {
     }
 }
 
-/// The cell of each slot, for slots visited in ascending order.
-struct SlotCells<'a> {
+/// The cell of each slot, for slots visited in ascending order ([`CellSort::cells_from`]).
+pub(crate) struct SlotCells<'a> {
     sorted: &'a CellSort,
     dims: [usize; 3],
     cell: usize,
@@ -945,7 +957,7 @@ struct SlotCells<'a> {
 impl SlotCells<'_> {
     /// The cell of `slot`; `slot` must not decrease between calls.
     #[inline]
-    fn cell_of(&mut self, slot: usize) -> usize {
+    pub(crate) fn cell_of(&mut self, slot: usize) -> usize {
         while self.sorted.start(self.cell + 1) <= slot {
             self.cell += 1;
             // the next cell in x-fastest order
@@ -964,7 +976,7 @@ impl SlotCells<'_> {
 
     /// The coordinates of the cell last returned by [`SlotCells::cell_of`].
     #[inline]
-    fn coords(&self) -> [usize; 3] {
+    pub(crate) fn coords(&self) -> [usize; 3] {
         self.coords
     }
 }
@@ -998,13 +1010,7 @@ impl CellGrid {
 
     /// The cells of ascending slots from `slot` on.
     fn cells_of(&self, slot: usize) -> SlotCells<'_> {
-        let cell = self.sorted.cell_of_slot(slot);
-        SlotCells {
-            sorted: &self.sorted,
-            dims: self.layout.dims,
-            cell,
-            coords: self.layout.coords(cell),
-        }
+        self.sorted.cells_from(slot, self.layout.dims)
     }
 
     /// The slots of the agents of the cell with coordinates `[cx, cy, cz]` and of its adjacent

@@ -227,13 +227,15 @@ impl Block {
         self.ends.clear();
         self.neighbours.clear();
         // consecutive slots share their cell, and so its candidates
-        let mut cell = grid.sorted.cell_of_slot(slots.start);
-        let mut candidates = grid.candidates(grid.cell_coords(cell));
+        let mut cells = grid.sorted.cells_from(slots.start, grid.dims);
+        let mut cell = cells.cell_of(slots.start);
+        let mut candidates = grid.candidates(cells.coords());
         let mut count = candidates.len();
         for slot in slots {
-            if slot >= grid.sorted.start(cell + 1) {
-                cell = grid.sorted.cell_of_slot(slot);
-                candidates = grid.candidates(grid.cell_coords(cell));
+            let now = cells.cell_of(slot);
+            if now != cell {
+                cell = now;
+                candidates = grid.candidates(cells.coords());
                 count = candidates.len();
             }
             if self.keyed.len() < count {
@@ -373,13 +375,15 @@ impl NeighbourSearch {
             return None;
         }
         let counts = map_chunks(grid.sorted.slots(), PAIR_CHUNK, |slots| {
-            let mut cell = grid.sorted.cell_of_slot(slots.start);
-            let mut candidates = grid.candidates(grid.cell_coords(cell));
+            let mut cells = grid.sorted.cells_from(slots.start, grid.dims);
+            let mut cell = cells.cell_of(slots.start);
+            let mut candidates = grid.candidates(cells.coords());
             let mut count = 0;
             for slot in slots {
-                if slot >= grid.sorted.start(cell + 1) {
-                    cell = grid.sorted.cell_of_slot(slot);
-                    candidates = grid.candidates(grid.cell_coords(cell));
+                let now = cells.cell_of(slot);
+                if now != cell {
+                    cell = now;
+                    candidates = grid.candidates(cells.coords());
                 }
                 let (i, qi) = (
                     grid.sorted.order[slot] as usize,
@@ -545,7 +549,7 @@ impl NeighbourSearch {
                         let qi = grid.sorted.position::<V>(slot);
                         let mut best = f64::INFINITY;
                         for range in grid
-                            .candidates(grid.cell_coords(grid.sorted.cell_of_slot(slot)))
+                            .candidates(grid.sorted.cells_from(slot, grid.dims).coords())
                             .iter()
                         {
                             for t in range {
