@@ -191,21 +191,23 @@ impl TorusGrid {
 }
 
 impl Block {
-    /// The lists of `slots` of the periodic grid (agents in the box of sides `size`).
+    /// The lists of `slots` of the periodic grid (agents in the box of sides `size`), `scattered`
+    /// as [`CellSort::scattered`](crate::search::CellSort) says.
     fn fill_in_box<V: Vector>(
         &mut self,
         grid: &TorusGrid,
         size: V,
         r2: f64,
         numbering: &Numbering,
+        scattered: bool,
         slots: Range<usize>,
     ) {
         let original = |j| numbering.original(j as usize) as u32;
-        match (numbering.is_identity(), grid.shifts_are_exact(V::DIM)) {
-            (true, true) => self.fill_periodic::<V, false, true>(grid, size, r2, slots, |j| j),
-            (true, false) => self.fill_periodic::<V, false, false>(grid, size, r2, slots, |j| j),
-            (false, true) => self.fill_periodic::<V, true, true>(grid, size, r2, slots, original),
-            (false, false) => self.fill_periodic::<V, true, false>(grid, size, r2, slots, original),
+        match (scattered, grid.shifts_are_exact(V::DIM)) {
+            (false, true) => self.fill_periodic::<V, false, true>(grid, size, r2, slots, |j| j),
+            (false, false) => self.fill_periodic::<V, false, false>(grid, size, r2, slots, |j| j),
+            (true, true) => self.fill_periodic::<V, true, true>(grid, size, r2, slots, original),
+            (true, false) => self.fill_periodic::<V, true, false>(grid, size, r2, slots, original),
         }
     }
 
@@ -242,6 +244,8 @@ impl Block {
                 self.keyed.resize(count, 0);
             }
             let qi = grid.sorted.position::<V>(slot);
+            // a local slice: its pointer and length stay in registers across the stores
+            let keyed = &mut self.keyed[..count];
             let mut len = 0;
             for (range, periods) in candidates.shifted() {
                 let shift = V::from_fn(|k| periods[k] * size.coord(k));
@@ -255,7 +259,7 @@ impl Block {
                     let keep = in_range(d.length_squared(), r2) & (t != slot);
                     if SCATTERED || keep {
                         let j = grid.sorted.order[t];
-                        self.keyed[len] = u64::from(original(j)) << 32 | u64::from(j);
+                        keyed[len] = u64::from(original(j)) << 32 | u64::from(j);
                         len += usize::from(keep);
                     }
                 }
@@ -449,8 +453,9 @@ impl NeighbourSearch {
         let (grid, blocks) = (&mut self.torus, &mut self.torus_blocks);
         grid.rebuild(size, positions, r);
         let grid = &*grid;
+        let scattered = grid.sorted.scattered(numbering);
         let blocks = Block::fill_all(blocks, grid.sorted.slots(), block_len, |block, slots| {
-            block.fill_in_box::<V>(grid, size, r2, numbering, slots);
+            block.fill_in_box::<V>(grid, size, r2, numbering, scattered, slots);
         });
         let list = |i| {
             listed(&grid.sorted.slot_of, i, block_shift, |b, k| {
@@ -632,6 +637,8 @@ mod tests {
             search.build_on_torus(&domain, size, &q, 1.3, &mut net, block_shift);
             assert_eq!(net, expected, "blocks of 2^{block_shift}");
         }
+        // agents at random in their own order: the lists built without branching
+        assert!(search.torus.sorted.scattered(net.numbering()));
         #[cfg(feature = "parallel")]
         for threads in [1, 2, 3] {
             let pool = rayon::ThreadPoolBuilder::new()
