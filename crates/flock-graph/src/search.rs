@@ -58,11 +58,12 @@ pub(crate) const NO_SLOT: u32 = u32::MAX;
 pub(crate) const MAX_CELLS: usize = u32::MAX as usize - 1;
 
 /// The fewest agents numbered in their own order whose lists [`CellSort::scattered`] may build
-/// without branching. Measured on one thread (2026-11-28), agents numbered at random in a
-/// periodic box: the Vicsek workload at 400 agents the same either way, the boids-large one (400
-/// birds in a dense flock, lists of tens) 5 % slower without branching, because every candidate
-/// is written; Vicsek at 2,000 agents 7–10 % faster, at 5,000 and 10⁴ 26–32 % faster.
-const SCATTERED_MIN: usize = 1024;
+/// without branching: below, 2 m^(2/3) or m/8 slots is too large a share of the m slots to tell
+/// agents numbered at random from a lattice by 256 samples. Measured on one thread (2026-11-28),
+/// agents numbered at random in a periodic box, medians of 100 steps without branching against
+/// with: the Vicsek workload 30 % faster at 400 agents, 28–30 % at 2,000, 5,000 and 10⁴; the
+/// boids-large one (400 birds) 15 % faster.
+const SCATTERED_MIN: usize = 256;
 
 /// Reusable fixed-radius neighbour search. Its buffers (and those of the nets it fills) are kept
 /// between calls, so a warm search allocates nothing while the number of agents does not grow.
@@ -326,8 +327,8 @@ impl CellSort {
     /// Whether the lists of agents sorted by cell under `numbering` are built without branching
     /// ([`Block::fill`]): agents stored by cell under a numbering, or numbered in their own order
     /// but not along space. The latter is the case when most of 256 pairs of agents i and i + 1,
-    /// spread evenly, are at least 2 m^(2/3) slots apart (m the slots), as agents numbered at
-    /// random are. Agents numbered along space are closer: agents i and i + 1 of a lattice stored
+    /// spread evenly, are at least min(2 m^(2/3), m/8) slots apart (m the slots), as agents
+    /// numbered at random are (each pair with probability (1 − 1/8)² or more). Agents numbered along space are closer: agents i and i + 1 of a lattice stored
     /// row by row are neighbours, in the same cell or the next (a row of cells later at the end
     /// of a row of agents). Agents numbered at random in a box and left in that
     /// order (a simulation sorts them by cell only when their neighbours are far in memory) are
@@ -343,7 +344,7 @@ impl CellSort {
         if slots < SCATTERED_MIN {
             return false;
         }
-        let apart = 2.0 * (slots as f64).powf(2.0 / 3.0);
+        let apart = (2.0 * (slots as f64).powf(2.0 / 3.0)).min(slots as f64 / 8.0);
         // the slots of agents i and i + 1 (both with one)
         let n = self.slot_of.len();
         let gaps = (0..SAMPLED).filter_map(|k| {
@@ -657,8 +658,9 @@ impl Block {
     }
 
     /// [`Block::fill`] with the original index `original(j)` of each agent j. `SCATTERED` says
-    /// whether the original indices of agents near in space are unrelated (agents stored by cell
-    /// under a numbering): then whether a candidate is in range, and where it falls in its list,
+    /// whether the original indices of agents near in space are unrelated ([`CellSort::scattered`]:
+    /// agents stored by cell under a numbering, or in their own order but numbered at random):
+    /// then whether a candidate is in range, and where it falls in its list,
     /// are unpredictable to the processor, and the lists are built without branching on either
     /// (measured: 2D, 10⁶ agents at random, 220 → 172 ms per plain step on one thread). Agents
     /// stored in original order numbered along space follow the scan, whose branches the processor
@@ -1230,7 +1232,11 @@ mod tests {
         assert!(scattered(&shuffle(lattice(100, 1)), &identity));
         assert!(scattered(&shuffle(lattice(22, 22)), &identity));
         // too few to pay, whatever the order
-        assert!(!scattered(&shuffle(lattice(31, 1)), &identity));
+        assert!(!scattered(&shuffle(lattice(15, 1)), &identity));
+        assert!(scattered(&shuffle(lattice(20, 1)), &identity));
+        assert!(!scattered(&lattice(20, 1), &identity));
+        assert!(!scattered(&lattice(7, 7), &identity));
+        assert!(scattered(&shuffle(lattice(7, 7)), &identity));
         // stored by cell under a numbering: always
         let mut numbering = Numbering::identity();
         numbering.permute(&(0..961).rev().collect::<Vec<u32>>());

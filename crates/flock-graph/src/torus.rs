@@ -212,8 +212,8 @@ impl Block {
     }
 
     /// [`Block::fill_in_box`] with the original index `original(j)` of each agent j. `SCATTERED`
-    /// (agents stored by cell under a numbering, whose original indices are unrelated to the
-    /// scan) builds each list without branching on whether a candidate is in range or where it
+    /// (original indices unrelated to the scan: agents stored by cell under a numbering, or in
+    /// their own order but numbered at random) builds each list without branching on whether a candidate is in range or where it
     /// ranks, as [`NeighbourSearch::build`] does. `SHIFTED` (when
     /// [`TorusGrid::shifts_are_exact`]) takes each candidate's displacement as its difference less
     /// its cell's shift, instead of its minimum image.
