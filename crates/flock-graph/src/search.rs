@@ -325,16 +325,14 @@ impl CellSort {
     }
 
     /// Whether the lists of agents sorted by cell under `numbering` are built without branching
-    /// ([`Block::fill`]): agents stored by cell under a numbering, or numbered in their own order
-    /// but not along space. The latter is the case when most of 256 pairs of agents i and i + 1,
-    /// spread evenly, are at least min(2 m^(2/3), m/8) slots apart (m the slots), as agents
-    /// numbered at random are (each pair with probability (1 − 1/8)² or more). Agents numbered along space are closer: agents i and i + 1 of a lattice stored
-    /// row by row are neighbours, in the same cell or the next (a row of cells later at the end
-    /// of a row of agents). Agents numbered at random in a box and left in that
-    /// order (a simulation sorts them by cell only when their neighbours are far in memory) are
-    /// not. Then whether a candidate is in range, and where it ranks, is unpredictable to the
-    /// processor, and branching on it costs more than it saves; but not below
-    /// [`SCATTERED_MIN`] agents. Either way the lists are the same.
+    /// ([`Block::fill`]): for agents stored by cell under a numbering, and for agents in their own
+    /// order numbered at random (a simulation sorts them by cell only when their neighbours are
+    /// far in memory). The latter is told by 256 pairs of agents i and i + 1, spread evenly: most
+    /// are at least min(2 m^(2/3), m/8) slots apart (m the slots; each pair of agents numbered
+    /// at random with probability (7/8)² or more), where agents i and i + 1 of a lattice stored
+    /// row by row are in the same cell or the next. Whether a candidate is in range, and where it
+    /// ranks, is then unpredictable to the processor, and branching on it costs more than it
+    /// saves; not below [`SCATTERED_MIN`] agents. Either way the lists are the same.
     pub(crate) fn scattered(&self, numbering: &Numbering) -> bool {
         const SAMPLED: usize = 256;
         let slots = self.slots();
@@ -1219,24 +1217,23 @@ mod tests {
                 .collect()
         };
         let identity = Numbering::identity();
-        // numbered along space, row by row: a cell's agents within w (2D) or w² (3D) indices
-        assert!(!scattered(&lattice(100, 1), &identity));
-        assert!(!scattered(&lattice(22, 22), &identity));
-        // the same agents in an order unrelated to space
         let shuffle = |mut q: Vec<DVec3>| {
             use rand::SeedableRng;
             use rand::seq::SliceRandom;
             q.shuffle(&mut rand_pcg::Pcg64::seed_from_u64(3));
             q
         };
-        assert!(scattered(&shuffle(lattice(100, 1)), &identity));
-        assert!(scattered(&shuffle(lattice(22, 22)), &identity));
+        // numbered along space, row by row (agents i and i + 1 in one cell or the next), and
+        // the same agents in an order unrelated to space: 2D and 3D, from 343 to 10⁴ agents
+        for (w, layers) in [(100, 1), (22, 22), (20, 1), (7, 7)] {
+            assert!(!scattered(&lattice(w, layers), &identity), "{w}×{layers}");
+            assert!(
+                scattered(&shuffle(lattice(w, layers)), &identity),
+                "{w}×{layers}"
+            );
+        }
         // too few to pay, whatever the order
         assert!(!scattered(&shuffle(lattice(15, 1)), &identity));
-        assert!(scattered(&shuffle(lattice(20, 1)), &identity));
-        assert!(!scattered(&lattice(20, 1), &identity));
-        assert!(!scattered(&lattice(7, 7), &identity));
-        assert!(scattered(&shuffle(lattice(7, 7)), &identity));
         // stored by cell under a numbering: always
         let mut numbering = Numbering::identity();
         numbering.permute(&(0..961).rev().collect::<Vec<u32>>());

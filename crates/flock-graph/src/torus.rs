@@ -213,8 +213,8 @@ impl Block {
 
     /// [`Block::fill_in_box`] with the original index `original(j)` of each agent j. `SCATTERED`
     /// (original indices unrelated to the scan: agents stored by cell under a numbering, or in
-    /// their own order but numbered at random) builds each list without branching on whether a candidate is in range or where it
-    /// ranks, as [`NeighbourSearch::build`] does. `SHIFTED` (when
+    /// their own order but numbered at random) builds each list without branching on whether a
+    /// candidate is in range or where it ranks, as [`NeighbourSearch::build`] does. `SHIFTED` (when
     /// [`TorusGrid::shifts_are_exact`]) takes each candidate's displacement as its difference less
     /// its cell's shift, instead of its minimum image.
     #[inline]
@@ -230,16 +230,13 @@ impl Block {
         self.neighbours.clear();
         // consecutive slots share their cell, and so its candidates
         let mut cells = grid.sorted.cells_from(slots.start, grid.dims);
-        let mut cell = cells.cell_of(slots.start);
-        let mut candidates = grid.candidates(cells.coords());
-        let mut count = candidates.len();
+        let (mut candidates_of, mut candidates) = (usize::MAX, CandidateCells::default());
         for slot in slots {
-            let now = cells.cell_of(slot);
-            if now != cell {
-                cell = now;
-                candidates = grid.candidates(cells.coords());
-                count = candidates.len();
+            let cell = cells.cell_of(slot);
+            if cell != candidates_of {
+                (candidates_of, candidates) = (cell, grid.candidates(cells.coords()));
             }
+            let count = candidates.len();
             if self.keyed.len() < count {
                 self.keyed.resize(count, 0);
             }
@@ -380,14 +377,12 @@ impl NeighbourSearch {
         }
         let counts = map_chunks(grid.sorted.slots(), PAIR_CHUNK, |slots| {
             let mut cells = grid.sorted.cells_from(slots.start, grid.dims);
-            let mut cell = cells.cell_of(slots.start);
-            let mut candidates = grid.candidates(cells.coords());
+            let (mut candidates_of, mut candidates) = (usize::MAX, CandidateCells::default());
             let mut count = 0;
             for slot in slots {
-                let now = cells.cell_of(slot);
-                if now != cell {
-                    cell = now;
-                    candidates = grid.candidates(cells.coords());
+                let cell = cells.cell_of(slot);
+                if cell != candidates_of {
+                    (candidates_of, candidates) = (cell, grid.candidates(cells.coords()));
                 }
                 let (i, qi) = (
                     grid.sorted.order[slot] as usize,
