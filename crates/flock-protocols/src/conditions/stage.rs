@@ -535,6 +535,14 @@ impl<V: Vector> Stage<V> {
         let unfiltered =
             all_heard && graph_range.is_none() && protocol.interaction_graph().is_none();
         let original = |j: usize| numbering.original(j) as u32;
+        // the loss probability of links that are memoryless: each packet lost or not by its
+        // link's own word of the step, heard as sent `delay` steps ago, nothing kept of the link
+        let memoryless = match comm.loss {
+            Loss::None => Some(0.0),
+            Loss::Bernoulli { p } => Some(p),
+            Loss::Distance { .. } | Loss::GilbertElliott { .. } => None,
+        }
+        .filter(|_| this.jitter == 0 && !comm.symmetric && !keeps_links(&this.conditions));
         // the words of the jitter and loss draws of the links into the moving receivers of
         // `block`, into `words`, receiver after receiver (the candidates of each counted before
         // any leaves the list: the first words are the same); a purpose not drawn leaves its
@@ -590,11 +598,34 @@ impl<V: Vector> Stage<V> {
                 js
             };
             debug_assert!(js.is_sorted_by_key(|&j| original(j as usize)));
+            let first = heard.len();
+            // the loop after this one decides the same, one option at a time, at twice the cost
+            if let Some(p) = memoryless {
+                debug_assert!(links_i.is_none(), "memoryless links keep nothing");
+                for (m, &ju) in js.iter().enumerate() {
+                    if loss_words.get(m).is_some_and(|&w| word_uniform(w) < p) {
+                        continue;
+                    }
+                    let ju = ju as usize;
+                    heard.push(Perceived {
+                        agent: original(ju),
+                        position: domain.image_near(own.position, delayed.0[ju]),
+                        velocity: delayed.1[ju],
+                    });
+                }
+                let used = heard.len() - first;
+                let counts = Counts {
+                    candidates: js.len(),
+                    lost: js.len() - used,
+                    age: used as u64 * k.min(this.delay),
+                    used,
+                };
+                return (own, counts);
+            }
             old.clear();
             if let Some(links_i) = links_i.as_deref_mut() {
                 old.append(links_i);
             }
-            let first = heard.len();
             let (mut lost_count, mut age_sum) = (0usize, 0u64);
             // the link from i's m-th candidate takes word m of i's words of the step
             for (m, &ju) in js.iter().enumerate() {
