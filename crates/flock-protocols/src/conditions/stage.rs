@@ -599,9 +599,9 @@ impl<V: Vector> Stage<V> {
             };
             debug_assert!(js.is_sorted_by_key(|&j| original(j as usize)));
             let first = heard.len();
-            // the loop after this one decides the same, one option at a time, at twice the cost;
-            // here each candidate is written and kept if its packet arrives, without a branch on
-            // the loss draw (a lost packet, 1 in 10 at random, would be mispredicted)
+            // the loop after this one decides the same, one option at a time, at more cost; here
+            // each candidate is written and kept if its packet arrives, without a branch on the
+            // loss draw (lost packets come at random: the branch would be mispredicted)
             if let Some(p) = memoryless {
                 debug_assert!(links_i.is_none(), "memoryless links keep nothing");
                 heard.resize(first + js.len(), own);
