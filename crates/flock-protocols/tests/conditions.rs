@@ -700,6 +700,17 @@ fn a_communication_range_on_a_torus_reaches_across_the_wrap() {
     assert!(run(&ranged) == run(&Conditions::default()));
 }
 
+/// The final state's bits and the last step's readings of `sim` after `steps` steps.
+fn stepped<P: Protocol<DVec2>>(
+    mut sim: Simulation<DVec2, P>,
+    steps: usize,
+) -> (Vec<u64>, Vec<(&'static str, f64)>) {
+    for _ in 0..steps {
+        sim.step();
+    }
+    (bits(&sim.swarm()), sim.diagnostics())
+}
+
 /// Links that keep nothing and lose each packet by its own draw take a loop of their own; the
 /// general loop decides the same link by link. `Hold` with a maximal age of 0 sends them through
 /// the general loop (a held state is at least one step old, so it is never used: a lost packet
@@ -719,42 +730,36 @@ fn memoryless_links_take_the_bits_of_the_general_loop() {
     let (vicsek, torus) = vicsek_on_a_torus(20.0, 0.5, 9);
     let open = random_swarm::<DVec2>(1_500, 60.0, 1.0, 4);
     let on_torus = random_swarm::<DVec2>(2_000, 10.0, 0.03, 61);
+    let hold_nothing = WhenLost::Hold { max_age: 0.0 };
     for loss in [Loss::None, Loss::Bernoulli { p: 0.3 }] {
-        let [alpha_drop, alpha_hold] =
-            [WhenLost::Drop, WhenLost::Hold { max_age: 0.0 }].map(|when_lost| {
-                let protocol = Algorithm1 {
-                    alpha: papers_alpha(),
-                };
-                let mut sim =
-                    Simulation::new(protocol, Integrator::SymplecticEuler, open.clone(), 0.01)
-                        .expect("valid")
-                        .with_conditions(&conditions(loss, when_lost, 0.05), 3)
-                        .expect("valid");
-                for _ in 0..40 {
-                    sim.step();
-                }
-                (bits(&sim.swarm()), sim.diagnostics())
-            });
-        assert_eq!(alpha_drop, alpha_hold, "Algorithm 1, {loss:?}");
-        let [vicsek_drop, vicsek_hold] =
-            [WhenLost::Drop, WhenLost::Hold { max_age: 0.0 }].map(|when_lost| {
-                let mut sim = Simulation::new(
-                    vicsek.clone(),
-                    Integrator::SymplecticEuler,
-                    on_torus.clone(),
-                    1.0,
-                )
+        let alpha = |when_lost| {
+            let protocol = Algorithm1 {
+                alpha: papers_alpha(),
+            };
+            let sim = Simulation::new(protocol, Integrator::SymplecticEuler, open.clone(), 0.01)
                 .expect("valid")
-                .with_domain(torus)
-                .expect("a valid domain")
-                .with_conditions(&conditions(loss, when_lost, 2.0), 5)
+                .with_conditions(&conditions(loss, when_lost, 0.05), 3)
                 .expect("valid");
-                for _ in 0..30 {
-                    sim.step();
-                }
-                (bits(&sim.swarm()), sim.diagnostics())
-            });
-        assert_eq!(vicsek_drop, vicsek_hold, "Vicsek, {loss:?}");
+            stepped(sim, 40)
+        };
+        let on_a_torus = |when_lost| {
+            let sim = Simulation::new(
+                vicsek.clone(),
+                Integrator::SymplecticEuler,
+                on_torus.clone(),
+                1.0,
+            )
+            .expect("valid")
+            .with_domain(torus)
+            .expect("a valid domain")
+            .with_conditions(&conditions(loss, when_lost, 2.0), 5)
+            .expect("valid");
+            stepped(sim, 30)
+        };
+        let alpha_drop = alpha(WhenLost::Drop);
+        assert_eq!(alpha_drop, alpha(hold_nothing), "Algorithm 1, {loss:?}");
+        let vicsek_drop = on_a_torus(WhenLost::Drop);
+        assert_eq!(vicsek_drop, on_a_torus(hold_nothing), "Vicsek, {loss:?}");
         // the readings are those of the loss drawn and of the delay
         let (lost, age) = (alpha_drop.1[0].1, alpha_drop.1[1].1);
         let p = if loss == Loss::None { 0.0 } else { 0.3 };
