@@ -23,8 +23,8 @@ use crate::net::{ProximityNet, in_range, node_index, range_squared, squared_dist
 use crate::numbering::Numbering;
 use crate::parallel::{fill_indexed, map_chunks};
 use crate::search::{
-    Block, CellSort, MAX_CELLS, NO_SLOT, NeighbourSearch, PAIR_CHUNK, assemble, assemble_lists,
-    listed, order_agents, padded_side,
+    Block, CellSort, MAX_CELLS, NO_SLOT, NeighbourSearch, PAIR_CHUNK, SlotCells, assemble,
+    assemble_lists, listed, order_agents, padded_side,
 };
 
 /// log₂ of the slots per block of work.
@@ -170,6 +170,17 @@ impl TorusGrid {
         out
     }
 
+    /// The candidate cells of ascending slots from `slot` on: each cell's computed once, when
+    /// its first slot is reached (consecutive slots share their cell).
+    fn candidates_from(&self, slot: usize) -> SlotCandidates<'_> {
+        SlotCandidates {
+            grid: self,
+            cells: self.sorted.cells_from(slot, self.dims),
+            cell: usize::MAX,
+            candidates: CandidateCells::default(),
+        }
+    }
+
     /// Whether every axis of an m-dimensional box has at least three cells. Then the agents of a
     /// candidate cell within range r of an agent of cell c are at their minimum image once the
     /// cell's shift is taken off their difference, and every other candidate stays beyond r:
@@ -187,6 +198,29 @@ impl TorusGrid {
     /// from the threshold L/2 (|d| < r or |d − L| < r), so rounding cannot tell the two apart.
     fn shifts_are_exact(&self, dim: usize) -> bool {
         self.dims[..dim].iter().all(|&c| c >= 3)
+    }
+}
+
+/// The candidate cells of the slots of a [`TorusGrid`] visited in ascending order
+/// ([`TorusGrid::candidates_from`]).
+struct SlotCandidates<'a> {
+    grid: &'a TorusGrid,
+    cells: SlotCells<'a>,
+    /// The cell whose candidates `candidates` holds (`usize::MAX`: none yet).
+    cell: usize,
+    candidates: CandidateCells,
+}
+
+impl SlotCandidates<'_> {
+    /// The candidate cells of `slot`'s cell; `slot` must not decrease between calls.
+    #[inline]
+    fn of(&mut self, slot: usize) -> &CandidateCells {
+        let cell = self.cells.cell_of(slot);
+        if cell != self.cell {
+            self.cell = cell;
+            self.candidates = self.grid.candidates(self.cells.coords());
+        }
+        &self.candidates
     }
 }
 
@@ -229,13 +263,9 @@ impl Block {
         self.ends.clear();
         self.neighbours.clear();
         // consecutive slots share their cell, and so its candidates
-        let mut cells = grid.sorted.cells_from(slots.start, grid.dims);
-        let (mut candidates_of, mut candidates) = (usize::MAX, CandidateCells::default());
+        let mut walk = grid.candidates_from(slots.start);
         for slot in slots {
-            let cell = cells.cell_of(slot);
-            if cell != candidates_of {
-                (candidates_of, candidates) = (cell, grid.candidates(cells.coords()));
-            }
+            let candidates = walk.of(slot);
             let count = candidates.len();
             if self.keyed.len() < count {
                 self.keyed.resize(count, 0);
@@ -376,14 +406,10 @@ impl NeighbourSearch {
             return None;
         }
         let counts = map_chunks(grid.sorted.slots(), PAIR_CHUNK, |slots| {
-            let mut cells = grid.sorted.cells_from(slots.start, grid.dims);
-            let (mut candidates_of, mut candidates) = (usize::MAX, CandidateCells::default());
+            let mut walk = grid.candidates_from(slots.start);
             let mut count = 0;
             for slot in slots {
-                let cell = cells.cell_of(slot);
-                if cell != candidates_of {
-                    (candidates_of, candidates) = (cell, grid.candidates(cells.coords()));
-                }
+                let candidates = walk.of(slot);
                 let (i, qi) = (
                     grid.sorted.order[slot] as usize,
                     grid.sorted.position::<V>(slot),
@@ -548,10 +574,7 @@ impl NeighbourSearch {
                         let slot = grid.sorted.slot_of[pending[p] as usize] as usize;
                         let qi = grid.sorted.position::<V>(slot);
                         let mut best = f64::INFINITY;
-                        for range in grid
-                            .candidates(grid.sorted.cells_from(slot, grid.dims).coords())
-                            .iter()
-                        {
+                        for range in grid.candidates_from(slot).of(slot).iter() {
                             for t in range {
                                 let d2 =
                                     squared_distance_in(domain, qi, grid.sorted.position::<V>(t));
