@@ -571,6 +571,67 @@ fn every_condition_gives_the_same_bits_on_one_and_two_threads() {
     println!("diagnostics: {d1:?}");
 }
 
+/// A model that sets velocities (Vicsek on a torus, 5,000 particles) under a delay, Bernoulli
+/// loss and frozen faults, whose integrate step runs in parallel: the same bits and readings on
+/// one and two threads; the failed particles stand still and the others move at v₀.
+#[test]
+fn a_velocity_setting_model_under_conditions_is_the_same_on_one_and_two_threads() {
+    let (vicsek, torus) = vicsek_on_a_torus(35.0, 0.5, 9);
+    let start = random_swarm::<DVec2>(5_000, 17.5, 0.03, 62);
+    let conditions = Conditions {
+        faults: Some(Faults {
+            at: vec![],
+            rate: 0.02,
+            mode: FaultMode::Frozen,
+        }),
+        ..communicating(Communication {
+            delay: 2.0,
+            loss: Loss::Bernoulli { p: 0.2 },
+            ..Communication::default()
+        })
+    };
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool");
+        pool.install(|| {
+            let mut sim = Simulation::new(
+                vicsek.clone(),
+                Integrator::SymplecticEuler,
+                start.clone(),
+                1.0,
+            )
+            .expect("valid")
+            .with_domain(torus)
+            .expect("a valid domain")
+            .with_conditions(&conditions, 11)
+            .expect("valid");
+            for _ in 0..20 {
+                sim.step();
+            }
+            let failed = sim.failed().expect("faults").into_owned();
+            (
+                bits(&sim.swarm()),
+                sim.diagnostics(),
+                failed,
+                sim.swarm().into_owned(),
+            )
+        })
+    };
+    let (one, r1, failed, swarm) = run(1);
+    let (two, r2, ..) = run(2);
+    assert_eq!(one, two);
+    assert_eq!(r1, r2);
+    // about 1 − e^(−0.4) = 33 % failed over 20 s at a rate of 0.02 /s
+    let share = failed.iter().filter(|f| **f).count() as f64 / failed.len() as f64;
+    assert!((0.28..0.38).contains(&share), "{share}");
+    for (failed, v) in failed.iter().zip(&swarm.velocities) {
+        let expected = if *failed { 0.0 } else { 0.03 };
+        assert_abs_diff_eq!(v.length(), expected, epsilon = 1e-12);
+    }
+}
+
 /// Interrupted after 37 steps, the state serialized (RON, with the serde feature) and a new simulation resumed from
 /// it: the same bits as the uninterrupted run, for both integrators.
 #[test]

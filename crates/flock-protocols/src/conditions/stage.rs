@@ -158,11 +158,6 @@ pub fn bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
         return 0;
     }
     let vector = dim * 8;
-    let states = if perception_field(conditions).is_some() {
-        depth(conditions, h).unwrap_or(0) as usize + 1
-    } else {
-        0
-    };
     let ornstein_uhlenbeck = conditions
         .sensing
         .is_some_and(|s| matches!(s.noise, Noise::OrnsteinUhlenbeck { .. }));
@@ -172,10 +167,21 @@ pub fn bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
         .and_then(|d| d.wind.as_ref())
         .is_some_and(|w| w.gust > 0.0 && w.per_agent);
     let links = keeps_links(conditions);
-    (states + usize::from(ornstein_uhlenbeck)) * 2 * vector
+    delay_line_bytes_per_agent(conditions, dim, h)
+        + usize::from(ornstein_uhlenbeck) * 2 * vector
         + (1 + usize::from(holds_delivered(conditions)) + usize::from(gusts)) * vector
         + 1
         + usize::from(links) * size_of::<Vec<Link<V0>>>()
+}
+
+/// The part of [`bytes_per_agent`] that the delay line holds: D + 1 measured states of 2·dim
+/// f64 (D the delay and jitter in steps) when a condition changes perception, else none.
+#[must_use]
+pub fn delay_line_bytes_per_agent(conditions: &Conditions, dim: usize, h: f64) -> usize {
+    if conditions.is_ideal() || perception_field(conditions).is_none() {
+        return 0;
+    }
+    (depth(conditions, h).unwrap_or(0) as usize + 1) * 2 * dim * 8
 }
 
 /// Whether the delivered accelerations are kept apart from the commanded inputs: with a lag
@@ -925,16 +931,24 @@ impl<V: Vector> Stage<V> {
     }
 
     /// Integrate, for a model that sets velocities: its own update ([`advance`]) with the input
-    /// delivered; agents that do not move keep their position with zero velocity.
-    fn set_velocities(&mut self, swarm: &mut Swarm<V>, domain: &Domain<V>, update: Update) {
-        for i in 0..swarm.len() {
-            let (q, p) = (swarm.positions[i], swarm.velocities[i]);
-            (swarm.positions[i], swarm.velocities[i]) = if self.moves(i) {
-                advance(update, domain, self.h, q, p, self.delivered()[i])
-            } else {
-                (q, V::ZERO)
-            };
-        }
+    /// delivered; agents that do not move keep their position with zero velocity. In parallel
+    /// with the `parallel` feature (each agent's update reads its own state alone).
+    fn set_velocities(&self, swarm: &mut Swarm<V>, domain: &Domain<V>, update: Update) {
+        let delivered = self.delivered();
+        let n = swarm.len();
+        for_each_agent(
+            &mut swarm.positions,
+            &mut swarm.velocities,
+            &mut vec![(); n],
+            |i, q, p, ()| {
+                (*q, *p) = if self.moves(i) {
+                    advance(update, domain, self.h, *q, *p, delivered[i])
+                } else {
+                    (*q, V::ZERO)
+                };
+                0
+            },
+        );
     }
 }
 
