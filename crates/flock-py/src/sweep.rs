@@ -66,13 +66,19 @@ pub fn sweep_load(
 /// `(index, id, fields, wall_time)` of run `index` of the self-contained sweep `text`, run on one
 /// thread with the GIL released: the row `flocking sweep` writes for it — its inputs from
 /// `controls` when given ([`PythonControls`]; an exception it raises is raised again, no row).
+///
+/// With `check` (a worker of an executor the caller chose, whose machine the sweep's own check
+/// did not see), the run's estimate, its start counted, must first fit in the memory of the
+/// machine it landed on: `MemoryError` naming the run and the figures otherwise, before
+/// anything is allocated, instead of a worker killed for its memory.
 #[pyfunction]
-#[pyo3(signature = (text, index, controls = None))]
+#[pyo3(signature = (text, index, controls = None, check = false))]
 pub fn sweep_run(
     py: Python<'_>,
     text: &str,
     index: usize,
     controls: Option<Py<PyAny>>,
+    check: bool,
 ) -> PyResult<(usize, String, Vec<String>, f64)> {
     let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     let runs = sweep.runs();
@@ -82,6 +88,16 @@ pub fn sweep_run(
             runs.len()
         )));
     };
+    if check && let Ok(scenario) = sweep.scenario(spec) {
+        let outputs = flocking::estimate::Outputs::NONE;
+        crate::errors::check_resources(py, &scenario, &outputs, None).map_err(|e| {
+            pyo3::exceptions::PyMemoryError::new_err(format!(
+                "run {index} ({}) on the worker that took it: {}",
+                spec.id(&sweep.axes),
+                e.value(py)
+            ))
+        })?;
+    }
     let controls = match (controls, sweep.scenario(spec)) {
         (Some(f), Ok(scenario)) => Some(PythonControls::new(f, &scenario)),
         _ => None,

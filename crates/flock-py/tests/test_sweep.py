@@ -97,3 +97,31 @@ def test_issue_20_sweep_never_replaces_a_users_runs_csv(tmp_path: Path) -> None:
     assert (tmp_path / "py" / ".flocking").read_text() == "written by flocking sweep\n"
     assert not (tmp_path / "py" / ".flocking.lock").exists()
     flocking.sweep(spec, tmp_path / "py", executor=ThreadPoolExecutor(2))
+
+
+def test_a_run_too_large_for_the_worker_that_takes_it_is_refused_there(tmp_path: Path) -> None:
+    # an executor of the caller's runs on machines the sweep does not see, so the sweep's own
+    # check is not made; each run is checked where it lands. A delay of 10⁶ s holds 10⁸ states
+    # of 8 agents (some 25 GB): the worker refuses it before allocating, the row already
+    # written is kept, and the directory is resumable (the default pool refuses it up front)
+    spec = tmp_path / "delays.ron"
+    spec.write_text(
+        f"""Sweep(name: "delays", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}},
+        axes: [(path: "conditions.communication.delay", values: List([0.0, 1e6]))], seeds: 1)"""
+    )
+    out = tmp_path / "out"
+    with pytest.raises(MemoryError) as refused:
+        flocking.sweep(spec, out, executor=ThreadPoolExecutor(1))
+    said = str(refused.value)
+    assert said.startswith("run 1 (") and "on the worker that took it: a run needs about" in said, said
+    assert "of it the delay line of conditions.communication.delay" in said, said
+    rows = [p.name for p in (out / "rows").iterdir()]
+    assert len(rows) == 1 and rows[0].startswith("00000000-"), rows
+    assert not (out / "runs.csv").exists() and not (out / ".flocking.lock").exists()
+    with pytest.raises(MemoryError, match="a run needs about"):
+        flocking.sweep(spec, out)
+    # the same sweep without the large run finishes on the same executor
+    small = tmp_path / "small.ron"
+    small.write_text(spec.read_text().replace("List([0.0, 1e6])", "List([0.0, 0.1])"))
+    result = flocking.sweep(small, tmp_path / "small", executor=ThreadPoolExecutor(1))
+    assert list(result.columns["error"]) == ["", ""]

@@ -140,6 +140,10 @@ pub struct Estimate {
     pub agent_steps: f64,
     /// Peak memory of one run, in bytes.
     pub memory_bytes: f64,
+    /// Of `memory_bytes`, what the delay line holds: every agent's states over the delay and
+    /// jitter ([`conditions::delay_line_bytes_per_agent`]; 0 when no condition changes
+    /// perception).
+    pub delay_line_bytes: f64,
     /// Disk written by all the runs, in bytes.
     pub disk_bytes: f64,
     /// Time on one thread, in seconds.
@@ -190,6 +194,8 @@ impl Scenario {
         let agent_steps = n * steps as f64;
         // the conditions' state (mostly the delay line), none for an ideal run
         let conditions_bytes = conditions::bytes_per_agent(&self.conditions, dim, self.step);
+        let delay_line_bytes =
+            conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
         let degree = LATTICE_DEGREE[dim - 2];
         Estimate {
             runs: 1,
@@ -200,6 +206,7 @@ impl Scenario {
                 + n * (BYTES_PER_AGENT[dim - 2]
                     + conditions_bytes as f64
                     + degree / 2.0 * BYTES_PER_EDGE[dim - 2]),
+            delay_line_bytes: n * delay_line_bytes as f64,
             disk_bytes: trajectory + metrics + checkpoint,
             seconds: agent_steps / AGENT_STEPS_PER_SECOND[dim - 2],
             density: Density::Lattice,
@@ -286,6 +293,11 @@ impl Estimate {
             records: self.records.max(other.records),
             agent_steps: self.agent_steps + other.agent_steps,
             memory_bytes: self.memory_bytes.max(other.memory_bytes),
+            delay_line_bytes: if self.memory_bytes >= other.memory_bytes {
+                self.delay_line_bytes
+            } else {
+                other.delay_line_bytes
+            },
             disk_bytes: self.disk_bytes + other.disk_bytes,
             seconds: self.seconds + other.seconds,
             density: match (self.density, other.density) {
@@ -357,11 +369,23 @@ impl Estimate {
         if let Some(memory) = resources.memory_bytes
             && self.memory_bytes > memory
         {
-            return Err(format!(
-                "a run needs about {} of memory but {} is available; use fewer agents \
-                 (about {:.0} bytes per agent), or --no-resource-check to try anyway",
+            let needs = format!(
+                "a run needs about {} of memory but {} is available",
                 bytes(self.memory_bytes),
-                bytes(memory),
+                bytes(memory)
+            );
+            // the delay line most of it: fewer agents is not the fix a user looks for
+            if self.delay_line_bytes > 0.5 * self.memory_bytes {
+                return Err(format!(
+                    "{needs}, {} of it the delay line of conditions.communication.delay \
+                     (every agent's states over the delay and jitter); a shorter delay or \
+                     fewer agents, or --no-resource-check to try anyway",
+                    bytes(self.delay_line_bytes)
+                ));
+            }
+            return Err(format!(
+                "{needs}; use fewer agents (about {:.0} bytes per agent), or \
+                 --no-resource-check to try anyway",
                 (self.memory_bytes - FIXED_BYTES) / self.agent_steps.max(1.0)
                     * self.steps.max(1) as f64
                     * self.runs.max(1) as f64
@@ -678,6 +702,44 @@ mod tests {
             369
         );
         assert!((extra - 369e6).abs() < 1.0, "{extra}");
+    }
+
+    #[test]
+    fn a_delay_line_too_large_is_named_as_the_fix() {
+        // 100 agents with a delay of 10⁶ s at h = 0.01: 10⁸ + 1 states of 32 B each, 320 GB
+        let mut delayed = scenario(100, 1.0);
+        delayed.conditions.communication = Some(conditions::Communication {
+            delay: 1e6,
+            ..conditions::Communication::default()
+        });
+        let estimate = delayed.estimate(&Outputs::NONE);
+        assert!(
+            (estimate.delay_line_bytes - 100.0 * 32.0 * (1e8 + 1.0)).abs() < 1.0,
+            "{}",
+            estimate.delay_line_bytes
+        );
+        let room = |memory_bytes| Resources {
+            memory_bytes: Some(memory_bytes),
+            ..Resources::default()
+        };
+        let error = estimate.check(&room(1e9)).unwrap_err();
+        assert!(
+            error.contains("320.0 GB of it the delay line of conditions.communication.delay")
+                && error.contains("a shorter delay")
+                && !error.contains("bytes per agent"),
+            "{error}"
+        );
+        // agents, not the delay line, are the fix of a large run with a short delay
+        let mut many = scenario(10_000_000, 1.0);
+        many.conditions = delayed.conditions.clone();
+        many.conditions.communication.as_mut().unwrap().delay = 0.1;
+        let many = many.estimate(&Outputs::NONE);
+        assert!(many.delay_line_bytes > 0.0 && many.delay_line_bytes < 0.5 * many.memory_bytes);
+        let error = many.check(&room(1e9)).unwrap_err();
+        assert!(
+            error.contains("use fewer agents") && !error.contains("delay line"),
+            "{error}"
+        );
     }
 
     /// `agents` of Algorithm 1 (r = 8.4) drawn uniformly in a square of side `side`.

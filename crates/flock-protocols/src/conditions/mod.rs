@@ -10,7 +10,8 @@
 //! - Every random draw is keyed by purpose, agent or link, and step ([`stream`]), so a run is
 //!   bit-identical for any thread count and after a resume from a [`ConditionsState`]
 //!   ([`checkpoint`]).
-//! - [`bytes_per_agent`]: the memory the conditions keep per agent (mostly the delay line).
+//! - [`bytes_per_agent`]: the memory the conditions keep per agent (mostly the delay line,
+//!   [`delay_line_bytes_per_agent`]).
 
 pub mod actuation;
 pub mod checkpoint;
@@ -27,4 +28,4 @@ pub use config::{
     Actuation, Communication, Conditions, Delayed, Disturbance, Failure, FaultMode, Faults, Loss,
     Noise, SampledControl, Sensing, WhenLost, Wind,
 };
-pub use stage::{Stage, bytes_per_agent};
+pub use stage::{Stage, bytes_per_agent, delay_line_bytes_per_agent};

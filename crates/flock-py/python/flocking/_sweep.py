@@ -163,9 +163,10 @@ class _SweepProgress:
             _sys.stderr.flush()
 
 
-def _sweep_run(text: str, index: int, controls: Optional[Controls] = None):
-    """Runs run ``index`` of the self-contained sweep ``text`` (in a worker process)."""
-    return _flocking.sweep_run(text, index, controls)
+def _sweep_run(text: str, index: int, controls: Optional[Controls] = None, check: bool = False):
+    """Runs run ``index`` of the self-contained sweep ``text`` (in a worker process); with
+    ``check``, refused with ``MemoryError`` when it does not fit in that worker's machine."""
+    return _flocking.sweep_run(text, index, controls, check)
 
 
 def sweep(
@@ -211,8 +212,10 @@ def sweep(
     Raises :class:`ScenarioError` for a bad sweep file, :class:`RunDirectoryError` for a
     directory of another sweep, of files flocking did not write, or being written, and, with the
     default local pool, ``MemoryError`` when its workers' runs do not fit in this machine's memory
-    (the CLI's estimate, each run's start counted); a run that fails (an invalid value, a blow-up)
-    is a row with its error, not an exception.
+    (the CLI's estimate, each run's start counted); with an executor of your own, ``MemoryError``
+    naming the first run that does not fit in the memory of the machine whose worker took it,
+    checked there before the run starts (the rows of the runs finished so far are kept). A run
+    that fails (an invalid value, a blow-up) is a row with its error, not an exception.
     """
     if isinstance(spec, Scenario):
         if axes is None:
@@ -233,6 +236,9 @@ def sweep(
             _os.path.dirname(_os.path.abspath(spec_path)),
         )
     out_path = _os.fspath(out)
+    # an executor of the caller's runs on machines this process does not see: each run is
+    # checked on the worker that takes it
+    check_on_worker = executor is not None
     if executor is None:
         # the local pool's workers each hold a run: refused before ``out`` is made when they
         # do not fit (a remote executor's workers are not this machine's)
@@ -248,7 +254,9 @@ def sweep(
         futures = []
         bar = _SweepProgress(count - len(pending), count) if _show_progress(progress) else None
         try:
-            futures = [executor.submit(_sweep_run, text, k, controls) for k in pending]
+            futures = [
+                executor.submit(_sweep_run, text, k, controls, check_on_worker) for k in pending
+            ]
             for future in _futures.as_completed(futures):
                 index, run_id, fields, wall_time = future.result()
                 _flocking.sweep_write_row(out_path, index, run_id, fields, wall_time)
