@@ -126,14 +126,28 @@ pub fn check_estimate(
     estimate: Option<flocking::estimate::Estimate>,
     out: Option<&Path>,
 ) -> PyResult<()> {
+    check_estimate_within(py, estimate, out, None)
+}
+
+/// [`check_estimate`] with at most `memory_cap` bytes of memory, when the process has a limit
+/// of its own below the machine's (a Dask worker's `memory_limit`).
+pub fn check_estimate_within(
+    py: Python<'_>,
+    estimate: Option<flocking::estimate::Estimate>,
+    out: Option<&Path>,
+    memory_cap: Option<f64>,
+) -> PyResult<()> {
     use flocking::estimate::Resources;
-    let resources = match out {
+    let mut resources = match out {
         Some(out) => Resources::of_machine(out),
         None => Resources {
             disk_bytes: None,
             ..Resources::of_machine(Path::new("."))
         },
     };
+    if let Some(cap) = memory_cap {
+        resources.memory_bytes = Some(resources.memory_bytes.map_or(cap, |m| m.min(cap)));
+    }
     let Some(Err(why)) = estimate.map(|e| e.check(&resources)) else {
         return Ok(());
     };

@@ -69,16 +69,18 @@ pub fn sweep_load(
 ///
 /// With `check` (a worker of an executor the caller chose, whose machine the sweep's own check
 /// did not see), the run's estimate, its start counted, must first fit in the memory of the
-/// machine it landed on: `MemoryError` naming the run and the figures otherwise, before
-/// anything is allocated, instead of a worker killed for its memory.
+/// machine it landed on, and within `memory_limit` bytes when the worker has a limit of its own
+/// (a Dask worker's): `MemoryError` naming the run and the figures otherwise, before anything
+/// is allocated, instead of a worker killed for its memory.
 #[pyfunction]
-#[pyo3(signature = (text, index, controls = None, check = false))]
+#[pyo3(signature = (text, index, controls = None, check = false, memory_limit = None))]
 pub fn sweep_run(
     py: Python<'_>,
     text: &str,
     index: usize,
     controls: Option<Py<PyAny>>,
     check: bool,
+    memory_limit: Option<f64>,
 ) -> PyResult<(usize, String, Vec<String>, f64)> {
     let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     let runs = sweep.runs();
@@ -89,14 +91,17 @@ pub fn sweep_run(
         )));
     };
     if check && let Ok(scenario) = sweep.scenario(spec) {
-        let outputs = flocking::estimate::Outputs::NONE;
-        crate::errors::check_resources(py, &scenario, &outputs, None).map_err(|e| {
-            pyo3::exceptions::PyMemoryError::new_err(format!(
-                "run {index} ({}) on the worker that took it: {}",
-                spec.id(&sweep.axes),
-                e.value(py)
-            ))
-        })?;
+        let estimate = scenario.estimate_at_start(&flocking::estimate::Outputs::NONE);
+        crate::errors::check_estimate_within(py, Some(estimate), None, memory_limit).map_err(
+            |e| {
+                let limit = memory_limit.map_or("", |_| " (its memory limit counted)");
+                pyo3::exceptions::PyMemoryError::new_err(format!(
+                    "run {index} ({}) on the worker that took it{limit}: {}",
+                    spec.id(&sweep.axes),
+                    e.value(py)
+                ))
+            },
+        )?;
     }
     let controls = match (controls, sweep.scenario(spec)) {
         (Some(f), Ok(scenario)) => Some(PythonControls::new(f, &scenario)),

@@ -125,3 +125,35 @@ def test_a_run_too_large_for_the_worker_that_takes_it_is_refused_there(tmp_path:
     small.write_text(spec.read_text().replace("List([0.0, 1e6])", "List([0.0, 0.1])"))
     result = flocking.sweep(small, tmp_path / "small", executor=ThreadPoolExecutor(1))
     assert list(result.columns["error"]) == ["", ""]
+
+
+def test_a_run_beyond_a_dask_workers_memory_limit_is_refused_on_it(tmp_path: Path) -> None:
+    # workers limited to 300 MB (their nanny ends one at 95 % of it): a delay of 2·10⁴ s holds
+    # 2·10⁶ states of 8 agents, about 512 MB by the CLI's estimate, which fits this machine but
+    # not a worker. It is refused on the worker before it allocates, by the estimate and the limit
+    # of the worker (a check against the machine alone would let it start); the small run's row
+    # is kept
+    from dask.distributed import Client, LocalCluster
+
+    spec = tmp_path / "delays.ron"
+    spec.write_text(
+        f"""Sweep(name: "delays", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}},
+        axes: [(path: "conditions.communication.delay", values: List([0.0, 2e4]))], seeds: 1)"""
+    )
+    out = tmp_path / "dask"
+    with LocalCluster(
+        n_workers=1,
+        threads_per_worker=1,
+        processes=True,
+        memory_limit="300MB",
+        host="127.0.0.1",
+        protocol="tcp",
+        dashboard_address=None,
+    ) as cluster, Client(cluster) as client:
+        with pytest.raises(MemoryError) as refused:
+            flocking.sweep(spec, out, executor=client.get_executor())
+    said = str(refused.value)
+    assert said.startswith("run 1 (") and "the worker that took it (its memory limit counted)" in said
+    assert "a run needs about 532.0 MB of memory but 285.0 MB is available, 512.0 MB of it the delay line" in said, said
+    rows = [p.name for p in (out / "rows").iterdir()]
+    assert len(rows) == 1 and rows[0].startswith("00000000-"), rows

@@ -165,8 +165,29 @@ class _SweepProgress:
 
 def _sweep_run(text: str, index: int, controls: Optional[Controls] = None, check: bool = False):
     """Runs run ``index`` of the self-contained sweep ``text`` (in a worker process); with
-    ``check``, refused with ``MemoryError`` when it does not fit in that worker's machine."""
-    return _flocking.sweep_run(text, index, controls, check)
+    ``check``, refused with ``MemoryError`` when it does not fit in that worker's machine or
+    within its Dask worker's memory limit."""
+    limit = _dask_worker_memory_limit() if check else None
+    return _flocking.sweep_run(text, index, controls, check, limit)
+
+
+def _dask_worker_memory_limit() -> Optional[float]:
+    """The bytes a Dask worker may hold before its nanny ends it (its ``memory_limit`` times the
+    ``distributed.worker.memory.terminate`` fraction), when this runs on one with a limit;
+    ``None`` elsewhere."""
+    try:
+        from distributed import get_worker
+
+        worker = get_worker()
+    except (ImportError, ValueError):
+        return None
+    limit = worker.memory_manager.memory_limit
+    if not limit:
+        return None
+    import dask
+
+    terminate = dask.config.get("distributed.worker.memory.terminate", default=False)
+    return float(limit) * (float(terminate) if terminate else 1.0)
 
 
 def sweep(
