@@ -230,6 +230,17 @@ fn no_agents_names_agents() {
     invalid_field(&edit(TINY_2D, "agents: 5", "agents: 0"), "agents");
 }
 
+/// A box at a density holds no agent: `agents` is the one error, not also a box side of 0.
+#[test]
+fn no_agents_in_a_box_at_density_names_agents_alone() {
+    let vicsek = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/vicsek1995_fig2a_n400.ron"
+    ))
+    .expect("the fixture");
+    invalid_field(&edit(&vicsek, "agents: 400", "agents: 0"), "agents");
+}
+
 #[test]
 fn non_positive_step_names_step() {
     for bad in ["-0.01", "0.0"] {

@@ -378,6 +378,10 @@ impl Scenario {
                     problems.check(Err::<(), _>(e));
                     return;
                 }
+                if self.agents == 0 {
+                    // the box of no agents has no side: `agents` is the one error to fix
+                    return;
+                }
                 self.box_size().unwrap_or_default()
             }
         };
