@@ -424,7 +424,16 @@ fn coincident_agents_at_the_start_are_warned() {
 fn values_beyond_what_doubles_resolve_are_named() {
     let message = invalid_field(&edit(TINY_2D, "d: 7.0", "d: 1e200"), "alpha.d");
     assert!(message.contains("outside [1e-9, 1e9]"), "{message}");
-    invalid_field(&edit(TINY_2D, "d: 7.0", "d: 5e-324"), "alpha.d");
+    let message = invalid_field(&edit(TINY_2D, "d: 7.0", "d: 5e-324"), "alpha.d");
+    assert!(message.contains("outside [1e-9, 1e9]"), "{message}");
+    // zero and below are not a matter of scale: a positive value, not a rescaling
+    for bad in ["0.0", "-7.0"] {
+        let message = invalid_field(&edit(TINY_2D, "d: 7.0", &format!("d: {bad}")), "alpha.d");
+        assert!(
+            message.contains("must be > 0; give a positive value") && !message.contains("rescale"),
+            "{message}"
+        );
+    }
     let message = invalid_field(
         &edit(TINY_2D, "epsilon: 0.1", "epsilon: 1e300"),
         "alpha.epsilon",

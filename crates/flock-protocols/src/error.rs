@@ -192,6 +192,14 @@ pub mod check {
     /// Outside that range or not finite.
     pub fn within_scale(field: &str, value: f64, why: &str) -> Check {
         finite(field, value)?;
+        // zero or less is not a matter of scale: the fix is a positive value, not a rescaling
+        require(
+            value > 0.0,
+            field,
+            value,
+            "must be > 0",
+            "give a positive value",
+        )?;
         require(
             (MIN_LENGTH..=MAX_VALUE).contains(&value),
             field,
