@@ -96,6 +96,35 @@ fn a_sweep_with_a_crowded_cell_is_estimated_by_it() {
     assert!(!tmp.path().join("s").exists());
 }
 
+/// Runs whose memory is mostly their delay line are refused naming the delay as the fix, with
+/// two workers too (the delay lines of both counted against the memory of both).
+#[test]
+fn a_sweep_of_long_delays_names_the_delay_line() {
+    let tmp = temp_dir("sweep_delays");
+    let text = format!(
+        r#"Sweep(
+    name: "delays",
+    base: Path("{}"),
+    set: {{"duration": 1.0, "agents": 8}},
+    axes: [(path: "conditions.communication.delay", values: List([2e5, 3e5]))],
+    seeds: 1,
+)"#,
+        fixtures_dir().join("tac2006_fig11_alg2_n100.ron").display()
+    );
+    fs::write(tmp.path().join("delays.ron"), text).expect("write the sweep");
+    let output = flocking_under_4_gib(tmp.path(), "sweep delays.ron --out s --jobs 2 --quiet");
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(2), "{err}");
+    // 3·10⁷ states of 8 agents, 32 bytes each: 7.7 GB for each of the two workers
+    assert!(
+        err.contains("a run needs about 15.4 GB of memory but")
+            && err.contains("15.4 GB of it the delay line of conditions.communication.delay")
+            && err.contains("a shorter delay"),
+        "{err}"
+    );
+    assert!(!tmp.path().join("s").exists());
+}
+
 #[test]
 fn a_killed_sweep_resumes_to_the_same_runs_csv() {
     let tmp = temp_dir("sweep_kill");

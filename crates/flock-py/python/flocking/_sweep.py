@@ -234,9 +234,10 @@ def sweep(
     directory of another sweep, of files flocking did not write, or being written, and, with the
     default local pool, ``MemoryError`` when its workers' runs do not fit in this machine's memory
     (the CLI's estimate, each run's start counted); with an executor of your own, ``MemoryError``
-    naming the first run that does not fit in the memory of the machine whose worker took it,
-    checked there before the run starts (the rows of the runs finished so far are kept). A run
-    that fails (an invalid value, a blow-up) is a row with its error, not an exception.
+    naming the first run that does not fit in the memory of the machine whose worker took it (and
+    a Dask worker's ``memory_limit``), checked there before the run starts (the rows of the runs
+    finished so far are kept). A run that fails (an invalid value, a blow-up) is a row with its
+    error, not an exception.
     """
     if isinstance(spec, Scenario):
         if axes is None:

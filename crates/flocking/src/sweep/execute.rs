@@ -180,6 +180,7 @@ pub fn estimate(
     let workers = workers.min(runs.len()).max(1) as f64;
     Some(Estimate {
         memory_bytes: estimate.memory_bytes * workers,
+        delay_line_bytes: estimate.delay_line_bytes * workers,
         ..estimate
     })
 }
