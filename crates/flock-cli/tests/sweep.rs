@@ -64,57 +64,61 @@ fn the_estimate_counts_only_the_runs_left_in_this_share() {
     assert!(!again.contains("runs of"), "{again}");
 }
 
+/// `flocking sweep` under a 4 GiB limit, on `jobs` workers, of a sweep of Fig. 11's fixture with
+/// `agents` for 1 s over one `axis`: refused (exit 2) before its directory exists; its stdout
+/// and stderr.
+fn refused_fig11_sweep(name: &str, agents: &str, axis: &str, jobs: usize) -> (String, String) {
+    let tmp = temp_dir(&format!("sweep_{name}"));
+    let text = format!(
+        r#"Sweep(
+    name: "{name}",
+    base: Path("{}"),
+    set: {{"duration": 1.0, "agents": {agents}}},
+    axes: [{axis}],
+    seeds: 1,
+)"#,
+        fixtures_dir().join("tac2006_fig11_alg2_n100.ron").display()
+    );
+    fs::write(tmp.path().join(format!("{name}.ron")), text).expect("write the sweep");
+    let command = format!("sweep {name}.ron --out s --jobs {jobs} --quiet");
+    let output = flocking_under_4_gib(tmp.path(), &command);
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(2), "{err}");
+    assert!(!tmp.path().join("s").exists());
+    (String::from_utf8_lossy(&output.stdout).into_owned(), err)
+}
+
 /// Each run's start is counted: a sweep whose one cell packs 12,000 agents into a cloud of
 /// σ = 5 cm (each sees all the others: 7.2·10⁷ edges) needs the memory of that crowd, and under a
 /// 4 GiB limit is refused before its directory exists, where its worker would have been killed.
 #[test]
 fn a_sweep_with_a_crowded_cell_is_estimated_by_it() {
-    let tmp = temp_dir("sweep_crowd");
-    let text = format!(
-        r#"Sweep(
-    name: "crowd",
-    base: Path("{}"),
-    set: {{"duration": 1.0, "agents": 12000}},
-    axes: [(path: "initial.positions.std", values: List([500.0, 0.05]))],
-    seeds: 1,
-)"#,
-        fixtures_dir().join("tac2006_fig11_alg2_n100.ron").display()
+    let (said, err) = refused_fig11_sweep(
+        "crowd",
+        "12000",
+        r#"(path: "initial.positions.std", values: List([500.0, 0.05]))"#,
+        1,
     );
-    fs::write(tmp.path().join("crowd.ron"), text).expect("write the sweep");
-    let output = flocking_under_4_gib(tmp.path(), "sweep crowd.ron --out s --jobs 1 --quiet");
-    let err = stderr(&output);
-    assert_eq!(output.status.code(), Some(2), "{err}");
     assert!(
         err.contains("a run needs about 7.9 GB of memory but"),
         "{err}"
     );
-    let said = String::from_utf8_lossy(&output.stdout);
     assert!(
         said.contains("2 runs of") && said.contains("mean degree 11999.0"),
         "{said}"
     );
-    assert!(!tmp.path().join("s").exists());
 }
 
 /// Runs whose memory is mostly their delay line are refused naming the delay as the fix, with
 /// two workers too (the delay lines of both counted against the memory of both).
 #[test]
 fn a_sweep_of_long_delays_names_the_delay_line() {
-    let tmp = temp_dir("sweep_delays");
-    let text = format!(
-        r#"Sweep(
-    name: "delays",
-    base: Path("{}"),
-    set: {{"duration": 1.0, "agents": 8}},
-    axes: [(path: "conditions.communication.delay", values: List([2e5, 3e5]))],
-    seeds: 1,
-)"#,
-        fixtures_dir().join("tac2006_fig11_alg2_n100.ron").display()
+    let (_, err) = refused_fig11_sweep(
+        "delays",
+        "8",
+        r#"(path: "conditions.communication.delay", values: List([2e5, 3e5]))"#,
+        2,
     );
-    fs::write(tmp.path().join("delays.ron"), text).expect("write the sweep");
-    let output = flocking_under_4_gib(tmp.path(), "sweep delays.ron --out s --jobs 2 --quiet");
-    let err = stderr(&output);
-    assert_eq!(output.status.code(), Some(2), "{err}");
     // 3·10⁷ states of 8 agents, 32 bytes each: 7.7 GB for each of the two workers
     assert!(
         err.contains("a run needs about 15.4 GB of memory but")
@@ -122,7 +126,6 @@ fn a_sweep_of_long_delays_names_the_delay_line() {
             && err.contains("a shorter delay"),
         "{err}"
     );
-    assert!(!tmp.path().join("s").exists());
 }
 
 #[test]

@@ -137,14 +137,19 @@ pub mod check {
     /// Not finite, not positive, or too large.
     pub fn positive(field: &str, value: f64) -> Check {
         finite(field, value)?;
+        above_zero(field, value)?;
+        not_huge(field, value)
+    }
+
+    /// `value` > 0, or "must be > 0; give a positive value".
+    fn above_zero(field: &str, value: f64) -> Check {
         require(
             value > 0.0,
             field,
             value,
             "must be > 0",
             "give a positive value",
-        )?;
-        not_huge(field, value)
+        )
     }
 
     /// A finite value in [0, [`MAX_VALUE`]].
@@ -193,13 +198,7 @@ pub mod check {
     pub fn within_scale(field: &str, value: f64, why: &str) -> Check {
         finite(field, value)?;
         // zero or less is not a matter of scale: the fix is a positive value, not a rescaling
-        require(
-            value > 0.0,
-            field,
-            value,
-            "must be > 0",
-            "give a positive value",
-        )?;
+        above_zero(field, value)?;
         require(
             (MIN_LENGTH..=MAX_VALUE).contains(&value),
             field,

@@ -7,6 +7,7 @@ use std::f64::consts::PI;
 use approx::assert_abs_diff_eq;
 
 use flock_graph::{Graph, ProximityNet};
+use flock_math::Domain;
 use flock_metrics::MetricParams;
 #[cfg(feature = "serde")]
 use flock_protocols::conditions::ConditionsState;
@@ -16,7 +17,7 @@ use flock_protocols::conditions::{
 };
 use flock_protocols::{
     Algorithm1, Algorithm2, Consensus, GammaAgent, Integrator, NavigationalFeedback, Protocol,
-    Simulation, Swarm,
+    Simulation, Swarm, Vicsek,
 };
 use glam::DVec2;
 use proptest::prelude::*;
@@ -596,17 +597,7 @@ fn a_velocity_setting_model_under_conditions_is_the_same_on_one_and_two_threads(
             .build()
             .expect("a pool");
         pool.install(|| {
-            let mut sim = Simulation::new(
-                vicsek.clone(),
-                Integrator::SymplecticEuler,
-                start.clone(),
-                1.0,
-            )
-            .expect("valid")
-            .with_domain(torus)
-            .expect("a valid domain")
-            .with_conditions(&conditions, 11)
-            .expect("valid");
+            let mut sim = vicsek_under(&vicsek, torus, &start, &conditions, 11);
             for _ in 0..20 {
                 sim.step();
             }
@@ -735,17 +726,7 @@ fn a_communication_range_on_a_torus_reaches_across_the_wrap() {
     let (model, torus) = vicsek_on_a_torus(20.0, 0.5, 9);
     let start = random_swarm::<DVec2>(2_000, 10.0, 0.03, 61);
     let run = |conditions: &Conditions| {
-        let mut sim = Simulation::new(
-            model.clone(),
-            Integrator::SymplecticEuler,
-            start.clone(),
-            1.0,
-        )
-        .expect("valid")
-        .with_domain(torus)
-        .expect("a valid domain")
-        .with_conditions(conditions, 0)
-        .expect("valid");
+        let mut sim = vicsek_under(&model, torus, &start, conditions, 0);
         for _ in 0..30 {
             sim.step();
         }
@@ -770,6 +751,27 @@ fn stepped<P: Protocol<DVec2>>(
         sim.step();
     }
     (bits(&sim.swarm()), sim.diagnostics())
+}
+
+/// Vicsek's `model` on `torus` from `start` (a step of 1 s) under `conditions` drawn from `seed`.
+fn vicsek_under(
+    model: &Vicsek<DVec2>,
+    torus: Domain<DVec2>,
+    start: &Swarm<DVec2>,
+    conditions: &Conditions,
+    seed: u64,
+) -> Simulation<DVec2, Vicsek<DVec2>> {
+    Simulation::new(
+        model.clone(),
+        Integrator::SymplecticEuler,
+        start.clone(),
+        1.0,
+    )
+    .expect("valid")
+    .with_domain(torus)
+    .expect("a valid domain")
+    .with_conditions(conditions, seed)
+    .expect("valid")
 }
 
 /// Links that keep nothing and lose each packet by its own draw take a loop of their own; the
@@ -804,17 +806,8 @@ fn memoryless_links_take_the_bits_of_the_general_loop() {
             stepped(sim, 40)
         };
         let on_a_torus = |when_lost| {
-            let sim = Simulation::new(
-                vicsek.clone(),
-                Integrator::SymplecticEuler,
-                on_torus.clone(),
-                1.0,
-            )
-            .expect("valid")
-            .with_domain(torus)
-            .expect("a valid domain")
-            .with_conditions(&conditions(loss, when_lost, 2.0), 5)
-            .expect("valid");
+            let conditions = conditions(loss, when_lost, 2.0);
+            let sim = vicsek_under(&vicsek, torus, &on_torus, &conditions, 5);
             stepped(sim, 30)
         };
         let alpha_drop = alpha(WhenLost::Drop);

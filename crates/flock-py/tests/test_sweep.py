@@ -104,25 +104,19 @@ def test_a_run_too_large_for_the_worker_that_takes_it_is_refused_there(tmp_path:
     # check is not made; each run is checked where it lands. A delay of 10⁶ s holds 10⁸ states
     # of 8 agents (some 25 GB): the worker refuses it before allocating, the row already
     # written is kept, and the directory is resumable (the default pool refuses it up front)
-    spec = tmp_path / "delays.ron"
-    spec.write_text(
-        f"""Sweep(name: "delays", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}},
-        axes: [(path: "conditions.communication.delay", values: List([0.0, 1e6]))], seeds: 1)"""
-    )
+    spec = delays(tmp_path, 1e6)
     out = tmp_path / "out"
     with pytest.raises(MemoryError) as refused:
         flocking.sweep(spec, out, executor=ThreadPoolExecutor(1))
-    said = str(refused.value)
-    assert said.startswith("run 1 (") and "on the worker that took it: a run needs about" in said, said
+    said = refused_with_the_first_row_kept(refused.value, out)
+    assert "on the worker that took it: a run needs about" in said, said
     assert "of it the delay line of conditions.communication.delay" in said, said
-    rows = [p.name for p in (out / "rows").iterdir()]
-    assert len(rows) == 1 and rows[0].startswith("00000000-"), rows
     assert not (out / "runs.csv").exists() and not (out / ".flocking.lock").exists()
     with pytest.raises(MemoryError, match="a run needs about"):
         flocking.sweep(spec, out)
     # the same sweep without the large run finishes on the same executor
     small = tmp_path / "small.ron"
-    small.write_text(spec.read_text().replace("List([0.0, 1e6])", "List([0.0, 0.1])"))
+    small.write_text(spec.read_text().replace("List([0.0, 1000000.0])", "List([0.0, 0.1])"))
     result = flocking.sweep(small, tmp_path / "small", executor=ThreadPoolExecutor(1))
     assert list(result.columns["error"]) == ["", ""]
 
@@ -135,11 +129,7 @@ def test_a_run_beyond_a_dask_workers_memory_limit_is_refused_on_it(tmp_path: Pat
     # is kept
     from dask.distributed import Client, LocalCluster
 
-    spec = tmp_path / "delays.ron"
-    spec.write_text(
-        f"""Sweep(name: "delays", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}},
-        axes: [(path: "conditions.communication.delay", values: List([0.0, 2e4]))], seeds: 1)"""
-    )
+    spec = delays(tmp_path, 2e4)
     out = tmp_path / "dask"
     with LocalCluster(
         n_workers=1,
@@ -152,8 +142,25 @@ def test_a_run_beyond_a_dask_workers_memory_limit_is_refused_on_it(tmp_path: Pat
     ) as cluster, Client(cluster) as client:
         with pytest.raises(MemoryError) as refused:
             flocking.sweep(spec, out, executor=client.get_executor())
-    said = str(refused.value)
-    assert said.startswith("run 1 (") and "the worker that took it (its memory limit counted)" in said
+    said = refused_with_the_first_row_kept(refused.value, out)
+    assert "the worker that took it (its memory limit counted)" in said, said
     assert "a run needs about 532.0 MB of memory but 285.0 MB is available, 512.0 MB of it the delay line" in said, said
+
+
+def delays(tmp_path: Path, delay: float) -> Path:
+    """A sweep of Fig. 11 with 8 agents for 1 s: run 0 without a delay, run 1 with ``delay``."""
+    spec = tmp_path / "delays.ron"
+    spec.write_text(
+        f"""Sweep(name: "delays", base: Path("{FIG11}"), set: {{"duration": 1.0, "agents": 8}},
+        axes: [(path: "conditions.communication.delay", values: List([0.0, {delay!r}]))], seeds: 1)"""
+    )
+    return spec
+
+
+def refused_with_the_first_row_kept(error: BaseException, out: Path) -> str:
+    """The message of a refusal of run 1, after run 0's row was written in ``out``."""
+    said = str(error)
+    assert said.startswith("run 1 ("), said
     rows = [p.name for p in (out / "rows").iterdir()]
     assert len(rows) == 1 and rows[0].startswith("00000000-"), rows
+    return said
