@@ -355,15 +355,20 @@ fn depth_change(token: &Token) -> i32 {
 }
 
 /// The token index of `name:` among the fields of the value `from..to` (at its first depth of
-/// brackets).
+/// brackets, or one deeper in a newtype variant around a struct, `Quadrotor((mass: 1.0))`).
 fn field_in(tokens: &[Token], from: usize, to: usize, name: &str) -> Option<usize> {
     let mut depth = 0;
-    (from..to).find(|&k| {
+    let found = (from..to).find(|&k| {
         let hit = depth == 1
             && tokens[k].text == name
             && tokens.get(k + 1).is_some_and(|t| t.text == ":");
         depth += depth_change(&tokens[k]);
         hit
+    });
+    found.or_else(|| {
+        let open = (from..to).find(|&k| tokens[k].text == "(")?;
+        let inner = open + 1;
+        (inner < to && tokens[inner].text == "(").then(|| field_in(tokens, inner, to, name))?
     })
 }
 
@@ -410,6 +415,17 @@ mod tests {
         assert_eq!(locate(TEXT, "obstacles[1].radius"), Some((9, 34)));
         assert_eq!(locate(TEXT, "obstacles[0].centre"), Some((8, 14)));
         assert_eq!(locate(TEXT, "initial.positions[1]"), Some((11, 48)));
+    }
+
+    #[test]
+    fn a_field_of_a_newtype_variant_around_a_struct_is_found() {
+        let text = "Scenario(\n    vehicle: Quadrotor((\n        k_x: 16.0,\n        mass: -1.0,\n    )),\n    dim: 3,\n)";
+        assert_eq!(locate(text, "vehicle.mass"), Some((4, 9)));
+        assert_eq!(locate(text, "vehicle.k_x"), Some((3, 9)));
+        assert_eq!(locate(text, "vehicle.k_v"), Some((2, 5)));
+        assert_eq!(locate(text, "dim"), Some((6, 5)));
+        // one bracket, not two: no deeper look
+        assert_eq!(locate("S(v: A(b: (mass: 1.0)))", "v.mass"), Some((1, 3)));
     }
 
     #[test]
