@@ -725,13 +725,8 @@ fn exact_perception_on_the_local_path_is_the_ideal_run() {
 fn a_communication_range_on_a_torus_reaches_across_the_wrap() {
     let (model, torus) = vicsek_on_a_torus(20.0, 0.5, 9);
     let start = random_swarm::<DVec2>(2_000, 10.0, 0.03, 61);
-    let run = |conditions: &Conditions| {
-        let mut sim = vicsek_under(&model, torus, &start, conditions, 0);
-        for _ in 0..30 {
-            sim.step();
-        }
-        bits(&sim.swarm())
-    };
+    let run =
+        |conditions: &Conditions| stepped(vicsek_under(&model, torus, &start, conditions, 0), 30).0;
     let ranged = Conditions {
         communication: Some(Communication {
             range: Some(1.5),

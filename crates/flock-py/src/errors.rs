@@ -117,21 +117,13 @@ pub fn check_resources(
     outputs: &flocking::estimate::Outputs,
     out: Option<&Path>,
 ) -> PyResult<()> {
-    check_estimate(py, Some(scenario.estimate_at_start(outputs)), out)
+    check_estimate(py, Some(scenario.estimate_at_start(outputs)), out, None)
 }
 
-/// [`check_resources`] of `estimate` (`None`: nothing to run, nothing to check).
+/// [`check_resources`] of `estimate` (`None`: nothing to run, nothing to check), with at most
+/// `memory_cap` bytes of memory when the process has a limit of its own below the machine's (a
+/// Dask worker's `memory_limit`).
 pub fn check_estimate(
-    py: Python<'_>,
-    estimate: Option<flocking::estimate::Estimate>,
-    out: Option<&Path>,
-) -> PyResult<()> {
-    check_estimate_within(py, estimate, out, None)
-}
-
-/// [`check_estimate`] with at most `memory_cap` bytes of memory, when the process has a limit
-/// of its own below the machine's (a Dask worker's `memory_limit`).
-pub fn check_estimate_within(
     py: Python<'_>,
     estimate: Option<flocking::estimate::Estimate>,
     out: Option<&Path>,

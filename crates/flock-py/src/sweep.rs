@@ -90,21 +90,21 @@ pub fn sweep_run(
             runs.len()
         )));
     };
-    if check && let Ok(scenario) = sweep.scenario(spec) {
+    // a run whose scenario is invalid is a row with its error: nothing to check or control
+    let scenario = sweep.scenario(spec).ok();
+    if check && let Some(scenario) = &scenario {
         let estimate = scenario.estimate_at_start(&flocking::estimate::Outputs::NONE);
-        crate::errors::check_estimate_within(py, Some(estimate), None, memory_limit).map_err(
-            |e| {
-                let limit = memory_limit.map_or("", |_| " (its memory limit counted)");
-                pyo3::exceptions::PyMemoryError::new_err(format!(
-                    "run {index} ({}) on the worker that took it{limit}: {}",
-                    spec.id(&sweep.axes),
-                    e.value(py)
-                ))
-            },
-        )?;
+        crate::errors::check_estimate(py, Some(estimate), None, memory_limit).map_err(|e| {
+            let limit = memory_limit.map_or("", |_| " (its memory limit counted)");
+            pyo3::exceptions::PyMemoryError::new_err(format!(
+                "run {index} ({}) on the worker that took it{limit}: {}",
+                spec.id(&sweep.axes),
+                e.value(py)
+            ))
+        })?;
     }
-    let controls = match (controls, sweep.scenario(spec)) {
-        (Some(f), Ok(scenario)) => Some(PythonControls::new(f, &scenario)),
+    let controls = match (controls, &scenario) {
+        (Some(f), Some(scenario)) => Some(PythonControls::new(f, scenario)),
         _ => None,
     };
     let one = || match &controls {
@@ -134,7 +134,7 @@ pub fn sweep_check(py: Python<'_>, text: &str, dir: PathBuf, workers: usize) -> 
         .map_or_else(|_| sweep.runs(), |(_, pending)| pending);
     let outputs = flocking::estimate::Outputs::NONE;
     let estimate = py.detach(|| flocking::sweep::estimate(&sweep, &pending, &outputs, workers));
-    crate::errors::check_estimate(py, estimate, None)
+    crate::errors::check_estimate(py, estimate, None, None)
 }
 
 /// The lock of a sweep's output directory ([`store::prepare`]), held until
