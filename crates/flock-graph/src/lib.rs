@@ -28,9 +28,7 @@ pub mod net;
 pub mod numbering;
 pub mod parallel;
 pub mod search;
-mod skin;
 pub mod stress;
-mod torus;
 
 pub use adjacency::{binary_weights, weights_from_distances};
 pub use components::Components;

@@ -497,29 +497,4 @@ mod tests {
             assert_eq!(copy.numbering().stamp(), source.numbering().stamp());
         }
     }
-
-    #[test]
-    fn edge_lengths_of_both_kinds_of_nets_agree() {
-        let q = [
-            glam::DVec3::ZERO,
-            glam::DVec3::new(0.3, -0.2, 0.1),
-            glam::DVec3::new(1.0, 0.7, -0.4),
-            glam::DVec3::new(0.3, -0.2, 0.1),
-        ];
-        let full = ProximityNet::brute_force(&q, 1.5);
-        let mut lean = ProximityNet::without_distances();
-        crate::NeighbourSearch::new().build(&q, 1.5, &mut lean);
-        assert_eq!(lean.graph(), full.graph());
-        assert!(lean.distances().is_empty() && !lean.has_distances());
-        let bits =
-            |net: &ProximityNet| -> Vec<u64> { net.edge_lengths(&q).map(f64::to_bits).collect() };
-        assert_eq!(bits(&lean), bits(&full));
-        assert_eq!(
-            bits(&full),
-            full.distances()
-                .iter()
-                .map(|d| d.to_bits())
-                .collect::<Vec<_>>()
-        );
-    }
 }
