@@ -13,7 +13,8 @@
 //!   [`Obstacle::signed_distance`], [`Obstacle::aabb`].
 //! - [`BetaAgent`]: the β-agent's position, outward normal, velocity, `μ`, distance and whether the
 //!   α-agent is inside; the velocity rule per feature (face, edge, vertex, curved) is on its page.
-//! - [`Obstacle2d`] / [`Obstacle3d`]: the shapes, projected by parry2d-f64 / parry3d-f64.
+//! - [`ConvexObstacle`]: the shapes, written once for both dimensions; [`Obstacle2d`] /
+//!   [`Obstacle3d`] are its instances, projected by parry2d-f64 / parry3d-f64.
 //! - [`ObstacleField`]: many obstacles culled by a bounding-volume hierarchy:
 //!   [`ObstacleField::beta_agents`], [`ObstacleField::clearance`], [`ObstacleField::containing`].
 
@@ -22,12 +23,14 @@ mod basis;
 pub mod beta_agent;
 mod bvh;
 mod capsule;
+pub mod convex;
 mod cuboid;
-pub mod dim2;
-pub mod dim3;
+mod dim2;
+mod dim3;
 pub mod error;
 pub mod field;
 pub mod obstacle;
+mod parry_calls;
 mod polytope;
 mod shapes;
 pub mod space;
@@ -36,6 +39,7 @@ mod thin;
 mod wall;
 
 pub use beta_agent::BetaAgent;
+pub use convex::ConvexObstacle;
 pub use dim2::Obstacle2d;
 pub use dim3::Obstacle3d;
 pub use error::ObstacleError;

@@ -7,8 +7,8 @@ use crate::{BetaAgent, ObstacleError};
 /// A closed convex obstacle `O_k` of ℝ^m, m = `V::DIM`, that induces β-agents (Olfati-Saber, IEEE TAC
 /// 51(3) 2006, "Flocking with obstacle avoidance").
 ///
-/// Implemented by [`Obstacle2d`](crate::Obstacle2d) for `DVec2` and [`Obstacle3d`](crate::Obstacle3d)
-/// for `DVec3`, so that an algorithm written once for `V: Vector` builds and queries obstacles of its
+/// Implemented by [`ConvexObstacle`](crate::ConvexObstacle): [`Obstacle2d`](crate::Obstacle2d) for
+/// `DVec2` and [`Obstacle3d`](crate::Obstacle3d) for `DVec3`, so that an algorithm written once for `V: Vector` builds and queries obstacles of its
 /// dimension: `fn run<V: Vector, O: Obstacle<V>>(..)`, or `fn run<V: Space>(..)` with
 /// `V::Obstacle` (see [`Space`](crate::Space), which also builds any shape from an
 /// [`ObstacleSpec`](crate::ObstacleSpec)).

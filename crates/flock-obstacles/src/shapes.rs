@@ -3,8 +3,13 @@
 //!
 //! What differs per dimension — parry's types, the calls that build and project onto them, the
 //! convex hull and the triangle — is the [`Parry`] trait, implemented for `DVec2` in `dim2.rs`
-//! and for `DVec3` in `dim3.rs` (as flock-math's `Vector` carries the algebra); the shapes of an
+//! and for `DVec3` in `dim3.rs` (as flock-math's `Vector` carries the algebra); the calls that
+//! read the same in both parry crates are written once, in `parry_calls.rs`. The shapes of an
 //! obstacle are a [`Kind`] of either.
+//!
+//! [`Parry`], [`Kind`], [`Placed`] and [`Hull`] are `pub` in this private module only so that the
+//! public [`ConvexObstacle`](crate::ConvexObstacle) may hold them: nothing outside the crate can
+//! name them, and so nothing outside can implement [`Parry`].
 
 use core::fmt::Debug;
 
@@ -15,26 +20,28 @@ use crate::polytope::{self, Planes};
 use crate::thin::{self, Feature};
 use crate::{BetaAgent, ObstacleError, ObstacleSpec, ball, capsule, cuboid, wall};
 
-/// A dimension's parry types and the projections the β-agent needs of them.
-pub(crate) trait Parry: Vector {
+/// A dimension's parry types and the calls the obstacles make on them.
+pub trait Parry: Vector {
     /// A rigid motion (rotation and translation).
-    type Pose: Clone + Debug;
+    type Pose: Clone + Debug + Send + Sync;
     /// A ball (disc in 2D).
-    type Ball: Clone + Debug;
+    type Ball: Clone + Debug + Send + Sync;
     /// A half-space (half-plane in 2D).
-    type HalfSpace: Clone + Debug;
+    type HalfSpace: Clone + Debug + Send + Sync;
     /// A box of half-extents.
-    type Cuboid: Clone + Debug;
+    type Cuboid: Clone + Debug + Send + Sync;
     /// A convex polygon or polyhedron.
-    type Hull: Clone + Debug;
+    type Hull: Clone + Debug + Send + Sync;
     /// A capsule (stadium in 2D).
-    type Capsule: Clone + Debug;
+    type Capsule: Clone + Debug + Send + Sync;
     /// A segment.
-    type Segment: Clone + Debug;
+    type Segment: Clone + Debug + Send + Sync;
     /// A triangle of zero thickness (3D; none in 2D).
-    type Plate: Clone + Debug;
+    type Plate: Clone + Debug + Send + Sync;
     /// A rotation: an angle in 2D, an axis-angle vector in 3D.
     type Rotation: Copy;
+    /// Any of parry's shapes (`dyn Shape`), for other parry queries.
+    type Shape: ?Sized;
 
     /// The identity pose.
     fn identity() -> Self::Pose;
@@ -56,9 +63,12 @@ pub(crate) trait Parry: Vector {
     fn capsule_between(a: Self, b: Self, radius: f64) -> Self::Capsule;
     /// The segment `[a, b]`.
     fn segment(a: Self, b: Self) -> Self::Segment;
-    /// The convex hull of `points`, validated (`Obstacle2d::convex_hull`, `Obstacle3d::convex_hull`).
-    fn convex_hull(points: &[Self]) -> Result<Placed<Self>, ObstacleError>;
-    /// The triangle `abc`, validated (`Obstacle2d::triangle`, `Obstacle3d::triangle`).
+    /// The convex hull of `local` (points about their centroid, checked by
+    /// [`Placed::convex_hull`], at most `radius` from it) with the planes `(n_j, o_j)` of its
+    /// faces (edges in 2D), unit outward normals `n_j`; `None` when parry finds the points flat.
+    fn hull(local: &[Self], radius: f64) -> Option<Hull<Self>>;
+    /// The triangle `abc` of finite vertices not on one line, checked by [`Placed::triangle`]: a
+    /// convex polygon in 2D, a plate of zero thickness in 3D.
     fn triangle(a: Self, b: Self, c: Self) -> Result<Placed<Self>, ObstacleError>;
 
     /// The pose's translation.
@@ -96,11 +106,18 @@ pub(crate) trait Parry: Vector {
     fn project_segment(segment: &Self::Segment, q: Self) -> (Self, bool, Feature<Self>, Self);
     /// As [`Parry::project_segment`], on the plate.
     fn project_plate(plate: &Self::Plate, q: Self) -> (Self, bool, Feature<Self>, Self);
+
+    /// The plate as a parry shape.
+    fn plate_shape(plate: &Self::Plate) -> &Self::Shape;
+    /// The shape `kind` holds, as a parry shape in its frame.
+    fn shape(kind: &Kind<Self>) -> &Self::Shape;
+    /// The bounding box `(mins, maxs)` of `shape` placed by `pose`.
+    fn aabb(shape: &Self::Shape, pose: &Self::Pose) -> (Self, Self);
 }
 
 /// The shapes an obstacle can be, in the frames noted.
 #[derive(Clone, Debug)]
-pub(crate) enum Kind<V: Parry> {
+pub enum Kind<V: Parry> {
     /// World frame through the pose (its translation is the centre).
     Ball(V::Ball),
     /// World frame through the pose.
@@ -118,10 +135,9 @@ pub(crate) enum Kind<V: Parry> {
 }
 
 /// An obstacle of either dimension: its shape and the pose placing it in the world (the body of
-/// [`Obstacle2d`](crate::Obstacle2d) and [`Obstacle3d`](crate::Obstacle3d), whose constructors
-/// document these).
+/// [`ConvexObstacle`](crate::ConvexObstacle), whose constructors document these).
 #[derive(Clone, Debug)]
-pub(crate) struct Placed<V: Parry> {
+pub struct Placed<V: Parry> {
     pub(crate) kind: Kind<V>,
     pub(crate) pose: V::Pose,
 }
@@ -199,6 +215,32 @@ impl<V: Parry> Placed<V> {
         Ok(Self::in_world(Kind::Segment(V::segment(a, b))))
     }
 
+    /// The convex hull of `points` (any order), validated: finite, at least `V::DIM + 1`, not
+    /// flat, and none strictly inside the hull of the others. Placed at the points' centroid.
+    pub(crate) fn convex_hull(points: &[V]) -> Result<Self, ObstacleError> {
+        polytope::validate(points)?;
+        let centroid = flock_math::mean(points);
+        let local: Vec<V> = points.iter().map(|&x| x - centroid).collect();
+        let radius = local.iter().map(|x| x.length()).fold(0.0, f64::max);
+        let hull = V::hull(&local, radius).ok_or(ObstacleError::FlatHull { dim: V::DIM })?;
+        hull.planes.check_convex(&local, points)?;
+        Ok(Self {
+            kind: Kind::Hull(Box::new(hull)),
+            pose: V::at(centroid),
+        })
+    }
+
+    /// The triangle of vertices `a`, `b`, `c`, validated: finite, not on one line.
+    pub(crate) fn triangle(a: V, b: V, c: V) -> Result<Self, ObstacleError> {
+        check_finite("a", a)?;
+        check_finite("b", b)?;
+        check_finite("c", c)?;
+        if polytope::affine_rank(&[a, b, c]) < 2 {
+            return Err(flat_triangle(a, b, c));
+        }
+        V::triangle(a, b, c)
+    }
+
     /// The obstacle `spec` describes, validated: vectors of `V::DIM` coordinates, a cuboid's
     /// `rotation` of [`Parry::rotation`]'s count or none.
     pub(crate) fn from_spec(spec: &ObstacleSpec) -> Result<Self, ObstacleError> {
@@ -231,7 +273,7 @@ impl<V: Parry> Placed<V> {
                     .enumerate()
                     .map(|(i, x)| from_coordinates(&format!("points[{i}]"), x))
                     .collect::<Result<Vec<V>, _>>()?;
-                V::convex_hull(&points)
+                Self::convex_hull(&points)
             }
             ObstacleSpec::Capsule { a, b, radius } => Self::capsule(
                 from_coordinates("a", a)?,
@@ -241,7 +283,7 @@ impl<V: Parry> Placed<V> {
             ObstacleSpec::Segment { a, b } => {
                 Self::segment(from_coordinates("a", a)?, from_coordinates("b", b)?)
             }
-            ObstacleSpec::Triangle { a, b, c } => V::triangle(
+            ObstacleSpec::Triangle { a, b, c } => Self::triangle(
                 from_coordinates("a", a)?,
                 from_coordinates("b", b)?,
                 from_coordinates("c", c)?,
@@ -263,9 +305,16 @@ impl<V: Parry> Placed<V> {
 
 /// A convex polygon or polyhedron and its edge lines or face planes.
 #[derive(Clone, Debug)]
-pub(crate) struct Hull<V: Parry> {
+pub struct Hull<V: Parry> {
     pub(crate) shape: V::Hull,
     pub(crate) planes: Planes<V>,
+}
+
+/// The error for the triangle `abc` whose vertices are on one line.
+pub(crate) fn flat_triangle<V: Vector>(a: V, b: V, c: V) -> ObstacleError {
+    ObstacleError::FlatTriangle {
+        vertices: [coordinates(a), coordinates(b), coordinates(c)],
+    }
 }
 
 /// The β-agent of the α-agent `(q, p)` on the shape `kind` placed by `pose`.

@@ -1,10 +1,10 @@
 //! [`Space`]: the plane or space a flock lives in, with its obstacle type.
 
-use glam::{DVec2, DVec3};
+use crate::shapes::Parry;
+use crate::{ConvexObstacle, Obstacle, ObstacleError, ObstacleSpec};
 
-use crate::{Obstacle, Obstacle2d, Obstacle3d, ObstacleError, ObstacleSpec};
-
-/// The space a flock lives in, `DVec2` or `DVec3`, with its obstacle type: generic code over
+/// The space a flock lives in, `DVec2` or `DVec3`, with its obstacle type
+/// ([`Obstacle2d`](crate::Obstacle2d) or [`Obstacle3d`](crate::Obstacle3d)): generic code over
 /// `V: Space` builds obstacles from scenario descriptions and queries them.
 ///
 /// # Example
@@ -34,18 +34,10 @@ pub trait Space: flock_math::Vector {
     fn obstacle(spec: &ObstacleSpec) -> Result<Self::Obstacle, ObstacleError>;
 }
 
-impl Space for DVec2 {
-    type Obstacle = Obstacle2d;
+impl<V: Parry> Space for V {
+    type Obstacle = ConvexObstacle<V>;
 
-    fn obstacle(spec: &ObstacleSpec) -> Result<Obstacle2d, ObstacleError> {
-        Obstacle2d::from_spec(spec)
-    }
-}
-
-impl Space for DVec3 {
-    type Obstacle = Obstacle3d;
-
-    fn obstacle(spec: &ObstacleSpec) -> Result<Obstacle3d, ObstacleError> {
-        Obstacle3d::from_spec(spec)
+    fn obstacle(spec: &ObstacleSpec) -> Result<ConvexObstacle<V>, ObstacleError> {
+        ConvexObstacle::from_spec(spec)
     }
 }

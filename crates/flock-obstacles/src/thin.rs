@@ -7,7 +7,7 @@ use crate::BetaAgent;
 
 /// The feature of a segment or a triangle plate on which a projection lies.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum Feature<V> {
+pub enum Feature<V> {
     /// An endpoint or a corner.
     Vertex,
     /// The inside of a segment or of a plate's side, with unit direction `e`.
