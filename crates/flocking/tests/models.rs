@@ -3,6 +3,7 @@
 //! noise, random activation order and conditions included), their parameters by dotted path, and
 //! the errors of what they cannot take.
 
+use flock_protocols::CollectiveState;
 use flocking::serde_json::json;
 use flocking::{DynSimulation, Scenario};
 
@@ -25,21 +26,6 @@ fn settled_order(scenario: &Scenario) -> (f64, f64) {
     (p / count, m / count)
 }
 
-/// The collective state of Couzin et al. (2002) by p_group and m_group, with our thresholds (the
-/// paper names the states and plots both measures, but draws no numerical border):
-/// torus m ≥ 0.5; highly parallel p ≥ 0.95; dynamic parallel 0.5 ≤ p < 0.95; swarm otherwise.
-fn couzin_state((p, m): (f64, f64)) -> &'static str {
-    if m >= 0.5 {
-        "torus"
-    } else if p >= 0.95 {
-        "highly parallel"
-    } else if p >= 0.5 {
-        "dynamic parallel"
-    } else {
-        "swarm"
-    }
-}
-
 /// One point inside each of the paper's four states (Fig. 2, as the committed sweep
 /// sweeps/couzin2002_zones.ron maps them with 3 seeds): the measured polarisation and angular
 /// momentum put each in its state.
@@ -47,10 +33,10 @@ fn couzin_state((p, m): (f64, f64)) -> &'static str {
 fn couzin_shows_its_four_collective_states() {
     let base = fixture("couzin2002_torus_n100");
     for ((delta_r_o, delta_r_a), state) in [
-        ((0.0, 14.0), "swarm"),
-        ((1.0, 14.0), "torus"),
-        ((4.0, 8.0), "dynamic parallel"),
-        ((8.0, 8.0), "highly parallel"),
+        ((0.0, 14.0), CollectiveState::Swarm),
+        ((1.0, 14.0), CollectiveState::Torus),
+        ((4.0, 8.0), CollectiveState::DynamicParallel),
+        ((8.0, 8.0), CollectiveState::HighlyParallel),
     ] {
         let scenario = base
             .with_values([
@@ -58,11 +44,11 @@ fn couzin_shows_its_four_collective_states() {
                 ("algorithm.delta_r_a", json!(delta_r_a)),
             ])
             .expect("valid zones");
-        let measured = settled_order(&scenario);
+        let (p, m) = settled_order(&scenario);
         assert_eq!(
-            couzin_state(measured),
+            CollectiveState::of(p, m),
             state,
-            "Δr_o = {delta_r_o}, Δr_a = {delta_r_a}: (p, m) = {measured:?}"
+            "Δr_o = {delta_r_o}, Δr_a = {delta_r_a}: (p, m) = ({p}, {m})"
         );
     }
 }
