@@ -253,8 +253,8 @@ fn vasarhelyi_order(scenario: &Scenario, from: f64) -> [f64; 5] {
 /// The reproduction of Vásárhelyi et al. (2018): the fixture's 30 drones (v^flock = 6 m/s, the
 /// optimised parameters, a 250 m square) over 600 s, measured from t = 150 s as the paper's
 /// steady state. Its fitness asks for φ^corr near 1, φ^vel near v^flock, no collision and no
-/// wall violation; measured (docs/models.md) φ^corr = 0.977, φ^vel / v^flock = 0.925, φ^coll = 0,
-/// φ^wall = 0, least distance 9.6 m > r^coll = 3 m. (≈ 2 s in debug: not ignored.)
+/// wall violation; measured (docs/models.md) φ^corr = 0.982, φ^vel / v^flock = 0.924, φ^coll = 0,
+/// φ^wall = 0, least distance 9.7 m > r^coll = 3 m. (≈ 2 s in debug: not ignored.)
 #[test]
 fn vasarhelyi_thirty_drones_flock_in_their_arena() {
     let scenario = fixture("vasarhelyi2018_n30");
