@@ -52,6 +52,8 @@ pub struct SweepArgs {
     quiet: bool,
 }
 
+/// Parsed once per command: the size of its largest variant costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 enum SweepAction {
     /// Join the output directories of a sweep's shards into one runs.csv.
@@ -729,7 +731,11 @@ fn references(file: &Path, panels: Option<&AxisColumn>) -> Result<Vec<Reference>
         let point = (number(2)?, number(3)?);
         let key = (record[0].to_owned(), record[1].to_owned());
         if last.as_ref() == Some(&key) {
-            references.last_mut().expect("the last reference").points.push(point);
+            references
+                .last_mut()
+                .expect("the last reference")
+                .points
+                .push(point);
             continue;
         }
         let series = match (record[0].is_empty(), panels) {

@@ -14,8 +14,9 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the zone model, named as the paper names them. Defaults: r_r = 1,
 /// α = 270°, θ = 40° s⁻¹, s = 3 units s⁻¹, σ = 0.05 rad (with τ = 0.1 s, the scenario's step);
-/// s and τ are confirmed by public reimplementations, α, θ and σ are the values they and we
-/// read in the paper's Table 1 (not re-read here from the paper itself). Δr_o and Δr_a are
+/// r_r, α, θ, s and τ are as public reimplementations set them (jiwy2020's `main.m`,
+/// couzinswarm's `sandbox/torus.py`), σ is not confirmed (the paper itself was not available to
+/// this work). Δr_o and Δr_a are
 /// the paper's two axes (0–15 in its Fig. 2). The two readings of the rule that the sources
 /// leave open are [`Blend`] and [`BlindCone`] (docs/models.md compares each with the paper's
 /// Fig. 2).

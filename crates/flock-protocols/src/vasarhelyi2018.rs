@@ -490,7 +490,9 @@ mod tests {
         let (v_i, v_j) = (DVec2::new(6.0, 0.0), DVec2::new(6.0, 1.0));
         let across = |r: f64| {
             let others = [(DVec2::new(r, 0.0), v_j)];
-            model.desired_velocity(DVec2::ZERO, v_i, others.into_iter()).y
+            model
+                .desired_velocity(DVec2::ZERO, v_i, others.into_iter())
+                .y
         };
         let c = &params;
         let damped = c.c_frict * (1.0 - c.v_frict);

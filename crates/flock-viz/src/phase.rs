@@ -94,7 +94,7 @@ pub struct PhaseOptions {
 
 /// Values from a source drawn beside a sweep's: over a line diagram, its points as black markers
 /// (the marker of its series); over a heatmap, a line through its points in the axes' values
-/// (a border between states), labelled at its last point.
+/// (a border between states), labelled at the mean of its vertices.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reference {
     /// What it is, for the legend or the line's label ("N = 40, Vicsek et al. 1995").
@@ -294,7 +294,9 @@ fn cell_position(values: &[f64], x: f64, log: bool) -> f64 {
     if values.len() == 1 {
         return 0.0;
     }
-    let above = values.partition_point(|&v| v < x).clamp(1, values.len() - 1);
+    let above = values
+        .partition_point(|&v| v < x)
+        .clamp(1, values.len() - 1);
     let (a, b) = (values[above - 1], values[above]);
     let t = if log && a > 0.0 {
         (x / a).ln() / (b / a).ln()
@@ -366,7 +368,9 @@ impl<'a> Diagram<'a> {
         }
         if let Some(r) = options.references.iter().find(|r| {
             r.series.is_some_and(|k| k >= count)
-                || r.points.iter().any(|&(x, y)| !x.is_finite() || !y.is_finite())
+                || r.points
+                    .iter()
+                    .any(|&(x, y)| !x.is_finite() || !y.is_finite())
         }) {
             return Err(VizError::invalid(format!(
                 "the reference {:?} has a point that is not finite or a series that is not drawn",
@@ -478,9 +482,8 @@ impl<'a> Diagram<'a> {
                 }
             }
         }
-        let pixel = |i: i32, j: i32| {
-            chart.backend_coord(&(SegmentValue::Exact(i), SegmentValue::Exact(j)))
-        };
+        let pixel =
+            |i: i32, j: i32| chart.backend_coord(&(SegmentValue::Exact(i), SegmentValue::Exact(j)));
         let (left, width) = (pixel(0, 0).0, pixel(1, 0).0 - pixel(0, 0).0);
         let (bottom, height) = (pixel(0, 0).1, pixel(0, 1).1 - pixel(0, 0).1);
         // within the grid's outer cell edges: a line beyond them runs along the edge
@@ -504,10 +507,20 @@ impl<'a> Diagram<'a> {
                 .collect();
             plot.draw(&PathElement::new(path.clone(), ink.stroke_width(3)))
                 .map_err(VizError::draw)?;
-            if let Some(&(x, y)) = path.last() {
+            // labelled at the mean of its vertices (a closed line's first one counted once)
+            let closed = path.len() > 2 && path.first() == path.last();
+            let vertices = &path[..path.len() - usize::from(closed)];
+            if !vertices.is_empty() {
+                let count = vertices.len() as i32;
+                let x = vertices.iter().map(|p| p.0).sum::<i32>() / count;
+                let y = vertices.iter().map(|p| p.1).sum::<i32>() / count;
                 let label = text.text(&reference.label);
-                plot.draw(&Text::new(label, (x + 4, y + 4), text_style(12).color(&ink)))
-                    .map_err(VizError::draw)?;
+                plot.draw(&Text::new(
+                    label,
+                    (x - 20, y - 6),
+                    text_style(12).color(&ink),
+                ))
+                .map_err(VizError::draw)?;
             }
         }
         self.bound(&plot, column, text)
@@ -618,7 +631,11 @@ impl<'a> Diagram<'a> {
         let o = self.options;
         let (x0, x1) = (self.xs[0], self.xs[self.xs.len() - 1]);
         let references = self.references(None);
-        let reference_values = || references.iter().flat_map(|(_, p)| p.iter().map(|&(_, v)| v));
+        let reference_values = || {
+            references
+                .iter()
+                .flat_map(|(_, p)| p.iter().map(|&(_, v)| v))
+        };
         let y0 = reference_values().fold(self.range.0, f64::min);
         let y1 = reference_values().fold(self.range.1, f64::max);
         let pad = if y1 > y0 { 0.05 * (y1 - y0) } else { 0.5 };
@@ -669,11 +686,9 @@ impl<'a> Diagram<'a> {
             let shape = marker(*k);
             let k = *k;
             chart
-                .draw_series(
-                    points.iter().map(|&p| {
-                        EmptyElement::at(p) + PathElement::new(shape.clone(), ink.stroke_width(1))
-                    }),
-                )
+                .draw_series(points.iter().map(|&p| {
+                    EmptyElement::at(p) + PathElement::new(shape.clone(), ink.stroke_width(1))
+                }))
                 .map_err(VizError::draw)?
                 .label(text.text(&reference.label))
                 .legend(move |(x, y)| {

@@ -14,9 +14,9 @@ use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
-    AlphaAlphaForm, AlphaConfig, ArenaShape, Blend, BlindCone, AvoidanceGains, BetaConfig, BoidsParams, Conditions,
-    CouzinParams, CuckerSmaleParams, GammaAgent, Integrator, VasarhelyiParams, VicsekParams,
-    critical_damping,
+    AlphaAlphaForm, AlphaConfig, ArenaShape, AvoidanceGains, BetaConfig, Blend, BlindCone,
+    BoidsParams, Conditions, CouzinParams, CuckerSmaleParams, GammaAgent, Integrator,
+    VasarhelyiParams, VicsekParams, critical_damping,
 };
 
 use crate::error::ScenarioError;

@@ -83,7 +83,10 @@ fn vicsek_va(agents: u64, eta: f64) -> f64 {
 #[test]
 fn vicsek_crosses_one_half_where_the_sweep_does_above_the_papers_crossing() {
     for (agents, ours, paper) in [(40, 3.66, 3.04), (100, 3.48, 2.91)] {
-        let (below, above) = (vicsek_va(agents, ours - 0.25), vicsek_va(agents, ours + 0.25));
+        let (below, above) = (
+            vicsek_va(agents, ours - 0.25),
+            vicsek_va(agents, ours + 0.25),
+        );
         assert!(
             below > 0.5 && above < 0.5,
             "N = {agents}: v_a = {below} at η = {} and {above} at η = {}",
