@@ -377,6 +377,67 @@ mod tests {
     use approx::assert_abs_diff_eq;
     use glam::{DVec2, DVec3};
 
+    /// A model without noise or turning bound, in open 2D space, with `blend` and `blind_cone`.
+    fn reading(blend: Blend, blind_cone: BlindCone) -> Couzin<DVec2> {
+        let params = CouzinParams {
+            noise: 0.0,
+            turning_rate: 1e6,
+            blend,
+            blind_cone,
+            ..CouzinParams::default()
+        };
+        Couzin::new(params, 0.1, 1, Domain::Open).unwrap()
+    }
+
+    /// One neighbour in the zone of orientation heading along y and three in the zone of
+    /// attraction along x: normalised first, the two zones weigh alike (d along (1, 1)); raw,
+    /// the three attractions outweigh the one heading (d along (3, 1)).
+    #[test]
+    fn the_blends_weigh_the_zones_as_their_definitions_say() {
+        let others = [
+            (DVec2::new(0.0, 2.0), DVec2::new(0.0, 3.0)),
+            (DVec2::new(10.0, 0.0), DVec2::new(3.0, 0.0)),
+            (DVec2::new(11.0, 0.0), DVec2::new(3.0, 0.0)),
+            (DVec2::new(12.0, 0.0), DVec2::new(3.0, 0.0)),
+        ];
+        let (q, p) = (DVec2::ZERO, DVec2::new(3.0, 0.0));
+        let turned = |blend| {
+            reading(blend, BlindCone::Everywhere)
+                .turn(0, 0.0, q, p, others.into_iter())
+                .normalize()
+        };
+        assert_abs_diff_eq!(
+            turned(Blend::Unit),
+            DVec2::new(1.0, 1.0).normalize(),
+            epsilon = 1e-12
+        );
+        assert_abs_diff_eq!(
+            turned(Blend::Raw),
+            DVec2::new(3.0, 1.0).normalize(),
+            epsilon = 1e-12
+        );
+    }
+
+    /// A neighbour right behind, within r_r: hidden by the cone that covers every zone (the
+    /// heading is kept), avoided when the zone of repulsion sees all round (the individual turns
+    /// away, forwards).
+    #[test]
+    fn the_blind_cone_hides_the_zone_of_repulsion_only_when_it_covers_every_zone() {
+        let behind = [(DVec2::new(-0.5, 0.1), DVec2::new(3.0, 0.0))];
+        let (q, p) = (DVec2::ZERO, DVec2::new(3.0, 0.0));
+        let turned = |cone| {
+            reading(Blend::Unit, cone)
+                .turn(0, 0.0, q, p, behind.into_iter())
+                .normalize()
+        };
+        assert_abs_diff_eq!(turned(BlindCone::Everywhere), DVec2::X, epsilon = 1e-12);
+        assert_abs_diff_eq!(
+            turned(BlindCone::BeyondRepulsion),
+            DVec2::new(0.5, -0.1).normalize(),
+            epsilon = 1e-12
+        );
+    }
+
     #[test]
     fn a_turn_is_bounded_by_the_rate() {
         let turned = bounded_turn(DVec2::X, DVec2::Y, 0.1);
