@@ -23,7 +23,9 @@
 //!
 //! NaN values (failed runs, empty fields) are left out of means, bands and dots.
 
+use plotters::chart::MeshStyle;
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::element::{EmptyElement, PathElement, Text};
 use plotters::prelude::{
     ChartBuilder, Circle, DrawingArea, DrawingBackend, IntoLogRange, IntoSegmentedCoord,
@@ -304,6 +306,32 @@ fn cell_position(values: &[f64], x: f64, log: bool) -> f64 {
         (x - a) / (b - a)
     };
     (above - 1) as f64 + t
+}
+
+/// Draws the mesh of a line diagram: x labelled with the swept parameter, y with the metric,
+/// `labels` values along each, a light grid.
+fn line_mesh<X, Y, XT, YT, DB>(
+    mut mesh: MeshStyle<'_, '_, X, Y, DB>,
+    o: &PhaseOptions,
+    text: TextMode,
+    labels: usize,
+) -> Result<(), VizError>
+where
+    X: Ranged<ValueType = XT> + ValueFormatter<XT>,
+    Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
+    DB: DrawingBackend,
+{
+    mesh.x_desc(text.text(&o.x_label))
+        .y_desc(text.text(&o.metric))
+        .x_labels(labels)
+        .y_labels(labels)
+        .label_style(text_style(13))
+        .axis_desc_style(text_style(14))
+        .axis_style(style::rgb(INK))
+        .light_line_style(style::rgb([0xEE, 0xEE, 0xEE]))
+        .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
+        .draw()
+        .map_err(VizError::draw)
 }
 
 /// The q-quantile of sorted values (linear between order statistics).
@@ -646,19 +674,7 @@ impl<'a> Diagram<'a> {
             .y_label_area_size(72)
             .build_cartesian_2d((x0 - x_pad)..(x1 + x_pad), (y0 - pad)..(y1 + pad))
             .map_err(VizError::draw)?;
-        chart
-            .configure_mesh()
-            .x_desc(text.text(&o.x_label))
-            .y_desc(text.text(&o.metric))
-            .x_labels(11)
-            .y_labels(11)
-            .label_style(text_style(13))
-            .axis_desc_style(text_style(14))
-            .axis_style(style::rgb(INK))
-            .light_line_style(style::rgb([0xEE, 0xEE, 0xEE]))
-            .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
-            .draw()
-            .map_err(VizError::draw)?;
+        line_mesh(chart.configure_mesh(), o, text, 11)?;
         for (k, cells) in self.panels.iter().enumerate() {
             let colour = style::rgb(SERIES[k % SERIES.len()]);
             let means: Vec<(f64, f64)> = self
@@ -758,19 +774,7 @@ impl<'a> Diagram<'a> {
         macro_rules! draw {
             ($x:expr, $y:expr) => {{
                 let mut chart = builder.build_cartesian_2d($x, $y).map_err(VizError::draw)?;
-                chart
-                    .configure_mesh()
-                    .x_desc(text.text(&o.x_label))
-                    .y_desc(text.text(&o.metric))
-                    .x_labels(8)
-                    .y_labels(8)
-                    .label_style(text_style(13))
-                    .axis_desc_style(text_style(14))
-                    .axis_style(style::rgb(INK))
-                    .light_line_style(style::rgb([0xEE, 0xEE, 0xEE]))
-                    .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
-                    .draw()
-                    .map_err(VizError::draw)?;
+                line_mesh(chart.configure_mesh(), o, text, 8)?;
                 chart
                     .draw_series([Polygon::new(outline.clone(), style::rgb(BAND).filled())])
                     .map_err(VizError::draw)?;
