@@ -7,7 +7,9 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
-use flock_viz::phase::{Band, Bound, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
+use flock_viz::phase::{
+    Band, Bound, PhaseOptions, PhasePoint, Reference, phase_png, phase_svg, phase_table,
+};
 use flocking::estimate::Outputs;
 use flocking::owned::{self, DirError};
 use flocking::sweep::store::{self, RUNS_FILE, StoreError};
@@ -50,6 +52,8 @@ pub struct SweepArgs {
     quiet: bool,
 }
 
+/// Parsed once per command: the size of its largest variant costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 enum SweepAction {
     /// Join the output directories of a sweep's shards into one runs.csv.
@@ -78,8 +82,19 @@ enum SweepAction {
         #[arg(long = "where", value_name = "AXIS=VALUE", value_parser = parse_where)]
         fixed: Vec<(String, String)>,
         /// One panel per value of this axis, on shared scales.
-        #[arg(long, value_name = "AXIS")]
+        #[arg(long, value_name = "AXIS", conflicts_with = "series")]
         facet: Option<String>,
+        /// One series per value of this axis on one set of axes (a line diagram): a colour and a
+        /// marker each, with a legend.
+        #[arg(long, value_name = "AXIS")]
+        series: Option<String>,
+        /// Values from a source drawn beside the sweep's: a CSV file (lines from `#` on are
+        /// comments) with the header `series,label,x,y`, consecutive rows of the same series and label one reference — over
+        /// a line diagram its points (x, metric) as black markers of its series (a value of the
+        /// --series or --facet axis as runs.csv writes it, or empty), over a heatmap a labelled
+        /// line through its points (x, y).
+        #[arg(long, value_name = "FILE")]
+        reference: Option<PathBuf>,
         /// The runs.csv column to draw (alpha_flock and strict_alpha_flock count as 1 or 0: their
         /// mean is the fraction of seeds that flock).
         #[arg(long)]
@@ -167,6 +182,8 @@ pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCod
             y,
             fixed,
             facet,
+            series,
+            reference,
             metric,
             out,
             band,
@@ -179,7 +196,12 @@ pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCod
                 x,
                 y,
                 fixed,
-                facet,
+                panels: match (facet, series) {
+                    (Some(axis), _) => Some((axis, false)),
+                    (None, Some(axis)) => Some((axis, true)),
+                    (None, None) => None,
+                },
+                reference,
                 metric,
                 band,
                 log_x,
@@ -348,7 +370,9 @@ struct PlotRequest {
     x: String,
     y: Option<String>,
     fixed: Vec<(String, String)>,
-    facet: Option<String>,
+    /// The axis of the panels (`--facet`), or of the series (`--series`: true).
+    panels: Option<(String, bool)>,
+    reference: Option<PathBuf>,
     metric: String,
     band: BandArg,
     log_x: bool,
@@ -504,16 +528,24 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
     let cy = request.y.as_deref().map(|y| column(y, "y")).transpose()?;
     let mut shown_axes = vec![request.x.as_str()];
     shown_axes.extend(request.y.as_deref());
-    let facet = match &request.facet {
-        Some(name) if shown_axes.contains(&name.as_str()) => {
-            return Err(Failure::Usage(format!(
-                "--facet {name} is drawn along an axis already; facet another axis"
-            )));
+    let (facet, series) = match &request.panels {
+        Some((name, series)) => {
+            let what = if *series { "series" } else { "facet" };
+            if shown_axes.contains(&name.as_str()) {
+                return Err(Failure::Usage(format!(
+                    "--{what} {name} is drawn along an axis already; give another axis"
+                )));
+            }
+            if *series && cy.is_some() {
+                return Err(Failure::Usage(format!(
+                    "--series {name} draws lines on one set of axes; a heatmap (--y) takes --facet"
+                )));
+            }
+            (Some(axis(name, what)?), *series)
         }
-        Some(name) => Some(axis(name, "facet")?),
-        None => None,
+        None => (None, false),
     };
-    shown_axes.extend(request.facet.as_deref());
+    shown_axes.extend(request.panels.as_ref().map(|(name, _)| name.as_str()));
     let mut fixed = Vec::new();
     for (name, value) in &request.fixed {
         if shown_axes.contains(&name.as_str())
@@ -632,12 +664,17 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
             BandArg::Minmax => Band::MinMax,
             BandArg::Quantiles => Band::Quantiles,
         },
-        size: if facet.is_some() {
+        size: if facet.is_some() && !series {
             FACET_PANEL
         } else {
             PhaseOptions::default().size
         },
         bound: request.bound.clone(),
+        series,
+        references: match &request.reference {
+            Some(file) => references(file, facet.as_ref())?,
+            None => Vec::new(),
+        },
     };
     let out = out.unwrap_or_else(|| dir.join(format!("{}.svg", request.metric)));
     let bytes = match out.extension().and_then(|e| e.to_str()) {
@@ -653,6 +690,89 @@ fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), F
     })?;
     outln!("flocking sweep plot: {}", out.display());
     Ok(())
+}
+
+/// The references of `--reference FILE` (`series,label,x,y`), the series matched to the values
+/// of the panels' axis `panels`.
+fn references(file: &Path, panels: Option<&AxisColumn>) -> Result<Vec<Reference>, Failure> {
+    let at = |line: u64| format!("{} line {line}", file.display());
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .from_path(file)
+        .map_err(|e| Failure::Usage(format!("--reference {}: {e}", file.display())))?;
+    let header = reader
+        .headers()
+        .map_err(|e| Failure::Usage(format!("--reference {}: {e}", file.display())))?;
+    if header != vec!["series", "label", "x", "y"] {
+        return Err(Failure::Usage(format!(
+            "--reference {}: the header is {:?}; give series,label,x,y",
+            file.display(),
+            header.iter().collect::<Vec<_>>().join(",")
+        )));
+    }
+    let mut references: Vec<Reference> = Vec::new();
+    let mut last: Option<(String, String)> = None;
+    for record in reader.records() {
+        let record = record.map_err(|e| Failure::Usage(format!("--reference {e}")))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let number = |k: usize| {
+            record[k]
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    Failure::Usage(format!(
+                        "{}: {:?} is not a finite number",
+                        at(line),
+                        &record[k]
+                    ))
+                })
+        };
+        let point = (number(2)?, number(3)?);
+        let key = (record[0].to_owned(), record[1].to_owned());
+        if last.as_ref() == Some(&key) {
+            references
+                .last_mut()
+                .expect("the last reference")
+                .points
+                .push(point);
+            continue;
+        }
+        let series = match (record[0].is_empty(), panels) {
+            (true, _) => None,
+            (false, Some(axis)) => Some(
+                axis.values
+                    .iter()
+                    .position(|v| {
+                        *v == record[0]
+                            || matches!((v.parse::<f64>(), record[0].parse::<f64>()), (Ok(a), Ok(b)) if a == b)
+                    })
+                    .ok_or_else(|| {
+                        Failure::Usage(format!(
+                            "{}: series {:?} is not a value of {}; its values are {}",
+                            at(line),
+                            &record[0],
+                            axis.label.path,
+                            axis.values.join(", ")
+                        ))
+                    })?,
+            ),
+            (false, None) => {
+                return Err(Failure::Usage(format!(
+                    "{}: a series ({:?}) needs --series or --facet",
+                    at(line),
+                    &record[0]
+                )));
+            }
+        };
+        references.push(Reference {
+            label: key.1.clone(),
+            series,
+            points: vec![point],
+        });
+        last = Some(key);
+    }
+    Ok(references)
 }
 
 /// The size of each panel of a faceted diagram.

@@ -665,3 +665,82 @@ fn bad_where_and_facet_are_clear_errors() {
     );
     assert!(output.status.success(), "{}", stderr(&output));
 }
+
+/// `--series` and `--reference` refuse what they cannot draw with exit code 2, naming the
+/// value and the fix, and write nothing: a reference file without the header `series,label,x,y`,
+/// a series that is not a value of the axis, a value that is not a number, a reference series
+/// without `--series` or `--facet`, and series over a heatmap.
+#[test]
+fn bad_series_and_references_are_clear_errors() {
+    let tmp = temp_dir("sweep_bad_reference");
+    let dir = fixtures_dir().join("../docs/figures/sweeps/vicsek1995_fig2a");
+    let dir = dir.to_str().expect("UTF-8");
+    let failing = |extra: &[&str], reference: &str| {
+        fs::write(tmp.path().join("paper.csv"), reference).expect("written");
+        let mut args = vec![
+            "sweep",
+            "plot",
+            dir,
+            "--x",
+            "algorithm.eta",
+            "--metric",
+            "settled_polarisation",
+            "--reference",
+            "paper.csv",
+            "--out",
+            "never.svg",
+        ];
+        args.extend_from_slice(extra);
+        let output = flocking(tmp.path(), &args);
+        assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));
+        assert!(!tmp.path().join("never.svg").exists());
+        stderr(&output)
+    };
+    let series = ["--series", "agents"];
+    let e = failing(&series, "n,eta,va\n40,3,0.5\n");
+    assert!(
+        e.contains("\"n,eta,va\"") && e.contains("give series,label,x,y"),
+        "{e}"
+    );
+    let e = failing(&series, "# a comment\nseries,label,x,y\n41,paper,3,0.5\n");
+    assert!(
+        e.contains("paper.csv line") && e.contains("\"41\" is not a value of agents"),
+        "{e}"
+    );
+    assert!(e.contains("40, 100, 400, 4000"), "{e}");
+    let e = failing(&series, "series,label,x,y\n40,paper,three,0.5\n");
+    assert!(e.contains("\"three\" is not a finite number"), "{e}");
+    let e = failing(&[], "series,label,x,y\n40,paper,3,0.5\n");
+    assert!(e.contains("needs --series or --facet"), "{e}");
+    let e = failing(
+        &["--series", "agents", "--y", "agents"],
+        "series,label,x,y\n,border,3,40\n",
+    );
+    assert!(e.contains("--series agents"), "{e}");
+    // the same file with a series the axis has draws
+    fs::write(
+        tmp.path().join("paper.csv"),
+        "series,label,x,y\n40,paper,3,0.5\n,N = 10000,2.4,0.5\n",
+    )
+    .expect("written");
+    let output = flocking(
+        tmp.path(),
+        &[
+            "sweep",
+            "plot",
+            dir,
+            "--x",
+            "algorithm.eta",
+            "--series",
+            "agents",
+            "--metric",
+            "settled_polarisation",
+            "--reference",
+            "paper.csv",
+            "--out",
+            "ok.svg",
+        ],
+    );
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(tmp.path().join("ok.svg").is_file());
+}

@@ -14,9 +14,12 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the zone model, named as the paper names them. Defaults: r_r = 1,
 /// α = 270°, θ = 40° s⁻¹, s = 3 units s⁻¹, σ = 0.05 rad (with τ = 0.1 s, the scenario's step);
-/// s and τ are confirmed by public reimplementations, α, θ and σ are the values they and we
-/// read in the paper's Table 1 (not re-read here from the paper itself). Δr_o and Δr_a are
-/// the paper's two axes (0–15 in its Fig. 2).
+/// r_r, α, θ, s and τ are as public reimplementations set them (jiwy2020's `main.m`,
+/// couzinswarm's `sandbox/torus.py`), σ is not confirmed (the paper itself was not available to
+/// this work). Δr_o and Δr_a are
+/// the paper's two axes (0–15 in its Fig. 2). The two readings of the rule that the sources
+/// leave open are [`Blend`] and [`BlindCone`] (docs/models.md compares each with the paper's
+/// Fig. 2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CouzinParams {
     /// The radius r_r > 0 of the zone of repulsion.
@@ -34,6 +37,98 @@ pub struct CouzinParams {
     pub speed: f64,
     /// The standard deviation σ (rad) of the angular noise on the desired direction.
     pub noise: f64,
+    /// How the orientation and attraction sums are combined when both zones hold neighbours.
+    pub blend: Blend,
+    /// Which zones the blind cone hides neighbours from.
+    pub blind_cone: BlindCone,
+}
+
+/// How d_o and d_a are combined when both the zone of orientation and that of attraction hold
+/// neighbours (Couzin et al. 2002, eq. 2–3 and the rule after them).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Blend {
+    /// d = ½ (d̂_o + d̂_a): each sum normalised first, so that the two zones weigh the same
+    /// whatever their numbers of neighbours.
+    #[default]
+    Unit,
+    /// d = ½ (d_o + d_a): the raw sums, as the rule is written and the public reimplementations
+    /// compute it, so that the zone with more neighbours weighs more.
+    Raw,
+}
+
+/// Which neighbours the blind cone behind an individual (360° − α wide) hides.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum BlindCone {
+    /// Those of every zone, the zone of repulsion included.
+    #[default]
+    Everywhere,
+    /// Those of the zones of orientation and attraction only: a neighbour in the zone of
+    /// repulsion is always avoided.
+    BeyondRepulsion,
+}
+
+/// The collective states of Couzin et al. (2002, Fig. 1(b)–(e)), named from the group's
+/// polarisation p_group and angular momentum m_group by the thresholds of [`CollectiveState::of`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CollectiveState {
+    /// Low polarisation and low angular momentum: a cohesive, disordered group.
+    Swarm,
+    /// Individuals circling an empty core: m_group ≥ [`CollectiveState::TORUS`].
+    Torus,
+    /// Aligned but moving within the group: [`CollectiveState::PARALLEL`] ≤ p_group <
+    /// [`CollectiveState::HIGHLY_PARALLEL`].
+    DynamicParallel,
+    /// Aligned and rigid: p_group ≥ [`CollectiveState::HIGHLY_PARALLEL`].
+    HighlyParallel,
+}
+
+impl CollectiveState {
+    /// The least angular momentum m_group of a torus.
+    pub const TORUS: f64 = 0.5;
+    /// The least polarisation p_group of a parallel group.
+    pub const PARALLEL: f64 = 0.5;
+    /// The least polarisation p_group of a highly parallel group.
+    pub const HIGHLY_PARALLEL: f64 = 0.95;
+
+    /// The state of a group with polarisation `p` and angular momentum `m` (means over the
+    /// settled run): a torus when m ≥ 0.5, else highly parallel when p ≥ 0.95, dynamic parallel
+    /// when p ≥ 0.5, a swarm otherwise. The paper draws its states from both measures without
+    /// numerical borders; these are ours.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_protocols::couzin2002::CollectiveState;
+    ///
+    /// assert_eq!(CollectiveState::of(0.1, 0.9), CollectiveState::Torus);
+    /// assert_eq!(CollectiveState::of(0.99, 0.1), CollectiveState::HighlyParallel);
+    /// assert_eq!(CollectiveState::of(0.7, 0.2), CollectiveState::DynamicParallel);
+    /// assert_eq!(CollectiveState::of(0.2, 0.1), CollectiveState::Swarm);
+    /// ```
+    #[must_use]
+    pub fn of(p: f64, m: f64) -> Self {
+        if m >= Self::TORUS {
+            Self::Torus
+        } else if p >= Self::HIGHLY_PARALLEL {
+            Self::HighlyParallel
+        } else if p >= Self::PARALLEL {
+            Self::DynamicParallel
+        } else {
+            Self::Swarm
+        }
+    }
+
+    /// The state's name as the paper writes it ("dynamic parallel").
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Swarm => "swarm",
+            Self::Torus => "torus",
+            Self::DynamicParallel => "dynamic parallel",
+            Self::HighlyParallel => "highly parallel",
+        }
+    }
 }
 
 impl Default for CouzinParams {
@@ -46,6 +141,8 @@ impl Default for CouzinParams {
             turning_rate: 40.0,
             speed: 3.0,
             noise: 0.05,
+            blend: Blend::default(),
+            blind_cone: BlindCone::default(),
         }
     }
 }
@@ -57,9 +154,12 @@ impl Default for CouzinParams {
 /// - if any is in the zone of repulsion (‖r_ij‖ < r_r): d = −Σ r_ij / ‖r_ij‖ over them (eq. 1);
 /// - otherwise d_o = Σ v_j / ‖v_j‖ over the zone of orientation (r_r ≤ ‖r_ij‖ < r_o, eq. 2) and
 ///   d_a = Σ r_ij / ‖r_ij‖ over the zone of attraction (r_o ≤ ‖r_ij‖ < r_a, eq. 3); d is
-///   ½ (d̂_o + d̂_a) when both zones hold neighbours, the one that does otherwise, and the present
-///   heading when neither does. (We normalise d_o and d_a before averaging and sum over the
-///   neighbours only, i left out: the reading of the public reimplementations.)
+///   ½ (d̂_o + d̂_a) ([`Blend::Unit`]) or ½ (d_o + d_a) ([`Blend::Raw`]) when both zones hold
+///   neighbours, the one that does otherwise, and the present heading when neither does. The
+///   sums run over the neighbours only, i left out.
+///
+/// With [`BlindCone::BeyondRepulsion`] a neighbour in the zone of repulsion is seen wherever it
+/// is; with [`BlindCone::Everywhere`] the cone hides it too.
 ///
 /// d is turned by an angle drawn from N(0, σ²) (in 3D about a random axis perpendicular to it;
 /// keyed draws, [`Purpose::ModelNoise`]), then the heading turns towards it by at most θ τ (the
@@ -135,7 +235,8 @@ impl<V: Vector> Couzin<V> {
                 continue;
             }
             let unit = r / d;
-            if blind && heading != V::ZERO && heading.dot(unit) < cos_half {
+            let hidden = blind && heading != V::ZERO && heading.dot(unit) < cos_half;
+            if hidden && (d >= c.r_r || c.blind_cone == BlindCone::Everywhere) {
                 continue;
             }
             if d < c.r_r {
@@ -153,7 +254,10 @@ impl<V: Vector> Couzin<V> {
             repel
         } else {
             match (n_o > 0, n_a > 0) {
-                (true, true) => (orient.normalize_or_zero() + attract.normalize_or_zero()) * 0.5,
+                (true, true) => match c.blend {
+                    Blend::Unit => (orient.normalize_or_zero() + attract.normalize_or_zero()) * 0.5,
+                    Blend::Raw => (orient + attract) * 0.5,
+                },
                 (true, false) => orient,
                 (false, true) => attract,
                 (false, false) => heading,
@@ -272,6 +376,67 @@ mod tests {
     use super::*;
     use approx::assert_abs_diff_eq;
     use glam::{DVec2, DVec3};
+
+    /// A model without noise or turning bound, in open 2D space, with `blend` and `blind_cone`.
+    fn reading(blend: Blend, blind_cone: BlindCone) -> Couzin<DVec2> {
+        let params = CouzinParams {
+            noise: 0.0,
+            turning_rate: 1e6,
+            blend,
+            blind_cone,
+            ..CouzinParams::default()
+        };
+        Couzin::new(params, 0.1, 1, Domain::Open).unwrap()
+    }
+
+    /// One neighbour in the zone of orientation heading along y and three in the zone of
+    /// attraction along x: normalised first, the two zones weigh alike (d along (1, 1)); raw,
+    /// the three attractions outweigh the one heading (d along (3, 1)).
+    #[test]
+    fn the_blends_weigh_the_zones_as_their_definitions_say() {
+        let others = [
+            (DVec2::new(0.0, 2.0), DVec2::new(0.0, 3.0)),
+            (DVec2::new(10.0, 0.0), DVec2::new(3.0, 0.0)),
+            (DVec2::new(11.0, 0.0), DVec2::new(3.0, 0.0)),
+            (DVec2::new(12.0, 0.0), DVec2::new(3.0, 0.0)),
+        ];
+        let (q, p) = (DVec2::ZERO, DVec2::new(3.0, 0.0));
+        let turned = |blend| {
+            reading(blend, BlindCone::Everywhere)
+                .turn(0, 0.0, q, p, others.into_iter())
+                .normalize()
+        };
+        assert_abs_diff_eq!(
+            turned(Blend::Unit),
+            DVec2::new(1.0, 1.0).normalize(),
+            epsilon = 1e-12
+        );
+        assert_abs_diff_eq!(
+            turned(Blend::Raw),
+            DVec2::new(3.0, 1.0).normalize(),
+            epsilon = 1e-12
+        );
+    }
+
+    /// A neighbour right behind, within r_r: hidden by the cone that covers every zone (the
+    /// heading is kept), avoided when the zone of repulsion sees all round (the individual turns
+    /// away, forwards).
+    #[test]
+    fn the_blind_cone_hides_the_zone_of_repulsion_only_when_it_covers_every_zone() {
+        let behind = [(DVec2::new(-0.5, 0.1), DVec2::new(3.0, 0.0))];
+        let (q, p) = (DVec2::ZERO, DVec2::new(3.0, 0.0));
+        let turned = |cone| {
+            reading(Blend::Unit, cone)
+                .turn(0, 0.0, q, p, behind.into_iter())
+                .normalize()
+        };
+        assert_abs_diff_eq!(turned(BlindCone::Everywhere), DVec2::X, epsilon = 1e-12);
+        assert_abs_diff_eq!(
+            turned(BlindCone::BeyondRepulsion),
+            DVec2::new(0.5, -0.1).normalize(),
+            epsilon = 1e-12
+        );
+    }
 
     #[test]
     fn a_turn_is_bounded_by_the_rate() {

@@ -57,7 +57,7 @@ pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
 pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
-pub use couzin2002::{Couzin, CouzinParams};
+pub use couzin2002::{Blend, BlindCone, CollectiveState, Couzin, CouzinParams};
 pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
 pub use error::{ParamError, check, plain_value};
 pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};

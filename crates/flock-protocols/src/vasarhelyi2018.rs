@@ -15,17 +15,16 @@ use crate::{LocalForm, Perceived, Protocol, Swarm};
 
 /// The parameters of the model, named as the paper names them (SI units: m, s).
 ///
-/// Defaults: the optimised set for v^flock = 6 m/s. The friction and shill values (r_0^frict =
-/// 85.3 m, C^frict = 0.05, v^frict = 0.63 m/s, p^frict = 3.2 s⁻¹, a^frict = 4.16 m s⁻², r_0^shill
-/// = 0.3 m, v^shill = 13.6 m/s, p^shill = 3.55 s⁻¹, a^shill = 3.02 m s⁻²) are the optimised values
-/// as independent public reimplementations carry them, digit for digit (SwarmLab's
-/// `param_vasarhelyi.m`, EPFL LIS, and several ROS controllers); p^rep = 0.13 s⁻¹ is the ROS
-/// controllers' (SwarmLab uses 0.03 with its own r_0^rep). r_0^rep = 25 m is assumed (robotsim's
-/// shipped `flockingparams.dat` has R_0 = 25.67 m for its 4 m/s set). τ = 1 s (`tau_PID_XY`),
+/// Defaults (docs/models.md has each value's source): v^flock = 6 m/s; the friction and shill
+/// values r_0^frict = 85.3 m, C^frict = 0.05, v^frict = 0.63 m/s, p^frict = 3.2 s⁻¹, a^frict =
+/// 4.16 m s⁻², r_0^shill = 0.3 m, v^shill = 13.6 m/s, p^shill = 3.55 s⁻¹, a^shill = 3.02 m s⁻²
+/// are SwarmLab's `param_vasarhelyi.m` (EPFL LIS); p^rep = 0.13 s⁻¹ is DANCERS's (SwarmLab has
+/// 0.03; DANCERS differs from SwarmLab on C^frict, v^shill and a^shill too). r_0^rep = 25 m is
+/// assumed (robotsim's shipped `R_0` is 25.67 m for its 4 m/s set). τ = 1 s (`tau_PID_XY`),
 /// a^max = 6 m s⁻² (`a_max`), r_c = 100 m (`R_C`), r^coll = 3 m (`Radius`) and v^max = 8 m/s
 /// (`V_Max`) are robotsim's shipped `unitparams.dat`, `initparams.dat` and `flockingparams.dat`.
 /// None was checked against the paper's supplementary table, which was not available to this
-/// work: see docs/models.md.
+/// work.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VasarhelyiParams {
     /// The preferred (flocking) speed v^flock > 0 of the self-propulsion term.
@@ -34,7 +33,8 @@ pub struct VasarhelyiParams {
     pub r0_rep: f64,
     /// The repulsion gain p^rep ≥ 0 (s⁻¹).
     pub p_rep: f64,
-    /// The stopping-point offset r_0^frict of the alignment's braking curve.
+    /// The offset r_0^frict of the alignment's stopping point beyond r_0^rep: the braking curve
+    /// is evaluated at r_ij − (r_0^rep + r_0^frict) (robotsim's `R_0 + R_0_Offset_Frict`).
     pub r0_frict: f64,
     /// The alignment coefficient C^frict ≥ 0.
     pub c_frict: f64,
@@ -125,7 +125,7 @@ impl<V: Vector> Arena<V> {
     }
 }
 
-/// The braking curve D(r, a, p) (the paper's; robotsim's `VelDecayLinSqrt` in
+/// The braking curve D(r, a, p) (robotsim's `VelDecayLinSqrt` in
 /// `utilities/math_utils.c`): the largest velocity difference that can still be cancelled over
 /// the distance r with acceleration a, with the linear gain p near the stop:
 /// 0 for r ≤ 0, r p for 0 < r p < a/p, √(2 a r − a²/p²) beyond. Continuous at r p = a/p.
@@ -155,14 +155,16 @@ pub fn braking_curve(r: f64, a: f64, p: f64) -> f64 {
 /// The model of Vásárhelyi et al. (2018) as an acceleration protocol.
 ///
 /// Agent i at q_i with velocity v_i hears the agents j within r_c (r_ij = ‖q_i − q_j‖) and sums
-/// the terms of the paper's Materials and Methods (its equation numbers were not re-read here:
-/// the terms as robotsim's `algo_spp_evol.c` `CalculatePreferredVelocity` and
-/// `utilities/interactions.c`, `arenas.c` compute them):
+/// the terms as the paper's simulator robotsim computes them (`algo_spp_evol.c`
+/// `CalculatePreferredVelocity`, `utilities/interactions.c`, `arenas.c`; the paper's text was not
+/// available to this work, so no equation number is cited):
 /// - repulsion, linear within r_0^rep: Σ_j p^rep (r_0^rep − r_ij) (q_i − q_j)/r_ij over
-///   r_ij < r_0^rep (robotsim `RepulsionLin` caps each pair at `V_Rep`; the paper's
-///   linear term has no cap and neither has ours);
+///   r_ij < r_0^rep (robotsim `RepulsionLin` caps each pair at `V_Rep`, a value the optimised
+///   set of the reimplementations does not have; ours has no cap);
 /// - alignment ("friction"): with v_ij = ‖v_i − v_j‖ and the allowed difference
-///   v_ij^frictmax = max(v^frict, D(r_ij − r_0^frict, a^frict, p^frict)) ([`braking_curve`]),
+///   v_ij^frictmax = max(v^frict, D(r_ij − (r_0^rep + r_0^frict), a^frict, p^frict))
+///   ([`braking_curve`]; the stopping point r_0^rep + r_0^frict is robotsim's
+///   `R_0 + R_0_Offset_Frict`, `FrictionLinSqrt` called from `CalculatePreferredVelocity`),
 ///   Σ_j C^frict (v_ij − v_ij^frictmax) (v_j − v_i)/v_ij over v_ij > v_ij^frictmax;
 /// - self-propulsion v^flock v_i/‖v_i‖ (0 at rest);
 /// - the walls: for each wall nearest along an axis (square, cube) or the one wall (circle,
@@ -170,8 +172,9 @@ pub fn braking_curve(r: f64, a: f64, p: f64) -> f64 {
 ///   v^shill: v_s. With r_s the distance to the wall (negative outside) and v_is = ‖v_s − v_i‖,
 ///   it adds (v_is − D(r_s − r_0^shill, a^shill, p^shill)) (v_s − v_i)/v_is when positive.
 ///
-/// The sum ṽ_i is cut at v^max keeping its direction: v_d,i = ṽ_i min(1, v^max/‖ṽ_i‖) (robotsim
-/// by default normalises to v^flock instead, `CutOffMode` false; the paper's cut is ours). The
+/// The sum ṽ_i is cut at v^max keeping its direction: v_d,i = ṽ_i min(1, v^max/‖ṽ_i‖)
+/// (robotsim's `CutOffMode` branch; robotsim ships that switch off and rescales ṽ_i to v^flock
+/// instead). The
 /// protocol's output is the acceleration u_i = (v_d,i − v_i)/τ, cut at a^max keeping its
 /// direction: the point mass of robotsim's `robotmodel.c`, whose velocity relaxes to the
 /// preferred one with the time `tau_PID` and whose acceleration saturates at `a_max`.
@@ -320,9 +323,11 @@ impl<V: Vector> Vasarhelyi<V> {
             }
             let dv = vj - v;
             let v_ij = dv.length();
-            let allowed = c
-                .v_frict
-                .max(braking_curve(r - c.r0_frict, c.a_frict, c.p_frict));
+            let allowed = c.v_frict.max(braking_curve(
+                r - (c.r0_rep + c.r0_frict),
+                c.a_frict,
+                c.p_frict,
+            ));
             if v_ij > allowed {
                 friction += dv * (c.c_frict * (v_ij - allowed) / v_ij);
             }
@@ -463,6 +468,39 @@ mod tests {
         let below = braking_curve(knee * (1.0 - 1e-12), a, p);
         let above = braking_curve(knee * (1.0 + 1e-12), a, p);
         assert!((below - a / p).abs() < 1e-9 && (above - a / p).abs() < 1e-9);
+    }
+
+    /// robotsim's `CalculatePreferredVelocity` stops the friction's braking curve at
+    /// `R_0 + R_0_Offset_Frict`: within r_0^rep + r_0^frict = 110.3 m only the slack v^frict is
+    /// allowed, so a velocity difference of 1 m/s is damped at 100 m (the curve at 100 − 85.3 m
+    /// would allow 11 m/s) and not at 120 m (D(9.7 m) = 8.9 m/s allowed).
+    #[test]
+    fn the_friction_stops_at_r0_rep_plus_r0_frict_as_robotsim() {
+        use glam::DVec2;
+        let params = VasarhelyiParams {
+            r_c: 200.0,
+            ..VasarhelyiParams::default()
+        };
+        let arena = Arena {
+            shape: ArenaShape::Square,
+            centre: DVec2::ZERO,
+            side: 1e6,
+        };
+        let model = Vasarhelyi::new(params, arena).unwrap();
+        let (v_i, v_j) = (DVec2::new(6.0, 0.0), DVec2::new(6.0, 1.0));
+        let across = |r: f64| {
+            let others = [(DVec2::new(r, 0.0), v_j)];
+            model
+                .desired_velocity(DVec2::ZERO, v_i, others.into_iter())
+                .y
+        };
+        let c = &params;
+        let damped = c.c_frict * (1.0 - c.v_frict);
+        assert!((across(100.0) - damped).abs() < 1e-12, "{}", across(100.0));
+        assert!((across(110.0) - damped).abs() < 1e-12, "{}", across(110.0));
+        assert_eq!(across(120.0), 0.0);
+        assert!(braking_curve(120.0 - 110.3, c.a_frict, c.p_frict) > 1.0);
+        assert!(braking_curve(100.0 - 85.3, c.a_frict, c.p_frict) > 1.0);
     }
 
     #[test]

@@ -655,7 +655,7 @@ fn vas_braking(r: f64, a: f64, p: f64) -> f64 {
     }
 }
 
-/// The model's acceleration of every agent, brute force over all pairs: the paper's terms
+/// The model's acceleration of every agent, brute force over all pairs: robotsim's terms
 /// summed, cut at v^max, relaxed over τ and cut at a^max; the arena a square (cube) about `centre`.
 fn vasarhelyi_inputs<V: Vector>(
     q: &[V],
@@ -684,7 +684,9 @@ fn vasarhelyi_inputs<V: Vector>(
                     desired += (q[i] - q[j]) * (1.0 / r) * (c.p_rep * (c.r0_rep - r));
                 }
                 let v_ij = (p[i] - p[j]).length();
-                let allowed = vas_braking(r - c.r0_frict, c.a_frict, c.p_frict).max(c.v_frict);
+                // the stopping point of robotsim's FrictionLinSqrt: R_0 + R_0_Offset_Frict
+                let stop = c.r0_rep + c.r0_frict;
+                let allowed = vas_braking(r - stop, c.a_frict, c.p_frict).max(c.v_frict);
                 if v_ij > allowed {
                     desired += (p[j] - p[i]) * (1.0 / v_ij) * (c.c_frict * (v_ij - allowed));
                 }

@@ -10,14 +10,23 @@
 //! - Panels (small multiples): one diagram per value of a third parameter, on a grid, with the
 //!   same axes and the same colour map in every panel, each titled ("n = 50").
 //!
+//! - Series: the panels drawn instead on one set of axes, a colour and a marker per panel (square,
+//!   plus, cross, triangle, diamond, as Vicsek et al. 1995 Fig. 2(a) marks its N), with a legend —
+//!   for comparisons across the panels' parameter (a finite-size comparison).
+//!
 //! - [`Bound`]: a theoretical value of x (a stability bound) drawn as a labelled vertical line.
+//!
+//! - [`Reference`]: values from a source drawn beside the sweep's — a paper's points over a line
+//!   diagram (black markers), or a paper's borders over a heatmap (labelled red lines).
 //!
 //! - [`phase_table`]: the numbers drawn, as CSV.
 //!
 //! NaN values (failed runs, empty fields) are left out of means, bands and dots.
 
+use plotters::chart::MeshStyle;
 use plotters::coord::Shift;
-use plotters::element::{PathElement, Text};
+use plotters::coord::ranged1d::{Ranged, ValueFormatter};
+use plotters::element::{EmptyElement, PathElement, Text};
 use plotters::prelude::{
     ChartBuilder, Circle, DrawingArea, DrawingBackend, IntoLogRange, IntoSegmentedCoord,
     LineSeries, Polygon, Rectangle, SegmentValue,
@@ -78,6 +87,25 @@ pub struct PhaseOptions {
     pub size: (u32, u32),
     /// A theoretical bound on x, drawn as a labelled vertical line in every panel.
     pub bound: Option<Bound>,
+    /// Draw the panels of a one-axis diagram as series on one set of axes (a colour and a
+    /// marker each, the panels' titles in the legend) rather than side by side.
+    pub series: bool,
+    /// Values from sources drawn beside the sweep's.
+    pub references: Vec<Reference>,
+}
+
+/// Values from a source drawn beside a sweep's: over a line diagram, its points as black markers
+/// (the marker of its series); over a heatmap, a line through its points in the axes' values
+/// (a border between states), labelled at the mean of its vertices.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reference {
+    /// What it is, for the legend or the line's label ("N = 40, Vicsek et al. 1995").
+    pub label: String,
+    /// The panel (series) it belongs to: its marker, and the only panel it is drawn in when the
+    /// panels are side by side; `None` for every panel, with the marker after the panels' last.
+    pub series: Option<usize>,
+    /// Its points: (x, metric) over a line diagram, (x, y) over a heatmap.
+    pub points: Vec<(f64, f64)>,
 }
 
 /// A labelled value of x, such as a stability bound τ* of the swept delay, drawn as a vertical
@@ -104,6 +132,8 @@ impl Default for PhaseOptions {
             band: Band::MinMax,
             size: (800, 600),
             bound: None,
+            series: false,
+            references: Vec::new(),
         }
     }
 }
@@ -112,8 +142,31 @@ impl Default for PhaseOptions {
 pub const EMPTY_CELL: [u8; 3] = [0xC8, 0xC8, 0xC8];
 /// The band of a one-axis diagram.
 pub const BAND: [u8; 3] = [0xC6, 0xD4, 0xEA];
-/// The line of a [`Bound`].
+/// The line of a [`Bound`], and a [`Reference`] over a heatmap.
 pub const BOUND: [u8; 3] = [0xD6, 0x27, 0x28];
+/// The colours of the series, in order (then again).
+pub const SERIES: [[u8; 3]; 5] = [
+    [0x1F, 0x4E, 0x9C],
+    [0xD6, 0x27, 0x28],
+    [0x2C, 0xA0, 0x2C],
+    [0xE0, 0x82, 0x14],
+    [0x7B, 0x32, 0x94],
+];
+/// The half size of a marker, in pixels.
+const MARKER: i32 = 5;
+
+/// The outline of marker `k` (square, plus, cross, triangle, diamond, then again) as a path of
+/// pixel offsets from its centre.
+fn marker(k: usize) -> Vec<(i32, i32)> {
+    let r = MARKER;
+    match k % 5 {
+        0 => vec![(-r, -r), (r, -r), (r, r), (-r, r), (-r, -r)],
+        1 => vec![(-r, 0), (r, 0), (0, 0), (0, -r), (0, r)],
+        2 => vec![(-r, -r), (r, r), (0, 0), (r, -r), (-r, r)],
+        3 => vec![(0, -r), (r, r), (-r, r), (0, -r)],
+        _ => vec![(0, -r), (r, 0), (0, r), (-r, 0), (0, -r)],
+    }
+}
 
 /// The phase diagram as SVG.
 ///
@@ -236,6 +289,51 @@ fn index(values: &[f64], x: f64) -> usize {
         .expect("a value of the grid")
 }
 
+/// Where `x` falls among the cells of the sorted grid values `values`, in cells from the first
+/// cell's centre: between the two values around it (or beyond the first or last two, extended),
+/// linearly in x, or in ln x with `log` and positive values.
+fn cell_position(values: &[f64], x: f64, log: bool) -> f64 {
+    if values.len() == 1 {
+        return 0.0;
+    }
+    let above = values
+        .partition_point(|&v| v < x)
+        .clamp(1, values.len() - 1);
+    let (a, b) = (values[above - 1], values[above]);
+    let t = if log && a > 0.0 {
+        (x / a).ln() / (b / a).ln()
+    } else {
+        (x - a) / (b - a)
+    };
+    (above - 1) as f64 + t
+}
+
+/// Draws the mesh of a line diagram: x labelled with the swept parameter, y with the metric,
+/// `labels` values along each, a light grid.
+fn line_mesh<X, Y, XT, YT, DB>(
+    mut mesh: MeshStyle<'_, '_, X, Y, DB>,
+    o: &PhaseOptions,
+    text: TextMode,
+    labels: usize,
+) -> Result<(), VizError>
+where
+    X: Ranged<ValueType = XT> + ValueFormatter<XT>,
+    Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
+    DB: DrawingBackend,
+{
+    mesh.x_desc(text.text(&o.x_label))
+        .y_desc(text.text(&o.metric))
+        .x_labels(labels)
+        .y_labels(labels)
+        .label_style(text_style(13))
+        .axis_desc_style(text_style(14))
+        .axis_style(style::rgb(INK))
+        .light_line_style(style::rgb([0xEE, 0xEE, 0xEE]))
+        .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
+        .draw()
+        .map_err(VizError::draw)
+}
+
 /// The q-quantile of sorted values (linear between order statistics).
 fn quantile(sorted: &[f64], q: f64) -> f64 {
     let position = q * (sorted.len() - 1) as f64;
@@ -290,6 +388,22 @@ impl<'a> Diagram<'a> {
         );
         if lo > hi {
             return Err(VizError::invalid(format!("no run has a value of {metric}")));
+        }
+        if options.series && heatmap {
+            return Err(VizError::invalid(
+                "series are drawn on a line diagram; a heatmap has panels",
+            ));
+        }
+        if let Some(r) = options.references.iter().find(|r| {
+            r.series.is_some_and(|k| k >= count)
+                || r.points
+                    .iter()
+                    .any(|&(x, y)| !x.is_finite() || !y.is_finite())
+        }) {
+            return Err(VizError::invalid(format!(
+                "the reference {:?} has a point that is not finite or a series that is not drawn",
+                r.label
+            )));
         }
         if let Some(bound) = &options.bound {
             let (first, last) = (xs[0], xs[xs.len() - 1]);
@@ -396,35 +510,48 @@ impl<'a> Diagram<'a> {
                 }
             }
         }
-        let pixel = |k: i32| {
-            chart
-                .backend_coord(&(SegmentValue::Exact(k), SegmentValue::Exact(0)))
-                .0
+        let pixel =
+            |i: i32, j: i32| chart.backend_coord(&(SegmentValue::Exact(i), SegmentValue::Exact(j)));
+        let (left, width) = (pixel(0, 0).0, pixel(1, 0).0 - pixel(0, 0).0);
+        let (bottom, height) = (pixel(0, 0).1, pixel(0, 1).1 - pixel(0, 0).1);
+        // within the grid's outer cell edges: a line beyond them runs along the edge
+        let within = |at: f64, count: usize| at.clamp(-0.5, count as f64 - 0.5) + 0.5;
+        let column = |x: f64| {
+            let at = within(cell_position(&self.xs, x, o.log_x), self.xs.len());
+            left + (at * f64::from(width)).round() as i32
         };
-        let (left, width) = (pixel(0), pixel(1) - pixel(0));
+        let row = |y: f64| {
+            let at = within(cell_position(&self.ys, y, false), self.ys.len());
+            bottom + (at * f64::from(height)).round() as i32
+        };
         let plot = chart.plotting_area().strip_coord_spec();
-        self.bound(
-            &plot,
-            |x| left + ((self.cell_position(x) + 0.5) * f64::from(width)).round() as i32,
-            text,
-        )
-    }
-
-    /// Where x falls among the heatmap's cells, in cells from the first cell's centre: between
-    /// the two grid values around it, linearly in x, or in ln x with a logarithmic x axis.
-    fn cell_position(&self, x: f64) -> f64 {
-        let xs = &self.xs;
-        if xs.len() == 1 {
-            return 0.0;
+        let (x0, y0) = plot.get_base_pixel();
+        let ink = style::rgb(BOUND);
+        for reference in &o.references {
+            let path: Vec<(i32, i32)> = reference
+                .points
+                .iter()
+                .map(|&(x, y)| (column(x) - x0, row(y) - y0))
+                .collect();
+            plot.draw(&PathElement::new(path.clone(), ink.stroke_width(3)))
+                .map_err(VizError::draw)?;
+            // labelled at the mean of its vertices (a closed line's first one counted once)
+            let closed = path.len() > 2 && path.first() == path.last();
+            let vertices = &path[..path.len() - usize::from(closed)];
+            if !vertices.is_empty() {
+                let count = vertices.len() as i32;
+                let x = vertices.iter().map(|p| p.0).sum::<i32>() / count;
+                let y = vertices.iter().map(|p| p.1).sum::<i32>() / count;
+                let label = text.text(&reference.label);
+                plot.draw(&Text::new(
+                    label,
+                    (x - 20, y - 6),
+                    text_style(12).color(&ink),
+                ))
+                .map_err(VizError::draw)?;
+            }
         }
-        let above = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
-        let (a, b) = (xs[above - 1], xs[above]);
-        let t = if self.options.log_x && a > 0.0 {
-            (x / a).ln() / (b / a).ln()
-        } else {
-            (x - a) / (b - a)
-        };
-        (above - 1) as f64 + t
+        self.bound(&plot, column, text)
     }
 
     /// The bound, if any, as a vertical line at the backend pixel column `column` across `plot`
@@ -512,10 +639,95 @@ impl<'a> Diagram<'a> {
         Ok(())
     }
 
-    /// The line and band of the panel `cells`.
+    /// The references of panel `k` (or of every panel) as black markers: (marker, points).
+    fn references(&self, k: Option<usize>) -> Vec<(usize, Vec<(f64, f64)>)> {
+        self.options
+            .references
+            .iter()
+            .filter(|r| k.is_none() || r.series.is_none() || r.series == k)
+            .map(|r| (r.series.unwrap_or(self.panels.len()), r.points.clone()))
+            .collect()
+    }
+
+    /// The means of every panel on one set of axes, a colour and a marker each, with the
+    /// references beside them and a legend.
+    fn series<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        text: TextMode,
+    ) -> Result<(), VizError> {
+        let o = self.options;
+        let (x0, x1) = (self.xs[0], self.xs[self.xs.len() - 1]);
+        let references = self.references(None);
+        let reference_values = || {
+            references
+                .iter()
+                .flat_map(|(_, p)| p.iter().map(|&(_, v)| v))
+        };
+        let y0 = reference_values().fold(self.range.0, f64::min);
+        let y1 = reference_values().fold(self.range.1, f64::max);
+        let pad = if y1 > y0 { 0.05 * (y1 - y0) } else { 0.5 };
+        let x_pad = if x1 > x0 { 0.02 * (x1 - x0) } else { 0.5 };
+        let mut chart = ChartBuilder::on(area)
+            .margin(12)
+            .x_label_area_size(48)
+            .y_label_area_size(72)
+            .build_cartesian_2d((x0 - x_pad)..(x1 + x_pad), (y0 - pad)..(y1 + pad))
+            .map_err(VizError::draw)?;
+        line_mesh(chart.configure_mesh(), o, text, 11)?;
+        for (k, cells) in self.panels.iter().enumerate() {
+            let colour = style::rgb(SERIES[k % SERIES.len()]);
+            let means: Vec<(f64, f64)> = self
+                .xs
+                .iter()
+                .zip(cells)
+                .filter_map(|(&x, column)| mean(&column[0]).map(|m| (x, m)))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(means.clone(), colour.stroke_width(1)))
+                .map_err(VizError::draw)?;
+            let shape = marker(k);
+            let series = chart
+                .draw_series(means.iter().map(|&p| {
+                    EmptyElement::at(p) + PathElement::new(shape.clone(), colour.stroke_width(2))
+                }))
+                .map_err(VizError::draw)?;
+            let label = o.panels.get(k).cloned().unwrap_or_default();
+            series.label(text.text(&label)).legend(move |(x, y)| {
+                EmptyElement::at((x + 8, y)) + PathElement::new(marker(k), colour.stroke_width(2))
+            });
+        }
+        let ink = style::rgb(INK);
+        for (reference, (k, points)) in o.references.iter().zip(&references) {
+            let shape = marker(*k);
+            let k = *k;
+            chart
+                .draw_series(points.iter().map(|&p| {
+                    EmptyElement::at(p) + PathElement::new(shape.clone(), ink.stroke_width(1))
+                }))
+                .map_err(VizError::draw)?
+                .label(text.text(&reference.label))
+                .legend(move |(x, y)| {
+                    EmptyElement::at((x + 8, y)) + PathElement::new(marker(k), ink.stroke_width(1))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .label_font(text_style(12))
+            .background_style(style::rgb(style::BACKGROUND).mix(0.9))
+            .border_style(style::rgb([0xE0, 0xE0, 0xE0]))
+            .position(plotters::chart::SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(VizError::draw)?;
+        let plot = chart.plotting_area().strip_coord_spec();
+        self.bound(&plot, |x| chart.backend_coord(&(x, y0)).0, text)
+    }
+
+    /// The line and band of panel `k`, whose cells are `cells`, with its references.
     fn line<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
+        k: usize,
         cells: &Cells,
         text: TextMode,
     ) -> Result<(), VizError> {
@@ -562,19 +774,7 @@ impl<'a> Diagram<'a> {
         macro_rules! draw {
             ($x:expr, $y:expr) => {{
                 let mut chart = builder.build_cartesian_2d($x, $y).map_err(VizError::draw)?;
-                chart
-                    .configure_mesh()
-                    .x_desc(text.text(&o.x_label))
-                    .y_desc(text.text(&o.metric))
-                    .x_labels(8)
-                    .y_labels(8)
-                    .label_style(text_style(13))
-                    .axis_desc_style(text_style(14))
-                    .axis_style(style::rgb(INK))
-                    .light_line_style(style::rgb([0xEE, 0xEE, 0xEE]))
-                    .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
-                    .draw()
-                    .map_err(VizError::draw)?;
+                line_mesh(chart.configure_mesh(), o, text, 8)?;
                 chart
                     .draw_series([Polygon::new(outline.clone(), style::rgb(BAND).filled())])
                     .map_err(VizError::draw)?;
@@ -591,6 +791,15 @@ impl<'a> Diagram<'a> {
                             .map(|&p| Circle::new(p, 3, style::rgb(CURVE).filled())),
                     )
                     .map_err(VizError::draw)?;
+                for (shape, reference) in self.references(Some(k)) {
+                    let shape = marker(shape);
+                    chart
+                        .draw_series(reference.into_iter().map(|p| {
+                            EmptyElement::at(p)
+                                + PathElement::new(shape.clone(), style::rgb(INK).stroke_width(1))
+                        }))
+                        .map_err(VizError::draw)?;
+                }
                 let plot = chart.plotting_area().strip_coord_spec();
                 self.bound(
                     &plot,
@@ -611,9 +820,14 @@ impl<'a> Diagram<'a> {
 }
 
 impl Diagram<'_> {
-    /// The panels' grid: (rows, columns), as near square as the panels allow.
+    /// The panels' grid: (rows, columns), as near square as the panels allow (one cell for
+    /// series).
     fn grid(&self) -> (usize, usize) {
-        let count = self.panels.len();
+        let count = if self.options.series {
+            1
+        } else {
+            self.panels.len()
+        };
         let columns = (1..=count).find(|c| c * c >= count).unwrap_or(1);
         (count.div_ceil(columns), columns)
     }
@@ -658,6 +872,9 @@ impl Figure for Diagram<'_> {
         } else {
             body
         };
+        if self.options.series {
+            return self.series(&grid, text);
+        }
         let areas = grid.split_evenly(self.grid());
         for (k, (cells, area)) in self.panels.iter().zip(&areas).enumerate() {
             let area = match self.options.panels.get(k) {
@@ -669,9 +886,126 @@ impl Figure for Diagram<'_> {
             if heatmap {
                 self.heatmap(&area, cells, range, text)?;
             } else {
-                self.line(&area, cells, text)?;
+                self.line(&area, k, cells, text)?;
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two panels of a line: N = 40 and N = 400, two x each.
+    fn two_series() -> Vec<PhasePoint> {
+        [(0, 1.0, 0.9), (0, 2.0, 0.6), (1, 1.0, 0.8), (1, 2.0, 0.3)]
+            .map(|(panel, x, value)| PhasePoint {
+                x,
+                y: None,
+                value,
+                panel,
+            })
+            .to_vec()
+    }
+
+    fn series_options(references: Vec<Reference>) -> PhaseOptions {
+        PhaseOptions {
+            panels: vec!["N = 40".into(), "N = 400".into()],
+            series: true,
+            references,
+            ..PhaseOptions::default()
+        }
+    }
+
+    /// Series share one set of axes: one legend entry per panel and per reference, each
+    /// series in its colour and the references in black, drawn within the points' range even
+    /// where they lie outside the sweep's values.
+    #[test]
+    fn series_and_references_share_one_set_of_axes() {
+        let reference = Reference {
+            label: "N = 40, paper".into(),
+            series: Some(0),
+            points: vec![(1.5, 0.05)],
+        };
+        let svg = phase_svg(&two_series(), &series_options(vec![reference])).unwrap();
+        for label in ["N = 40", "N = 400", "N = 40, paper"] {
+            assert!(
+                svg.contains(&format!("\n{label}\n</text>")),
+                "no legend entry {label}"
+            );
+        }
+        for colour in [SERIES[0], SERIES[1], style::INK] {
+            assert!(svg.contains(&style::hex(colour)), "no {colour:?}");
+        }
+        // one set of axes: the x label once
+        let without = phase_svg(&two_series(), &series_options(Vec::new())).unwrap();
+        assert!(!without.contains("paper"));
+        assert_ne!(svg, without);
+    }
+
+    /// A heatmap has no series, and a reference must belong to a drawn panel and be finite.
+    #[test]
+    fn series_and_references_are_refused_where_they_cannot_be_drawn() {
+        let heatmap: Vec<PhasePoint> = [(1.0, 1.0, 0.1), (2.0, 1.0, 0.2)]
+            .map(|(x, y, value)| PhasePoint {
+                x,
+                y: Some(y),
+                value,
+                panel: 0,
+            })
+            .to_vec();
+        let options = PhaseOptions {
+            y_label: Some("y".into()),
+            series: true,
+            ..PhaseOptions::default()
+        };
+        assert!(phase_svg(&heatmap, &options).is_err());
+        let stray = Reference {
+            label: "stray".into(),
+            series: Some(2),
+            points: vec![(1.0, 0.5)],
+        };
+        assert!(phase_svg(&two_series(), &series_options(vec![stray])).is_err());
+        let infinite = Reference {
+            label: "infinite".into(),
+            series: None,
+            points: vec![(1.0, f64::INFINITY)],
+        };
+        assert!(phase_svg(&two_series(), &series_options(vec![infinite])).is_err());
+    }
+
+    /// Over a heatmap a reference is a red line through its points, placed between the cells
+    /// of the values around it, and changes the drawing.
+    #[test]
+    fn a_reference_over_a_heatmap_is_a_labelled_red_line() {
+        let points: Vec<PhasePoint> = [(0.0, 1.0), (0.0, 2.0), (1.0, 1.0), (1.0, 2.0)]
+            .map(|(x, y)| PhasePoint {
+                x,
+                y: Some(y),
+                value: x + y,
+                panel: 0,
+            })
+            .to_vec();
+        let options = |references| PhaseOptions {
+            y_label: Some("y".into()),
+            references,
+            ..PhaseOptions::default()
+        };
+        let border = Reference {
+            label: "border".into(),
+            series: None,
+            points: vec![(0.5, 1.0), (0.5, 2.0)],
+        };
+        let svg = phase_svg(&points, &options(vec![border])).unwrap();
+        assert!(svg.contains("\nborder\n</text>"));
+        assert!(svg.contains(&style::hex(BOUND)));
+        assert!(
+            !phase_svg(&points, &options(Vec::new()))
+                .unwrap()
+                .contains(&style::hex(BOUND))
+        );
+        assert_eq!(cell_position(&[0.0, 1.0, 3.0], 2.0, false), 1.5);
+        assert_eq!(cell_position(&[0.0, 1.0, 3.0], 4.0, false), 2.5);
     }
 }

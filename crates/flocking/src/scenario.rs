@@ -14,9 +14,9 @@ use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
-    AlphaAlphaForm, AlphaConfig, ArenaShape, AvoidanceGains, BetaConfig, BoidsParams, Conditions,
-    CouzinParams, CuckerSmaleParams, GammaAgent, Integrator, VasarhelyiParams, VicsekParams,
-    critical_damping,
+    AlphaAlphaForm, AlphaConfig, ArenaShape, AvoidanceGains, BetaConfig, Blend, BlindCone,
+    BoidsParams, Conditions, CouzinParams, CuckerSmaleParams, GammaAgent, Integrator,
+    VasarhelyiParams, VicsekParams, critical_damping,
 };
 
 use crate::error::ScenarioError;
@@ -255,6 +255,13 @@ pub enum Algorithm {
         /// The standard deviation σ (rad) of the angular noise (default 0.05).
         #[serde(default = "couzin_noise")]
         noise: f64,
+        /// How d_o and d_a are combined: `Unit` (default) or `Raw` ([`Blend`]).
+        #[serde(default)]
+        blend: Blend,
+        /// Which zones the blind cone hides: `Everywhere` (default) or `BeyondRepulsion`
+        /// ([`BlindCone`]).
+        #[serde(default)]
+        blind_cone: BlindCone,
     },
     /// The drones' model of Vásárhelyi et al. (Science Robotics 3(20), 2018): repulsion,
     /// alignment under a braking curve, self-propulsion and shill agents on the walls of an
@@ -526,6 +533,8 @@ impl Algorithm {
                 turning_rate,
                 speed,
                 noise,
+                blend,
+                blind_cone,
             } => Some(CouzinParams {
                 r_r,
                 delta_r_o,
@@ -534,6 +543,8 @@ impl Algorithm {
                 turning_rate,
                 speed,
                 noise,
+                blend,
+                blind_cone,
             }),
             _ => None,
         }

@@ -249,6 +249,7 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
             "nearest_neighbour_mean",
             "settled_polarisation",
             "settled_milling",
+            "settled_largest_group",
             "error"
         ]
     );

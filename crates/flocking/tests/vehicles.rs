@@ -100,7 +100,7 @@ fn unicycle_limits_hold_at_every_step() {
 /// The Vásárhelyi model's desired velocity, tracked through u = (v_d − v)/τ by 30 Crazyflies in
 /// 3D (its arena a cube): the flock orders (φ^corr > 0.98 at the end), flies near v^flock, and no
 /// pair comes within r^coll and no drone leaves the arena (docs/vehicles.md: φ^corr 0.991, speed
-/// 0.96 v^flock after 300 s).
+/// 0.95 v^flock after 300 s).
 #[test]
 fn vasarhelyi_flies_on_crazyflies() {
     let drones = changed(

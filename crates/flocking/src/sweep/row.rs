@@ -35,11 +35,17 @@ pub struct Outcome {
     /// (Vicsek et al. 1995's v_a, Couzin et al. 2002's p_group and m_group). `None` without such
     /// a record.
     pub settled_order: Option<(f64, f64)>,
+    /// The mean over the same records of the fraction of agents in the largest group, C* (the
+    /// largest connected component of the proximity net: for the velocity models, the agents
+    /// linked by chains of neighbours within the interaction range); below 1 where the group has
+    /// split (Couzin et al. 2002 count the runs whose group fragments). `None` without such a
+    /// record.
+    pub settled_largest_group: Option<f64>,
 }
 
 /// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`), each with what a
 /// figure calls it ([`metric_label`]).
-const OUTCOME_COLUMNS: [(&str, &str); 19] = {
+const OUTCOME_COLUMNS: [(&str, &str); 20] = {
     let [c, giant, radius, deviation, mismatch, distance] = FlockMetrics::REAL_COLUMNS;
     [
         (c, "connectivity C"),
@@ -61,6 +67,10 @@ const OUTCOME_COLUMNS: [(&str, &str); 19] = {
         ("nearest_neighbour_mean", "mean nearest-neighbour distance"),
         ("settled_polarisation", "polarisation, mean after settling"),
         ("settled_milling", "milling, mean after settling"),
+        (
+            "settled_largest_group",
+            "fraction in the largest group, mean after settling",
+        ),
     ]
 };
 
@@ -115,6 +125,8 @@ impl Outcome {
                 |f: fn(&FlockMetrics) -> f64| settled.iter().map(|m| f(m)).sum::<f64>() / count;
             (mean(|m| m.polarisation), mean(|m| m.milling))
         });
+        let settled_largest_group = (!settled.is_empty())
+            .then(|| settled.iter().map(|m| m.giant_component).sum::<f64>() / count);
         Self {
             metrics: FlockMetrics {
                 min_distance: whole.min_distance,
@@ -126,6 +138,7 @@ impl Outcome {
             alpha_flock,
             obstacles,
             settled_order,
+            settled_largest_group,
         }
     }
 
@@ -155,6 +168,7 @@ impl Outcome {
             self.metrics.nearest_neighbour_mean.to_string(),
             or_empty(self.settled_order.map(|(p, _)| p.to_string())),
             or_empty(self.settled_order.map(|(_, m)| m.to_string())),
+            or_empty(self.settled_largest_group.map(|g| g.to_string())),
         ]
     }
 }
