@@ -36,6 +36,68 @@ pub struct CouzinParams {
     pub noise: f64,
 }
 
+/// The collective states of Couzin et al. (2002, Fig. 1(b)–(e)), named from the group's
+/// polarisation p_group and angular momentum m_group by the thresholds of [`CollectiveState::of`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CollectiveState {
+    /// Low polarisation and low angular momentum: a cohesive, disordered group.
+    Swarm,
+    /// Individuals circling an empty core: m_group ≥ [`CollectiveState::TORUS`].
+    Torus,
+    /// Aligned but moving within the group: [`CollectiveState::PARALLEL`] ≤ p_group <
+    /// [`CollectiveState::HIGHLY_PARALLEL`].
+    DynamicParallel,
+    /// Aligned and rigid: p_group ≥ [`CollectiveState::HIGHLY_PARALLEL`].
+    HighlyParallel,
+}
+
+impl CollectiveState {
+    /// The least angular momentum m_group of a torus.
+    pub const TORUS: f64 = 0.5;
+    /// The least polarisation p_group of a parallel group.
+    pub const PARALLEL: f64 = 0.5;
+    /// The least polarisation p_group of a highly parallel group.
+    pub const HIGHLY_PARALLEL: f64 = 0.95;
+
+    /// The state of a group with polarisation `p` and angular momentum `m` (means over the
+    /// settled run): a torus when m ≥ 0.5, else highly parallel when p ≥ 0.95, dynamic parallel
+    /// when p ≥ 0.5, a swarm otherwise. The paper draws its states from both measures without
+    /// numerical borders; these are ours.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_protocols::couzin2002::CollectiveState;
+    ///
+    /// assert_eq!(CollectiveState::of(0.1, 0.9), CollectiveState::Torus);
+    /// assert_eq!(CollectiveState::of(0.99, 0.1), CollectiveState::HighlyParallel);
+    /// assert_eq!(CollectiveState::of(0.7, 0.2), CollectiveState::DynamicParallel);
+    /// assert_eq!(CollectiveState::of(0.2, 0.1), CollectiveState::Swarm);
+    /// ```
+    #[must_use]
+    pub fn of(p: f64, m: f64) -> Self {
+        if m >= Self::TORUS {
+            Self::Torus
+        } else if p >= Self::HIGHLY_PARALLEL {
+            Self::HighlyParallel
+        } else if p >= Self::PARALLEL {
+            Self::DynamicParallel
+        } else {
+            Self::Swarm
+        }
+    }
+
+    /// The state's name as the paper writes it ("dynamic parallel").
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Swarm => "swarm",
+            Self::Torus => "torus",
+            Self::DynamicParallel => "dynamic parallel",
+            Self::HighlyParallel => "highly parallel",
+        }
+    }
+}
+
 impl Default for CouzinParams {
     fn default() -> Self {
         Self {

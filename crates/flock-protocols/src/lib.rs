@@ -57,10 +57,13 @@ pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
 pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
-pub use couzin2002::{Couzin, CouzinParams};
+pub use couzin2002::{CollectiveState, Couzin, CouzinParams};
 pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
 pub use error::{ParamError, check, plain_value};
-pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
+pub use gamma::{
+    Feedback, GAMMA_POSITION_ERROR, GAMMA_VELOCITY_ERROR, GammaAgent, NavigationalFeedback,
+    critical_damping,
+};
 pub use health::{AgentFault, Fault};
 pub use integrator::{Integrator, Observation, Simulation, advance, check_vehicle_loop};
 pub use olfati_saber2003::{
