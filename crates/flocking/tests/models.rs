@@ -3,6 +3,8 @@
 //! noise, random activation order and conditions included), their parameters by dotted path, and
 //! the errors of what they cannot take.
 
+use flocking::metrics::FlockingCriteria;
+use flocking::protocols::CollectiveState;
 use flocking::serde_json::json;
 use flocking::{DynSimulation, Scenario};
 
@@ -25,21 +27,6 @@ fn settled_order(scenario: &Scenario) -> (f64, f64) {
     (p / count, m / count)
 }
 
-/// The collective state of Couzin et al. (2002) by p_group and m_group, with our thresholds (the
-/// paper names the states and plots both measures, but draws no numerical border):
-/// torus m ≥ 0.5; highly parallel p ≥ 0.95; dynamic parallel 0.5 ≤ p < 0.95; swarm otherwise.
-fn couzin_state((p, m): (f64, f64)) -> &'static str {
-    if m >= 0.5 {
-        "torus"
-    } else if p >= 0.95 {
-        "highly parallel"
-    } else if p >= 0.5 {
-        "dynamic parallel"
-    } else {
-        "swarm"
-    }
-}
-
 /// One point inside each of the paper's four states (Fig. 2, as the committed sweep
 /// sweeps/couzin2002_zones.ron maps them with 3 seeds): the measured polarisation and angular
 /// momentum put each in its state.
@@ -60,7 +47,7 @@ fn couzin_shows_its_four_collective_states() {
             .expect("valid zones");
         let measured = settled_order(&scenario);
         assert_eq!(
-            couzin_state(measured),
+            CollectiveState::of(measured.0, measured.1).name(),
             state,
             "Δr_o = {delta_r_o}, Δr_a = {delta_r_a}: (p, m) = {measured:?}"
         );
@@ -269,4 +256,53 @@ fn vasarhelyi_refuses_a_torus_a_bad_centre_and_bad_parameters() {
     let resolved = base.resolved();
     assert_eq!(resolved.collision_distance, Some(3.0));
     assert_eq!(resolved.range(), 100.0);
+}
+
+/// Issue 49: one agent on a torus was judged "α-flocking … no, strict: yes" and showed a milling
+/// up to 0.996 (one Vicsek particle 0.68): the circular mean of a single agent sat a round-off
+/// away from it, and the agent seemed to circle it. One agent never mills, its cohesion radius is
+/// 0, and a group of one gets no verdict, whatever the model.
+#[test]
+fn issue_49_one_agent_on_a_torus_neither_mills_nor_is_judged() {
+    let torus = json!({"Periodic": {"size": [60.0, 60.0]}});
+    for (name, changes) in [
+        (
+            "tac2006_fig12_alg1_n40",
+            vec![
+                ("agents", json!(1)),
+                ("domain", torus.clone()),
+                (
+                    "initial",
+                    json!({"positions": {"Box": {"min": [0.0, 0.0], "max": [60.0, 60.0]}},
+                           "velocities": {"Box": {"min": [-2.0, -2.0], "max": [2.0, 2.0]}}}),
+                ),
+                ("duration", json!(20.0)),
+            ],
+        ),
+        (
+            "vicsek1995_fig2a_n400",
+            vec![
+                ("agents", json!(1)),
+                ("domain", json!({"Periodic": {"size": [7.0, 7.0]}})),
+                ("duration", json!(200.0)),
+            ],
+        ),
+    ] {
+        let scenario = fixture(name).with_values(changes).expect("valid");
+        let summary = flocking::run(&scenario, &mut ()).expect("runs");
+        assert!(summary.history.len() > 10);
+        for (t, m) in &summary.history {
+            assert_eq!(
+                (m.milling, m.cohesion_radius),
+                (0.0, 0.0),
+                "{name} at t = {t}"
+            );
+            assert!((m.polarisation - 1.0).abs() < 1e-12, "{name} at t = {t}");
+        }
+        let verdict = summary
+            .verdict(&FlockingCriteria::default())
+            .expect("records");
+        assert_eq!(verdict.state(), "undefined", "{name}: {verdict}");
+        assert!(verdict.to_string().contains("undefined"), "{verdict}");
+    }
 }
