@@ -306,3 +306,27 @@ fn issue_49_one_agent_on_a_torus_neither_mills_nor_is_judged() {
         assert!(verdict.to_string().contains("undefined"), "{verdict}");
     }
 }
+
+/// Issue 50: the classic models were judged by TAC 2006 Definition 5 — a lattice at d and
+/// collisions at d/4 they do not have. Each fixture is judged by its own states: Vicsek's ordered
+/// phase at η = 2 (its Fig. 2(a)), Couzin's torus, the boids' disorder at the benchmark's small
+/// visual distance, Cucker–Smale's convergence of velocities (β = 0.25 < ½, unconditional),
+/// Vásárhelyi's flock; none gets an α-flocking answer.
+#[test]
+fn issue_50_each_classic_model_is_judged_by_its_own_states() {
+    for (name, state) in [
+        ("vicsek1995_fig2a_n400", "polarised (ordered)"),
+        ("couzin2002_torus_n100", "torus"),
+        ("boids_small_n200", "swarm (disordered)"),
+        ("cucker_smale2007_n50", "flocking"),
+        ("vasarhelyi2018_n30", "flocking"),
+    ] {
+        let summary = flocking::run(&fixture(name), &mut ()).expect("runs");
+        let verdict = summary
+            .verdict(&FlockingCriteria::default())
+            .expect("records");
+        assert_eq!(verdict.state(), state, "{name}: {verdict}");
+        assert_eq!(verdict.alpha_flock(), None, "{name}");
+        assert!(!verdict.to_string().contains("α-flocking"), "{verdict}");
+    }
+}

@@ -362,3 +362,40 @@ fn the_heavy_quadrotor_of_the_docs_is_the_preset() {
     }
     assert!(sim.state().positions.iter().all(|x| x.is_finite()));
 }
+
+/// Issue 50: 200 unicycles (the unicycle fixture with c₁ = 0.002, its cloud widened to σ = 30 m
+/// for the density of its 50, 0.1 s of neighbour delay and 10 % packet loss) end with a velocity
+/// spread as large as their speed (polarisation 0.44) and two agents merged after settling; the
+/// summary said "yes, strict: yes" (ε₂ = 0.01 m²/s² absolute). Judged relative to their speed
+/// they are not an α-flock, and the merged pair fails "strict" on its own.
+#[test]
+fn issue_50_two_hundred_unicycles_under_delay_and_loss_are_not_a_flock() {
+    let scenario = changed(
+        &fixture("unicycle_alg2_n50"),
+        vec![
+            ("agents", json!(200)),
+            ("algorithm.c1", json!(0.002)),
+            ("initial.positions.Gaussian.std", json!(30.0)),
+            (
+                "conditions.communication",
+                json!({"delay": 0.1, "loss": {"Bernoulli": {"p": 0.1}}}),
+            ),
+        ],
+    );
+    let summary = flocking::run(&scenario, &mut ()).expect("the run");
+    let v = FlockingVerdict::judge(&summary.history, &FlockingCriteria::default()).expect("records");
+    // what the absolute ε₂ passed: connected, a lattice (Ẽ ≤ ε₁), K̃ ≤ 0.01 m²/s²
+    assert!(v.connected && v.small_deviation && v.max_velocity_mismatch < 0.01, "{v}");
+    assert!(summary.metrics.polarisation < 0.6, "{:?}", summary.metrics);
+    // relative to the agents' speed the spread is far beyond ε₂
+    assert!(!v.small_mismatch && v.max_relative_mismatch > 0.1, "{v}");
+    assert!(!v.is_alpha_flocking() && !v.is_strict(), "{v}");
+    // the merged pair after settling: not collision-free
+    assert!(summary.merged.agents >= 2 && v.max_collisions > 0, "{v}");
+    assert_eq!(
+        summary
+            .verdict(&FlockingCriteria::default())
+            .map(|v| v.state()),
+        Some("not an α-flock")
+    );
+}
