@@ -15,14 +15,17 @@ use flocking::{RunDirectory, Scenario};
 
 use crate::common::{fixture_paths, stem, temp_dir};
 
-/// The page's column names per `### \`file\`` heading: the first cell of each table row, each
-/// name in backquotes (a cell may list several: `` `x`, `y`, `z` ``).
+/// The page's column names per `### \`file\`` heading: the first cell of each row of its tables
+/// of columns (those whose header cell is `column`), each name in backquotes (a cell may list
+/// several: `` `x`, `y`, `z` ``).
 fn documented() -> BTreeMap<String, BTreeSet<String>> {
     let page =
         fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/outputs.md"))
             .expect("docs/outputs.md");
     let mut files: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     let mut current: Option<String> = None;
+    // whether the lines read are the rows of a table of columns (its header cell `column`)
+    let mut columns_table = false;
     for line in page.lines() {
         if let Some(heading) = line.strip_prefix("### ") {
             current = heading
@@ -33,10 +36,14 @@ fn documented() -> BTreeMap<String, BTreeSet<String>> {
         }
         let Some(file) = &current else { continue };
         let Some(row) = line.strip_prefix("| ") else {
+            columns_table = false;
             continue;
         };
         let cell = row.split(" | ").next().unwrap_or_default();
-        if cell == "column" || cell.starts_with("---") {
+        if cell == "column" {
+            columns_table = true;
+        }
+        if !columns_table || cell == "column" || cell.starts_with("---") {
             continue;
         }
         for name in cell.split(", ") {

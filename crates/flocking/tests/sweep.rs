@@ -249,6 +249,9 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
             "nearest_neighbour_mean",
             "settled_polarisation",
             "settled_milling",
+            "gamma_position_error",
+            "gamma_velocity_error",
+            "verdict",
             "error"
         ]
     );
