@@ -196,25 +196,15 @@ impl QuadrotorParams {
     #[must_use]
     pub fn crazyflie() -> Self {
         let mass = 0.027;
-        let inertia = DVec3::new(1.4e-5, 1.4e-5, 2.17e-5);
         let thrust_coefficient = 3.16e-10 * RPM_PER_RAD_S * RPM_PER_RAD_S;
-        let (k_r, k_omega) = lee_attitude_gains(inertia.x);
-        Self {
+        Self::with_our_gains(
             mass,
-            inertia,
-            arm_length: 0.0397,
-            thrust_coefficient,
-            drag_coefficient: 7.94e-12 * RPM_PER_RAD_S * RPM_PER_RAD_S,
-            rotor_speed_min: 0.0,
-            rotor_speed_max: (2.25 * mass * GRAVITY / (4.0 * thrust_coefficient)).sqrt(),
-            motor_time_constant: 0.072,
-            k_x: 16.0 * mass,
-            k_v: 5.6 * mass,
-            k_r,
-            k_omega,
-            max_tilt: core::f64::consts::FRAC_PI_4,
-            inner_step: 1e-3,
-        }
+            DVec3::new(1.4e-5, 1.4e-5, 2.17e-5),
+            0.0397,
+            (thrust_coefficient, 7.94e-12 * RPM_PER_RAD_S * RPM_PER_RAD_S),
+            (2.25 * mass * GRAVITY / (4.0 * thrust_coefficient)).sqrt(),
+            0.072,
+        )
     }
 
     /// The Crazyflie 2.1 as its own firmware models it (bitcraze/crazyflie-firmware, commit
@@ -235,26 +225,18 @@ impl QuadrotorParams {
     /// and δ as [`QuadrotorParams::crazyflie`].
     #[must_use]
     pub fn crazyflie_firmware() -> Self {
-        let mass = 0.029;
-        let inertia = DVec3::new(16.571710e-6, 16.655602e-6, 29.261652e-6);
         let thrust_coefficient = 2.3e-8;
-        let (k_r, k_omega) = lee_attitude_gains(inertia.x);
-        Self {
-            mass,
-            inertia,
-            arm_length: 0.046,
-            thrust_coefficient,
-            drag_coefficient: 0.0069928948992470565 * thrust_coefficient,
-            rotor_speed_min: 0.0,
-            rotor_speed_max: (0.12 / thrust_coefficient).sqrt(),
-            motor_time_constant: 0.072,
-            k_x: 16.0 * mass,
-            k_v: 5.6 * mass,
-            k_r,
-            k_omega,
-            max_tilt: core::f64::consts::FRAC_PI_4,
-            inner_step: 1e-3,
-        }
+        Self::with_our_gains(
+            0.029,
+            DVec3::new(16.571710e-6, 16.655602e-6, 29.261652e-6),
+            0.046,
+            (
+                thrust_coefficient,
+                0.0069928948992470565 * thrust_coefficient,
+            ),
+            (0.12 / thrust_coefficient).sqrt(),
+            0.072,
+        )
     }
 
     /// A 1 kg quadrotor: PX4's SIH quadrotor-X simulator defaults as rotorpy transcribes them
@@ -270,18 +252,39 @@ impl QuadrotorParams {
     /// [`QuadrotorParams::crazyflie`]; tilt limit 45°; δ = 1 ms.
     #[must_use]
     pub fn heavy() -> Self {
-        let mass = 1.0;
-        let inertia = DVec3::new(0.025, 0.025, 0.030);
+        Self::with_our_gains(
+            1.0,
+            DVec3::new(0.025, 0.025, 0.030),
+            0.17 * SQRT_2,
+            (5e-6, 1e-7),
+            1000.0,
+            0.05,
+        )
+    }
+
+    /// A quadrotor of mass `mass`, inertia `inertia`, arm `arm_length`, rotors of coefficients
+    /// `(k_f, k_m)` up to `rotor_speed_max` (ω_min = 0) lagging by `motor_time_constant`, with our
+    /// gains and limits: k_x = 16 m, k_v = 5.6 m (the ratios k_x/m, k_v/m of Lee et al.'s
+    /// numerical example), k_R and k_Ω of Lee et al.'s attitude dynamics on J_xx
+    /// ([`lee_attitude_gains`]), a tilt limit of 45° and δ = 1 ms.
+    fn with_our_gains(
+        mass: f64,
+        inertia: DVec3,
+        arm_length: f64,
+        (thrust_coefficient, drag_coefficient): (f64, f64),
+        rotor_speed_max: f64,
+        motor_time_constant: f64,
+    ) -> Self {
         let (k_r, k_omega) = lee_attitude_gains(inertia.x);
         Self {
             mass,
             inertia,
-            arm_length: 0.17 * SQRT_2,
-            thrust_coefficient: 5e-6,
-            drag_coefficient: 1e-7,
+            arm_length,
+            thrust_coefficient,
+            drag_coefficient,
             rotor_speed_min: 0.0,
-            rotor_speed_max: 1000.0,
-            motor_time_constant: 0.05,
+            rotor_speed_max,
+            motor_time_constant,
             k_x: 16.0 * mass,
             k_v: 5.6 * mass,
             k_r,
