@@ -19,16 +19,17 @@
 //! - **ε₁** ("a relatively small number"): 0.01 by default. Ẽ ≤ 0.01 means a root mean square
 //!   edge-length error of at most 0.1 d (the quasi α-lattice of uncertainty δ = 0.1 d of
 //!   [`LatticeSummary`](crate::LatticeSummary)): Ẽ is already relative to the lattice's scale d.
-//! - **ε₂, relative to the agents' speed.** K̃ has the units of a speed squared, so a fixed ε₂
+//! - **ε₂, relative to the group's speed.** K̃ has the units of a speed squared, so a fixed ε₂
 //!   would judge a flock by its units: at 0.11 m/s, K̃ = 0.0064 m²/s² is a velocity spread as
-//!   large as the speed itself, at 25 m/s a tiny one. Condition 4 is judged as
-//!   K̃(t) ≤ ε₂ v̂(t)², with v̂(t) the largest root-mean-square speed of the agents at any record
-//!   up to t, v_rms² = (1/n) Σ_i ‖p_i‖² = ‖p_c‖² + 2 K̃ (p_c the mean velocity,
-//!   [`FlockMetrics::group_speed`]): the spread √(2K̃) of the velocities about their mean may be
-//!   at most √(2ε₂) ≈ 14 % of the speed the agents have had — the group's cruising speed for a
-//!   flock in motion, the speed of its approach for a rendezvous (where ‖p_c‖ → 0 and a scale
-//!   relative to ‖p_c‖ alone would ask for an exact rest). ε₂ = 0.01 by default, dimensionless.
-//!   At v̂ = 1 m/s, the papers' group speeds, it is the absolute K̃ ≤ 0.01 m²/s².
+//!   large as the speed itself, at 25 m/s a tiny one. Condition 4 is judged as K̃(t) ≤ ε₂ s(t)²:
+//!   the spread √(2K̃) of the velocities about their mean p_c may be at most √(2ε₂) ≈ 14 % of a
+//!   speed s, which is the group's speed s = ‖p_c‖ ([`FlockMetrics::group_speed`]) while the group
+//!   moves faster than its spread (‖p_c‖² ≥ 2K̃). A group that has come to rest (a rendezvous:
+//!   ‖p_c‖ → 0, below the spread) has no speed to compare with, and a scale of ‖p_c‖ would ask it
+//!   for an exact rest; its spread is compared with the speed of its approach instead, s = v̂(t),
+//!   the largest root-mean-square speed v_rms = √(‖p_c‖² + 2K̃) of the agents at any record up to
+//!   t. ε₂ = 0.01 by default, dimensionless; at ‖p_c‖ = 1 m/s, the papers' group speeds, the test
+//!   is the papers' absolute K̃ ≤ 0.01 m²/s².
 //! - **"giant component"**: C* ≥ 0.9 by default — seed 004 (eq. 7) calls a net of density δ₀ = C*
 //!   with 0 < 1 − δ₀ ≪ 1 a quasi-flock, and its six-obstacle run ends at δ₀ = 0.97.
 //! - **"cohesive"** (all agents within a ball of radius R around q_c): over a finite window every
@@ -99,8 +100,8 @@ pub struct FlockingCriteria {
     pub window: Window,
     /// ε₁: Ẽ = E / d² ≤ ε₁.
     pub epsilon1: f64,
-    /// ε₂ (dimensionless): K̃ ≤ ε₂ v̂², v̂ the largest root-mean-square speed of the agents up to
-    /// the record (see the [module](self)).
+    /// ε₂ (dimensionless): K̃ ≤ ε₂ s², s the group's speed ‖p_c‖, or for a group at rest the
+    /// largest root-mean-square speed of its agents so far (see the [module](self)).
     pub epsilon2: f64,
     /// The least C* = |giant component| / n of a quasi-flock.
     pub giant_share: f64,
@@ -179,11 +180,13 @@ pub struct FlockingVerdict {
     pub max_deviation_energy: f64,
     /// max K̃.
     pub max_velocity_mismatch: f64,
+    /// The group's speed ‖p_c‖ at the end of the window.
+    pub group_speed: f64,
     /// v̂(t_f): the largest root-mean-square speed of the agents at any record up to the end of
-    /// the window, √(‖p_c‖² + 2 K̃).
-    pub speed_scale: f64,
-    /// max over the window of K̃(t) / v̂(t)², the velocity mismatch relative to the agents'
-    /// speed, judged against ε₂.
+    /// the window, √(‖p_c‖² + 2 K̃), the scale of a group at rest.
+    pub approach_speed: f64,
+    /// max over the window of K̃(t) / s(t)², the velocity mismatch relative to the group's speed
+    /// (or, at rest, to v̂), judged against ε₂.
     pub max_relative_mismatch: f64,
     /// The most pairs closer than the collision distance at a record of the window.
     pub max_collisions: usize,
@@ -193,7 +196,7 @@ pub struct FlockingVerdict {
     pub cohesive: bool,
     /// Conditions 3 and b: Ẽ ≤ ε₁ at every record.
     pub small_deviation: bool,
-    /// Conditions 4 and c: K̃ ≤ ε₂ v̂² at every record.
+    /// Conditions 4 and c: K̃ ≤ ε₂ s² at every record.
     pub small_mismatch: bool,
     /// Condition a: one component at every record.
     pub connected: bool,
@@ -210,7 +213,7 @@ pub struct FlockingVerdict {
 impl FlockingVerdict {
     /// Judges the records `(t, metrics)` (in time order) of the criteria's window; `None` when the
     /// window holds no record. A NaN metric fails its condition. The records before the window
-    /// count only in the speed scale v̂.
+    /// count only in the approach speed v̂.
     #[must_use]
     pub fn judge(records: &[(f64, FlockMetrics)], criteria: &FlockingCriteria) -> Option<Self> {
         let (from, to) = criteria.bounds(records.first()?.0, records.last()?.0);
@@ -234,7 +237,7 @@ impl FlockingVerdict {
         let max_velocity_mismatch = max_of(|m| m.velocity_mismatch);
         let max_relative_mismatch = scaled
             .iter()
-            .map(|&(_, m, v)| relative(m.velocity_mismatch, v))
+            .map(|&(_, m, v)| relative(m, v))
             .fold(0.0, worst);
         let min_giant_share =
             window
@@ -259,7 +262,8 @@ impl FlockingVerdict {
             max_cohesion_radius,
             max_deviation_energy,
             max_velocity_mismatch,
-            speed_scale: scaled[scaled.len() - 1].2,
+            group_speed: window[window.len() - 1].group_speed,
+            approach_speed: scaled[scaled.len() - 1].2,
             max_relative_mismatch,
             max_collisions,
             quasi_flock: min_giant_share >= criteria.giant_share,
@@ -280,7 +284,7 @@ impl FlockingVerdict {
         !self.empty && !self.lone
     }
 
-    /// α-flocking: quasi-flock, cohesive, Ẽ ≤ ε₁ and K̃ ≤ ε₂ v̂² over the window (conditions 1–4).
+    /// α-flocking: quasi-flock, cohesive, Ẽ ≤ ε₁ and K̃ ≤ ε₂ s² over the window (conditions 1–4).
     #[must_use]
     pub const fn is_alpha_flocking(&self) -> bool {
         self.is_defined()
@@ -299,7 +303,7 @@ impl FlockingVerdict {
 
     /// The velocities agree and the group stays together, the flocking of Cucker & Smale (IEEE
     /// TAC 52(5), 2007: the velocities converge to a common one and the diameter stays bounded):
-    /// cohesive and K̃ ≤ ε₂ v̂² over the window (conditions 2 and 4).
+    /// cohesive and K̃ ≤ ε₂ s² over the window (conditions 2 and 4).
     #[must_use]
     pub const fn is_velocity_flocking(&self) -> bool {
         self.is_defined() && self.cohesive && self.small_mismatch
@@ -319,23 +323,31 @@ impl FlockingVerdict {
         }
     }
 
-    /// `K̃ ≤ 6.4e-3 (0.27 v̂², v̂ = 1.55e-1)`: the largest velocity mismatch, relative to the
-    /// agents' speed.
+    /// `K̃ ≤ 6.4e-3 (≤ 0.30 s²; ‖p_c‖ = 5.5e-2, v̂ = 1.9e-1)`: the largest velocity mismatch,
+    /// the largest relative to the speed scale s, and the group's and the approach's speeds at the
+    /// end of the window.
     #[must_use]
     pub fn mismatch_text(&self) -> String {
         format!(
-            "K̃ ≤ {:.1e} ({:.2} v̂², v̂ = {:.3e})",
-            self.max_velocity_mismatch, self.max_relative_mismatch, self.speed_scale
+            "K̃ ≤ {:.1e} (≤ {:.2} s²; ‖p_c‖ = {:.1e}, v̂ = {:.1e})",
+            self.max_velocity_mismatch,
+            self.max_relative_mismatch,
+            self.group_speed,
+            self.approach_speed
         )
     }
 }
 
-/// K̃ / v̂², 0 when both vanish (agents at rest, without spread).
-fn relative(mismatch: f64, scale: f64) -> f64 {
+/// K̃ / s² of a record: s = ‖p_c‖ while the group moves faster than its spread (‖p_c‖² ≥ 2K̃),
+/// s = `approach` (v̂) once it has come to rest; 0 when K̃ vanishes.
+fn relative(m: &FlockMetrics, approach: f64) -> f64 {
+    let (mismatch, speed) = (m.velocity_mismatch, m.group_speed);
     if mismatch == 0.0 {
         0.0
+    } else if speed * speed >= 2.0 * mismatch {
+        mismatch / (speed * speed)
     } else {
-        mismatch / (scale * scale)
+        mismatch / (approach * approach)
     }
 }
 
@@ -346,7 +358,8 @@ fn worst(acc: f64, x: f64) -> f64 {
 
 impl fmt::Display for FlockingVerdict {
     /// One line: `α-flocking over [75.00, 100.00] s (26 records): yes, strict: yes — min C* = 1.000,
-    /// R ≤ 20.00 (from 20.00), Ẽ ≤ 1.0e-4, K̃ ≤ 1.0e-6 (0.00 v̂², v̂ = 1.000e0), colliding pairs ≤ 0`.
+    /// R ≤ 20.00 (from 20.00), Ẽ ≤ 1.0e-4, K̃ ≤ 1.0e-6 (≤ 0.00 s²; ‖p_c‖ = 1.0e0, v̂ = 1.0e0),
+    /// colliding pairs ≤ 0`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let yes = |b: bool| if b { "yes" } else { "no" };
         if let Some(reason) = self.undefined_reason() {
@@ -534,9 +547,8 @@ mod tests {
 
     #[test]
     fn each_threshold_is_a_condition() {
-        // at a group speed of 1 the mismatch K̃ is at ε₂ v̂² = ε₂ (1 + 2 K̃) when
-        // K̃ = ε₂ / (1 − 2 ε₂): bracketed at 0.999 and 1.001 of that
-        let at_limit = 0.01 / (1.0 - 2.0 * 0.01);
+        // at a group speed of 1 the mismatch K̃ is at ε₂ ‖p_c‖² = ε₂: bracketed at 0.999 and 1.001
+        let at_limit = 0.01;
         let at = |deviation_energy, velocity_mismatch| {
             judge(&run(|_| FlockMetrics {
                 deviation_energy,
@@ -561,7 +573,7 @@ mod tests {
     /// large as the speed — passed the absolute ε₂ = 0.01 m²/s². Judged relative to the agents'
     /// speed they fail, and the verdict does not depend on the unit of speed.
     #[test]
-    fn the_velocity_mismatch_is_judged_relative_to_the_agents_speed() {
+    fn the_velocity_mismatch_is_judged_relative_to_the_group_s_speed() {
         let at = |speed: f64, mismatch: f64| {
             judge(&run(|_| FlockMetrics {
                 group_speed: speed,
@@ -571,7 +583,7 @@ mod tests {
         };
         let slow = at(0.11, 6.4e-3);
         assert!(!slow.small_mismatch && !slow.is_alpha_flocking(), "{slow}");
-        assert!(slow.max_relative_mismatch > 0.25, "{slow}");
+        assert!(slow.max_relative_mismatch > 0.2, "{slow}");
         // the same K̃ in a flock at 25 m/s is a spread of 0.5 % of its speed
         assert!(at(25.0, 6.4e-3).is_strict());
         // the same flock in other units (km/h: speeds × 3.6, K̃ × 3.6²): the same verdict
@@ -587,8 +599,8 @@ mod tests {
         assert!(at(3.0, 0.05).small_mismatch && !at(3.0, 0.2).small_mismatch);
     }
 
-    /// A rendezvous ends at rest (‖p_c‖ → 0): its mismatch is judged against the speed of its
-    /// approach, the largest root-mean-square speed before and in the window.
+    /// A rendezvous ends at rest (‖p_c‖ → 0, below the spread): its mismatch is judged against the
+    /// speed of its approach, the largest root-mean-square speed before and in the window.
     #[test]
     fn a_rendezvous_is_judged_against_the_speed_of_its_approach() {
         let rendezvous = |mismatch: f64| {
@@ -612,7 +624,7 @@ mod tests {
         // v̂² = 4 + 1 = 5: K̃ ≤ 0.05
         let settled = rendezvous(1e-3);
         assert!(settled.is_strict(), "{settled}");
-        approx::assert_relative_eq!(settled.speed_scale, 5f64.sqrt());
+        approx::assert_relative_eq!(settled.approach_speed, 5f64.sqrt());
         assert!(rendezvous(0.049).small_mismatch && !rendezvous(0.051).small_mismatch);
         // at rest without spread: no mismatch at all
         assert!(rendezvous(0.0).small_mismatch);
@@ -685,8 +697,8 @@ mod tests {
         assert_eq!(
             verdict.to_string(),
             "α-flocking over [75.00, 100.00] s (26 records): yes, strict: yes — min C* = 1.000, \
-             R ≤ 30.00 (from 30.00), Ẽ ≤ 1.0e-3, K̃ ≤ 1.0e-4 (0.00 v̂², v̂ = 1.000e0), \
-             colliding pairs ≤ 0"
+             R ≤ 30.00 (from 30.00), Ẽ ≤ 1.0e-3, K̃ ≤ 1.0e-4 (≤ 0.00 s²; ‖p_c‖ = 1.0e0, \
+             v̂ = 1.0e0), colliding pairs ≤ 0"
         );
     }
 }

@@ -4,7 +4,7 @@
 //! | model | verdict | [`VerdictKind`] |
 //! | --- | --- | --- |
 //! | Olfati-Saber's algorithms, the 2003 protocols, Tanner et al., consensus | TAC 2006 Definition 5: α-flock, strict α-flock ([`FlockingVerdict`]) | `Definition5` |
-//! | Cucker & Smale 2007 | flocking: the velocities agree (K̃ ≤ ε₂ v̂²) and the group stays together (R does not grow) | `CuckerSmale` |
+//! | Cucker & Smale 2007 | flocking: the velocities agree (K̃ ≤ ε₂ s², relative to the group's speed) and the group stays together (R does not grow) | `CuckerSmale` |
 //! | Vicsek et al. 1995, boids | the collective state of the mean polarisation and milling: polarised (ordered), milling, swarm (disordered), transitional ([`OrderState`], Tunstrøm et al. 2013) | `Order` |
 //! | Couzin et al. 2002 | the paper's four states: swarm, torus, dynamic parallel, highly parallel ([`CollectiveState`]) | `Couzin` |
 //! | Vásárhelyi et al. 2018 | flocking as its order parameters score it: polarised, one group, no pair within r^coll | `Vasarhelyi` |
@@ -203,7 +203,7 @@ pub fn criteria_text(kind: VerdictKind, criteria: &FlockingCriteria) -> String {
         Cohesion::Radius(radius) => format!("R ≤ {radius}"),
     };
     let mismatch = format!(
-        "K̃ ≤ ε₂ v̂² with ε₂ = {} (v̂ the largest root-mean-square speed of the agents up to the record)",
+        "K̃ ≤ ε₂ s² with ε₂ = {} (s the group's speed ‖p_c‖, or for a group at rest, ‖p_c‖² < 2K̃, the largest root-mean-square speed v̂ of its agents so far)",
         criteria.epsilon2
     );
     match kind {
