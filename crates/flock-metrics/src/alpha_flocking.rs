@@ -23,13 +23,13 @@
 //!   would judge a flock by its units: at 0.11 m/s, K̃ = 0.0064 m²/s² is a velocity spread as
 //!   large as the speed itself, at 25 m/s a tiny one. Condition 4 is judged as K̃(t) ≤ ε₂ s(t)²:
 //!   the spread √(2K̃) of the velocities about their mean p_c may be at most √(2ε₂) ≈ 14 % of a
-//!   speed s, which is the group's speed s = ‖p_c‖ ([`FlockMetrics::group_speed`]) while the group
-//!   moves faster than its spread (‖p_c‖² ≥ 2K̃). A group that has come to rest (a rendezvous:
-//!   ‖p_c‖ → 0, below the spread) has no speed to compare with, and a scale of ‖p_c‖ would ask it
-//!   for an exact rest; its spread is compared with the speed of its approach instead, s = v̂(t),
-//!   the largest root-mean-square speed v_rms = √(‖p_c‖² + 2K̃) of the agents at any record up to
-//!   t. ε₂ = 0.01 by default, dimensionless; at ‖p_c‖ = 1 m/s, the papers' group speeds, the test
-//!   is the papers' absolute K̃ ≤ 0.01 m²/s².
+//!   speed s, the group's speed s = ‖p_c‖ ([`FlockMetrics::group_speed`]). A group that has come
+//!   to rest (a rendezvous: ‖p_c‖ → 0) has no speed to compare with, and a scale of ‖p_c‖ would
+//!   ask it for an exact rest: a group slower than √(2ε₂) v̂ — than the spread a flock at the
+//!   speed of its approach may have — counts as at rest, and its spread is compared with that
+//!   speed, s = v̂(t), the largest root-mean-square speed v_rms = √(‖p_c‖² + 2K̃) of the agents at
+//!   any record up to t. ε₂ = 0.01 by default, dimensionless; at ‖p_c‖ = 1 m/s, the papers' group
+//!   speeds, the test is the papers' absolute K̃ ≤ 0.01 m²/s².
 //! - **"giant component"**: C* ≥ 0.9 by default — seed 004 (eq. 7) calls a net of density δ₀ = C*
 //!   with 0 < 1 − δ₀ ≪ 1 a quasi-flock, and its six-obstacle run ends at δ₀ = 0.97.
 //! - **"cohesive"** (all agents within a ball of radius R around q_c): over a finite window every
@@ -100,8 +100,9 @@ pub struct FlockingCriteria {
     pub window: Window,
     /// ε₁: Ẽ = E / d² ≤ ε₁.
     pub epsilon1: f64,
-    /// ε₂ (dimensionless): K̃ ≤ ε₂ s², s the group's speed ‖p_c‖, or for a group at rest the
-    /// largest root-mean-square speed of its agents so far (see the [module](self)).
+    /// ε₂ (dimensionless): K̃ ≤ ε₂ s², s the group's speed ‖p_c‖, or for a group at rest
+    /// (‖p_c‖ < √(2ε₂) v̂) the largest root-mean-square speed v̂ of its agents so far (see the
+    /// [module](self)).
     pub epsilon2: f64,
     /// The least C* = |giant component| / n of a quasi-flock.
     pub giant_share: f64,
@@ -237,7 +238,7 @@ impl FlockingVerdict {
         let max_velocity_mismatch = max_of(|m| m.velocity_mismatch);
         let max_relative_mismatch = scaled
             .iter()
-            .map(|&(_, m, v)| relative(m, v))
+            .map(|&(_, m, v)| relative(m, v, criteria.epsilon2))
             .fold(0.0, worst);
         let min_giant_share =
             window
@@ -338,16 +339,19 @@ impl FlockingVerdict {
     }
 }
 
-/// K̃ / s² of a record: s = ‖p_c‖ while the group moves faster than its spread (‖p_c‖² ≥ 2K̃),
-/// s = `approach` (v̂) once it has come to rest; 0 when K̃ vanishes.
-fn relative(m: &FlockMetrics, approach: f64) -> f64 {
+/// K̃ / s² of a record: s = ‖p_c‖ while the group moves (‖p_c‖ ≥ √(2ε₂) v̂), s = `approach` (v̂)
+/// once it has come to rest; 0 when K̃ vanishes.
+fn relative(m: &FlockMetrics, approach: f64, epsilon2: f64) -> f64 {
     let (mismatch, speed) = (m.velocity_mismatch, m.group_speed);
+    let scale = if speed >= (2.0 * epsilon2).sqrt() * approach {
+        speed
+    } else {
+        approach
+    };
     if mismatch == 0.0 {
         0.0
-    } else if speed * speed >= 2.0 * mismatch {
-        mismatch / (speed * speed)
     } else {
-        mismatch / (approach * approach)
+        mismatch / (scale * scale)
     }
 }
 
@@ -599,8 +603,10 @@ mod tests {
         assert!(at(3.0, 0.05).small_mismatch && !at(3.0, 0.2).small_mismatch);
     }
 
-    /// A rendezvous ends at rest (‖p_c‖ → 0, below the spread): its mismatch is judged against the
-    /// speed of its approach, the largest root-mean-square speed before and in the window.
+    /// A rendezvous ends at rest (‖p_c‖ → 0, below √(2ε₂) v̂): its mismatch is judged against the
+    /// speed of its approach v̂, the largest root-mean-square speed before and in the window, and
+    /// not against its vanishing group speed (the sinks of ACC 2004 Fig. 4 and CDS 03-006 Fig. 9
+    /// decay with ‖p_c‖² and K̃ alike).
     #[test]
     fn a_rendezvous_is_judged_against_the_speed_of_its_approach() {
         let rendezvous = |mismatch: f64| {
@@ -628,6 +634,13 @@ mod tests {
         assert!(rendezvous(0.049).small_mismatch && !rendezvous(0.051).small_mismatch);
         // at rest without spread: no mismatch at all
         assert!(rendezvous(0.0).small_mismatch);
+        // decaying to rest with K̃ ≈ ‖p_c‖²/2: judged against v̂, not against ‖p_c‖
+        let decaying = judge(&run(|t| FlockMetrics {
+            group_speed: 2.0 * (-t / 10.0).exp(),
+            velocity_mismatch: 2.0 * (-t / 5.0).exp(),
+            ..flock()
+        }));
+        assert!(decaying.small_mismatch, "{decaying}");
     }
 
     /// Issue 50: merged agents (two pairs 0.1 mm apart after settling) were called a strict

@@ -13,7 +13,7 @@
 //! - [`LatticeSummary`]: edges near d, triangles, TAC 2006 Theorem 5's 3n − 6 bound and crossings
 //!   of a (final) net; [`DefectFactor`]: μ and μ_n of CDS 03-006 eq. 46–47;
 //!   [`FlockingVerdict`]: TAC 2006 Definition 5 (α-flocking, strict α-flocking) over a window,
-//!   its velocity mismatch relative to the agents' speed.
+//!   its velocity mismatch relative to the group's speed.
 //! - [`OrderVerdict`], [`OrderState`]: the order parameters over a window and the collective
 //!   state they name (polarised, milling, swarm; Tunstrøm et al. 2013), the verdict of the models
 //!   that set velocities.

@@ -203,7 +203,7 @@ pub fn criteria_text(kind: VerdictKind, criteria: &FlockingCriteria) -> String {
         Cohesion::Radius(radius) => format!("R ≤ {radius}"),
     };
     let mismatch = format!(
-        "K̃ ≤ ε₂ s² with ε₂ = {} (s the group's speed ‖p_c‖, or for a group at rest, ‖p_c‖² < 2K̃, the largest root-mean-square speed v̂ of its agents so far)",
+        "K̃ ≤ ε₂ s² with ε₂ = {} (s the group's speed ‖p_c‖, or for a group at rest, ‖p_c‖ < √(2ε₂) v̂, the largest root-mean-square speed v̂ of its agents so far)",
         criteria.epsilon2
     );
     match kind {
