@@ -1,7 +1,7 @@
 //! [`WholeRun`]: what a run did over all its records, not only at its final time — the closest
 //! approach, the collisions, the least share of the largest flock — and [`whole_run_rows`], the
-//! table the gallery page gives per figure with the TAC 2006 Definition 5 verdict, the final
-//! lattice and the time from which the net's topology no longer changes.
+//! table the gallery page gives per figure with the model's verdict and, for the models of an
+//! α-lattice, the final lattice and the time from which the net's topology no longer changes.
 
 use flocking::RunSummary;
 use flocking::metrics::FlockMetrics;
