@@ -12,7 +12,7 @@
 //!
 //! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference, the
 //! paper's caption and statements quoted beside our measures, its parameters (the paper's or
-//! ours), its description, our measures over the whole run with the Definition 5 verdict of its
+//! ours), its description, our measures over the whole run with the model's verdict of its
 //! `flocking.txt`, the snapshot and metric PNGs and a table of the final metrics; a figure our
 //! run does not reproduce says so at its top. `OUT/functions/` holds the report's plots of its
 //! functions (CDS 03-006 Figs. 2, 4, 5; [`flock_viz::function_svg`]) as SVG and PNG, shown at the

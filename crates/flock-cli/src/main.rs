@@ -69,7 +69,8 @@ enum Command {
         /// ε₁ of TAC 2006 Definition 5 (Ẽ ≤ ε₁), judged over the last quarter in flocking.txt.
         #[arg(long, value_name = "E1", default_value_t = 0.01, value_parser = flock_cli::resources::parse_epsilon)]
         epsilon1: f64,
-        /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
+        /// ε₂ of TAC 2006 Definition 5, relative to the group's speed: K̃ ≤ ε₂ ‖p_c‖² (for a group
+        /// at rest, relative to the speed of its approach; docs/outputs.md).
         #[arg(long, value_name = "E2", default_value_t = 0.01, value_parser = flock_cli::resources::parse_epsilon)]
         epsilon2: f64,
         /// The fraction of the duration after which the run has settled: the summary gives the
@@ -567,7 +568,7 @@ fn execute(
             );
             // judged on the whole metrics.csv, also after a resume
             if let Some(verdict) = &finished.verdict {
-                outln!("  Definition 5          {verdict}");
+                outln!("  {:<21} {verdict}", verdict.label());
             }
             outln!("  outputs               {}", finished.path.display());
             return Ok(finished.path);

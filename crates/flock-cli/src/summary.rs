@@ -2,8 +2,8 @@
 
 use std::fmt;
 
-use flocking::RunSummary;
 use flocking::metrics::{Closest, FlockMetrics};
+use flocking::{RunSummary, VerdictKind};
 
 /// The diagnostic columns that count agents (`docs/outputs.md`), besides the vehicles' limits
 /// (`at_…_limit`): printed as whole numbers.
@@ -44,9 +44,14 @@ pub struct Report<'a> {
 }
 
 impl fmt::Display for Report<'_> {
+    /// What matters for the run's model: for Definition 5's models the lattice (Ẽ, K̃, the
+    /// lattice's edges, the topology, H) and the collisions; for the classic models the order
+    /// parameters (polarisation, milling), the groups and, for Cucker–Smale, the velocity
+    /// mismatch ([`VerdictKind`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = self.summary;
         let m = &s.metrics;
+        let kind = s.verdict_kind;
         let rate = (s.agents as f64 * s.steps as f64) / s.elapsed.as_secs_f64().max(1e-9);
         writeln!(
             f,
@@ -66,11 +71,21 @@ impl fmt::Display for Report<'_> {
             )?;
             writeln!(f, "  giant component C*    {:.4}", m.giant_component)?;
             writeln!(f, "  cohesion radius R     {:.4}", m.cohesion_radius)?;
-            writeln!(f, "  deviation energy Ẽ    {:.3e}", m.deviation_energy)?;
+            if kind.has_lattice() {
+                writeln!(f, "  deviation energy Ẽ    {:.3e}", m.deviation_energy)?;
+            }
+            if kind.has_lattice() || kind == VerdictKind::CuckerSmale {
+                writeln!(
+                    f,
+                    "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
+                    m.velocity_mismatch, s.component_velocity_mismatch
+                )?;
+            }
             writeln!(
                 f,
-                "  velocity mismatch K̃   {:.3e}   (within components {:.3e})",
-                m.velocity_mismatch, s.component_velocity_mismatch
+                "  group speed ‖p_c‖     {:.4}   (root-mean-square speed {:.4})",
+                m.group_speed,
+                m.rms_speed()
             )?;
             writeln!(
                 f,
@@ -86,12 +101,14 @@ impl fmt::Display for Report<'_> {
             f,
             "  least distance        {whole_distance} over the run, {settled_distance} after settling (t ≥ {from})"
         )?;
-        let [whole_pairs, settled_pairs] = [whole, settled]
-            .map(|c| c.map_or_else(|| "–".to_owned(), |c| c.collisions.to_string()));
-        writeln!(
-            f,
-            "  most colliding pairs  {whole_pairs} over the run, {settled_pairs} after settling"
-        )?;
+        if kind.counts_collisions() {
+            let [whole_pairs, settled_pairs] = [whole, settled]
+                .map(|c| c.map_or_else(|| "–".to_owned(), |c| c.collisions.to_string()));
+            writeln!(
+                f,
+                "  most colliding pairs  {whole_pairs} over the run, {settled_pairs} after settling"
+            )?;
+        }
         if s.merged.agents > 0 {
             writeln!(
                 f,
@@ -102,23 +119,25 @@ impl fmt::Display for Report<'_> {
         for &(name, value) in &s.diagnostics {
             writeln!(f, "  {name:<21} {}", diagnostic(name, value))?;
         }
-        writeln!(f, "  lattice               {}", s.lattice)?;
-        // of this run's records (after its start, when resumed)
-        writeln!(
-            f,
-            "  topology invariant from t = {:.2}{}",
-            s.topology_invariant_from,
-            if s.topology_invariant_from < s.t {
-                ""
-            } else {
-                " (still changing at the final record)"
-            }
-        )?;
-        writeln!(
-            f,
-            "  energy H              {:.6e} -> {:.6e}",
-            s.initial_energy, s.final_energy
-        )?;
+        if kind.has_lattice() {
+            writeln!(f, "  lattice               {}", s.lattice)?;
+            // of this run's records (after its start, when resumed)
+            writeln!(
+                f,
+                "  topology invariant from t = {:.2}{}",
+                s.topology_invariant_from,
+                if s.topology_invariant_from < s.t {
+                    ""
+                } else {
+                    " (still changing at the final record)"
+                }
+            )?;
+            writeln!(
+                f,
+                "  energy H              {:.6e} -> {:.6e}",
+                s.initial_energy, s.final_energy
+            )?;
+        }
         write!(
             f,
             "  wall time             {:.3} s ({rate:.3e} agent-steps/s)",

@@ -694,10 +694,14 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
 
     // metrics.csv: t = 0 and the 10th (last) step.
     let metrics: Vec<&str> = files["metrics.csv"].lines().collect();
-    assert_eq!(metrics[0], METRICS_HEADER);
+    // the common columns, then Algorithm 2's γ-tracking errors
     assert_eq!(
         metrics[0],
-        "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,components"
+        format!("{METRICS_HEADER},gamma_position_error,gamma_velocity_error")
+    );
+    assert_eq!(
+        metrics[0],
+        "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,group_speed,components,gamma_position_error,gamma_velocity_error"
     );
     assert_eq!(metrics.len(), 3, "{metrics:?}");
     for row in &metrics[1..] {
@@ -705,7 +709,7 @@ fn check_run(tmp: &TempDir, text: &str, dim: usize) -> BTreeMap<String, String> 
             .split(',')
             .map(|x| x.parse().expect("a number"))
             .collect();
-        assert_eq!(values.len(), 14, "{row}");
+        assert_eq!(values.len(), 17, "{row}");
         assert!(values.iter().all(|x| x.is_finite()), "{row}");
     }
     assert!(metrics[1].starts_with("0,"), "{}", metrics[1]);

@@ -128,7 +128,9 @@ impl<V: Vector> Domain<V> {
     /// environment", J. Graphics Tools 13(4), 2008): each coordinate is mapped to an angle
     /// θ_i = 2π x_i / L on the circle of circumference L, the unit vectors (cos θ_i, sin θ_i) are
     /// averaged into (ξ̄, ζ̄), and the mean angle θ̄ = atan2(−ζ̄, −ξ̄) + π ∈ [0, 2π] is mapped back,
-    /// x̄ = L θ̄ / 2π, wrapped into [0, L). The sums run in the order of `points`.
+    /// x̄ = L θ̄ / 2π, wrapped into [0, L). The sums run in the order of `points`. The centre of a
+    /// single point is that point, bit for bit (the round trip through the angle would move it
+    /// by round-off, and a lone agent would seem to circle a centre beside it; issue 49).
     ///
     /// For agents within a quarter of the box of each other on an axis this is close to their
     /// mean taken in one unwrapped image; it is ill-conditioned when (ξ̄, ζ̄) is near zero (agents
@@ -146,14 +148,19 @@ impl<V: Vector> Domain<V> {
     /// assert!(c.x.min(10.0 - c.x) < 1e-12 && (c.y - 5.0).abs() < 1e-12);
     /// let open = Domain::Open.centre_of([DVec2::new(9.0, 4.0), DVec2::new(1.0, 6.0)].into_iter());
     /// assert_eq!(open, DVec2::new(5.0, 5.0));
+    /// let lone = DVec2::new(0.1, 9.3);
+    /// assert_eq!(torus.centre_of([lone].into_iter()), lone);
     /// ```
     #[must_use]
     pub fn centre_of(&self, points: impl ExactSizeIterator<Item = V>) -> V {
         match self {
             Self::Open => mean_of(points),
             Self::Periodic { size } => {
-                if points.len() == 0 {
-                    return V::ZERO;
+                let (count, mut points) = (points.len(), points.peekable());
+                match (count, points.peek()) {
+                    (0, _) | (_, None) => return V::ZERO,
+                    (1, Some(&only)) => return only,
+                    _ => {}
                 }
                 let (mut cos, mut sin) = ([0.0; 3], [0.0; 3]);
                 for q in points {

@@ -26,6 +26,7 @@ use crate::FlockMetrics;
 ///     milling: 0.0,
 ///     nearest_neighbour_mean: min_distance,
 ///     nearest_neighbour_min: min_distance,
+///     group_speed: 1.0,
 /// };
 /// // a random start with colliding pairs, spread out by t = 5
 /// let records = [(0.0, at(0.1, 3)), (5.0, at(6.0, 0)), (10.0, at(6.5, 0))];

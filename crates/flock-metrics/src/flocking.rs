@@ -58,6 +58,12 @@ pub struct FlockMetrics {
     /// nearest-neighbour distances as [`FlockMetrics::nearest_neighbour_mean`]); +∞ for fewer than
     /// two agents.
     pub nearest_neighbour_min: f64,
+    /// The group's speed ‖p_c‖, p_c = (1/N) Σ_i p_i: the speed of the centre of mass. With
+    /// [`FlockMetrics::velocity_mismatch`] it gives the agents' root-mean-square speed,
+    /// (1/N) Σ_i ‖p_i‖² = ‖p_c‖² + 2 K̃, the speed scale against which Definition 5's velocity
+    /// mismatch is judged ([`FlockingVerdict`](crate::FlockingVerdict)). Undefined (NaN) for no
+    /// agent.
+    pub group_speed: f64,
 }
 
 impl FlockMetrics {
@@ -77,12 +83,29 @@ impl FlockMetrics {
         milling: f64::NAN,
         nearest_neighbour_mean: f64::NAN,
         nearest_neighbour_min: f64::INFINITY,
+        group_speed: f64::NAN,
     };
 
     /// Whether these are the metrics of a flock without agents ([`FlockMetrics::EMPTY`]).
     #[must_use]
     pub fn is_empty_flock(&self) -> bool {
         self.components == 0 && self.connectivity.is_nan()
+    }
+
+    /// Whether these are the metrics of a single agent: some agent, and no pair (the least
+    /// distance between two agents is +∞ for fewer than two, and finite otherwise).
+    #[must_use]
+    pub fn is_lone_agent(&self) -> bool {
+        !self.is_empty_flock() && self.min_distance == f64::INFINITY
+    }
+
+    /// The agents' root-mean-square speed, √((1/N) Σ_i ‖p_i‖²) = √(‖p_c‖² + 2 K̃) (NaN when
+    /// either is unknown).
+    #[must_use]
+    pub fn rms_speed(&self) -> f64 {
+        self.group_speed
+            .mul_add(self.group_speed, 2.0 * self.velocity_mismatch)
+            .sqrt()
     }
 
     /// Every metric of the state (q, p) with its net; [`FlockMetrics::EMPTY`] without agents.
@@ -178,14 +201,14 @@ impl FlockMetrics {
             let centre = domain.centre_of(numbering.ordered(q));
             (
                 radius_about(domain, q, centre),
-                mismatch(numbering.ordered(p)),
+                mismatch_and_speed(numbering.ordered(p)),
                 polarisation_of(numbering.ordered(p)),
                 milling_about(domain, centre, numbering.ordered(q), numbering.ordered(p)),
             )
         };
         let (
             (connectivity, giant_component, components),
-            (cohesion_radius, velocity_mismatch, polarisation, milling),
+            (cohesion_radius, (velocity_mismatch, group_speed), polarisation, milling),
         ) = join(connectivity, spread);
         let edges = EdgeMetrics::of(domain, q, net, params);
         let nearest = NearestNeighbours::of(domain, q, net, &edges);
@@ -206,6 +229,7 @@ impl FlockMetrics {
             milling,
             nearest_neighbour_mean: nearest.mean,
             nearest_neighbour_min: nearest.min,
+            group_speed,
         }
     }
 }
@@ -250,40 +274,44 @@ impl FlockMetrics {
 
     /// The names of [`FlockMetrics::extras`], in its order: the columns of `metrics.csv` after
     /// `energy`, followed there by `components`.
-    pub const EXTRA_COLUMNS: [&'static str; 4] = [
+    pub const EXTRA_COLUMNS: [&'static str; 5] = [
         "polarisation",
         "milling",
         "nearest_neighbour_mean",
         "nearest_neighbour_min",
+        "group_speed",
     ];
 
     /// The real-valued metrics of the columns [`FlockMetrics::EXTRA_COLUMNS`]: the polarisation,
-    /// the milling and the mean and least nearest-neighbour distances.
+    /// the milling, the mean and least nearest-neighbour distances and the group's speed.
     #[must_use]
-    pub fn extras(&self) -> [f64; 4] {
+    pub fn extras(&self) -> [f64; 5] {
         [
             self.polarisation,
             self.milling,
             self.nearest_neighbour_mean,
             self.nearest_neighbour_min,
+            self.group_speed,
         ]
     }
 
     /// The metrics with the values of [`FlockMetrics::extras`] `extras` (read back from
     /// `metrics.csv`, say), the others unchanged.
     #[must_use]
-    pub const fn with_extras(self, extras: [f64; 4]) -> Self {
+    pub const fn with_extras(self, extras: [f64; 5]) -> Self {
         let [
             polarisation,
             milling,
             nearest_neighbour_mean,
             nearest_neighbour_min,
+            group_speed,
         ] = extras;
         Self {
             polarisation,
             milling,
             nearest_neighbour_mean,
             nearest_neighbour_min,
+            group_speed,
             ..self
         }
     }
@@ -314,6 +342,7 @@ impl FlockMetrics {
             milling: f64::NAN,
             nearest_neighbour_mean: f64::NAN,
             nearest_neighbour_min: f64::NAN,
+            group_speed: f64::NAN,
         }
     }
 }
@@ -606,12 +635,19 @@ pub fn velocity_mismatch<V: Vector>(p: &[V]) -> f64 {
 
 /// K̃ of the velocities, summed in the iterator's order.
 fn mismatch<V: Vector>(p: impl ExactSizeIterator<Item = V> + Clone) -> f64 {
+    mismatch_and_speed(p).0
+}
+
+/// K̃ and the group's speed ‖p_c‖ of the velocities, summed in the iterator's order; (0, 0) for
+/// no velocity.
+fn mismatch_and_speed<V: Vector>(p: impl ExactSizeIterator<Item = V> + Clone) -> (f64, f64) {
     let n = p.len();
     if n == 0 {
-        return 0.0;
+        return (0.0, 0.0);
     }
     let p_c = mean_of(p.clone());
-    0.5 * p.map(|pi| (pi - p_c).length_squared()).sum::<f64>() / n as f64
+    let k = 0.5 * p.map(|pi| (pi - p_c).length_squared()).sum::<f64>() / n as f64;
+    (k, p_c.length())
 }
 
 /// The velocity mismatch with each agent compared to the mean velocity of its own component:
@@ -860,8 +896,8 @@ mod tests {
         search.build(&q_s, 8.4, &mut numbered);
         let bits = |m: FlockMetrics| {
             let [a, b, c, d, e, f] = m.reals().map(f64::to_bits);
-            let [g, h, i, j] = m.extras().map(f64::to_bits);
-            [a, b, c, d, e, f, g, h, i, j]
+            let [g, h, i, j, k] = m.extras().map(f64::to_bits);
+            [a, b, c, d, e, f, g, h, i, j, k]
         };
         let (original, renumbered) = (
             FlockMetrics::measure(&q, &p, &net, &params),

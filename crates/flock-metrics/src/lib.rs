@@ -12,7 +12,11 @@
 //!   [`velocity_mismatch`], [`component_velocity_mismatch`], [`min_distance`], [`collisions`].
 //! - [`LatticeSummary`]: edges near d, triangles, TAC 2006 Theorem 5's 3n − 6 bound and crossings
 //!   of a (final) net; [`DefectFactor`]: μ and μ_n of CDS 03-006 eq. 46–47;
-//!   [`FlockingVerdict`]: TAC 2006 Definition 5 (α-flocking, strict α-flocking) over a window.
+//!   [`FlockingVerdict`]: TAC 2006 Definition 5 (α-flocking, strict α-flocking) over a window,
+//!   its velocity mismatch relative to the group's speed.
+//! - [`OrderVerdict`], [`OrderState`]: the order parameters over a window and the collective
+//!   state they name (polarised, milling, swarm; Tunstrøm et al. 2013), the verdict of the models
+//!   that set velocities.
 //! - [`Closest`]: the least distance and the most colliding pairs over the records from a time on
 //!   (the whole run, or after it has settled).
 
@@ -22,6 +26,7 @@ pub mod defect;
 pub mod flocking;
 pub mod lattice;
 pub mod obstacles;
+pub mod order;
 
 pub use flocking::{
     FlockMetrics, MetricParams, cohesion_radius, collisions, component_velocity_mismatch,
@@ -34,3 +39,4 @@ pub use alpha_flocking::{Cohesion, FlockingCriteria, FlockingVerdict, Window};
 pub use closest::Closest;
 pub use defect::{Defect, DefectFactor};
 pub use lattice::{EDGE_TOLERANCE, LatticeSummary};
+pub use order::{ORDER_THRESHOLDS, OrderState, OrderVerdict};

@@ -1,6 +1,7 @@
 //! γ-agents: the group objective (q_r, p_r) of Algorithms 2 and 3 (TAC 2006 eq. 25–26).
 
-use flock_math::{Vector, sigma1_vec};
+use flock_graph::Numbering;
+use flock_math::{Vector, mean_of, sigma1_vec};
 
 use crate::error::{ParamError, check};
 
@@ -220,7 +221,39 @@ impl<V: Vector> NavigationalFeedback<V> {
                 Feedback::Bounded => d2 / ((1.0 + d2).sqrt() + 1.0),
             }
     }
+
+    /// The γ-tracking errors at time `t`, as the `metrics.csv` columns
+    /// [`GAMMA_POSITION_ERROR`] ‖q̄ − q_r‖ and [`GAMMA_VELOCITY_ERROR`] ‖p̄ − p_r‖, q̄ and p̄ the
+    /// centre and mean velocity of the agents (summed in original order whatever `numbering`
+    /// stores them in): how far the flock is from its group objective. The feedback steers each
+    /// agent, and the α-terms cancel in the sum (Σ_i u_i^α = 0), so the centre obeys
+    /// q̄̈ = −c₁(q̄ − q_r) − c₂(p̄ − p_r) + p_r' (linear form) and both vanish for a γ-agent of
+    /// constant velocity; delays, losses, limits and vehicles leave a lag (docs/conditions.md).
+    #[must_use]
+    pub fn tracking_columns(
+        &self,
+        t: f64,
+        positions: &[V],
+        velocities: &[V],
+        numbering: &Numbering,
+    ) -> [(&'static str, f64); 2] {
+        let (q_r, p_r) = self.gamma.state(t);
+        let centre = mean_of(numbering.ordered(positions));
+        let mean_velocity = mean_of(numbering.ordered(velocities));
+        [
+            (GAMMA_POSITION_ERROR, (centre - q_r).length()),
+            (GAMMA_VELOCITY_ERROR, (mean_velocity - p_r).length()),
+        ]
+    }
 }
+
+/// The column of ‖q̄ − q_r‖, the distance from the flock's centre to its γ-agent
+/// ([`NavigationalFeedback::tracking_columns`]).
+pub const GAMMA_POSITION_ERROR: &str = "gamma_position_error";
+
+/// The column of ‖p̄ − p_r‖, the difference between the flock's mean velocity and its
+/// γ-agent's ([`NavigationalFeedback::tracking_columns`]).
+pub const GAMMA_VELOCITY_ERROR: &str = "gamma_velocity_error";
 
 #[cfg(test)]
 mod tests {

@@ -60,7 +60,10 @@ pub use consensus::Consensus;
 pub use couzin2002::{Blend, BlindCone, CollectiveState, Couzin, CouzinParams};
 pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
 pub use error::{ParamError, check, plain_value};
-pub use gamma::{Feedback, GammaAgent, NavigationalFeedback, critical_damping};
+pub use gamma::{
+    Feedback, GAMMA_POSITION_ERROR, GAMMA_VELOCITY_ERROR, GammaAgent, NavigationalFeedback,
+    critical_damping,
+};
 pub use health::{AgentFault, Fault};
 pub use integrator::{Integrator, Observation, Simulation, advance, check_vehicle_loop};
 pub use olfati_saber2003::{

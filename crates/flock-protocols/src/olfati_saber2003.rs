@@ -427,7 +427,9 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
     /// `defect_factor` μ and `normalised_defect_factor` μ_n of the net (seed 004 eq. 46–47;
     /// ~0 on an α-lattice), with a translational controller `structural_energy` H_s and
     /// `translational_energy` H_tr (eq. 48–49): by the separation principle (Proposition 6) H_tr
-    /// converges whatever the (α, α) part, and H_s does not rise under (α, α, 2); then
+    /// converges whatever the (α, α) part, and H_s does not rise under (α, α, 2), and the
+    /// γ-tracking errors `gamma_position_error` ‖q̄ − q_d‖, `gamma_velocity_error` ‖p̄ − p_d‖
+    /// ([`NavigationalFeedback::tracking_columns`]); then
     /// `stress_towards`, `stress_away`, `stress_neutral`, the agents whose local stress S_i is
     /// positive, negative or zero (seed 000 eq. 31–33, [`AlphaAlpha::stress_regimes`]).
     fn diagnostics(
@@ -447,6 +449,15 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
                 self.alpha.structural_energy(swarm, net),
             ));
             columns.push(("translational_energy", h_tr));
+        }
+        if let Some(feedback) = &self.translation {
+            let numbering = net.numbering();
+            columns.extend(feedback.tracking_columns(
+                t,
+                &swarm.positions,
+                &swarm.velocities,
+                numbering,
+            ));
         }
         columns.extend(self.alpha.stress_regimes(swarm, net).columns());
         columns

@@ -115,6 +115,30 @@ impl<V: Vector> Protocol<V> for Algorithm2<V> {
         let (q_r, p_r) = self.navigation.gamma.state(t);
         self.potential(q_r, swarm, net) + kinetic(&swarm.velocities, net.numbering(), p_r)
     }
+
+    /// `gamma_position_error` ‖q̄ − q_r‖ and `gamma_velocity_error` ‖p̄ − p_r‖
+    /// ([`NavigationalFeedback::tracking_columns`]).
+    fn diagnostics(
+        &self,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+    ) -> Vec<(&'static str, f64)> {
+        self.tracking_columns(t, swarm, net).to_vec()
+    }
+}
+
+impl<V: Vector> Algorithm2<V> {
+    /// The γ-tracking errors of the swarm at `t`, summed in original order.
+    fn tracking_columns(
+        &self,
+        t: f64,
+        swarm: &Swarm<V>,
+        net: &ProximityNet,
+    ) -> [(&'static str, f64); 2] {
+        self.navigation
+            .tracking_columns(t, &swarm.positions, &swarm.velocities, net.numbering())
+    }
 }
 
 /// Algorithm 3 (eq. 67): u_i = u_i^α + u_i^β + u_i^γ, flocking with obstacle avoidance. The α-part
@@ -167,18 +191,22 @@ impl<V: Space> Protocol<V> for Algorithm3<V> {
             + kinetic(&swarm.velocities, net.numbering(), V::ZERO)
     }
 
-    /// `obstacle_clearance`, `inside_obstacles` (none without obstacles).
+    /// `obstacle_clearance`, `inside_obstacles` (none without obstacles), then the γ-tracking
+    /// errors `gamma_position_error`, `gamma_velocity_error`.
     fn diagnostics(
         &self,
-        _t: f64,
+        t: f64,
         swarm: &Swarm<V>,
-        _net: &ProximityNet,
+        net: &ProximityNet,
     ) -> Vec<(&'static str, f64)> {
         let field = self.beta.field();
-        if field.is_empty() {
-            return Vec::new();
-        }
-        ObstacleMetrics::measure(&swarm.positions, |q| field.clearance(q)).columns()
+        let mut columns = if field.is_empty() {
+            Vec::new()
+        } else {
+            ObstacleMetrics::measure(&swarm.positions, |q| field.clearance(q)).columns()
+        };
+        columns.extend(self.flock.tracking_columns(t, swarm, net));
+        columns
     }
 }
 

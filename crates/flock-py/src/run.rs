@@ -364,7 +364,7 @@ impl Recorder for PyRecorder {
 /// its inputs from `controls` when given; on failure keeps `dir` as `flocking run` does
 /// (resumable after Ctrl-C, a failed write or an exception of `controls`, marked failed after a
 /// blow-up) and raises the error. Returns the records, the finished directory and TAC 2006
-/// Definition 5's verdict on the records of this call (the line `flocking.txt` begins with).
+/// The model's verdict on the records of this call (the line `flocking.txt` begins with).
 fn execute<'py>(
     py: Python<'py>,
     scenario: &Scenario,

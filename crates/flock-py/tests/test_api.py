@@ -11,7 +11,9 @@ import pytest
 import flocking
 from conftest import FIG11, FIXTURES, assert_runs_equal, short
 
-COLUMNS = flocking.METRICS_HEADER.split(",")
+# the columns of every metrics.csv, then those of Fig. 11's: Algorithm 2's γ-tracking errors
+METRICS = flocking.METRICS_HEADER.split(",")
+COLUMNS = METRICS + ["gamma_position_error", "gamma_velocity_error"]
 
 
 def test_scenario_round_trips():
@@ -73,8 +75,8 @@ def test_run_shapes_and_dtypes():
 def test_diagnostic_columns_follow_energy():
     result = flocking.run(short(FIXTURES / "tr2003_fig9_sink_n100.ron"))
     names = list(result.metrics)
-    assert names[: len(COLUMNS)] == COLUMNS
-    for name in names[len(COLUMNS) :]:
+    assert names[: len(METRICS)] == METRICS
+    for name in names[len(METRICS) :]:
         assert result.metrics[name].dtype == np.float64
 
 
@@ -83,7 +85,7 @@ def test_simulation_shapes():
     assert (sim.dim, sim.agents, sim.steps, sim.t) == (3, 50, 0, 0.0)
     assert sim.q.shape == sim.p.shape == (50, 3)
     assert sim.q.dtype == np.float64
-    assert list(sim.metrics()) == [name for name in COLUMNS if name not in ("t", "energy")]
+    assert list(sim.metrics()) == [name for name in METRICS if name not in ("t", "energy")]
     assert isinstance(sim.metrics()["components"], int)
     assert isinstance(sim.metrics()["collisions"], int)
     assert isinstance(sim.energy(), float)

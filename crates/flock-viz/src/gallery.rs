@@ -27,7 +27,8 @@ pub struct FigureEntry {
     pub summary: RunSummary,
     /// The run's `metrics.csv`.
     pub metrics: Metrics,
-    /// The TAC 2006 Definition 5 verdict: the first line of the run's `flocking.txt`.
+    /// The model's verdict (TAC 2006 Definition 5, or a classic model's states): the first line
+    /// of the run's `flocking.txt`.
     pub verdict: String,
     /// The figure files kept, relative to the output directory (`/`-separated).
     pub images: Vec<String>,
@@ -163,7 +164,7 @@ pub fn index_html(entries: &[FigureEntry], functions: &[ReportFunction]) -> Stri
              <p>{3}D, n = {4}, {5} steps to t = {6}; {7}\
              <a href=\"{0}/scenario.ron\">scenario</a>, \
              <a href=\"{0}/metrics.csv\">metrics.csv</a>, \
-             <a href=\"{0}/flocking.txt\">Definition 5</a></p>",
+             <a href=\"{0}/flocking.txt\">verdict</a></p>",
             escape(&e.stem),
             escape(&e.reference),
             escape(&e.description),

@@ -1,8 +1,14 @@
-//! The metric curves of a run, as TAC 2006 Fig. 18 plots them: connectivity C(t), cohesion
-//! radius R(t), deviation energy Ẽ(t) and velocity mismatch K̃(t), one panel each, followed by
-//! panels for the energy H, the minimum distance between agents and, when the run has obstacles,
-//! the clearance to the nearest obstacle. Every panel has a title, axes and units; Ẽ and K̃ are on
-//! a log scale (their non-positive values, e.g. K̃ = 0 at rest, are left out of the curve).
+//! The metric curves of a run, as what matters for its model ([`MetricsOptions::kind`]). For
+//! Olfati-Saber's and Tanner's protocols, as TAC 2006 Fig. 18 plots them: connectivity C(t),
+//! cohesion radius R(t), deviation energy Ẽ(t) and velocity mismatch K̃(t), one panel each,
+//! followed by panels for the energy H, the minimum distance between agents and, when the run has
+//! them, the clearance to the nearest obstacle and the distance ‖q̄ − q_r‖ of the flock's centre
+//! from its γ-agent. For the models that set velocities (Vicsek, boids, Couzin) the order
+//! parameters (polarisation and milling), the groups (C, C*), the cohesion radius and the mean
+//! nearest-neighbour distance, with no lattice, energy or collision panel, which mean nothing for
+//! them; Cucker–Smale adds its velocity mismatch, Vásárhelyi's model its own order parameters.
+//! Every panel has a title, axes and units; Ẽ and K̃ are on a log scale (their non-positive
+//! values, e.g. K̃ = 0 at rest, are left out of the curve).
 //!
 //! - [`metrics_svg`], [`metrics_png`]: the figure.
 //! - [`MetricsOptions`]: panel size, columns, title, units.
@@ -15,6 +21,8 @@ use plotters::prelude::{
     ChartBuilder, DrawingArea, DrawingBackend, IntoLogRange, LineSeries, PathElement,
 };
 use plotters::style::Color;
+
+use flocking::VerdictKind;
 
 use crate::error::VizError;
 use crate::format;
@@ -36,6 +44,8 @@ pub struct MetricsOptions {
     pub length_unit: String,
     /// The unit of time.
     pub time_unit: String,
+    /// Whose panels: the verdict kind of the run's model ([`VerdictKind::of`]).
+    pub kind: VerdictKind,
 }
 
 impl Default for MetricsOptions {
@@ -46,6 +56,7 @@ impl Default for MetricsOptions {
             title: String::new(),
             length_unit: "m".to_owned(),
             time_unit: "s".to_owned(),
+            kind: VerdictKind::Definition5,
         }
     }
 }
@@ -74,26 +85,69 @@ struct Panel {
     scale: Scale,
 }
 
-/// The panels, in order; a panel whose column is missing is left out.
-const PANELS: [Panel; 7] = [
-    Panel {
-        column: "connectivity",
-        secondary: Some((
-            "giant_component",
-            "C* (giant component)",
-            "C (connectivity)",
-        )),
-        title: "connectivity C",
-        y_desc: "C (dimensionless)",
-        scale: Scale::Unit,
-    },
-    Panel {
-        column: "cohesion_radius",
-        secondary: None,
-        title: "cohesion radius R",
-        y_desc: "R ({L})",
-        scale: Scale::Linear,
-    },
+/// C (and C*) against t.
+const CONNECTIVITY: Panel = Panel {
+    column: "connectivity",
+    secondary: Some((
+        "giant_component",
+        "C* (giant component)",
+        "C (connectivity)",
+    )),
+    title: "connectivity C",
+    y_desc: "C (dimensionless)",
+    scale: Scale::Unit,
+};
+
+/// R against t.
+const COHESION: Panel = Panel {
+    column: "cohesion_radius",
+    secondary: None,
+    title: "cohesion radius R",
+    y_desc: "R ({L})",
+    scale: Scale::Linear,
+};
+
+/// K̃ against t.
+const MISMATCH: Panel = Panel {
+    column: "velocity_mismatch",
+    secondary: None,
+    title: "velocity mismatch K̃",
+    y_desc: "K̃ ({L}²/{T}², log scale)",
+    scale: Scale::Log,
+};
+
+/// The least distance against t.
+const MIN_DISTANCE: Panel = Panel {
+    column: "min_distance",
+    secondary: None,
+    title: "min distance between agents",
+    y_desc: "min ‖q_j − q_i‖ ({L})",
+    scale: Scale::Linear,
+};
+
+/// The polarisation and the milling against t.
+const ORDER: Panel = Panel {
+    column: "polarisation",
+    secondary: Some(("milling", "milling O_r", "polarisation O_p")),
+    title: "order: polarisation and milling",
+    y_desc: "O_p, O_r (dimensionless)",
+    scale: Scale::Unit,
+};
+
+/// The mean nearest-neighbour distance against t.
+const SPACING: Panel = Panel {
+    column: "nearest_neighbour_mean",
+    secondary: None,
+    title: "mean nearest-neighbour distance",
+    y_desc: "mean min_j ‖q_j − q_i‖ ({L})",
+    scale: Scale::Linear,
+};
+
+/// The panels of Definition 5's models (TAC 2006 Fig. 18 and more), in order; a panel whose
+/// column is missing is left out.
+const LATTICE_PANELS: [Panel; 8] = [
+    CONNECTIVITY,
+    COHESION,
     Panel {
         column: "deviation_energy",
         secondary: None,
@@ -101,13 +155,7 @@ const PANELS: [Panel; 7] = [
         y_desc: "Ẽ (dimensionless, log scale)",
         scale: Scale::Log,
     },
-    Panel {
-        column: "velocity_mismatch",
-        secondary: None,
-        title: "velocity mismatch K̃",
-        y_desc: "K̃ ({L}²/{T}², log scale)",
-        scale: Scale::Log,
-    },
+    MISMATCH,
     Panel {
         column: "energy",
         secondary: None,
@@ -115,13 +163,7 @@ const PANELS: [Panel; 7] = [
         y_desc: "H ({L}²/{T}², unit mass)",
         scale: Scale::Linear,
     },
-    Panel {
-        column: "min_distance",
-        secondary: None,
-        title: "min distance between agents",
-        y_desc: "min ‖q_j − q_i‖ ({L})",
-        scale: Scale::Linear,
-    },
+    MIN_DISTANCE,
     Panel {
         column: "obstacle_clearance",
         secondary: None,
@@ -129,7 +171,59 @@ const PANELS: [Panel; 7] = [
         y_desc: "clearance ({L})",
         scale: Scale::Linear,
     },
+    Panel {
+        column: "gamma_position_error",
+        secondary: None,
+        title: "distance from the γ-agent ‖q̄ − q_r‖",
+        y_desc: "‖q̄ − q_r‖ ({L})",
+        scale: Scale::Linear,
+    },
 ];
+
+/// The panels of the models that set velocities (Vicsek, boids, Couzin).
+const ORDER_PANELS: [Panel; 4] = [ORDER, CONNECTIVITY, COHESION, SPACING];
+
+/// The panels of Cucker–Smale: the convergence of the velocities first.
+const CUCKER_SMALE_PANELS: [Panel; 4] = [MISMATCH, COHESION, ORDER, CONNECTIVITY];
+
+/// The panels of Vásárhelyi et al.: their order parameters φ^corr, φ^vel/v^flock, and the
+/// least distance (their collisions at r^coll).
+const VASARHELYI_PANELS: [Panel; 6] = [
+    ORDER,
+    Panel {
+        column: "velocity_correlation",
+        secondary: None,
+        title: "velocity correlation φ^corr",
+        y_desc: "φ^corr (dimensionless)",
+        scale: Scale::Unit,
+    },
+    Panel {
+        column: "speed_ratio",
+        secondary: None,
+        title: "mean speed / flocking speed φ^vel / v^flock",
+        y_desc: "φ^vel / v^flock (dimensionless)",
+        scale: Scale::Linear,
+    },
+    CONNECTIVITY,
+    MIN_DISTANCE,
+    Panel {
+        column: "wall_violation",
+        secondary: None,
+        title: "distance outside the arena φ^wall",
+        y_desc: "φ^wall ({L})",
+        scale: Scale::Linear,
+    },
+];
+
+/// The panels of a model of verdict kind `kind`.
+fn panels_of(kind: VerdictKind) -> &'static [Panel] {
+    match kind {
+        VerdictKind::Definition5 => &LATTICE_PANELS,
+        VerdictKind::CuckerSmale => &CUCKER_SMALE_PANELS,
+        VerdictKind::Order(_) | VerdictKind::Couzin => &ORDER_PANELS,
+        VerdictKind::Vasarhelyi => &VASARHELYI_PANELS,
+    }
+}
 
 /// The SVG figure of a run's metrics (TAC 2006 Fig. 18 and more; see the module documentation).
 ///
@@ -177,14 +271,18 @@ impl<'a> MetricsFigure<'a> {
         if metrics.is_empty() {
             return Err(VizError::invalid("the metrics have no rows"));
         }
-        let panels: Vec<&'static Panel> = PANELS
+        let panels: Vec<&'static Panel> = panels_of(options.kind)
             .iter()
             .filter(|p| metrics.column(p.column).is_some())
             .collect();
         if panels.is_empty() {
             return Err(VizError::invalid(format!(
-                "the metrics have none of the plotted columns (connectivity, cohesion_radius, …); \
-                 they have {:?}",
+                "the metrics have none of the plotted columns ({}); they have {:?}",
+                panels_of(options.kind)
+                    .iter()
+                    .map(|p| p.column)
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 metrics.names()
             )));
         }

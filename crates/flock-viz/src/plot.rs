@@ -6,15 +6,16 @@
 use std::path::{Path, PathBuf};
 
 use flock_math::Vector;
-use flocking::Scenario;
 use flocking::build::gamma_agent;
 use flocking::initial::to_vector;
 use flocking::obstacles::{ObstacleSpec, Space};
+use flocking::protocols::CollectiveState;
+use flocking::{Scenario, VerdictKind};
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
 use crate::{
-    Drawable, FigureOptions, ReynoldsOptions, RunData, Scene, VizError, lift, reynolds_png,
-    reynolds_svg, write_figures,
+    Drawable, FigureOptions, Frame, ReynoldsOptions, RunData, Scene, View, VizError, lift,
+    reynolds_png, reynolds_svg, write_figures,
 };
 
 /// Why figures could not be drawn.
@@ -44,7 +45,9 @@ impl std::error::Error for PlotError {}
 /// Draws the figures of the run in `dir` (snapshots, metric curves, GIF, HTML player; for a
 /// `Flocking2003` run ACC 2004's reading of one frame as Reynolds's rules, `reynolds.svg/png`,
 /// [`reynolds_svg`]) into `dir/figures/`, and returns the files written. A Tanner run is drawn on its fixed graph with
-/// velocity arrows, as Tanner et al. draw Figs. 3–8.
+/// velocity arrows, as Tanner et al. draw Figs. 3–8. The metric panels are those of the run's
+/// model ([`MetricsOptions::kind`](crate::MetricsOptions::kind)); the classic models are drawn
+/// without edges, a 3D mill down its axis.
 ///
 /// # Errors
 /// When `dir` is not a complete run directory, or drawing fails.
@@ -67,6 +70,11 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
     let mut options = options.clone();
     if options.snapshot_times.is_none() {
         options.snapshot_times.clone_from(&scenario.snapshots);
+    }
+    let kind = VerdictKind::of(&scenario.algorithm);
+    options.metrics.kind = kind;
+    if !kind.has_lattice() {
+        draw_as_collective_motion(&scene, &mut options);
     }
     if scene.interaction_graph.is_some() {
         // a run on a fixed graph (the Tanner law, Consensus), drawn as Tanner et al. 2003 Figs. 3–8:
@@ -110,6 +118,44 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
         }
     }
     Ok(written)
+}
+
+/// How the models without an α-lattice (Vicsek, boids, Couzin, Cucker–Smale, Vásárhelyi) are
+/// drawn: without the net's edges (every pair within their interaction range — Couzin's zone of
+/// attraction, Vásárhelyi's r_c — would hide the agents under a grey blob), each marker along its
+/// heading; in 3D, a group that mills at the last frame ([`mill_axis`]) is seen down its axis,
+/// where the mill is a ring, instead of obliquely.
+fn draw_as_collective_motion(scene: &Scene, options: &mut FigureOptions) {
+    options.snapshot.style.edges = false;
+    if scene.dim == 3
+        && let Some(axis) = scene.frames.last().and_then(mill_axis)
+    {
+        options.snapshot.style.view = View::along(axis);
+    }
+}
+
+/// The axis of a mill, (1/n) Σ_i r̂_ic × p̂_i of the frame (Couzin et al. 2002's m_group is its
+/// length), when the frame mills: m_group ≥ Couzin's torus threshold 0.5
+/// ([`CollectiveState::TORUS`]); `None` otherwise.
+#[must_use]
+pub fn mill_axis(frame: &Frame) -> Option<DVec3> {
+    let n = frame.positions.len();
+    if n < 2 {
+        return None;
+    }
+    let centre = frame.positions.iter().sum::<DVec3>() / n as f64;
+    let axis = frame
+        .positions
+        .iter()
+        .zip(&frame.velocities)
+        .map(|(&q, &p)| {
+            (q - centre)
+                .normalize_or_zero()
+                .cross(p.normalize_or_zero())
+        })
+        .sum::<DVec3>()
+        / n as f64;
+    (axis.length() >= CollectiveState::TORUS).then_some(axis)
 }
 
 /// The default time of an (α, α) run's `reynolds.svg/png`: the second of the scenario's
@@ -213,4 +259,35 @@ fn cuboid_corners<V: Vector>(centre: &[f64], half: &[f64], rotation: &[f64]) -> 
             V::from_fn(|k| centre[k] + turned[k])
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ring of agents circling the axis (1, 1, 1) is a mill seen down that axis; the same
+    /// agents all heading one way mill not.
+    #[test]
+    fn a_mill_is_seen_down_its_axis() {
+        let axis = DVec3::ONE.normalize();
+        let (u, v) = (
+            DVec3::new(1.0, -1.0, 0.0).normalize(),
+            axis.cross(DVec3::new(1.0, -1.0, 0.0).normalize()),
+        );
+        let angles: Vec<f64> = (0..24)
+            .map(|k| f64::from(k) * core::f64::consts::TAU / 24.0)
+            .collect();
+        let positions: Vec<DVec3> = angles
+            .iter()
+            .map(|a| (u * a.cos() + v * a.sin()) * 10.0 + DVec3::new(3.0, 4.0, 5.0))
+            .collect();
+        let velocities: Vec<DVec3> = angles.iter().map(|a| -u * a.sin() + v * a.cos()).collect();
+        let mill = Frame::new(1.0, positions.clone(), velocities);
+        let found = mill_axis(&mill).expect("a mill");
+        assert!((found - axis).length() < 1e-12, "{found}");
+        let (_, _, towards_viewer) = View::along(found).basis();
+        assert!((towards_viewer - axis).length() < 1e-12);
+        let parallel = Frame::new(1.0, positions, vec![DVec3::X; 24]);
+        assert_eq!(mill_axis(&parallel), None);
+    }
 }

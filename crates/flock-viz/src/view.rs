@@ -59,6 +59,26 @@ impl View {
         Self { azimuth, elevation }
     }
 
+    /// The view looking down `axis` (towards the viewer: `axis` points out of the page), e.g. a
+    /// mill's axis, so that agents circling it are drawn as a ring.
+    ///
+    /// # Example
+    /// ```
+    /// use flock_viz::View;
+    /// use glam::DVec3;
+    ///
+    /// let (_, _, w) = View::along(DVec3::new(0.0, 3.0, 4.0)).basis();
+    /// assert!((w - DVec3::new(0.0, 0.6, 0.8)).length() < 1e-12);
+    /// ```
+    #[must_use]
+    pub fn along(axis: DVec3) -> Self {
+        let a = axis.normalize();
+        Self::new(
+            a.y.atan2(a.x).to_degrees(),
+            a.z.clamp(-1.0, 1.0).asin().to_degrees(),
+        )
+    }
+
     /// The page axes (u, v) and the direction towards the viewer w, orthonormal and right-handed
     /// (u × v = w).
     #[must_use]

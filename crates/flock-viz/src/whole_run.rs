@@ -1,7 +1,7 @@
 //! [`WholeRun`]: what a run did over all its records, not only at its final time — the closest
 //! approach, the collisions, the least share of the largest flock — and [`whole_run_rows`], the
-//! table the gallery page gives per figure with the TAC 2006 Definition 5 verdict, the final
-//! lattice and the time from which the net's topology no longer changes.
+//! table the gallery page gives per figure with the model's verdict and, for the models of an
+//! α-lattice, the final lattice and the time from which the net's topology no longer changes.
 
 use flocking::RunSummary;
 use flocking::metrics::FlockMetrics;
@@ -50,6 +50,7 @@ impl WholeRun {
     ///     milling: 0.0,
     ///     nearest_neighbour_mean: min_distance,
     ///     nearest_neighbour_min: min_distance,
+    ///     group_speed: 1.0,
     /// };
     /// let run = WholeRun::of(&[(0.0, at(0.5, 2, 0.8)), (3.0, at(6.0, 1, 1.0))]).unwrap();
     /// assert_eq!(run.least_distance, (0.5, 0.0));
@@ -88,13 +89,15 @@ impl WholeRun {
 
 /// The rows (name, value) of a run's whole-run table: [`WholeRun`] of its history, `verdict` (the
 /// first line of its `flocking.txt`), the final lattice, the topology's invariance time and, with
-/// obstacles, the agents inside them.
+/// obstacles, the agents inside them. The colliding pairs, the lattice and the topology only for
+/// the models they mean something for ([`VerdictKind`](flocking::VerdictKind)).
 #[must_use]
 pub fn whole_run_rows(
     summary: &RunSummary,
     metrics: &Metrics,
     verdict: &str,
 ) -> Vec<(String, String)> {
+    let kind = summary.verdict_kind;
     let mut rows = Vec::new();
     if let Some(run) = WholeRun::of(&summary.history) {
         let (distance, t) = run.least_distance;
@@ -103,7 +106,8 @@ pub fn whole_run_rows(
             format!("{distance:.3} at t = {} s", seconds(t)),
         ));
         let (pairs, t) = run.most_collisions;
-        rows.push((
+        if kind.counts_collisions() {
+            rows.push((
             "most colliding pairs".to_owned(),
             format!(
                 "{pairs}, first at t = {} s; {} of the {} records after t = {AFTER_START} s have a \
@@ -112,14 +116,29 @@ pub fn whole_run_rows(
                 run.colliding_records_after_start,
                 run.records_after_start
             ),
-        ));
+            ));
+        }
         let (giant, t) = run.least_giant_component;
         rows.push((
             "least C*".to_owned(),
             format!("{giant:.3} at t = {} s", seconds(t)),
         ));
     }
-    rows.push(("TAC 2006 Definition 5".to_owned(), verdict.to_owned()));
+    rows.push(("verdict".to_owned(), verdict.to_owned()));
+    if kind.has_lattice() {
+        lattice_rows(summary, metrics, &mut rows);
+    }
+    if metrics.column("inside_obstacles").is_some() {
+        rows.push((
+            "obstacles".to_owned(),
+            Measure::NeverInside.of(summary, metrics),
+        ));
+    }
+    rows
+}
+
+/// The rows of the final lattice and of the topology's invariance time.
+fn lattice_rows(summary: &RunSummary, metrics: &Metrics, rows: &mut Vec<(String, String)>) {
     let lattice = &summary.lattice;
     rows.push((
         format!("lattice at t = {} s", seconds(summary.t)),
@@ -146,13 +165,6 @@ pub fn whole_run_rows(
         "topology".to_owned(),
         Measure::TopologyInvariant.of(summary, metrics),
     ));
-    if metrics.column("inside_obstacles").is_some() {
-        rows.push((
-            "obstacles".to_owned(),
-            Measure::NeverInside.of(summary, metrics),
-        ));
-    }
-    rows
 }
 
 #[cfg(test)]
@@ -160,7 +172,7 @@ mod tests {
     use std::time::Duration;
 
     use flocking::metrics::{FlockMetrics, LatticeSummary};
-    use flocking::{MergedAgents, RunSummary};
+    use flocking::{MergedAgents, RunSummary, VerdictKind};
 
     use super::{WholeRun, whole_run_rows};
     use crate::metrics::Metrics;
@@ -179,6 +191,7 @@ mod tests {
             milling: 0.0,
             nearest_neighbour_mean: min_distance,
             nearest_neighbour_min: min_distance,
+            group_speed: 1.0,
         }
     }
 
@@ -218,6 +231,7 @@ mod tests {
             merged: MergedAgents::default(),
             topology_invariant_from,
             elapsed: Duration::ZERO,
+            verdict_kind: VerdictKind::Definition5,
         }
     }
 
@@ -273,6 +287,18 @@ mod tests {
                 .1
                 .ends_with("not counted (3D)")
         );
+    }
+
+    /// Issue 50: a classic model's table leaves out what means nothing for it (collisions at
+    /// d/4, the lattice, the topology of the net).
+    #[test]
+    fn a_classic_model_has_no_lattice_or_collision_rows() {
+        let metrics = Metrics::default();
+        let mut couzin = summary(4.0);
+        couzin.verdict_kind = VerdictKind::Couzin;
+        let rows = whole_run_rows(&couzin, &metrics, "Couzin et al. 2002 state: torus");
+        let names: Vec<&str> = rows.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["least distance", "least C*", "verdict"]);
     }
 
     #[test]

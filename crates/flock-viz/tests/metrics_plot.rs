@@ -105,3 +105,67 @@ fn non_finite_and_non_positive_values_leave_gaps() {
     let svg = metrics_svg(&m, &MetricsOptions::default()).unwrap();
     assert!(svg.contains("velocity mismatch K̃"));
 }
+
+/// Issue 50: the panels show what matters for each model — the order parameters, the groups,
+/// the spread and the spacing for the models that set velocities, with no lattice (Ẽ), energy
+/// H or collision panel, which mean nothing for them; the distance from the γ-agent for a run
+/// that has one.
+#[test]
+fn each_model_gets_the_panels_that_matter_for_it() {
+    use flocking::VerdictKind;
+    let base = flocking_metrics(false);
+    let t = base.time().to_vec();
+    let mut columns: Vec<(String, Vec<f64>)> = base
+        .names()
+        .iter()
+        .map(|n| (n.clone(), base.column(n).unwrap().to_vec()))
+        .collect();
+    for name in [
+        "polarisation",
+        "milling",
+        "nearest_neighbour_mean",
+        "gamma_position_error",
+    ] {
+        columns.push((name.to_owned(), t.iter().map(|t| 0.5 + 0.01 * t).collect()));
+    }
+    let metrics = Metrics::from_columns(columns).unwrap();
+    let titles = |kind: VerdictKind| {
+        let options = MetricsOptions {
+            kind,
+            ..MetricsOptions::default()
+        };
+        texts(&metrics_svg(&metrics, &options).unwrap())
+    };
+    let couzin = titles(VerdictKind::Couzin);
+    for title in [
+        "order: polarisation and milling",
+        "connectivity C",
+        "cohesion radius R",
+        "mean nearest-neighbour distance",
+    ] {
+        assert!(couzin.iter().any(|t| t == title), "{title}: {couzin:?}");
+    }
+    for title in [
+        "deviation energy Ẽ",
+        "energy H",
+        "min distance between agents",
+        "velocity mismatch K̃",
+    ] {
+        assert!(!couzin.iter().any(|t| t == title), "{title}");
+    }
+    let cucker_smale = titles(VerdictKind::CuckerSmale);
+    assert!(cucker_smale.iter().any(|t| t == "velocity mismatch K̃"));
+    assert!(!cucker_smale.iter().any(|t| t == "energy H"));
+    let lattice = titles(VerdictKind::Definition5);
+    assert!(
+        lattice
+            .iter()
+            .any(|t| t == "distance from the γ-agent ‖q̄ − q_r‖")
+    );
+    assert!(lattice.iter().any(|t| t == "deviation energy Ẽ"));
+    assert!(
+        !lattice
+            .iter()
+            .any(|t| t == "order: polarisation and milling")
+    );
+}

@@ -12,6 +12,8 @@
 //!   [`resume_with()`] with the protocol changed by a [`MapProtocol`].
 //! - [`run_dir`]: the run directory — [`RunDirectory`] writes it (crash-safe, checkpointed,
 //!   resumable), [`read_run`] reads it back.
+//! - [`verdict`]: the verdict a run gets, success as its model's papers measure it ([`Verdict`]:
+//!   TAC 2006 Definition 5, or the order states of the classic models).
 //! - [`stability`]: the largest stable step, and the warnings of a valid scenario;
 //!   [`NumericalError`]: a blow-up with its step, agent and likely cause; [`merging`]: agents
 //!   driven onto one point ([`Merge`], [`MergedAgents`]).
@@ -55,6 +57,7 @@ pub mod synthetic;
 pub mod time;
 mod validate;
 pub mod vehicle;
+pub mod verdict;
 pub mod workload;
 
 pub use build::check_local_form;
@@ -71,6 +74,7 @@ pub use stability::{
     Warning, consensus_laplacian_max, largest_stable_step, velocity_consensus_delay_bound,
 };
 pub use validate::{MAX_AGENTS, MAX_STEPS};
+pub use verdict::{Verdict, VerdictKind};
 
 pub use flock_graph as graph;
 pub use flock_math as math;

@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use flock_graph::Graph;
-use flock_metrics::{FlockMetrics, FlockingCriteria, FlockingVerdict, LatticeSummary};
+use flock_metrics::{FlockMetrics, FlockingCriteria, LatticeSummary};
 use flock_protocols::Observation;
 
 use crate::error::ScenarioError;
@@ -12,6 +12,7 @@ use crate::health::NumericalError;
 use crate::merging::{MERGE_FRACTION, Merge, MergedAgents, closest_pair, merged_agents};
 use crate::scenario::Scenario;
 use crate::simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
+use crate::verdict::{Verdict, VerdictKind};
 // where they lived before: `flocking::run::Start`, `flocking::run::time_text`
 pub use crate::simulation::Start;
 pub use crate::time::time_text;
@@ -73,14 +74,17 @@ pub struct RunSummary {
     pub topology_invariant_from: f64,
     /// Wall-clock time of the integration.
     pub elapsed: Duration,
+    /// The verdict the scenario's model gets ([`VerdictKind::of`]).
+    pub verdict_kind: VerdictKind,
 }
 
 impl RunSummary {
-    /// TAC 2006 Definition 5 judged on [`RunSummary::history`] (`None` when its window holds no
-    /// record): whether the run was an α-flock, and a strict one.
+    /// The model's verdict judged on [`RunSummary::history`] (`None` when its window holds no
+    /// record): TAC 2006 Definition 5 (an α-flock, a strict one) for Olfati-Saber's and Tanner's
+    /// protocols, the order states of the classic models ([`Verdict`]).
     #[must_use]
-    pub fn verdict(&self, criteria: &FlockingCriteria) -> Option<FlockingVerdict> {
-        FlockingVerdict::judge(&self.history, criteria)
+    pub fn verdict(&self, criteria: &FlockingCriteria) -> Option<Verdict> {
+        Verdict::judge(self.verdict_kind, &self.history, criteria)
     }
 }
 
@@ -283,6 +287,7 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
         merged: merged_agents(&sim.state(), merge_tolerance(scenario)),
         topology_invariant_from: topology.since.unwrap_or_else(|| sim.time()),
         elapsed,
+        verdict_kind: VerdictKind::of(&scenario.algorithm),
     })
 }
 

@@ -3,7 +3,8 @@
 //! noise, random activation order and conditions included), their parameters by dotted path, and
 //! the errors of what they cannot take.
 
-use flock_protocols::CollectiveState;
+use flocking::metrics::FlockingCriteria;
+use flocking::protocols::CollectiveState;
 use flocking::serde_json::json;
 use flocking::{DynSimulation, Scenario};
 
@@ -303,4 +304,77 @@ fn vasarhelyi_refuses_a_torus_a_bad_centre_and_bad_parameters() {
     let resolved = base.resolved();
     assert_eq!(resolved.collision_distance, Some(3.0));
     assert_eq!(resolved.range(), 100.0);
+}
+
+/// Issue 49: one agent on a torus was judged "α-flocking … no, strict: yes" and showed a milling
+/// up to 0.996 (one Vicsek particle 0.68): the circular mean of a single agent sat a round-off
+/// away from it, and the agent seemed to circle it. One agent never mills, its cohesion radius is
+/// 0, and a group of one gets no verdict, whatever the model.
+#[test]
+fn issue_49_one_agent_on_a_torus_neither_mills_nor_is_judged() {
+    let torus = json!({"Periodic": {"size": [60.0, 60.0]}});
+    for (name, changes) in [
+        (
+            "tac2006_fig12_alg1_n40",
+            vec![
+                ("agents", json!(1)),
+                ("domain", torus.clone()),
+                (
+                    "initial",
+                    json!({"positions": {"Box": {"min": [0.0, 0.0], "max": [60.0, 60.0]}},
+                           "velocities": {"Box": {"min": [-2.0, -2.0], "max": [2.0, 2.0]}}}),
+                ),
+                ("duration", json!(20.0)),
+            ],
+        ),
+        (
+            "vicsek1995_fig2a_n400",
+            vec![
+                ("agents", json!(1)),
+                ("domain", json!({"Periodic": {"size": [7.0, 7.0]}})),
+                ("duration", json!(200.0)),
+            ],
+        ),
+    ] {
+        let scenario = fixture(name).with_values(changes).expect("valid");
+        let summary = flocking::run(&scenario, &mut ()).expect("runs");
+        assert!(summary.history.len() > 10);
+        for (t, m) in &summary.history {
+            assert_eq!(
+                (m.milling, m.cohesion_radius),
+                (0.0, 0.0),
+                "{name} at t = {t}"
+            );
+            assert!((m.polarisation - 1.0).abs() < 1e-12, "{name} at t = {t}");
+        }
+        let verdict = summary
+            .verdict(&FlockingCriteria::default())
+            .expect("records");
+        assert_eq!(verdict.state(), "undefined", "{name}: {verdict}");
+        assert!(verdict.to_string().contains("undefined"), "{verdict}");
+    }
+}
+
+/// Issue 50: the classic models were judged by TAC 2006 Definition 5 — a lattice at d and
+/// collisions at d/4 they do not have. Each fixture is judged by its own states: Vicsek's ordered
+/// phase at η = 2 (its Fig. 2(a)), Couzin's torus, the boids' disorder at the benchmark's small
+/// visual distance, Cucker–Smale's convergence of velocities (β = 0.25 < ½, unconditional),
+/// Vásárhelyi's flock; none gets an α-flocking answer.
+#[test]
+fn issue_50_each_classic_model_is_judged_by_its_own_states() {
+    for (name, state) in [
+        ("vicsek1995_fig2a_n400", "polarised (ordered)"),
+        ("couzin2002_torus_n100", "torus"),
+        ("boids_small_n200", "swarm (disordered)"),
+        ("cucker_smale2007_n50", "flocking"),
+        ("vasarhelyi2018_n30", "flocking"),
+    ] {
+        let summary = flocking::run(&fixture(name), &mut ()).expect("runs");
+        let verdict = summary
+            .verdict(&FlockingCriteria::default())
+            .expect("records");
+        assert_eq!(verdict.state(), state, "{name}: {verdict}");
+        assert_eq!(verdict.alpha_flock(), None, "{name}");
+        assert!(!verdict.to_string().contains("α-flocking"), "{verdict}");
+    }
 }

@@ -15,14 +15,17 @@ use flocking::{RunDirectory, Scenario};
 
 use crate::common::{fixture_paths, stem, temp_dir};
 
-/// The page's column names per `### \`file\`` heading: the first cell of each table row, each
-/// name in backquotes (a cell may list several: `` `x`, `y`, `z` ``).
+/// The page's column names per `### \`file\`` heading: the first cell of each row of its tables
+/// of columns (those whose header cell is `column`), each name in backquotes (a cell may list
+/// several: `` `x`, `y`, `z` ``).
 fn documented() -> BTreeMap<String, BTreeSet<String>> {
     let page =
         fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/outputs.md"))
             .expect("docs/outputs.md");
     let mut files: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     let mut current: Option<String> = None;
+    // whether the lines read are the rows of a table of columns (its header cell `column`)
+    let mut columns_table = false;
     for line in page.lines() {
         if let Some(heading) = line.strip_prefix("### ") {
             current = heading
@@ -33,10 +36,14 @@ fn documented() -> BTreeMap<String, BTreeSet<String>> {
         }
         let Some(file) = &current else { continue };
         let Some(row) = line.strip_prefix("| ") else {
+            columns_table = false;
             continue;
         };
         let cell = row.split(" | ").next().unwrap_or_default();
-        if cell == "column" || cell.starts_with("---") {
+        if cell == "column" {
+            columns_table = true;
+        }
+        if !columns_table || cell == "column" || cell.starts_with("---") {
             continue;
         }
         for name in cell.split(", ") {
@@ -193,4 +200,64 @@ fn the_outputs_page_lists_exactly_the_columns_the_writers_write() {
         undocumented_files.is_empty(),
         "docs/outputs.md has tables of files no writer wrote here: {undocumented_files:?}"
     );
+}
+
+/// Issue 49: when every agent has been removed by faults, a record's metrics are undefined and
+/// `metrics.csv` writes them as `NaN` (and the distances to a nearest agent as `inf`), which
+/// docs/outputs.md did not say. The page's paragraph on it names every column that is then
+/// `NaN` or `inf`, and no other.
+#[test]
+fn issue_49_the_outputs_page_says_which_columns_an_empty_flock_leaves_nan() {
+    let tmp = temp_dir("outputs_empty_flock");
+    let scenario = Scenario::parse(
+        r#"Scenario(
+    name: "all_removed",
+    dim: 2,
+    agents: 3,
+    algorithm: Algorithm2(gamma: Static(position: [0.0, 0.0]), c1: 0.05, c2: 0.4),
+    initial: (positions: Box(min: [-5.0, -5.0], max: [5.0, 5.0])),
+    step: 0.01,
+    duration: 1.0,
+    conditions: (faults: (at: [(agent: 0, time: 0.0), (agent: 1, time: 0.0), (agent: 2, time: 0.0)])),
+)"#,
+        "all_removed.ron",
+    )
+    .expect("valid");
+    let out = tmp.path().join("all_removed");
+    run_into(scenario, &out);
+    let text = fs::read_to_string(out.join("metrics.csv")).expect("metrics.csv");
+    let mut lines = text.lines();
+    let names: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let last: Vec<&str> = lines.last().expect("a row").split(',').collect();
+    let with = |value: &str| -> BTreeSet<&str> {
+        names
+            .iter()
+            .zip(&last)
+            .filter(|(_, v)| **v == value)
+            .map(|(n, _)| *n)
+            .collect()
+    };
+    let (nan, inf) = (with("NaN"), with("inf"));
+    assert!(nan.contains("connectivity") && inf.contains("min_distance"));
+    let page =
+        fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/outputs.md"))
+            .expect("docs/outputs.md");
+    let paragraph = page
+        .split("\n\n")
+        .find(|p| p.contains("every agent has been removed"))
+        .expect("docs/outputs.md says what a record without agents holds");
+    let named = |marker: &str| -> BTreeSet<&str> {
+        let part = paragraph
+            .split(marker)
+            .nth(1)
+            .and_then(|rest| rest.split(';').next())
+            .unwrap_or_else(|| panic!("the paragraph has no {marker:?}: {paragraph}"));
+        part.split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|n| names.contains(n))
+            .collect()
+    };
+    assert_eq!(named("written `NaN`:"), nan, "{paragraph}");
+    assert_eq!(named("written `inf`:"), inf, "{paragraph}");
 }

@@ -64,11 +64,17 @@ fn runs_read_back_as_recorded_from_csv_and_npy() {
     let csv = read_run(&tmp.path().join("csv")).expect("the CSV run reads back");
     let npy = read_run(&tmp.path().join("npy")).expect("the .npy run reads back");
     assert_eq!(csv.scenario, scenario);
-    // the header: the common metrics, then the names Algorithm 3's diagnostics give
+    // the header: the common metrics, then the names Algorithm 3's diagnostics give (the obstacles,
+    // then the γ-tracking errors)
     let names: Vec<&str> = csv.metrics.iter().map(|(name, _)| name.as_str()).collect();
     let expected: Vec<&str> = METRICS_HEADER
         .split(',')
-        .chain(["obstacle_clearance", "inside_obstacles"])
+        .chain([
+            "obstacle_clearance",
+            "inside_obstacles",
+            "gamma_position_error",
+            "gamma_velocity_error",
+        ])
         .collect();
     assert_eq!(names, expected);
     // every number as recorded (shortest round-trip decimals read back to the same bits)
@@ -106,7 +112,10 @@ fn runs_read_back_as_recorded_from_csv_and_npy() {
 fn the_header_names_the_diagnostics_of_each_protocol() {
     let tmp = temp_dir("run_dir_headers");
     for (name, extra) in [
-        ("tac2006_fig11_alg2_n100", ""),
+        (
+            "tac2006_fig11_alg2_n100",
+            ",gamma_position_error,gamma_velocity_error",
+        ),
         (
             "tanner2003_fig3_fixed_n10",
             ",velocity_disagreement,min_linked_distance",
@@ -114,7 +123,8 @@ fn the_header_names_the_diagnostics_of_each_protocol() {
         (
             "tr2003_fig7_obstacles_n100",
             ",defect_factor,normalised_defect_factor,structural_energy,translational_energy,\
-             stress_towards,stress_away,stress_neutral,obstacle_clearance,inside_obstacles",
+             gamma_position_error,gamma_velocity_error,stress_towards,stress_away,stress_neutral,\
+             obstacle_clearance,inside_obstacles",
         ),
     ] {
         write(&short(name, 0.1), &tmp, name, TrajectoryFormat::Csv);

@@ -162,8 +162,8 @@ fn stored_by_cell_records_and_resumes(text: &str, r: f64) {
         .map(f64::to_bits)
         .collect();
     assert!(
-        // after t, the energy, the six reals and the four extras
-        whole.records[0][12..12 + drawn.len()] == drawn[..],
+        // after t, the energy, the six reals and the five extras
+        whole.records[0][13..13 + drawn.len()] == drawn[..],
         "t = 0 is recorded in original order"
     );
     // the net of the drawn state is scattered in memory: the simulation stores it by cell

@@ -250,6 +250,9 @@ fn failing_runs_are_rows_with_their_error_and_the_sweep_goes_on() {
             "settled_polarisation",
             "settled_milling",
             "settled_largest_group",
+            "gamma_position_error",
+            "gamma_velocity_error",
+            "verdict",
             "error"
         ]
     );

@@ -1,7 +1,7 @@
-//! The fixed-wing aircraft as the guidance model of Beard & McLain, *Small Unmanned Aircraft:
-//! Theory and Practice* (Princeton University Press, 2012), chapter 9 ("Design Models for
-//! Guidance"): the closed loop of the aircraft and its autopilot seen as first-order responses
-//! of airspeed, bank and flight-path angle to their commands, and the coordinated turn.
+//! The fixed-wing aircraft as a guidance model of Beard & McLain, *Small Unmanned Aircraft:
+//! Theory and Practice* (Princeton University Press, 2012), chapter 9: the closed loop of the
+//! aircraft and its autopilot seen as first-order responses of airspeed, bank and flight-path
+//! angle to their commands, and the coordinated turn.
 //!
 //! In still air (zero wind: airspeed = ground speed, heading = course, γ_a = γ), with the
 //! position q, altitude z (up), airspeed V, course χ (from +x, counter-clockwise), bank φ and
@@ -11,14 +11,16 @@
 //! - V̇ = b_V (V_c − V), the autopilot's airspeed hold,
 //! - χ̇ = (g / V) tan φ, the coordinated turn,
 //! - φ̇ = b_φ (φ_c − φ), the roll loop,
-//! - γ̇ = b_γ (γ_c − γ), the flight-path loop,
+//! - γ̇ = b_γ (γ_c − γ), the flight-path loop.
 //!
-//! the book's guidance model with the flight-path angle as the longitudinal command (§9.3–9.4;
-//! the 2012 edition numbers it, as we recall, eq. 9.19 — the altitude-hold form being the one
-//! before it — which we could not re-read here; the same equations, wind included, are in the
-//! public `alfiduhri/ThesisProject` `DynamicsModel.m` "Model for Guidance", and MathWorks' UAV
-//! Toolbox `fixedwing` guidance model cites the book for them). b = 1/τ with the time constants
-//! of [`FixedWingParams`]. In the plane γ = 0 throughout.
+//! The book gives its guidance models in chapter 9, in several forms (course or roll as the
+//! lateral command, altitude or flight-path angle as the longitudinal one); this is the form with
+//! roll and flight-path angle. The book itself could not be read here, so no equation number is
+//! cited (the book's own course files, randybeard/mavsim_public, refer to "the guidance model
+//! given in equation (9.18)" without saying which form that is). The same equations, wind
+//! included, are in the public `alfiduhri/ThesisProject` `DynamicsModel.m` "Model for Guidance",
+//! and MathWorks' UAV Toolbox `fixedwing` guidance model cites the book for them. b = 1/τ with
+//! the time constants of [`FixedWingParams`]. In the plane γ = 0 throughout.
 
 use core::f64::consts::FRAC_PI_2;
 
@@ -31,12 +33,16 @@ use crate::error::{ParamError, check};
 
 /// The fixed wing's parameters (SI units, angles in radians). Defaults: Beard & McLain's
 /// Aerosonde, whose trim airspeed V_a0 = 25 m/s lies in [`min_airspeed`, `max_airspeed`]
-/// = [18, 32] m/s (V_a0 confirmed in the book's public simulation parameters,
-/// `aerosonde_parameters`; the envelope 18–32 m/s is the Aerosonde's commonly quoted speed range,
-/// not confirmed here). The bank limit 45° is the roll-command saturation customary in the
-/// book's autopilot (not confirmed here). The time constants τ_φ = 0.5 s, τ_V = 2 s, τ_γ = 1 s
-/// and the flight-path limit 15° are our choices for a small UAV's autopilot, not a source's:
-/// the book leaves b_φ, b_V, b_γ to be fitted to the autopilot at hand.
+/// = [18, 32] m/s (V_a0 = `u0` = 25 m/s in the book's simulation parameters,
+/// randybeard/mavsim_public `mavsim_python/parameters/aerosonde_parameters.py`, commit a514cf1;
+/// the envelope 18–32 m/s is the Aerosonde's commonly quoted speed range, not confirmed here).
+/// The bank limit 30° is the roll command the book's autopilot gives at most: its course loop
+/// saturates its roll command at `np.radians(30)` (`mavsim_python/controllers/autopilot.py`,
+/// `course_from_roll`; the 45° beside it is the aileron deflection's limit, `roll_from_aileron`,
+/// and the book's path planner assumes 25°, `planner_parameters.py`). The time constants
+/// τ_φ = 0.5 s, τ_V = 2 s, τ_γ = 1 s and the flight-path limit 15° are our choices for a small
+/// UAV's autopilot, not a source's: the book leaves b_φ, b_V, b_γ to be fitted to the autopilot
+/// at hand.
 ///
 /// [`min_airspeed`]: FixedWingParams::min_airspeed
 /// [`max_airspeed`]: FixedWingParams::max_airspeed
@@ -70,7 +76,7 @@ impl Default for FixedWingParams {
         Self {
             min_airspeed: 18.0,
             max_airspeed: 32.0,
-            max_bank: 45f64.to_radians(),
+            max_bank: 30f64.to_radians(),
             bank_time_constant: 0.5,
             airspeed_time_constant: 2.0,
             max_flight_path: 15f64.to_radians(),
@@ -127,7 +133,7 @@ fn check_angle(field: &str, value: f64) -> Result<(), ParamError> {
         field,
         value,
         "must lie in (0, π/2) radians",
-        "give the limit in radians, e.g. 0.785 for 45°",
+        "give the limit in radians, e.g. 0.524 for 30°",
     )
 }
 

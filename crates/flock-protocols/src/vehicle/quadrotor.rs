@@ -1,18 +1,19 @@
 //! The quadrotor: a rigid body on SE(3) lifted by four rotors, flown by the geometric tracking
 //! controller of Lee, Leok and McClamroch ("Geometric tracking control of a quadrotor UAV on
-//! SE(3)", IEEE CDC 2010, pp. 5420–5425). Equation numbers below are those of the paper's long
-//! arXiv version, arXiv:1003.2005v4 ("Control of complex maneuvers for a quadrotor UAV using
-//! geometric methods on SE(3)"), which carries the CDC paper's controller and its simulation
-//! parameters; they were read from a summary of that version, not re-read here in the PDF, and the
-//! CDC proceedings may number them differently.
+//! SE(3)", IEEE CDC 2010, pp. 5420–5425; its long version arXiv:1003.2005, "Control of complex
+//! maneuvers for a quadrotor UAV using geometric methods on SE(3)", carries the same controller
+//! and its simulation parameters). The paper could not be read here, and its versions number
+//! their equations differently, so the quantities below are cited by the names the paper gives
+//! them (the model of its Section II, the tracking errors and controller of Section III), not by
+//! equation number.
 //!
 //! # Model
 //! The flock's coordinates are z-up (gravity g = 9.81 m s⁻² along −e3); Lee et al. write z down.
 //! Everything here is z-up, so their signs of g e3 flip:
-//! - ẋ = v, m v̇ = f R e3 − m g e3 + m d (eqs. 2–3, d the external acceleration of
+//! - ẋ = v, m v̇ = f R e3 − m g e3 + m d (d the external acceleration of
 //!   [`Vehicle::advance`]'s `disturbance`);
-//! - Ṙ = R Ω̂ (eq. 4), with R stored as a unit quaternion q (q̇ = ½ q ⊗ (0, Ω));
-//! - J Ω̇ + Ω × JΩ = M (eq. 5), J = diag(`inertia`) in the body frame.
+//! - Ṙ = R Ω̂, with R stored as a unit quaternion q (q̇ = ½ q ⊗ (0, Ω));
+//! - J Ω̇ + Ω × JΩ = M, J = diag(`inertia`) in the body frame.
 //!
 //! Four rotors in **X configuration** (body x forward, y left, z up), at arm length l on the
 //! diagonals: rotor 1 front-left (a, a), 2 rear-left (−a, a), 3 rear-right (−a, −a),
@@ -25,23 +26,28 @@
 //!
 //! # Controller (Lee et al. 2010, z-up)
 //! - desired force F = −k_x e_x − k_v e_v + m g e3 + m ẍ_d, e_x = x − x_d, e_v = v − v_d
-//!   (the bracket of eqs. 19 and 23 with the sign of g e3 flipped);
+//!   (the bracket of the paper's thrust and b3_d with the sign of g e3 flipped);
 //! - tilt limit: b3_d = F/‖F‖ is kept within `max_tilt` of e3; beyond it the force is replaced by
 //!   one on the cone's edge that keeps F's vertical part (altitude first), or, when F points at
 //!   or below the horizon, by F's projection on the cone's edge, never negative (the vehicle can
 //!   only fall): the `at_tilt_limit` column;
-//! - collective thrust f = F·R e3 (eq. 19);
+//! - collective thrust f = F·R e3;
 //! - b1_d: **the current heading** — the body x axis R e1 projected on the plane normal to b3_d
-//!   (as eq. 38 projects a desired heading), so yaw is never commanded, only damped: a flock does
-//!   not care where a quadrotor's nose points; R_d = [b2_d × b3_d, b2_d, b3_d] with
-//!   b2_d = b3_d × b1_d / ‖·‖ (eq. 22);
-//! - e_R = ½ (R_dᵀR − RᵀR_d)^∨ (eq. 8), e_Ω = Ω − RᵀR_d Ω_d (eq. 9) with **Ω_d = 0** (and
+//!   (as the paper projects a desired heading b1_d onto that plane), so yaw is never commanded: a
+//!   flock does not care where a quadrotor's nose points; R_d = [b2_d × b3_d, b2_d, b3_d] with
+//!   b2_d = b3_d × b1_d / ‖·‖. Yaw is not held either: while the thrust axis turns, the heading
+//!   turns about it by the solid angle that b3 sweeps (the geometric phase of a frame carried
+//!   without spin about its axis): for a thrust axis tilted by α and circling at ω the heading
+//!   turns at ω(1 − cos α), in the sense of the circling (the test
+//!   `yaw_turns_with_the_solid_angle_the_thrust_axis_sweeps`);
+//! - e_R = ½ (R_dᵀR − RᵀR_d)^∨, e_Ω = Ω − RᵀR_d Ω_d with **Ω_d = 0** (and
 //!   Ω̇_d = 0): computing Ω_d needs the derivative of F, i.e. the jerk of the reference, and the
 //!   held command has none; what remains is the drift term of e_x, e_v, which is small;
-//! - M = −k_R e_R − k_Ω e_Ω + Ω × JΩ (eq. 11 with Ω_d = 0); with R_d fixed the attitude error
-//!   is exponentially stable for Ψ(R(0), R_d(0)) = ½ tr(I − R_dᵀR(0)) < 2 (eq. 6; rotation angle
-//!   below 180°) and ‖e_Ω(0)‖ bounded (Proposition 1, eq. 13); near zero it decays at the slow
-//!   root of J ë + k_Ω ė + k_R e = 0 (the test
+//! - M = −k_R e_R − k_Ω e_Ω + Ω × JΩ (the paper's moment with Ω_d = 0); with R_d fixed the
+//!   attitude error is exponentially stable for Ψ(R(0), R_d(0)) = ½ tr(I − R_dᵀR(0)) < 2
+//!   (rotation angle below 180°) with ‖e_Ω(0)‖ bounded (the paper's attitude-tracking result);
+//!   near zero, with the motor lag τ_m, each axis is the loop J τ_m e⃛ + J ë + k_Ω ė + k_R e = 0
+//!   and the error decays at its slow root (the test
 //!   `attitude_error_decays_at_the_rate_of_the_linearised_loop`);
 //! - the mixer inverts the rotor map for (f, M); when a rotor falls outside its range it first
 //!   shifts the four thrusts alike (the moment kept, the thrust changed), then clips each
@@ -93,8 +99,10 @@ const STATE_COLUMNS: [&str; 11] = [
 const LIMIT_COLUMNS: [&str; 2] = ["at_thrust_limit", "at_tilt_limit"];
 
 /// The physical parameters of a quadrotor (SI units, rotor speeds in rad/s), the gains of Lee et
-/// al.'s controller and the inner step. Two presets: [`QuadrotorParams::crazyflie`] (the
-/// default) and [`QuadrotorParams::heavy`]. See [the module](self) for the model.
+/// al.'s controller and the inner step. Three presets, each from one named source:
+/// [`QuadrotorParams::crazyflie`] (the default, gym-pybullet-drones' Crazyflie),
+/// [`QuadrotorParams::crazyflie_firmware`] (the Crazyflie as its firmware models it) and
+/// [`QuadrotorParams::heavy`] (PX4's SIH quadrotor). See [the module](self) for the model.
 ///
 /// # Example
 /// ```
@@ -160,50 +168,75 @@ fn lee_attitude_gains(j_xx: f64) -> (f64, f64) {
 }
 
 impl QuadrotorParams {
-    /// The Bitcraze Crazyflie 2.x (the default), as the `cf2x` model of gym-pybullet-drones
-    /// (`gym_pybullet_drones/assets/cf2x.urdf`, utiasDSL/gym-pybullet-drones, whose comments cite
-    /// Förster's "System identification of the Crazyflie 2.0 nano quadrocopter" (ETH BSc thesis
-    /// 2015), Landry's MIT thesis 2015 and Hamer's notes):
-    /// - m = 0.027 kg; J = diag(1.4e-5, 1.4e-5, 2.17e-5) kg m²; l = 0.0397 m (its `arm`; its
-    ///   rotors sit at (±0.028, ±0.028) m, an X);
+    /// The Bitcraze Crazyflie 2.x (the default) as gym-pybullet-drones models it, its
+    /// `gym_pybullet_drones/assets/cf2x.urdf` (utiasDSL/gym-pybullet-drones, commit 90b178a):
+    /// - m = 0.027 kg (its `mass`); J = diag(1.4e-5, 1.4e-5, 2.17e-5) kg m² (its `inertia`);
+    ///   l = 0.0397 m (its `arm`; its rotors sit at (±0.028, ±0.028) m, an X);
     /// - k_f = 3.16e-10 N/rpm² = 2.8816e-8 N/(rad/s)²; k_m = 7.94e-12 N m/rpm² =
     ///   7.2404e-10 N m/(rad/s)² (its `kf`, `km` are per rpm², converted by (30/π)²);
     /// - ω_max = √(2.25 m g / (4 k_f)) ≈ 2274 rad/s (≈ 21 700 rpm), from its thrust-to-weight
     ///   ratio `thrust2weight` = 2.25, as gym-pybullet-drones derives its `MAX_RPM` (with our
     ///   g = 9.81); ω_min = 0.
     ///
+    /// The URDF links Förster's "System identification of the Crazyflie 2.0 nano quadrocopter"
+    /// (ETH BSc thesis 2015), Landry's MIT thesis (2015) and arXiv:1608.05786 as its sources, but
+    /// its inertia is **not** Förster's: the identification the Crazyflie firmware and Crazyswarm2
+    /// use is J = diag(1.657, 1.666, 2.926)·10⁻⁵ kg m², with l = 0.046 m and m = 0.029–0.034 kg —
+    /// [`QuadrotorParams::crazyflie_firmware`]. This preset serves users who compare with
+    /// gym-pybullet-drones.
+    ///
     /// The motor time constant τ_m = 0.072 s is rotorpy's (`rotorpy/vehicles/crazyflie_params.py`,
     /// spencerfolk/rotorpy, which cites Eschmann, Albani & Loianno, "Data-driven system
-    /// identification of quadrotors subject to motor delays", 2024); **not confirmed** in that paper
-    /// (rotorpy used 0.005 s before). Förster's thesis itself was not read: the numbers above are
-    /// the URDF's, which agree with the values commonly quoted from it (m = 0.027 kg,
-    /// J_zz ≈ 2.17e-5) — **not confirmed** against the thesis's tables.
+    /// identification of quadrotors subject to motor delays", 2024; **not confirmed** in that
+    /// paper).
     ///
-    /// Gains (ours): k_x = 16 m, k_v = 5.6 m (the k_x = 16 m, k_v = 5.6 m of Lee et al.'s
-    /// numerical example, arXiv:1003.2005v4); k_R, k_Ω giving Lee's attitude dynamics
-    /// (ω_n = 10 rad/s, ζ = 1.5 on J_xx). Tilt limit 45° and δ = 1 ms: our choices.
+    /// Gains (ours): k_x = 16 m, k_v = 5.6 m (the k_x/m = 16, k_v/m = 5.6 of Lee et al.'s
+    /// numerical example); k_R, k_Ω giving Lee's attitude dynamics (ω_n = 10 rad/s, ζ = 1.5 on
+    /// J_xx). Tilt limit 45° and δ = 1 ms: our choices.
     #[must_use]
     pub fn crazyflie() -> Self {
         let mass = 0.027;
-        let inertia = DVec3::new(1.4e-5, 1.4e-5, 2.17e-5);
         let thrust_coefficient = 3.16e-10 * RPM_PER_RAD_S * RPM_PER_RAD_S;
-        let (k_r, k_omega) = lee_attitude_gains(inertia.x);
-        Self {
+        Self::with_our_gains(
             mass,
-            inertia,
-            arm_length: 0.0397,
-            thrust_coefficient,
-            drag_coefficient: 7.94e-12 * RPM_PER_RAD_S * RPM_PER_RAD_S,
-            rotor_speed_min: 0.0,
-            rotor_speed_max: (2.25 * mass * GRAVITY / (4.0 * thrust_coefficient)).sqrt(),
-            motor_time_constant: 0.072,
-            k_x: 16.0 * mass,
-            k_v: 5.6 * mass,
-            k_r,
-            k_omega,
-            max_tilt: core::f64::consts::FRAC_PI_4,
-            inner_step: 1e-3,
-        }
+            DVec3::new(1.4e-5, 1.4e-5, 2.17e-5),
+            0.0397,
+            (thrust_coefficient, 7.94e-12 * RPM_PER_RAD_S * RPM_PER_RAD_S),
+            (2.25 * mass * GRAVITY / (4.0 * thrust_coefficient)).sqrt(),
+            0.072,
+        )
+    }
+
+    /// The Crazyflie 2.1 as its own firmware models it (bitcraze/crazyflie-firmware, commit
+    /// 2a18fc2, the `cf2` platform with the 2.1+ propellers, its default):
+    /// - m = 0.029 kg (`CF_MASS`, `src/platform/interface/platform_defaults_cf2.h`; 0.0325 kg with
+    ///   the thrust upgrade kit); l = 0.046 m (`ARM_LENGTH`, the same file);
+    /// - J = diag(16.571710, 16.655602, 29.261652)·10⁻⁶ kg m², Förster's identification as the
+    ///   firmware's Lee controller takes it (`src/modules/src/controller/controller_lee.c`, citing
+    ///   Förster's ETH BSc thesis 2015; Crazyswarm2's simulator, IMRCLab/crazyswarm2
+    ///   `crazyflie_sim/backend/np.py`, uses the same J and l with m = 0.034 kg);
+    /// - the largest thrust per motor 0.12 N (`THRUST_MAX`) and the yaw torque per unit of thrust
+    ///   k_m/k_f = 0.0069928948992470565 m (`THRUST2TORQUE`), the same file;
+    /// - the firmware commands thrust, not rotor speed: k_f = 2.3e-8 N/(rad/s)² is rotorpy's
+    ///   (`crazyflie_params.py`, `k_eta`, citing Förster 2015), which only sets the scale of ω:
+    ///   ω_max = √(0.12 N / k_f) ≈ 2284 rad/s, ω_min = 0. Thrust-to-weight 1.69.
+    ///
+    /// τ_m = 0.072 s (rotorpy's, as [`QuadrotorParams::crazyflie`]), the gains, the tilt limit
+    /// and δ as [`QuadrotorParams::crazyflie`].
+    #[must_use]
+    pub fn crazyflie_firmware() -> Self {
+        let thrust_coefficient = 2.3e-8;
+        Self::with_our_gains(
+            0.029,
+            DVec3::new(16.571710e-6, 16.655602e-6, 29.261652e-6),
+            0.046,
+            (
+                thrust_coefficient,
+                0.0069928948992470565 * thrust_coefficient,
+            ),
+            (0.12 / thrust_coefficient).sqrt(),
+            0.072,
+        )
     }
 
     /// A 1 kg quadrotor: PX4's SIH quadrotor-X simulator defaults as rotorpy transcribes them
@@ -219,18 +252,39 @@ impl QuadrotorParams {
     /// [`QuadrotorParams::crazyflie`]; tilt limit 45°; δ = 1 ms.
     #[must_use]
     pub fn heavy() -> Self {
-        let mass = 1.0;
-        let inertia = DVec3::new(0.025, 0.025, 0.030);
+        Self::with_our_gains(
+            1.0,
+            DVec3::new(0.025, 0.025, 0.030),
+            0.17 * SQRT_2,
+            (5e-6, 1e-7),
+            1000.0,
+            0.05,
+        )
+    }
+
+    /// A quadrotor of mass `mass`, inertia `inertia`, arm `arm_length`, rotors of coefficients
+    /// `(k_f, k_m)` up to `rotor_speed_max` (ω_min = 0) lagging by `motor_time_constant`, with our
+    /// gains and limits: k_x = 16 m, k_v = 5.6 m (the ratios k_x/m, k_v/m of Lee et al.'s
+    /// numerical example), k_R and k_Ω of Lee et al.'s attitude dynamics on J_xx
+    /// ([`lee_attitude_gains`]), a tilt limit of 45° and δ = 1 ms.
+    fn with_our_gains(
+        mass: f64,
+        inertia: DVec3,
+        arm_length: f64,
+        (thrust_coefficient, drag_coefficient): (f64, f64),
+        rotor_speed_max: f64,
+        motor_time_constant: f64,
+    ) -> Self {
         let (k_r, k_omega) = lee_attitude_gains(inertia.x);
         Self {
             mass,
             inertia,
-            arm_length: 0.17 * SQRT_2,
-            thrust_coefficient: 5e-6,
-            drag_coefficient: 1e-7,
+            arm_length,
+            thrust_coefficient,
+            drag_coefficient,
             rotor_speed_min: 0.0,
-            rotor_speed_max: 1000.0,
-            motor_time_constant: 0.05,
+            rotor_speed_max,
+            motor_time_constant,
             k_x: 16.0 * mass,
             k_v: 5.6 * mass,
             k_r,
@@ -436,7 +490,7 @@ struct Control {
 }
 
 impl Quadrotor {
-    /// Lee et al.'s desired force F = −k_x e_x − k_v e_v + m g e3 + m ẍ_d (z-up, eqs. 19, 23).
+    /// Lee et al.'s desired force F = −k_x e_x − k_v e_v + m g e3 + m ẍ_d (z-up).
     fn desired_force(&self, body: &Body, reference: &Reference) -> DVec3 {
         let p = &self.params;
         -p.k_x * (body.x - reference.x) - p.k_v * (body.v - reference.v)
@@ -470,7 +524,7 @@ impl Quadrotor {
         (pursued, axis, true)
     }
 
-    /// Lee et al.'s moment M = −k_R e_R − k_Ω Ω + Ω × JΩ (eq. 11 with Ω_d = 0), e_R from eq. 8.
+    /// Lee et al.'s moment M = −k_R e_R − k_Ω Ω + Ω × JΩ (with Ω_d = 0), e_R = ½ (R_dᵀR − RᵀR_d)^∨.
     fn attitude_moment(&self, r: DMat3, w: DVec3, r_d: DMat3) -> DVec3 {
         let p = &self.params;
         let e_r = 0.5 * vee(r_d.transpose() * r - r.transpose() * r_d);
@@ -528,8 +582,8 @@ impl Quadrotor {
         (t.iter().sum(), moment)
     }
 
-    /// The controller at one inner step: desired force, tilt limit, thrust f = F·R e3 (eq. 19),
-    /// R_d from b3_d and the current heading (eqs. 22, 38), the moment, the mixer.
+    /// The controller at one inner step: desired force, tilt limit, thrust f = F·R e3, R_d from
+    /// b3_d and the current heading, the moment, the mixer.
     fn control(&self, body: &Body, reference: &Reference) -> Control {
         let r = DMat3::from_quat(body.q);
         let (force, axis, tilt_limited) = self.limit_tilt(self.desired_force(body, reference));
@@ -608,7 +662,8 @@ fn vee(s: DMat3) -> DVec3 {
 }
 
 /// R_d = [b2 × b3, b2, b3] with b2 = b3 × b1_d / ‖·‖ and b1_d = R e1, the current heading
-/// (eq. 22; its first column the projection of R e1 on the plane normal to b3, as eq. 38).
+/// (its first column the projection of R e1 on the plane normal to b3, as Lee et al. project a
+/// desired heading).
 /// When R e1 is along b3 the heading is R e2's projection instead.
 fn desired_attitude(b3: DVec3, r: DMat3) -> DMat3 {
     let b2 = b3.cross(r.x_axis);
@@ -799,9 +854,18 @@ mod tests {
         num / den
     }
 
+    /// The three presets.
+    fn presets() -> [(&'static str, QuadrotorParams); 3] {
+        [
+            ("crazyflie", QuadrotorParams::crazyflie()),
+            ("crazyflie_firmware", QuadrotorParams::crazyflie_firmware()),
+            ("heavy", QuadrotorParams::heavy()),
+        ]
+    }
+
     #[test]
     fn hover_is_an_equilibrium_to_round_off() {
-        for params in [QuadrotorParams::crazyflie(), QuadrotorParams::heavy()] {
+        for (_, params) in presets() {
             let quad = quad(params);
             let mut state = vec![0.0; quad.state_columns().len()];
             let start = DVec3::new(3.0, -2.0, 10.0);
@@ -844,6 +908,36 @@ mod tests {
         );
     }
 
+    /// Issue 50: the firmware's preset is the firmware's numbers — four motors of at most
+    /// `THRUST_MAX` = 0.12 N, yaw torque `THRUST2TORQUE` × thrust, Förster's inertia, `CF_MASS`
+    /// and `ARM_LENGTH` — and not the URDF's.
+    #[test]
+    fn the_firmware_preset_is_the_firmware_s_crazyflie() {
+        let fw = QuadrotorParams::crazyflie_firmware();
+        let max_thrust = fw.thrust_coefficient * fw.rotor_speed_max * fw.rotor_speed_max;
+        assert_relative_eq!(max_thrust, 0.12, max_relative = 1e-12);
+        assert_relative_eq!(
+            fw.drag_coefficient / fw.thrust_coefficient,
+            0.0069928948992470565,
+            max_relative = 1e-12
+        );
+        assert_eq!(
+            (fw.mass, fw.arm_length, fw.inertia),
+            (
+                0.029,
+                0.046,
+                DVec3::new(16.571710e-6, 16.655602e-6, 29.261652e-6)
+            )
+        );
+        assert_relative_eq!(
+            fw.thrust_to_weight(),
+            4.0 * 0.12 / (0.029 * GRAVITY),
+            max_relative = 1e-12
+        );
+        let urdf = QuadrotorParams::crazyflie();
+        assert!(urdf.inertia.x < 0.9 * fw.inertia.x && urdf.inertia.z < 0.8 * fw.inertia.z);
+    }
+
     #[test]
     fn the_mixer_inverts_the_rotor_map() {
         let quad = quad(QuadrotorParams::heavy());
@@ -855,27 +949,41 @@ mod tests {
         assert!((m2 - m).length() < 1e-12);
     }
 
-    /// Lee et al. (arXiv:1003.2005v4, Proposition 1, attitude controlled flight mode): the zero
-    /// attitude error is exponentially stable for Ψ(R(0), R_d(0)) < 2 with ‖e_Ω(0)‖ bounded
-    /// (eq. 13; Ω(0) = 0 here). From a 170° roll (Ψ = 1 − cos 170° ≈ 1.985) with the motor lag
-    /// off (τ_m = 1 µs), R_d stays level (the reference is reset every inner step, so F = m g e3
-    /// and b1_d = R e1 = e1), and the error's tail decays at the slow root of the linearised loop
-    /// J_xx θ̈ + k_Ω θ̇ + k_R θ = 0 (overdamped: ζ = 1.5). The first second clips rotors (thrust
-    /// is never negative upside down); the fit uses θ ∈ [1e-9, 1e-3] rad.
-    #[test]
-    fn attitude_error_decays_at_the_rate_of_the_linearised_loop() {
-        let params = QuadrotorParams {
-            motor_time_constant: 1e-6,
-            ..QuadrotorParams::crazyflie()
-        };
+    /// The slowest root −λ of the linearised attitude loop of one axis behind the motor lag,
+    /// J τ_m s³ + J s² + k_Ω s + k_R = 0 (the thrust of a rotor follows ω, which lags its command
+    /// by τ_m); with τ_m → 0 the slow root of J s² + k_Ω s + k_R. By bisection on (−k_R/k_Ω, 0),
+    /// where the cubic changes sign once.
+    fn slow_attitude_rate(params: &QuadrotorParams) -> f64 {
+        let (j, kr, kw, tau) = (
+            params.inertia.x,
+            params.k_r,
+            params.k_omega,
+            params.motor_time_constant,
+        );
+        let cubic = |s: f64| ((j * tau * s + j) * s + kw) * s + kr;
+        let (mut lo, mut hi) = (-2.0 * kr / kw, 0.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if cubic(mid) > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        -0.5 * (lo + hi)
+    }
+
+    /// The decay rate (1/s) of the attitude error of a quadrotor released from a 170° roll
+    /// (Ψ = 1 − cos 170° ≈ 1.985 < 2, inside the region where Lee et al.'s attitude tracking is
+    /// exponentially stable; Ω(0) = 0): R_d stays level (the reference is reset every inner step,
+    /// so F = m g e3 and b1_d = R e1 = e1); the first second clips rotors (thrust is never
+    /// negative upside down), and the rate is fitted on the tail, θ ∈ [1e-9, 1e-3] rad.
+    fn attitude_decay(params: QuadrotorParams) -> f64 {
         let quad = quad(params);
         let (mut body, mut speeds) = hovering(&quad, DVec3::ZERO);
         body.q = DQuat::from_axis_angle(DVec3::X, 170f64.to_radians());
-        let psi0 = 1.0 - 170f64.to_radians().cos();
-        assert!(psi0 < 2.0 && psi0 > 1.98);
         let dt = params.inner_step;
         let mut samples = Vec::new();
-        let mut below_one = None;
         for k in 1..=8000 {
             quad.fly(
                 dt,
@@ -886,29 +994,90 @@ mod tests {
                 |_, _| {},
             );
             let angle = 2.0 * body.q.xyz().length().atan2(body.q.w.abs());
-            let t = k as f64 * dt;
-            if below_one.is_none() && 1.0 - angle.cos() < 1.0 {
-                below_one = Some(t);
-            }
             if (1e-9..=1e-3).contains(&angle) {
-                samples.push((t, angle.ln()));
+                samples.push((k as f64 * dt, angle.ln()));
             }
             assert!(
                 body.q.y.abs() < 1e-12 && body.q.z.abs() < 1e-12,
                 "a pure roll"
             );
         }
-        let (j, kr, kw) = (params.inertia.x, params.k_r, params.k_omega);
-        let predicted = (kw - (kw * kw - 4.0 * j * kr).sqrt()) / (2.0 * j);
-        let measured = -slope(&samples);
+        assert!(samples.len() > 1000, "{} samples", samples.len());
+        -slope(&samples)
+    }
+
+    /// The attitude error decays at the slow root of the linearised loop with the shipped motor
+    /// lag (τ_m = 0.072 s: 3.6626 s⁻¹ predicted for the Crazyflie), not at that of the loop
+    /// without it (3.8197 s⁻¹); bracketed at ±0.5 % so that the lag's 4 % shows.
+    #[test]
+    fn attitude_error_decays_at_the_rate_of_the_linearised_loop() {
+        for (name, params) in presets() {
+            let predicted = slow_attitude_rate(&params);
+            let measured = attitude_decay(params);
+            println!(
+                "{name}: attitude decay with τ_m = {} s: measured {measured:.4} 1/s, predicted {predicted:.4} 1/s (ratio {:.4})",
+                params.motor_time_constant,
+                measured / predicted
+            );
+            assert!(
+                (0.995..=1.005).contains(&(measured / predicted)),
+                "{name}: {measured} against {predicted}"
+            );
+        }
+        let cf = QuadrotorParams::crazyflie();
+        let without_lag = slow_attitude_rate(&QuadrotorParams {
+            motor_time_constant: 0.0,
+            ..cf
+        });
+        assert!((slow_attitude_rate(&cf) / without_lag) < 0.97);
+    }
+
+    /// The heading under a thrust axis that circles: commanding a horizontal acceleration of
+    /// constant size a turning at ω tilts b3 by α ≈ atan(a/g) (a little less behind the attitude
+    /// lag) and sweeps it round the vertical; b1_d is the current heading, so nothing turns the
+    /// body about b3 but the geometry. A frame carried without spin about b3 (Ω = b3 × ḃ3) turns
+    /// with the precession at ω about the vertical while spinning at −ω cos α about b3: in one
+    /// revolution its heading gains 2π(1 − cos α), the solid angle b3 sweeps, so the heading turns
+    /// at ω (1 − cos α) in the sense of the circling — a yaw the controller neither commands nor
+    /// holds.
+    #[test]
+    fn yaw_turns_with_the_solid_angle_the_thrust_axis_sweeps() {
+        let params = QuadrotorParams::crazyflie();
+        let quad = quad(params);
+        let (mut body, mut speeds) = hovering(&quad, DVec3::ZERO);
+        let (a, omega, h) = (3.0, 1.0, 0.01);
+        let heading = |q: DQuat| {
+            let x = q * DVec3::X;
+            x.y.atan2(x.x)
+        };
+        let (mut samples, mut tilts) = (Vec::new(), Vec::new());
+        let (mut previous, mut unwrapped) = (heading(body.q), 0.0);
+        for k in 0..6000 {
+            let t = f64::from(k) * h;
+            let command = DVec3::new((omega * t).cos(), (omega * t).sin(), 0.0) * a;
+            quad.fly(h, command, DVec3::ZERO, &mut body, &mut speeds, |_, _| {});
+            let now = heading(body.q);
+            unwrapped += (now - previous + PI).rem_euclid(2.0 * PI) - PI;
+            previous = now;
+            if t >= 20.0 {
+                samples.push((t, unwrapped));
+                tilts.push(tilt(body.q));
+            }
+        }
+        let alpha = tilts.iter().sum::<f64>() / tilts.len() as f64;
+        let predicted = omega * (1.0 - alpha.cos());
+        let measured = slope(&samples);
         println!(
-            "attitude decay: predicted {predicted:.4} 1/s, measured {measured:.4} 1/s, ratio {:.4}; Ψ < 1 after {:?} s; {} samples",
-            measured / predicted,
-            below_one,
-            samples.len()
+            "yaw under a circling command (a = {a} m/s², ω = {omega} rad/s, tilt {:.2}°, atan(a/g) = {:.2}°): measured {:.3}°/s, predicted {:.3}°/s",
+            alpha.to_degrees(),
+            (a / GRAVITY).atan().to_degrees(),
+            measured.to_degrees(),
+            predicted.to_degrees()
         );
-        assert!(samples.len() > 1000);
-        assert!((0.8..=1.25).contains(&(measured / predicted)));
+        assert!(
+            (measured / predicted - 1.0).abs() < 0.01,
+            "{measured} against {predicted}"
+        );
     }
 
     /// The time (s) for the horizontal acceleration to reach 63 % of a 1 m/s² step command from
@@ -934,10 +1103,8 @@ mod tests {
 
     #[test]
     fn the_commanded_acceleration_is_tracked() {
-        for (name, params, bound) in [
-            ("crazyflie", QuadrotorParams::crazyflie(), 0.4),
-            ("heavy", QuadrotorParams::heavy(), 0.4),
-        ] {
+        for (name, params) in presets() {
+            let bound = 0.4;
             let (lag, acceleration) = acceleration_lag(params);
             println!(
                 "{name}: 63 % of a 1 m/s² step after {:.0} ms; after 3 s {acceleration:?}",

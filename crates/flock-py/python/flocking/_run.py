@@ -36,6 +36,7 @@ UNITS: Dict[str, str] = {
     "milling": "1",
     "nearest_neighbour_mean": "m",
     "nearest_neighbour_min": "m",
+    "group_speed": "m s-1",
     "components": "1",
     "obstacle_clearance": "m",
     "inside_obstacles": "1",
@@ -43,6 +44,8 @@ UNITS: Dict[str, str] = {
     "normalised_defect_factor": "1",
     "structural_energy": "m2 s-2",
     "translational_energy": "m2 s-2",
+    "gamma_position_error": "m",
+    "gamma_velocity_error": "m s-1",
     "stress_towards": "1",
     "stress_away": "1",
     "stress_neutral": "1",
@@ -216,14 +219,15 @@ class Run:
     - ``metrics``: the columns of ``metrics.csv`` by name (``t``, ``connectivity``,
       ``giant_component``, ``cohesion_radius``, ``deviation_energy``, ``velocity_mismatch``,
       ``min_distance``, ``collisions`` (int64), ``energy``, ``polarisation``, ``milling``,
-      ``nearest_neighbour_mean``, ``nearest_neighbour_min``, ``components`` (int64), then the
-      protocol's diagnostics), one entry per recorded step.
+      ``nearest_neighbour_mean``, ``nearest_neighbour_min``, ``group_speed``, ``components``
+      (int64), then the protocol's diagnostics), one entry per recorded step.
     - ``trajectory``: the recorded states, or None when the run kept none (``trajectory=False``);
       recorded at the same instants as the metrics.
     - ``final``: the final state.
     - ``path``: the run directory, or None.
-    - ``verdict``: TAC 2006 Definition 5 judged over the last quarter of the run (the first line
-      of ``flocking.txt``), or None (an interrupted run, or no record in the window).
+    - ``verdict``: the model's verdict judged over the last quarter of the run — TAC 2006
+      Definition 5, or a classic model's own states (the first line of ``flocking.txt``) — or
+      None (an interrupted run, or no record in the window).
 
     In Jupyter a run shows a summary table and a snapshot of the final state (a few kB however
     many agents); ``run.player()`` shows the HTML player of ``flocking plot``.
@@ -339,7 +343,7 @@ class Run:
 
     def _summary(self) -> Dict[str, str]:
         """The rows of the HTML summary: name, dim, n, duration, the final C, C*, Ẽ, K̃, the least
-        distance of the run and the Definition 5 verdict."""
+        distance of the run and the model's verdict."""
         n, dim = self.final.positions.shape
         rows = {"name": self.scenario.name, "dim": str(dim), "n": str(n), "duration": f"{self.final.t:g}"}
         last = {
@@ -356,7 +360,7 @@ class Run:
         if distances is not None and len(distances):
             rows["least distance"] = f"{_np.nanmin(distances):.4g}"
         if self.verdict is not None:
-            rows["Definition 5"] = self.verdict
+            rows["verdict"] = self.verdict
         return rows
 
     def player_html(self, *, max_frames: int = 500, size: int = 480) -> str:

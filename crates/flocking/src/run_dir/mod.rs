@@ -8,7 +8,7 @@
 //! | `trajectory.npy` | instead of `trajectory.csv`: records `t`, `q` (n × dim), `p` (n × dim), `s` (n × k), `failed` (n bytes) |
 //! | `final.csv` | the columns of `trajectory.csv` without `t`, the final state |
 //! | `scenario.ron` | the scenario with every default filled in |
-//! | `flocking.txt` | TAC 2006 Definition 5 judged on `metrics.csv` ([`verdict`]) |
+//! | `flocking.txt` | the model's verdict judged on `metrics.csv` ([`verdict`]): TAC 2006 Definition 5, or a classic model's states |
 
 pub mod checkpoint;
 pub mod npy;

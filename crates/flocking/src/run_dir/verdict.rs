@@ -1,32 +1,32 @@
-//! `flocking.txt`: TAC 2006 Definition 5 judged on a finished run's `metrics.csv` — whether the
-//! run was an α-flock (a quasi-flock, cohesive, Ẽ ≤ ε₁, K̃ ≤ ε₂) and a strict one (connected,
-//! Ẽ ≤ ε₁, K̃ ≤ ε₂) over a window of its records (by default the last quarter); the records of a
-//! `metrics.csv` read back ([`read_records`]).
+//! `flocking.txt`: the model's verdict judged on a finished run's `metrics.csv` over a window of
+//! its records (by default the last quarter) — TAC 2006 Definition 5 (an α-flock, a strict one)
+//! or a classic model's own states ([`Verdict`]); the records of a `metrics.csv` read back
+//! ([`read_records`]).
 
 use std::io;
 use std::path::Path;
 
-use flock_metrics::{Cohesion, FlockMetrics, FlockingCriteria, FlockingVerdict, Window};
+use flock_metrics::{FlockMetrics, FlockingCriteria};
+
+use crate::verdict::{Verdict, VerdictKind, criteria_text};
 
 use super::read::{TIME, read_metrics};
 
 /// The verdict's file in a finished run directory.
 pub const VERDICT_FILE: &str = "flocking.txt";
 
-/// Definition 5 judged on the `metrics.csv` at `path` of a run of `agents` agents; `None` when
-/// the window holds no record.
+/// The verdict of kind `kind` judged on the `metrics.csv` at `path` of a run of `agents` agents;
+/// `None` when the window holds no record.
 ///
 /// # Errors
 /// As [`read_records`].
 pub fn judge_metrics_file(
     path: &Path,
     agents: usize,
+    kind: VerdictKind,
     criteria: &FlockingCriteria,
-) -> io::Result<Option<FlockingVerdict>> {
-    Ok(FlockingVerdict::judge(
-        &read_records(path, agents)?,
-        criteria,
-    ))
+) -> io::Result<Option<Verdict>> {
+    Ok(Verdict::judge(kind, &read_records(path, agents)?, criteria))
 }
 
 /// The records of the `metrics.csv` at `path` of a run of `agents` agents, as a run's
@@ -78,22 +78,13 @@ pub fn read_records(path: &Path, agents: usize) -> io::Result<Vec<(f64, FlockMet
         .collect())
 }
 
-/// The text of `flocking.txt`: the verdict and the criteria it was judged by.
+/// The text of `flocking.txt`: the verdict (of kind `kind`) and the criteria it was judged by.
 #[must_use]
-pub fn verdict_text(verdict: Option<&FlockingVerdict>, criteria: &FlockingCriteria) -> String {
-    let window = match criteria.window {
-        Window::LastFraction(f) => format!("the last {:.0} % of the run", 100.0 * f),
-        Window::Between { from, to } => format!("t in [{from}, {to}]"),
-    };
-    let cohesion = match criteria.cohesion {
-        Cohesion::NonGrowing { growth } => {
-            format!("R growing by at most {:.0} %", 100.0 * growth)
-        }
-        Cohesion::Radius(radius) => format!("R ≤ {radius}"),
-    };
+pub fn verdict_text(
+    verdict: Option<&Verdict>,
+    kind: VerdictKind,
+    criteria: &FlockingCriteria,
+) -> String {
     let line = verdict.map_or_else(|| "no record in the window".to_owned(), ToString::to_string);
-    format!(
-        "{line}\nTAC 2006 Definition 5 over {window}: C* ≥ {}, {cohesion}, ε₁ = {}, ε₂ = {}\n",
-        criteria.giant_share, criteria.epsilon1, criteria.epsilon2
-    )
+    format!("{line}\n{}\n", criteria_text(kind, criteria))
 }

@@ -47,13 +47,14 @@ use crate::owned::{self, DirError, DirLock, Kind, at, parent_of};
 use crate::run::{Record, Recorder, Start};
 use crate::scenario::Scenario;
 use crate::simulation::State;
-use flock_metrics::{FlockingCriteria, FlockingVerdict};
+use crate::verdict::{Verdict, VerdictKind};
+use flock_metrics::FlockingCriteria;
 
 /// The header of `metrics.csv`: t, [`FlockMetrics::REAL_COLUMNS`](flock_metrics::FlockMetrics::REAL_COLUMNS),
 /// the collisions, the energy, then (appended later, so that the former columns keep their
 /// places) [`FlockMetrics::EXTRA_COLUMNS`](flock_metrics::FlockMetrics::EXTRA_COLUMNS) and the
 /// number of components; the protocol's diagnostics follow.
-pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,components";
+pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,group_speed,components";
 
 /// The file that marks a directory as incomplete, and says why.
 pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
@@ -172,6 +173,8 @@ pub struct RunDirectory {
     agents: usize,
     /// The criteria of the verdict of [`VERDICT_FILE`].
     criteria: FlockingCriteria,
+    /// The verdict the scenario's model gets.
+    verdict_kind: VerdictKind,
     /// The resolved scenario as RON, kept in every checkpoint.
     scenario: String,
     /// Whether `DIR` may be replaced at the end (it carried flocking's marker at the start).
@@ -191,8 +194,8 @@ pub struct RunDirectory {
 pub struct Finished {
     /// `DIR`.
     pub path: PathBuf,
-    /// TAC 2006 Definition 5 judged on its whole `metrics.csv` (also in [`VERDICT_FILE`]).
-    pub verdict: Option<FlockingVerdict>,
+    /// The model's verdict judged on its whole `metrics.csv` (also in [`VERDICT_FILE`]).
+    pub verdict: Option<Verdict>,
 }
 
 /// Why a run directory cannot be created.
@@ -552,6 +555,7 @@ impl RunDirectory {
             columns: None,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
+            verdict_kind: VerdictKind::of(&scenario.algorithm),
             scenario: scenario.to_ron().map_err(io::Error::other)?,
             force: false,
             empty_target: is_empty_dir(target),
@@ -743,6 +747,7 @@ impl RunDirectory {
             columns,
             agents: scenario.agents,
             criteria: FlockingCriteria::default(),
+            verdict_kind: VerdictKind::of(&scenario.algorithm),
             scenario: checkpoint.scenario,
             force,
             empty_target,
@@ -823,7 +828,7 @@ impl RunDirectory {
         })
     }
 
-    fn complete(&mut self) -> io::Result<Option<FlockingVerdict>> {
+    fn complete(&mut self) -> io::Result<Option<Verdict>> {
         let header = agent_header(self.dim, self.vehicle_columns, self.marks_failed);
         let mut last = format!("{}\n", header[1..].join(",")).into_bytes();
         let coordinates = self.row_width();
@@ -835,9 +840,10 @@ impl RunDirectory {
         let verdict = judge_metrics_file(
             &self.partial.join("metrics.csv"),
             self.agents,
+            self.verdict_kind,
             &self.criteria,
         )?;
-        let text = verdict_text(verdict.as_ref(), &self.criteria);
+        let text = verdict_text(verdict.as_ref(), self.verdict_kind, &self.criteria);
         write_durably(&self.partial.join(VERDICT_FILE), text.as_bytes())?;
         // every file of the run, by size and content, once none will change (issue 27)
         owned::record_manifest(&self.partial)?;

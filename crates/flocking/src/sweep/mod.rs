@@ -101,7 +101,8 @@ pub struct Sweep {
     /// ε₁ of TAC 2006 Definition 5 (Ẽ ≤ ε₁), judged over each run's last quarter.
     #[serde(default = "default_epsilon")]
     pub epsilon1: f64,
-    /// ε₂ of TAC 2006 Definition 5 (K̃ ≤ ε₂).
+    /// ε₂ of TAC 2006 Definition 5, relative to the group's speed: K̃ ≤ ε₂ ‖p_c‖² (for a group
+    /// at rest, relative to the speed of its approach).
     #[serde(default = "default_epsilon")]
     pub epsilon2: f64,
     /// The fraction of each run's duration after which it has settled: the `settled_*` columns

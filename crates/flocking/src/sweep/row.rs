@@ -6,10 +6,13 @@ use std::time::Instant;
 use flock_metrics::{Closest, FlockMetrics};
 use serde_json::Value;
 
+use flock_protocols::{GAMMA_POSITION_ERROR, GAMMA_VELOCITY_ERROR};
+
 use super::{RunSpec, Sweep};
 use crate::RunDirectory;
 use crate::run::{Record, Recorder, RunError, RunSummary, Start, resume_with};
 use crate::simulation::{MapProtocol, ScenarioProtocol};
+use crate::verdict::Verdict;
 
 /// What a finished run measured.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,8 +28,14 @@ pub struct Outcome {
     /// `None` when it is not connected at the end.
     pub connected_from: Option<f64>,
     /// TAC 2006 Definition 5 over the last quarter: an α-flock, and a strict one (`None` for a
-    /// run without records in its window).
+    /// run without records in its window, or of a model judged otherwise).
     pub alpha_flock: Option<(bool, bool)>,
+    /// The model's verdict in a few words ([`Verdict::state`]): `strict α-flock`, `torus`,
+    /// `polarised (ordered)`, … (`None` for a run without records in its window).
+    pub verdict: Option<&'static str>,
+    /// The γ-tracking errors ‖q̄ − q_r‖ and ‖p̄ − p_r‖ at the final record, for a protocol with a
+    /// γ-agent (`None` otherwise).
+    pub gamma_tracking: Option<(f64, f64)>,
     /// With obstacles: the least clearance of an agent to an obstacle and the most agents inside
     /// one, at any record.
     pub obstacles: Option<(f64, f64)>,
@@ -45,7 +54,7 @@ pub struct Outcome {
 
 /// The columns of `runs.csv` of an [`Outcome`] (after the seed, before `error`), each with what a
 /// figure calls it ([`metric_label`]).
-const OUTCOME_COLUMNS: [(&str, &str); 20] = {
+const OUTCOME_COLUMNS: [(&str, &str); 23] = {
     let [c, giant, radius, deviation, mismatch, distance] = FlockMetrics::REAL_COLUMNS;
     [
         (c, "connectivity C"),
@@ -71,6 +80,9 @@ const OUTCOME_COLUMNS: [(&str, &str); 20] = {
             "settled_largest_group",
             "fraction in the largest group, mean after settling",
         ),
+        (GAMMA_POSITION_ERROR, "‖q̄ − q_r‖ (final)"),
+        (GAMMA_VELOCITY_ERROR, "‖p̄ − p_r‖ (final)"),
+        ("verdict", "the model's verdict"),
     ]
 };
 
@@ -93,8 +105,8 @@ pub fn metric_label(column: &str) -> &str {
 }
 
 impl Outcome {
-    /// The outcome of a run's summary and its obstacle columns, Definition 5 judged with the
-    /// sweep's criteria, settled from the sweep's `settle` × `duration` on.
+    /// The outcome of a run's summary and its obstacle columns, the model's verdict judged with
+    /// the sweep's criteria, settled from the sweep's `settle` × `duration` on.
     #[must_use]
     pub fn of(
         summary: &RunSummary,
@@ -111,9 +123,14 @@ impl Outcome {
             None => history.first().map(|(t, _)| *t),
             Some(k) => history.get(k + 1).map(|(t, _)| *t),
         };
-        let alpha_flock = summary
-            .verdict(&sweep.criteria())
-            .map(|v| (v.is_alpha_flocking(), v.is_strict()));
+        let verdict = summary.verdict(&sweep.criteria());
+        let final_value = |name: &str| {
+            summary
+                .diagnostics
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|&(_, v)| v)
+        };
         let settled: Vec<&FlockMetrics> = history
             .iter()
             .filter(|(t, _)| *t >= sweep.settle * duration)
@@ -135,7 +152,10 @@ impl Outcome {
             },
             settled: Closest::over(history, sweep.settle * duration),
             connected_from,
-            alpha_flock,
+            alpha_flock: verdict.as_ref().and_then(Verdict::alpha_flock),
+            verdict: verdict.as_ref().map(Verdict::state),
+            gamma_tracking: final_value(GAMMA_POSITION_ERROR)
+                .zip(final_value(GAMMA_VELOCITY_ERROR)),
             obstacles,
             settled_order,
             settled_largest_group,
@@ -169,6 +189,9 @@ impl Outcome {
             or_empty(self.settled_order.map(|(p, _)| p.to_string())),
             or_empty(self.settled_order.map(|(_, m)| m.to_string())),
             or_empty(self.settled_largest_group.map(|g| g.to_string())),
+            or_empty(self.gamma_tracking.map(|(q, _)| q.to_string())),
+            or_empty(self.gamma_tracking.map(|(_, p)| p.to_string())),
+            or_empty(self.verdict.map(str::to_owned)),
         ]
     }
 }
