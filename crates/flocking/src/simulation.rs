@@ -101,6 +101,7 @@ impl MapProtocol for ScenarioProtocol {
 /// What a [`DynSimulation`] asks of the simulation it holds, in either dimension.
 trait Dynamic: Send {
     fn step(&mut self);
+    fn is_torn(&self) -> bool;
     fn steps(&self) -> u64;
     fn time(&self) -> f64;
     fn state(&self) -> State<'_>;
@@ -127,6 +128,10 @@ fn rows<V: Space + bytemuck::Pod>(vectors: Cow<'_, [V]>) -> Cow<'_, [f64]> {
 impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
     fn step(&mut self) {
         Simulation::step(self);
+    }
+
+    fn is_torn(&self) -> bool {
+        Simulation::is_torn(self)
     }
 
     fn steps(&self) -> u64 {
@@ -337,6 +342,23 @@ impl DynSimulation {
         }
     }
 
+    /// The simulation of `scenario` from its initial condition (`start` `None`), or continued
+    /// from the checkpoint `start` ([`DynSimulation::resume_with`]), simulating the protocol
+    /// `map` makes of the scenario's.
+    ///
+    /// # Errors
+    /// As [`DynSimulation::new`] or [`DynSimulation::resume_with`].
+    pub fn build_with<M: MapProtocol>(
+        scenario: &Scenario,
+        start: Option<&Start>,
+        map: &M,
+    ) -> Result<Self, ScenarioError> {
+        match start {
+            None => Self::new_with(scenario, map),
+            Some(start) => Self::resume_with(scenario, start, map),
+        }
+    }
+
     /// The simulation continued from `start`, a checkpoint of the same scenario: stepping it
     /// gives the bits of the uninterrupted run.
     ///
@@ -428,9 +450,19 @@ impl DynSimulation {
         self.agents
     }
 
-    /// Advances the state by one step h.
+    /// Advances the state by one step h. An interrupt ([`crate::interrupt`]) may cut a long step
+    /// short: then the step is not taken (the state and [`DynSimulation::steps`] stay those of
+    /// the steps taken), or, cut inside a vehicle's inner steps or the conditions' stage, the
+    /// simulation is [torn](DynSimulation::is_torn) ([`Simulation::step`]).
     pub fn step(&mut self) {
         self.inner.step();
+    }
+
+    /// Whether an interrupt cut a step short after it had changed the state: the state is then
+    /// between two steps and must not be recorded, and the simulation takes no more steps.
+    #[must_use]
+    pub fn is_torn(&self) -> bool {
+        self.inner.is_torn()
     }
 
     /// The number of steps taken.

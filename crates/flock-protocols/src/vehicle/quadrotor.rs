@@ -67,7 +67,7 @@ use core::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use glam::{DMat3, DQuat, DVec3};
 
 use super::GRAVITY;
-use super::{Vehicle, VehicleKind, inner_steps};
+use super::{Vehicle, VehicleKind, inner_loop, inner_steps};
 use crate::error::{ParamError, check};
 
 /// Revolutions per minute in one radian per second, 30/π: a coefficient per rpm² times its square
@@ -587,7 +587,7 @@ impl Quadrotor {
         }
         let dt = h / n as f64;
         let (x0, v0) = (body.x, body.v);
-        for k in 0..n {
+        for k in inner_loop(n) {
             let t = k as f64 * dt;
             let reference = Reference {
                 x: x0 + v0 * t + command * (0.5 * t * t),
