@@ -33,7 +33,8 @@ use glam::{DVec2, DVec3};
 
 use crate::Scenario;
 use crate::initial::initial_positions;
-use crate::protocols::conditions;
+use crate::protocols::{Integrator, conditions};
+use crate::vehicle::VehicleSpec;
 
 /// The most threads (or sweep workers) per available core: more only adds switching.
 pub const THREADS_PER_CORE: usize = 4;
@@ -86,7 +87,27 @@ pub const AGENT_STEPS_PER_SECOND: [f64; 2] = [3.4e6, 1.13e6];
 
 /// The most pair tests [`Scenario::estimate_at_start`] spends counting the start's net (2³²):
 /// each step of the run tests as many, so a start past it is too dense to run in reasonable time.
+/// It bounds the work of one step that validation lets through too (pairs of an all-pairs model,
+/// agents × inner steps of a vehicle), so that every step the estimate states is one it can
+/// count.
 pub const START_COUNT_BUDGET: usize = 1 << 32;
+
+/// Seconds of one inner step of one vehicle on one thread: the unicycle, the fixed wing, the
+/// quadrotor (`flocking bench --vehicle`, n = 10⁴, one thread, less the point masses' step;
+/// docs/performance.md, "Vehicles and all pairs").
+pub const INNER_STEP_SECONDS: [f64; 3] = [UNICYCLE_INNER_STEP, FIXED_WING_INNER_STEP, QUADROTOR_INNER_STEP];
+
+/// [`INNER_STEP_SECONDS`] of the unicycle.
+const UNICYCLE_INNER_STEP: f64 = 60e-9;
+/// [`INNER_STEP_SECONDS`] of the fixed wing.
+const FIXED_WING_INNER_STEP: f64 = 300e-9;
+/// [`INNER_STEP_SECONDS`] of the quadrotor.
+const QUADROTOR_INNER_STEP: f64 = 400e-9;
+
+/// Seconds of one pair of an all-pairs sum (Cucker–Smale without a cutoff, ψ's power for each
+/// of the n − 1 others of every agent) on one thread (docs/performance.md, "Vehicles and all
+/// pairs").
+pub const ALL_PAIRS_SECONDS: f64 = 25e-9;
 
 /// Bytes of a `metrics.csv` row (nine columns, shortest round-trip f64: ≈ 115 B in the gallery)
 /// with room for a protocol's diagnostics.
@@ -208,9 +229,37 @@ impl Scenario {
                     + degree / 2.0 * BYTES_PER_EDGE[dim - 2]),
             delay_line_bytes: n * delay_line_bytes as f64,
             disk_bytes: trajectory + metrics + checkpoint,
-            seconds: agent_steps / AGENT_STEPS_PER_SECOND[dim - 2],
+            seconds: agent_steps * self.seconds_per_agent_step(degree),
             density: Density::Lattice,
         }
+    }
+
+    /// The seconds of one agent-step on one thread with `degree` neighbours within the sensing
+    /// range: the point masses' step at that degree ([`AGENT_STEPS_PER_SECOND`], in proportion
+    /// to the degree above the lattice's), every evaluation of the inputs (four for RK4), the
+    /// other agents of an all-pairs model ([`ALL_PAIRS_SECONDS`] each) and the vehicle's inner
+    /// steps ([`INNER_STEP_SECONDS`] each).
+    fn seconds_per_agent_step(&self, degree: f64) -> f64 {
+        let dim = self.dim.clamp(2, 3);
+        let lattice = LATTICE_DEGREE[dim - 2];
+        let evaluations = match self.integrator {
+            Integrator::Rk4 if !self.algorithm.sets_velocity() => 4.0,
+            _ => 1.0,
+        };
+        let others = if self.algorithm.couples_every_pair() {
+            self.agents.saturating_sub(1) as f64 * ALL_PAIRS_SECONDS
+        } else {
+            0.0
+        };
+        let inner = match self.vehicle {
+            VehicleSpec::PointMass => 0.0,
+            VehicleSpec::Unicycle(_) => INNER_STEP_SECONDS[0],
+            VehicleSpec::FixedWing(_) => INNER_STEP_SECONDS[1],
+            VehicleSpec::Quadrotor(_) => INNER_STEP_SECONDS[2],
+        };
+        evaluations
+            * (degree.max(lattice) / lattice / AGENT_STEPS_PER_SECOND[dim - 2] + others)
+            + self.vehicle.inner_steps(self.step) * inner
     }
 
     /// [`Scenario::estimate`] with the net of the start counted (within the sensing range r,
@@ -250,7 +299,7 @@ impl Scenario {
         let extra = (degree - lattice).max(0.0);
         Estimate {
             memory_bytes: estimate.memory_bytes + n * extra / 2.0 * BYTES_PER_EDGE[dim - 2],
-            seconds: estimate.seconds * degree.max(lattice) / lattice,
+            seconds: estimate.agent_steps * self.seconds_per_agent_step(degree),
             density: Density::Start(degree),
             ..estimate
         }
