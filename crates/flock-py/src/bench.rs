@@ -303,8 +303,9 @@ pub fn bench(
         let refused = given(&lattice);
         if !refused.is_empty() {
             return Err(PyValueError::new_err(format!(
-                "{} do(es) not apply to workload='{name}', which sets its own agents, steps and box: leave them out, or scale it with scale_to",
-                refused.join(", ")
+                "{} {} not apply to workload='{name}', which sets its own agents, steps and box: leave them out, or scale it with scale_to",
+                refused.join(", "),
+                if refused.len() == 1 { "does" } else { "do" }
             )));
         }
         let config = WorkloadConfig {
@@ -327,8 +328,10 @@ pub fn bench(
     let refused = given(&[("seeds", seeds.is_some()), ("scale_to", scale_to.is_some())]);
     if !refused.is_empty() {
         return Err(PyValueError::new_err(format!(
-            "{} appl(y|ies) only with workload=: give a workload, or leave them out",
-            refused.join(", ")
+            "{} {} only with workload=: give a workload, or leave {} out",
+            refused.join(", "),
+            if refused.len() == 1 { "applies" } else { "apply" },
+            if refused.len() == 1 { "it" } else { "them" }
         )));
     }
     let config = BenchConfig {

@@ -92,22 +92,32 @@ pub const AGENT_STEPS_PER_SECOND: [f64; 2] = [3.4e6, 1.13e6];
 /// count.
 pub const START_COUNT_BUDGET: usize = 1 << 32;
 
+/// Bytes of each slot of the delay line besides the agents' states: its two vectors' headers
+/// (24 B each) and their heap blocks' (16 B each) — most of a slot for a few agents.
+pub const SLOT_BYTES: f64 = 80.0;
+
+/// What a checkpoint of a run with a delay line holds of it besides the line, in lines: a copy of
+/// the conditions' state (1) and its RON text (up to 2.5: 20 characters for a number of 8
+/// bytes), made while the checkpoint is written (docs/performance.md, "The delay line in the
+/// estimate").
+pub const CHECKPOINT_COPIES: f64 = 3.5;
+
 /// Seconds of one inner step of one vehicle on one thread: the unicycle, the fixed wing, the
-/// quadrotor (`flocking bench --vehicle`, n = 10⁴, one thread, less the point masses' step;
-/// docs/performance.md, "Vehicles and all pairs").
+/// quadrotor (`flocking run` of 30–50 vehicles at 1,000 to 10,000 inner steps a step, one
+/// thread; docs/performance.md, "Vehicles and all pairs in the estimate").
 pub const INNER_STEP_SECONDS: [f64; 3] = [UNICYCLE_INNER_STEP, FIXED_WING_INNER_STEP, QUADROTOR_INNER_STEP];
 
 /// [`INNER_STEP_SECONDS`] of the unicycle.
-const UNICYCLE_INNER_STEP: f64 = 60e-9;
+const UNICYCLE_INNER_STEP: f64 = 65e-9;
 /// [`INNER_STEP_SECONDS`] of the fixed wing.
-const FIXED_WING_INNER_STEP: f64 = 300e-9;
+const FIXED_WING_INNER_STEP: f64 = 150e-9;
 /// [`INNER_STEP_SECONDS`] of the quadrotor.
-const QUADROTOR_INNER_STEP: f64 = 400e-9;
+const QUADROTOR_INNER_STEP: f64 = 330e-9;
 
 /// Seconds of one pair of an all-pairs sum (Cucker–Smale without a cutoff, ψ's power for each
 /// of the n − 1 others of every agent) on one thread (docs/performance.md, "Vehicles and all
-/// pairs").
-pub const ALL_PAIRS_SECONDS: f64 = 25e-9;
+/// pairs in the estimate").
+pub const ALL_PAIRS_SECONDS: f64 = 14e-9;
 
 /// Bytes of a `metrics.csv` row (nine columns, shortest round-trip f64: ≈ 115 B in the gallery)
 /// with room for a protocol's diagnostics.
@@ -213,10 +223,10 @@ impl Scenario {
             0.0
         };
         let agent_steps = n * steps as f64;
-        // the conditions' state (mostly the delay line), none for an ideal run
-        let conditions_bytes = conditions::bytes_per_agent(&self.conditions, dim, self.step);
-        let delay_line_bytes =
-            conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
+        // the conditions' state besides the delay line, none for an ideal run
+        let per_agent = conditions::bytes_per_agent(&self.conditions, dim, self.step)
+            - conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
+        let delay_line_bytes = self.delay_line_bytes(outputs);
         let degree = LATTICE_DEGREE[dim - 2];
         Estimate {
             runs: 1,
@@ -225,12 +235,30 @@ impl Scenario {
             agent_steps,
             memory_bytes: FIXED_BYTES
                 + n * (BYTES_PER_AGENT[dim - 2]
-                    + conditions_bytes as f64
-                    + degree / 2.0 * BYTES_PER_EDGE[dim - 2]),
-            delay_line_bytes: n * delay_line_bytes as f64,
+                    + per_agent as f64
+                    + degree / 2.0 * BYTES_PER_EDGE[dim - 2])
+                + delay_line_bytes,
+            delay_line_bytes,
             disk_bytes: trajectory + metrics + checkpoint,
             seconds: agent_steps * self.seconds_per_agent_step(degree),
             density: Density::Lattice,
+        }
+    }
+
+    /// The bytes of the delay line (every agent's states over the delay and jitter,
+    /// [`conditions::delay_line_bytes_per_agent`]) with its slots' own [`SLOT_BYTES`], and when a
+    /// run keeps checkpoints, what a checkpoint makes of it: a copy and its text
+    /// ([`CHECKPOINT_COPIES`] times it in all; issue 49: a delay line of 10⁴ s was estimated at a
+    /// third of its peak).
+    fn delay_line_bytes(&self, outputs: &Outputs) -> f64 {
+        let dim = self.dim.clamp(2, 3);
+        let per_agent = conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
+        let slots = per_agent as f64 / (2.0 * dim as f64 * 8.0);
+        let line = self.agents as f64 * per_agent as f64 + slots * SLOT_BYTES;
+        if outputs.checkpoint {
+            line * (1.0 + CHECKPOINT_COPIES)
+        } else {
+            line
         }
     }
 
@@ -750,7 +778,8 @@ mod tests {
             conditions::bytes_per_agent(&delayed.conditions, 2, delayed.step),
             369
         );
-        assert!((extra - 369e6).abs() < 1.0, "{extra}");
+        // and the 11 slots' own bytes
+        assert!((extra - 369e6 - 11.0 * SLOT_BYTES).abs() < 1.0, "{extra}");
     }
 
     #[test]
@@ -762,18 +791,23 @@ mod tests {
             ..conditions::Communication::default()
         });
         let estimate = delayed.estimate(&Outputs::NONE);
+        // 10⁸ + 1 slots of 100 agents' states, 32 B each, and of their own 80 B
+        let line = (100.0 * 32.0 + SLOT_BYTES) * (1e8 + 1.0);
         assert!(
-            (estimate.delay_line_bytes - 100.0 * 32.0 * (1e8 + 1.0)).abs() < 1.0,
+            (estimate.delay_line_bytes - line).abs() < 1.0,
             "{}",
             estimate.delay_line_bytes
         );
+        // a run that keeps checkpoints copies it and writes it as text
+        let checkpointed = delayed.estimate(&Outputs::RUN).delay_line_bytes;
+        assert!((checkpointed - 4.5 * line).abs() < 1.0, "{checkpointed}");
         let room = |memory_bytes| Resources {
             memory_bytes: Some(memory_bytes),
             ..Resources::default()
         };
         let error = estimate.check(&room(1e9)).unwrap_err();
         assert!(
-            error.contains("320.0 GB of it the delay line of conditions.communication.delay")
+            error.contains("328.0 GB of it the delay line of conditions.communication.delay")
                 && error.contains("a shorter delay")
                 && !error.contains("bytes per agent"),
             "{error}"

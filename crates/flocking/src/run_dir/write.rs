@@ -37,7 +37,9 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, DrawsOf, sync_dir};
+use super::checkpoint::{
+    CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, Counts, DrawsOf, sync_dir, write_checkpoint,
+};
 use super::npy::{NpyFile, trajectory_dtype};
 use super::read::{FAILED_COLUMN, trajectory_header_with};
 use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
@@ -1591,16 +1593,13 @@ impl Recorder for RunDirectory {
             Trajectory::Csv { bytes, .. } => *bytes,
             Trajectory::Npy(file) => file.rows(),
         };
-        Checkpoint {
+        let counts = Counts {
             dim: self.dim,
-            start: start.clone(),
             records: self.records,
             metrics_bytes: self.metrics_bytes,
             trajectory_bytes,
-            scenario: self.scenario.clone(),
-            draws: DrawsOf::Current,
-        }
-        .write(&self.partial)?;
+        };
+        write_checkpoint(&self.partial, &counts, start, &self.scenario)?;
         let whole = format!(
             "{}Whole records, checkpointed after step {}: {} (the first {} bytes of metrics.csv; of the trajectory, {} {}).\n",
             running_note(&self.target, self.force),
