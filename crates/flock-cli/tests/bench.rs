@@ -18,7 +18,7 @@ fn bench_reports_throughput_memory_and_threads() {
     // the estimate of `flocking run` first, then the report
     let (estimate, report) = report.split_once('\n').expect("two parts");
     assert!(
-        estimate.starts_with("estimate: 23 steps, 4 records; memory "),
+        estimate.starts_with("estimate: 6 steps, 2 records; memory "),
         "{estimate}"
     );
     assert!(

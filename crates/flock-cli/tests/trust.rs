@@ -231,20 +231,30 @@ fn a_blow_up_stops_the_run_with_the_step_agent_and_cause() {
     }
 }
 
+/// Initial speeds beyond what the step resolves (an agent would cross more than r in its first
+/// step) are refused up front, naming the field (issue 49: the run stopped at step 0 as a
+/// numerical blow-up); the health check still stops a state given whole.
 #[test]
-fn initial_speeds_beyond_what_the_step_resolves_stop_the_run_at_step_0() {
+fn initial_speeds_beyond_what_the_step_resolves_are_refused_up_front() {
     let text = LONG_2D.replace(
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0])",
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1e6])",
     );
-    let scenario = Scenario::parse(&text, "fast.ron").expect("valid");
-    match flocking::run(&scenario, &mut ()) {
-        Err(RunError::Numerical(e)) => {
-            assert_eq!(e.steps, 0);
-            assert!(matches!(e.fault.fault, Fault::Runaway { .. }), "{e}");
-        }
-        other => panic!("expected a numerical error, got {other:?}"),
-    }
+    let error = Scenario::parse(&text, "fast.ron").expect_err("refused");
+    assert_eq!(error.field().as_deref(), Some("initial.velocities"), "{error}");
+    let valid = Scenario::parse(LONG_2D, "long.ron").expect("valid");
+    let mut velocities = vec![0.0; 2 * valid.agents];
+    velocities[1] = 1e6;
+    let positions = flocking::DynSimulation::new(&valid)
+        .expect("built")
+        .state()
+        .positions
+        .into_owned();
+    let sim = flocking::DynSimulation::from_state(&valid, &positions, &velocities, 0)
+        .expect("a finite state");
+    let fault = sim.check_health().expect_err("too fast");
+    assert_eq!(fault.steps, 0);
+    assert!(matches!(fault.fault.fault, Fault::Runaway { .. }), "{fault}");
 }
 
 #[test]

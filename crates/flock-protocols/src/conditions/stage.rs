@@ -265,7 +265,7 @@ impl<V: Vector> Stage<V> {
         let history = History::new(depth, agents).map_err(|_| {
             let bytes = n as u64 * delay_line_bytes_per_agent(c, V::DIM, h) as u64;
             ParamError::out_of_memory(
-                "communication.delay",
+                "conditions.communication.delay",
                 c.communication.map_or(0.0, |m| m.delay),
                 ("the delay line (every agent's states over the delay and jitter)", bytes),
                 "a shorter delay (or jitter), or fewer agents",

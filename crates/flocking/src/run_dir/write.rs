@@ -804,7 +804,12 @@ impl RunDirectory {
         }
         let metrics_path = partial.join("metrics.csv");
         let columns = if checkpoint.records > 0 {
-            Some(diagnostic_columns(&metrics_path)?)
+            Some(diagnostic_columns(&metrics_path).map_err(|e| match e.kind() {
+                io::ErrorKind::InvalidData => ResumeError::Refused(format!(
+                    "{e}: it is not the metrics.csv of this run, so the run cannot be resumed"
+                )),
+                _ => e.into(),
+            })?)
         } else {
             None
         };
