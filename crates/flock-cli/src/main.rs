@@ -7,10 +7,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::{Progress, Report, errln, out, outln};
 use flock_viz::{FigureOptions, plot_run_with};
+use flocking::bench::BenchError;
 use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
 use flocking::run_dir::{CreateError, ResumeError, read_records};
-use flocking::bench::BenchError;
 use flocking::workload::{WorkloadConfig, time_seeds};
 use flocking::{
     DynSimulation, OutputOptions, RunDirectory, RunError, Scenario, ScenarioProtocol, Start,
@@ -581,16 +581,15 @@ fn resume_directory(
         ..Outputs::RUN
     };
     check_resources(&scenario, &outputs, &partial, unchecked).inspect_err(|_| kept())?;
-    let sim = DynSimulation::build_with(&scenario, start.as_ref(), &ScenarioProtocol).map_err(
-        |e| {
+    let sim =
+        DynSimulation::build_with(&scenario, start.as_ref(), &ScenarioProtocol).map_err(|e| {
             errln!(
                 "error: the checkpoint in {} cannot be continued: {e}",
                 partial.display()
             );
             kept();
             refusal(&e)
-        },
-    )?;
+        })?;
     WRITING.store(true, Ordering::SeqCst);
     let dir = interrupted.reopen().map_err(|e| {
         errln!("error: {e}");

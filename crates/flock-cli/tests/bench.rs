@@ -103,7 +103,10 @@ fn bench_runs_algorithm_3_in_3d_on_one_thread() {
 fn bench_refuses_a_bad_dimension() {
     let out = bench(&["--n", "100", "--dim", "4", "--steps", "1"]);
     assert_eq!(out.status.code(), Some(2), "{out:?}");
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--dim 4: flocking simulates the plane or space"));
+    assert!(
+        String::from_utf8_lossy(&out.stderr)
+            .contains("--dim 4: flocking simulates the plane or space")
+    );
 }
 
 #[test]
@@ -144,7 +147,10 @@ fn bench_refuses_invalid_conditions() {
     for (args, message) in [
         (["--loss", "1.5"], "--loss 1.5: is a probability"),
         (["--delay", "0.015"], "--delay 0.015: is not a whole number"),
-        (["--control-rate", "30"], "--control-rate 30.0: gives a period"),
+        (
+            ["--control-rate", "30"],
+            "--control-rate 30.0: gives a period",
+        ),
     ] {
         let out = bench(&[&["--n", "100", "--steps", "1"][..], &args[..]].concat());
         assert_eq!(out.status.code(), Some(2), "{out:?}");

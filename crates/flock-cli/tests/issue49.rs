@@ -78,7 +78,10 @@ fn forge(partial: &Path, forge: impl FnOnce(&mut Start)) {
 
 /// SHORT_2D's agents on the unicycles of `fixtures/unicycle_alg2_n50.ron`.
 fn unicycles() -> String {
-    SHORT_2D.replace("    step: 0.01,", "    vehicle: Unicycle(()),\n    step: 0.01,")
+    SHORT_2D.replace(
+        "    step: 0.01,",
+        "    vehicle: Unicycle(()),\n    step: 0.01,",
+    )
 }
 
 /// SHORT_2D under a communication delay of 0.05 s.
@@ -148,7 +151,11 @@ fn issue_49_a_refused_resume_keeps_every_byte_of_the_interrupted_run() {
             Box::new(|p| {
                 // the header and the first record kept, the records after them cut
                 let metrics = fs::read(p.join("metrics.csv")).expect("metrics");
-                let second = metrics.iter().enumerate().filter(|&(_, &b)| b == b'\n').nth(1);
+                let second = metrics
+                    .iter()
+                    .enumerate()
+                    .filter(|&(_, &b)| b == b'\n')
+                    .nth(1);
                 let end = second.expect("two lines").0 + 1;
                 fs::write(p.join("metrics.csv"), &metrics[..end]).expect("cut");
             }),
@@ -227,7 +234,10 @@ fn spawn(dir: &Path, args: &[&str]) -> std::process::Child {
 
 /// Sends SIGINT to `child` once `started` holds (polled), and returns its output and how long it
 /// took to end after the signal.
-fn interrupt(child: std::process::Child, started: impl Fn() -> bool) -> (std::process::Output, Duration) {
+fn interrupt(
+    child: std::process::Child,
+    started: impl Fn() -> bool,
+) -> (std::process::Output, Duration) {
     let waited = Instant::now();
     while !started() {
         assert!(waited.elapsed() < Duration::from_secs(120), "never started");
@@ -290,7 +300,15 @@ fn issue_49_ctrl_c_stops_a_long_step_within_2_s() {
         let file = write(tmp.path(), &format!("{name}.ron"), &text);
         let child = spawn(
             tmp.path(),
-            &["run", &file, "--out", name, "--quiet", "--checkpoint-every", "1"],
+            &[
+                "run",
+                &file,
+                "--out",
+                name,
+                "--quiet",
+                "--checkpoint-every",
+                "1",
+            ],
         );
         let partial = partial_path(&tmp.path().join(name));
         // started once its first record is on the disk
@@ -302,7 +320,10 @@ fn issue_49_ctrl_c_stops_a_long_step_within_2_s() {
         assert_eq!(output.status.code(), Some(130), "{name}: {err}");
         assert!(took < Duration::from_secs(2), "{name}: {took:?}, {err}");
         let note = fs::read_to_string(partial.join(INCOMPLETE_FILE)).expect("the note");
-        assert!(note.contains("Resume: flocking run --resume"), "{name}: {note}");
+        assert!(
+            note.contains("Resume: flocking run --resume"),
+            "{name}: {note}"
+        );
         // resumable: the directory and its checkpoint pass every check of a resume, and the
         // run's simulation is rebuilt from it (nothing written)
         let (_, scenario, start) = RunDirectory::resume(&partial, 1).expect("resumable");
@@ -318,7 +339,14 @@ fn issue_49_ctrl_c_stops_a_benchmark_at_once() {
     let tmp = temp_dir("ctrl_c_bench");
     let child = spawn(
         tmp.path(),
-        &["bench", "--n", "2000000", "--steps", "100000", "--no-resource-check"],
+        &[
+            "bench",
+            "--n",
+            "2000000",
+            "--steps",
+            "100000",
+            "--no-resource-check",
+        ],
     );
     let started = Instant::now();
     let (output, took) = interrupt(child, || started.elapsed() > Duration::from_secs(1));
@@ -372,7 +400,10 @@ fn issue_49_bench_has_the_guards_of_run() {
     let output = flocking_under_4_gib(tmp.path(), delay);
     refused(
         &output,
-        &["of memory but", "the delay line of conditions.communication.delay"],
+        &[
+            "of memory but",
+            "the delay line of conditions.communication.delay",
+        ],
     );
     let output = flocking_under_4_gib(tmp.path(), &format!("{delay} --no-resource-check"));
     let err = stderr(&output);
@@ -381,19 +412,37 @@ fn issue_49_bench_has_the_guards_of_run() {
         err.contains("which this machine cannot allocate") && err.contains("a shorter delay"),
         "{err}"
     );
-    assert!(!err.contains("panicked") && !err.contains("memory allocation"), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("memory allocation"),
+        "{err}"
+    );
     for (args, says) in [
         (
             &["--workload", "vicsek", "--dim", "3"][..],
             "'--workload <WORKLOAD>' cannot be used with '--dim <DIM>'",
         ),
-        (&["--workload", "vicsek", "--delay", "0.1"][..], "cannot be used with '--delay <SECONDS>'"),
-        (&["--workload", "boids-small", "--vehicle", "unicycle"][..], "cannot be used with '--vehicle <VEHICLE>'"),
+        (
+            &["--workload", "vicsek", "--delay", "0.1"][..],
+            "cannot be used with '--delay <SECONDS>'",
+        ),
+        (
+            &["--workload", "boids-small", "--vehicle", "unicycle"][..],
+            "cannot be used with '--vehicle <VEHICLE>'",
+        ),
         (&["--workload", "vicsek", "--seeds", "0"][..], "--seeds"),
-        (&["--workload", "vicsek", "--scale-to", "0"][..], "--scale-to 0"),
+        (
+            &["--workload", "vicsek", "--scale-to", "0"][..],
+            "--scale-to 0",
+        ),
         (&["--steps", "1e15"][..], "--steps"),
-        (&["--n", "10", "--steps", "1000000000000000"][..], "--steps 1000000000000000"),
-        (&["--n", "10", "--warmup", "1000000000000"][..], "--warmup 1000000000000"),
+        (
+            &["--n", "10", "--steps", "1000000000000000"][..],
+            "--steps 1000000000000000",
+        ),
+        (
+            &["--n", "10", "--warmup", "1000000000000"][..],
+            "--warmup 1000000000000",
+        ),
         (&["--n", "1"][..], "--n 1"),
     ] {
         let output = flocking(tmp.path(), &[&["bench"][..], args].concat());
@@ -419,7 +468,10 @@ fn issue_49_a_delay_line_that_cannot_be_had_is_an_error() {
             && err.contains("which this machine cannot allocate"),
         "{err}"
     );
-    assert!(!err.contains("panicked") && !err.contains("memory allocation"), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("memory allocation"),
+        "{err}"
+    );
     assert!(!tmp.path().join("r.partial").exists() && !tmp.path().join("r").exists());
 }
 
@@ -428,17 +480,32 @@ fn issue_49_a_delay_line_that_cannot_be_had_is_an_error() {
 #[test]
 fn issue_49_an_npy_trajectory_reads_back_its_vehicle_columns_by_name() {
     let tmp = temp_dir("npy_names");
-    let file = write(tmp.path(), "u.ron", &unicycles().replace("duration: 4.0", "duration: 0.1"));
+    let file = write(
+        tmp.path(),
+        "u.ron",
+        &unicycles().replace("duration: 4.0", "duration: 0.1"),
+    );
     for format in ["csv", "npy"] {
         let output = flocking(
             tmp.path(),
-            &["run", &file, "--out", format, "--trajectory-format", format, "--quiet"],
+            &[
+                "run",
+                &file,
+                "--out",
+                format,
+                "--trajectory-format",
+                format,
+                "--quiet",
+            ],
         );
         assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     }
     let read = |dir: &str| flocking::read_run(&tmp.path().join(dir)).expect("read back");
     let (csv, npy) = (read("csv"), read("npy"));
-    assert_eq!(npy.trajectory.vehicle_columns, ["heading", "speed", "turn_rate"]);
+    assert_eq!(
+        npy.trajectory.vehicle_columns,
+        ["heading", "speed", "turn_rate"]
+    );
     assert_eq!(npy.trajectory, csv.trajectory);
 }
 
@@ -460,33 +527,52 @@ fn issue_49_the_velocity_models_are_refused_up_front_with_the_real_reason() {
     for (text, words) in [
         (
             vicsek.replace("Vicsek(v0: 0.03, r: 1.0,", "Vicsek(v0: 2.0, r: 1.0,"),
-            &["`algorithm.v0` = 2.0", "farther than its interaction range r = 1"][..],
+            &[
+                "`algorithm.v0` = 2.0",
+                "farther than its interaction range r = 1",
+            ][..],
         ),
         (
             couzin.replace("Couzin(", "Couzin(speed: 300.0, "),
             &["`algorithm.speed` = 300.0"][..],
         ),
         (
-            cucker.replace("CuckerSmale(beta: 0.25)", "CuckerSmale(beta: 0.25, cutoff: 0.01)"),
+            cucker.replace(
+                "CuckerSmale(beta: 0.25)",
+                "CuckerSmale(beta: 0.25, cutoff: 0.01)",
+            ),
             &["`initial.velocities`", "algorithm.cutoff"][..],
         ),
         (
-            cucker.replace("CuckerSmale(beta: 0.25)", "CuckerSmale(beta: 0.25, cutoff: -1.0)"),
+            cucker.replace(
+                "CuckerSmale(beta: 0.25)",
+                "CuckerSmale(beta: 0.25, cutoff: -1.0)",
+            ),
             &["`algorithm.cutoff` = -1.0"][..],
         ),
         (
-            vicsek.replace("PeriodicAtDensity(density: 4.0)", "PeriodicAtDensity(density: 1e-17)"),
+            vicsek.replace(
+                "PeriodicAtDensity(density: 4.0)",
+                "PeriodicAtDensity(density: 1e-17)",
+            ),
             &["`domain.density` = 1e-17", "beyond the 1e9"][..],
         ),
         (
-            quadrotor.replace("vehicle: Quadrotor(())", "vehicle: Quadrotor((mass: 1e-300))"),
+            quadrotor.replace(
+                "vehicle: Quadrotor(())",
+                "vehicle: Quadrotor((mass: 1e-300))",
+            ),
             &["`vehicle.mass` = 1e-300", "position loop"][..],
         ),
     ] {
         let file = write(tmp.path(), "s.ron", &text);
         let output = flocking(tmp.path(), &["validate", &file]);
         refused(&output, words);
-        assert!(!stderr(&output).contains("algorithm.range"), "{}", stderr(&output));
+        assert!(
+            !stderr(&output).contains("algorithm.range"),
+            "{}",
+            stderr(&output)
+        );
     }
     // the missing cutoff under a perception condition: named as the fix, once
     let text = cucker.replace(
@@ -495,7 +581,10 @@ fn issue_49_the_velocity_models_are_refused_up_front_with_the_real_reason() {
     );
     let file = write(tmp.path(), "s.ron", &text);
     let output = flocking(tmp.path(), &["validate", &file]);
-    refused(&output, &["set algorithm.cutoff", "`conditions.communication`"]);
+    refused(
+        &output,
+        &["set algorithm.cutoff", "`conditions.communication`"],
+    );
     assert_eq!(
         stderr(&output).matches("conditions.communication").count(),
         1,
@@ -537,11 +626,12 @@ fn issue_49_a_sweep_takes_a_vehicle_of_its_defaults() {
 #[test]
 fn issue_49_a_manifest_that_is_not_flockings_is_refused_with_exit_code_2() {
     let tmp = temp_dir("manifest");
-    let file = write(tmp.path(), "s.ron", &SHORT_2D.replace("duration: 4.0", "duration: 0.1"));
-    for (name, damage) in [
-        ("fifo", "mkfifo"),
-        ("large", "truncate -s 100M"),
-    ] {
+    let file = write(
+        tmp.path(),
+        "s.ron",
+        &SHORT_2D.replace("duration: 4.0", "duration: 0.1"),
+    );
+    for (name, damage) in [("fifo", "mkfifo"), ("large", "truncate -s 100M")] {
         let output = flocking(tmp.path(), &["run", &file, "--out", name, "--quiet"]);
         assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
         let manifest = tmp.path().join(name).join(".flocking.manifest");

@@ -241,7 +241,11 @@ fn initial_speeds_beyond_what_the_step_resolves_are_refused_up_front() {
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1e6])",
     );
     let error = Scenario::parse(&text, "fast.ron").expect_err("refused");
-    assert_eq!(error.field().as_deref(), Some("initial.velocities"), "{error}");
+    assert_eq!(
+        error.field().as_deref(),
+        Some("initial.velocities"),
+        "{error}"
+    );
     let valid = Scenario::parse(LONG_2D, "long.ron").expect("valid");
     let mut velocities = vec![0.0; 2 * valid.agents];
     velocities[1] = 1e6;
@@ -254,7 +258,10 @@ fn initial_speeds_beyond_what_the_step_resolves_are_refused_up_front() {
         .expect("a finite state");
     let fault = sim.check_health().expect_err("too fast");
     assert_eq!(fault.steps, 0);
-    assert!(matches!(fault.fault.fault, Fault::Runaway { .. }), "{fault}");
+    assert!(
+        matches!(fault.fault.fault, Fault::Runaway { .. }),
+        "{fault}"
+    );
 }
 
 #[test]

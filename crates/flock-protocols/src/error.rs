@@ -26,9 +26,9 @@ pub struct ParamError {
     pub why: String,
     /// How to fix it.
     pub fix: String,
-    /// The bytes that could not be allocated, when the value is valid but needs more memory than
-    /// the machine gives (a delay line of a long delay): `None` for a value out of its domain.
-    pub memory: Option<u64>,
+    /// Whether the value is valid but needs more memory than the machine gives (a delay line of a
+    /// long delay; the bytes are in `why`), rather than out of its domain.
+    pub memory: bool,
 }
 
 impl ParamError {
@@ -45,7 +45,7 @@ impl ParamError {
             value: plain_value(&value),
             why: why.into(),
             fix: fix.into(),
-            memory: None,
+            memory: false,
         }
     }
 
@@ -59,7 +59,7 @@ impl ParamError {
         fix: impl Into<String>,
     ) -> Self {
         Self {
-            memory: Some(bytes),
+            memory: true,
             ..Self::new(
                 field,
                 value,

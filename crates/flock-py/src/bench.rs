@@ -219,8 +219,9 @@ fn bench_error(error: BenchError, raised: Option<PyErr>) -> PyErr {
             fix,
         } => PyValueError::new_err(format!("{flag}={value}: {why}; {fix}")),
         BenchError::Memory(why) => PyMemoryError::new_err(why),
-        BenchError::Interrupted => raised
-            .unwrap_or_else(|| PyKeyboardInterrupt::new_err("the benchmark was interrupted")),
+        BenchError::Interrupted => {
+            raised.unwrap_or_else(|| PyKeyboardInterrupt::new_err("the benchmark was interrupted"))
+        }
     }
 }
 
@@ -317,9 +318,7 @@ pub fn bench(
         crate::errors::check_estimate(py, Some(estimate), None, None)?;
         let (report, raised) = watched(py, || {
             on_threads(threads, || {
-                config
-                    .scenario()
-                    .and_then(|s| time_seeds(&s, config.seeds))
+                config.scenario().and_then(|s| time_seeds(&s, config.seeds))
             })
         });
         let report = report?.map_err(|e| bench_error(e, raised))?;
@@ -330,7 +329,11 @@ pub fn bench(
         return Err(PyValueError::new_err(format!(
             "{} {} only with workload=: give a workload, or leave {} out",
             refused.join(", "),
-            if refused.len() == 1 { "applies" } else { "apply" },
+            if refused.len() == 1 {
+                "applies"
+            } else {
+                "apply"
+            },
             if refused.len() == 1 { "it" } else { "them" }
         )));
     }

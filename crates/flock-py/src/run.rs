@@ -454,8 +454,7 @@ fn execute<'py>(
             )
         }
         RunError::Interrupted { .. } => {
-            let raised =
-                raised.unwrap_or_else(|| PyKeyboardInterrupt::new_err(error.to_string()));
+            let raised = raised.unwrap_or_else(|| PyKeyboardInterrupt::new_err(error.to_string()));
             (format!("{error} by Ctrl-C"), true, raised)
         }
     };

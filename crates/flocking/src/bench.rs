@@ -14,6 +14,8 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::{Duration, Instant};
 
+use crate::error::ScenarioError;
+use crate::estimate::{Estimate, Outputs};
 use crate::math::Vector;
 use crate::metrics::{FlockMetrics, MetricParams};
 use crate::obstacles::{ObstacleField, Space};
@@ -25,8 +27,6 @@ use crate::protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaInteraction, AlphaParams, BetaInteraction, BetaParams,
     DynProtocol, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
 };
-use crate::error::ScenarioError;
-use crate::estimate::{Estimate, Outputs};
 use crate::protocols::{AlphaConfig, BetaConfig};
 use crate::scenario::{Algorithm, Cloud, DomainSpec, Initial, Scenario};
 use crate::synthetic::{D, lattice_swarm, shuffled};
@@ -529,7 +529,9 @@ impl BenchConfig {
             seed: 0,
             algorithm,
             domain: DomainSpec::Open,
-            vehicle: self.vehicle.map_or(VehicleSpec::PointMass, BenchVehicle::spec),
+            vehicle: self
+                .vehicle
+                .map_or(VehicleSpec::PointMass, BenchVehicle::spec),
             alpha: AlphaConfig::default(),
             initial: Initial {
                 positions: Cloud::Zero,
@@ -687,9 +689,8 @@ fn time<V: Vector + VehicleSpace>(
         d: D,
         collision_distance: D / 4.0,
     };
-    let refused = |e: crate::protocols::ParamError| {
-        BenchError::of_scenario(&ScenarioError::from(e), &FLAGS)
-    };
+    let refused =
+        |e: crate::protocols::ParamError| BenchError::of_scenario(&ScenarioError::from(e), &FLAGS);
     let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, STEP)
         .unwrap_or_else(|e| unreachable!("the benchmark's state and step are valid: {e}"));
     if let Some(vehicle) = config.vehicle {

@@ -52,18 +52,11 @@ pub enum ScenarioError {
     /// Several values are invalid: every one found, in the order of the text.
     Several(Vec<ScenarioError>),
     /// A valid value that needs more memory than this machine gives (the delay line of a long
-    /// delay, allocated with `try_reserve`: an error, not an abort). Not bad input: `flocking`
-    /// exits with code 1 ([`ScenarioError::is_memory`]).
-    Memory {
-        /// The field whose value needs it.
-        field: String,
-        /// The value given.
-        value: String,
-        /// What the memory is for and how much of it.
-        why: String,
-        /// How to need less.
-        fix: String,
-    },
+    /// delay, allocated with `try_reserve`: an error, not an abort), as the
+    /// [`ScenarioError::Invalid`] that names the field, its value, what the memory is for and how
+    /// to need less. Not bad input: `flocking` exits with code 1
+    /// ([`ScenarioError::is_memory`]).
+    Memory(Box<ScenarioError>),
 }
 
 impl ScenarioError {
@@ -118,19 +111,16 @@ impl From<flock_protocols::ParamError> for ScenarioError {
             fix,
             memory,
         } = e;
-        match memory {
-            Some(_) => Self::Memory {
-                field,
-                value,
-                why,
-                fix,
-            },
-            None => Self::Invalid {
-                field,
-                value,
-                why,
-                fix,
-            },
+        let invalid = Self::Invalid {
+            field,
+            value,
+            why,
+            fix,
+        };
+        if memory {
+            Self::Memory(Box::new(invalid))
+        } else {
+            invalid
         }
     }
 }
@@ -140,7 +130,8 @@ impl ScenarioError {
     #[must_use]
     pub fn field(&self) -> Option<String> {
         match self {
-            Self::Invalid { field, .. } | Self::Memory { field, .. } => Some(field.clone()),
+            Self::Invalid { field, .. } => Some(field.clone()),
+            Self::Memory(error) => error.field(),
             Self::Obstacle(error) => Some(error.field()),
             Self::Syntax { field, .. } => field.clone(),
             Self::At { error, .. } => error.field(),
@@ -228,13 +219,8 @@ impl fmt::Display for ScenarioError {
                 value,
                 why,
                 fix,
-            }
-            | Self::Memory {
-                field,
-                value,
-                why,
-                fix,
             } => write!(f, "`{field}` = {value}: {why}; {fix}"),
+            Self::Memory(error) => write!(f, "{error}"),
             Self::At {
                 origin,
                 line,

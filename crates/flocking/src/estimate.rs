@@ -105,7 +105,11 @@ pub const CHECKPOINT_COPIES: f64 = 3.5;
 /// Seconds of one inner step of one vehicle on one thread: the unicycle, the fixed wing, the
 /// quadrotor (`flocking run` of 30–50 vehicles at 1,000 to 10,000 inner steps a step, one
 /// thread; docs/performance.md, "Vehicles and all pairs in the estimate").
-pub const INNER_STEP_SECONDS: [f64; 3] = [UNICYCLE_INNER_STEP, FIXED_WING_INNER_STEP, QUADROTOR_INNER_STEP];
+pub const INNER_STEP_SECONDS: [f64; 3] = [
+    UNICYCLE_INNER_STEP,
+    FIXED_WING_INNER_STEP,
+    QUADROTOR_INNER_STEP,
+];
 
 /// [`INNER_STEP_SECONDS`] of the unicycle.
 const UNICYCLE_INNER_STEP: f64 = 65e-9;
@@ -285,8 +289,7 @@ impl Scenario {
             VehicleSpec::FixedWing(_) => INNER_STEP_SECONDS[1],
             VehicleSpec::Quadrotor(_) => INNER_STEP_SECONDS[2],
         };
-        evaluations
-            * (degree.max(lattice) / lattice / AGENT_STEPS_PER_SECOND[dim - 2] + others)
+        evaluations * (degree.max(lattice) / lattice / AGENT_STEPS_PER_SECOND[dim - 2] + others)
             + self.vehicle.inner_steps(self.step) * inner
     }
 

@@ -164,18 +164,29 @@ mod tests {
     #[test]
     fn initial_velocities_are_the_swarms() {
         let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/");
-        for fixture in ["tac2006_fig11_alg2_n100", "couzin2002_torus_n100", "vicsek1995_fig2a_n400"] {
-            let scenario =
-                Scenario::load(format!("{root}{fixture}.ron")).expect("a fixture");
+        for fixture in [
+            "tac2006_fig11_alg2_n100",
+            "couzin2002_torus_n100",
+            "vicsek1995_fig2a_n400",
+        ] {
+            let scenario = Scenario::load(format!("{root}{fixture}.ron")).expect("a fixture");
             let streamed: Vec<DVec3> = match scenario.dim {
                 3 => initial_velocities(&scenario).collect(),
                 _ => {
                     let plane: Vec<DVec2> = initial_velocities(&scenario).collect();
-                    assert_eq!(plane, initial_swarm::<DVec2>(&scenario).velocities, "{fixture}");
+                    assert_eq!(
+                        plane,
+                        initial_swarm::<DVec2>(&scenario).velocities,
+                        "{fixture}"
+                    );
                     continue;
                 }
             };
-            assert_eq!(streamed, initial_swarm::<DVec3>(&scenario).velocities, "{fixture}");
+            assert_eq!(
+                streamed,
+                initial_swarm::<DVec3>(&scenario).velocities,
+                "{fixture}"
+            );
         }
     }
 }

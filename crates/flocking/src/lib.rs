@@ -64,9 +64,7 @@ pub use build::check_local_form;
 pub use error::ScenarioError;
 pub use health::NumericalError;
 pub use merging::{Merge, MergedAgents};
-pub use run::{
-    Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run, run_from,
-};
+pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run, run_from};
 pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
 pub use scenario::{
     Algorithm, Cloud, FixedGraph, Initial, Point, Scenario, TannerGraph, Translation,

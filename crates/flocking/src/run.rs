@@ -290,7 +290,7 @@ pub fn run_from<R: Recorder + ?Sized>(
         let taken = steps > before;
         if taken {
             sim.check_health().map_err(RunError::Numerical)?;
-            if steps % record_every == 0 || steps == total {
+            if steps.is_multiple_of(record_every) || steps == total {
                 let observation = record(recorder, &sim, &mut first_merge)?;
                 history.push((sim.time(), observation.metrics));
                 topology.see(&sim);

@@ -8,8 +8,8 @@ use std::borrow::Cow;
 use flock_graph::Graph;
 use flock_metrics::{EDGE_TOLERANCE, FlockMetrics, LatticeSummary, MetricParams};
 use flock_obstacles::Space;
-use flock_protocols::conditions::ConditionsState;
 use flock_protocols::check::MAX_VALUE;
+use flock_protocols::conditions::ConditionsState;
 use flock_protocols::{AgentFault, DynProtocol, Observation, ParamError, Simulation, Swarm};
 use glam::{DVec2, DVec3};
 
@@ -67,23 +67,29 @@ impl Start {
         for (i, q) in self.positions.chunks_exact(dim).enumerate() {
             let outside = match &size {
                 Some(size) => q.iter().zip(size).any(|(&x, &l)| !(0.0..l).contains(&x)),
-                None => q.iter().any(|x| !(x.abs() <= reach)),
+                None => q.iter().any(|x| !(x.is_finite() && x.abs() <= reach)),
             };
             if outside {
                 let domain = match &size {
-                    Some(size) => format!("the periodic box {size:?}, where the run keeps every agent"),
+                    Some(size) => {
+                        format!("the periodic box {size:?}, where the run keeps every agent")
+                    }
                     None => format!(
                         "±{reach:e}, the farthest a run from a start within ±{MAX_VALUE:e} gets in {} steps of at most r = {r}",
                         self.steps
                     ),
                 };
-                return refused(format!("positions[{i}]"), q, format!("is not within {domain}"));
+                return refused(
+                    format!("positions[{i}]"),
+                    q,
+                    format!("is not within {domain}"),
+                );
             }
         }
         let fastest = r / h;
         for (i, p) in self.velocities.chunks_exact(dim).enumerate() {
             let speed = p.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if !(speed <= fastest) {
+            if speed.is_nan() || speed > fastest {
                 return refused(
                     format!("velocities[{i}]"),
                     p,
@@ -93,7 +99,11 @@ impl Start {
                 );
             }
         }
-        if let Some(k) = self.vehicle.iter().position(|x| !(x.abs() <= MAX_VALUE)) {
+        if let Some(k) = self
+            .vehicle
+            .iter()
+            .position(|x| !(x.is_finite() && x.abs() <= MAX_VALUE))
+        {
             return refused(
                 format!("vehicle[{k}]"),
                 &self.vehicle[k..=k],

@@ -252,7 +252,7 @@ impl Scenario {
             _ => fastest_agent(initial_velocities::<DVec3>(self)),
         };
         match fastest_start {
-            Some((i, speed)) if !(speed <= fastest) => Err(ScenarioError::invalid(
+            Some((i, speed)) if speed.is_nan() || speed > fastest => Err(ScenarioError::invalid(
                 "initial.velocities",
                 format!("agent {i} at speed {speed}"),
                 format!(
@@ -271,7 +271,9 @@ impl Scenario {
     /// The field that sets the interaction range r of [`Scenario::range`].
     fn range_field(&self) -> &'static str {
         match self.algorithm {
-            Algorithm::CuckerSmale { cutoff: Some(_), .. } => "algorithm.cutoff",
+            Algorithm::CuckerSmale {
+                cutoff: Some(_), ..
+            } => "algorithm.cutoff",
             Algorithm::Vicsek { .. } => "algorithm.r",
             Algorithm::Boids { .. } => "algorithm.visual_distance",
             Algorithm::Couzin { .. } => "algorithm.delta_r_a",

@@ -267,7 +267,10 @@ impl<V: Vector> Stage<V> {
             ParamError::out_of_memory(
                 "conditions.communication.delay",
                 c.communication.map_or(0.0, |m| m.delay),
-                ("the delay line (every agent's states over the delay and jitter)", bytes),
+                (
+                    "the delay line (every agent's states over the delay and jitter)",
+                    bytes,
+                ),
                 "a shorter delay (or jitter), or fewer agents",
             )
         })?;

@@ -277,7 +277,9 @@ pub(crate) fn write_checkpoint(
         let hash = out.hash;
         let mut file = out.inner;
         file.write_all(&hash.to_le_bytes())?;
-        file.into_inner().map_err(io::IntoInnerError::into_error)?.sync_all()
+        file.into_inner()
+            .map_err(io::IntoInnerError::into_error)?
+            .sync_all()
     };
     write().map_err(at(format_args!("write {}", temporary.display())))?;
     let path = dir.join(CHECKPOINT_FILE);

@@ -413,16 +413,24 @@ impl InterruptedRun {
                     lock,
                     controls,
                 } = *fresh;
-                let mut this =
-                    RunDirectory::start_files(&target, partial, &scenario, options.format, &options, lock)?;
+                let mut this = RunDirectory::start_files(
+                    &target,
+                    partial,
+                    &scenario,
+                    options.format,
+                    &options,
+                    lock,
+                )?;
                 this.force = force;
                 this.controls = controls;
                 Ok(this)
             }
             Reopen::Checkpointed(mut this) => {
                 let cut = |file: &File, bytes: u64, name: &str| {
-                    file.set_len(bytes)
-                        .map_err(at(format_args!("cut {} back", partial.join(name).display())))
+                    file.set_len(bytes).map_err(at(format_args!(
+                        "cut {} back",
+                        partial.join(name).display()
+                    )))
                 };
                 cut(&this.metrics, this.metrics_bytes, "metrics.csv")?;
                 match &mut this.trajectory {
@@ -803,16 +811,17 @@ impl RunDirectory {
             }
         }
         let metrics_path = partial.join("metrics.csv");
-        let columns = if checkpoint.records > 0 {
-            Some(diagnostic_columns(&metrics_path).map_err(|e| match e.kind() {
+        let columns =
+            if checkpoint.records > 0 {
+                Some(diagnostic_columns(&metrics_path).map_err(|e| match e.kind() {
                 io::ErrorKind::InvalidData => ResumeError::Refused(format!(
                     "{e}: it is not the metrics.csv of this run, so the run cannot be resumed"
                 )),
                 _ => e.into(),
             })?)
-        } else {
-            None
-        };
+            } else {
+                None
+            };
         let metrics = open_holding(&metrics_path, checkpoint.metrics_bytes)?;
         let trajectory = match format {
             TrajectoryFormat::Csv => Trajectory::Csv {
