@@ -605,6 +605,12 @@ pub fn resume<'py>(
         RunDirectory::resume_with_controls(&dir, checkpoint_every, source.as_deref())
             .map_err(|e| resume_error(py, &e, &dir))?;
     let controls = controls.map(|f| PythonControls::new(f, &scenario));
+    // what `flocking run --resume` checks: the run must fit this machine
+    let outputs = flocking::estimate::Outputs {
+        trajectory_csv: Some(!interrupted.partial().join("trajectory.npy").exists()),
+        ..flocking::estimate::Outputs::RUN
+    };
+    crate::errors::check_resources(py, &scenario, &outputs, Some(interrupted.partial()))?;
     // the run's simulation rebuilt from its checkpoint before anything is written (issue 49: a
     // refused checkpoint deleted the run)
     let sim = py

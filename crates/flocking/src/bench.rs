@@ -582,7 +582,7 @@ impl BenchConfig {
                 flag.0,
                 flag.1,
                 &format!(
-                    "makes {total:e} steps with the warm-up, more than the {:e} a run may take",
+                    "makes {total:.3e} steps with the warm-up, more than the {:e} a run may take",
                     crate::MAX_STEPS
                 ),
                 "give fewer steps",
