@@ -210,18 +210,14 @@ fn bench(
 /// returns the exit code: 2 for a refused flag, 1 for memory this machine could not give, 130
 /// for Ctrl-C.
 fn bench_failed(error: &BenchError) -> ExitCode {
+    let message = error.with_flag(|flag, value| format!("--{} {value}", flag.replace('_', "-")));
     match error {
-        BenchError::Invalid {
-            flag,
-            value,
-            why,
-            fix,
-        } => {
-            errln!("error: --{} {value}: {why}; {fix}", flag.replace('_', "-"));
+        BenchError::Invalid { .. } => {
+            errln!("error: {message}");
             ExitCode::from(INVALID)
         }
-        BenchError::Memory(why) => {
-            errln!("error: {why}");
+        BenchError::Memory(_) => {
+            errln!("error: {message}");
             ExitCode::FAILURE
         }
         BenchError::Interrupted => ExitCode::from(INTERRUPTED),

@@ -5,7 +5,7 @@
 use std::cell::Cell;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::thread::sleep;
 use std::time::{Duration, Instant};
 
@@ -13,7 +13,7 @@ use flocking::run_dir::{Checkpoint, INCOMPLETE_FILE, OutputOptions, partial_path
 use flocking::{DynSimulation, Record, Recorder, RunDirectory, Scenario, ScenarioProtocol, Start};
 
 use crate::common::{files, flocking, flocking_under_4_gib, stderr, temp_dir, write};
-use crate::trust::{SHORT_2D, refused};
+use crate::trust::{SHORT_2D, ctrl_c, refused, spawn};
 
 /// Hands every record and checkpoint to the run directory, and asks the run to stop once
 /// `stop_after` steps are taken, as Ctrl-C does.
@@ -234,17 +234,6 @@ fn issue_49_a_checkpoint_state_is_checked_as_a_start() {
     assert!(fast.check(&scenario).is_ok());
 }
 
-/// A `flocking` process in the background, its standard error piped.
-fn spawn(dir: &Path, args: &[&str]) -> std::process::Child {
-    Command::new(env!("CARGO_BIN_EXE_flocking"))
-        .current_dir(dir)
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the flocking binary starts")
-}
-
 /// Sends SIGINT to `child` once `started` holds (polled), and returns its output and how long it
 /// took to end after the signal.
 fn interrupt(
@@ -259,11 +248,7 @@ fn interrupt(
     // well inside the step that takes seconds
     sleep(Duration::from_millis(1500));
     let signalled = Instant::now();
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(status.success());
+    ctrl_c(&child);
     let output = child.wait_with_output().expect("it ends");
     (output, signalled.elapsed())
 }

@@ -95,6 +95,15 @@ pub(crate) fn spawn(dir: &Path, args: &[&str]) -> Child {
         .expect("the flock binary starts")
 }
 
+/// Sends SIGINT to `child`, as Ctrl-C does.
+pub(crate) fn ctrl_c(child: &Child) {
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(status.success());
+}
+
 /// Every line of the first `bytes` bytes of a CSV file is whole: it ends with a newline and has
 /// the header's field count. Returns the number of data lines.
 fn whole_lines(path: &Path, bytes: Option<u64>) -> usize {
@@ -317,11 +326,7 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
         ];
         let child = spawn(tmp.path(), &args);
         sleep(delay);
-        let status = Command::new("kill")
-            .args(["-INT", &child.id().to_string()])
-            .status()
-            .expect("kill runs");
-        assert!(status.success());
+        ctrl_c(&child);
         let output = child.wait_with_output().expect("the run ends");
         if output.status.code() == Some(0) && delay > Duration::from_millis(40) {
             delay /= 4;
@@ -1229,11 +1234,7 @@ fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
         &["sweep", &sweep, "--out", "sw", "--jobs", "1", "--quiet"],
     );
     wait_for(&tmp.path().join("sw/sweep.ron"), &mut child);
-    let signalled = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(signalled.success());
+    ctrl_c(&child);
     let output = child.wait_with_output().expect("the sweep ends");
     let err = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(130), "{err}");

@@ -211,14 +211,10 @@ fn keyword<T>(name: &str, text: &str, parse: impl Fn(&str) -> Result<T, String>)
 /// A benchmark's error as Python raises it: `ValueError` naming the keyword, `MemoryError`, or the
 /// exception a signal handler raised (`KeyboardInterrupt`).
 fn bench_error(error: BenchError, raised: Option<PyErr>) -> PyErr {
+    let message = error.with_flag(|flag, value| format!("{flag}={value}"));
     match error {
-        BenchError::Invalid {
-            flag,
-            value,
-            why,
-            fix,
-        } => PyValueError::new_err(format!("{flag}={value}: {why}; {fix}")),
-        BenchError::Memory(why) => PyMemoryError::new_err(why),
+        BenchError::Invalid { .. } => PyValueError::new_err(message),
+        BenchError::Memory(_) => PyMemoryError::new_err(message),
         BenchError::Interrupted => {
             raised.unwrap_or_else(|| PyKeyboardInterrupt::new_err("the benchmark was interrupted"))
         }

@@ -464,6 +464,23 @@ impl BenchError {
     }
 }
 
+impl BenchError {
+    /// The message with a refused flag written by `flag(name, value)` (`--scale-to 0` for the
+    /// command, `scale_to=0` for Python): `--scale-to 0: why; fix`.
+    #[must_use]
+    pub fn with_flag(&self, flag: impl Fn(&str, &str) -> String) -> String {
+        match self {
+            Self::Invalid {
+                flag: name,
+                value,
+                why,
+                fix,
+            } => format!("{}: {why}; {fix}", flag(name, value)),
+            other => other.to_string(),
+        }
+    }
+}
+
 /// `n = 1: …; …`, the flag as Python's keyword (the command prints it as `--n`).
 impl fmt::Display for BenchError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
