@@ -17,7 +17,8 @@ use crate::interrupt::watched;
 use crate::scenario::PyScenario;
 
 /// The simulation of a scenario, stepped from Python: `step(k)` advances it k steps of h (the GIL
-/// released; Ctrl-C stops it between steps), `q` and `p` are its positions and velocities as
+/// released; Ctrl-C stops it between steps, or within a second inside a long one), `q` and `p`
+/// are its positions and velocities as
 /// n × dim arrays (copies, agents in original order), `t` its time; `metrics()` and `energy()`
 /// measure it as a run records it. Stepping a fresh `Simulation(scenario)` `scenario.steps`
 /// times gives the bits of `flocking.run(scenario).final`.
@@ -189,7 +190,7 @@ impl PySimulation {
     /// A step still running half a second after Ctrl-C is cut short ([`flocking::interrupt`]):
     /// before it changed the state, the state is that of the steps done; inside a vehicle's inner
     /// steps or the conditions' stage, the simulation is torn between two steps, and every later
-    /// call raises `flocking.SimulationError`.
+    /// `step` raises `flocking.SimulationError`.
     #[pyo3(signature = (k = 1))]
     fn step(&self, py: Python<'_>, k: u64) -> PyResult<()> {
         self.check_whole(py)?;
@@ -230,10 +231,7 @@ impl PySimulation {
             Err(Stopped::Numerical(e)) => return Err(numerical_error(py, &e)),
             Ok(()) => {}
         }
-        raised.map_or(Ok(()), |error| {
-            self.check_whole(py)?;
-            Err(error)
-        })
+        raised.map_or(Ok(()), Err)
     }
 
     /// Replaces the positions and/or velocities (n × dim arrays) at the current time, e.g. to

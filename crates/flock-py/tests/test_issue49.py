@@ -185,6 +185,24 @@ def test_issue_49_sigint_stops_a_vehicles_inner_steps_within_2_s(tmp_path):
     assert "cut short mid-way" in note and "Resume:" in note
 
 
+def test_issue_49_a_simulation_torn_by_sigint_steps_no_more(tmp_path):
+    # cut inside the unicycles' inner steps, the state is between two steps: never continued
+    lines, took = sigint(
+        tmp_path,
+        "unicycle_alg2_n50.ron",
+        "{'vehicle.inner_step': 1e-9, 'duration': 1.0}",
+        "sim.step(1)",
+        setup="sim = flocking.Simulation(scenario)",
+        after=(
+            "try:\n        sim.step(1)\n"
+            "    except flocking.SimulationError as torn:\n"
+            "        print(type(torn).__name__, flush=True)"
+        ),
+    )
+    assert took < 2.0, took
+    assert lines[1] == "SimulationError", lines
+
+
 def test_issue_49_sigint_stops_a_benchmark_within_2_s(tmp_path):
     _, took = sigint(
         tmp_path,

@@ -142,8 +142,10 @@ class Simulation:
         controls: Optional[_Controls] = None,
     ) -> None: ...
     def step(self, k: int = 1) -> None:
-        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps; an
-        exception of ``controls`` stops before the step it was called for)."""
+        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps, or
+        within a second inside a long one, which is then not taken or, cut inside a vehicle's inner
+        steps or the conditions' stage, leaves the simulation torn: :class:`SimulationError`
+        afterwards; an exception of ``controls`` stops before the step it was called for)."""
     def set_state(
         self, positions: Optional[_Rows] = None, velocities: Optional[_Rows] = None
     ) -> None:
