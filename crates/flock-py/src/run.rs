@@ -642,20 +642,28 @@ pub fn resume<'py>(
 }
 
 /// What a run directory records of Python's `controls=f`: "Python controls=`module.qualname`".
+///
+/// A callable object without a name of its own (an instance of a class with `__call__`) is named
+/// by its class, `module.Class`: the name a resume compares is the same in every process (its
+/// `repr` holds an address).
 fn controls_source(py: Python<'_>, f: &Py<PyAny>) -> String {
-    let attribute = |name: &str| {
-        f.getattr(py, name)
-            .ok()
-            .and_then(|v| v.extract::<String>(py).ok())
+    let f = f.bind(py);
+    let named = |object: &Bound<'_, PyAny>| {
+        let attribute = |name: &str| {
+            object
+                .getattr(name)
+                .ok()
+                .and_then(|v| v.extract::<String>().ok())
+        };
+        let qualname = attribute("__qualname__")?;
+        Some(match attribute("__module__") {
+            Some(module) => format!("{module}.{qualname}"),
+            None => qualname,
+        })
     };
-    let name = match (attribute("__module__"), attribute("__qualname__")) {
-        (Some(module), Some(qualname)) => format!("{module}.{qualname}"),
-        (None, Some(qualname)) => qualname,
-        _ => f
-            .bind(py)
-            .repr()
-            .map_or_else(|_| "a callable".to_owned(), |r| r.to_string()),
-    };
+    let name = named(f)
+        .or_else(|| named(f.get_type().as_any()))
+        .unwrap_or_else(|| "a callable".to_owned());
     format!("Python controls={name}")
 }
 
