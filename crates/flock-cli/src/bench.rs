@@ -10,24 +10,24 @@ use flocking::workload::Workload;
 #[derive(Clone, Copy, Debug, Default, PartialEq, clap::Args)]
 pub struct ConditionFlags {
     /// Communication delay τ in seconds, a whole number of steps of 0.01 s (e.g. 0.1).
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", conflicts_with = "workload")]
     pub delay: Option<f64>,
     /// Whose states the delay applies to: `neighbours` (each agent's own state is current) or
     /// `all` (its own state is delayed too).
-    #[arg(long, value_name = "WHOSE", value_parser = parse_delayed)]
+    #[arg(long, value_name = "WHOSE", value_parser = parse_delayed, conflicts_with = "workload")]
     pub delayed: Option<Delayed>,
     /// Bernoulli packet loss: each packet of each directed link lost with probability P.
-    #[arg(long, value_name = "P")]
+    #[arg(long, value_name = "P", conflicts_with = "workload")]
     pub loss: Option<f64>,
     /// White sensing noise: standard deviations σ_q (m) on positions and σ_p (m/s) on
     /// velocities; one value gives both.
-    #[arg(long, value_name = "SIGMA_Q[,SIGMA_P]", value_parser = parse_noise)]
+    #[arg(long, value_name = "SIGMA_Q[,SIGMA_P]", value_parser = parse_noise, conflicts_with = "workload")]
     pub sensing_noise: Option<(f64, f64)>,
     /// Sampled control: the controller runs at this rate (Hz) and holds its input between.
-    #[arg(long, value_name = "HZ")]
+    #[arg(long, value_name = "HZ", conflicts_with = "workload")]
     pub control_rate: Option<f64>,
     /// The commanded acceleration is clipped to this norm (m/s²).
-    #[arg(long, value_name = "M_PER_S2")]
+    #[arg(long, value_name = "M_PER_S2", conflicts_with = "workload")]
     pub max_acceleration: Option<f64>,
 }
 

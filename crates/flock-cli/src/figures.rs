@@ -172,7 +172,7 @@ pub fn figures(
     }
     let _lock = DirLock::acquire(out).map_err(FiguresError::Dir)?;
     // a gallery of an older flocking has no manifest: its files are recognised by name once
-    owned::start_manifest(out, &own_files).map_err(io_err(out))?;
+    owned::start_manifest(out, &own_files).map_err(FiguresError::Dir)?;
 
     let mut entries = Vec::with_capacity(paths.len());
     for path in &paths {

@@ -7,11 +7,15 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::{Progress, Report, errln, out, outln};
 use flock_viz::{FigureOptions, plot_run_with};
+use flocking::bench::BenchError;
 use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
 use flocking::run_dir::{CreateError, ResumeError, read_records};
-use flocking::workload::{Workload, time_seeds};
-use flocking::{OutputOptions, RunDirectory, RunError, Scenario, Start, TrajectoryFormat};
+use flocking::workload::{WorkloadConfig, time_seeds};
+use flocking::{
+    DynSimulation, OutputOptions, RunDirectory, RunError, Scenario, ScenarioProtocol, Start,
+    TrajectoryFormat,
+};
 
 /// Flocking simulations of Olfati-Saber (TAC 2006) and relatives, from RON scenario files.
 #[derive(Debug, Parser)]
@@ -119,66 +123,105 @@ enum Command {
     /// Time a synthetic scenario of n agents on an α-lattice and print agent-steps/s and memory.
     Bench {
         /// The number of agents.
-        #[arg(long, default_value_t = 100_000)]
+        #[arg(long, default_value_t = 100_000, conflicts_with = "workload")]
         n: usize,
         /// The dimension, 2 or 3.
-        #[arg(long, default_value_t = 2)]
+        #[arg(long, default_value_t = 2, conflicts_with = "workload")]
         dim: usize,
         /// Timed steps (metrics recorded every 10).
-        #[arg(long, default_value_t = 20)]
+        #[arg(long, default_value_t = 20, conflicts_with = "workload")]
         steps: u64,
         /// The algorithm: 1, 2 or 3 (3 adds 1,000 obstacles).
-        #[arg(long, default_value = "2")]
+        #[arg(long, default_value = "2", conflicts_with = "workload")]
         algorithm: flocking::bench::BenchAlgorithm,
         /// Worker threads (default: all cores; at most 4 per core).
         #[arg(long, value_parser = flock_cli::resources::parse_threads)]
         threads: Option<usize>,
         /// Untimed steps before the timed ones.
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 3, conflicts_with = "workload")]
         warmup: u64,
         /// Number the agents at random instead of along the lattice (as random initial states are).
-        #[arg(long)]
+        #[arg(long, conflicts_with = "workload")]
         shuffled: bool,
         /// Real conditions to run under (none: the ideal loop).
         #[command(flatten)]
         conditions: flock_cli::bench::ConditionFlags,
         /// Fly the agents on this vehicle with its default parameters (docs/vehicles.md):
         /// unicycle (2D), fixed-wing, quadrotor (3D); default point masses.
-        #[arg(long, value_parser = flock_cli::bench::vehicle_parser())]
+        #[arg(long, value_parser = flock_cli::bench::vehicle_parser(), conflicts_with = "workload")]
         vehicle: Option<flocking::bench::BenchVehicle>,
         /// Instead of the α-lattice, a workload of the ABM frameworks' boids benchmark
         /// (ABMFrameworksComparison's Flocking/DECLARATION.md), or the Vicsek model at its paper's
         /// density (fixtures/vicsek1995_fig2a_n400.ron): 100 steps timed from a fresh start per
-        /// seed, the median printed.
+        /// seed, the median printed. The flags of the α-lattice do not apply to it.
         #[arg(long, value_parser = flock_cli::bench::workload_parser())]
         workload: Option<flocking::workload::Workload>,
-        /// With --workload: the number of seeds timed.
-        #[arg(long, default_value_t = 10, requires = "workload")]
+        /// With --workload: the number of seeds timed (at least 1).
+        #[arg(long, default_value_t = 10, requires = "workload", value_parser = clap::value_parser!(u64).range(1..))]
         seeds: u64,
         /// With --workload: this many agents at the workload's density (its box grown to hold them).
         #[arg(long, requires = "workload")]
         scale_to: Option<usize>,
+        /// Start even when the estimated memory exceeds what this machine has free, or the start
+        /// is too dense to estimate (as `flocking run --no-resource-check`).
+        #[arg(long)]
+        no_resource_check: bool,
     },
 }
 
 /// Exit code of an invalid scenario.
 const INVALID: u8 = 2;
 
-/// `flocking bench --workload`: times the workload and prints its median.
-fn bench_workload(workload: Workload, seeds: u64, scale_to: Option<usize>) -> ExitCode {
-    let scenario = match scale_to {
-        None => Ok(workload.scenario()),
-        Some(n) => workload.scaled(n),
+/// `flocking bench`: checks the flags, prints the estimate and refuses what does not fit (unless
+/// `unchecked`), then times the α-lattice of `config` or the `workload` and prints the report.
+fn bench(
+    config: &flocking::bench::BenchConfig,
+    workload: Option<WorkloadConfig>,
+    unchecked: bool,
+) -> ExitCode {
+    let estimate = match workload {
+        Some(workload) => workload.estimate(),
+        None => config.check().map(|()| config.estimate()),
     };
-    match scenario.and_then(|s| time_seeds(&s, seeds.max(1))) {
+    let estimate = match estimate {
+        Ok(estimate) => estimate,
+        Err(e) => return bench_failed(&e),
+    };
+    if let Err(e) = flock_cli::resources::announce(&estimate, None, (unchecked, false)) {
+        errln!("error: {e}");
+        return ExitCode::from(INVALID);
+    }
+    let report = match workload {
+        Some(workload) => workload
+            .scenario()
+            .and_then(|s| time_seeds(&s, workload.seeds))
+            .map(|report| report.to_string()),
+        None => flocking::bench::bench(config).map(|report| report.to_string()),
+    };
+    match report {
         Ok(report) => {
             outln!("{report}");
             ExitCode::SUCCESS
         }
-        Err(e) => {
-            errln!("error: {e}");
+        Err(e) => bench_failed(&e),
+    }
+}
+
+/// Prints why a benchmark did not run, a flag as the command writes it (`--scale-to`), and
+/// returns the exit code: 2 for a refused flag, 1 for memory this machine could not give, 130
+/// for Ctrl-C.
+fn bench_failed(error: &BenchError) -> ExitCode {
+    let message = error.with_flag(|flag, value| format!("--{} {value}", flag.replace('_', "-")));
+    match error {
+        BenchError::Invalid { .. } => {
+            errln!("error: {message}");
             ExitCode::from(INVALID)
         }
+        BenchError::Memory(_) => {
+            errln!("error: {message}");
+            ExitCode::FAILURE
+        }
+        BenchError::Interrupted => ExitCode::from(INTERRUPTED),
     }
 }
 
@@ -210,12 +253,10 @@ fn dispatch(command: Command) -> ExitCode {
             workload,
             seeds,
             scale_to,
+            no_resource_check,
         } => {
             if let Err(code) = use_threads(threads) {
                 return code;
-            }
-            if let Some(workload) = workload {
-                return bench_workload(workload, seeds, scale_to);
             }
             let config = flocking::bench::BenchConfig {
                 n,
@@ -227,16 +268,12 @@ fn dispatch(command: Command) -> ExitCode {
                 conditions: conditions.into(),
                 vehicle,
             };
-            match flocking::bench::bench(&config) {
-                Ok(report) => {
-                    outln!("{report}");
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    errln!("error: {e}");
-                    ExitCode::from(INVALID)
-                }
-            }
+            let workload = workload.map(|workload| WorkloadConfig {
+                workload,
+                seeds,
+                scale_to,
+            });
+            bench(&config, workload, no_resource_check)
         }
         Command::Plot {
             dir,
@@ -293,7 +330,7 @@ fn dispatch(command: Command) -> ExitCode {
                 }
             }
         },
-        Command::Sweep(args) => flock_cli::sweep::main(args, &STOP, &WRITING),
+        Command::Sweep(args) => flock_cli::sweep::main(args, &WRITING),
         Command::Validate { scenario } => match Scenario::load(&scenario) {
             Ok(s) => {
                 outln!("{}: valid", scenario.display());
@@ -345,10 +382,7 @@ fn dispatch(command: Command) -> ExitCode {
                 return code;
             }
             let opened = match (resume, scenario) {
-                (Some(dir), _) => {
-                    WRITING.store(true, Ordering::SeqCst);
-                    resume_directory(&dir, checkpoint_every)
-                }
+                (Some(dir), _) => resume_directory(&dir, checkpoint_every, no_resource_check),
                 (None, Some(scenario)) => {
                     let out = out.unwrap_or_else(|| {
                         PathBuf::from("out").join(scenario.file_stem().unwrap_or_default())
@@ -362,7 +396,7 @@ fn dispatch(command: Command) -> ExitCode {
                 }
                 (None, None) => unreachable!("clap requires a scenario unless --resume is given"),
             };
-            let (dir, scenario, start) = match opened {
+            let (dir, sim, start) = match opened {
                 Ok(opened) => opened,
                 Err(code) => return code,
             };
@@ -371,8 +405,8 @@ fn dispatch(command: Command) -> ExitCode {
                 epsilon2,
                 ..FlockingCriteria::default()
             };
-            let dir = dir.with_stop_flag(&STOP).with_criteria(criteria);
-            match execute(&scenario, dir, start.as_ref(), quiet, settle) {
+            let dir = dir.with_criteria(criteria);
+            match execute(sim, dir, start.as_ref(), quiet, settle) {
                 Ok(out) if plot => match plot_run_with(&out, &figure_options(stress_edges)) {
                     Ok(files) => {
                         outln!(
@@ -394,38 +428,43 @@ fn dispatch(command: Command) -> ExitCode {
     }
 }
 
-/// Set by Ctrl-C (or SIGTERM): the run stops after the current step.
-static STOP: AtomicBool = AtomicBool::new(false);
-
 /// Set once outputs are being written; before, Ctrl-C (or SIGTERM) quits at once.
 static WRITING: AtomicBool = AtomicBool::new(false);
 
 /// Exit code of a run stopped by Ctrl-C (128 + SIGINT).
 const INTERRUPTED: u8 = 130;
 
-/// Before anything is written (reading, validating, estimating) Ctrl-C quits at once; then the
-/// first Ctrl-C stops the run cleanly after the current step and a second one quits at once
-/// (the partial directory then still holds whole records and the last checkpoint).
+/// Before anything is written (reading, validating, estimating, a benchmark) Ctrl-C quits at
+/// once; then the first Ctrl-C requests the library's interrupt ([`flocking::interrupt`]): the
+/// run stops cleanly after the current step, or, when that step is still running half a second
+/// later, cuts it short and goes back to its last checkpoint; a second one quits at once (the
+/// partial directory then still holds whole records and the last checkpoint).
 fn stop_on_ctrl_c() {
     let installed = ctrlc::set_handler(|| {
-        if !WRITING.load(Ordering::SeqCst) || STOP.swap(true, Ordering::SeqCst) {
+        if !WRITING.load(Ordering::SeqCst) || flocking::interrupt::request() {
             std::process::exit(i32::from(INTERRUPTED));
         }
-        errln!("\nstopping after the current step (Ctrl-C again to quit at once)");
+        errln!(
+            "\nstopping after the current step, or within a second if it is long (Ctrl-C again to quit at once)"
+        );
     });
     if let Err(e) = installed {
         errln!("warning: Ctrl-C will not stop the run cleanly: {e}");
     }
 }
 
+/// A run to start or continue: its directory, its simulation (built before the directory is
+/// written, so that a refusal leaves nothing behind) and the checkpoint it continues from.
+type Opened = (RunDirectory, DynSimulation, Option<Start>);
+
 /// Loads and checks a scenario, prints its warnings and estimate, refuses it when it does not
-/// fit (unless `unchecked`) and starts its output directory.
+/// fit (unless `unchecked`), builds its simulation and starts its output directory.
 fn create_directory(
     path: &Path,
     out: &Path,
     options: &OutputOptions,
     unchecked: bool,
-) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
+) -> Result<Opened, ExitCode> {
     let scenario = Scenario::load(path).map_err(|e| {
         errln!("error: {e}");
         ExitCode::from(INVALID)
@@ -434,16 +473,14 @@ fn create_directory(
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
         ..Outputs::RUN
     };
-    // before the warnings, which build the initial net of every agent (issue 27); the start's
-    // net is counted (in constant memory per agent) only when the estimate without it fits
-    let estimate = scenario.estimate_at_start(&outputs);
-    flock_cli::resources::announce(&estimate, Some(out), (unchecked, false)).map_err(|e| {
-        errln!("error: {e}");
-        ExitCode::from(INVALID)
-    })?;
+    check_resources(&scenario, &outputs, out, unchecked)?;
     for warning in scenario.warnings() {
         errln!("{warning}");
     }
+    let sim = DynSimulation::new(&scenario).map_err(|e| {
+        errln!("error: {e}");
+        refusal(&e)
+    })?;
     WRITING.store(true, Ordering::SeqCst);
     let dir = RunDirectory::create_with(out, &scenario, options).map_err(|e| match e {
         CreateError::Occupied { target } => {
@@ -474,39 +511,86 @@ fn create_directory(
             ExitCode::FAILURE
         }
     })?;
-    Ok((dir, scenario, None))
+    Ok((dir, sim, None))
 }
 
-/// Reopens an interrupted run directory at its last checkpoint.
+/// Prints the estimate of `scenario` writing `outputs` into `out` and refuses it when it does not
+/// fit (unless `unchecked`): before the warnings, which build the initial net of every agent
+/// (issue 27); the start's net is counted (in constant memory per agent) only when the estimate
+/// without it fits.
+fn check_resources(
+    scenario: &Scenario,
+    outputs: &Outputs,
+    out: &Path,
+    unchecked: bool,
+) -> Result<(), ExitCode> {
+    let estimate = scenario.estimate_at_start(outputs);
+    flock_cli::resources::announce(&estimate, Some(out), (unchecked, false)).map_err(|e| {
+        errln!("error: {e}");
+        ExitCode::from(INVALID)
+    })
+}
+
+/// Reopens an interrupted run directory at its last checkpoint: checks it, its estimate (unless
+/// `unchecked`) and the state it continues from, and rebuilds its simulation, all before
+/// anything is written (issue 49: a refused resume deleted `DIR.partial`).
 fn resume_directory(
     dir: &Path,
     checkpoint_every: u64,
-) -> Result<(RunDirectory, Scenario, Option<Start>), ExitCode> {
-    let (dir, scenario, start) = RunDirectory::resume(dir, checkpoint_every).map_err(|e| {
-        if let ResumeError::Tidied { .. } = &e {
-            outln!("{e}");
-            return ExitCode::SUCCESS;
-        }
-        match &e {
-            ResumeError::Nothing {
-                partial,
-                target,
-                complete: false,
-            } => errln!(
-                "error: there is no interrupted run at {}: start it with `flocking run SCENARIO --out {}`",
-                partial.display(),
-                target.display()
-            ),
-            _ => errln!("error: {e}"),
-        }
-        match e {
-            ResumeError::Scenario(_)
-            | ResumeError::Nothing { .. }
-            | ResumeError::Refused(_)
-            | ResumeError::Dir(_) => ExitCode::from(INVALID),
-            ResumeError::Tidied { .. } => ExitCode::SUCCESS,
-            ResumeError::Io(_) => ExitCode::FAILURE,
-        }
+    unchecked: bool,
+) -> Result<Opened, ExitCode> {
+    let (interrupted, scenario, start) =
+        RunDirectory::resume(dir, checkpoint_every).map_err(|e| {
+            if let ResumeError::Tidied { .. } = &e {
+                outln!("{e}");
+                return ExitCode::SUCCESS;
+            }
+            match &e {
+                ResumeError::Nothing {
+                    partial,
+                    target,
+                    complete: false,
+                } => errln!(
+                    "error: there is no interrupted run at {}: start it with `flocking run SCENARIO --out {}`",
+                    partial.display(),
+                    target.display()
+                ),
+                _ => errln!("error: {e}"),
+            }
+            match e {
+                ResumeError::Scenario(_)
+                | ResumeError::Nothing { .. }
+                | ResumeError::Refused(_)
+                | ResumeError::Dir(_) => ExitCode::from(INVALID),
+                ResumeError::Tidied { .. } => ExitCode::SUCCESS,
+                ResumeError::Io(_) => ExitCode::FAILURE,
+            }
+        })?;
+    let partial = interrupted.partial().to_owned();
+    let kept = || {
+        errln!(
+            "{} is kept as it was; nothing was written",
+            partial.display()
+        );
+    };
+    let outputs = Outputs {
+        trajectory_csv: Some(!partial.join("trajectory.npy").exists()),
+        ..Outputs::RUN
+    };
+    check_resources(&scenario, &outputs, &partial, unchecked).inspect_err(|_| kept())?;
+    let sim =
+        DynSimulation::build_with(&scenario, start.as_ref(), &ScenarioProtocol).map_err(|e| {
+            errln!(
+                "error: the checkpoint in {} cannot be continued: {e}",
+                partial.display()
+            );
+            kept();
+            refusal(&e)
+        })?;
+    WRITING.store(true, Ordering::SeqCst);
+    let dir = interrupted.reopen().map_err(|e| {
+        errln!("error: {e}");
+        ExitCode::FAILURE
     })?;
     match &start {
         Some(start) => outln!(
@@ -520,7 +604,17 @@ fn resume_directory(
             dir.partial().display()
         ),
     }
-    Ok((dir, scenario, start))
+    Ok((dir, sim, start))
+}
+
+/// The exit code of a simulation that cannot be built: 2 for a value out of its domain, 1 for
+/// memory this machine could not give ([`flocking::ScenarioError::is_memory`]).
+fn refusal(error: &flocking::ScenarioError) -> ExitCode {
+    if error.is_memory() {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::from(INVALID)
+    }
 }
 
 /// `--settle`: a fraction in [0, 1).
@@ -536,15 +630,16 @@ fn parse_settle(text: &str) -> Result<f64, String> {
 /// Runs into `dir` and reports (settled after `settle` of the duration); on failure keeps what
 /// was written, marked incomplete, and returns the exit code.
 fn execute(
-    scenario: &Scenario,
+    sim: DynSimulation,
     dir: RunDirectory,
     start: Option<&Start>,
     quiet: bool,
     settle: f64,
 ) -> Result<PathBuf, ExitCode> {
+    let scenario = &sim.scenario().clone();
     let mut recorder = Progress::for_terminal(dir, scenario, quiet)
         .starting_at(start.map_or(0, |start| start.steps));
-    let result = flocking::resume(scenario, start, &mut recorder);
+    let result = flocking::run_from(sim, start.map(|start| start.initial_energy), &mut recorder);
     let dir = recorder.into_inner();
     let error = match result {
         Ok(summary) => {
@@ -577,10 +672,8 @@ fn execute(
     };
     errln!("error: {error}");
     let (why, resumable, code) = match &error {
-        RunError::Scenario(_) => {
-            dir.abandon();
-            return Err(ExitCode::from(INVALID));
-        }
+        // the simulation was built before the run began: its directory is kept as it is
+        RunError::Scenario(_) => (error.to_string(), true, ExitCode::from(INVALID)),
         RunError::Numerical(_) => (error.to_string(), false, ExitCode::FAILURE),
         RunError::Record(e) => (format!("writing failed: {e}"), true, ExitCode::FAILURE),
         RunError::Interrupted { .. } => (

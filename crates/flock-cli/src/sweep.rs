@@ -173,7 +173,7 @@ const USAGE: u8 = 2;
 
 /// Runs `flocking sweep …`; `writing` is set once the output directory is about to be written
 /// (until then an interrupt may quit at once).
-pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCode {
+pub fn main(args: SweepArgs, writing: &AtomicBool) -> ExitCode {
     let result = match args.action {
         Some(SweepAction::Merge { out, shards }) => merge(&out, &shards),
         Some(SweepAction::Plot {
@@ -229,7 +229,7 @@ pub fn main(args: SweepArgs, stop: &AtomicBool, writing: &AtomicBool) -> ExitCod
                 &out,
                 &options,
                 (args.quiet, args.no_resource_check),
-                (stop, writing),
+                writing,
             )
         }
     };
@@ -256,7 +256,7 @@ fn run(
     out: &Path,
     options: &ExecuteOptions,
     (quiet, unchecked): (bool, bool),
-    (stop, writing): (&AtomicBool, &AtomicBool),
+    writing: &AtomicBool,
 ) -> Result<(), Failure> {
     let sweep = Sweep::load(path).map_err(|e| Failure::Usage(e.to_string()))?;
     let outputs = if options.keep_runs {
@@ -287,7 +287,7 @@ fn run(
         ),
     }
     writing.store(true, std::sync::atomic::Ordering::SeqCst);
-    run_checked(&sweep, out, options, quiet, stop)
+    run_checked(&sweep, out, options, quiet)
 }
 
 fn run_checked(
@@ -295,7 +295,6 @@ fn run_checked(
     out: &Path,
     options: &ExecuteOptions,
     quiet: bool,
-    stop: &AtomicBool,
 ) -> Result<(), Failure> {
     let (done, pending) = share(sweep, out, options.shard)?;
     let total = (done + pending.len()) as u64;
@@ -320,7 +319,7 @@ fn run_checked(
         }
         bar.inc(1);
     };
-    let executed = execute(sweep, out, options, stop, &done)?;
+    let executed = execute(sweep, out, options, &|| false, &done)?;
     bar.finish_and_clear();
     outln!(
         "flocking sweep: {} run(s) now, {} found done, {} failed; {} row(s) in {}",

@@ -682,6 +682,7 @@ fn issue_27_a_run_with_python_controls_is_not_resumed_without_them() {
     let (resumed, _, _) =
         RunDirectory::resume_with_controls(&out, 1000, Some("Python controls=__main__.f"))
             .expect("resumed with its controls");
+    let resumed = resumed.reopen().expect("reopened");
     assert_eq!(resumed.controls(), Some("Python controls=__main__.f"));
     drop(resumed);
     let plain = tmp.path().join("plain");

@@ -9,6 +9,7 @@ mod errors;
 mod figures_cmd;
 mod hostile;
 mod issue27;
+mod issue49;
 mod merging;
 mod names;
 mod pipes;

@@ -119,10 +119,11 @@ fn a_sweep_of_long_delays_names_the_delay_line() {
         r#"(path: "conditions.communication.delay", values: List([2e5, 3e5]))"#,
         2,
     );
-    // 3·10⁷ states of 8 agents, 32 bytes each: 7.7 GB for each of the two workers
+    // 3·10⁷ slots of 8 agents' states, 32 bytes each, and of their own 80 bytes: 10.1 GB for
+    // each of the two workers
     assert!(
-        err.contains("a run needs about 15.4 GB of memory but")
-            && err.contains("15.4 GB of it the delay line of conditions.communication.delay")
+        err.contains("a run needs about 20.2 GB of memory but")
+            && err.contains("20.2 GB of it the delay line of conditions.communication.delay")
             && err.contains("a shorter delay"),
         "{err}"
     );

@@ -95,6 +95,15 @@ pub(crate) fn spawn(dir: &Path, args: &[&str]) -> Child {
         .expect("the flock binary starts")
 }
 
+/// Sends SIGINT to `child`, as Ctrl-C does.
+pub(crate) fn ctrl_c(child: &Child) {
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(status.success());
+}
+
 /// Every line of the first `bytes` bytes of a CSV file is whole: it ends with a newline and has
 /// the header's field count. Returns the number of data lines.
 fn whole_lines(path: &Path, bytes: Option<u64>) -> usize {
@@ -231,20 +240,37 @@ fn a_blow_up_stops_the_run_with_the_step_agent_and_cause() {
     }
 }
 
+/// Initial speeds beyond what the step resolves (an agent would cross more than r in its first
+/// step) are refused up front, naming the field (issue 49: the run stopped at step 0 as a
+/// numerical blow-up); the health check still stops a state given whole.
 #[test]
-fn initial_speeds_beyond_what_the_step_resolves_stop_the_run_at_step_0() {
+fn initial_speeds_beyond_what_the_step_resolves_are_refused_up_front() {
     let text = LONG_2D.replace(
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1.0])",
         "velocities: Box(min: [-1.0, -1.0], max: [1.0, 1e6])",
     );
-    let scenario = Scenario::parse(&text, "fast.ron").expect("valid");
-    match flocking::run(&scenario, &mut ()) {
-        Err(RunError::Numerical(e)) => {
-            assert_eq!(e.steps, 0);
-            assert!(matches!(e.fault.fault, Fault::Runaway { .. }), "{e}");
-        }
-        other => panic!("expected a numerical error, got {other:?}"),
-    }
+    let error = Scenario::parse(&text, "fast.ron").expect_err("refused");
+    assert_eq!(
+        error.field().as_deref(),
+        Some("initial.velocities"),
+        "{error}"
+    );
+    let valid = Scenario::parse(LONG_2D, "long.ron").expect("valid");
+    let mut velocities = vec![0.0; 2 * valid.agents];
+    velocities[1] = 1e6;
+    let positions = flocking::DynSimulation::new(&valid)
+        .expect("built")
+        .state()
+        .positions
+        .into_owned();
+    let sim = flocking::DynSimulation::from_state(&valid, &positions, &velocities, 0)
+        .expect("a finite state");
+    let fault = sim.check_health().expect_err("too fast");
+    assert_eq!(fault.steps, 0);
+    assert!(
+        matches!(fault.fault.fault, Fault::Runaway { .. }),
+        "{fault}"
+    );
 }
 
 #[test]
@@ -300,11 +326,7 @@ fn ctrl_c_stops_after_a_step_and_resume_is_bit_identical() {
         ];
         let child = spawn(tmp.path(), &args);
         sleep(delay);
-        let status = Command::new("kill")
-            .args(["-INT", &child.id().to_string()])
-            .status()
-            .expect("kill runs");
-        assert!(status.success());
+        ctrl_c(&child);
         let output = child.wait_with_output().expect("the run ends");
         if output.status.code() == Some(0) && delay > Duration::from_millis(40) {
             delay /= 4;
@@ -1212,11 +1234,7 @@ fn issue_20_a_stopped_sweep_exits_130_as_a_stopped_run() {
         &["sweep", &sweep, "--out", "sw", "--jobs", "1", "--quiet"],
     );
     wait_for(&tmp.path().join("sw/sweep.ron"), &mut child);
-    let signalled = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(signalled.success());
+    ctrl_c(&child);
     let output = child.wait_with_output().expect("the sweep ends");
     let err = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(130), "{err}");

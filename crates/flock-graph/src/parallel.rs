@@ -2,6 +2,8 @@
 //! whose results do not depend on how it is split, so the output is identical with or without the
 //! `parallel` feature, for any pool size.
 
+use crate::interrupt::{self, BLOCK};
+
 /// Minimum number of elements per rayon task in [`fill_indexed`] (small arrays stay on one thread).
 const FILL_MIN_LEN: usize = 1024;
 
@@ -138,6 +140,30 @@ pub fn fill_indexed<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
     for_each_indexed_mut(out, FILL_MIN_LEN, |k, o| *o = f(k));
 }
 
+/// [`fill_indexed`] for the long loop of a step (a protocol's inputs, over every pair of a crowd):
+/// it checks for an interrupt every [`BLOCK`] items and, once one
+/// [cuts the step short](interrupt::cuts_short), leaves the rest of `out` as it was.
+pub fn fill_interruptible<T: Send>(out: &mut [T], f: impl Fn(usize) -> T + Sync) {
+    let fill = |(b, block): (usize, &mut [T])| {
+        if interrupt::cuts_short() {
+            return;
+        }
+        for (k, o) in block.iter_mut().enumerate() {
+            *o = f(b * BLOCK + k);
+        }
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        out.par_chunks_mut(BLOCK)
+            .with_min_len(FILL_MIN_LEN / BLOCK)
+            .enumerate()
+            .for_each(fill);
+    }
+    #[cfg(not(feature = "parallel"))]
+    out.chunks_mut(BLOCK).enumerate().for_each(fill);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -161,6 +187,13 @@ mod tests {
         for_each_chunk_mut(&mut items, 4, |c, chunk| chunk.fill(c + 1));
         assert_eq!(items, [1, 1, 1, 1, 2, 2, 2, 2, 3, 3]);
         assert!(threads() >= 1);
+    }
+
+    #[test]
+    fn fills_in_blocks_every_index() {
+        let mut out = vec![0_usize; 5003];
+        fill_interruptible(&mut out, |k| 2 * k);
+        assert!(out.iter().enumerate().all(|(k, &v)| v == 2 * k));
     }
 
     #[test]

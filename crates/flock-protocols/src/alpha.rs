@@ -1,7 +1,10 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::{fill_indexed, for_each_chunk_mut, for_each_chunk_mut_with, threads};
+use flock_graph::interrupt::cuts_short;
+use flock_graph::parallel::{
+    fill_interruptible, for_each_chunk_mut, for_each_chunk_mut_with, threads,
+};
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
 
 use crate::error::{ParamError, check};
@@ -443,17 +446,22 @@ impl AlphaInteraction {
         out: &mut [V],
         finish: impl Fn(usize, V) -> V + Sync,
     ) {
+        // an interrupt that cuts the step short leaves the chunks not yet begun
         if net.numbering().is_identity() {
             let chunk = sweep_chunk(out.len());
             for_each_chunk_mut(out, chunk, |c, out| {
-                self.sweep(c * chunk, q, p, net, out, &finish);
+                if !cuts_short() {
+                    self.sweep(c * chunk, q, p, net, out, &finish);
+                }
             });
         } else if V::DIM == 2 {
             for_each_chunk_mut_with(out, PAIRED_CHUNK, Paired::default, |c, out, scratch| {
-                self.paired(c * PAIRED_CHUNK, q, p, net, out, &finish, scratch);
+                if !cuts_short() {
+                    self.paired(c * PAIRED_CHUNK, q, p, net, out, &finish, scratch);
+                }
             });
         } else {
-            fill_indexed(out, |i| finish(i, self.input(i, q, p, net)));
+            fill_interruptible(out, |i| finish(i, self.input(i, q, p, net)));
         }
     }
 

@@ -2,7 +2,7 @@
 //! seed 000, Proposition 1, eq. 9), and the protocol of the delay and sampled-data theorems of
 //! consensus (Olfati-Saber & Murray, IEEE TAC 49(9), 2004).
 
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 use flock_graph::{Graph, ProximityNet};
 use flock_math::{Vector, mean_of};
 
@@ -106,7 +106,7 @@ impl<V: Vector> Protocol<V> for Consensus {
         let p = &swarm.velocities;
         let graph = self.graph.as_ref().unwrap_or(net.graph());
         assert_eq!(graph.len(), p.len(), "one agent per graph node");
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             let neighbours = graph.neighbours(i).iter();
             self.sum(p[i], neighbours.map(|&j| p[j as usize]))
         });

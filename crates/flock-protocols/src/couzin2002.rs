@@ -4,7 +4,7 @@
 //! and angular noise.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 use flock_math::{Domain, Vector};
 
 use crate::conditions::stream::{Purpose, Streams};
@@ -329,7 +329,7 @@ impl<V: Vector> Protocol<V> for Couzin<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let numbering = net.numbering();
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             let others = net
                 .graph()
                 .neighbours(i)

@@ -2,7 +2,7 @@
 //! 2007): velocity alignment weighted by a kernel that decays with distance but never vanishes.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 use flock_math::{Domain, Vector, mean_of};
 
 use crate::error::{ParamError, check};
@@ -140,7 +140,7 @@ impl<V: Vector> Protocol<V> for CuckerSmale<V> {
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let scale = self.params.lambda / self.agents as f64;
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             let mut total = V::ZERO;
             if self.params.cutoff.is_some() {
                 for &j in net.graph().neighbours(i) {

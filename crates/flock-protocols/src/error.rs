@@ -26,6 +26,9 @@ pub struct ParamError {
     pub why: String,
     /// How to fix it.
     pub fix: String,
+    /// Whether the value is valid but needs more memory than the machine gives (a delay line of a
+    /// long delay; the bytes are in `why`), rather than out of its domain.
+    pub memory: bool,
 }
 
 impl ParamError {
@@ -42,6 +45,30 @@ impl ParamError {
             value: plain_value(&value),
             why: why.into(),
             fix: fix.into(),
+            memory: false,
+        }
+    }
+
+    /// `field = value` needs `bytes` of memory (for `what`) that could not be allocated; `fix`
+    /// says how to need less.
+    #[must_use]
+    pub fn out_of_memory(
+        field: impl Into<String>,
+        value: impl fmt::Debug,
+        (what, bytes): (&str, u64),
+        fix: impl Into<String>,
+    ) -> Self {
+        Self {
+            memory: true,
+            ..Self::new(
+                field,
+                value,
+                format!(
+                    "needs {:.1} GB for {what}, which this machine cannot allocate",
+                    bytes as f64 / 1e9
+                ),
+                fix,
+            )
         }
     }
 

@@ -3,6 +3,7 @@
 
 use std::borrow::Cow;
 
+use flock_graph::interrupt::cuts_short;
 use flock_graph::parallel::{fill_indexed, join};
 use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
@@ -94,6 +95,8 @@ pub struct Simulation<V, P> {
     domain: Domain<V>,
     /// The agents' vehicles, `None` for point masses ([`Simulation::with_vehicle`]).
     fleet: Option<Box<Fleet<V>>>,
+    /// Whether an interrupt cut a step short after it changed the state ([`Simulation::is_torn`]).
+    torn: bool,
 }
 
 /// What [`Simulation::observe`] measures of a state.
@@ -201,6 +204,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             conditions: None,
             domain: Domain::Open,
             fleet: None,
+            torn: false,
         };
         simulation.rebuild_net();
         Ok(simulation)
@@ -634,8 +638,18 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// Advances the state by one step h: the ideal step, or with
     /// [conditions](Simulation::with_conditions) the conditioned one (fail → sense → communicate
     /// → control → actuate → disturb and integrate, [`Stage::step`]).
+    ///
+    /// An interrupt that [cuts the step short](flock_graph::interrupt::cuts_short) (a Ctrl-C
+    /// during a step of more than half a second) stops its long loops. Cut while the inputs are
+    /// computed, before the state changes, the step is not taken: the state and the step count
+    /// stay those of the steps taken. Cut inside a vehicle's inner steps or the conditions'
+    /// stage, which change the state as they go, it leaves the state between two steps: the
+    /// simulation is then [torn](Simulation::is_torn) and takes no more steps.
     pub fn step(&mut self) {
-        if let Some(stage) = self.conditions.as_mut() {
+        if self.torn {
+            return;
+        }
+        let taken = if let Some(stage) = self.conditions.as_mut() {
             stage.step(
                 &self.protocol,
                 &self.domain,
@@ -645,6 +659,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 self.integrator,
                 self.fleet.as_deref_mut(),
             );
+            self.torn = cuts_short();
+            !self.torn
         } else if self.fleet.is_some() {
             let t = self.time();
             controls_in(
@@ -655,6 +671,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 &self.net,
                 &mut self.inputs,
             );
+            if cuts_short() {
+                return;
+            }
             if let Some(fleet) = self.fleet.as_mut() {
                 let (h, domain) = (self.step, &self.domain);
                 fleet.advance(
@@ -667,15 +686,27 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                     self.net.numbering(),
                 );
             }
+            self.torn = cuts_short();
+            !self.torn
         } else {
             match (self.protocol.update(), self.integrator) {
                 (Update::Acceleration, Integrator::Rk4) => self.runge_kutta(),
                 // a model that sets velocities has its own update, whatever the integrator
                 (update, _) => self.explicit_update(update),
             }
+        };
+        if taken {
+            self.steps += 1;
+            self.rebuild_net();
         }
-        self.steps += 1;
-        self.rebuild_net();
+    }
+
+    /// Whether an interrupt cut a step short after it had changed the state
+    /// ([`Simulation::step`]): the state is then between two steps, neither of which it is, and
+    /// the simulation takes no more steps.
+    #[must_use]
+    pub const fn is_torn(&self) -> bool {
+        self.torn
     }
 
     /// Builds the net of the current state; agents stored in space order are re-sorted every
@@ -731,8 +762,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     }
 
     /// One explicit step: symplectic Euler for an acceleration, or the model's own update
-    /// ([`advance`]); positions wrapped into a periodic box.
-    fn explicit_update(&mut self, update: Update) {
+    /// ([`advance`]); positions wrapped into a periodic box. Returns whether the step was taken
+    /// (not when an interrupt cut the inputs short: the state is then unchanged).
+    fn explicit_update(&mut self, update: Update) -> bool {
         let (t, h) = (self.time(), self.step);
         controls_in(
             &self.protocol,
@@ -742,6 +774,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             &self.net,
             &mut self.inputs,
         );
+        if cuts_short() {
+            return false;
+        }
         let domain = self.domain;
         let Swarm {
             positions,
@@ -766,10 +801,13 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             .zip(velocities.iter_mut())
             .zip(&self.inputs)
             .for_each(apply);
+        true
     }
 
-    /// y ← y + (h/6)(k₁ + 2k₂ + 2k₃ + k₄) with y = (q, p) and k = (p, u(t, q, p)).
-    fn runge_kutta(&mut self) {
+    /// y ← y + (h/6)(k₁ + 2k₂ + 2k₃ + k₄) with y = (q, p) and k = (p, u(t, q, p)). Returns
+    /// whether the step was taken (not when an interrupt cut an evaluation of the inputs short:
+    /// y is then unchanged).
+    fn runge_kutta(&mut self) -> bool {
         const WEIGHTS: [f64; 4] = [1.0, 2.0, 2.0, 1.0];
         const NEXT_OFFSETS: [f64; 3] = [0.5, 0.5, 1.0];
         let (t, h) = (self.time(), self.step);
@@ -815,10 +853,14 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 &mut self.inputs,
             );
         }
+        if cuts_short() {
+            return false;
+        }
         for i in 0..y.len() {
             y.positions[i] = self.domain.wrap(y.positions[i] + rk.sum_q[i] * (h / 6.0));
             y.velocities[i] += rk.sum_p[i] * (h / 6.0);
         }
+        true
     }
 }
 
@@ -906,6 +948,10 @@ fn local_controls<V: Vector>(
     };
     // each worker's heard list, reused from agent to agent
     map_agents_mut(inputs, Vec::new, |i, u, heard| {
+        // an interrupt that cuts the step short leaves the agents not yet begun
+        if cuts_short() {
+            return;
+        }
         heard.clear();
         heard.extend(
             net.graph()

@@ -27,7 +27,7 @@ use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
 use crate::error::{ParamError, check};
 use crate::{LocalForm, NavigationalFeedback, Perceived, Protocol, Swarm};
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 
 /// Parameters of the 2003 (α, α) protocols.
 ///
@@ -302,7 +302,7 @@ impl<V: Vector> Protocol<V> for AlphaAlpha {
 
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        fill_indexed(inputs, |i| self.input(i, q, p, net));
+        fill_interruptible(inputs, |i| self.input(i, q, p, net));
     }
 
     fn local_form(&self) -> Option<&dyn LocalForm<V>> {
@@ -399,7 +399,7 @@ impl<V: Vector> Protocol<V> for Flocking2003<V> {
 
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let destination = self.destination(t);
-        fill_indexed(inputs, |i| self.input(i, swarm, net, destination));
+        fill_interruptible(inputs, |i| self.input(i, swarm, net, destination));
     }
 
     fn local_form(&self) -> Option<&dyn LocalForm<V>> {
@@ -689,7 +689,7 @@ impl<V: Space> Protocol<V> for ObstacleFlocking2003<V> {
         let destination = self.flocking.destination(t);
         let direction = destination.1.normalize_or_zero();
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             self.flocking.input(i, swarm, net, destination)
                 + self.obstacle_input(q[i], p[i], direction)
         });

@@ -25,7 +25,7 @@
 //! obstacles Σ_i u_i^{O_k} ≠ 0 and neither statement holds.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 use flock_math::{Vector, sigma1_vec};
 use flock_obstacles::Space;
 
@@ -234,7 +234,7 @@ impl<V: Space> Protocol<V> for CentralisedTracking2003<V> {
         let (q, p) = (&swarm.positions, &swarm.velocities);
         let alpha = self.alpha();
         let obstacles = !self.distributed.obstacles.is_empty();
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             let mut u = alpha.input(i, q, p, net);
             if let (Some(f), Some(state)) = (feedback, destination) {
                 u += f.input(q[i], p[i], state);

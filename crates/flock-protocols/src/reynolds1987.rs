@@ -4,6 +4,7 @@
 //! (Agents.jl, MASON, NetLogo and Mesa implement it), whose rule and defaults this follows.
 
 use flock_graph::ProximityNet;
+use flock_graph::interrupt::{BLOCK, cuts_short};
 use flock_math::{Domain, Vector};
 
 use crate::conditions::stream::{Purpose, Streams};
@@ -176,7 +177,11 @@ impl<V: Vector> Protocol<V> for Boids<V> {
         let s = self.params.speed;
         let mut q = swarm.positions.clone();
         let mut v: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
-        for i in self.activation_order(t, q.len()) {
+        for (k, i) in self.activation_order(t, q.len()).into_iter().enumerate() {
+            // one sequential sweep: checked for an interrupt every block of boids
+            if k % BLOCK == 0 && cuts_short() {
+                return;
+            }
             let i = i as usize;
             let others = net
                 .graph()

@@ -8,7 +8,7 @@ use flock_graph::{Components, Graph, ProximityNet};
 use flock_math::{Potential, TannerPotential, Vector, mean};
 
 use crate::{LocalForm, Perceived, Protocol, Swarm};
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 
 /// The Tanner–Jadbabaie–Pappas law on a fixed connected neighbouring graph G (seed 001 eq. 5):
 ///
@@ -193,7 +193,7 @@ impl<V: Vector> Protocol<V> for TannerJadbabaiePappas {
     fn controls(&self, _t: f64, swarm: &Swarm<V>, _net: &ProximityNet, inputs: &mut [V]) {
         assert_eq!(swarm.len(), self.graph.len(), "one agent per graph node");
         let (r, v) = (&swarm.positions, &swarm.velocities);
-        fill_indexed(inputs, |i| self.input(i, r, v));
+        fill_interruptible(inputs, |i| self.input(i, r, v));
     }
 
     /// W = ½ Σ_i (V_i + v_iᵀ v_i) (seed 001): Ẇ = −vᵀ(L ⊗ I)v ≤ 0.

@@ -6,7 +6,7 @@
 //! authors' simulator robotsim (github.com/csviragh/robotsim) moves its point masses.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 use flock_math::Vector;
 
 use crate::error::{ParamError, check};
@@ -414,7 +414,7 @@ impl<V: Vector> Protocol<V> for Vasarhelyi<V> {
 
     fn controls(&self, _t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let (q, p) = (&swarm.positions, &swarm.velocities);
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             let others = net
                 .graph()
                 .neighbours(i)

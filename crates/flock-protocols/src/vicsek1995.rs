@@ -3,7 +3,7 @@
 //! speed, the heading of the neighbours plus uniform angular noise.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_indexed;
+use flock_graph::parallel::fill_interruptible;
 use flock_math::{Domain, Vector};
 
 use crate::conditions::stream::{Purpose, Streams};
@@ -114,7 +114,7 @@ impl<V: Vector> Protocol<V> for Vicsek<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let p = &swarm.velocities;
         let numbering = net.numbering();
-        fill_indexed(inputs, |i| {
+        fill_interruptible(inputs, |i| {
             let mut sum = p[i];
             for &j in net.graph().neighbours(i) {
                 sum += p[j as usize];

@@ -1,13 +1,15 @@
 //! `flocking.bench`: the benchmark engine of `flocking bench` ([`flocking::bench`],
 //! [`flocking::workload`]) with the same report, its figures as attributes.
 
-use flocking::bench::{BenchAlgorithm, BenchConditions, BenchConfig, BenchReport, parse_delayed};
+use flocking::bench::{
+    BenchAlgorithm, BenchConditions, BenchConfig, BenchError, BenchReport, parse_delayed,
+};
 use flocking::estimate::check_threads;
-use flocking::workload::{Workload, WorkloadReport, time_seeds};
-use pyo3::exceptions::PyValueError;
+use flocking::workload::{Workload, WorkloadConfig, WorkloadReport, time_seeds};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 
-use crate::errors::scenario_error;
+use crate::interrupt::watched;
 
 /// The report of `flocking.bench` on the α-lattice: `str()` prints what `flocking bench` prints.
 #[pyclass(name = "BenchReport", module = "flocking", frozen)]
@@ -206,26 +208,60 @@ fn keyword<T>(name: &str, text: &str, parse: impl Fn(&str) -> Result<T, String>)
     parse(text).map_err(|e| PyValueError::new_err(format!("{name}='{text}': {e}")))
 }
 
+/// A benchmark's error as Python raises it: `ValueError` naming the keyword, `MemoryError`, or the
+/// exception a signal handler raised (`KeyboardInterrupt`).
+fn bench_error(error: BenchError, raised: Option<PyErr>) -> PyErr {
+    let message = error.with_flag(|flag, value| format!("{flag}={value}"));
+    match error {
+        BenchError::Invalid { .. } => PyValueError::new_err(message),
+        BenchError::Memory(_) => PyMemoryError::new_err(message),
+        BenchError::Interrupted => {
+            raised.unwrap_or_else(|| PyKeyboardInterrupt::new_err("the benchmark was interrupted"))
+        }
+    }
+}
+
+/// The defaults of the α-lattice's keywords, as `flocking bench`'s flags have them.
+const DEFAULTS: BenchConfig = BenchConfig {
+    n: 100_000,
+    dim: 2,
+    steps: 20,
+    warmup: 3,
+    algorithm: BenchAlgorithm::Algorithm2,
+    shuffled: false,
+    conditions: BenchConditions {
+        delay: None,
+        delayed: None,
+        loss: None,
+        sensing_noise: None,
+        control_rate: None,
+        max_acceleration: None,
+    },
+    vehicle: None,
+};
+
 /// Times the simulation loop as `flocking bench` does, with the same flags as keywords, and
-/// returns its report (`BenchReport`, or `WorkloadReport` with `workload=`). The GIL is released
-/// while it runs.
+/// returns its report (`BenchReport`, or `WorkloadReport` with `workload=`): its estimate first
+/// checked against this machine's memory (`MemoryError` when it does not fit), the GIL released
+/// while it runs and Ctrl-C raising `KeyboardInterrupt` within a second. The keywords of the
+/// α-lattice are refused with `workload=`, and `seeds` and `scale_to` without it, naming them.
 #[pyfunction]
 #[pyo3(signature = (
-    n = 100_000, dim = 2, steps = 20, *, algorithm = "2".to_owned(), threads = None, warmup = 3,
-    shuffled = false, delay = None, delayed = None, loss = None, sensing_noise = None,
-    control_rate = None, max_acceleration = None, vehicle = None, workload = None, seeds = 10,
+    n = None, dim = None, steps = None, *, algorithm = None, threads = None, warmup = None,
+    shuffled = None, delay = None, delayed = None, loss = None, sensing_noise = None,
+    control_rate = None, max_acceleration = None, vehicle = None, workload = None, seeds = None,
     scale_to = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn bench(
     py: Python<'_>,
-    n: usize,
-    dim: usize,
-    steps: u64,
-    algorithm: String,
+    n: Option<usize>,
+    dim: Option<usize>,
+    steps: Option<u64>,
+    algorithm: Option<String>,
     threads: Option<usize>,
-    warmup: u64,
-    shuffled: bool,
+    warmup: Option<u64>,
+    shuffled: Option<bool>,
     delay: Option<f64>,
     delayed: Option<String>,
     loss: Option<f64>,
@@ -234,30 +270,79 @@ pub fn bench(
     max_acceleration: Option<f64>,
     vehicle: Option<String>,
     workload: Option<String>,
-    seeds: u64,
+    seeds: Option<u64>,
     scale_to: Option<usize>,
 ) -> PyResult<Py<PyAny>> {
+    let lattice = [
+        ("n", n.is_some()),
+        ("dim", dim.is_some()),
+        ("steps", steps.is_some()),
+        ("algorithm", algorithm.is_some()),
+        ("warmup", warmup.is_some()),
+        ("shuffled", shuffled.is_some()),
+        ("delay", delay.is_some()),
+        ("delayed", delayed.is_some()),
+        ("loss", loss.is_some()),
+        ("sensing_noise", sensing_noise.is_some()),
+        ("control_rate", control_rate.is_some()),
+        ("max_acceleration", max_acceleration.is_some()),
+        ("vehicle", vehicle.is_some()),
+    ];
+    fn given(keywords: &[(&'static str, bool)]) -> Vec<&'static str> {
+        keywords
+            .iter()
+            .filter(|(_, given)| *given)
+            .map(|(name, _)| *name)
+            .collect()
+    }
     if let Some(name) = workload {
         let workload = keyword("workload", &name, str::parse::<Workload>)?;
-        let report = py.detach(|| {
+        let refused = given(&lattice);
+        if !refused.is_empty() {
+            return Err(PyValueError::new_err(format!(
+                "{} {} not apply to workload='{name}', which sets its own agents, steps and box: leave them out, or scale it with scale_to",
+                refused.join(", "),
+                if refused.len() == 1 { "does" } else { "do" }
+            )));
+        }
+        let config = WorkloadConfig {
+            workload,
+            seeds: seeds.unwrap_or(10),
+            scale_to,
+        };
+        let estimate = config.estimate().map_err(|e| bench_error(e, None))?;
+        crate::errors::check_estimate(py, Some(estimate), None, None)?;
+        let (report, raised) = watched(py, || {
             on_threads(threads, || {
-                let scenario = match scale_to {
-                    None => Ok(workload.scenario()),
-                    Some(n) => workload.scaled(n),
-                };
-                scenario.and_then(|s| time_seeds(&s, seeds.max(1)))
+                config.scenario().and_then(|s| time_seeds(&s, config.seeds))
             })
-        })?;
-        let report = report.map_err(|e| scenario_error(py, &e))?;
+        });
+        let report = report?.map_err(|e| bench_error(e, raised))?;
         return Ok(Py::new(py, PyWorkloadReport(report))?.into_any());
     }
+    let refused = given(&[("seeds", seeds.is_some()), ("scale_to", scale_to.is_some())]);
+    if !refused.is_empty() {
+        return Err(PyValueError::new_err(format!(
+            "{} {} only with workload=: give a workload, or leave {} out",
+            refused.join(", "),
+            if refused.len() == 1 {
+                "applies"
+            } else {
+                "apply"
+            },
+            if refused.len() == 1 { "it" } else { "them" }
+        )));
+    }
     let config = BenchConfig {
-        n,
-        dim,
-        steps,
-        warmup,
-        algorithm: keyword("algorithm", &algorithm, str::parse::<BenchAlgorithm>)?,
-        shuffled,
+        n: n.unwrap_or(DEFAULTS.n),
+        dim: dim.unwrap_or(DEFAULTS.dim),
+        steps: steps.unwrap_or(DEFAULTS.steps),
+        warmup: warmup.unwrap_or(DEFAULTS.warmup),
+        algorithm: algorithm
+            .map(|a| keyword("algorithm", &a, str::parse::<BenchAlgorithm>))
+            .transpose()?
+            .unwrap_or(DEFAULTS.algorithm),
+        shuffled: shuffled.unwrap_or(DEFAULTS.shuffled),
         conditions: BenchConditions {
             delay,
             delayed: delayed
@@ -272,7 +357,11 @@ pub fn bench(
             .map(|v| keyword("vehicle", &v, str::parse))
             .transpose()?,
     };
-    let report = py.detach(|| on_threads(threads, || flocking::bench::bench(&config)))?;
-    let report = report.map_err(PyValueError::new_err)?;
+    config.check().map_err(|e| bench_error(e, None))?;
+    crate::errors::check_estimate(py, Some(config.estimate()), None, None)?;
+    let (report, raised) = watched(py, || {
+        on_threads(threads, || flocking::bench::bench(&config))
+    });
+    let report = report?.map_err(|e| bench_error(e, raised))?;
     Ok(Py::new(py, PyBenchReport(report))?.into_any())
 }

@@ -22,8 +22,12 @@ pub(crate) fn exception<'py>(py: Python<'py>, name: &str, args: impl PyCallArgs<
     }
 }
 
-/// `flocking.ScenarioError` (a `ValueError`): an invalid scenario, `.field` naming the parameter.
+/// `flocking.ScenarioError` (a `ValueError`): an invalid scenario, `.field` naming the parameter;
+/// `MemoryError` for memory this machine could not give ([`ScenarioError::is_memory`]).
 pub fn scenario_error(py: Python<'_>, error: &ScenarioError) -> PyErr {
+    if error.is_memory() {
+        return pyo3::exceptions::PyMemoryError::new_err(error.to_string());
+    }
     exception(py, "ScenarioError", (error.to_string(), error.field()))
 }
 

@@ -13,7 +13,7 @@ use std::str::FromStr;
 
 use flocking::metrics::{FlockMetrics, FlockingCriteria};
 use flocking::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat, VERDICT_FILE};
-use flocking::{Record, Recorder, RunError, Scenario, Start};
+use flocking::{DynSimulation, Record, Recorder, RunError, Scenario, ScenarioProtocol, Start};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
@@ -23,7 +23,7 @@ use crate::controls::PythonControls;
 use crate::errors::{
     create_error, numerical_error, read_error, resume_error, run_directory_error, scenario_error,
 };
-use crate::interrupt::Interrupt;
+use crate::interrupt::watched;
 use crate::progress::Progress;
 use crate::scenario::PyScenario;
 
@@ -317,11 +317,11 @@ fn result<'py>(
     Ok(dict)
 }
 
-/// Records in memory and, when given, into a run directory; stops on Ctrl-C.
+/// Records in memory and, when given, into a run directory (the run stops on Ctrl-C through the
+/// library's interrupt, [`crate::interrupt::watched`]).
 struct PyRecorder {
     memory: Memory,
     dir: Option<RunDirectory>,
-    interrupt: Interrupt,
     /// H(0), for a checkpoint after `controls` failed: that of the first record, or the start's.
     initial_energy: Option<f64>,
     /// The progress line, when asked.
@@ -354,38 +354,33 @@ impl Recorder for PyRecorder {
             .as_mut()
             .map_or(Ok(()), |dir| dir.checkpoint(start))
     }
-
-    fn stop_requested(&self) -> bool {
-        self.interrupt.requested()
-    }
 }
 
-/// Runs `scenario` from `start` (t = 0 when `None`) with the GIL released, into `dir` when given,
-/// its inputs from `controls` when given; on failure keeps `dir` as `flocking run` does
-/// (resumable after Ctrl-C, a failed write or an exception of `controls`, marked failed after a
-/// blow-up) and raises the error. Returns the records, the finished directory and TAC 2006
-/// The model's verdict on the records of this call (the line `flocking.txt` begins with).
+/// Runs `sim` (built from `start`, or at t = 0 when `None`) with the GIL released and Ctrl-C
+/// watched ([`watched`]), into `dir` when given, its inputs from `controls` when given; on
+/// failure keeps `dir` as `flocking run` does (resumable after Ctrl-C, a failed write or an
+/// exception of `controls`, marked failed after a blow-up) and raises the error. Returns the
+/// records, the finished directory and the model's verdict on the records of this
+/// call (the line `flocking.txt` begins with).
 fn execute<'py>(
     py: Python<'py>,
-    scenario: &Scenario,
+    sim: DynSimulation,
     start: Option<&Start>,
     dir: Option<RunDirectory>,
     keep_trajectory: bool,
     (controls, progress): (Option<&PythonControls>, bool),
 ) -> PyResult<(Memory, Option<PathBuf>, Option<String>)> {
+    let scenario = &sim.scenario().clone();
     let t0 = start.map_or(0.0, |s| s.steps as f64 * scenario.step);
     let mut recorder = PyRecorder {
         memory: Memory::new(scenario, keep_trajectory),
         dir,
-        interrupt: Interrupt::new(),
         initial_energy: start.map(|s| s.initial_energy),
         progress: progress.then(|| Progress::new(t0, scenario.duration, scenario.step)),
     };
-    let (outcome, recorder) = py.detach(move || {
-        let outcome = match controls {
-            Some(controls) => flocking::resume_with(scenario, start, &mut recorder, controls),
-            None => flocking::resume(scenario, start, &mut recorder),
-        };
+    let initial_energy = recorder.initial_energy;
+    let ((outcome, recorder), raised) = watched(py, move || {
+        let outcome = flocking::run_from(sim, initial_energy, &mut recorder);
         let verdict = outcome.map(|summary| {
             summary
                 .verdict(&FlockingCriteria::default())
@@ -396,7 +391,6 @@ fn execute<'py>(
     let PyRecorder {
         memory,
         mut dir,
-        interrupt,
         initial_energy,
         progress,
     } = recorder;
@@ -420,12 +414,8 @@ fn execute<'py>(
         Err(error) => error,
     };
     let (why, resumable, raised) = match &error {
-        RunError::Scenario(e) => {
-            if let Some(dir) = dir {
-                dir.abandon();
-            }
-            return Err(scenario_error(py, e));
-        }
+        // the simulation was built before the run began: its directory is kept as it is
+        RunError::Scenario(e) => (error.to_string(), true, scenario_error(py, e)),
         RunError::Numerical(e) => match controls.and_then(PythonControls::take_failure) {
             // `controls` failed in step e.steps: the run stops before it, as after Ctrl-C
             Some(failure) => {
@@ -464,9 +454,7 @@ fn execute<'py>(
             )
         }
         RunError::Interrupted { .. } => {
-            let raised = interrupt
-                .into_raised()
-                .unwrap_or_else(|| PyKeyboardInterrupt::new_err(error.to_string()));
+            let raised = raised.unwrap_or_else(|| PyKeyboardInterrupt::new_err(error.to_string()));
             (format!("{error} by Ctrl-C"), true, raised)
         }
     };
@@ -557,6 +545,14 @@ pub fn run<'py>(
     // before the warnings, which build the initial net of every agent
     crate::errors::check_resources(py, scenario, &outputs, out.as_deref())?;
     warn(py, scenario)?;
+    let controls = controls.map(|f| (PythonControls::new(f.clone_ref(py), scenario), f));
+    // built before `out` is written, so that a refusal leaves nothing behind
+    let sim = py
+        .detach(|| match &controls {
+            Some((controls, _)) => DynSimulation::new_with(scenario, controls),
+            None => DynSimulation::new(scenario),
+        })
+        .map_err(|e| scenario_error(py, &e))?;
     let dir = match &out {
         Some(out) => {
             let options = OutputOptions {
@@ -574,15 +570,15 @@ pub fn run<'py>(
     // issue 27: the directory records that its inputs came from Python, so that a resume
     // without them is refused
     let mut dir = dir;
-    if let (Some(directory), Some(f), Some(out)) = (&mut dir, &controls, &out) {
+    if let (Some(directory), Some((_, f)), Some(out)) = (&mut dir, &controls, &out) {
         directory
             .record_controls(&controls_source(py, f))
             .map_err(|e| crate::errors::run_directory_error(py, e, out))?;
     }
-    let controls = controls.map(|f| PythonControls::new(f, scenario));
+    let controls = controls.map(|(controls, _)| controls);
     let (memory, path, verdict) = execute(
         py,
-        scenario,
+        sim,
         None,
         dir,
         trajectory,
@@ -605,13 +601,37 @@ pub fn resume<'py>(
     progress: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let source = controls.as_ref().map(|f| controls_source(py, f));
-    let (directory, scenario, start) =
+    let (interrupted, scenario, start) =
         RunDirectory::resume_with_controls(&dir, checkpoint_every, source.as_deref())
             .map_err(|e| resume_error(py, &e, &dir))?;
     let controls = controls.map(|f| PythonControls::new(f, &scenario));
+    // what `flocking run --resume` checks: the run must fit this machine
+    let outputs = flocking::estimate::Outputs {
+        trajectory_csv: Some(!interrupted.partial().join("trajectory.npy").exists()),
+        ..flocking::estimate::Outputs::RUN
+    };
+    crate::errors::check_resources(py, &scenario, &outputs, Some(interrupted.partial()))?;
+    // the run's simulation rebuilt from its checkpoint before anything is written (issue 49: a
+    // refused checkpoint deleted the run)
+    let sim = py
+        .detach(|| match &controls {
+            Some(controls) => DynSimulation::build_with(&scenario, start.as_ref(), controls),
+            None => DynSimulation::build_with(&scenario, start.as_ref(), &ScenarioProtocol),
+        })
+        .map_err(|e| {
+            let kept = format!(
+                "the checkpoint in {} cannot be continued ({} is kept as it was): {e}",
+                interrupted.partial().display(),
+                interrupted.partial().display()
+            );
+            crate::errors::exception(py, "ScenarioError", (kept, e.field()))
+        })?;
+    let directory = interrupted
+        .reopen()
+        .map_err(|e| run_directory_error(py, e, &dir))?;
     let (_, path, _) = execute(
         py,
-        &scenario,
+        sim,
         start.as_ref(),
         Some(directory),
         false,
@@ -622,20 +642,28 @@ pub fn resume<'py>(
 }
 
 /// What a run directory records of Python's `controls=f`: "Python controls=`module.qualname`".
+///
+/// A callable object without a name of its own (an instance of a class with `__call__`) is named
+/// by its class, `module.Class`: the name a resume compares is the same in every process (its
+/// `repr` holds an address).
 fn controls_source(py: Python<'_>, f: &Py<PyAny>) -> String {
-    let attribute = |name: &str| {
-        f.getattr(py, name)
-            .ok()
-            .and_then(|v| v.extract::<String>(py).ok())
+    let f = f.bind(py);
+    let named = |object: &Bound<'_, PyAny>| {
+        let attribute = |name: &str| {
+            object
+                .getattr(name)
+                .ok()
+                .and_then(|v| v.extract::<String>().ok())
+        };
+        let qualname = attribute("__qualname__")?;
+        Some(match attribute("__module__") {
+            Some(module) => format!("{module}.{qualname}"),
+            None => qualname,
+        })
     };
-    let name = match (attribute("__module__"), attribute("__qualname__")) {
-        (Some(module), Some(qualname)) => format!("{module}.{qualname}"),
-        (None, Some(qualname)) => qualname,
-        _ => f
-            .bind(py)
-            .repr()
-            .map_or_else(|_| "a callable".to_owned(), |r| r.to_string()),
-    };
+    let name = named(f)
+        .or_else(|| named(f.get_type().as_any()))
+        .unwrap_or_else(|| "a callable".to_owned());
     format!("Python controls={name}")
 }
 

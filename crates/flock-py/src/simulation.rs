@@ -12,12 +12,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::controls::PythonControls;
-use crate::errors::{numerical_error, refuse_complex, scenario_error};
-use crate::interrupt::Interrupt;
+use crate::errors::{exception, numerical_error, refuse_complex, scenario_error};
+use crate::interrupt::watched;
 use crate::scenario::PyScenario;
 
 /// The simulation of a scenario, stepped from Python: `step(k)` advances it k steps of h (the GIL
-/// released; Ctrl-C stops it between steps), `q` and `p` are its positions and velocities as
+/// released; Ctrl-C stops it between steps, or within a second inside a long one), `q` and `p`
+/// are its positions and velocities as
 /// n × dim arrays (copies, agents in original order), `t` its time; `metrics()` and `energy()`
 /// measure it as a run records it. Stepping a fresh `Simulation(scenario)` `scenario.steps`
 /// times gives the bits of `flocking.run(scenario).final`.
@@ -59,6 +60,35 @@ impl PySimulation {
     fn lock(&self) -> MutexGuard<'_, DynSimulation> {
         self.sim.lock().unwrap_or_else(PoisonError::into_inner)
     }
+
+    /// `flocking.SimulationError` when Ctrl-C cut a step short after it had changed the state: the
+    /// state is then between two steps, and stepping or measuring it would continue a run that
+    /// never was.
+    fn check_whole(&self, py: Python<'_>) -> PyResult<()> {
+        let torn = py.detach(|| {
+            let sim = self.lock();
+            sim.is_torn().then(|| sim.steps())
+        });
+        match torn {
+            None => Ok(()),
+            Some(steps) => Err(exception(
+                py,
+                "SimulationError",
+                (format!(
+                    "Ctrl-C cut step {} short mid-way, inside a vehicle's inner steps or the conditions' stage: the state is between two steps and cannot be continued; build a new Simulation (from the scenario, or from a state you kept)",
+                    steps + 1
+                ),),
+            )),
+        }
+    }
+}
+
+/// Why `Simulation.step` stopped before its k steps, but for Ctrl-C.
+enum Stopped {
+    /// `controls` raised (or returned a bad value).
+    Controls(PyErr),
+    /// The state blew up.
+    Numerical(flocking::NumericalError),
 }
 
 /// The rows of an n × dim array, row by row.
@@ -157,12 +187,17 @@ impl PySimulation {
     /// `KeyboardInterrupt` on Ctrl-C after the current step (the state is that of the steps done),
     /// and the exception of `controls` (or `flocking.ControlsError` for a result of the wrong shape
     /// or not finite) before the step it was called for (the state is that of the steps done).
+    /// A step still running half a second after Ctrl-C is cut short ([`flocking::interrupt`]):
+    /// before it changed the state, the state is that of the steps done; inside a vehicle's inner
+    /// steps or the conditions' stage, the simulation is torn between two steps, and every later
+    /// `step` raises `flocking.SimulationError`.
     #[pyo3(signature = (k = 1))]
     fn step(&self, py: Python<'_>, k: u64) -> PyResult<()> {
-        let (health, interrupt) = py.detach(|| {
+        self.check_whole(py)?;
+        let (outcome, raised) = watched(py, || {
             let mut sim = self.lock();
-            let interrupt = Interrupt::new();
             for _ in 0..k {
+                let before = sim.steps();
                 sim.step();
                 if let Some(failure) = self
                     .controls
@@ -178,20 +213,25 @@ impl PySimulation {
                             *sim = back;
                         }
                     }
-                    return (Ok(()), Some(failure.error));
+                    return Err(Stopped::Controls(failure.error));
                 }
-                let health = sim.check_health();
-                if health.is_err() {
-                    return (health, interrupt.into_raised());
+                if sim.is_torn() || sim.steps() == before {
+                    // cut short by the interrupt: torn, or not taken
+                    return Ok(());
                 }
-                if interrupt.requested() {
+                sim.check_health().map_err(Stopped::Numerical)?;
+                if flocking::interrupt::requested() {
                     break;
                 }
             }
-            (Ok(()), interrupt.into_raised())
+            Ok(())
         });
-        health.map_err(|e| numerical_error(py, &e))?;
-        interrupt.map_or(Ok(()), Err)
+        match outcome {
+            Err(Stopped::Controls(error)) => return Err(error),
+            Err(Stopped::Numerical(e)) => return Err(numerical_error(py, &e)),
+            Ok(()) => {}
+        }
+        raised.map_or(Ok(()), Err)
     }
 
     /// Replaces the positions and/or velocities (n × dim arrays) at the current time, e.g. to

@@ -121,6 +121,13 @@ pub fn sweep_run(
     if let Some(failure) = controls.as_ref().and_then(PythonControls::take_failure) {
         return Err(failure.error);
     }
+    if row.retry {
+        // stopped by the process's interrupt (another call's Ctrl-C): no row, made again
+        return Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(format!(
+            "run {index} ({}) was interrupted",
+            row.id
+        )));
+    }
     Ok((row.index, row.id.clone(), row.fields(), row.wall_time))
 }
 

@@ -84,7 +84,7 @@ def test_the_vicsek_workload_scales_at_the_papers_density():
         (dict(workload="boids"), "workload='boids'"),
         (dict(threads=0), "threads=0"),
         (dict(sensing_noise=(1, 2, 3)), "sensing_noise=(1, 2, 3)"),
-        (dict(n=1), "n must be at least 2"),
+        (dict(n=1), "n=1: a benchmark needs at least 2 agents"),
         (dict(delay=0.015), "delay"),
     ],
 )

@@ -153,7 +153,8 @@ def test_an_exception_stops_a_run_resumably(tmp_path, integrator):
     assert not out.exists() and (partial / "INCOMPLETE").exists()
     kept = flocking.read_run(partial)
     assert kept.final.t == 40 * scenario.step  # the records up to the failed step (every 20)
-    resumed = flocking.resume(out, controls=alg2)
+    # the same function (its module and name recorded), which no longer fails
+    resumed = flocking.resume(out, controls=failing_after(10**9, scenario.step, alg2))
     assert_runs_equal(resumed, flocking.read_run(out))
     reference = flocking.run(scenario, tmp_path / "reference")
     for name in ("metrics.csv", "trajectory.csv", "final.csv", "flocking.txt"):

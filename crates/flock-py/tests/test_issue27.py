@@ -47,7 +47,10 @@ def test_issue_27_a_controls_run_is_not_resumed_without_them(tmp_path):
     with pytest.raises(flocking.RunDirectoryError, match="was made with Python controls=.*neither run"):
         flocking.resume(out)
     assert {p.name: p.read_bytes() for p in partial.iterdir() if p.is_file()} == before
-    flocking.resume(out, controls=alg2)
+    # issue 49: another function is refused too; the same one (by its module and name) resumes
+    with pytest.raises(flocking.RunDirectoryError, match="not with Python controls=algorithm2_numpy.Algorithm2"):
+        flocking.resume(out, controls=alg2)
+    flocking.resume(out, controls=failing_after(10**9, scenario.step, alg2))
     assert (out / "flocking.txt").exists() and (out / "controls.txt").exists()
     # a run of the protocol is not resumed with controls
     plain = tmp_path / "plain"

@@ -123,7 +123,7 @@ def test_a_run_too_large_for_the_worker_that_takes_it_is_refused_there(tmp_path:
 
 def test_a_run_beyond_a_dask_workers_memory_limit_is_refused_on_it(tmp_path: Path) -> None:
     # workers limited to 300 MB (their nanny ends one at 95 % of it): a delay of 2·10⁴ s holds
-    # 2·10⁶ states of 8 agents, about 512 MB by the CLI's estimate, which fits this machine but
+    # 2·10⁶ slots of 8 agents' states, about 672 MB by the CLI's estimate, which fits this machine but
     # not a worker. It is refused on the worker before it allocates, by the estimate and the limit
     # of the worker (a check against the machine alone would let it start); the small run's row
     # is kept
@@ -144,7 +144,7 @@ def test_a_run_beyond_a_dask_workers_memory_limit_is_refused_on_it(tmp_path: Pat
             flocking.sweep(spec, out, executor=client.get_executor())
     said = refused_with_the_first_row_kept(refused.value, out)
     assert "the worker that took it (its memory limit counted)" in said, said
-    assert "a run needs about 532.0 MB of memory but 285.0 MB is available, 512.0 MB of it the delay line" in said, said
+    assert "a run needs about 692.0 MB of memory but 285.0 MB is available, 672.0 MB of it the delay line" in said, said
 
 
 def delays(tmp_path: Path, delay: float) -> Path:

@@ -14,6 +14,8 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::{Duration, Instant};
 
+use crate::error::ScenarioError;
+use crate::estimate::{Estimate, Outputs};
 use crate::math::Vector;
 use crate::metrics::{FlockMetrics, MetricParams};
 use crate::obstacles::{ObstacleField, Space};
@@ -25,6 +27,8 @@ use crate::protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaInteraction, AlphaParams, BetaInteraction, BetaParams,
     DynProtocol, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
 };
+use crate::protocols::{AlphaConfig, BetaConfig};
+use crate::scenario::{Algorithm, Cloud, DomainSpec, Initial, Scenario};
 use crate::synthetic::{D, lattice_swarm, shuffled};
 use crate::vehicle::{VehicleSpace, VehicleSpec};
 
@@ -405,43 +409,234 @@ impl fmt::Display for BenchReport {
     }
 }
 
-/// Runs the benchmark `config` describes on the current rayon pool.
+/// Why a benchmark did not run to its end.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BenchError {
+    /// A flag's value is refused: `flag` as Python's keyword writes it (`n`, `scale_to`, `delay`;
+    /// the command's `--n`, `--scale-to`, `--delay`), its value, why and the fix.
+    Invalid {
+        /// The flag.
+        flag: String,
+        /// Its value.
+        value: String,
+        /// Why it is refused.
+        why: String,
+        /// What to give instead.
+        fix: String,
+    },
+    /// Memory that this machine could not give ([`ScenarioError::is_memory`]).
+    Memory(String),
+    /// The process's interrupt stopped it ([`crate::interrupt`]).
+    Interrupted,
+}
+
+impl BenchError {
+    /// `flag = value` is refused because `why`; `fix` says what to give instead.
+    fn invalid(flag: &str, value: impl fmt::Display, why: &str, fix: &str) -> Self {
+        Self::Invalid {
+            flag: flag.to_owned(),
+            value: value.to_string(),
+            why: why.to_owned(),
+            fix: fix.to_owned(),
+        }
+    }
+
+    /// The error of the scenario a benchmark runs, its fields named by the flags that set them
+    /// (`flags`: each field's prefix with its flag), the first one of several.
+    pub(crate) fn of_scenario(error: &ScenarioError, flags: &[(&str, &str)]) -> Self {
+        if error.is_memory() {
+            return Self::Memory(error.to_string());
+        }
+        let Some(ScenarioError::Invalid {
+            field,
+            value,
+            why,
+            fix,
+        }) = error.problems().into_iter().next()
+        else {
+            return Self::invalid("scenario", error, "is refused", "give other values");
+        };
+        let flag = flags
+            .iter()
+            .find(|(prefix, _)| field.starts_with(prefix))
+            .map_or(field.as_str(), |(_, flag)| flag);
+        Self::invalid(flag, value, why, fix)
+    }
+}
+
+impl BenchError {
+    /// The message with a refused flag written by `flag(name, value)` (`--scale-to 0` for the
+    /// command, `scale_to=0` for Python): `--scale-to 0: why; fix`.
+    #[must_use]
+    pub fn with_flag(&self, flag: impl Fn(&str, &str) -> String) -> String {
+        match self {
+            Self::Invalid {
+                flag: name,
+                value,
+                why,
+                fix,
+            } => format!("{}: {why}; {fix}", flag(name, value)),
+            other => other.to_string(),
+        }
+    }
+}
+
+/// `n = 1: …; …`, the flag as Python's keyword (the command prints it as `--n`).
+impl fmt::Display for BenchError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Invalid {
+                flag,
+                value,
+                why,
+                fix,
+            } => write!(f, "{flag} = {value}: {why}; {fix}"),
+            Self::Memory(why) => write!(f, "{why}"),
+            Self::Interrupted => write!(f, "interrupted"),
+        }
+    }
+}
+
+impl std::error::Error for BenchError {}
+
+/// The scenario fields a benchmark's flags set: the field's prefix, the flag.
+const FLAGS: [(&str, &str); 8] = [
+    ("agents", "n"),
+    ("dim", "dim"),
+    ("conditions.communication.delayed", "delayed"),
+    ("conditions.communication.delay", "delay"),
+    ("conditions.communication.loss", "loss"),
+    ("conditions.sensing", "sensing_noise"),
+    ("conditions.control", "control_rate"),
+    ("conditions.actuation", "max_acceleration"),
+];
+
+impl BenchConfig {
+    /// The scenario the benchmark runs, as its checks and its estimate see it: n agents of the
+    /// algorithm (Algorithm 3 without its obstacles, which hold little memory), warm-up and timed
+    /// steps of [`STEP`] recorded every [`RECORD_EVERY`], the conditions and the vehicle; the
+    /// α-lattice start has the lattice's degree, which the estimate assumes.
+    #[must_use]
+    pub fn scenario(&self) -> Scenario {
+        let point = |x: [f64; 3]| x[..self.dim.clamp(2, 3)].to_vec();
+        let gamma = GammaAgent::ConstantVelocity {
+            position: point([0.0; 3]),
+            velocity: point([1.0, 0.5, 0.0]),
+        };
+        let algorithm = match self.algorithm {
+            BenchAlgorithm::Algorithm1 => Algorithm::Algorithm1,
+            BenchAlgorithm::Algorithm2 => Algorithm::Algorithm2 {
+                gamma,
+                c1: 0.02,
+                c2: 0.4,
+            },
+            BenchAlgorithm::Algorithm3 => Algorithm::Algorithm3 {
+                gamma,
+                c1: 0.02,
+                c2: None,
+                beta: BetaConfig::default(),
+            },
+        };
+        let steps = self.warmup.saturating_add(self.steps);
+        Scenario {
+            name: "bench".to_owned(),
+            description: String::new(),
+            dim: self.dim,
+            agents: self.n,
+            seed: 0,
+            algorithm,
+            domain: DomainSpec::Open,
+            vehicle: self
+                .vehicle
+                .map_or(VehicleSpec::PointMass, BenchVehicle::spec),
+            alpha: AlphaConfig::default(),
+            initial: Initial {
+                positions: Cloud::Zero,
+                velocities: Cloud::Zero,
+            },
+            integrator: Integrator::SymplecticEuler,
+            step: STEP,
+            duration: steps as f64 * STEP,
+            record_every: RECORD_EVERY,
+            collision_distance: None,
+            obstacles: Vec::new(),
+            conditions: self.conditions.conditions(),
+            snapshots: None,
+        }
+    }
+
+    /// Checks every flag as `flocking run` checks a scenario: n from 2 to [`crate::MAX_AGENTS`],
+    /// the dimension, at least one timed step and at most [`crate::MAX_STEPS`] in all, the
+    /// conditions and the vehicle.
+    ///
+    /// # Errors
+    /// The first flag refused, named.
+    pub fn check(&self) -> Result<(), BenchError> {
+        if self.n < 2 {
+            return Err(BenchError::invalid(
+                "n",
+                self.n,
+                "a benchmark needs at least 2 agents",
+                "give n ≥ 2",
+            ));
+        }
+        if self.steps == 0 {
+            return Err(BenchError::invalid(
+                "steps",
+                self.steps,
+                "times no step",
+                "give at least 1 timed step",
+            ));
+        }
+        let total = self.warmup as f64 + self.steps as f64;
+        if total > crate::MAX_STEPS {
+            let flag = if self.warmup > self.steps {
+                ("warmup", self.warmup)
+            } else {
+                ("steps", self.steps)
+            };
+            return Err(BenchError::invalid(
+                flag.0,
+                flag.1,
+                &format!(
+                    "makes {total:.3e} steps with the warm-up, more than the {:e} a run may take",
+                    crate::MAX_STEPS
+                ),
+                "give fewer steps",
+            ));
+        }
+        self.scenario()
+            .validate()
+            .map_err(|e| BenchError::of_scenario(&e, &FLAGS))
+    }
+
+    /// What the benchmark will cost (memory, time), as `flocking run` estimates a run: nothing
+    /// is written.
+    #[must_use]
+    pub fn estimate(&self) -> Estimate {
+        self.scenario().estimate(&Outputs::NONE)
+    }
+}
+
+/// Runs the benchmark `config` describes on the current rayon pool, once its flags pass
+/// [`BenchConfig::check`] (its estimate is the caller's to check, [`BenchConfig::estimate`]).
 ///
 /// # Errors
-/// When `n < 2` or above [`crate::MAX_AGENTS`], the dimension is not 2 or 3, `steps` is 0,
-/// or the conditions are invalid ([`Conditions::validate`]).
-pub fn bench(config: &BenchConfig) -> Result<BenchReport, String> {
-    if config.n < 2 {
-        return Err(format!("n must be at least 2, got {}", config.n));
-    }
-    if config.n > crate::MAX_AGENTS {
-        return Err(format!(
-            "n = {} exceeds the {} agents a scenario may have (about 250 bytes each); give a smaller n",
-            config.n,
-            crate::MAX_AGENTS
-        ));
-    }
-    if config.steps == 0 {
-        return Err("steps must be at least 1".to_owned());
-    }
-    if !matches!(config.dim, 2 | 3) {
-        return Err(format!("dim must be 2 or 3, got {}", config.dim));
-    }
-    let conditions = config.conditions.conditions();
-    conditions
-        .validate(config.n, config.dim, STEP)
-        .map_err(|e| format!("invalid conditions: {e}"))?;
+/// A flag refused ([`BenchConfig::check`]), memory the machine could not give, or the process's
+/// interrupt ([`crate::interrupt`]) between two steps.
+pub fn bench(config: &BenchConfig) -> Result<BenchReport, BenchError> {
+    config.check()?;
     if config.dim == 2 {
-        bench_in::<crate::glam::DVec2>(config, &conditions)
+        bench_in::<crate::glam::DVec2>(config, &config.conditions.conditions())
     } else {
-        bench_in::<crate::glam::DVec3>(config, &conditions)
+        bench_in::<crate::glam::DVec3>(config, &config.conditions.conditions())
     }
 }
 
 fn bench_in<V: Space + VehicleSpace>(
     config: &BenchConfig,
     conditions: &Conditions,
-) -> Result<BenchReport, String> {
+) -> Result<BenchReport, BenchError> {
     let start = Instant::now();
     let alpha = AlphaInteraction::new(AlphaParams::default(), 1.0, 1.0)
         .unwrap_or_else(|e| unreachable!("the papers' α-parameters are valid: {e}"));
@@ -506,27 +701,40 @@ fn time<V: Vector + VehicleSpace>(
     swarm: Swarm<V>,
     obstacles: usize,
     start: Instant,
-) -> Result<BenchReport, String> {
+) -> Result<BenchReport, BenchError> {
     let metric_params = MetricParams {
         d: D,
         collision_distance: D / 4.0,
     };
+    let refused =
+        |e: crate::protocols::ParamError| BenchError::of_scenario(&ScenarioError::from(e), &FLAGS);
     let mut sim = Simulation::new(protocol, Integrator::SymplecticEuler, swarm, STEP)
         .unwrap_or_else(|e| unreachable!("the benchmark's state and step are valid: {e}"));
     if let Some(vehicle) = config.vehicle {
         let vehicle = V::vehicle(&vehicle.spec())
-            .map_err(|e| e.to_string())?
-            .ok_or("a vehicle")?;
+            .ok()
+            .flatten()
+            .unwrap_or_else(|| unreachable!("checked: {vehicle:?} exists in {}D", V::DIM));
         sim = sim
             .with_vehicle(vehicle, None)
-            .map_err(|e| format!("invalid vehicle: {e}"))?;
+            .unwrap_or_else(|e| unreachable!("checked: {e}"));
     }
     let mut sim = sim
         .with_conditions(conditions, CONDITIONS_SEED)
-        .map_err(|e| format!("invalid conditions: {e}"))?;
+        .map_err(refused)?;
     let setup = start.elapsed();
-    for _ in 0..config.warmup {
+    // one step at a time, each stopped by an interrupt (a step cut short is not timed)
+    let step = |sim: &mut Simulation<V, DynProtocol<V>>| {
+        let before = sim.steps();
         sim.step();
+        if sim.steps() == before || crate::interrupt::requested() {
+            Err(BenchError::Interrupted)
+        } else {
+            Ok(())
+        }
+    };
+    for _ in 0..config.warmup {
+        step(&mut sim)?;
     }
     let measure = |sim: &Simulation<V, DynProtocol<V>>| {
         let o = sim.observe(&metric_params);
@@ -538,7 +746,7 @@ fn time<V: Vector + VehicleSpace>(
     let timed = Instant::now();
     for k in 1..=config.steps {
         let t0 = Instant::now();
-        sim.step();
+        step(&mut sim)?;
         if k % RECORD_EVERY == 0 {
             metrics = Some(std::hint::black_box(measure(&sim)).0);
             recorded += t0.elapsed();

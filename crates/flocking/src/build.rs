@@ -59,7 +59,7 @@ impl Scenario {
     }
 
     /// The protocol of the algorithm, whatever the conditions.
-    fn ideal_protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
+    pub(crate) fn ideal_protocol<V: Space>(&self) -> Result<DynProtocol<V>, ScenarioError> {
         let alpha_config = &self.alpha;
         let within =
             |prefix: &'static str| move |e: ParamError| ScenarioError::from(e.within(prefix));
@@ -129,8 +129,10 @@ impl Scenario {
             }
             model @ Algorithm::CuckerSmale { .. } => {
                 let params = model.cucker_smale().unwrap_or_else(|| unreachable!());
+                // the net's range without a cutoff: a cutoff is checked as itself (issue 49: a
+                // negative one was named `algorithm.range`)
                 Box::new(
-                    CuckerSmale::new(params, r, self.agents, self.domain())
+                    CuckerSmale::new(params, alpha_config.range(), self.agents, self.domain())
                         .map_err(within("algorithm"))?,
                 )
             }

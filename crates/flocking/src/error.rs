@@ -51,6 +51,12 @@ pub enum ScenarioError {
     },
     /// Several values are invalid: every one found, in the order of the text.
     Several(Vec<ScenarioError>),
+    /// A valid value that needs more memory than this machine gives (the delay line of a long
+    /// delay, allocated with `try_reserve`: an error, not an abort), as the
+    /// [`ScenarioError::Invalid`] that names the field, its value, what the memory is for and how
+    /// to need less. Not bad input: `flocking` exits with code 1
+    /// ([`ScenarioError::is_memory`]).
+    Memory(Box<ScenarioError>),
 }
 
 impl ScenarioError {
@@ -94,14 +100,27 @@ impl ScenarioError {
     }
 }
 
-/// A parameter outside its domain, its field a path in the scenario (`alpha.r`).
+/// A parameter outside its domain, its field a path in the scenario (`alpha.r`); or one whose
+/// memory could not be had ([`ScenarioError::Memory`]).
 impl From<flock_protocols::ParamError> for ScenarioError {
     fn from(e: flock_protocols::ParamError) -> Self {
-        Self::Invalid {
-            field: e.field,
-            value: e.value,
-            why: e.why,
-            fix: e.fix,
+        let flock_protocols::ParamError {
+            field,
+            value,
+            why,
+            fix,
+            memory,
+        } = e;
+        let invalid = Self::Invalid {
+            field,
+            value,
+            why,
+            fix,
+        };
+        if memory {
+            Self::Memory(Box::new(invalid))
+        } else {
+            invalid
         }
     }
 }
@@ -112,12 +131,22 @@ impl ScenarioError {
     pub fn field(&self) -> Option<String> {
         match self {
             Self::Invalid { field, .. } => Some(field.clone()),
+            Self::Memory(error) => error.field(),
             Self::Obstacle(error) => Some(error.field()),
             Self::Syntax { field, .. } => field.clone(),
             Self::At { error, .. } => error.field(),
             Self::Several(errors) => errors.first().and_then(Self::field),
             Self::Io { .. } => None,
         }
+    }
+
+    /// Whether the error is memory that could not be had ([`ScenarioError::Memory`]), not a
+    /// value out of its domain.
+    #[must_use]
+    pub fn is_memory(&self) -> bool {
+        self.problems()
+            .iter()
+            .any(|e| matches!(e, Self::Memory { .. }))
     }
 
     /// Every error this one holds, without their places in the text: itself, or the errors of
@@ -191,6 +220,7 @@ impl fmt::Display for ScenarioError {
                 why,
                 fix,
             } => write!(f, "`{field}` = {value}: {why}; {fix}"),
+            Self::Memory(error) => write!(f, "{error}"),
             Self::At {
                 origin,
                 line,

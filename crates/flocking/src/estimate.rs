@@ -33,7 +33,8 @@ use glam::{DVec2, DVec3};
 
 use crate::Scenario;
 use crate::initial::initial_positions;
-use crate::protocols::conditions;
+use crate::protocols::{Integrator, conditions};
+use crate::vehicle::VehicleSpec;
 
 /// The most threads (or sweep workers) per available core: more only adds switching.
 pub const THREADS_PER_CORE: usize = 4;
@@ -86,7 +87,41 @@ pub const AGENT_STEPS_PER_SECOND: [f64; 2] = [3.4e6, 1.13e6];
 
 /// The most pair tests [`Scenario::estimate_at_start`] spends counting the start's net (2³²):
 /// each step of the run tests as many, so a start past it is too dense to run in reasonable time.
+/// It bounds the work of one step that validation lets through too (pairs of an all-pairs model,
+/// agents × inner steps of a vehicle), so that every step the estimate states is one it can
+/// count.
 pub const START_COUNT_BUDGET: usize = 1 << 32;
+
+/// Bytes of each slot of the delay line besides the agents' states: its two vectors' headers
+/// (24 B each) and their heap blocks' (16 B each) — most of a slot for a few agents.
+pub const SLOT_BYTES: f64 = 80.0;
+
+/// What a checkpoint of a run with a delay line holds of it besides the line, in lines: a copy of
+/// the conditions' state (1) and its RON text (up to 2.5: 20 characters for a number of 8
+/// bytes), made while the checkpoint is written (docs/performance.md, "The delay line in the
+/// estimate").
+pub const CHECKPOINT_COPIES: f64 = 3.5;
+
+/// Seconds of one inner step of one vehicle on one thread: the unicycle, the fixed wing, the
+/// quadrotor (`flocking run` of 30–50 vehicles at 1,000 to 10,000 inner steps a step, one
+/// thread; docs/performance.md, "Vehicles and all pairs in the estimate").
+pub const INNER_STEP_SECONDS: [f64; 3] = [
+    UNICYCLE_INNER_STEP,
+    FIXED_WING_INNER_STEP,
+    QUADROTOR_INNER_STEP,
+];
+
+/// [`INNER_STEP_SECONDS`] of the unicycle.
+const UNICYCLE_INNER_STEP: f64 = 65e-9;
+/// [`INNER_STEP_SECONDS`] of the fixed wing.
+const FIXED_WING_INNER_STEP: f64 = 150e-9;
+/// [`INNER_STEP_SECONDS`] of the quadrotor.
+const QUADROTOR_INNER_STEP: f64 = 330e-9;
+
+/// Seconds of one pair of an all-pairs sum (Cucker–Smale without a cutoff, ψ's power for each
+/// of the n − 1 others of every agent) on one thread (docs/performance.md, "Vehicles and all
+/// pairs in the estimate").
+pub const ALL_PAIRS_SECONDS: f64 = 14e-9;
 
 /// Bytes of a `metrics.csv` row (nine columns, shortest round-trip f64: ≈ 115 B in the gallery)
 /// with room for a protocol's diagnostics.
@@ -192,10 +227,10 @@ impl Scenario {
             0.0
         };
         let agent_steps = n * steps as f64;
-        // the conditions' state (mostly the delay line), none for an ideal run
-        let conditions_bytes = conditions::bytes_per_agent(&self.conditions, dim, self.step);
-        let delay_line_bytes =
-            conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
+        // the conditions' state besides the delay line, none for an ideal run
+        let per_agent = conditions::bytes_per_agent(&self.conditions, dim, self.step)
+            - conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
+        let delay_line_bytes = self.delay_line_bytes(outputs);
         let degree = LATTICE_DEGREE[dim - 2];
         Estimate {
             runs: 1,
@@ -204,13 +239,58 @@ impl Scenario {
             agent_steps,
             memory_bytes: FIXED_BYTES
                 + n * (BYTES_PER_AGENT[dim - 2]
-                    + conditions_bytes as f64
-                    + degree / 2.0 * BYTES_PER_EDGE[dim - 2]),
-            delay_line_bytes: n * delay_line_bytes as f64,
+                    + per_agent as f64
+                    + degree / 2.0 * BYTES_PER_EDGE[dim - 2])
+                + delay_line_bytes,
+            delay_line_bytes,
             disk_bytes: trajectory + metrics + checkpoint,
-            seconds: agent_steps / AGENT_STEPS_PER_SECOND[dim - 2],
+            seconds: agent_steps * self.seconds_per_agent_step(degree),
             density: Density::Lattice,
         }
+    }
+
+    /// The bytes of the delay line (every agent's states over the delay and jitter,
+    /// [`conditions::delay_line_bytes_per_agent`]) with its slots' own [`SLOT_BYTES`], and when a
+    /// run keeps checkpoints, what a checkpoint makes of it: a copy and its text
+    /// ([`CHECKPOINT_COPIES`] times it in all; issue 49: a delay line of 10⁴ s was estimated at a
+    /// third of its peak).
+    fn delay_line_bytes(&self, outputs: &Outputs) -> f64 {
+        let dim = self.dim.clamp(2, 3);
+        let per_agent = conditions::delay_line_bytes_per_agent(&self.conditions, dim, self.step);
+        let slots = per_agent as f64 / (2.0 * dim as f64 * 8.0);
+        let line = self.agents as f64 * per_agent as f64 + slots * SLOT_BYTES;
+        if outputs.checkpoint {
+            line * (1.0 + CHECKPOINT_COPIES)
+        } else {
+            line
+        }
+    }
+
+    /// The seconds of one agent-step on one thread with `degree` neighbours within the sensing
+    /// range: the point masses' step at that degree ([`AGENT_STEPS_PER_SECOND`], in proportion
+    /// to the degree above the lattice's), every evaluation of the inputs (four for RK4), the
+    /// other agents of an all-pairs model ([`ALL_PAIRS_SECONDS`] each) and the vehicle's inner
+    /// steps ([`INNER_STEP_SECONDS`] each).
+    fn seconds_per_agent_step(&self, degree: f64) -> f64 {
+        let dim = self.dim.clamp(2, 3);
+        let lattice = LATTICE_DEGREE[dim - 2];
+        let evaluations = match self.integrator {
+            Integrator::Rk4 if !self.algorithm.sets_velocity() => 4.0,
+            _ => 1.0,
+        };
+        let others = if self.algorithm.couples_every_pair() {
+            self.agents.saturating_sub(1) as f64 * ALL_PAIRS_SECONDS
+        } else {
+            0.0
+        };
+        let inner = match self.vehicle {
+            VehicleSpec::PointMass => 0.0,
+            VehicleSpec::Unicycle(_) => INNER_STEP_SECONDS[0],
+            VehicleSpec::FixedWing(_) => INNER_STEP_SECONDS[1],
+            VehicleSpec::Quadrotor(_) => INNER_STEP_SECONDS[2],
+        };
+        evaluations * (degree.max(lattice) / lattice / AGENT_STEPS_PER_SECOND[dim - 2] + others)
+            + self.vehicle.inner_steps(self.step) * inner
     }
 
     /// [`Scenario::estimate`] with the net of the start counted (within the sensing range r,
@@ -250,7 +330,7 @@ impl Scenario {
         let extra = (degree - lattice).max(0.0);
         Estimate {
             memory_bytes: estimate.memory_bytes + n * extra / 2.0 * BYTES_PER_EDGE[dim - 2],
-            seconds: estimate.seconds * degree.max(lattice) / lattice,
+            seconds: estimate.agent_steps * self.seconds_per_agent_step(degree),
             density: Density::Start(degree),
             ..estimate
         }
@@ -701,7 +781,8 @@ mod tests {
             conditions::bytes_per_agent(&delayed.conditions, 2, delayed.step),
             369
         );
-        assert!((extra - 369e6).abs() < 1.0, "{extra}");
+        // and the 11 slots' own bytes
+        assert!((extra - 369e6 - 11.0 * SLOT_BYTES).abs() < 1.0, "{extra}");
     }
 
     #[test]
@@ -713,18 +794,23 @@ mod tests {
             ..conditions::Communication::default()
         });
         let estimate = delayed.estimate(&Outputs::NONE);
+        // 10⁸ + 1 slots of 100 agents' states, 32 B each, and of their own 80 B
+        let line = (100.0 * 32.0 + SLOT_BYTES) * (1e8 + 1.0);
         assert!(
-            (estimate.delay_line_bytes - 100.0 * 32.0 * (1e8 + 1.0)).abs() < 1.0,
+            (estimate.delay_line_bytes - line).abs() < 1.0,
             "{}",
             estimate.delay_line_bytes
         );
+        // a run that keeps checkpoints copies it and writes it as text
+        let checkpointed = delayed.estimate(&Outputs::RUN).delay_line_bytes;
+        assert!((checkpointed - 4.5 * line).abs() < 1.0, "{checkpointed}");
         let room = |memory_bytes| Resources {
             memory_bytes: Some(memory_bytes),
             ..Resources::default()
         };
         let error = estimate.check(&room(1e9)).unwrap_err();
         assert!(
-            error.contains("320.0 GB of it the delay line of conditions.communication.delay")
+            error.contains("328.0 GB of it the delay line of conditions.communication.delay")
                 && error.contains("a shorter delay")
                 && !error.contains("bytes per agent"),
             "{error}"

@@ -38,6 +38,24 @@ pub fn initial_positions<V: Vector>(scenario: &Scenario) -> impl Iterator<Item =
     (0..scenario.agents).map(move |k| draw(&cloud, k, &mut rng))
 }
 
+/// The initial velocities of `scenario`, drawn one at a time as [`initial_positions`] draws the
+/// positions: the velocities of [`initial_swarm`], in order (the positions are drawn first, from
+/// the same stream, and dropped).
+pub fn initial_velocities<V: Vector>(scenario: &Scenario) -> impl Iterator<Item = V> + '_ {
+    let mut rng = Pcg64::seed_from_u64(scenario.seed);
+    let positions = in_box(scenario, &scenario.initial.positions);
+    let velocities = in_box(scenario, &scenario.initial.velocities);
+    let n = scenario.agents;
+    (0..2 * n).filter_map(move |k| {
+        if k < n {
+            draw::<V>(&positions, k, &mut rng);
+            None
+        } else {
+            Some(draw(&velocities, k - n, &mut rng))
+        }
+    })
+}
+
 /// `cloud` with [`Cloud::Domain`] as the box [0, L) of the scenario's periodic domain.
 fn in_box(scenario: &Scenario, cloud: &Cloud) -> Cloud {
     match (cloud, scenario.box_size()) {
@@ -139,5 +157,36 @@ mod tests {
         scenario.initial.positions = Cloud::Explicit(vec![vec![1.0, 2.0], vec![3.0, 4.0]]);
         scenario.agents = 2;
         check::<DVec2>(&scenario);
+    }
+
+    /// The streamed velocities are the swarm's too, after positions of every kind (a ball's
+    /// draws are rejected a varying number of times).
+    #[test]
+    fn initial_velocities_are_the_swarms() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/");
+        for fixture in [
+            "tac2006_fig11_alg2_n100",
+            "couzin2002_torus_n100",
+            "vicsek1995_fig2a_n400",
+        ] {
+            let scenario = Scenario::load(format!("{root}{fixture}.ron")).expect("a fixture");
+            let streamed: Vec<DVec3> = match scenario.dim {
+                3 => initial_velocities(&scenario).collect(),
+                _ => {
+                    let plane: Vec<DVec2> = initial_velocities(&scenario).collect();
+                    assert_eq!(
+                        plane,
+                        initial_swarm::<DVec2>(&scenario).velocities,
+                        "{fixture}"
+                    );
+                    continue;
+                }
+            };
+            assert_eq!(
+                streamed,
+                initial_swarm::<DVec3>(&scenario).velocities,
+                "{fixture}"
+            );
+        }
     }
 }

@@ -9,7 +9,10 @@
 //! - [`DynSimulation`]: the simulation of a scenario behind one type, its state as plain `f64`
 //!   rows ([`State`]), agents in original order; metrics, energy, diagnostics, health.
 //! - [`run()`], [`resume()`]: a whole run, every recorded step handed to a [`Recorder`];
-//!   [`resume_with()`] with the protocol changed by a [`MapProtocol`].
+//!   [`resume_with()`] with the protocol changed by a [`MapProtocol`]; [`run_from()`] of a
+//!   simulation built first.
+//! - [`interrupt`]: the process's Ctrl-C, which a run checks between steps and the long loops of
+//!   a step check inside it.
 //! - [`run_dir`]: the run directory — [`RunDirectory`] writes it (crash-safe, checkpointed,
 //!   resumable), [`read_run`] reads it back.
 //! - [`verdict`]: the verdict a run gets, success as its model's papers measure it ([`Verdict`]:
@@ -64,7 +67,7 @@ pub use build::check_local_form;
 pub use error::ScenarioError;
 pub use health::NumericalError;
 pub use merging::{Merge, MergedAgents};
-pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run};
+pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run, run_from};
 pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
 pub use scenario::{
     Algorithm, Cloud, FixedGraph, Initial, Point, Scenario, TannerGraph, Translation,
@@ -77,6 +80,7 @@ pub use validate::{MAX_AGENTS, MAX_STEPS};
 pub use verdict::{Verdict, VerdictKind};
 
 pub use flock_graph as graph;
+pub use flock_graph::interrupt;
 pub use flock_math as math;
 pub use flock_metrics as metrics;
 pub use flock_obstacles as obstacles;

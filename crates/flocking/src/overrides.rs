@@ -80,10 +80,10 @@ impl Scenario {
             scenario = match serde_json::from_value(tree.clone()) {
                 Ok(scenario) => scenario,
                 Err(error) => {
-                    let Some(integer) = integral(&value) else {
+                    let Some(read) = integral(&value).or_else(|| empty_struct(&value)) else {
                         return Err(wrong_type(path, &value, &error));
                     };
-                    set(&mut tree, path, integer)?;
+                    set(&mut tree, path, read)?;
                     serde_json::from_value(tree.clone())
                         .map_err(|_| wrong_type(path, &value, &error))?
                 }
@@ -293,6 +293,16 @@ fn check_depth(path: &str, value: &Value) -> Result<(), ScenarioError> {
 }
 
 /// `value` as an integer, when it is a number with no fractional part.
+/// A variant holding `()` as one holding the struct of its defaults: `Quadrotor(())` of a RON
+/// sweep file reads as `{"Quadrotor": null}`, where the scenario file's `Quadrotor(())` is the
+/// vehicle of default parameters (issue 49).
+fn empty_struct(value: &Value) -> Option<Value> {
+    let tag = tag(value)?;
+    variant(value)?
+        .is_null()
+        .then(|| serde_json::json!({ tag: {} }))
+}
+
 fn integral(value: &Value) -> Option<Value> {
     let x = value.as_f64()?;
     (value.is_f64() && x.fract() == 0.0 && x.abs() < 2f64.powi(53)).then(|| {

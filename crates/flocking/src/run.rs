@@ -111,7 +111,8 @@ pub trait Recorder {
         Ok(())
     }
 
-    /// Whether the run should stop (after keeping a checkpoint); asked after every step.
+    /// Whether the run should stop (after keeping a checkpoint); asked after every step. A run
+    /// also stops when the process's interrupt is requested ([`crate::interrupt`]).
     fn stop_requested(&self) -> bool {
         false
     }
@@ -138,14 +139,19 @@ pub enum RunError<E> {
     Record(E),
     /// The state blew up (NaN, ∞ or a runaway speed); nothing from that step was recorded.
     Numerical(NumericalError),
-    /// The recorder asked the run to stop (Ctrl-C); a checkpoint of the state was kept.
+    /// An interrupt ([`crate::interrupt`], Ctrl-C) or the recorder stopped the run: after the
+    /// steps taken, whose state was checkpointed; or, `torn`, inside a step that had changed the
+    /// state ([`DynSimulation::is_torn`]), of which nothing was recorded nor checkpointed (a
+    /// resume continues from the last checkpoint kept before).
     Interrupted {
-        /// The steps taken.
+        /// The steps taken (the last whole state).
         steps: u64,
         /// The time reached.
         t: f64,
         /// The step h, which fixes how many decimals of t are printed.
         step: f64,
+        /// Whether the interrupt cut the next step mid-way, after it had changed the state.
+        torn: bool,
     },
 }
 
@@ -155,13 +161,21 @@ impl<E: std::fmt::Display> std::fmt::Display for RunError<E> {
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Record(e) => write!(f, "{e}"),
             Self::Numerical(e) => write!(f, "{e}"),
-            Self::Interrupted { steps, t, step } => {
-                write!(
-                    f,
-                    "interrupted after step {steps} (t = {})",
-                    time_text(*t, *step)
-                )
-            }
+            Self::Interrupted {
+                steps,
+                t,
+                step,
+                torn: false,
+            } => write!(
+                f,
+                "interrupted after step {steps} (t = {})",
+                time_text(*t, *step)
+            ),
+            Self::Interrupted { steps, .. } => write!(
+                f,
+                "interrupted during step {}, cut short mid-way (nothing of that step is kept; a resume continues from the last checkpoint)",
+                steps + 1
+            ),
         }
     }
 }
@@ -224,38 +238,71 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
     recorder: &mut R,
     map: &M,
 ) -> Result<RunSummary, RunError<R::Error>> {
+    let sim = DynSimulation::build_with(scenario, start, map)?;
+    run_from(sim, start.map(|start| start.initial_energy), recorder)
+}
+
+/// Runs `sim` to the end of its scenario as [`resume_with`] does, the simulation built first
+/// ([`DynSimulation::build_with`]) so that a state it refuses is refused before the recorder is
+/// told anything (a resumed run directory is reopened only then,
+/// [`InterruptedRun::reopen`](crate::run_dir::InterruptedRun::reopen)). `initial_energy` is
+/// H(0) of a run continued from a checkpoint; `None` for a simulation at its start, which is
+/// checked and recorded at t = 0 first.
+///
+/// # Errors
+/// As [`resume`], but for an invalid scenario.
+pub fn run_from<R: Recorder + ?Sized>(
+    mut sim: DynSimulation,
+    initial_energy: Option<f64>,
+    recorder: &mut R,
+) -> Result<RunSummary, RunError<R::Error>> {
     let mut history = Vec::new();
     let mut first_merge = None;
     let mut topology = EdgeSetWatch::default();
-    let (mut sim, initial_energy) = match start {
+    let initial_energy = match initial_energy {
+        Some(energy) => energy,
         None => {
-            let sim = DynSimulation::new_with(scenario, map)?;
             sim.check_health().map_err(RunError::Numerical)?;
             let observation = record(recorder, &sim, &mut first_merge)?;
             history.push((sim.time(), observation.metrics));
             topology.see(&sim);
-            (sim, observation.energy)
+            observation.energy
         }
-        Some(start) => (
-            DynSimulation::resume_with(scenario, start, map)?,
-            start.initial_energy,
-        ),
     };
-    let total = scenario.steps();
+    let (total, record_every, h) = {
+        let scenario = sim.scenario();
+        (scenario.steps(), scenario.record_every, scenario.step)
+    };
     let clock = Instant::now();
     // The final step is always recorded: its measurements are the summary's.
     let mut last = None;
     while sim.steps() < total {
+        let before = sim.steps();
         sim.step();
-        sim.check_health().map_err(RunError::Numerical)?;
         let steps = sim.steps();
-        if steps % scenario.record_every == 0 || steps == total {
-            let observation = record(recorder, &sim, &mut first_merge)?;
-            history.push((sim.time(), observation.metrics));
-            topology.see(&sim);
-            last = Some(observation);
+        let interrupted = |torn| RunError::Interrupted {
+            steps: before,
+            t: before as f64 * h,
+            step: h,
+            torn,
+        };
+        if sim.is_torn() {
+            // the state is between two steps: neither recorded nor checkpointed
+            return Err(interrupted(true));
         }
-        let stop = steps < total && recorder.stop_requested();
+        // an interrupt that cut the step short before it changed the state: not taken
+        let taken = steps > before;
+        if taken {
+            sim.check_health().map_err(RunError::Numerical)?;
+            if steps.is_multiple_of(record_every) || steps == total {
+                let observation = record(recorder, &sim, &mut first_merge)?;
+                history.push((sim.time(), observation.metrics));
+                topology.see(&sim);
+                last = Some(observation);
+            }
+        }
+        let stop = !taken
+            || (steps < total && (crate::interrupt::requested() || recorder.stop_requested()));
         if stop || (steps < total && recorder.wants_checkpoint(steps)) {
             recorder
                 .checkpoint(&sim.start(initial_energy))
@@ -265,7 +312,8 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
             return Err(RunError::Interrupted {
                 steps,
                 t: sim.time(),
-                step: scenario.step,
+                step: h,
+                torn: false,
             });
         }
     }
@@ -284,7 +332,7 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
         lattice: sim.lattice(),
         history,
         first_merge,
-        merged: merged_agents(&sim.state(), merge_tolerance(scenario)),
+        merged: merged_agents(&sim.state(), merge_tolerance(sim.scenario())),
         topology_invariant_from: topology.since.unwrap_or_else(|| sim.time()),
         elapsed,
         verdict_kind: VerdictKind::of(&scenario.algorithm),

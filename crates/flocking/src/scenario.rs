@@ -613,6 +613,26 @@ impl Algorithm {
         }
     }
 
+    /// The speed a model sets every agent to (Vicsek's v₀, Couzin's and the boids' speed), with
+    /// its field; `None` for the algorithms whose speeds follow from accelerations.
+    #[must_use]
+    pub fn set_speed(&self) -> Option<(&'static str, f64)> {
+        match *self {
+            Self::Vicsek { v0, .. } => Some(("algorithm.v0", v0)),
+            Self::Boids { speed, .. } | Self::Couzin { speed, .. } => {
+                Some(("algorithm.speed", speed))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether the algorithm couples every pair of agents at every step, whatever their
+    /// distance (Cucker–Smale without a cutoff): a step's work is n(n − 1)/2 pairs.
+    #[must_use]
+    pub fn couples_every_pair(&self) -> bool {
+        matches!(self, Self::CuckerSmale { cutoff: None, .. })
+    }
+
     /// Whether the algorithm draws random numbers of its own (Vicsek's and Couzin's angular
     /// noise, the boids' activation order).
     #[must_use]

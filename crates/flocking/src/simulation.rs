@@ -8,6 +8,7 @@ use std::borrow::Cow;
 use flock_graph::Graph;
 use flock_metrics::{EDGE_TOLERANCE, FlockMetrics, LatticeSummary, MetricParams};
 use flock_obstacles::Space;
+use flock_protocols::check::MAX_VALUE;
 use flock_protocols::conditions::ConditionsState;
 use flock_protocols::{AgentFault, DynProtocol, Observation, ParamError, Simulation, Swarm};
 use glam::{DVec2, DVec3};
@@ -35,6 +36,82 @@ pub struct Start {
     pub conditions: String,
     /// The vehicles' states ([`State::vehicle`]), empty for point masses.
     pub vehicle: Vec<f64>,
+}
+
+impl Start {
+    /// Checks the state a run continues from as a scenario's start is checked, before anything
+    /// is built from it (issue 49: a checkpoint forged or damaged, its hash made to match, was
+    /// continued from NaN or 10³⁰⁰, or refused only once the run's directory was being
+    /// rewritten): every position finite, inside the periodic box (as the run wraps it) or in
+    /// open space within ±(10⁹ + steps · r), as far as a start within ±10⁹ can get when no agent
+    /// moves more than the interaction range r in one step; every velocity finite, no speed above
+    /// r/h (what the run's health check lets through); every vehicle state finite within ±10⁹.
+    /// The lengths of the rows are checked by [`DynSimulation::resume`], the state of the
+    /// conditions by [`ConditionsState`]'s restore.
+    ///
+    /// # Errors
+    /// The first value refused: `positions[i]`, `velocities[i]` or `vehicle[k]` of the checkpoint.
+    pub fn check(&self, scenario: &Scenario) -> Result<(), ScenarioError> {
+        let dim = scenario.dim.max(1);
+        let (r, h) = (scenario.range(), scenario.step);
+        let refused = |field: String, value: &[f64], why: String| {
+            Err(ScenarioError::invalid(
+                field,
+                value,
+                why,
+                "the checkpoint is damaged: start the run again (flocking run SCENARIO --out DIR --force)",
+            ))
+        };
+        let reach = MAX_VALUE + self.steps as f64 * r;
+        let size = scenario.box_size();
+        for (i, q) in self.positions.chunks_exact(dim).enumerate() {
+            let outside = match &size {
+                Some(size) => q.iter().zip(size).any(|(&x, &l)| !(0.0..l).contains(&x)),
+                None => q.iter().any(|x| !(x.is_finite() && x.abs() <= reach)),
+            };
+            if outside {
+                let domain = match &size {
+                    Some(size) => {
+                        format!("the periodic box {size:?}, where the run keeps every agent")
+                    }
+                    None => format!(
+                        "±{reach:e}, the farthest a run from a start within ±{MAX_VALUE:e} gets in {} steps of at most r = {r}",
+                        self.steps
+                    ),
+                };
+                return refused(
+                    format!("positions[{i}]"),
+                    q,
+                    format!("is not within {domain}"),
+                );
+            }
+        }
+        let fastest = r / h;
+        for (i, p) in self.velocities.chunks_exact(dim).enumerate() {
+            let speed = p.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if speed.is_nan() || speed > fastest {
+                return refused(
+                    format!("velocities[{i}]"),
+                    p,
+                    format!(
+                        "is not a speed of at most r/h = {fastest:e}, which every step of a run keeps"
+                    ),
+                );
+            }
+        }
+        if let Some(k) = self
+            .vehicle
+            .iter()
+            .position(|x| !(x.is_finite() && x.abs() <= MAX_VALUE))
+        {
+            return refused(
+                format!("vehicle[{k}]"),
+                &self.vehicle[k..=k],
+                format!("is not a vehicle's state value, finite within ±{MAX_VALUE:e}"),
+            );
+        }
+        Ok(())
+    }
 }
 
 /// A state as plain numbers: n rows of `dim` coordinates, agents in original order.
@@ -101,6 +178,7 @@ impl MapProtocol for ScenarioProtocol {
 /// What a [`DynSimulation`] asks of the simulation it holds, in either dimension.
 trait Dynamic: Send {
     fn step(&mut self);
+    fn is_torn(&self) -> bool;
     fn steps(&self) -> u64;
     fn time(&self) -> f64;
     fn state(&self) -> State<'_>;
@@ -127,6 +205,10 @@ fn rows<V: Space + bytemuck::Pod>(vectors: Cow<'_, [V]>) -> Cow<'_, [f64]> {
 impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
     fn step(&mut self) {
         Simulation::step(self);
+    }
+
+    fn is_torn(&self) -> bool {
+        Simulation::is_torn(self)
     }
 
     fn steps(&self) -> u64 {
@@ -337,6 +419,23 @@ impl DynSimulation {
         }
     }
 
+    /// The simulation of `scenario` from its initial condition (`start` `None`), or continued
+    /// from the checkpoint `start` ([`DynSimulation::resume_with`]), simulating the protocol
+    /// `map` makes of the scenario's.
+    ///
+    /// # Errors
+    /// As [`DynSimulation::new`] or [`DynSimulation::resume_with`].
+    pub fn build_with<M: MapProtocol>(
+        scenario: &Scenario,
+        start: Option<&Start>,
+        map: &M,
+    ) -> Result<Self, ScenarioError> {
+        match start {
+            None => Self::new_with(scenario, map),
+            Some(start) => Self::resume_with(scenario, start, map),
+        }
+    }
+
     /// The simulation continued from `start`, a checkpoint of the same scenario: stepping it
     /// gives the bits of the uninterrupted run.
     ///
@@ -352,13 +451,16 @@ impl DynSimulation {
     /// [`DynSimulation::resume`] simulating the protocol `map` makes of the scenario's.
     ///
     /// # Errors
-    /// As [`DynSimulation::from_state`], or a checkpoint without the state of the scenario's
-    /// conditions (field `conditions`).
+    /// As [`DynSimulation::from_state`], a state [`Start::check`] refuses, or a checkpoint
+    /// without a readable state of the scenario's conditions (field `conditions`) or with one of
+    /// another run (`conditions_state.…`).
     pub fn resume_with<M: MapProtocol>(
         scenario: &Scenario,
         start: &Start,
         map: &M,
     ) -> Result<Self, ScenarioError> {
+        scenario.validate()?;
+        start.check(scenario)?;
         let (q, p) = (&start.positions, &start.velocities);
         let vehicle = (!start.vehicle.is_empty()).then(|| start.vehicle.clone());
         let mut sim = Self::from_rows(scenario, q, p, start.steps, vehicle, map)?;
@@ -428,9 +530,19 @@ impl DynSimulation {
         self.agents
     }
 
-    /// Advances the state by one step h.
+    /// Advances the state by one step h. An interrupt ([`crate::interrupt`]) may cut a long step
+    /// short: then the step is not taken (the state and [`DynSimulation::steps`] stay those of
+    /// the steps taken), or, cut inside a vehicle's inner steps or the conditions' stage, the
+    /// simulation is [torn](DynSimulation::is_torn) ([`Simulation::step`]).
     pub fn step(&mut self) {
         self.inner.step();
+    }
+
+    /// Whether an interrupt cut a step short after it had changed the state: the state is then
+    /// between two steps and must not be recorded, and the simulation takes no more steps.
+    #[must_use]
+    pub fn is_torn(&self) -> bool {
+        self.inner.is_torn()
     }
 
     /// The number of steps taken.

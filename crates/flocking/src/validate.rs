@@ -9,12 +9,15 @@
 
 use flock_graph::{Components, Graph};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
-use flock_protocols::check::{self, Check, length, non_negative, positive, require};
+use flock_protocols::check::{
+    self, Check, MAX_VALUE, WHY_BOUNDED, length, non_negative, positive, require,
+};
 use flock_protocols::{GammaAgent, ParamError};
 use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
-use crate::initial::initial_positions;
+use crate::estimate::START_COUNT_BUDGET;
+use crate::initial::{initial_positions, initial_velocities};
 use crate::scenario::{Algorithm, Cloud, DomainSpec, FixedGraph, Point, Scenario};
 use crate::stability::coincident_start;
 
@@ -70,6 +73,7 @@ impl Scenario {
                 problems.check(self.validate_distinct_start());
             }
             problems.check(self.validate_obstacles());
+            problems.check(self.validate_speeds());
         }
         let mut errors = problems.0;
         match errors.len() {
@@ -119,10 +123,14 @@ impl Scenario {
         self.validate_cloud(problems, "initial.velocities", &self.initial.velocities);
         self.validate_conditions(problems);
         if self.validate_time().is_ok() {
-            problems.check(match self.dim {
+            let vehicle = match self.dim {
                 2 => self.validate_vehicle::<glam::DVec2>(),
                 _ => self.validate_vehicle::<glam::DVec3>(),
-            });
+            };
+            if vehicle.is_ok() {
+                problems.check(self.validate_work());
+            }
+            problems.check(vehicle);
         }
         if let Some(times) = &self.snapshots {
             problems.check(self.validate_snapshots(times));
@@ -176,7 +184,18 @@ impl Scenario {
         if let Some(part) = flock_protocols::conditions::stage::perception_field(&self.conditions)
             && !self.algorithm.has_local_form()
         {
-            problems.check(Err::<(), _>(no_local_form(part)));
+            let refusal = no_local_form(part);
+            // issue 49: the cutoff is what gives Cucker–Smale a local form
+            let refusal = if self.algorithm.couples_every_pair() {
+                ParamError {
+                    why: "makes each agent perceive its own world (delayed, lost, noisy or missing neighbours), but Cucker–Smale without a cutoff couples every pair, which no agent perceives".to_owned(),
+                    fix: "set algorithm.cutoff (each agent then sums over the neighbours it perceives within it), or remove this condition".to_owned(),
+                    ..refusal
+                }
+            } else {
+                refusal
+            };
+            problems.check(Err::<(), _>(refusal));
         }
         if self.algorithm.sets_velocity()
             && let Some(part) =
@@ -203,6 +222,103 @@ impl Scenario {
         flock_protocols::vehicle::check_inner_step(&*vehicle, self.step)?;
         flock_protocols::conditions::stage::check_vehicle(&self.conditions, &*vehicle)?;
         Ok(())
+    }
+
+    /// No agent faster than r/h, the speed at which the run's health check stops it (it would
+    /// cross more than the interaction range r in one step): neither a model that sets every
+    /// agent's speed (Vicsek's v₀, Couzin's and the boids' speed) nor any agent of the start
+    /// (issue 49: such runs validated, then failed at their first step as a "numerical blow-up",
+    /// with the wrong fix).
+    fn validate_speeds(&self) -> Result<(), ScenarioError> {
+        let (r, h) = (self.range(), self.step);
+        let fastest = r / h;
+        if let Some((field, speed)) = self.algorithm.set_speed() {
+            require(
+                speed <= fastest,
+                field,
+                speed,
+                &format!(
+                    "moves every agent {speed} × step {h} = {} a step, farther than its interaction range r = {r}: it would pass every neighbour it sees within a step, which the run stops as a blow-up",
+                    speed * h
+                ),
+                &format!(
+                    "use a speed of at most r / step = {fastest}, or a step of at most r / speed = {}",
+                    r / speed
+                ),
+            )?;
+        }
+        let fastest_start = match self.dim {
+            2 => fastest_agent(initial_velocities::<DVec2>(self)),
+            _ => fastest_agent(initial_velocities::<DVec3>(self)),
+        };
+        match fastest_start {
+            Some((i, speed)) if speed.is_nan() || speed > fastest => Err(ScenarioError::invalid(
+                "initial.velocities",
+                format!("agent {i} at speed {speed}"),
+                format!(
+                    "is faster than r/h = {fastest}: it would cross more than the interaction range r = {r} ({}) in its first step, which the run stops as a blow-up",
+                    self.range_field()
+                ),
+                format!(
+                    "start slower (at most {fastest}), or take a shorter step or a longer {}",
+                    self.range_field()
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The field that sets the interaction range r of [`Scenario::range`].
+    fn range_field(&self) -> &'static str {
+        match self.algorithm {
+            Algorithm::CuckerSmale {
+                cutoff: Some(_), ..
+            } => "algorithm.cutoff",
+            Algorithm::Vicsek { .. } => "algorithm.r",
+            Algorithm::Boids { .. } => "algorithm.visual_distance",
+            Algorithm::Couzin { .. } => "algorithm.delta_r_a",
+            Algorithm::Vasarhelyi { .. } => "algorithm.r_c",
+            _ => "alpha.r",
+        }
+    }
+
+    /// The work of one step at most what the estimate counts ([`START_COUNT_BUDGET`], 2³²): the
+    /// pairs of a model that couples every pair, the inner steps of every agent's vehicle (issue
+    /// 49: Cucker–Smale without a cutoff at 30,000 agents took 13 s a step, an inner step of
+    /// 10⁻³⁰⁰ s never ended, both estimated at seconds).
+    fn validate_work(&self) -> Check {
+        let budget = START_COUNT_BUDGET as f64;
+        let n = self.agents as f64;
+        if self.algorithm.couples_every_pair() {
+            let pairs = n * (n - 1.0) / 2.0;
+            // n(n − 1)/2 ≤ budget
+            let most = ((1.0 + (1.0 + 8.0 * budget).sqrt()) / 2.0).floor();
+            require(
+                pairs <= budget,
+                "agents",
+                self.agents,
+                &format!(
+                    "couple every pair under Cucker–Smale without a cutoff: {pairs:.3e} pairs a step, more than the 2^32 ({budget:.3e}) one step may take"
+                ),
+                &format!(
+                    "give algorithm.cutoff (each agent then sums over its neighbours within it), or at most {most} agents"
+                ),
+            )?;
+        }
+        let inner = self.vehicle.inner_steps(self.step);
+        require(
+            n * inner <= budget,
+            "vehicle.inner_step",
+            self.vehicle.inner_step().unwrap_or_default(),
+            &format!(
+                "makes {n} agents × {inner:e} inner steps = {:.3e} vehicle steps in each step, more than the 2^32 ({budget:.3e}) one step may take",
+                n * inner
+            ),
+            &format!(
+                "choose an inner step of at least {:e} s, or fewer agents",
+                self.step * n / budget
+            ),
+        )
     }
 
     fn validate_agents(&self) -> Check {
@@ -348,11 +464,12 @@ impl Scenario {
                         "use domain: Open (the default) and set the arena with arena_side",
                     ));
                 }
-                // the model's constructor checks its parameters, each named
+                // the model's constructor checks its parameters, each named (the conditions it
+                // cannot take are refused above, once)
                 if buildable {
                     let built = match self.dim {
-                        2 => self.protocol::<DVec2>().map(|_| ()),
-                        _ => self.protocol::<DVec3>().map(|_| ()),
+                        2 => self.ideal_protocol::<DVec2>().map(|_| ()),
+                        _ => self.ideal_protocol::<DVec3>().map(|_| ()),
                     };
                     problems.check(built);
                 }
@@ -393,17 +510,37 @@ impl Scenario {
         };
         match &self.domain {
             DomainSpec::PeriodicAtDensity { density } => {
-                let most = self.agents as f64 / (2.0 * r).powi(self.dim as i32);
-                problems.check(require(
-                    size.iter().all(|&side| side >= 2.0 * r),
-                    "domain.density",
-                    density,
-                    &short(size[0]),
-                    &format!(
-                        "use a density of at most {most} for {} agents, or more agents",
-                        self.agents
-                    ),
-                ));
+                let agents = self.agents as f64;
+                let most = agents / (2.0 * r).powi(self.dim as i32);
+                let least = agents / MAX_VALUE.powi(self.dim as i32);
+                problems.check(
+                    require(
+                        size.iter().all(|&side| side >= 2.0 * r),
+                        "domain.density",
+                        density,
+                        &short(size[0]),
+                        &format!(
+                            "use a density of at most {most} for {} agents, or more agents",
+                            self.agents
+                        ),
+                    )
+                    .and_then(|()| {
+                        // issue 49: validated, then refused by the run as `domain.size[0]`
+                        require(
+                            size.iter().all(|&side| side <= MAX_VALUE),
+                            "domain.density",
+                            density,
+                            &format!(
+                                "gives a box side {:e}, beyond the {MAX_VALUE:e} any length may have, {WHY_BOUNDED}",
+                                size[0]
+                            ),
+                            &format!(
+                                "use a density of at least {least:e} for {} agents",
+                                self.agents
+                            ),
+                        )
+                    }),
+                );
             }
             _ => {
                 for (k, &side) in size.iter().enumerate() {
@@ -593,6 +730,15 @@ impl Scenario {
             }
         }
     }
+}
+
+/// The fastest of `velocities` (its index and speed), `None` for none; a speed that is not a
+/// number counts as the fastest.
+fn fastest_agent<V: Space>(velocities: impl Iterator<Item = V>) -> Option<(usize, f64)> {
+    velocities
+        .map(|p| p.length())
+        .enumerate()
+        .reduce(|a, b| if b.1 > a.1 || b.1.is_nan() { b } else { a })
 }
 
 /// The refusal of a perception condition (`part`) for a protocol with no local form.

@@ -49,6 +49,25 @@ impl VehicleSpec {
         }
     }
 
+    /// The vehicle's inner step δ (s), `None` for point masses.
+    #[must_use]
+    pub const fn inner_step(&self) -> Option<f64> {
+        match self {
+            Self::PointMass => None,
+            Self::Unicycle(params) => Some(params.inner_step),
+            Self::FixedWing(params) => Some(params.inner_step),
+            Self::Quadrotor(params) => Some(params.inner_step),
+        }
+    }
+
+    /// The inner steps δ of the vehicle in a step `h` (each agent integrates every one: the work
+    /// of one step is agents × inner steps); 0 for point masses.
+    #[must_use]
+    pub fn inner_steps(&self, h: f64) -> f64 {
+        self.inner_step()
+            .map_or(0.0, |delta| (h / delta).round().max(1.0))
+    }
+
     /// The names of each agent's vehicle state in `dim` dimensions (columns of `final.csv`, the
     /// trajectory and the checkpoint after the reference point's), empty for point masses or a
     /// vehicle that does not exist in `dim` dimensions.

@@ -10,7 +10,9 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
+use crate::bench::BenchError;
 use crate::error::ScenarioError;
+use crate::estimate::{Estimate, Outputs};
 use crate::scenario::{Algorithm, DomainSpec};
 use crate::{DynSimulation, Scenario};
 
@@ -153,19 +155,91 @@ impl fmt::Display for WorkloadReport {
     }
 }
 
+/// What `flocking bench --workload` times: a workload, the seeds it is timed on and the number of
+/// agents it is scaled to (its own when `None`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WorkloadConfig {
+    /// The workload.
+    pub workload: Workload,
+    /// The number of seeds timed, 1 to [`MAX_RUNS`](crate::sweep::MAX_RUNS).
+    pub seeds: u64,
+    /// This many agents at the workload's density, or its own number.
+    pub scale_to: Option<usize>,
+}
+
+impl WorkloadConfig {
+    /// The workload's scenario, its seeds and size checked as `flocking run` and `flocking sweep`
+    /// check theirs.
+    ///
+    /// # Errors
+    /// No seed or more than a sweep's runs (`seeds`), or a size the scenario refuses (`scale_to`:
+    /// none, or more than [`crate::MAX_AGENTS`]).
+    pub fn scenario(&self) -> Result<Scenario, BenchError> {
+        let most = crate::sweep::MAX_RUNS as u64;
+        if !(1..=most).contains(&self.seeds) {
+            return Err(BenchError::Invalid {
+                flag: "seeds".to_owned(),
+                value: self.seeds.to_string(),
+                why: format!("is the number of seeds timed; it must be 1 to {most}"),
+                fix: "give a whole number of seeds from 1 (the frameworks time 10)".to_owned(),
+            });
+        }
+        match self.scale_to {
+            None => Ok(self.workload.scenario()),
+            Some(agents) if !(1..=crate::MAX_AGENTS).contains(&agents) => {
+                Err(BenchError::Invalid {
+                    flag: "scale_to".to_owned(),
+                    value: agents.to_string(),
+                    why: format!(
+                        "is the number of agents the workload is scaled to; it must be 1 to {}",
+                        crate::MAX_AGENTS
+                    ),
+                    fix: format!(
+                        "give a whole number of agents (the workload's own is {})",
+                        self.workload.scenario().agents
+                    ),
+                })
+            }
+            Some(agents) => self
+                .workload
+                .scaled(agents)
+                .map_err(|e| BenchError::of_scenario(&e, &[("agents", "scale_to")])),
+        }
+    }
+
+    /// What timing every seed will cost, as `flocking run` estimates a run, the start's net counted.
+    ///
+    /// # Errors
+    /// As [`WorkloadConfig::scenario`].
+    pub fn estimate(&self) -> Result<Estimate, BenchError> {
+        Ok(self
+            .scenario()?
+            .estimate_at_start(&Outputs::NONE)
+            .times(self.seeds))
+    }
+}
+
 /// Times `scenario`'s steps (no metrics, no output: the model alone, as the frameworks time it)
 /// from seeds 0 to `seeds` − 1; building the start is not timed.
 ///
 /// # Errors
-/// A scenario refused with a seed.
-pub fn time_seeds(scenario: &Scenario, seeds: u64) -> Result<WorkloadReport, ScenarioError> {
+/// A scenario refused with a seed (or memory it cannot have), or the process's interrupt
+/// ([`crate::interrupt`]) between two steps.
+pub fn time_seeds(scenario: &Scenario, seeds: u64) -> Result<WorkloadReport, BenchError> {
     let mut times = Vec::new();
     for seed in 0..seeds {
-        let seeded = scenario.with_values([("seed", json!(seed))])?;
-        let mut sim = DynSimulation::new(&seeded)?;
+        let refused = |e: ScenarioError| BenchError::of_scenario(&e, &[]);
+        let seeded = scenario
+            .with_values([("seed", json!(seed))])
+            .map_err(refused)?;
+        let mut sim = DynSimulation::new(&seeded).map_err(refused)?;
         let start = Instant::now();
         for _ in 0..seeded.steps() {
+            let before = sim.steps();
             sim.step();
+            if sim.steps() == before || crate::interrupt::requested() {
+                return Err(BenchError::Interrupted);
+            }
         }
         times.push(start.elapsed());
     }

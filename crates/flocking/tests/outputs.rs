@@ -7,7 +7,6 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 
 use flocking::sweep::store::{RUNS_FILE, TIMES_FILE};
 use flocking::sweep::{ExecuteOptions, Sweep, execute};
@@ -163,8 +162,7 @@ fn the_outputs_page_lists_exactly_the_columns_the_writers_write() {
         shard: None,
         keep_runs: false,
     };
-    execute(&sweep, &dir, &options, &AtomicBool::new(false), &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    execute(&sweep, &dir, &options, &|| false, &|_| {}).unwrap_or_else(|e| panic!("{e}"));
     // an axis column is named by its path: the page's `<axis path>`
     let axes: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
     let runs = header(&dir.join(RUNS_FILE))

@@ -205,8 +205,7 @@ fn sweep_into(sweep: &Sweep, dir: &std::path::Path, jobs: usize, shard: Option<S
         shard,
         keep_runs: false,
     };
-    execute(sweep, dir, &options, &AtomicBool::new(false), &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    execute(sweep, dir, &options, &|| false, &|_| {}).unwrap_or_else(|e| panic!("{e}"));
     fs::read_to_string(dir.join(RUNS_FILE)).expect("runs.csv")
 }
 
@@ -301,15 +300,20 @@ fn runs_csv_is_the_same_bytes_for_any_workers_shards_and_interruptions() {
     let stop = AtomicBool::new(false);
     let options = ExecuteOptions::default();
     let count = std::sync::atomic::AtomicUsize::new(0);
-    let stopped = execute(&sweep, &resumed, &options, &stop, &|_| {
-        if count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) == 4 {
-            stop.store(true, std::sync::atomic::Ordering::SeqCst);
-        }
-    })
+    let stopped = execute(
+        &sweep,
+        &resumed,
+        &options,
+        &|| stop.load(std::sync::atomic::Ordering::SeqCst),
+        &|_| {
+            if count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) == 4 {
+                stop.store(true, std::sync::atomic::Ordering::SeqCst);
+            }
+        },
+    )
     .expect("stopped cleanly");
     assert!(stopped.stopped && stopped.ran == 5, "{stopped:?}");
-    let again =
-        execute(&sweep, &resumed, &options, &AtomicBool::new(false), &|_| {}).expect("resumed");
+    let again = execute(&sweep, &resumed, &options, &|| false, &|_| {}).expect("resumed");
     assert_eq!((again.skipped, again.ran, again.stopped), (5, 7, false));
     assert_eq!(
         fs::read_to_string(resumed.join(RUNS_FILE)).expect("runs.csv"),
@@ -320,7 +324,7 @@ fn runs_csv_is_the_same_bytes_for_any_workers_shards_and_interruptions() {
         seeds: 3,
         ..sweep.clone()
     };
-    let refused = execute(&other, &resumed, &options, &AtomicBool::new(false), &|_| {});
+    let refused = execute(&other, &resumed, &options, &|| false, &|_| {});
     assert!(refused.is_err_and(|e| e.to_string().contains("another sweep")));
 }
 
@@ -337,14 +341,7 @@ fn keep_runs_writes_each_run_directory() {
         shard: None,
         keep_runs: true,
     };
-    execute(
-        &sweep,
-        tmp.path(),
-        &options,
-        &AtomicBool::new(false),
-        &|_| {},
-    )
-    .expect("runs");
+    execute(&sweep, tmp.path(), &options, &|| false, &|_| {}).expect("runs");
     for run in sweep.runs() {
         let dir = tmp.path().join(store::RUNS_DIR).join(run.id(&sweep.axes));
         assert!(dir.join("metrics.csv").is_file(), "{}", dir.display());
@@ -486,8 +483,7 @@ fn settled_columns_are_the_closest_approach_after_the_settle_fraction() {
             shard: None,
             keep_runs: true,
         };
-        execute(&sweep, &out, &options, &AtomicBool::new(false), &|_| {})
-            .unwrap_or_else(|e| panic!("{e}"));
+        execute(&sweep, &out, &options, &|| false, &|_| {}).unwrap_or_else(|e| panic!("{e}"));
         let runs = fs::read_to_string(out.join(RUNS_FILE)).expect("runs.csv");
         let ids: Vec<String> = csv::Reader::from_reader(runs.as_bytes())
             .records()

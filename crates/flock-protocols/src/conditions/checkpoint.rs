@@ -58,6 +58,14 @@ fn flat<V: Vector>(v: &[V]) -> Vec<f64> {
 }
 
 fn vectors<V: Vector>(field: &str, x: &[f64], len: usize) -> Result<Vec<V>, ParamError> {
+    if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
+        return Err(ParamError::new(
+            field,
+            bad,
+            "is not finite: no run keeps such a state",
+            "restore the state of a run of the same agents, dimension and conditions",
+        ));
+    }
     if x.len() != len * V::DIM {
         return Err(ParamError::new(
             field,
@@ -180,6 +188,15 @@ impl<V: Vector> Stage<V> {
         for ls in &s.links {
             let mut kept = Vec::with_capacity(ls.len());
             for l in ls {
+                if l.sender as usize >= n {
+                    return Err(ParamError::new(
+                        "links",
+                        l.sender,
+                        format!("names a sender of {n} agents"),
+                        "restore the state of a run of the same agents and conditions",
+                    )
+                    .within("conditions_state"));
+                }
                 let held = match &l.held {
                     Some((q, p, stamp)) => Some(Held {
                         position: vectors::<V>("links", q, 1).map_err(within)?[0],

@@ -1,5 +1,7 @@
 //! The delay line: the last D + 1 measured states, D the longest delay (delay + jitter) in steps.
 
+use std::collections::TryReserveError;
+
 use flock_math::Vector;
 
 /// One slot of the ring: every agent's positions, then their velocities.
@@ -16,12 +18,24 @@ pub struct History<V> {
 
 impl<V: Vector> History<V> {
     /// A history holding `depth` + 1 steps of `n` agents, every slot zero until filled.
-    #[must_use]
-    pub fn new(depth: u64, n: usize) -> Self {
+    ///
+    /// # Errors
+    /// When the memory cannot be had (a delay of 10⁶ s at a step of 0.01 s keeps 10⁸ slots):
+    /// the error of the allocation that failed, not an abort.
+    pub fn new(depth: u64, n: usize) -> Result<Self, TryReserveError> {
         let len = usize::try_from(depth + 1).unwrap_or(usize::MAX);
-        Self {
-            slots: vec![(vec![V::ZERO; n], vec![V::ZERO; n]); len],
+        let zeros = || -> Result<Vec<V>, TryReserveError> {
+            let mut slot = Vec::new();
+            slot.try_reserve_exact(n)?;
+            slot.resize(n, V::ZERO);
+            Ok(slot)
+        };
+        let mut slots = Vec::new();
+        slots.try_reserve_exact(len)?;
+        for _ in 0..len {
+            slots.push((zeros()?, zeros()?));
         }
+        Ok(Self { slots })
     }
 
     /// The number of agents whose states it holds.

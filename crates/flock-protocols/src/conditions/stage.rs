@@ -3,6 +3,7 @@
 //! to compute u_i from what agent i perceives ([`LocalForm`]), or, when no condition changes
 //! what agents perceive, from the true state ([`Protocol::controls`]).
 
+use flock_graph::interrupt::cuts_short;
 use flock_graph::{NeighbourSearch, Numbering, ProximityNet};
 use flock_math::{Domain, Vector};
 
@@ -255,6 +256,24 @@ impl<V: Vector> Stage<V> {
             .map(|s| SensorNoise::new(&s.noise, sensor_period as f64 * h));
         // receivers keep a state per link for Gilbert–Elliott loss or `Hold`: none otherwise
         let keeps_links = keeps_links(c);
+        let (depth, agents) = if perceives {
+            (delay + jitter, n)
+        } else {
+            (0, 0)
+        };
+        // an error, not an abort, when the delay line cannot be had (issue 49)
+        let history = History::new(depth, agents).map_err(|_| {
+            let bytes = n as u64 * delay_line_bytes_per_agent(c, V::DIM, h) as u64;
+            ParamError::out_of_memory(
+                "conditions.communication.delay",
+                c.communication.map_or(0.0, |m| m.delay),
+                (
+                    "the delay line (every agent's states over the delay and jitter)",
+                    bytes,
+                ),
+                "a shorter delay (or jitter), or fewer agents",
+            )
+        })?;
         Ok(Self {
             conditions: c.clone(),
             streams: Streams::new(seed),
@@ -278,11 +297,7 @@ impl<V: Vector> Stage<V> {
                     0
                 }
             ],
-            history: if perceives {
-                History::new(delay + jitter, n)
-            } else {
-                History::new(0, 0)
-            },
+            history,
             links: vec![Vec::new(); if keeps_links { n } else { 0 }],
             inputs: vec![V::ZERO; n],
             delivered: vec![V::ZERO; if holds_delivered(c) { n } else { 0 }],
@@ -1058,6 +1073,14 @@ fn control_blocks<V: Vector>(
     links: &mut [Vec<Link<V>>],
     f: impl Fn(usize, &mut [V], Option<&mut [Vec<Link<V>>]>, &mut Scratch<V>) -> Counts + Sync + Send,
 ) -> Counts {
+    // an interrupt that cuts the step short leaves the blocks not yet begun (the step is torn)
+    let f = |start, u: &mut [V], l, w: &mut Scratch<V>| {
+        if cuts_short() {
+            Counts::default()
+        } else {
+            f(start, u, l, w)
+        }
+    };
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;

@@ -28,7 +28,7 @@ use glam::{DVec2, DVec3};
 
 use super::GRAVITY;
 use super::unicycle::wrap_angle;
-use super::{Vehicle, VehicleKind, inner_steps};
+use super::{Vehicle, VehicleKind, inner_loop, inner_steps};
 use crate::error::{ParamError, check};
 
 /// The fixed wing's parameters (SI units, angles in radians). Defaults: Beard & McLain's
@@ -261,7 +261,7 @@ impl FixedWing {
         limits: &mut [bool],
     ) {
         let delta = self.params.inner_step;
-        for _ in 0..inner_steps(h, delta) {
+        for _ in inner_loop(inner_steps(h, delta)) {
             let (commands, hit) = self.commands(a, f, planar);
             self.rk4(delta, &commands, q, f);
             for (flag, hit) in limits.iter_mut().zip(hit) {

@@ -31,14 +31,33 @@ type Outcome = ([bool; MAX_LIMITS], Option<f64>);
 /// One agent's place in [`Fleet::advance`]: position, velocity, state and outcome.
 type Slot<'a, V> = (((&'a mut V, &'a mut V), &'a mut [f64]), &'a mut Outcome);
 
-/// Checks that the flock's step `h` is a whole number of `vehicle`'s inner steps.
+/// The most inner steps in one step h (2³²): each agent integrates every one of them, so that more
+/// would make a single step of one agent last minutes (issue 49: an inner step of 10⁻³⁰⁰ s never
+/// ended).
+pub const MAX_INNER_STEPS: f64 = 4_294_967_296.0;
+
+/// Checks that the flock's step `h` is a whole number of `vehicle`'s inner steps, and at most
+/// [`MAX_INNER_STEPS`] of them.
 ///
 /// # Errors
-/// An inner step that is not positive, or that does not divide h (`vehicle.inner_step`).
+/// An inner step that is not positive, that does not divide h, or that divides it into more than
+/// [`MAX_INNER_STEPS`] (`vehicle.inner_step`).
 pub fn check_inner_step(vehicle: &dyn VehicleKind, h: f64) -> Result<(), ParamError> {
     let inner = vehicle.inner_step();
     check::positive("vehicle.inner_step", inner)?;
     let ratio = h / inner;
+    check::require(
+        ratio <= MAX_INNER_STEPS,
+        "vehicle.inner_step",
+        inner,
+        &format!(
+            "divides the step h = {h} into {ratio:.3e} inner steps, more than the {MAX_INNER_STEPS:.3e} one step may take"
+        ),
+        &format!(
+            "choose an inner step of at least h / {MAX_INNER_STEPS:.0} = {:e} s (the defaults take 1 to 10 per step)",
+            h / MAX_INNER_STEPS
+        ),
+    )?;
     check::require(
         ratio >= 1.0 - WHOLE && (ratio - ratio.round()).abs() <= WHOLE * ratio,
         "vehicle.inner_step",

@@ -12,6 +12,7 @@
 //! Without a vehicle an agent is today's point mass, the double integrator q̇ = p, ṗ = u
 //! (TAC 2006 eq. 1).
 
+use flock_graph::interrupt::{BLOCK, cuts_short};
 use flock_math::Vector;
 
 use crate::ParamError;
@@ -107,6 +108,13 @@ pub(crate) fn inner_steps(h: f64, delta: f64) -> usize {
     } else {
         0
     }
+}
+
+/// The inner steps 0, 1, …, `n` − 1 of one step, ending early once an interrupt cuts the step
+/// short ([`flock_graph::interrupt`], checked every [`BLOCK`] inner steps): the one loop of every
+/// vehicle's inner steps.
+pub(crate) fn inner_loop(n: usize) -> impl Iterator<Item = usize> {
+    (0..n).take_while(|k| k % BLOCK != 0 || !cuts_short())
 }
 
 /// A vehicle chosen at run time.

@@ -73,7 +73,7 @@ use core::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use glam::{DMat3, DQuat, DVec3};
 
 use super::GRAVITY;
-use super::{Vehicle, VehicleKind, inner_steps};
+use super::{Vehicle, VehicleKind, inner_loop, inner_steps};
 use crate::error::{ParamError, check};
 
 /// Revolutions per minute in one radian per second, 30/π: a coefficient per rpm² times its square
@@ -381,7 +381,8 @@ impl QuadrotorParams {
         )
     }
 
-    /// The attitude loop: stable with the motor lag, resolved by the inner step.
+    /// The attitude loop: stable with the motor lag, resolved by the inner step; then the
+    /// position loop, resolved by the inner step.
     fn validate_loop(&self) -> Result<(), ParamError> {
         check::require(
             self.k_omega > self.motor_time_constant * self.k_r,
@@ -404,6 +405,22 @@ impl QuadrotorParams {
                 "the attitude loop's fastest rate max(k_Ω/J, √(k_R/J)) = {rate:.4} s⁻¹ is not resolved: δ times it exceeds 0.5"
             ),
             &format!("lower inner_step to at most {:e} s", 0.5 / rate),
+        )?;
+        // issue 49: a mass of 1e-300 kg validated and blew up at the first step
+        let rate = (self.k_v / self.mass).max((self.k_x / self.mass).sqrt());
+        let least =
+            (2.0 * self.inner_step * self.k_v).max(4.0 * self.inner_step.powi(2) * self.k_x);
+        check::require(
+            self.inner_step * rate <= 0.5,
+            "mass",
+            self.mass,
+            &format!(
+                "under the gains k_x = {}, k_v = {} the position loop's fastest rate max(k_v/m, √(k_x/m)) = {rate:.4e} s⁻¹ is not resolved: the inner step δ = {} s times it exceeds 0.5",
+                self.k_x, self.k_v, self.inner_step
+            ),
+            &format!(
+                "give a mass of at least {least:e} kg, or gains in proportion to the mass (the presets take k_x = 16 m, k_v = 5.6 m), or a shorter inner_step"
+            ),
         )
     }
 }
@@ -641,7 +658,7 @@ impl Quadrotor {
         }
         let dt = h / n as f64;
         let (x0, v0) = (body.x, body.v);
-        for k in 0..n {
+        for k in inner_loop(n) {
             let t = k as f64 * dt;
             let reference = Reference {
                 x: x0 + v0 * t + command * (0.5 * t * t),
@@ -1314,6 +1331,8 @@ mod tests {
                 },
                 "k_omega",
             ),
+            // issue 49: its position loop unresolved by the inner step
+            (QuadrotorParams { mass: 1e-300, ..cf }, "mass"),
         ];
         for (params, field) in cases {
             let error = params.validate().expect_err(field);

@@ -17,7 +17,7 @@
 
 use glam::DVec2;
 
-use super::{Vehicle, VehicleKind, inner_steps};
+use super::{Vehicle, VehicleKind, inner_loop, inner_steps};
 use crate::error::{ParamError, check};
 
 /// The unicycle's parameters. Defaults are ROBOTIS's TurtleBot3 Burger: maximum translational
@@ -289,7 +289,7 @@ impl Vehicle<DVec2> for Unicycle {
     ) {
         let delta = self.params.inner_step;
         let mut theta = state[0];
-        for _ in 0..inner_steps(h, delta) {
+        for _ in inner_loop(inner_steps(h, delta)) {
             let (v, omega, hit) = self.step_once(delta, command, q, p, &mut theta);
             state[1] = v;
             state[2] = omega;

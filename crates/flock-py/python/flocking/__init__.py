@@ -19,7 +19,8 @@ and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python
   (:class:`BenchReport`, :class:`WorkloadReport`).
 - :func:`bump`: the built-in bump ρ_h, for ``controls`` functions written in numpy.
 - Errors: :class:`FlockError`, :class:`ScenarioError` (a ``ValueError``, with ``field``),
-  :class:`NumericalError`, :class:`RunDirectoryError` (an ``OSError``), :class:`ControlsError`.
+  :class:`NumericalError`, :class:`RunDirectoryError` (an ``OSError``), :class:`ControlsError`,
+  :class:`SimulationError`.
 
 Example::
 
@@ -31,7 +32,14 @@ Example::
 """
 
 from ._bench import BenchReport, WorkloadReport, bench
-from ._errors import ControlsError, FlockError, NumericalError, RunDirectoryError, ScenarioError
+from ._errors import (
+    ControlsError,
+    FlockError,
+    NumericalError,
+    RunDirectoryError,
+    ScenarioError,
+    SimulationError,
+)
 from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__, bump
 from ._run import Run, State, Trajectory, read_run, resume, run
 from ._sweep import SweepResult, sweep
@@ -48,6 +56,7 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "Simulation",
+    "SimulationError",
     "State",
     "SweepResult",
     "Trajectory",

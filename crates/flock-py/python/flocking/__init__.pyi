@@ -51,6 +51,9 @@ class ControlsError(FlockError, ValueError):
         self, message: str, expected: Tuple[int, int], given: Optional[Tuple[int, ...]] = ...
     ) -> None: ...
 
+class SimulationError(FlockError, RuntimeError):
+    """A :class:`Simulation` whose step Ctrl-C cut short after it had changed the state."""
+
 class Neighbours:
     """The proximity net handed to a ``controls`` function, as CSR arrays: agent i's neighbours
     are ``indices[indptr[i]:indptr[i + 1]]`` (ascending) at ``distances[indptr[i]:indptr[i + 1]]``."""
@@ -139,8 +142,10 @@ class Simulation:
         controls: Optional[_Controls] = None,
     ) -> None: ...
     def step(self, k: int = 1) -> None:
-        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps; an
-        exception of ``controls`` stops before the step it was called for)."""
+        """Advances the state by ``k`` steps of h (GIL released; Ctrl-C stops between steps, or
+        within a second inside a long one, which is then not taken or, cut inside a vehicle's inner
+        steps or the conditions' stage, leaves the simulation torn: :class:`SimulationError`
+        afterwards; an exception of ``controls`` stops before the step it was called for)."""
     def set_state(
         self, positions: Optional[_Rows] = None, velocities: Optional[_Rows] = None
     ) -> None:
@@ -319,14 +324,14 @@ class WorkloadReport:
     threads: int
 
 def bench(
-    n: int = 100_000,
-    dim: int = 2,
-    steps: int = 20,
+    n: Optional[int] = None,
+    dim: Optional[int] = None,
+    steps: Optional[int] = None,
     *,
-    algorithm: Union[int, str] = 2,
+    algorithm: Union[None, int, str] = None,
     threads: Optional[int] = None,
-    warmup: int = 3,
-    shuffled: bool = False,
+    warmup: Optional[int] = None,
+    shuffled: Optional[bool] = None,
     delay: Optional[float] = None,
     delayed: Optional[str] = None,
     loss: Optional[float] = None,
@@ -335,7 +340,7 @@ def bench(
     max_acceleration: Optional[float] = None,
     vehicle: Optional[str] = None,
     workload: Optional[str] = None,
-    seeds: int = 10,
+    seeds: Optional[int] = None,
     scale_to: Optional[int] = None,
 ) -> Union[BenchReport, WorkloadReport]:
     """Times the simulation loop as ``flocking bench`` does, its flags as keywords."""

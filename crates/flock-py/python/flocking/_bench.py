@@ -7,14 +7,14 @@ from ._flocking import BenchReport, WorkloadReport
 
 
 def bench(
-    n: int = 100_000,
-    dim: int = 2,
-    steps: int = 20,
+    n: Optional[int] = None,
+    dim: Optional[int] = None,
+    steps: Optional[int] = None,
     *,
-    algorithm: Union[int, str] = 2,
+    algorithm: Union[None, int, str] = None,
     threads: Optional[int] = None,
-    warmup: int = 3,
-    shuffled: bool = False,
+    warmup: Optional[int] = None,
+    shuffled: Optional[bool] = None,
     delay: Optional[float] = None,
     delayed: Optional[str] = None,
     loss: Optional[float] = None,
@@ -23,7 +23,7 @@ def bench(
     max_acceleration: Optional[float] = None,
     vehicle: Optional[str] = None,
     workload: Optional[str] = None,
-    seeds: int = 10,
+    seeds: Optional[int] = None,
     scale_to: Optional[int] = None,
 ) -> Union[BenchReport, WorkloadReport]:
     """Times the simulation loop exactly as ``flocking bench`` does, its flags as keywords
@@ -33,9 +33,13 @@ def bench(
 
     ``workload="boids-small"`` or ``"boids-large"`` times the ABM frameworks' boids benchmark
     instead, and ``"vicsek"`` the Vicsek model at its paper's density (``seeds``, ``scale_to``);
-    either returns a :class:`WorkloadReport`. ``threads`` runs on a
-    pool of that many workers (default: all cores). ``peak_memory`` is the interpreter's whole
-    process. Invalid values raise ``ValueError`` naming the keyword.
+    either returns a :class:`WorkloadReport` (the keywords of the α-lattice do not apply to it and
+    are refused). ``threads`` runs on a pool of that many workers (default: all cores).
+    ``peak_memory`` is the interpreter's whole process. The defaults are the command's (n =
+    100,000 in 2D, 20 steps after 3 of warm-up, Algorithm 2; 10 seeds of a workload). Invalid
+    values raise ``ValueError`` naming the keyword; a benchmark whose estimate does not fit in
+    this machine's memory raises ``MemoryError`` before it starts; Ctrl-C raises
+    ``KeyboardInterrupt`` within a second.
     """
     if sensing_noise is not None and not isinstance(sensing_noise, (tuple, list)):
         sensing_noise = (sensing_noise, sensing_noise)
@@ -47,7 +51,7 @@ def bench(
         n,
         dim,
         steps,
-        algorithm=str(algorithm),
+        algorithm=None if algorithm is None else str(algorithm),
         threads=threads,
         warmup=warmup,
         shuffled=shuffled,

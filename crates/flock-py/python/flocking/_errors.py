@@ -48,5 +48,18 @@ class ControlsError(FlockError, ValueError):
         self.given = None if given is None else tuple(given)
 
 
-for _error in (FlockError, ScenarioError, NumericalError, RunDirectoryError, ControlsError):
+class SimulationError(FlockError, RuntimeError):
+    """A :class:`Simulation` that cannot go on: Ctrl-C cut one of its steps short after the step
+    had changed the state (inside a vehicle's inner steps or the conditions' stage), which is
+    therefore between two steps."""
+
+
+for _error in (
+    FlockError,
+    ScenarioError,
+    NumericalError,
+    RunDirectoryError,
+    ControlsError,
+    SimulationError,
+):
     _error.__module__ = "flocking"

@@ -448,8 +448,9 @@ def run(
     ``resume(out, controls=f)``, as after Ctrl-C) and is raised again.
 
     The GIL is released while Rust runs (and taken for each call of ``controls``). Ctrl-C raises
-    ``KeyboardInterrupt`` after the current step; ``out`` is then left resumable with
-    :func:`resume` (or ``flocking run --resume``).
+    ``KeyboardInterrupt`` after the current step, or within a second when that step is long (it is
+    then cut short and not kept); ``out`` is then left resumable with :func:`resume` (or
+    ``flocking run --resume``).
 
     Raises :class:`ScenarioError`, :class:`NumericalError` (the records up to the last good step
     stay in ``out.partial``) or :class:`RunDirectoryError`; the scenario's warnings are issued as

@@ -21,7 +21,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{self, Read as _};
 use std::path::Path;
 
-use super::at;
+use super::{DirError, at};
 
 /// The manifest file of a directory flocking wrote.
 pub const MANIFEST_FILE: &str = ".flocking.manifest";
@@ -106,17 +106,27 @@ impl Manifest {
     /// run not finished yet).
     ///
     /// # Errors
-    /// A manifest that is not one (naming it and what to do), or any I/O error, naming the path.
-    pub fn read(dir: &Path) -> io::Result<Option<Self>> {
+    /// A manifest that is not one ([`DirError::Damaged`], a refusal: issue 49, a FIFO or a file of
+    /// 100 MB was an I/O error), or any I/O error, naming the path.
+    pub fn read(dir: &Path) -> Result<Option<Self>, DirError> {
         let path = dir.join(MANIFEST_FILE);
         let text = match fs::symlink_metadata(&path) {
             Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => return Err(at(format_args!("read {}", path.display()))(e)),
+            Err(e) => return Err(at(format_args!("read {}", path.display()))(e).into()),
             Ok(m) if !m.is_file() => return Err(damaged(&path, "it is not a regular file")),
-            Ok(m) if m.len() > 1 << 24 => return Err(damaged(&path, "it is too large")),
-            Ok(_) => {
-                fs::read_to_string(&path).map_err(at(format_args!("read {}", path.display())))?
+            Ok(m) if m.len() > 1 << 24 => {
+                return Err(damaged(
+                    &path,
+                    &format!("it holds {} bytes, more than any manifest", m.len()),
+                ));
             }
+            Ok(_) => match fs::read_to_string(&path) {
+                Ok(text) => text,
+                Err(e) if e.kind() == io::ErrorKind::InvalidData => {
+                    return Err(damaged(&path, "it is not text"));
+                }
+                Err(e) => return Err(at(format_args!("read {}", path.display()))(e).into()),
+            },
         };
         let mut lines = text.lines();
         if lines.next() != Some(HEADER) {
@@ -287,14 +297,11 @@ pub fn is_transient(name: &str) -> bool {
 }
 
 /// The error of a manifest that cannot be read as one.
-fn damaged(path: &Path, why: &str) -> io::Error {
-    io::Error::new(
-        io::ErrorKind::InvalidData,
-        format!(
-            "{} is not a manifest flocking wrote: {why}; flocking cannot tell its files from yours there, so it replaces nothing — choose another output directory, or move the directory away",
-            path.display()
-        ),
-    )
+fn damaged(path: &Path, why: &str) -> DirError {
+    DirError::Damaged {
+        path: path.to_owned(),
+        why: why.to_owned(),
+    }
 }
 
 #[cfg(test)]

@@ -217,6 +217,14 @@ pub enum DirError {
         /// The holder, as its lock file says (`process N, started …`).
         holder: String,
     },
+    /// The directory's manifest is not one flocking wrote (a FIFO, a file too large, a header or
+    /// line it never writes): flocking cannot tell its files from the user's there.
+    Damaged {
+        /// The manifest.
+        path: PathBuf,
+        /// What is wrong with it.
+        why: String,
+    },
     /// An I/O error, naming the operation and the path ([`at`]).
     Io(io::Error),
 }
@@ -252,6 +260,11 @@ impl fmt::Display for DirError {
             Self::Busy { dir, holder } => {
                 write!(f, "{} is being written by {holder}", dir.display())
             }
+            Self::Damaged { path, why } => write!(
+                f,
+                "{} is not a manifest flocking wrote: {why}; flocking cannot tell its files from yours there, so it replaces nothing — choose another output directory, or move the directory away",
+                path.display()
+            ),
             Self::Io(e) => write!(f, "{e}"),
         }
     }
@@ -388,10 +401,12 @@ pub fn write_no_follow(path: &Path, bytes: &[u8]) -> io::Result<()> {
     if fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
         return Err(link_refused(path));
     }
-    write_tracked(path, bytes, tracking_manifest(path)?).map_err(|e| match e {
-        DirError::Io(e) => e,
-        refused => io::Error::new(io::ErrorKind::AlreadyExists, refused.to_string()),
-    })
+    tracking_manifest(path)
+        .and_then(|tracked| write_tracked(path, bytes, tracked))
+        .map_err(|e| match e {
+            DirError::Io(e) => e,
+            refused => io::Error::new(io::ErrorKind::AlreadyExists, refused.to_string()),
+        })
 }
 
 /// Writes `bytes` to `path` through `path.tmp` and a rename, `O_NOFOLLOW`; with the manifest
@@ -461,7 +476,7 @@ fn write_tracked(
 /// The directory whose [`manifest`] tracks the file `path` (the directory of `path`, or its
 /// parent: a run's `figures/metrics.svg`), with `path` relative to it and the manifest; `None`
 /// when neither keeps one.
-fn tracking_manifest(path: &Path) -> io::Result<Option<(PathBuf, String, Manifest)>> {
+fn tracking_manifest(path: &Path) -> Result<Option<(PathBuf, String, Manifest)>, DirError> {
     let Some(name) = path.file_name() else {
         return Ok(None);
     };
@@ -629,7 +644,12 @@ fn foreign_entry(dir: &Path, kind: Kind) -> io::Result<Option<DirError>> {
             entry,
         })
     };
-    let manifest = Manifest::read(dir)?;
+    let manifest = match Manifest::read(dir) {
+        Ok(manifest) => manifest,
+        Err(DirError::Io(e)) => return Err(e),
+        // a manifest that is not flocking's: nothing there can be told flocking's
+        Err(refusal) => return Ok(Some(refusal)),
+    };
     // a file of flocking's name: by its content when there is a manifest, by its name otherwise
     let changed = |relative: String, name: &str| -> io::Result<Option<DirError>> {
         let Some(manifest) = &manifest else {
@@ -795,8 +815,8 @@ pub fn remove_file(dir: &Path, relative: &str) -> Result<(), DirError> {
 /// recognised by their names as flocking's (a gallery of an older flocking, or a new one).
 ///
 /// # Errors
-/// Any I/O error, naming its path.
-pub fn start_manifest<S: AsRef<str>>(dir: &Path, relatives: &[S]) -> io::Result<()> {
+/// A manifest that is not flocking's ([`DirError::Damaged`]), or any I/O error, naming its path.
+pub fn start_manifest<S: AsRef<str>>(dir: &Path, relatives: &[S]) -> Result<(), DirError> {
     if Manifest::read(dir)?.is_some() {
         return Ok(());
     }
@@ -807,7 +827,7 @@ pub fn start_manifest<S: AsRef<str>>(dir: &Path, relatives: &[S]) -> io::Result<
             manifest.settle(relative.as_ref(), Digest::of_file(&path)?);
         }
     }
-    manifest.write(dir)
+    Ok(manifest.write(dir)?)
 }
 
 /// Removes the directory `dir` that flocking wrote as `kind`, and nothing else

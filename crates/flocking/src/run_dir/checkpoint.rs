@@ -89,42 +89,13 @@ impl Checkpoint {
     /// # Errors
     /// On any I/O error.
     pub fn write(&self, dir: &Path) -> io::Result<()> {
-        let s = &self.start;
-        let mut bytes = MAGIC.to_vec();
-        for word in [
-            self.dim as u64,
-            (s.positions.len() / self.dim.max(1)) as u64,
-            s.steps,
-            s.initial_energy.to_bits(),
-            self.records,
-            self.metrics_bytes,
-            self.trajectory_bytes,
-            self.scenario.len() as u64,
-            s.vehicle.len() as u64,
-        ] {
-            bytes.extend_from_slice(&word.to_le_bytes());
-        }
-        for x in s.positions.iter().chain(&s.velocities).chain(&s.vehicle) {
-            bytes.extend_from_slice(&x.to_le_bytes());
-        }
-        bytes.extend_from_slice(self.scenario.as_bytes());
-        bytes.extend_from_slice(s.conditions.as_bytes());
-        let hash = fnv1a(&bytes);
-        bytes.extend_from_slice(&hash.to_le_bytes());
-        let temporary = dir.join(CHECKPOINT_TMP);
-        let write = || {
-            let mut file = fs::File::create(&temporary)?;
-            file.write_all(&bytes)?;
-            file.sync_all()
+        let counts = Counts {
+            dim: self.dim,
+            records: self.records,
+            metrics_bytes: self.metrics_bytes,
+            trajectory_bytes: self.trajectory_bytes,
         };
-        write().map_err(at(format_args!("write {}", temporary.display())))?;
-        let path = dir.join(CHECKPOINT_FILE);
-        fs::rename(&temporary, &path).map_err(at(format_args!(
-            "rename {} to {}",
-            temporary.display(),
-            path.display()
-        )))?;
-        sync_dir(dir).map_err(at(format_args!("flush {}", dir.display())))
+        write_checkpoint(dir, &counts, &self.start, &self.scenario)
     }
 
     /// Reads the checkpoint of `dir`, if it has one.
@@ -254,9 +225,96 @@ impl Checkpoint {
     }
 }
 
+/// What a checkpoint counts of the outputs besides the state: the dimension, the records and
+/// the bytes of `metrics.csv` and of the trajectory written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Counts {
+    pub dim: usize,
+    pub records: u64,
+    pub metrics_bytes: u64,
+    pub trajectory_bytes: u64,
+}
+
+/// Writes the checkpoint of `start` (with `counts` and the resolved `scenario`) into `dir`
+/// atomically, streamed through its hash: the state is never copied (issue 49: a delay line of
+/// 320 MB peaked at 1.8 GB while its checkpoint was copied whole twice).
+pub(crate) fn write_checkpoint(
+    dir: &Path,
+    counts: &Counts,
+    start: &Start,
+    scenario: &str,
+) -> io::Result<()> {
+    let temporary = dir.join(CHECKPOINT_TMP);
+    let write = || {
+        let mut out = Hashing {
+            inner: io::BufWriter::new(fs::File::create(&temporary)?),
+            hash: FNV_OFFSET,
+        };
+        out.write_all(MAGIC)?;
+        for word in [
+            counts.dim as u64,
+            (start.positions.len() / counts.dim.max(1)) as u64,
+            start.steps,
+            start.initial_energy.to_bits(),
+            counts.records,
+            counts.metrics_bytes,
+            counts.trajectory_bytes,
+            scenario.len() as u64,
+            start.vehicle.len() as u64,
+        ] {
+            out.write_all(&word.to_le_bytes())?;
+        }
+        for x in start
+            .positions
+            .iter()
+            .chain(&start.velocities)
+            .chain(&start.vehicle)
+        {
+            out.write_all(&x.to_le_bytes())?;
+        }
+        out.write_all(scenario.as_bytes())?;
+        out.write_all(start.conditions.as_bytes())?;
+        let hash = out.hash;
+        let mut file = out.inner;
+        file.write_all(&hash.to_le_bytes())?;
+        file.into_inner()
+            .map_err(io::IntoInnerError::into_error)?
+            .sync_all()
+    };
+    write().map_err(at(format_args!("write {}", temporary.display())))?;
+    let path = dir.join(CHECKPOINT_FILE);
+    fs::rename(&temporary, &path).map_err(at(format_args!(
+        "rename {} to {}",
+        temporary.display(),
+        path.display()
+    )))?;
+    sync_dir(dir).map_err(at(format_args!("flush {}", dir.display())))
+}
+
+/// A writer that hashes what goes through it (FNV-1a).
+struct Hashing<W> {
+    inner: W,
+    hash: u64,
+}
+
+impl<W: Write> Hashing<W> {
+    fn write_all(&mut self, bytes: &[u8]) -> io::Result<()> {
+        self.hash = fnv1a_from(self.hash, bytes);
+        self.inner.write_all(bytes)
+    }
+}
+
+/// The offset basis of the 64-bit FNV-1a hash.
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+
 /// The 64-bit FNV-1a hash.
 fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| {
+    fnv1a_from(FNV_OFFSET, bytes)
+}
+
+/// The FNV-1a hash `hash` of some bytes continued over `bytes`.
+fn fnv1a_from(hash: u64, bytes: &[u8]) -> u64 {
+    bytes.iter().fold(hash, |hash, &b| {
         (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     })
 }

@@ -30,36 +30,21 @@ impl NpyFile {
     /// # Errors
     /// On any I/O error.
     pub fn create(path: &Path, descr: String, row_bytes: u64) -> io::Result<Self> {
-        Self::open_at(&File::create(path)?, path, descr, row_bytes, 0)
+        let mut this = Self::at(File::create(path)?, descr, row_bytes, 0);
+        this.cut_back()?;
+        Ok(this)
     }
 
-    /// Opens the file written by [`NpyFile::create`] at `path` and cuts it back to its first
-    /// `rows` records (those a checkpoint counted).
+    /// Opens the file written by [`NpyFile::create`] at `path`, unchanged, when it holds at least
+    /// `rows` records (those a checkpoint counted); [`NpyFile::cut_back`] then cuts it to them.
     ///
     /// # Errors
-    /// When the file is shorter than `rows` records, or on any I/O error.
-    pub fn truncate_to(path: &Path, descr: String, row_bytes: u64, rows: u64) -> io::Result<Self> {
+    /// When the file is shorter than `rows` records ([`io::ErrorKind::UnexpectedEof`]), or on any
+    /// I/O error.
+    pub fn open_holding(path: &Path, descr: String, row_bytes: u64, rows: u64) -> io::Result<Self> {
         let file = OpenOptions::new().read(true).write(true).open(path)?;
-        Self::open_at(&file, path, descr, row_bytes, rows)
-    }
-
-    fn open_at(
-        file: &File,
-        path: &Path,
-        descr: String,
-        row_bytes: u64,
-        rows: u64,
-    ) -> io::Result<Self> {
-        let mut this = Self {
-            file: file.try_clone()?,
-            header_len: 0,
-            descr,
-            row_bytes,
-            rows,
-        };
-        this.header_len = this.header(u64::MAX).len() as u64;
-        let length = this.header_len + rows * row_bytes;
-        if this.file.metadata()?.len() < length && rows > 0 {
+        let this = Self::at(file, descr, row_bytes, rows);
+        if this.file.metadata()?.len() < this.len() && rows > 0 {
             return Err(io::Error::new(
                 io::ErrorKind::UnexpectedEof,
                 format!(
@@ -68,9 +53,34 @@ impl NpyFile {
                 ),
             ));
         }
-        this.file.set_len(length)?;
-        this.write_header()?;
         Ok(this)
+    }
+
+    /// The file of `rows` records of `descr` in `file` (not yet cut to them).
+    fn at(file: File, descr: String, row_bytes: u64, rows: u64) -> Self {
+        let mut this = Self {
+            file,
+            header_len: 0,
+            descr,
+            row_bytes,
+            rows,
+        };
+        this.header_len = this.header(u64::MAX).len() as u64;
+        this
+    }
+
+    /// The length of the file with its records.
+    const fn len(&self) -> u64 {
+        self.header_len + self.rows * self.row_bytes
+    }
+
+    /// Cuts the file to its records and writes its header.
+    ///
+    /// # Errors
+    /// On any I/O error.
+    pub fn cut_back(&mut self) -> io::Result<()> {
+        self.file.set_len(self.len())?;
+        self.write_header()
     }
 
     /// The number of records.

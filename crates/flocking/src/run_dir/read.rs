@@ -159,7 +159,7 @@ pub fn read_run(dir: &Path) -> Result<RunFiles, ReadError> {
     let csv = dir.join("trajectory.csv");
     let npy = dir.join("trajectory.npy");
     let trajectory = if !csv.exists() && npy.exists() {
-        read_trajectory_npy(&npy)?
+        named_vehicle_columns(read_trajectory_npy(&npy)?, &scenario, &npy)?
     } else {
         read_trajectory_csv(&csv)?
     };
@@ -168,6 +168,34 @@ pub fn read_run(dir: &Path) -> Result<RunFiles, ReadError> {
         metrics,
         trajectory,
     })
+}
+
+/// `trajectory` of a `.npy` file, whose vehicle states are one unnamed field `s`, with its
+/// columns named as the scenario's vehicle names them (as `trajectory.csv` writes them; issue 49:
+/// they read back as `s1`, `s2`, …).
+///
+/// # Errors
+/// A trajectory of another number of vehicle state values than the scenario's vehicle has.
+fn named_vehicle_columns(
+    mut trajectory: Trajectory,
+    scenario: &Scenario,
+    path: &Path,
+) -> Result<Trajectory, ReadError> {
+    let names = scenario.vehicle.state_columns(scenario.dim);
+    if names.len() != trajectory.vehicle_columns.len() {
+        return Err(ReadError::Parse {
+            path: path.to_owned(),
+            line: 1,
+            message: format!(
+                "it holds {} vehicle state values per agent where the scenario's vehicle {} has {}: it is not the trajectory of this run",
+                trajectory.vehicle_columns.len(),
+                scenario.vehicle.name(),
+                names.len()
+            ),
+        });
+    }
+    trajectory.vehicle_columns = names.iter().map(|&name| name.to_owned()).collect();
+    Ok(trajectory)
 }
 
 /// Reads a `metrics.csv`: a header with a `t` column, then rows of numbers.
@@ -343,7 +371,9 @@ fn push_frame(
 /// Reads a `trajectory.npy` as [`RunDirectory`](super::RunDirectory) writes it: a NumPy 1.0 file of
 /// records `[('t', '<f8'), ('q', '<f8', (n, dim)), ('p', '<f8', (n, dim))]`, then the vehicles'
 /// `('s', '<f8', (n, k))` and the marks `('failed', '|u1', (n,))` when the run has them, one
-/// record per frame (only the records its header counts).
+/// record per frame (only the records its header counts). The file does not name the vehicle's
+/// k state values: they are `s1` to `sk` here, and [`read_run`] names them as the run's scenario
+/// does.
 ///
 /// # Errors
 /// As [`read_run`] (line 1: the header) when it is not such a file.

@@ -36,9 +36,10 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::checkpoint::{CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, DrawsOf, sync_dir};
+use super::checkpoint::{
+    CHECKPOINT_FILE, CHECKPOINT_TMP, Checkpoint, Counts, DrawsOf, sync_dir, write_checkpoint,
+};
 use super::npy::{NpyFile, trajectory_dtype};
 use super::read::{FAILED_COLUMN, trajectory_header_with};
 use super::verdict::{VERDICT_FILE, judge_metrics_file, verdict_text};
@@ -157,7 +158,6 @@ pub struct RunDirectory {
     records: u64,
     dim: usize,
     checkpoint_every: u64,
-    stop: Option<&'static AtomicBool>,
     /// One trajectory record's bytes (CSV text or `.npy` row), reused.
     buffer: Vec<u8>,
     /// The last recorded state (dim coordinates of q, then of p, then the vehicle's state, then
@@ -349,6 +349,104 @@ pub fn partial_path(target: &Path) -> PathBuf {
     let mut partial = target.as_os_str().to_owned();
     partial.push(".partial");
     PathBuf::from(partial)
+}
+
+/// An interrupted run directory, opened and checked by [`RunDirectory::resume`] and locked for
+/// this process, of which nothing is written yet: [`InterruptedRun::reopen`] cuts its outputs
+/// back to its checkpoint once the caller has rebuilt the run's simulation from it, so that a
+/// checkpoint refused at that point leaves `DIR.partial` as it was (issue 49: a refused resume
+/// deleted it).
+#[derive(Debug)]
+pub struct InterruptedRun {
+    target: PathBuf,
+    partial: PathBuf,
+    /// Whether the run was started with `force` (its note says so).
+    force: bool,
+    state: Reopen,
+}
+
+/// What [`InterruptedRun::reopen`] continues: fresh files, or the files the checkpoint counts.
+#[derive(Debug)]
+enum Reopen {
+    /// No checkpoint yet: the run starts over.
+    Fresh(Box<Fresh>),
+    /// The directory, its files open and not yet cut back to its checkpoint.
+    Checkpointed(Box<RunDirectory>),
+}
+
+/// A run to start over in its own `DIR.partial`.
+#[derive(Debug)]
+struct Fresh {
+    scenario: Scenario,
+    options: OutputOptions,
+    lock: DirLock,
+    controls: Option<String>,
+}
+
+impl InterruptedRun {
+    /// `DIR.partial`.
+    #[must_use]
+    pub fn partial(&self) -> &Path {
+        &self.partial
+    }
+
+    /// Writes the resumed run's start: drops a manifest that a cut-short finish left, marks the
+    /// directory running, and cuts `metrics.csv` and the trajectory back to the checkpoint (or,
+    /// without one, starts them afresh).
+    ///
+    /// # Errors
+    /// Any I/O error, naming its path.
+    pub fn reopen(self) -> io::Result<RunDirectory> {
+        let Self {
+            target,
+            partial,
+            force,
+            state,
+        } = self;
+        // a manifest recorded just before a finishing rename that was cut short: the files are
+        // cut back and appended to, and recorded again when the run finishes
+        owned::drop_manifest(&partial).map_err(io::Error::other)?;
+        owned::mark(&partial, Kind::Run).map_err(io::Error::other)?;
+        write_incomplete(&partial, &running_note(&target, force))?;
+        match state {
+            Reopen::Fresh(fresh) => {
+                let Fresh {
+                    scenario,
+                    options,
+                    lock,
+                    controls,
+                } = *fresh;
+                let mut this = RunDirectory::start_files(
+                    &target,
+                    partial,
+                    &scenario,
+                    options.format,
+                    &options,
+                    lock,
+                )?;
+                this.force = force;
+                this.controls = controls;
+                Ok(this)
+            }
+            Reopen::Checkpointed(mut this) => {
+                let cut = |file: &File, bytes: u64, name: &str| {
+                    file.set_len(bytes).map_err(at(format_args!(
+                        "cut {} back",
+                        partial.join(name).display()
+                    )))
+                };
+                cut(&this.metrics, this.metrics_bytes, "metrics.csv")?;
+                match &mut this.trajectory {
+                    Trajectory::Csv { file, bytes } => cut(file, *bytes, "trajectory.csv")?,
+                    Trajectory::Npy(file) => file.cut_back().map_err(at(format_args!(
+                        "cut {} back",
+                        partial.join("trajectory.npy").display()
+                    )))?,
+                }
+                Ok(*this)
+            }
+        }
+    }
 }
 
 impl RunDirectory {
@@ -547,7 +645,6 @@ impl RunDirectory {
             records: 0,
             dim: scenario.dim,
             checkpoint_every: options.checkpoint_every,
-            stop: None,
             buffer: Vec::new(),
             last_state: Vec::new(),
             vehicle_columns: scenario.vehicle.state_columns(scenario.dim),
@@ -564,10 +661,14 @@ impl RunDirectory {
         })
     }
 
-    /// Reopens the interrupted run `dir` (`DIR` or `DIR.partial`), locked for this process:
-    /// loads its `scenario.ron`, cuts its outputs back to its last checkpoint and returns the
-    /// directory with the scenario and the state to continue from (`None`: no checkpoint yet,
-    /// the run starts over with fresh files).
+    /// Opens the interrupted run `dir` (`DIR` or `DIR.partial`), locked for this process, and
+    /// checks everything a resume needs before anything is written: loads its `scenario.ron`
+    /// and its last checkpoint and checks that its files hold the records the checkpoint counts.
+    /// Returns the run to [reopen](InterruptedRun::reopen) with the scenario and the state to
+    /// continue from (`None`: no checkpoint yet, the run starts over with fresh files). A
+    /// refusal, here or of the state the caller then builds its simulation from
+    /// ([`DynSimulation::resume`](crate::DynSimulation::resume)), leaves `DIR.partial` byte for
+    /// byte as it was.
     ///
     /// # Errors
     /// [`ResumeError::Refused`] when there is no interrupted run at `dir`, when the run failed
@@ -578,15 +679,16 @@ impl RunDirectory {
     pub fn resume(
         dir: &Path,
         checkpoint_every: u64,
-    ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
+    ) -> Result<(InterruptedRun, Scenario, Option<Start>), ResumeError> {
         Self::resume_with_controls(dir, checkpoint_every, None)
     }
 
     /// [`RunDirectory::resume`] of a run whose inputs come from `controls` (a description of
     /// them, e.g. Python's `controls=f`), or from the scenario's protocol (`None`). A run made
     /// with controls from elsewhere records them in [`CONTROLS_FILE`]
-    /// ([`RunDirectory::record_controls`]): resuming it without them, or a run of the protocol
-    /// with them, would finish it as neither run, and is refused before anything is written.
+    /// ([`RunDirectory::record_controls`]): resuming it without them, with others, or a run of
+    /// the protocol with them, would finish it as neither run, and is refused before anything is
+    /// written.
     ///
     /// # Errors
     /// As [`RunDirectory::resume`]; [`ResumeError::Refused`] when the controls do not match.
@@ -594,7 +696,7 @@ impl RunDirectory {
         dir: &Path,
         checkpoint_every: u64,
         controls: Option<&str>,
-    ) -> Result<(Self, Scenario, Option<Start>), ResumeError> {
+    ) -> Result<(InterruptedRun, Scenario, Option<Start>), ResumeError> {
         let dir: PathBuf = dir.components().collect();
         let (target, partial) = match dir.to_str().and_then(|s| s.strip_suffix(".partial")) {
             Some(stem) => (PathBuf::from(stem), dir.clone()),
@@ -634,9 +736,6 @@ impl RunDirectory {
             Err(e) => return Err(at(format_args!("read {}", note_path.display()))(e).into()),
         };
         let lock = DirLock::acquire(&partial)?;
-        // a manifest recorded just before a finishing rename that was cut short: the files are
-        // cut back and appended to, and recorded again when the run finishes
-        owned::drop_manifest(&partial)?;
         let recorded = read_controls(&partial)?;
         match (&recorded, controls) {
             (Some(recorded), None) => {
@@ -649,6 +748,13 @@ impl RunDirectory {
             (None, Some(given)) => {
                 return Err(ResumeError::Refused(format!(
                     "the run in {} was made with the scenario's protocol, not with {given}: resume it without controls",
+                    partial.display()
+                )));
+            }
+            // issue 49: another function would finish the run as neither
+            (Some(recorded), Some(given)) if recorded != given => {
+                return Err(ResumeError::Refused(format!(
+                    "the run in {} was made with {recorded}, not with {given}: continuing it with another function would finish it as neither run; resume it with the function it was made with",
                     partial.display()
                 )));
             }
@@ -671,19 +777,26 @@ impl RunDirectory {
         } else {
             TrajectoryFormat::Csv
         };
+        let reopened = |state| InterruptedRun {
+            target: target.clone(),
+            partial: partial.clone(),
+            force,
+            state,
+        };
         let Some(checkpoint) = Checkpoint::read(&partial)? else {
             // No checkpoint yet: the run starts over, in fresh files.
-            owned::mark(&partial, Kind::Run)?;
-            write_incomplete(&partial, &running_note(&target, force))?;
             let options = OutputOptions {
                 force,
                 format,
                 checkpoint_every,
             };
-            let mut this = Self::start_files(&target, partial, &scenario, format, &options, lock)?;
-            this.force = force;
-            this.controls = recorded;
-            return Ok((this, scenario, None));
+            let fresh = Fresh {
+                scenario: scenario.clone(),
+                options,
+                lock,
+                controls: recorded,
+            };
+            return Ok((reopened(Reopen::Fresh(Box::new(fresh))), scenario, None));
         };
         check_scenario(&checkpoint, &scenario, &partial)?;
         // the records the checkpoint counts must all be there (issue 27: a missing `metrics.csv`
@@ -701,18 +814,22 @@ impl RunDirectory {
                 )));
             }
         }
-        owned::mark(&partial, Kind::Run)?;
-        write_incomplete(&partial, &running_note(&target, force))?;
         let metrics_path = partial.join("metrics.csv");
-        let columns = if checkpoint.records > 0 {
-            Some(diagnostic_columns(&metrics_path)?)
-        } else {
-            None
-        };
-        let metrics = cut(&metrics_path, checkpoint.metrics_bytes)?;
+        let columns =
+            if checkpoint.records > 0 {
+                Some(diagnostic_columns(&metrics_path).map_err(|e| match e.kind() {
+                io::ErrorKind::InvalidData => ResumeError::Refused(format!(
+                    "{e}: it is not the metrics.csv of this run, so the run cannot be resumed"
+                )),
+                _ => e.into(),
+            })?)
+            } else {
+                None
+            };
+        let metrics = open_holding(&metrics_path, checkpoint.metrics_bytes)?;
         let trajectory = match format {
             TrajectoryFormat::Csv => Trajectory::Csv {
-                file: cut(&partial.join("trajectory.csv"), checkpoint.trajectory_bytes)?,
+                file: open_holding(&partial.join("trajectory.csv"), checkpoint.trajectory_bytes)?,
                 bytes: checkpoint.trajectory_bytes,
             },
             TrajectoryFormat::Npy => {
@@ -724,22 +841,27 @@ impl RunDirectory {
                 );
                 let path = partial.join("trajectory.npy");
                 Trajectory::Npy(
-                    NpyFile::truncate_to(&path, descr, row_bytes, checkpoint.records)
-                        .map_err(at(format_args!("cut {} back", path.display())))?,
+                    NpyFile::open_holding(&path, descr, row_bytes, checkpoint.records).map_err(
+                        |e| match e.kind() {
+                            io::ErrorKind::UnexpectedEof => ResumeError::Refused(format!(
+                                "{e}: the records of the interrupted run are cut, so it cannot be resumed"
+                            )),
+                            _ => at(format_args!("open {}", path.display()))(e).into(),
+                        },
+                    )?,
                 )
             }
         };
         let empty_target = is_empty_dir(&target);
         let this = Self {
-            target,
-            partial,
+            target: target.clone(),
+            partial: partial.clone(),
             metrics,
             metrics_bytes: checkpoint.metrics_bytes,
             trajectory,
             records: checkpoint.records,
             dim: scenario.dim,
             checkpoint_every,
-            stop: None,
             buffer: Vec::new(),
             last_state: Vec::new(),
             vehicle_columns: scenario.vehicle.state_columns(scenario.dim),
@@ -754,7 +876,11 @@ impl RunDirectory {
             lock,
             controls: recorded,
         };
-        Ok((this, scenario, Some(checkpoint.start)))
+        Ok((
+            reopened(Reopen::Checkpointed(Box::new(this))),
+            scenario,
+            Some(checkpoint.start),
+        ))
     }
 
     /// Records in [`CONTROLS_FILE`] that the run's inputs come from `source` (e.g. "Python
@@ -779,13 +905,6 @@ impl RunDirectory {
     #[must_use]
     pub fn controls(&self) -> Option<&str> {
         self.controls.as_deref()
-    }
-
-    /// Stops the run (after keeping a checkpoint) once `flag` is set, e.g. by Ctrl-C.
-    #[must_use]
-    pub const fn with_stop_flag(mut self, flag: &'static AtomicBool) -> Self {
-        self.stop = Some(flag);
-        self
     }
 
     /// Judges the finished run by `criteria` in [`VERDICT_FILE`] (default: the last quarter,
@@ -1330,8 +1449,9 @@ fn write_incomplete(partial: &Path, note: &str) -> io::Result<()> {
     sync_dir(partial).map_err(at(format_args!("flush {}", partial.display())))
 }
 
-/// Opens `path` for appending after cutting it to its first `bytes` bytes.
-fn cut(path: &Path, bytes: u64) -> io::Result<File> {
+/// Opens `path` for appending, unchanged, when it holds at least the `bytes` bytes its checkpoint
+/// counts ([`InterruptedRun::reopen`] cuts it back to them).
+fn open_holding(path: &Path, bytes: u64) -> Result<File, ResumeError> {
     let file = OpenOptions::new()
         .append(true)
         .open(path)
@@ -1341,16 +1461,11 @@ fn cut(path: &Path, bytes: u64) -> io::Result<File> {
         .map_err(at(format_args!("read {}", path.display())))?
         .len();
     if len < bytes {
-        return Err(io::Error::new(
-            io::ErrorKind::UnexpectedEof,
-            format!(
-                "{} is shorter than its checkpoint says ({bytes} bytes)",
-                path.display()
-            ),
-        ));
+        return Err(ResumeError::Refused(format!(
+            "{} is shorter than its checkpoint says ({len} bytes, not {bytes}): the records of the interrupted run are cut, so it cannot be resumed",
+            path.display()
+        )));
     }
-    file.set_len(bytes)
-        .map_err(at(format_args!("cut {} back", path.display())))?;
     Ok(file)
 }
 
@@ -1498,16 +1613,13 @@ impl Recorder for RunDirectory {
             Trajectory::Csv { bytes, .. } => *bytes,
             Trajectory::Npy(file) => file.rows(),
         };
-        Checkpoint {
+        let counts = Counts {
             dim: self.dim,
-            start: start.clone(),
             records: self.records,
             metrics_bytes: self.metrics_bytes,
             trajectory_bytes,
-            scenario: self.scenario.clone(),
-            draws: DrawsOf::Current,
-        }
-        .write(&self.partial)?;
+        };
+        write_checkpoint(&self.partial, &counts, start, &self.scenario)?;
         let whole = format!(
             "{}Whole records, checkpointed after step {}: {} (the first {} bytes of metrics.csv; of the trajectory, {} {}).\n",
             running_note(&self.target, self.force),
@@ -1521,10 +1633,6 @@ impl Recorder for RunDirectory {
             }
         );
         write_incomplete(&self.partial, &whole)
-    }
-
-    fn stop_requested(&self) -> bool {
-        self.stop.is_some_and(|flag| flag.load(Ordering::Relaxed))
     }
 }
 

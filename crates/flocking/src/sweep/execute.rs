@@ -2,7 +2,7 @@
 
 use std::path::Path;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::row::{RunRow, run_one};
 use super::store::{self, RUNS_DIR, StoreError};
@@ -84,8 +84,9 @@ pub struct Executed {
 
 /// Runs every pending run of the sweep (of its shard) into `dir` on `options.jobs` workers, each
 /// with a rayon pool of one thread; `done` is called after each run (from the worker that made
-/// it); `stop` ends it between runs. Finished runs found in `dir` are skipped; `runs.csv` is
-/// written at the end ([`store`]).
+/// it); `stop` ends it between runs, and so does the process's interrupt ([`crate::interrupt`]),
+/// which also stops the runs under way at their next step (they get no row). Finished runs found
+/// in `dir` are skipped; `runs.csv` is written at the end ([`store`]).
 ///
 /// # Errors
 /// A directory that is not flocking's or is being written ([`store::prepare`]), a directory
@@ -96,7 +97,7 @@ pub fn execute(
     sweep: &Sweep,
     dir: &Path,
     options: &ExecuteOptions,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() -> bool + Sync),
     done: &(dyn Fn(&RunRow) + Sync),
 ) -> Result<Executed, StoreError> {
     // held until the sweep returns: a second writer of `dir` is refused meanwhile
@@ -120,13 +121,20 @@ pub fn execute(
             }
         };
         loop {
-            if stop.load(Ordering::Relaxed) || failure.lock().expect("no worker panics").is_some() {
+            if stop()
+                || crate::interrupt::requested()
+                || failure.lock().expect("no worker panics").is_some()
+            {
                 return;
             }
             let Some(run) = pending.get(next.fetch_add(1, Ordering::Relaxed)) else {
                 return;
             };
             let row = pool.install(|| run_one(sweep, run, keep.as_deref()));
+            if row.retry && crate::interrupt::requested() {
+                // stopped by the interrupt: no row, made again next time
+                return;
+            }
             if row.retry {
                 // an I/O failure is not a result of the run: no row, made again next time
                 unwritten.fetch_add(1, Ordering::Relaxed);

@@ -253,8 +253,8 @@ pub struct RunRow {
     /// Seconds of wall-clock time, from building the scenario to the last record.
     pub wall_time: f64,
     /// Whether the failure is not the run's but the machine's: its kept directory could not be
-    /// written (a full disk, a user's file in it). Such a row is never stored: the run is made
-    /// again by the next invocation (issue 27).
+    /// written (a full disk, a user's file in it), or an interrupt stopped it. Such a row is
+    /// never stored: the run is made again by the next invocation (issue 27).
     pub retry: bool,
 }
 
@@ -334,7 +334,11 @@ pub fn run_one_with<M: MapProtocol>(
                     };
                     resume_with(&scenario, None, &mut recorder, map)
                         .map(|summary| (summary, recorder.extremes))
-                        .map_err(|e| e.to_string())
+                        .map_err(|e| {
+                            // stopped by an interrupt: not a result, made again next time
+                            retry = matches!(e, RunError::Interrupted { .. });
+                            e.to_string()
+                        })
                 }
                 Some(dir) => keep_run(&scenario, &dir.join(&id), map).map_err(|(e, io)| {
                     retry = io;
@@ -385,6 +389,8 @@ fn keep_run<M: MapProtocol>(scenario: &crate::Scenario, dir: &Path, map: &M) -> 
             recorder.inner.abandon();
             Err(match error {
                 RunError::Record(e) => (format!("writing {}: {e}", dir.display()), true),
+                // stopped by an interrupt: not a result, made again next time
+                e @ RunError::Interrupted { .. } => (e.to_string(), true),
                 other => (other.to_string(), false),
             })
         }

@@ -158,7 +158,7 @@ pub fn prepare(dir: &Path, sweep: &Sweep) -> Result<DirLock, StoreError> {
     if !owned::marked(dir, Kind::Sweep) {
         owned::mark(dir, Kind::Sweep).map_err(io_error(dir))?;
         // the plots `sweep plot --out` draws here are recorded in it (issue 27)
-        owned::start_manifest::<&str>(dir, &[]).map_err(io_error(dir))?;
+        owned::start_manifest::<&str>(dir, &[])?;
     }
     let lock = DirLock::acquire(dir)?;
     fs::create_dir_all(dir.join(ROWS_DIR)).map_err(io_error(dir))?;
