@@ -335,7 +335,7 @@ pub fn run_from<R: Recorder + ?Sized>(
         merged: merged_agents(&sim.state(), merge_tolerance(sim.scenario())),
         topology_invariant_from: topology.since.unwrap_or_else(|| sim.time()),
         elapsed,
-        verdict_kind: VerdictKind::of(&scenario.algorithm),
+        verdict_kind: VerdictKind::of(&sim.scenario().algorithm),
     })
 }
 
