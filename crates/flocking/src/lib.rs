@@ -13,6 +13,7 @@
 //!   simulation built first.
 //! - [`interrupt`]: the process's Ctrl-C, which a run checks between steps and the long loops of
 //!   a step check inside it.
+//! - [`storage`]: everything kept on the disk, re-exported as [`run_dir`] and [`owned`].
 //! - [`run_dir`]: the run directory — [`RunDirectory`] writes it (crash-safe, checkpointed,
 //!   resumable), [`read_run`] reads it back.
 //! - [`verdict`]: the verdict a run gets, success as its model's papers measure it ([`Verdict`]:
@@ -49,12 +50,11 @@ pub mod initial;
 pub mod input;
 pub mod merging;
 pub mod overrides;
-pub mod owned;
 pub mod run;
-pub mod run_dir;
 pub mod scenario;
 pub mod simulation;
 pub mod stability;
+pub mod storage;
 pub mod sweep;
 pub mod synthetic;
 pub mod time;
@@ -76,6 +76,7 @@ pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
 pub use stability::{
     Warning, consensus_laplacian_max, largest_stable_step, velocity_consensus_delay_bound,
 };
+pub use storage::{owned, run_dir};
 pub use validate::{MAX_AGENTS, MAX_STEPS};
 pub use verdict::{Verdict, VerdictKind};
 

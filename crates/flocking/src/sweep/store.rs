@@ -28,7 +28,7 @@ use std::path::{Path, PathBuf};
 use super::row::{RunRow, header};
 use super::{Sweep, SweepError};
 use crate::owned::{self, DirError, DirLock, Kind};
-use crate::run_dir::checkpoint::sync_dir;
+use crate::storage::fs::sync_dir;
 
 /// The sweep's file in an output directory.
 pub const SWEEP_FILE: &str = "sweep.ron";

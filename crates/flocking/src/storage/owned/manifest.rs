@@ -21,13 +21,12 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{self, Read as _};
 use std::path::Path;
 
-use super::{DirError, at};
-
-/// The manifest file of a directory flocking wrote.
-pub const MANIFEST_FILE: &str = ".flocking.manifest";
-
-/// The manifest being written, renamed over [`MANIFEST_FILE`] once whole.
-pub const MANIFEST_TMP: &str = ".flocking.manifest.tmp";
+use super::error::{DirError, link_refused};
+use super::kind::Kind;
+use super::marker::{marked, marked_by_flocking};
+use super::names::{LOCK_FILE, MANIFEST_FILE, MANIFEST_TMP, MARKER_FILE};
+use super::tmp::write_tmp;
+use crate::storage::fs::at;
 
 /// The first line of a manifest.
 const HEADER: &str = "flocking manifest 1";
@@ -267,7 +266,7 @@ impl Manifest {
         let path = dir.join(MANIFEST_FILE);
         // the manifest is written only in directories of flocking's: its temporary file there
         // is flocking's own name
-        super::write_tmp(&tmp, text.as_bytes(), super::marked_by_flocking(dir))?;
+        write_tmp(&tmp, text.as_bytes(), marked_by_flocking(dir))?;
         fs::rename(&tmp, &path).map_err(at(format_args!(
             "rename {} to {}",
             tmp.display(),
@@ -286,8 +285,8 @@ impl Manifest {
 #[must_use]
 pub fn is_transient(name: &str) -> bool {
     [
-        super::MARKER_FILE,
-        super::LOCK_FILE,
+        MARKER_FILE,
+        LOCK_FILE,
         MANIFEST_FILE,
         "checkpoint.bin",
         "INCOMPLETE",
@@ -302,6 +301,61 @@ fn damaged(path: &Path, why: &str) -> DirError {
         path: path.to_owned(),
         why: why.to_owned(),
     }
+}
+
+/// Records in the [`manifest`] of `dir` every file flocking wrote there, at every depth: a run's
+/// files once it is finished, just before it is moved into place.
+///
+/// # Errors
+/// Any I/O error, naming its path.
+pub fn record_manifest(dir: &Path) -> io::Result<()> {
+    Manifest::of_dir(dir)?.write(dir)
+}
+
+/// Removes the manifest of `dir`, if any: a run being resumed cuts back and appends to its
+/// files, and records its manifest again when it finishes.
+///
+/// # Errors
+/// The I/O error of the removal, naming the path.
+pub fn drop_manifest(dir: &Path) -> io::Result<()> {
+    let path = dir.join(MANIFEST_FILE);
+    if !marked(dir, Kind::Run) {
+        return Err(io::Error::new(
+            io::ErrorKind::PermissionDenied,
+            format!(
+                "{} is not a run of flocking's: its manifest is kept",
+                dir.display()
+            ),
+        ));
+    }
+    if fs::symlink_metadata(&path).is_ok_and(|m| !m.is_file()) {
+        return Err(link_refused(&path));
+    }
+    match fs::remove_file(&path) {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => {
+            Err(at(format_args!("remove {}", path.display()))(e))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Starts the manifest of `dir` when it has none: records the files `relatives` that exist,
+/// recognised by their names as flocking's (a gallery of an older flocking, or a new one).
+///
+/// # Errors
+/// A manifest that is not flocking's ([`DirError::Damaged`]), or any I/O error, naming its path.
+pub fn start_manifest<S: AsRef<str>>(dir: &Path, relatives: &[S]) -> Result<(), DirError> {
+    if Manifest::read(dir)?.is_some() {
+        return Ok(());
+    }
+    let mut manifest = Manifest::default();
+    for relative in relatives {
+        let path = dir.join(relative.as_ref());
+        if fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+            manifest.settle(relative.as_ref(), Digest::of_file(&path)?);
+        }
+    }
+    Ok(manifest.write(dir)?)
 }
 
 #[cfg(test)]

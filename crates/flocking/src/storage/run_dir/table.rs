@@ -4,7 +4,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use super::read::ReadError;
+use super::read_error::ReadError;
 
 /// A numeric table: column names and rows of numbers, each as long as the header.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -20,13 +20,23 @@
 //! random) is not resumed. It is written to `checkpoint.tmp`, flushed to the disk, and
 //! renamed over `checkpoint.bin` (the directory flushed too), so a run killed while writing one
 //! leaves the previous checkpoint intact.
+//!
+//! The hash is the `fnv` crate's [`FnvHasher`]. The layout is written and read here with
+//! `to_le_bytes`/`from_le_bytes`, not by a serialization crate: it is fixed by the checkpoints
+//! of five versions that must still resume or be refused with the reason (`FLOCKCK2` to
+//! `FLOCKCK6`), and its vectors carry no length of their own (the header's counts size them),
+//! which `bincode` and its kin would add; and the state is streamed through the hash into the
+//! file, never copied (issue 49).
 
 use std::fs;
+use std::hash::Hasher as _;
 use std::io::{self, Write};
 use std::path::Path;
 
-use crate::owned::at;
+use fnv::FnvHasher;
+
 use crate::run::Start;
+use crate::storage::fs::{at, sync_dir};
 
 /// The checkpoint's file name in the run directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
@@ -248,7 +258,7 @@ pub(crate) fn write_checkpoint(
     let write = || {
         let mut out = Hashing {
             inner: io::BufWriter::new(fs::File::create(&temporary)?),
-            hash: FNV_OFFSET,
+            hash: FnvHasher::default(),
         };
         out.write_all(MAGIC)?;
         for word in [
@@ -274,7 +284,7 @@ pub(crate) fn write_checkpoint(
         }
         out.write_all(scenario.as_bytes())?;
         out.write_all(start.conditions.as_bytes())?;
-        let hash = out.hash;
+        let hash = out.hash.finish();
         let mut file = out.inner;
         file.write_all(&hash.to_le_bytes())?;
         file.into_inner()
@@ -291,38 +301,22 @@ pub(crate) fn write_checkpoint(
     sync_dir(dir).map_err(at(format_args!("flush {}", dir.display())))
 }
 
-/// A writer that hashes what goes through it (FNV-1a).
+/// A writer that hashes what goes through it (64-bit FNV-1a, [`FnvHasher`]).
 struct Hashing<W> {
     inner: W,
-    hash: u64,
+    hash: FnvHasher,
 }
 
 impl<W: Write> Hashing<W> {
     fn write_all(&mut self, bytes: &[u8]) -> io::Result<()> {
-        self.hash = fnv1a_from(self.hash, bytes);
+        self.hash.write(bytes);
         self.inner.write_all(bytes)
     }
 }
 
-/// The offset basis of the 64-bit FNV-1a hash.
-const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-
-/// The 64-bit FNV-1a hash.
+/// The 64-bit FNV-1a hash of `bytes`.
 fn fnv1a(bytes: &[u8]) -> u64 {
-    fnv1a_from(FNV_OFFSET, bytes)
-}
-
-/// The FNV-1a hash `hash` of some bytes continued over `bytes`.
-fn fnv1a_from(hash: u64, bytes: &[u8]) -> u64 {
-    bytes.iter().fold(hash, |hash, &b| {
-        (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
-
-/// Flushes the entries of directory `dir` (a rename or a new file in it) to the disk.
-///
-/// # Errors
-/// When the directory cannot be opened or flushed.
-pub fn sync_dir(dir: &Path) -> io::Result<()> {
-    fs::File::open(dir)?.sync_all()
+    let mut hash = FnvHasher::default();
+    hash.write(bytes);
+    hash.finish()
 }

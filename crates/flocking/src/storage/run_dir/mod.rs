@@ -13,6 +13,7 @@
 pub mod checkpoint;
 pub mod npy;
 pub mod read;
+mod read_error;
 mod table;
 pub mod verdict;
 pub mod write;

@@ -5,6 +5,13 @@
 //! The header has a fixed length, so appending a record is one write of the record at the end of
 //! the file followed by one rewrite of the header's row count: a process killed between the two
 //! leaves a file whose header counts only complete records (numpy reads exactly that many).
+//!
+//! Written here, not by a kept library: `npyz` and `ndarray-npy` write a header once (its shape
+//! known at the start, or patched at the end of a finished write), so a killed run would leave a
+//! header that counts no record or records cut short, and neither reopens a file to append to
+//! after a resume; both parse headers with `py_literal` (pest, num-bigint), a compile cost for
+//! every build (issue 51). This file is one fixed structured dtype ([`trajectory_dtype`]), and
+//! [`read_trajectory_npy`](super::read_trajectory_npy) reads exactly what it writes.
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, Seek, SeekFrom, Write};
