@@ -4,15 +4,15 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use crate::animation::{AnimationOptions, animation_gif};
+use crate::curves::metric_curves::{MetricsOptions, metrics_png, metrics_svg};
+use crate::data::metric_series::Metrics;
 use crate::error::VizError;
-use crate::metrics::Metrics;
-use crate::metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
-use crate::player::{PlayerOptions, player_html};
-use crate::scene::Scene;
-use crate::snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
-use crate::view::View;
-use crate::views::{views_png, views_svg};
+use crate::motion::animation::{AnimationOptions, animation_gif};
+use crate::motion::player::{PlayerOptions, player_html};
+use crate::scene::frames::Scene;
+use crate::scene::projection::View;
+use crate::snapshots::four_views::{views_png, views_svg};
+use crate::snapshots::snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
 
 /// Which figures [`write_figures`] writes, and how.
 #[derive(Clone, Debug, PartialEq)]

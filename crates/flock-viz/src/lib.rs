@@ -3,6 +3,12 @@
 //! be put beside the paper's figures. Drawn with plotters and an embedded font (DejaVu Sans): no
 //! system font is needed, and the same input gives byte-identical files.
 //!
+//! The modules are folders by what they make: [`scene`] (what is drawn, independent of files),
+//! [`data`] (a run directory read back), [`snapshots`] (chosen frames), [`curves`] (metrics and the
+//! report's functions), [`motion`] (the whole run moving), [`sweeps`] (phase diagrams),
+//! [`gallery`] (the page of `flocking figures`) and [`draw`] (what every figure is drawn with);
+//! [`figures`] and [`plot`] write a run's figures. The names below are re-exported here.
+//!
 //! - [`RunData::load`]: a run directory's `metrics.csv` and `trajectory.csv`; [`RunData::scene`].
 //! - [`Scene`], [`Frame`], [`Drawable`], [`View`], [`Framing`]: what is drawn and how it is
 //!   framed, independent of files.
@@ -40,49 +46,38 @@
 //! # std::fs::remove_dir_all(&dir).unwrap();
 //! ```
 
-pub mod animation;
-pub mod drawable;
+pub mod curves;
+pub mod data;
+pub mod draw;
 pub mod error;
 pub mod figures;
-pub mod font;
-mod format;
-pub mod framing;
-pub mod functions;
 pub mod gallery;
-mod geometry;
-pub mod metrics;
-pub mod metrics_plot;
-pub mod papers;
-pub mod phase;
-pub mod player;
+pub mod motion;
 pub mod plot;
-mod render;
-pub mod reynolds;
-pub mod run_data;
 pub mod scene;
-pub mod snapshot;
-pub mod style;
-pub mod view;
-pub mod views;
-pub mod whole_run;
+pub mod snapshots;
+pub mod sweeps;
 
-pub use animation::{AnimationOptions, animation_frames, animation_gif};
-pub use drawable::Drawable;
+pub use curves::functions::{ReportFunction, function_png, function_svg};
+pub use curves::metric_curves::{MetricsOptions, metrics_png, metrics_svg};
+pub use data::metric_series::Metrics;
+pub use data::run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
+pub use draw::style;
 pub use error::VizError;
 pub use figures::{FigureOptions, write_figures};
-pub use framing::Framing;
-pub use functions::{ReportFunction, function_png, function_svg};
-pub use gallery::{FUNCTIONS_DIR, FigureEntry, function_image, index_html, paper_reference};
-pub use metrics::Metrics;
-pub use metrics_plot::{MetricsOptions, metrics_png, metrics_svg};
-pub use papers::{Measure, PaperFigure, Parameter, Source, Statement, paper_figure};
-pub use phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
-pub use player::{PlayerOptions, player_html};
+pub use gallery::index::{FUNCTIONS_DIR, FigureEntry, function_image, index_html, paper_reference};
+pub use gallery::papers::{Measure, PaperFigure, Parameter, Source, Statement, paper_figure};
+pub use gallery::whole_run::{WholeRun, whole_run_rows};
+pub use motion::animation::{AnimationOptions, animation_frames, animation_gif};
+pub use motion::player::{PlayerOptions, player_html};
 pub use plot::{PlotError, plot_run, plot_run_with, run_scene};
-pub use reynolds::{ReynoldsOptions, reynolds_png, reynolds_svg};
-pub use run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
-pub use scene::{Frame, Scene, lift};
-pub use snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
-pub use view::View;
-pub use views::{four_views, views_png, views_svg};
-pub use whole_run::{WholeRun, whole_run_rows};
+pub use scene::drawable::Drawable;
+pub use scene::frames::{Frame, Scene};
+pub use scene::framing::Framing;
+pub use scene::projection::{View, lift};
+pub use snapshots::four_views::{four_views, views_png, views_svg};
+pub use snapshots::reynolds::{ReynoldsOptions, reynolds_png, reynolds_svg};
+pub use snapshots::snapshot;
+pub use snapshots::snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
+pub use sweeps::phase;
+pub use sweeps::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};

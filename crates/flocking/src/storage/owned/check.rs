@@ -68,7 +68,7 @@ pub fn check_owned(dir: &Path, kind: Kind) -> Result<(), DirError> {
     })
 }
 
-/// Checks that [`remove`] may remove `dir`: it carries the marker of `kind`, holds only entries
+/// Checks that [`remove`](super::remove) may remove `dir`: it carries the marker of `kind`, holds only entries
 /// that `kind` writes, and is not the filesystem root, the working directory or one of its
 /// ancestors, or a mount point.
 ///

@@ -15,7 +15,7 @@ pub enum DirError {
         entry: String,
     },
     /// The directory's manifest lists the entry, but its size or content is not what flocking
-    /// wrote: the user saved over it ([`manifest`]).
+    /// wrote: the user saved over it ([`manifest`](super::manifest)).
     Changed {
         /// The directory.
         dir: PathBuf,
@@ -61,7 +61,7 @@ pub enum DirError {
         /// What is wrong with it.
         why: String,
     },
-    /// An I/O error, naming the operation and the path ([`at`]).
+    /// An I/O error, naming the operation and the path ([`at`](super::at)).
     Io(io::Error),
 }
 

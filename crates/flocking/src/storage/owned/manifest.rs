@@ -303,7 +303,7 @@ fn damaged(path: &Path, why: &str) -> DirError {
     }
 }
 
-/// Records in the [`manifest`] of `dir` every file flocking wrote there, at every depth: a run's
+/// Records in the manifest of `dir` every file flocking wrote there, at every depth: a run's
 /// files once it is finished, just before it is moved into place.
 ///
 /// # Errors

@@ -13,7 +13,7 @@
 //! - [`check_only_own`]: the same at every depth, for a writer that cuts back and appends to a
 //!   directory (`flocking run --resume`).
 //! - [`write_no_follow`]: a figure is never written through a link.
-//! - [`DirLock`]: an exclusive advisory lock ([`File::try_lock`]) on [`LOCK_FILE`] held by the
+//! - [`DirLock`]: an exclusive advisory lock ([`File::try_lock`](std::fs::File::try_lock)) on [`LOCK_FILE`] held by the
 //!   writer for as long as it writes; a second writer gets [`DirError::Busy`] with the holder's
 //!   process id and start time. The operating system releases the lock when the process dies, so
 //!   a stale lock file is simply taken over.

@@ -14,7 +14,7 @@ use crate::storage::fs::{at, parent_of};
 
 /// Writes `bytes` to the file `path`, never over a file that flocking did not write. In a
 /// directory that carries flocking's marker, the names it is made of are refused, and an existing
-/// `path` is replaced only when the directory's [`manifest`] lists it with its content (a file
+/// `path` is replaced only when the directory's [`manifest`](super::manifest) lists it with its content (a file
 /// the user saved there, or over a figure flocking drew, is the user's); the new file is
 /// recorded in the manifest, as [`write_no_follow`] does. A marked directory of an older flocking,
 /// without a manifest (or a copy of one: the committed sweeps of `docs/figures/sweeps`), judges
@@ -75,7 +75,7 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DirError> {
 /// at `path` is refused and what it points to left untouched, as is a directory at `path` that
 /// is a link (issue 27: `flocking plot r` with `r/figures` a link to a user's directory).
 ///
-/// When the directory of `path` or its parent keeps a [`manifest`] (a run's `figures/`, a
+/// When the directory of `path` or its parent keeps a [`manifest`](super::manifest) (a run's `figures/`, a
 /// gallery's `index.html` and `functions/`), an existing `path` is replaced only if the manifest
 /// lists it with its size and content, and the new content is recorded: first beside the old
 /// one, then alone once the file is in place, so that a failure at any instant leaves a file

@@ -46,7 +46,7 @@ pub struct RunDirectory {
     pub(super) columns: Option<Vec<String>>,
     /// The number of agents.
     pub(super) agents: usize,
-    /// The criteria of the verdict of [`VERDICT_FILE`].
+    /// The criteria of the verdict of [`VERDICT_FILE`](crate::run_dir::VERDICT_FILE).
     pub(super) criteria: FlockingCriteria,
     /// The verdict the scenario's model gets.
     pub(super) verdict_kind: VerdictKind,
@@ -69,7 +69,7 @@ pub struct RunDirectory {
 pub struct Finished {
     /// `DIR`.
     pub path: PathBuf,
-    /// The model's verdict judged on its whole `metrics.csv` (also in [`VERDICT_FILE`]).
+    /// The model's verdict judged on its whole `metrics.csv` (also in [`VERDICT_FILE`](crate::run_dir::VERDICT_FILE)).
     pub verdict: Option<Verdict>,
 }
 
@@ -145,7 +145,7 @@ impl RunDirectory {
         })
     }
 
-    /// Judges the finished run by `criteria` in [`VERDICT_FILE`] (default: the last quarter,
+    /// Judges the finished run by `criteria` in [`VERDICT_FILE`](crate::run_dir::VERDICT_FILE) (default: the last quarter,
     /// ε₁ = ε₂ = 0.01).
     #[must_use]
     pub const fn with_criteria(mut self, criteria: FlockingCriteria) -> Self {

@@ -8,7 +8,7 @@
 //!   interrupted, failed) and how to resume it.
 //! - Each record goes to each file in one write of whole lines; a process killed inside that
 //!   write can still leave the record cut (a `.npy` header counts only whole records).
-//!   `checkpoint.bin` ([`Checkpoint`]) is replaced atomically every `checkpoint_every` steps and
+//!   `checkpoint.bin` ([`Checkpoint`](crate::run_dir::Checkpoint)) is replaced atomically every `checkpoint_every` steps and
 //!   when the run is interrupted, and the note then says up to which byte the records are whole.
 //!   [`RunDirectory::resume`] cuts the files back to the last checkpoint and continues them.
 //! - Durability: before `checkpoint.bin` is replaced, the outputs it counts are flushed to the
@@ -22,13 +22,13 @@
 //!   and refuses an existing `DIR` (`RENAME_NOREPLACE`), so nothing appearing between the last
 //!   check and the rename is replaced either.
 //! - Before the final rename, every file of the run is recorded by size and content in its
-//!   manifest ([`owned::manifest`]): `force` replaces a `DIR` only while its files are those
+//!   manifest ([`crate::owned::manifest`]): `force` replaces a `DIR` only while its files are those
 //!   flocking wrote. A resume drops a manifest a cut-short finish left in `DIR.partial`, and
 //!   records it again when it finishes.
 //! - The checkpoint holds the resolved scenario: `--resume` refuses a `scenario.ron` edited
 //!   since, naming the fields that changed.
 //! - The header of `metrics.csv` is written with the first record: the columns of the protocol's
-//!   diagnostics are named by the diagnostics themselves ([`Record::diagnostics`]), and every
+//!   diagnostics are named by the diagnostics themselves ([`Record::diagnostics`](crate::Record::diagnostics)), and every
 //!   later record must carry the same names.
 
 mod columns;

@@ -9,7 +9,7 @@ pub enum TrajectoryFormat {
     #[default]
     Csv,
     /// `trajectory.npy`: one structured record per instant, fields `t`, `q` (n × dim) and
-    /// `p` (n × dim), read by `numpy.load` (see [`super::npy`]).
+    /// `p` (n × dim), read by `numpy.load` (see [`crate::run_dir::npy`]).
     Npy,
 }
 

@@ -147,7 +147,7 @@ impl RunDirectory {
 
     /// [`RunDirectory::resume`] of a run whose inputs come from `controls` (a description of
     /// them, e.g. Python's `controls=f`), or from the scenario's protocol (`None`). A run made
-    /// with controls from elsewhere records them in [`CONTROLS_FILE`]
+    /// with controls from elsewhere records them in [`CONTROLS_FILE`](super::CONTROLS_FILE)
     /// ([`RunDirectory::record_controls`]): resuming it without them, with others, or a run of
     /// the protocol with them, would finish it as neither run, and is refused before anything is
     /// written.

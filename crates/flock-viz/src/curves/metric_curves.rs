@@ -24,12 +24,12 @@ use plotters::style::Color;
 
 use flocking::VerdictKind;
 
+use crate::data::metric_series::Metrics;
+use crate::draw::format;
+use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::style::{self, CURVE, CURVE_SECONDARY, GRID, INK};
 use crate::error::VizError;
-use crate::format;
-use crate::metrics::Metrics;
-use crate::render::{self, Figure, TextMode};
-use crate::snapshot::{below_title, grid_size, text_style};
-use crate::style::{self, CURVE, CURVE_SECONDARY, GRID, INK};
+use crate::snapshots::snapshot::{below_title, grid_size, text_style};
 
 /// How the metric figure is drawn.
 #[derive(Clone, Debug, PartialEq)]

@@ -12,7 +12,7 @@ use plotters::style::{FontStyle, register_font};
 pub const FONT_FAMILY: &str = "sans-serif";
 
 /// DejaVu Sans 2.37 (Bitstream Vera license with the DejaVu and Arev additions).
-static DEJAVU_SANS: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Registers the embedded font with plotters (once per process; later calls do nothing).
 pub(crate) fn ensure_registered() {

@@ -9,11 +9,11 @@ use gif::{Encoder, Frame as GifFrame, Repeat};
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
+use crate::draw::render::{self, Figure, TextMode};
 use crate::error::VizError;
-use crate::framing::Framer;
-use crate::render::{self, Figure, TextMode};
-use crate::scene::Scene;
-use crate::snapshot::{PanelStyle, below_title, draw_panel, figure_title, time_title};
+use crate::scene::frames::Scene;
+use crate::scene::framing::Framer;
+use crate::snapshots::snapshot::{PanelStyle, below_title, draw_panel, figure_title, time_title};
 
 /// How the animation is drawn.
 #[derive(Clone, Debug, PartialEq)]

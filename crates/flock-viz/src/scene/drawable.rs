@@ -8,7 +8,7 @@
 use flock_math::Vector;
 use glam::{DVec2, DVec3};
 
-use crate::geometry::{Rect, circle_polygon, convex_hull};
+use crate::draw::geometry::{Rect, circle_polygon, convex_hull};
 
 /// A 3D wall whose unit normal n̂ has |n̂ · w| below this (w towards the viewer) is seen nearly
 /// edge-on and drawn as a solid region; otherwise as its light boundary plane.
@@ -16,8 +16,8 @@ const EDGE_ON: f64 = 0.2;
 
 /// The sides of the regular polygon that draws a circle.
 pub(crate) const CIRCLE_SIDES: usize = 72;
-use crate::scene::lift;
-use crate::view::View;
+use crate::scene::projection::View;
+use crate::scene::projection::lift;
 
 /// An obstacle to draw. Points are in the run's space: 2D runs use z = 0 (see [`lift`]).
 ///

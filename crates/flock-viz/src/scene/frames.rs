@@ -6,27 +6,9 @@ use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
 use glam::DVec3;
 
-use crate::drawable::Drawable;
 use crate::error::VizError;
-
-/// A point or vector of a 2D or 3D run in 3D, z = 0 in 2D: how scenes store positions.
-///
-/// # Example
-/// ```
-/// use flock_viz::lift;
-/// use glam::{DVec2, DVec3};
-///
-/// assert_eq!(lift(DVec2::new(1.0, 2.0)), DVec3::new(1.0, 2.0, 0.0));
-/// ```
-#[inline]
-#[must_use]
-pub fn lift<V: Vector>(v: V) -> DVec3 {
-    DVec3::new(
-        v.coord(0),
-        v.coord(1),
-        if V::DIM > 2 { v.coord(2) } else { 0.0 },
-    )
-}
+use crate::scene::drawable::Drawable;
+use crate::scene::projection::lift;
 
 /// The state of the flock at one recorded time.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -1,7 +1,28 @@
 //! [`View`]: the orthographic projection that draws a 3D run on the page, as TAC 2006 Fig. 13 draws
-//! its 3D flocks; 2D runs are drawn in their own plane whatever the view.
+//! its 3D flocks; 2D runs are drawn in their own plane whatever the view; [`lift`]: a run's
+//! vectors in the 3D space every view projects.
 
+use flock_math::Vector;
 use glam::{DVec2, DVec3};
+
+/// A point or vector of a 2D or 3D run in 3D, z = 0 in 2D: how scenes store positions.
+///
+/// # Example
+/// ```
+/// use flock_viz::lift;
+/// use glam::{DVec2, DVec3};
+///
+/// assert_eq!(lift(DVec2::new(1.0, 2.0)), DVec3::new(1.0, 2.0, 0.0));
+/// ```
+#[inline]
+#[must_use]
+pub fn lift<V: Vector>(v: V) -> DVec3 {
+    DVec3::new(
+        v.coord(0),
+        v.coord(1),
+        if V::DIM > 2 { v.coord(2) } else { 0.0 },
+    )
+}
 
 /// An orthographic view of 3D space from a direction given by azimuth and elevation (degrees), as
 /// matplotlib's 3D axes define them: the viewer looks at the origin from
@@ -142,8 +163,8 @@ impl View {
             Some(("y", "z")) => "side view".to_owned(),
             _ => format!(
                 "view az {}°, el {}°",
-                crate::format::number(self.azimuth, 1),
-                crate::format::number(self.elevation, 1)
+                crate::draw::format::number(self.azimuth, 1),
+                crate::draw::format::number(self.elevation, 1)
             ),
         }
     }

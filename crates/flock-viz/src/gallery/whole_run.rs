@@ -6,8 +6,8 @@
 use flocking::RunSummary;
 use flocking::metrics::FlockMetrics;
 
-use crate::metrics::Metrics;
-use crate::papers::{Measure, seconds};
+use crate::data::metric_series::Metrics;
+use crate::gallery::papers::{Measure, seconds};
 
 /// The time after which a colliding pair counts against the protocol rather than the random
 /// start (s).
@@ -175,7 +175,7 @@ mod tests {
     use flocking::{MergedAgents, RunSummary, VerdictKind};
 
     use super::{WholeRun, whole_run_rows};
-    use crate::metrics::Metrics;
+    use crate::data::metric_series::Metrics;
 
     fn at(min_distance: f64, collisions: usize, giant_component: f64) -> FlockMetrics {
         FlockMetrics {

@@ -4,9 +4,9 @@
 use plotters::coord::Shift;
 use plotters::prelude::{BitMapBackend, DrawingArea, DrawingBackend, IntoDrawingArea, SVGBackend};
 
+use crate::draw::font;
+use crate::draw::style::{self, BACKGROUND};
 use crate::error::VizError;
-use crate::font;
-use crate::style::{self, BACKGROUND};
 
 /// Something drawn on a plotters drawing area of any backend.
 pub(crate) trait Figure {

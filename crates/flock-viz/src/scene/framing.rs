@@ -4,10 +4,10 @@ use std::cell::OnceCell;
 
 use glam::{DVec2, DVec3};
 
-use crate::drawable::{Drawable, Shape, project_point};
-use crate::geometry::Rect;
-use crate::scene::Scene;
-use crate::view::View;
+use crate::draw::geometry::Rect;
+use crate::scene::drawable::{Drawable, Shape, project_point};
+use crate::scene::frames::Scene;
+use crate::scene::projection::View;
 
 /// Which part of the page plane a panel shows. The window is then widened along one axis so that
 /// both axes have the same scale (equal aspect ratio, as in the papers' figures).
@@ -207,7 +207,7 @@ impl<'a> Framer<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Frame;
+    use crate::scene::frames::Frame;
 
     /// Two agents 10 apart in frame 0, 20 apart in frame 1, moving right by 100.
     fn spreading() -> Scene {

@@ -7,13 +7,13 @@
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
+use crate::draw::format;
+use crate::draw::render::{self, Figure, TextMode};
 use crate::error::VizError;
-use crate::format;
-use crate::framing::Framer;
-use crate::render::{self, Figure, TextMode};
-use crate::scene::Scene;
-use crate::snapshot::{SnapshotOptions, below_title, draw_panel, grid_size};
-use crate::view::View;
+use crate::scene::frames::Scene;
+use crate::scene::framing::Framer;
+use crate::scene::projection::View;
+use crate::snapshots::snapshot::{SnapshotOptions, below_title, draw_panel, grid_size};
 
 /// The views of [`views_svg`] beside `oblique`: the top, front and side views.
 #[must_use]

@@ -34,11 +34,11 @@ use plotters::prelude::{
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 use plotters::style::{Color, RGBColor};
 
+use crate::draw::format;
+use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::style::{self, CURVE, INK};
 use crate::error::VizError;
-use crate::format;
-use crate::render::{self, Figure, TextMode};
-use crate::snapshot::{below_title, text_style};
-use crate::style::{self, CURVE, INK};
+use crate::snapshots::snapshot::{below_title, text_style};
 
 /// One run of a sweep as the phase diagram sees it: its axis values, the metric (NaN when the
 /// run failed or has no value) and its panel.

@@ -9,9 +9,9 @@ use flocking::run_dir::{self, ReadError, Trajectory};
 use flocking::vehicle::VehicleSpec;
 use glam::DVec3;
 
+use crate::data::metric_series::Metrics;
 use crate::error::VizError;
-use crate::metrics::Metrics;
-use crate::scene::{Frame, Scene};
+use crate::scene::frames::{Frame, Scene};
 
 /// A run's outputs: its dimension, metric time series and recorded frames.
 #[derive(Clone, Debug, PartialEq)]

@@ -23,15 +23,15 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::drawable::{Drawable, Shape};
-use crate::error::VizError;
-use crate::format;
-use crate::framing::Framer;
-use crate::scene::Scene;
-use crate::style::{
+use crate::draw::format;
+use crate::draw::style::{
     self, AGENT, BACKGROUND, EDGE, FAILED, GAMMA, INK, OBSTACLE, OBSTACLE_OUTLINE, WALL_PLANE,
 };
-use crate::view::View;
+use crate::error::VizError;
+use crate::scene::drawable::{Drawable, Shape};
+use crate::scene::frames::Scene;
+use crate::scene::framing::Framer;
+use crate::scene::projection::View;
 
 /// How the player is built.
 #[derive(Clone, Debug, PartialEq)]
@@ -176,7 +176,7 @@ fn rounded(x: f64, decimals: usize) -> Option<f64> {
     x.is_finite().then(|| (x * scale).round() / scale)
 }
 
-/// The colours of [`crate::style`], named as the script uses them.
+/// The colours of [`crate::draw::style`], named as the script uses them.
 #[derive(Serialize)]
 struct Colours {
     background: String,
@@ -386,7 +386,7 @@ fn escape_html(text: &str) -> String {
 }
 
 /// The player's script (`assets/player.js`); its colours come from the data.
-const PLAYER_JS: &str = include_str!("../assets/player.js");
+const PLAYER_JS: &str = include_str!("../../assets/player.js");
 
 #[cfg(test)]
 mod tests {

@@ -16,19 +16,19 @@ use plotters::prelude::{
 };
 use plotters::style::{Color, IntoFont, ShapeStyle, TextStyle};
 
-use crate::drawable::{CIRCLE_SIDES, Drawable, Shape};
-use crate::error::VizError;
-use crate::font::FONT_FAMILY;
-use crate::format;
-use crate::framing::{Framer, Framing};
-use crate::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_segment};
-use crate::render::{self, Figure, TextMode};
-use crate::scene::Scene;
-use crate::style::{
+use crate::draw::font::FONT_FAMILY;
+use crate::draw::format;
+use crate::draw::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_segment};
+use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::style::{
     self, AGENT, ATTRACTION, BACKGROUND, EDGE, FAILED, GAMMA, INK, NEAR_EDGE, OBSTACLE,
     OBSTACLE_OUTLINE, PERIODIC_BOX, REPULSION, TRAIL, VELOCITY, WALL_PLANE,
 };
-use crate::view::View;
+use crate::error::VizError;
+use crate::scene::drawable::{CIRCLE_SIDES, Drawable, Shape};
+use crate::scene::frames::Scene;
+use crate::scene::framing::{Framer, Framing};
+use crate::scene::projection::View;
 
 /// Edges within this fraction of d from d are drawn neutral (F⁰) when coloured by stress: s_ij = 0
 /// holds only at exactly d, which round-off never gives.

@@ -17,10 +17,10 @@ use flocking::protocols::{AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams};
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
+use crate::curves::metric_curves::{Curves, fitted_range};
+use crate::draw::render::{self, Figure, TextMode};
 use crate::error::VizError;
-use crate::metrics_plot::{Curves, fitted_range};
-use crate::render::{self, Figure, TextMode};
-use crate::snapshot::{below_title, grid_size};
+use crate::snapshots::snapshot::{below_title, grid_size};
 
 /// d_α of Figs. 2 and 5 (k₀ = d_α / r = 5/6).
 const D_ALPHA: f64 = 10.0;

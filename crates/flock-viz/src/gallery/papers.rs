@@ -7,7 +7,7 @@
 
 use flocking::RunSummary;
 
-use crate::metrics::Metrics;
+use crate::data::metric_series::Metrics;
 
 /// A figure of a paper: its caption, the statements its text makes about it, the fixture's
 /// parameters and whether our run reproduces it.

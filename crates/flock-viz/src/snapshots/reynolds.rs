@@ -26,19 +26,19 @@ use plotters::element::Text;
 use plotters::prelude::{Circle, DrawingArea, DrawingBackend, Rectangle};
 use plotters::style::Color;
 
-use crate::error::VizError;
-use crate::format;
-use crate::framing::{Framer, Framing};
-use crate::geometry::Rect;
-use crate::render::{self, Figure, TextMode};
-use crate::scene::Scene;
-use crate::snapshot::{
-    Chart, DepthCue, arrow, below_title, draw_edges, grid_size, panel_chart, text_style, tuple,
-};
-use crate::style::{
+use crate::draw::format;
+use crate::draw::geometry::Rect;
+use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::style::{
     self, ATTRACTION, EDGE, MOTION_PLANNING, NEUTRAL, REPULSION, VELOCITY_MATCHING,
 };
-use crate::view::View;
+use crate::error::VizError;
+use crate::scene::frames::Scene;
+use crate::scene::framing::{Framer, Framing};
+use crate::scene::projection::View;
+use crate::snapshots::snapshot::{
+    Chart, DepthCue, arrow, below_title, draw_edges, grid_size, panel_chart, text_style, tuple,
+};
 
 /// How the figure is drawn.
 #[derive(Clone, Debug, PartialEq)]

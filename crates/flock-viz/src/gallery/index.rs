@@ -1,18 +1,18 @@
 //! The page of the papers' figures that `flocking figures` writes: per fixture its paper reference,
 //! a sentence at the top when our run does not reproduce the figure, the paper's caption and
 //! statements quoted beside our measures and its parameters marked as the paper's or ours
-//! ([`crate::papers`]), its description, our measures over the whole run
-//! ([`crate::whole_run`]), its snapshot and metric PNGs and a table of its final metrics
+//! ([`crate::gallery::papers`]), its description, our measures over the whole run
+//! ([`crate::gallery::whole_run`]), its snapshot and metric PNGs and a table of its final metrics
 //! ([`index_html`]); one self-contained page, no script, no network.
 
 use std::fmt::Write as _;
 
 use flocking::RunSummary;
 
-use crate::functions::ReportFunction;
-use crate::metrics::Metrics;
-use crate::papers::paper_figure;
-use crate::whole_run::whole_run_rows;
+use crate::curves::functions::ReportFunction;
+use crate::data::metric_series::Metrics;
+use crate::gallery::papers::paper_figure;
+use crate::gallery::whole_run::whole_run_rows;
 
 /// One fixture on the page.
 #[derive(Clone, Debug)]

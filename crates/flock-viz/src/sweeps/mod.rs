@@ -1,0 +1,3 @@
+//! Figures of parameter sweeps: phase diagrams (`flocking sweep plot`).
+
+pub mod phase;
