@@ -428,3 +428,53 @@ fn failed_agents_are_marked_in_the_trajectory_and_the_final_state() {
     let header = std::fs::read_to_string(tmp.path().join("ideal/trajectory.csv")).expect("csv");
     assert!(header.starts_with("t,id,x,y,vx,vy\n"), "{}", &header[..40]);
 }
+
+/// Issue 51 (the storage moved into `flocking::storage`, the checkpoint's FNV-1a became the `fnv`
+/// crate's): a run directory that flocking 1f9075e (the last version before) wrote and that was
+/// interrupted by Ctrl-C after step 11,001 of 30,000 (`tests/data/interrupted_by_1f9075e`: an
+/// Algorithm 2 run under every condition, its checkpoint holding the delay line, the channel and
+/// the faults, at that step) resumes here and finishes with the bytes of the same run written
+/// whole by this version.
+#[test]
+fn issue_51_a_run_interrupted_by_the_flocking_before_resumes_to_the_same_bytes() {
+    use flocking::ScenarioProtocol;
+    let tmp = temp_dir("older_run");
+    let data =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/interrupted_by_1f9075e");
+    let (resumed, partial) = (tmp.path().join("run"), tmp.path().join("run.partial"));
+    std::fs::create_dir(&partial).expect("mkdir");
+    for entry in std::fs::read_dir(&data).expect("the older run") {
+        let path = entry.expect("an entry").path();
+        std::fs::copy(&path, partial.join(path.file_name().expect("a name"))).expect("copied");
+    }
+    let (interrupted, scenario, start) = RunDirectory::resume(&resumed, 500).expect("resumable");
+    let start = start.expect("its checkpoint");
+    assert_eq!(start.steps, 11_001);
+    assert!(
+        !start.conditions.is_empty(),
+        "the conditions' state is kept"
+    );
+    let sim = DynSimulation::build_with(&scenario, Some(&start), &ScenarioProtocol)
+        .expect("the checkpoint continues");
+    let mut dir = interrupted.reopen().expect("reopened");
+    flocking::run_from(sim, Some(start.initial_energy), &mut dir).expect("the rest of the run");
+    dir.finish().expect("finished");
+    let whole = tmp.path().join("whole");
+    let options = OutputOptions {
+        checkpoint_every: 500,
+        ..OutputOptions::default()
+    };
+    let mut dir = RunDirectory::create_with(&whole, &scenario, &options).expect("a new run");
+    flocking::run(&scenario, &mut dir).expect("the whole run");
+    dir.finish().expect("finished");
+    for name in [
+        "metrics.csv",
+        "trajectory.csv",
+        "final.csv",
+        "flocking.txt",
+        "scenario.ron",
+    ] {
+        let read = |dir: &std::path::Path| std::fs::read(dir.join(name)).expect("a run's file");
+        assert!(read(&resumed) == read(&whole), "{name} differs");
+    }
+}
