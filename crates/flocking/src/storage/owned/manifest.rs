@@ -24,7 +24,8 @@ use std::path::Path;
 use super::error::{DirError, link_refused};
 use super::kind::Kind;
 use super::marker::{marked, marked_by_flocking};
-use super::names::{LOCK_FILE, MANIFEST_FILE, MANIFEST_TMP, MARKER_FILE};
+use super::names::{LOCK_FILE, MARKER_FILE};
+pub use super::names::{MANIFEST_FILE, MANIFEST_TMP};
 use super::tmp::write_tmp;
 use crate::storage::fs::at;
 

@@ -36,7 +36,8 @@ use std::path::Path;
 use fnv::FnvHasher;
 
 use crate::run::Start;
-use crate::storage::fs::{at, sync_dir};
+use crate::storage::fs::at;
+pub use crate::storage::fs::sync_dir;
 
 /// The checkpoint's file name in the run directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.bin";
