@@ -19,10 +19,16 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 /// this work). Δr_o and Δr_a are
 /// the paper's two axes (0–15 in its Fig. 2). The two readings of the rule that the sources
 /// leave open are [`Blend`] and [`BlindCone`] (docs/models.md compares each with the paper's
-/// Fig. 2).
+/// Fig. 2). A scenario gives Δr_o and Δr_a; the others default to [`CouzinParams::default`]'s.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct CouzinParams {
     /// The radius r_r > 0 of the zone of repulsion.
+    #[cfg_attr(feature = "serde", serde(default = "CouzinParams::default_r_r"))]
     pub r_r: f64,
     /// The width Δr_o ≥ 0 of the zone of orientation (r_o = r_r + Δr_o).
     pub delta_r_o: f64,
@@ -30,16 +36,28 @@ pub struct CouzinParams {
     pub delta_r_a: f64,
     /// The field of perception α (degrees, (0, 360]): neighbours in the blind cone behind,
     /// 360° − α wide, are not seen.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "CouzinParams::default_field_of_perception")
+    )]
     pub field_of_perception: f64,
     /// The largest turning rate θ (degrees per second).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "CouzinParams::default_turning_rate")
+    )]
     pub turning_rate: f64,
     /// The speed s > 0.
+    #[cfg_attr(feature = "serde", serde(default = "CouzinParams::default_speed"))]
     pub speed: f64,
     /// The standard deviation σ (rad) of the angular noise on the desired direction.
+    #[cfg_attr(feature = "serde", serde(default = "CouzinParams::default_noise"))]
     pub noise: f64,
     /// How the orientation and attraction sums are combined when both zones hold neighbours.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub blend: Blend,
     /// Which zones the blind cone hides neighbours from.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub blind_cone: BlindCone,
 }
 
@@ -144,6 +162,30 @@ impl Default for CouzinParams {
             blend: Blend::default(),
             blind_cone: BlindCone::default(),
         }
+    }
+}
+
+// The defaults of a scenario that leaves them out: [`CouzinParams::default`]'s.
+#[cfg(feature = "serde")]
+impl CouzinParams {
+    fn default_r_r() -> f64 {
+        Self::default().r_r
+    }
+
+    fn default_field_of_perception() -> f64 {
+        Self::default().field_of_perception
+    }
+
+    fn default_turning_rate() -> f64 {
+        Self::default().turning_rate
+    }
+
+    fn default_speed() -> f64 {
+        Self::default().speed
+    }
+
+    fn default_noise() -> f64 {
+        Self::default().noise
     }
 }
 

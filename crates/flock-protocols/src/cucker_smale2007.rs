@@ -50,18 +50,34 @@ pub struct CuckerSmale<V> {
     domain: Domain<V>,
 }
 
-/// The parameters of the Cucker–Smale model, as a scenario writes them.
+/// The parameters of the Cucker–Smale model, as a scenario writes them (`beta` must be given,
+/// the others default to [`CuckerSmaleParams::with_beta`]'s).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct CuckerSmaleParams {
     /// The coupling λ > 0.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "CuckerSmaleParams::default_lambda")
+    )]
     pub lambda: f64,
     /// The kernel's scale K > 0.
+    #[cfg_attr(feature = "serde", serde(default = "CuckerSmaleParams::default_k"))]
     pub k: f64,
     /// The kernel's offset σ > 0.
+    #[cfg_attr(feature = "serde", serde(default = "CuckerSmaleParams::default_sigma"))]
     pub sigma: f64,
     /// The kernel's decay β ≥ 0 (unconditional flocking for β < 1/2).
     pub beta: f64,
     /// A cut-off of ψ beyond which pairs do not interact; `None` (the paper): every pair.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
     pub cutoff: Option<f64>,
 }
 
@@ -76,6 +92,21 @@ impl CuckerSmaleParams {
             beta,
             cutoff: None,
         }
+    }
+
+    #[cfg(feature = "serde")]
+    const fn default_lambda() -> f64 {
+        Self::with_beta(0.0).lambda
+    }
+
+    #[cfg(feature = "serde")]
+    const fn default_k() -> f64 {
+        Self::with_beta(0.0).k
+    }
+
+    #[cfg(feature = "serde")]
+    const fn default_sigma() -> f64 {
+        Self::with_beta(0.0).sigma
     }
 }
 

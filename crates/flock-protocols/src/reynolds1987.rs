@@ -13,8 +13,14 @@ use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
-/// for its "small" and "large" workloads but for `visual_distance`: 5 small, 15 large).
+/// for its "small" and "large" workloads but for `visual_distance`: 5 small, 15 large). A
+/// scenario may leave out any of them.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 pub struct BoidsParams {
     /// The speed s > 0: each step a boid moves s h along its heading (declaration: 1).
     pub speed: f64,

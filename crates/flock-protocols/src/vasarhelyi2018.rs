@@ -24,8 +24,14 @@ use crate::{LocalForm, Perceived, Protocol, Swarm};
 /// a^max = 6 m s⁻² (`a_max`), r_c = 100 m (`R_C`), r^coll = 3 m (`Radius`) and v^max = 8 m/s
 /// (`V_Max`) are robotsim's shipped `unitparams.dat`, `initparams.dat` and `flockingparams.dat`.
 /// None was checked against the paper's supplementary table, which was not available to this
-/// work.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// work. The arena is a square (a cube in 3D) of side 250 m about the origin (docs/models.md).
+/// A scenario may leave out any of them.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(default, deny_unknown_fields)
+)]
 pub struct VasarhelyiParams {
     /// The preferred (flocking) speed v^flock > 0 of the self-propulsion term.
     pub v_flock: f64,
@@ -62,7 +68,21 @@ pub struct VasarhelyiParams {
     pub a_max: f64,
     /// The collision distance r^coll ∈ (0, r_c) of the collision ratio φ^coll.
     pub r_coll: f64,
+    /// The arena's shape.
+    pub arena_shape: ArenaShape,
+    /// The square's (cube's) side, or the circle's (ball's) diameter, > 0.
+    pub arena_side: f64,
+    /// The arena's centre c, one coordinate per dimension, as a scenario writes it; `None`: the
+    /// origin.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub arena_centre: Option<Vec<f64>>,
 }
+
+/// The default arena side (m): 250 (docs/models.md has its source).
+pub const ARENA_SIDE: f64 = 250.0;
 
 impl Default for VasarhelyiParams {
     fn default() -> Self {
@@ -84,7 +104,47 @@ impl Default for VasarhelyiParams {
             tau: 1.0,
             a_max: 6.0,
             r_coll: 3.0,
+            arena_shape: ArenaShape::Square,
+            arena_side: ARENA_SIDE,
+            arena_centre: None,
         }
+    }
+}
+
+impl VasarhelyiParams {
+    /// The arena of the parameters in vectors `V`.
+    ///
+    /// # Errors
+    /// `arena_side` not positive, `arena_centre` not of `V::DIM` finite coordinates within ±10⁹.
+    pub fn arena<V: Vector>(&self) -> Result<Arena<V>, ParamError> {
+        check::positive("arena_side", self.arena_side)?;
+        let centre = match &self.arena_centre {
+            None => V::ZERO,
+            Some(c) => {
+                check::require(
+                    c.len() == V::DIM,
+                    "arena_centre",
+                    c,
+                    &format!(
+                        "has {} components but the space has {} dimensions",
+                        c.len(),
+                        V::DIM
+                    ),
+                    &format!(
+                        "give exactly {} numbers, e.g. [{}], or leave it out for the origin",
+                        V::DIM,
+                        vec!["0.0"; V::DIM].join(", ")
+                    ),
+                )?;
+                check::coordinates("arena_centre", c)?;
+                V::from_fn(|k| c[k])
+            }
+        };
+        Ok(Arena {
+            shape: self.arena_shape,
+            centre,
+            side: self.arena_side,
+        })
     }
 }
 
@@ -194,8 +254,8 @@ pub fn braking_curve(r: f64, a: f64, p: f64) -> f64 {
 /// use flock_protocols::{Arena, ArenaShape, Integrator, Simulation, Swarm, Vasarhelyi, VasarhelyiParams};
 /// use glam::DVec2;
 ///
-/// let arena = Arena { shape: ArenaShape::Square, centre: DVec2::ZERO, side: 250.0 };
-/// let model = Vasarhelyi::new(VasarhelyiParams::default(), arena)?;
+/// let model = Vasarhelyi::<DVec2>::new(VasarhelyiParams::default())?; // a square of side 250 m
+/// assert_eq!(model.arena().shape, ArenaShape::Square);
 /// let q = vec![DVec2::ZERO, DVec2::new(10.0, 0.0)];
 /// let p = vec![DVec2::new(0.0, 6.0), DVec2::new(0.0, 6.0)];
 /// let mut sim = Simulation::new(model, Integrator::SymplecticEuler, Swarm::new(q, p), 0.01)?;
@@ -213,12 +273,11 @@ pub struct Vasarhelyi<V> {
 }
 
 impl<V: Vector> Vasarhelyi<V> {
-    /// The model with `params` in `arena` (open space around it).
+    /// The model with `params` in their arena (open space around it).
     ///
     /// # Errors
-    /// A parameter outside its domain, named as in [`VasarhelyiParams`] (`arena.side`,
-    /// `arena.centre` for the arena).
-    pub fn new(params: VasarhelyiParams, arena: Arena<V>) -> Result<Self, ParamError> {
+    /// A parameter outside its domain, named as in [`VasarhelyiParams`].
+    pub fn new(params: VasarhelyiParams) -> Result<Self, ParamError> {
         let c = &params;
         check::positive("v_flock", c.v_flock)?;
         check::positive("r0_rep", c.r0_rep)?;
@@ -250,14 +309,7 @@ impl<V: Vector> Vasarhelyi<V> {
             "is not below the communication range r_c",
             "give a collision distance below r_c",
         )?;
-        check::positive("arena.side", arena.side)?;
-        check::require(
-            arena.centre.is_finite(),
-            "arena.centre",
-            "non-finite",
-            "has a coordinate that is not a finite number",
-            "give finite coordinates",
-        )?;
+        let arena = params.arena()?;
         Ok(Self { params, arena })
     }
 
@@ -479,14 +531,10 @@ mod tests {
         use glam::DVec2;
         let params = VasarhelyiParams {
             r_c: 200.0,
+            arena_side: 1e6,
             ..VasarhelyiParams::default()
         };
-        let arena = Arena {
-            shape: ArenaShape::Square,
-            centre: DVec2::ZERO,
-            side: 1e6,
-        };
-        let model = Vasarhelyi::new(params, arena).unwrap();
+        let model = Vasarhelyi::<DVec2>::new(params.clone()).unwrap();
         let (v_i, v_j) = (DVec2::new(6.0, 0.0), DVec2::new(6.0, 1.0));
         let across = |r: f64| {
             let others = [(DVec2::new(r, 0.0), v_j)];
@@ -505,12 +553,12 @@ mod tests {
 
     #[test]
     fn a_cube_arena_pushes_back_along_the_axis_left() {
-        let arena = Arena {
-            shape: ArenaShape::Square,
-            centre: DVec3::ZERO,
-            side: 100.0,
+        let params = VasarhelyiParams {
+            arena_side: 100.0,
+            ..VasarhelyiParams::default()
         };
-        let model = Vasarhelyi::new(VasarhelyiParams::default(), arena).unwrap();
+        let model = Vasarhelyi::<DVec3>::new(params).unwrap();
+        let arena = *model.arena();
         // above the lid, at rest: only the z shill acts, downwards at full v^shill
         let w = model.wall_term(DVec3::new(0.0, 0.0, 60.0), DVec3::ZERO);
         assert_eq!(w, DVec3::new(0.0, 0.0, -13.6));

@@ -11,15 +11,45 @@ use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 
-/// The parameters of the Vicsek model, as a scenario writes them (the paper's names).
+/// The parameters of the Vicsek model, as a scenario writes them (the paper's names; `eta` must
+/// be given, the others default to [`VicsekParams::with_eta`]'s).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields)
+)]
 pub struct VicsekParams {
     /// The speed v₀ > 0 of every particle (the paper's Fig. 2: v₀ = 0.03).
+    #[cfg_attr(feature = "serde", serde(default = "VicsekParams::default_v0"))]
     pub v0: f64,
     /// The interaction radius r > 0 (the paper's unit: r = 1).
+    #[cfg_attr(feature = "serde", serde(default = "VicsekParams::default_r"))]
     pub r: f64,
     /// The noise amplitude η ∈ [0, 2π]: Δθ uniform in [−η/2, η/2].
     pub eta: f64,
+}
+
+impl VicsekParams {
+    /// The paper's model (its Fig. 2: v₀ = 0.03, in units of r = 1) with noise amplitude `eta`.
+    #[must_use]
+    pub const fn with_eta(eta: f64) -> Self {
+        Self {
+            v0: 0.03,
+            r: 1.0,
+            eta,
+        }
+    }
+
+    #[cfg(feature = "serde")]
+    const fn default_v0() -> f64 {
+        Self::with_eta(0.0).v0
+    }
+
+    #[cfg(feature = "serde")]
+    const fn default_r() -> f64 {
+        Self::with_eta(0.0).r
+    }
 }
 
 /// θ_i(t + Δt) = ⟨θ(t)⟩_r + Δθ and x_i(t + Δt) = x_i(t) + v_i(t) Δt, v_i = v₀ (cos θ_i, sin θ_i)

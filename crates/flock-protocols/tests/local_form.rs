@@ -192,21 +192,19 @@ fn local_forms_give_the_bits_of_controls_3d() {
 /// Vásárhelyi et al. 2018 in an arena smaller than the swarm and a communication range shorter
 /// than it (r_c = 20 m, r_0^rep = 8 m, r_0^frict = 5 m): every term and the cuts in play.
 fn vasarhelyi_local_is_controls<V: Space>() {
-    use flock_protocols::{Arena, ArenaShape, Vasarhelyi, VasarhelyiParams};
+    use flock_protocols::{ArenaShape, Vasarhelyi, VasarhelyiParams};
     let swarm = random_swarm::<V>(120, 25.0, 9.0, 7);
-    let params = VasarhelyiParams {
-        r_c: 20.0,
-        r0_rep: 8.0,
-        r0_frict: 5.0,
-        ..VasarhelyiParams::default()
-    };
-    for shape in [ArenaShape::Square, ArenaShape::Circle] {
-        let arena = Arena {
-            shape,
-            centre: V::from_fn(|k| [3.0, -2.0, 1.0][k]),
-            side: 40.0,
+    for arena_shape in [ArenaShape::Square, ArenaShape::Circle] {
+        let params = VasarhelyiParams {
+            r_c: 20.0,
+            r0_rep: 8.0,
+            r0_frict: 5.0,
+            arena_shape,
+            arena_centre: Some([3.0, -2.0, 1.0][..V::DIM].to_vec()),
+            arena_side: 40.0,
+            ..VasarhelyiParams::default()
         };
-        let model = Vasarhelyi::new(params, arena).expect("valid");
+        let model = Vasarhelyi::<V>::new(params).expect("valid");
         local_is_controls(&model, &swarm, 40.0);
     }
 }

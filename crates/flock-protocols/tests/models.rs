@@ -720,7 +720,7 @@ fn vasarhelyi_agrees<V: Vector>() {
         centre,
         side: 200.0,
     };
-    let model = Vasarhelyi::new(params, arena).unwrap();
+    let model = vasarhelyi_in(params.clone(), arena);
     let h = 0.01;
     let reference = |_, q: &[V], p: &[V]| {
         let u = vasarhelyi_inputs(q, p, &params, centre, 200.0);
@@ -752,6 +752,17 @@ fn vasarhelyi_braking_curve_at_hand_values() {
     );
 }
 
+/// The model with `params` in `arena`.
+fn vasarhelyi_in<V: Vector>(params: VasarhelyiParams, arena: Arena<V>) -> Vasarhelyi<V> {
+    Vasarhelyi::new(VasarhelyiParams {
+        arena_shape: arena.shape,
+        arena_side: arena.side,
+        arena_centre: Some((0..V::DIM).map(|k| arena.centre.coord(k)).collect()),
+        ..params
+    })
+    .unwrap()
+}
+
 /// The default model in a 10 km arena (walls out of reach).
 fn far_walls<V: Vector>() -> Vasarhelyi<V> {
     let arena = Arena {
@@ -759,7 +770,7 @@ fn far_walls<V: Vector>() -> Vasarhelyi<V> {
         centre: V::ZERO,
         side: 10_000.0,
     };
-    Vasarhelyi::new(VasarhelyiParams::default(), arena).unwrap()
+    vasarhelyi_in(VasarhelyiParams::default(), arena)
 }
 
 /// Two drones 10 m apart flying side by side at v^flock (no velocity difference, so no
@@ -798,7 +809,7 @@ fn vasarhelyi_walls_push_back_outside_and_brake_inside() {
         centre: DVec2::ZERO,
         side: 250.0,
     };
-    let model = Vasarhelyi::new(VasarhelyiParams::default(), square).unwrap();
+    let model = vasarhelyi_in(VasarhelyiParams::default(), square);
     let outside = model.wall_term(DVec2::new(130.0, 0.0), DVec2::ZERO);
     assert_abs_diff_eq!(outside, DVec2::new(-13.6, 0.0), epsilon = 1e-12);
     assert_eq!(square.outside(DVec2::new(130.0, 0.0)), 5.0);
@@ -814,7 +825,7 @@ fn vasarhelyi_walls_push_back_outside_and_brake_inside() {
         shape: ArenaShape::Circle,
         ..square
     };
-    let model = Vasarhelyi::new(VasarhelyiParams::default(), circle).unwrap();
+    let model = vasarhelyi_in(VasarhelyiParams::default(), circle);
     let q = DVec2::new(100.0, 100.0); // 141.4 m out, 16.4 m beyond the wall
     let w = model.wall_term(q, DVec2::ZERO);
     assert_abs_diff_eq!(w, -q.normalize() * 13.6, epsilon = 1e-12);
@@ -832,7 +843,7 @@ fn vasarhelyi_cuts_the_desired_velocity_and_the_acceleration() {
         centre: DVec2::ZERO,
         side: 100.0,
     };
-    let model = Vasarhelyi::new(VasarhelyiParams::default(), arena).unwrap();
+    let model = vasarhelyi_in(VasarhelyiParams::default(), arena);
     let q = DVec2::new(-55.0, 0.0);
     let others = [
         (DVec2::new(-56.0, 0.0), DVec2::ZERO),
@@ -863,7 +874,7 @@ fn vasarhelyi_order_parameters_of_a_constructed_state() {
         centre: DVec2::ZERO,
         side: 100.0,
     };
-    let model = Vasarhelyi::new(VasarhelyiParams::default(), arena).unwrap();
+    let model = vasarhelyi_in(VasarhelyiParams::default(), arena);
     let q = vec![DVec2::ZERO, DVec2::new(2.0, 0.0), DVec2::new(60.0, 0.0)];
     let p = vec![
         DVec2::new(6.0, 0.0),
@@ -890,7 +901,7 @@ fn vasarhelyi_thirty_drones_align_within_a_minute() {
         centre: DVec2::ZERO,
         side: 250.0,
     };
-    let model = Vasarhelyi::new(VasarhelyiParams::default(), arena).unwrap();
+    let model = vasarhelyi_in(VasarhelyiParams::default(), arena);
     let mut swarm = random_swarm::<DVec2>(30, 50.0, 6.0, 5);
     for v in &mut swarm.velocities {
         *v = v.normalize() * 6.0;

@@ -6,8 +6,8 @@ use flock_math::{Domain, Vector};
 use flock_metrics::MetricParams;
 use flock_protocols::conditions::{Communication, Conditions, Loss, Noise, Sensing};
 use flock_protocols::{
-    Arena, ArenaShape, Couzin, CouzinParams, CuckerSmale, CuckerSmaleParams, Integrator, Protocol,
-    Simulation, Swarm, Vasarhelyi, VasarhelyiParams, Vicsek,
+    Couzin, CouzinParams, CuckerSmale, CuckerSmaleParams, Integrator, Protocol, Simulation, Swarm,
+    Vasarhelyi, VasarhelyiParams, Vicsek,
 };
 use glam::{DVec2, DVec3};
 
@@ -149,12 +149,11 @@ fn cucker_smale_with_a_cutoff_stored_by_cell_is_bit_identical() {
 /// order parameters among the diagnostics.
 #[test]
 fn vasarhelyi_stored_by_cell_is_bit_identical() {
-    let arena = Arena {
-        shape: ArenaShape::Square,
-        centre: DVec2::ZERO,
-        side: 6000.0,
+    let params = VasarhelyiParams {
+        arena_side: 6000.0,
+        ..VasarhelyiParams::default()
     };
-    let model = Vasarhelyi::new(VasarhelyiParams::default(), arena).expect("valid");
+    let model = Vasarhelyi::<DVec2>::new(params).expect("valid");
     let start = random_swarm(20_000, 2800.0, 6.0, 53);
     model_stored_by_cell(&model, &start, Domain::Open, &Conditions::default(), 0.01);
     model_stored_by_cell(&model, &start, Domain::Open, &lossy(0.01, 100.0), 0.01);

@@ -28,7 +28,9 @@ use crate::protocols::{
     DynProtocol, GammaAgent, Integrator, NavigationalFeedback, Simulation, Swarm,
 };
 use crate::protocols::{AlphaConfig, BetaConfig};
-use crate::scenario::{Algorithm, Cloud, DomainSpec, Initial, Scenario};
+use crate::scenario::{
+    Algorithm, Algorithm2Params, Algorithm3Params, Cloud, DomainSpec, Initial, Scenario,
+};
 use crate::synthetic::{D, lattice_swarm, shuffled};
 use crate::vehicle::{VehicleSpace, VehicleSpec};
 
@@ -525,17 +527,17 @@ impl BenchConfig {
         };
         let algorithm = match self.algorithm {
             BenchAlgorithm::Algorithm1 => Algorithm::Algorithm1,
-            BenchAlgorithm::Algorithm2 => Algorithm::Algorithm2 {
+            BenchAlgorithm::Algorithm2 => Algorithm::Algorithm2(Algorithm2Params {
                 gamma,
                 c1: 0.02,
                 c2: 0.4,
-            },
-            BenchAlgorithm::Algorithm3 => Algorithm::Algorithm3 {
+            }),
+            BenchAlgorithm::Algorithm3 => Algorithm::Algorithm3(Algorithm3Params {
                 gamma,
                 c1: 0.02,
                 c2: None,
                 beta: BetaConfig::default(),
-            },
+            }),
         };
         let steps = self.warmup.saturating_add(self.steps);
         Scenario {

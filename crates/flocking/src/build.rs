@@ -6,7 +6,7 @@ use flock_math::{Bump, Domain, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
 use flock_protocols::conditions::stage::perception_field;
 use flock_protocols::{
-    Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, Arena, BallObstacle,
+    Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
     BetaInteraction, Boids, Conditions, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003,
     GammaAgent, NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
     TannerJadbabaiePappas, Vasarhelyi, Vicsek, random_connected_graph,
@@ -14,7 +14,9 @@ use flock_protocols::{
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;
-use crate::scenario::{Algorithm, DomainSpec, FixedGraph, Point, Scenario};
+use crate::scenario::{
+    Algorithm, ConsensusParams, DomainSpec, FixedGraph, Point, Scenario, TannerParams,
+};
 
 /// The γ-agent of a validated scenario in vectors `V`.
 #[must_use]
@@ -40,22 +42,15 @@ impl Scenario {
     /// [`AlphaAlpha::reynolds_reading`] reads (ACC 2004 § 4).
     #[must_use]
     pub fn alpha_alpha(&self) -> Option<AlphaAlpha> {
-        let Algorithm::Flocking2003 {
-            form,
-            c1,
-            delta,
-            power,
-            ..
-        } = &self.algorithm
-        else {
+        let Algorithm::Flocking2003(p) = &self.algorithm else {
             return None;
         };
         let (a, b, d, r) = (self.alpha.a, self.alpha.b, self.alpha.d, self.range());
         let params = AlphaAlphaParams {
-            bump: Bump::influence_map(delta.unwrap_or(d / r), *power),
+            bump: Bump::influence_map(p.delta.unwrap_or(d / r), p.power),
             ..AlphaAlphaParams::new(d, r, a, b)
         };
-        Some(AlphaAlpha::new(params, *form, *c1))
+        Some(AlphaAlpha::new(params, p.form, p.c1))
     }
 
     /// The protocol of the algorithm, whatever the conditions.
@@ -67,18 +62,17 @@ impl Scenario {
         let (d, r) = (alpha_config.d, self.range());
         Ok(match &self.algorithm {
             Algorithm::Algorithm1 => Box::new(Algorithm1 { alpha }),
-            Algorithm::Algorithm2 { gamma, c1, c2 } => {
-                let navigation = NavigationalFeedback::linear(gamma_agent::<V>(gamma), *c1, *c2);
+            Algorithm::Algorithm2(p) => {
+                let navigation =
+                    NavigationalFeedback::linear(gamma_agent::<V>(&p.gamma), p.c1, p.c2);
                 Box::new(Algorithm2 { alpha, navigation })
             }
-            Algorithm::Algorithm3 {
-                gamma,
-                c1,
-                c2,
-                beta,
-            } => {
-                let c2 = c2.unwrap_or_else(|| flock_protocols::critical_damping(*c1));
-                let navigation = NavigationalFeedback::bounded(gamma_agent::<V>(gamma), *c1, c2);
+            Algorithm::Algorithm3(p) => {
+                let beta = &p.beta;
+                let c2 =
+                    p.c2.unwrap_or_else(|| flock_protocols::critical_damping(p.c1));
+                let navigation =
+                    NavigationalFeedback::bounded(gamma_agent::<V>(&p.gamma), p.c1, c2);
                 let field = ObstacleField::<V>::from_specs(&self.obstacles)
                     .map_err(ScenarioError::Obstacle)?;
                 let interaction = BetaInteraction::new(
@@ -94,82 +88,58 @@ impl Scenario {
                     beta: interaction,
                 })
             }
-            Algorithm::Flocking2003 {
-                translation,
-                avoidance,
-                ..
-            } => {
+            Algorithm::Flocking2003(p) => {
                 let alpha = self.alpha_alpha().unwrap_or_else(|| unreachable!());
                 let params = *alpha.params();
-                let translation = translation
+                let translation = p
+                    .translation
                     .as_ref()
                     .map(|t| NavigationalFeedback::linear(gamma_agent::<V>(&t.gamma), t.c1, t.c2));
                 let flocking = Flocking2003 { alpha, translation };
-                match avoidance {
+                match p.avoidance {
                     None => Box::new(flocking),
                     Some(gains) => Box::new(ObstacleFlocking2003 {
                         flocking,
                         obstacles: self.balls()?,
-                        params: ObstacleParams::new(&params, *gains),
+                        params: ObstacleParams::new(&params, gains),
                     }),
                 }
             }
-            Algorithm::Tanner { .. } => {
+            Algorithm::Tanner(_) => {
                 let law =
                     TannerJadbabaiePappas::new(self.tanner_graph()?, TannerPotential::new(d), r)
                         .map_err(|e| tanner_graph_error(e.to_string()))?;
                 Box::new(law)
             }
-            Algorithm::Consensus { gain, graph } => {
-                let consensus = match graph {
-                    None => Consensus::proximity(*gain, r),
-                    Some(_) => Consensus::fixed(*gain, self.tanner_graph()?, r),
+            Algorithm::Consensus(p) => {
+                let consensus = match p.graph {
+                    None => Consensus::proximity(p.gain, r),
+                    Some(_) => Consensus::fixed(p.gain, self.tanner_graph()?, r),
                 };
                 Box::new(consensus.map_err(within("algorithm"))?)
             }
-            model @ Algorithm::CuckerSmale { .. } => {
-                let params = model.cucker_smale().unwrap_or_else(|| unreachable!());
+            Algorithm::CuckerSmale(params) => {
                 // the net's range without a cutoff: a cutoff is checked as itself (issue 49: a
                 // negative one was named `algorithm.range`)
                 Box::new(
-                    CuckerSmale::new(params, alpha_config.range(), self.agents, self.domain())
+                    CuckerSmale::new(*params, alpha_config.range(), self.agents, self.domain())
                         .map_err(within("algorithm"))?,
                 )
             }
-            model @ Algorithm::Vicsek { .. } => {
-                let params = model.vicsek().unwrap_or_else(|| unreachable!());
-                Box::new(
-                    Vicsek::new(params, self.step, self.seed, self.domain())
-                        .map_err(within("algorithm"))?,
-                )
-            }
-            model @ Algorithm::Boids { .. } => {
-                let params = model.boids().unwrap_or_else(|| unreachable!());
-                Box::new(
-                    Boids::new(params, self.step, self.seed, self.domain())
-                        .map_err(within("algorithm"))?,
-                )
-            }
-            model @ Algorithm::Couzin { .. } => {
-                let params = model.couzin().unwrap_or_else(|| unreachable!());
-                Box::new(
-                    Couzin::new(params, self.step, self.seed, self.domain())
-                        .map_err(within("algorithm"))?,
-                )
-            }
-            model @ Algorithm::Vasarhelyi {
-                arena_shape,
-                arena_side,
-                arena_centre,
-                ..
-            } => {
-                let params = model.vasarhelyi().unwrap_or_else(|| unreachable!());
-                let arena = Arena {
-                    shape: *arena_shape,
-                    centre: arena_centre.as_deref().map_or(V::ZERO, to_vector),
-                    side: *arena_side,
-                };
-                Box::new(Vasarhelyi::new(params, arena).map_err(within("algorithm"))?)
+            Algorithm::Vicsek(params) => Box::new(
+                Vicsek::new(*params, self.step, self.seed, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
+            Algorithm::Boids(params) => Box::new(
+                Boids::new(*params, self.step, self.seed, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
+            Algorithm::Couzin(params) => Box::new(
+                Couzin::new(*params, self.step, self.seed, self.domain())
+                    .map_err(within("algorithm"))?,
+            ),
+            Algorithm::Vasarhelyi(params) => {
+                Box::new(Vasarhelyi::new(params.clone()).map_err(within("algorithm"))?)
             }
         })
     }
@@ -220,10 +190,10 @@ impl Scenario {
     #[must_use]
     pub fn fixed_graph(&self) -> Option<&FixedGraph> {
         match &self.algorithm {
-            Algorithm::Tanner { graph }
-            | Algorithm::Consensus {
+            Algorithm::Tanner(TannerParams { graph })
+            | Algorithm::Consensus(ConsensusParams {
                 graph: Some(graph), ..
-            } => Some(graph),
+            }) => Some(graph),
             _ => None,
         }
     }

@@ -41,6 +41,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod algorithm;
 pub mod bench;
 pub mod build;
 pub mod error;
@@ -55,6 +56,7 @@ pub mod scenario;
 pub mod simulation;
 pub mod stability;
 pub mod storage;
+mod struct_variant;
 pub mod sweep;
 pub mod synthetic;
 pub mod time;

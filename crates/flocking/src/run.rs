@@ -11,7 +11,7 @@ use crate::error::ScenarioError;
 use crate::health::NumericalError;
 use crate::merging::{MERGE_FRACTION, Merge, MergedAgents, closest_pair, merged_agents};
 use crate::scenario::Scenario;
-use crate::simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
+use crate::simulation::{DynSimulation, MapBoth, MapProtocol, ScenarioProtocol, State};
 use crate::verdict::{Verdict, VerdictKind};
 // where they lived before: `flocking::run::Start`, `flocking::run::time_text`
 pub use crate::simulation::Start;
@@ -238,7 +238,17 @@ pub fn resume_with<R: Recorder + ?Sized, M: MapProtocol>(
     recorder: &mut R,
     map: &M,
 ) -> Result<RunSummary, RunError<R::Error>> {
-    let sim = DynSimulation::build_with(scenario, start, map)?;
+    resume_mapped(scenario, start, recorder, map)
+}
+
+/// [`resume_with`] with the map as a trait object (the simulation built once for every map).
+pub(crate) fn resume_mapped<R: Recorder + ?Sized>(
+    scenario: &Scenario,
+    start: Option<&Start>,
+    recorder: &mut R,
+    map: &dyn MapBoth,
+) -> Result<RunSummary, RunError<R::Error>> {
+    let sim = DynSimulation::build_mapped(scenario, start, map)?;
     run_from(sim, start.map(|start| start.initial_energy), recorder)
 }
 

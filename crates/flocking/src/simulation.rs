@@ -175,6 +175,45 @@ impl MapProtocol for ScenarioProtocol {
     }
 }
 
+/// A [`MapProtocol`] as a trait object, its two dimensions spelled out: what the builders of
+/// [`DynSimulation`] take, so that they (the simulation loop and every protocol) are compiled
+/// once, here, rather than again in every crate for every map (issue 51: 848k LLVM lines in
+/// flock-cli's library when they were generic over the map).
+pub(crate) trait MapBoth {
+    /// [`MapProtocol::map`] in the plane.
+    fn map_2d(&self, protocol: DynProtocol<DVec2>) -> DynProtocol<DVec2>;
+    /// [`MapProtocol::map`] in space.
+    fn map_3d(&self, protocol: DynProtocol<DVec3>) -> DynProtocol<DVec3>;
+}
+
+impl<M: MapProtocol> MapBoth for M {
+    fn map_2d(&self, protocol: DynProtocol<DVec2>) -> DynProtocol<DVec2> {
+        self.map(protocol)
+    }
+
+    fn map_3d(&self, protocol: DynProtocol<DVec3>) -> DynProtocol<DVec3> {
+        self.map(protocol)
+    }
+}
+
+/// The vectors of a dimension a [`DynSimulation`] is built in, with the map of that dimension.
+trait Dimension: Space + bytemuck::Pod + VehicleSpace {
+    /// `map` applied to `protocol` in this dimension.
+    fn mapped(map: &dyn MapBoth, protocol: DynProtocol<Self>) -> DynProtocol<Self>;
+}
+
+impl Dimension for DVec2 {
+    fn mapped(map: &dyn MapBoth, protocol: DynProtocol<Self>) -> DynProtocol<Self> {
+        map.map_2d(protocol)
+    }
+}
+
+impl Dimension for DVec3 {
+    fn mapped(map: &dyn MapBoth, protocol: DynProtocol<Self>) -> DynProtocol<Self> {
+        map.map_3d(protocol)
+    }
+}
+
 /// What a [`DynSimulation`] asks of the simulation it holds, in either dimension.
 trait Dynamic: Send {
     fn step(&mut self);
@@ -337,6 +376,11 @@ impl DynSimulation {
     /// # Errors
     /// An invalid scenario.
     pub fn new_with<M: MapProtocol>(scenario: &Scenario, map: &M) -> Result<Self, ScenarioError> {
+        Self::new_mapped(scenario, map)
+    }
+
+    /// [`DynSimulation::new_with`], compiled once for every map.
+    fn new_mapped(scenario: &Scenario, map: &dyn MapBoth) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         match scenario.dim {
             2 => Self::of(scenario, initial_swarm::<DVec2>(scenario), 0, None, map),
@@ -376,13 +420,13 @@ impl DynSimulation {
 
     /// [`DynSimulation::from_state_with`], the vehicles in `vehicle` states if given (else each
     /// started in its equilibrium).
-    fn from_rows<M: MapProtocol>(
+    fn from_rows(
         scenario: &Scenario,
         positions: &[f64],
         velocities: &[f64],
         steps: u64,
         vehicle: Option<Vec<f64>>,
-        map: &M,
+        map: &dyn MapBoth,
     ) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         let size = scenario.agents * scenario.dim;
@@ -430,9 +474,18 @@ impl DynSimulation {
         start: Option<&Start>,
         map: &M,
     ) -> Result<Self, ScenarioError> {
+        Self::build_mapped(scenario, start, map)
+    }
+
+    /// [`DynSimulation::build_with`], compiled once for every map.
+    pub(crate) fn build_mapped(
+        scenario: &Scenario,
+        start: Option<&Start>,
+        map: &dyn MapBoth,
+    ) -> Result<Self, ScenarioError> {
         match start {
-            None => Self::new_with(scenario, map),
-            Some(start) => Self::resume_with(scenario, start, map),
+            None => Self::new_mapped(scenario, map),
+            Some(start) => Self::resume_mapped(scenario, start, map),
         }
     }
 
@@ -459,6 +512,15 @@ impl DynSimulation {
         start: &Start,
         map: &M,
     ) -> Result<Self, ScenarioError> {
+        Self::resume_mapped(scenario, start, map)
+    }
+
+    /// [`DynSimulation::resume_with`], compiled once for every map.
+    fn resume_mapped(
+        scenario: &Scenario,
+        start: &Start,
+        map: &dyn MapBoth,
+    ) -> Result<Self, ScenarioError> {
         scenario.validate()?;
         start.check(scenario)?;
         let (q, p) = (&start.positions, &start.velocities);
@@ -484,14 +546,16 @@ impl DynSimulation {
         Ok(sim)
     }
 
-    fn of<V: Space + bytemuck::Pod + VehicleSpace, M: MapProtocol>(
+    /// The simulation in vectors `V`: generic over the dimension only, so compiled twice, in
+    /// this crate.
+    fn of<V: Dimension>(
         scenario: &Scenario,
         swarm: Swarm<V>,
         steps: u64,
         vehicle_states: Option<Vec<f64>>,
-        map: &M,
+        map: &dyn MapBoth,
     ) -> Result<Self, ScenarioError> {
-        let protocol = map.map(scenario.protocol::<V>()?);
+        let protocol = V::mapped(map, scenario.protocol::<V>()?);
         let agents = swarm.len();
         let mut sim =
             Simulation::resume(protocol, scenario.integrator, swarm, scenario.step, steps)?

@@ -62,7 +62,7 @@ use flock_protocols::{
 };
 
 use crate::initial::initial_swarm;
-use crate::scenario::{Algorithm, Scenario};
+use crate::scenario::{Algorithm, Flocking2003Params, Scenario};
 
 /// A valid scenario that is likely to go wrong, with the field, the value, why and the fix.
 #[derive(Clone, Debug, PartialEq)]
@@ -109,10 +109,10 @@ pub const EXACT_SPECTRUM_NODES: usize = 200;
 /// of the lattice's kissing number and the initial net's largest degree). `None` for the other
 /// algorithms.
 fn consensus_lambda_max(scenario: &Scenario, deg: impl FnOnce() -> f64) -> Option<(f64, bool)> {
-    let Algorithm::Consensus { graph, .. } = &scenario.algorithm else {
+    let Algorithm::Consensus(consensus) = &scenario.algorithm else {
         return None;
     };
-    if graph.is_none() {
+    if consensus.graph.is_none() {
         return Some((2.0 * deg(), false));
     }
     let graph = scenario.tanner_graph().ok()?;
@@ -149,8 +149,8 @@ pub fn consensus_laplacian_max(scenario: &Scenario) -> Option<(f64, bool)> {
 pub fn velocity_consensus_delay_bound(scenario: &Scenario, positions: &[f64]) -> Option<f64> {
     let gamma_c2 = match &scenario.algorithm {
         Algorithm::Algorithm1 => 0.0,
-        Algorithm::Algorithm2 { c2, .. } => *c2,
-        Algorithm::Algorithm3 { c1, c2, .. } => c2.unwrap_or(critical_damping(*c1)),
+        Algorithm::Algorithm2(p) => p.c2,
+        Algorithm::Algorithm3(p) => p.c2.unwrap_or(critical_damping(p.c1)),
         _ => return None,
     };
     let a = &scenario.alpha;
@@ -192,12 +192,11 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
     };
     match &scenario.algorithm {
         // discrete-time maps with their own step: no continuous dynamics to resolve
-        Algorithm::Vicsek { .. } | Algorithm::Boids { .. } | Algorithm::Couzin { .. } => {
+        Algorithm::Vicsek(_) | Algorithm::Boids(_) | Algorithm::Couzin(_) => {
             return None;
         }
         // ṗ = −(λ/N) L_ψ p with ψ ≤ K/σ^{2β}: by Gershgorin λ_max ≤ 2 λ K (N − 1) / (N σ^{2β})
-        model @ Algorithm::CuckerSmale { .. } => {
-            let p = model.cucker_smale().unwrap_or_else(|| unreachable!());
+        Algorithm::CuckerSmale(p) => {
             let lambda = 2.0 * p.lambda * p.k / (p.sigma * p.sigma).powf(p.beta);
             let step = radius / lambda;
             return (step.is_finite() && step > 0.0).then_some(step);
@@ -205,8 +204,7 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
         // v̇ = (v_d − v)/τ: damping up to (1 + C^frict deg)/τ (self-propulsion's derivative
         // across the heading is at most 1 at the flocking speed, each neighbour's alignment
         // C^frict), stiffness up to p^rep deg/τ (the linear repulsion)
-        model @ Algorithm::Vasarhelyi { .. } => {
-            let p = model.vasarhelyi().unwrap_or_else(|| unreachable!());
+        Algorithm::Vasarhelyi(p) => {
             let degree = deg();
             let damping = (1.0 + p.c_frict * degree) / p.tau;
             let omega2 = p.p_rep * degree / p.tau;
@@ -221,14 +219,14 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
         }
         _ => {}
     }
-    if let Algorithm::Consensus { gain, .. } = &scenario.algorithm {
+    if let Algorithm::Consensus(consensus) = &scenario.algorithm {
         let (lambda, _) = consensus_lambda_max(scenario, deg)?;
-        let step = radius / (gain * lambda);
+        let step = radius / (consensus.gain * lambda);
         return (step.is_finite() && step > 0.0).then_some(step);
     }
     let Stiffness { omega2, damping } = match &scenario.algorithm {
-        Algorithm::Flocking2003 { .. } => stiffness_2003(scenario, deg()),
-        Algorithm::Tanner { .. } => stiffness_tanner(scenario)?,
+        Algorithm::Flocking2003(_) => stiffness_2003(scenario, deg()),
+        Algorithm::Tanner(_) => stiffness_tanner(scenario)?,
         _ => stiffness_tac(scenario, deg()),
     };
     let step = match scenario.integrator {
@@ -244,10 +242,8 @@ fn stable_step(scenario: &Scenario, degree: impl FnOnce() -> usize) -> Option<f6
 fn stiffness_tac(scenario: &Scenario, deg: f64) -> Stiffness {
     let a = &scenario.alpha;
     let (gamma_c1, gamma_c2, beta) = match &scenario.algorithm {
-        Algorithm::Algorithm2 { c1, c2, .. } => (*c1, *c2, None),
-        Algorithm::Algorithm3 { c1, c2, beta, .. } => {
-            (*c1, c2.unwrap_or(critical_damping(*c1)), Some(beta))
-        }
+        Algorithm::Algorithm2(p) => (p.c1, p.c2, None),
+        Algorithm::Algorithm3(p) => (p.c1, p.c2.unwrap_or(critical_damping(p.c1)), Some(&p.beta)),
         _ => (0.0, 0.0, None),
     };
     let sigma = SigmaNorm::new(a.epsilon);
@@ -275,14 +271,14 @@ fn stiffness_tac(scenario: &Scenario, deg: f64) -> Stiffness {
 
 /// The bounds of the 2003 (α, α) protocols, with their translational controller and obstacles.
 fn stiffness_2003(scenario: &Scenario, deg: f64) -> Stiffness {
-    let Algorithm::Flocking2003 {
+    let Algorithm::Flocking2003(Flocking2003Params {
         form,
         c1,
         delta,
         power,
         translation,
         avoidance,
-    } = &scenario.algorithm
+    }) = &scenario.algorithm
     else {
         unreachable!("the 2003 bounds of another algorithm");
     };
@@ -457,8 +453,8 @@ impl Scenario {
         let kissing = if self.dim == 2 { 6 } else { 12 };
         let deg = || degree().max(kissing) as f64;
         let consensus = match &self.algorithm {
-            Algorithm::Consensus { gain, .. } => {
-                consensus_lambda_max(self, deg).map(|(lambda, exact)| (*gain, lambda, exact))
+            Algorithm::Consensus(p) => {
+                consensus_lambda_max(self, deg).map(|(lambda, exact)| (p.gain, lambda, exact))
             }
             _ => None,
         };

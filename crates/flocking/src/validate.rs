@@ -69,7 +69,7 @@ impl Scenario {
         let mut problems = Problems::default();
         self.validate_values(&mut problems);
         if problems.0.is_empty() {
-            if matches!(self.algorithm, Algorithm::Tanner { .. }) {
+            if matches!(self.algorithm, Algorithm::Tanner(_)) {
                 problems.check(self.validate_distinct_start());
             }
             problems.check(self.validate_obstacles());
@@ -270,14 +270,12 @@ impl Scenario {
 
     /// The field that sets the interaction range r of [`Scenario::range`].
     fn range_field(&self) -> &'static str {
-        match self.algorithm {
-            Algorithm::CuckerSmale {
-                cutoff: Some(_), ..
-            } => "algorithm.cutoff",
-            Algorithm::Vicsek { .. } => "algorithm.r",
-            Algorithm::Boids { .. } => "algorithm.visual_distance",
-            Algorithm::Couzin { .. } => "algorithm.delta_r_a",
-            Algorithm::Vasarhelyi { .. } => "algorithm.r_c",
+        match &self.algorithm {
+            Algorithm::CuckerSmale(p) if p.cutoff.is_some() => "algorithm.cutoff",
+            Algorithm::Vicsek(_) => "algorithm.r",
+            Algorithm::Boids(_) => "algorithm.visual_distance",
+            Algorithm::Couzin(_) => "algorithm.delta_r_a",
+            Algorithm::Vasarhelyi(_) => "algorithm.r_c",
             _ => "alpha.r",
         }
     }
@@ -368,36 +366,25 @@ impl Scenario {
         let within = |prefix: &'static str| move |e: ParamError| e.within(prefix);
         match &self.algorithm {
             Algorithm::Algorithm1 => {}
-            Algorithm::Algorithm2 { gamma, c1, c2 } => {
-                problems.check(positive("algorithm.c1", *c1));
-                problems.check(positive("algorithm.c2", *c2));
-                self.validate_gamma(problems, "algorithm.gamma", gamma);
+            Algorithm::Algorithm2(p) => {
+                problems.check(positive("algorithm.c1", p.c1));
+                problems.check(positive("algorithm.c2", p.c2));
+                self.validate_gamma(problems, "algorithm.gamma", &p.gamma);
             }
-            Algorithm::Algorithm3 {
-                gamma,
-                c1,
-                c2,
-                beta,
-            } => {
-                problems.check(positive("algorithm.c1", *c1));
-                if let Some(c2) = c2 {
-                    problems.check(positive("algorithm.c2", *c2));
+            Algorithm::Algorithm3(p) => {
+                problems.check(positive("algorithm.c1", p.c1));
+                if let Some(c2) = p.c2 {
+                    problems.check(positive("algorithm.c2", c2));
                 }
-                self.validate_gamma(problems, "algorithm.gamma", gamma);
+                self.validate_gamma(problems, "algorithm.gamma", &p.gamma);
                 problems.check(
-                    beta.validate(self.alpha.d)
+                    p.beta
+                        .validate(self.alpha.d)
                         .map_err(within("algorithm.beta")),
                 );
             }
-            Algorithm::Flocking2003 {
-                c1,
-                delta,
-                power,
-                translation,
-                avoidance,
-                ..
-            } => {
-                problems.check(non_negative("algorithm.c1", *c1));
+            Algorithm::Flocking2003(p) => {
+                problems.check(non_negative("algorithm.c1", p.c1));
                 problems.check(require(
                     self.alpha.a < self.alpha.b,
                     "alpha.a",
@@ -408,22 +395,22 @@ impl Scenario {
                     ),
                     "use e.g. a: 1.0, b: 5.0",
                 ));
-                if let Some(delta) = delta {
-                    problems.check(check::unit_interval("algorithm.delta", *delta));
+                if let Some(delta) = p.delta {
+                    problems.check(check::unit_interval("algorithm.delta", delta));
                 }
                 problems.check(require(
-                    *power >= 1,
+                    p.power >= 1,
                     "algorithm.power",
-                    power,
+                    p.power,
                     "the influence map needs k ≥ 1",
                     "use power: 1 (C¹) or more",
                 ));
-                if let Some(t) = translation {
+                if let Some(t) = &p.translation {
                     problems.check(non_negative("algorithm.translation.c1", t.c1));
                     problems.check(positive("algorithm.translation.c2", t.c2));
                     self.validate_gamma(problems, "algorithm.translation.gamma", &t.gamma);
                 }
-                if let Some(a) = avoidance {
+                if let Some(a) = &p.avoidance {
                     problems.check(a.validate().map_err(within("algorithm.avoidance")));
                     for (k, spec) in self.obstacles.iter().enumerate() {
                         problems.check(require(
@@ -436,26 +423,16 @@ impl Scenario {
                     }
                 }
             }
-            Algorithm::Tanner { graph } => problems.check(self.validate_fixed_graph(graph, true)),
-            Algorithm::Consensus { gain, graph } => {
-                problems.check(positive("algorithm.gain", *gain));
-                if let Some(graph) = graph {
+            Algorithm::Tanner(p) => problems.check(self.validate_fixed_graph(&p.graph, true)),
+            Algorithm::Consensus(p) => {
+                problems.check(positive("algorithm.gain", p.gain));
+                if let Some(graph) = &p.graph {
                     problems.check(self.validate_fixed_graph(graph, false));
                 }
             }
-            Algorithm::CuckerSmale { .. }
-            | Algorithm::Vicsek { .. }
-            | Algorithm::Boids { .. }
-            | Algorithm::Couzin { .. }
-            | Algorithm::Vasarhelyi { .. } => {
-                let mut buildable = true;
-                if let Algorithm::Vasarhelyi { arena_centre, .. } = &self.algorithm {
-                    if let Some(centre) = arena_centre
-                        && let Err(e) = vector("algorithm.arena_centre", centre, self.dim)
-                    {
-                        problems.check(Err::<(), _>(e));
-                        buildable = false;
-                    }
+            // the models: built, their constructor checks their parameters
+            model => {
+                if let Algorithm::Vasarhelyi(_) = model {
                     problems.check(require(
                         self.domain.is_open(),
                         "domain",
@@ -466,13 +443,11 @@ impl Scenario {
                 }
                 // the model's constructor checks its parameters, each named (the conditions it
                 // cannot take are refused above, once)
-                if buildable {
-                    let built = match self.dim {
-                        2 => self.ideal_protocol::<DVec2>().map(|_| ()),
-                        _ => self.ideal_protocol::<DVec3>().map(|_| ()),
-                    };
-                    problems.check(built);
-                }
+                let built = match self.dim {
+                    2 => self.ideal_protocol::<DVec2>().map(|_| ()),
+                    _ => self.ideal_protocol::<DVec3>().map(|_| ()),
+                };
+                problems.check(built);
             }
         }
         self.validate_domain(problems);

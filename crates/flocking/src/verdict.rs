@@ -44,11 +44,11 @@ impl VerdictKind {
     #[must_use]
     pub const fn of(algorithm: &Algorithm) -> Self {
         match algorithm {
-            Algorithm::CuckerSmale { .. } => Self::CuckerSmale,
-            Algorithm::Vicsek { .. } => Self::Order("Vicsek et al. 1995"),
-            Algorithm::Boids { .. } => Self::Order("boids (Reynolds 1987)"),
-            Algorithm::Couzin { .. } => Self::Couzin,
-            Algorithm::Vasarhelyi { .. } => Self::Vasarhelyi,
+            Algorithm::CuckerSmale(_) => Self::CuckerSmale,
+            Algorithm::Vicsek(_) => Self::Order("Vicsek et al. 1995"),
+            Algorithm::Boids(_) => Self::Order("boids (Reynolds 1987)"),
+            Algorithm::Couzin(_) => Self::Couzin,
+            Algorithm::Vasarhelyi(_) => Self::Vasarhelyi,
             _ => Self::Definition5,
         }
     }

@@ -132,7 +132,7 @@ impl fmt::Display for WorkloadReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = &self.scenario;
         let agents = match s.algorithm {
-            Algorithm::Boids { .. } => "birds",
+            Algorithm::Boids(_) => "birds",
             _ => "agents",
         };
         let ms = |d: Duration| d.as_secs_f64() * 1e3;

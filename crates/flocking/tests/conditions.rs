@@ -569,7 +569,9 @@ fn delay_drag(scenario: &Scenario, q: &[DVec2], direction: DVec2) -> f64 {
 #[test]
 fn neighbour_delay_makes_the_flock_fall_behind_by_kappa_tau_v_over_c1() {
     let base = crate::common::fixture("tac2006_fig11_alg2_n100");
-    let flocking::Algorithm::Algorithm2 { c1, .. } = base.algorithm else {
+    let flocking::Algorithm::Algorithm2(flocking::scenario::Algorithm2Params { c1, .. }) =
+        base.algorithm
+    else {
         panic!("Algorithm 2");
     };
     let p_r = DVec2::new(1.0, 0.5);

@@ -378,3 +378,88 @@ fn issue_50_each_classic_model_is_judged_by_its_own_states() {
         assert!(!verdict.to_string().contains("α-flocking"), "{verdict}");
     }
 }
+
+/// Issue 51: each model's scenario variant holds the model's own parameter struct, and reads and
+/// writes as the struct variant users have always written (`Vicsek(eta: 2.0)`, `Vasarhelyi()`),
+/// its defaults those of the struct; RON errors keep the variant, the field, the line and the
+/// column; the JSON form of sweeps and Python keeps its shape.
+#[test]
+fn models_read_and_write_as_struct_variants_holding_their_params() {
+    use flocking::Algorithm;
+    use flocking::protocols::{
+        BoidsParams, CouzinParams, CuckerSmaleParams, VasarhelyiParams, VicsekParams,
+    };
+    let scenario = |algorithm: &str| {
+        format!(
+            "Scenario(dim: 2, agents: 10, algorithm: {algorithm}, initial: (positions: Box(min: [-5.0, -5.0], max: [5.0, 5.0])), duration: 1.0)"
+        )
+    };
+    let cases = [
+        (
+            "Vicsek(eta: 2.0)",
+            Algorithm::Vicsek(VicsekParams::with_eta(2.0)),
+            "    algorithm: Vicsek(\n        v0: 0.03,\n        r: 1.0,\n        eta: 2.0,\n    ),\n",
+        ),
+        (
+            "CuckerSmale(beta: 0.25)",
+            Algorithm::CuckerSmale(CuckerSmaleParams::with_beta(0.25)),
+            "    algorithm: CuckerSmale(\n        lambda: 1.0,\n        k: 1.0,\n        sigma: 1.0,\n        beta: 0.25,\n    ),\n",
+        ),
+        (
+            "Boids()",
+            Algorithm::Boids(BoidsParams::default()),
+            "        visual_distance: 5.0,\n    ),\n",
+        ),
+        (
+            "Couzin(delta_r_o: 2.0, delta_r_a: 12.0)",
+            Algorithm::Couzin(CouzinParams::default()),
+            "        blend: Unit,\n        blind_cone: Everywhere,\n    ),\n",
+        ),
+        (
+            "Vasarhelyi()",
+            Algorithm::Vasarhelyi(VasarhelyiParams::default()),
+            "        arena_shape: Square,\n        arena_side: 250.0,\n    ),\n",
+        ),
+    ];
+    for (written, algorithm, ron) in cases {
+        let read: Scenario = scenario(written).parse().expect(written);
+        assert_eq!(read.algorithm, algorithm, "{written}");
+        let text = read.to_ron().expect("written");
+        assert!(text.contains(ron), "{written} is written\n{text}");
+        assert_eq!(text.parse::<Scenario>().expect("read back"), read);
+        let json = read.value("algorithm").expect("the algorithm");
+        let name = written.split('(').next().unwrap_or_default();
+        assert!(json.get(name).is_some_and(|v| v.is_object()), "{json}");
+        let changed = read
+            .with_values([("algorithm", json)])
+            .expect("the JSON form");
+        assert_eq!(changed.algorithm, read.algorithm);
+    }
+    let error = |algorithm: &str| {
+        scenario(algorithm)
+            .parse::<Scenario>()
+            .expect_err("refused")
+            .to_string()
+    };
+    assert_eq!(
+        error("Vicsek()"),
+        "<string>:1:48: Unexpected missing field named `eta` in `Vicsek`"
+    );
+    assert_eq!(
+        error("Vicsek(eta: 2.0, foo: 1.0)"),
+        "<string>:1:58: Unexpected field named `foo` in `Vicsek`, expected one of `v0`, `r`, or `eta` instead"
+    );
+    assert_eq!(
+        error("Vicsek(eta: \"x\")"),
+        "<string>:1:52: Expected float (in the value of `eta`)"
+    );
+    assert!(
+        error("Vasarhelyi(arena_side: -1.0)")
+            .starts_with("<string>:1:52: `algorithm.arena_side` = -1.0")
+    );
+    // the form of a vehicle's parameters (`Quadrotor((…))`) is not a model's
+    assert_eq!(
+        error("Vicsek((eta: 2.0))"),
+        "<string>:1:48: Expected identifier (in the value of `algorithm`)"
+    );
+}

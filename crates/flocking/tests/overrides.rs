@@ -34,7 +34,9 @@ fn a_path_changes_that_value_only() {
         .expect("valid");
     assert_eq!(changed.value("algorithm.c1").expect("a path"), json!(0.05));
     assert_eq!(changed.agents, 400);
-    let flocking::Algorithm::Algorithm2 { c1, c2, .. } = &changed.algorithm else {
+    let flocking::Algorithm::Algorithm2(flocking::scenario::Algorithm2Params { c1, c2, .. }) =
+        &changed.algorithm
+    else {
         panic!("the variant is kept: {:?}", changed.algorithm)
     };
     assert_eq!((*c1, *c2), (0.05, 0.4));

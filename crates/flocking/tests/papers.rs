@@ -273,10 +273,10 @@ fn tr2003_fig9_sink_ends_on_a_lattice_of_equilateral_triangles() {
 #[test]
 fn tr2003_fig9_sink_separates_translation_from_structure() {
     let (scenario, _, trace) = trace_fixture("tr2003_fig9_sink_n100");
-    let Algorithm::Flocking2003 {
+    let Algorithm::Flocking2003(flocking::scenario::Flocking2003Params {
         translation: Some(translation),
         ..
-    } = &scenario.algorithm
+    }) = &scenario.algorithm
     else {
         panic!("a 2003 protocol with a sink")
     };

@@ -10,8 +10,8 @@ use flock_protocols::{GAMMA_POSITION_ERROR, GAMMA_VELOCITY_ERROR};
 
 use super::{RunSpec, Sweep};
 use crate::RunDirectory;
-use crate::run::{Record, Recorder, RunError, RunSummary, Start, resume_with};
-use crate::simulation::{MapProtocol, ScenarioProtocol};
+use crate::run::{Record, Recorder, RunError, RunSummary, Start, resume_mapped};
+use crate::simulation::{MapBoth, MapProtocol, ScenarioProtocol};
 use crate::verdict::Verdict;
 
 /// What a finished run measured.
@@ -307,11 +307,11 @@ impl RunRow {
 /// the row's error.
 #[must_use]
 pub fn run_one(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>) -> RunRow {
-    run_one_with(sweep, spec, keep, &ScenarioProtocol)
+    run_one_mapped(sweep, spec, keep, &ScenarioProtocol)
 }
 
 /// [`run_one`] simulating the protocol `map` makes of each run's scenario
-/// ([`resume_with`]).
+/// ([`resume_with`](crate::resume_with)).
 #[must_use]
 pub fn run_one_with<M: MapProtocol>(
     sweep: &Sweep,
@@ -319,6 +319,11 @@ pub fn run_one_with<M: MapProtocol>(
     keep: Option<&Path>,
     map: &M,
 ) -> RunRow {
+    run_one_mapped(sweep, spec, keep, map)
+}
+
+/// [`run_one_with`] with the map as a trait object (compiled once for every map).
+fn run_one_mapped(sweep: &Sweep, spec: &RunSpec, keep: Option<&Path>, map: &dyn MapBoth) -> RunRow {
     let start = Instant::now();
     let id = spec.id(&sweep.axes);
     let mut retry = false;
@@ -332,7 +337,7 @@ pub fn run_one_with<M: MapProtocol>(
                         inner: (),
                         extremes: None,
                     };
-                    resume_with(&scenario, None, &mut recorder, map)
+                    resume_mapped(&scenario, None, &mut recorder, map)
                         .map(|summary| (summary, recorder.extremes))
                         .map_err(|e| {
                             // stopped by an interrupt: not a result, made again next time
@@ -367,12 +372,12 @@ type Kept = Result<(RunSummary, Option<(f64, f64)>), (String, bool)>;
 /// The run written to `dir` (replaced if present) as `flocking run --out dir` writes it. An
 /// error says why, and whether it is the machine's (the directory could not be made, written
 /// or finished: the run is to be made again) rather than the run's.
-fn keep_run<M: MapProtocol>(scenario: &crate::Scenario, dir: &Path, map: &M) -> Kept {
+fn keep_run(scenario: &crate::Scenario, dir: &Path, map: &dyn MapBoth) -> Kept {
     let mut recorder = Obstacles {
         inner: RunDirectory::create(dir, scenario, true).map_err(|e| (e.to_string(), true))?,
         extremes: None,
     };
-    match resume_with(scenario, None, &mut recorder, map) {
+    match resume_mapped(scenario, None, &mut recorder, map) {
         Ok(summary) => {
             recorder.inner.finish().map_err(|e| {
                 // the run is made again from its start: its partial directory (flocking's)
