@@ -4,13 +4,14 @@
 use flock_graph::Graph;
 use flock_math::{Bump, Domain, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
-use flock_protocols::conditions::stage::perception_field;
 use flock_protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, Arena, BallObstacle,
-    BetaInteraction, Boids, Conditions, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003,
-    GammaAgent, NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
+    BetaInteraction, Boids, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003, GammaAgent,
+    NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
     TannerJadbabaiePappas, Vasarhelyi, Vicsek, random_connected_graph,
 };
+use flock_sim::Conditions;
+use flock_sim::conditions::stage::perception_field;
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;

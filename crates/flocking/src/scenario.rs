@@ -15,9 +15,10 @@ use serde::{Deserialize, Serialize};
 use flock_obstacles::ObstacleSpec;
 use flock_protocols::{
     AlphaAlphaForm, AlphaConfig, ArenaShape, AvoidanceGains, BetaConfig, Blend, BlindCone,
-    BoidsParams, Conditions, CouzinParams, CuckerSmaleParams, GammaAgent, Integrator,
-    VasarhelyiParams, VicsekParams, critical_damping,
+    BoidsParams, CouzinParams, CuckerSmaleParams, GammaAgent, VasarhelyiParams, VicsekParams,
+    critical_damping,
 };
+use flock_sim::{Conditions, Integrator};
 
 use crate::error::ScenarioError;
 use crate::vehicle::VehicleSpec;

@@ -171,7 +171,7 @@ impl Scenario {
         Ok(())
     }
 
-    /// The conditions' own domains ([`Conditions::validate`](flock_protocols::Conditions::validate),
+    /// The conditions' own domains ([`Conditions::validate`](flock_sim::Conditions::validate),
     /// whose delays and periods are whole numbers of a valid step), and a protocol able to compute
     /// u_i from one agent's perception when a condition makes agents perceive different worlds.
     fn validate_conditions(&self, problems: &mut Problems) {
@@ -181,7 +181,7 @@ impl Scenario {
         if self.validate_time().is_ok() {
             problems.check(self.conditions.validate(self.agents, self.dim, self.step));
         }
-        if let Some(part) = flock_protocols::conditions::stage::perception_field(&self.conditions)
+        if let Some(part) = flock_sim::conditions::stage::perception_field(&self.conditions)
             && !self.algorithm.has_local_form()
         {
             let refusal = no_local_form(part);
@@ -198,8 +198,7 @@ impl Scenario {
             problems.check(Err::<(), _>(refusal));
         }
         if self.algorithm.sets_velocity()
-            && let Some(part) =
-                flock_protocols::conditions::stage::acceleration_field(&self.conditions)
+            && let Some(part) = flock_sim::conditions::stage::acceleration_field(&self.conditions)
         {
             problems.check(Err::<(), _>(ParamError::new(
                 part,
@@ -218,9 +217,9 @@ impl Scenario {
             return Ok(());
         };
         let sets_velocity = self.algorithm.sets_velocity();
-        flock_protocols::check_vehicle_loop(sets_velocity, self.integrator, &*vehicle)?;
-        flock_protocols::vehicle::check_inner_step(&*vehicle, self.step)?;
-        flock_protocols::conditions::stage::check_vehicle(&self.conditions, &*vehicle)?;
+        flock_sim::check_vehicle_loop(sets_velocity, self.integrator, &*vehicle)?;
+        flock_sim::vehicle::check_inner_step(&*vehicle, self.step)?;
+        flock_sim::conditions::stage::check_vehicle(&self.conditions, &*vehicle)?;
         Ok(())
     }
 
