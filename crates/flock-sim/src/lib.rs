@@ -16,13 +16,19 @@
 //! `obstacles` (default; the obstacle protocols of flock-protocols), `serde` (the integrator, the
 //! conditions and their checkpointed state read and written as the `flocking` crate's scenarios).
 
+mod agents;
+pub mod checks;
 pub mod conditions;
 pub mod health;
 mod permutation;
 pub mod simulation;
+pub mod step;
+mod storage;
 pub mod vehicle;
 
+pub use checks::check_vehicle_loop;
 pub use conditions::{Conditions, ConditionsState};
 pub use health::{AgentFault, Fault};
-pub use simulation::{Integrator, Observation, Simulation, advance, check_vehicle_loop};
+pub use simulation::{Integrator, Observation, Simulation};
+pub use step::integrate::advance;
 pub use vehicle::{DynVehicle, Fleet, Vehicle, VehicleKind};

@@ -1,21 +1,24 @@
-//! Fixed-step time integration of the closed loop q̇ = p, ṗ = u(t, q, p), with the net rebuilt at
-//! every evaluation of u.
+//! A run in time ([`Simulation`]): the swarm, its proximity net, the protocol, the integrator,
+//! and the run's conditions and vehicles; what it measures of its state. The step itself is
+//! [`step`](crate::step); where the agents are stored, [`storage`](crate::storage).
 
 use std::borrow::Cow;
 
 use flock_graph::{Components, Graph, NeighbourSearch, ProximityNet};
-use flock_math::interrupt::cuts_short;
-use flock_math::parallel::{fill_indexed, join};
+use flock_math::parallel::join;
 use flock_math::{Domain, Vector};
 use flock_metrics::{FlockMetrics, LatticeSummary, MetricParams, component_velocity_mismatch};
-
-use crate::conditions::stage::{self, Stage, map_agents_mut, perception_field};
-use crate::conditions::{Conditions, ConditionsState};
-use crate::health::{AgentFault, first_fault};
-use crate::permutation::permute_in_place;
-use crate::vehicle::{DynVehicle, Fleet, VehicleKind};
 use flock_protocols::error::{ParamError, check};
-use flock_protocols::{LocalForm, Perceived, Protocol, Swarm, Update};
+use flock_protocols::{Protocol, Swarm};
+
+use crate::checks::{
+    check_acceleration_conditions, check_local_form, check_vehicle, check_vehicle_loop,
+};
+use crate::conditions::{Conditions, ConditionsState, Stage};
+use crate::health::{AgentFault, first_fault};
+use crate::step::runge_kutta::RungeKuttaScratch;
+use crate::storage::empty_net;
+use crate::vehicle::{DynVehicle, Fleet};
 
 /// The integration scheme.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -25,12 +28,12 @@ pub enum Integrator {
     /// one net per step, and free of the energy drift of explicit Euler.
     #[default]
     SymplecticEuler,
-    /// Classical fourth-order Runge–Kutta: four evaluations of u (four nets) per step.
+    /// Classical fourth-order Runge–Kutta: four evaluations of u (four nets) per step. Under
+    /// [conditions](Simulation::with_conditions) the input is held over the step, and RK4 of the
+    /// held input a is its closed form q ← q + h p + ½ h² a, p ← p + h a (to round-off;
+    /// [`integrate`](crate::step::integrate)).
     Rk4,
 }
-
-/// Steps between two re-sorts of agents stored in space order.
-const RESORT_EVERY: u64 = 16;
 
 /// A protocol integrated in time from an initial swarm with a fixed step.
 ///
@@ -44,8 +47,8 @@ const RESORT_EVERY: u64 = 16;
 /// and diagnostic the simulation gives is of the agents in original order, with the bits of a
 /// simulation that kept them in that order.
 ///
-/// Under real conditions ([`Simulation::with_conditions`]) each step is the conditioned stage
-/// ([`Stage::step`]); agents numbered at random are stored by cell there too, their conditions'
+/// Under real conditions ([`Simulation::with_conditions`]) each stage of the step has work to do
+/// ([`Simulation::step`]); agents numbered at random are stored by cell there too, their conditions'
 /// state moving with them at each re-sort. An agent *removed* by a fault
 /// stays in the state at the position where it failed, with zero velocity; the metrics leave it
 /// out (they are those of the other agents, of their proximity net and of the interaction graph
@@ -80,23 +83,23 @@ const RESORT_EVERY: u64 = 16;
 /// ```
 #[derive(Debug)]
 pub struct Simulation<V, P> {
-    protocol: P,
-    integrator: Integrator,
-    step: f64,
-    steps: u64,
-    swarm: Swarm<V>,
-    search: NeighbourSearch,
-    net: ProximityNet,
-    inputs: Vec<V>,
-    rk: Option<RungeKuttaScratch<V>>,
+    pub(crate) protocol: P,
+    pub(crate) integrator: Integrator,
+    pub(crate) step: f64,
+    pub(crate) steps: u64,
+    pub(crate) swarm: Swarm<V>,
+    pub(crate) search: NeighbourSearch,
+    pub(crate) net: ProximityNet,
+    pub(crate) inputs: Vec<V>,
+    pub(crate) rk: Option<RungeKuttaScratch<V>>,
     /// The real conditions of the run, `None` for the ideal run ([`Simulation::with_conditions`]).
-    conditions: Option<Box<Stage<V>>>,
+    pub(crate) conditions: Option<Box<Stage<V>>>,
     /// Open space or a periodic box ([`Simulation::with_domain`]).
-    domain: Domain<V>,
+    pub(crate) domain: Domain<V>,
     /// The agents' vehicles, `None` for point masses ([`Simulation::with_vehicle`]).
-    fleet: Option<Box<Fleet<V>>>,
+    pub(crate) fleet: Option<Box<Fleet<V>>>,
     /// Whether an interrupt cut a step short after it changed the state ([`Simulation::is_torn`]).
-    torn: bool,
+    pub(crate) torn: bool,
 }
 
 /// What [`Simulation::observe`] measures of a state.
@@ -108,52 +111,6 @@ pub struct Observation {
     pub energy: f64,
     /// The protocol's diagnostics, named ([`Protocol::diagnostics`]).
     pub diagnostics: Vec<(&'static str, f64)>,
-}
-
-/// Moves every per-agent array of a run with its agent, index s getting what index `from(s)`
-/// held: the swarm, gathered into `spare` and swapped in when `spare` holds one vector per agent
-/// (the ideal run's inputs, free between steps), otherwise permuted in place as the conditions'
-/// state and the vehicles' states are (a conditioned run keeps no inputs there, and holds the
-/// delay line: no array is held twice).
-fn move_agents<V: Vector>(
-    swarm: &mut Swarm<V>,
-    spare: &mut Vec<V>,
-    stage: Option<&mut Stage<V>>,
-    fleet: Option<&mut Fleet<V>>,
-    from: impl Fn(usize) -> usize + Copy + Sync,
-) {
-    for x in [&mut swarm.positions, &mut swarm.velocities] {
-        if spare.len() == x.len() {
-            fill_indexed(spare, |s| x[from(s)]);
-            core::mem::swap(x, spare);
-        } else {
-            permute_in_place(x, from);
-        }
-    }
-    if let Some(stage) = stage {
-        stage.permute(from);
-    }
-    if let Some(fleet) = fleet {
-        fleet.permute(from);
-    }
-}
-
-/// An empty net for `protocol`: without distances when it does not read them.
-fn empty_net<V: Vector, P: Protocol<V>>(protocol: &P) -> ProximityNet {
-    if protocol.uses_net_distances() {
-        ProximityNet::new()
-    } else {
-        ProximityNet::without_distances()
-    }
-}
-
-/// Buffers of the Runge–Kutta stages, allocated once.
-#[derive(Debug)]
-struct RungeKuttaScratch<V> {
-    stage: Swarm<V>,
-    net: ProximityNet,
-    sum_q: Vec<V>,
-    sum_p: Vec<V>,
 }
 
 impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
@@ -412,24 +369,6 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         Ok(self)
     }
 
-    /// Puts the agents stored by cell back in original order, with their conditions' and
-    /// vehicles' states, and leaves an empty net (its numbering gone) that
-    /// [`Simulation::rebuild_net`] must rebuild.
-    fn back_to_original_order(&mut self) {
-        if self.stored_by_cell() {
-            let numbering = self.net.numbering();
-            // index k now holds agent k, which was stored at `stored(k)`
-            move_agents(
-                &mut self.swarm,
-                &mut self.inputs,
-                self.conditions.as_deref_mut(),
-                self.fleet.as_deref_mut(),
-                |k| numbering.stored(k),
-            );
-        }
-        self.net = empty_net(&self.protocol);
-    }
-
     /// The domain.
     #[must_use]
     pub const fn domain(&self) -> &Domain<V> {
@@ -461,7 +400,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         self.back_to_original_order();
         let fleet = Fleet::new(vehicle, &mut self.swarm, self.step, states)?;
         if let Some(stage) = &self.conditions {
-            stage::check_vehicle(stage.conditions(), fleet.vehicle())?;
+            check_vehicle(stage.conditions(), fleet.vehicle())?;
         }
         self.fleet = Some(Box::new(fleet));
         self.rebuild_net();
@@ -521,36 +460,18 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         }
         let n = self.swarm.len();
         let range = self.protocol.interaction_range();
-        // the stage holds its own inputs and integrates itself: the ideal loop's buffers go
-        // before it is allocated (at the peak of memory), and the agents into original order
-        // (the net's first build sorts them again when scattered)
+        // the agents go into original order (the net's first build sorts them again when
+        // scattered); under conditions RK4 takes no stages of its own (the input is held over
+        // the step, see step::integrate): its buffers go before the stage is allocated
         self.back_to_original_order();
-        self.inputs = Vec::new();
         self.rk = None;
+        self.inputs.fill(V::ZERO);
         let stage = Stage::new(conditions, seed, n, self.step, range)?;
-        if self.protocol.update().sets_velocity()
-            && let Some(field) = stage::acceleration_field(conditions)
-        {
-            return Err(ParamError::new(
-                field,
-                "set",
-                "acts on an acceleration, and this model sets its agents' velocities directly",
-                "remove this condition for this model (conditions on perception, sampling and faults apply)",
-            ));
-        }
+        check_acceleration_conditions(self.protocol.update().sets_velocity(), conditions)?;
         if let Some(fleet) = &self.fleet {
-            stage::check_vehicle(conditions, fleet.vehicle())?;
+            check_vehicle(conditions, fleet.vehicle())?;
         }
-        if let Some(field) = perception_field(conditions)
-            && self.protocol.local_form().is_none()
-        {
-            return Err(ParamError::new(
-                field,
-                "set",
-                "changes what each agent perceives, and this protocol has no local form (u_i from what agent i perceives)",
-                "remove this condition, or use a distributed protocol (Algorithms 1-3, Consensus)",
-            ));
-        }
+        check_local_form(conditions, self.protocol.local_form().is_some())?;
         self.conditions = Some(Box::new(stage));
         self.rebuild_net();
         Ok(self)
@@ -562,7 +483,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     pub fn conditions_state(&self) -> Option<ConditionsState> {
         self.conditions
             .as_ref()
-            .map(|c| c.state(self.net.numbering()))
+            .map(|c| c.state(self.net.numbering(), &self.inputs))
     }
 
     /// Restores the checkpointed state of the conditions into a simulation resumed with the same
@@ -572,7 +493,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// A simulation without conditions (field `conditions`), or a state of another run.
     pub fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError> {
         match self.conditions.as_mut() {
-            Some(stage) => stage.restore(state, self.net.numbering()),
+            Some(stage) => stage.restore(state, self.net.numbering(), &mut self.inputs),
             None => Err(ParamError::new(
                 "conditions",
                 "none",
@@ -634,331 +555,4 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     pub fn time(&self) -> f64 {
         self.steps as f64 * self.step
     }
-
-    /// Advances the state by one step h: the ideal step, or with
-    /// [conditions](Simulation::with_conditions) the conditioned one (fail → sense → communicate
-    /// → control → actuate → disturb and integrate, [`Stage::step`]).
-    ///
-    /// An interrupt that [cuts the step short](flock_math::interrupt::cuts_short) (a Ctrl-C
-    /// during a step of more than half a second) stops its long loops. Cut while the inputs are
-    /// computed, before the state changes, the step is not taken: the state and the step count
-    /// stay those of the steps taken. Cut inside a vehicle's inner steps or the conditions'
-    /// stage, which change the state as they go, it leaves the state between two steps: the
-    /// simulation is then [torn](Simulation::is_torn) and takes no more steps.
-    pub fn step(&mut self) {
-        if self.torn {
-            return;
-        }
-        let taken = if let Some(stage) = self.conditions.as_mut() {
-            stage.step(
-                &self.protocol,
-                &self.domain,
-                &mut self.swarm,
-                &self.net,
-                self.steps,
-                self.integrator,
-                self.fleet.as_deref_mut(),
-            );
-            self.torn = cuts_short();
-            !self.torn
-        } else if self.fleet.is_some() {
-            let t = self.time();
-            controls_in(
-                &self.protocol,
-                &self.domain,
-                t,
-                &self.swarm,
-                &self.net,
-                &mut self.inputs,
-            );
-            if cuts_short() {
-                return;
-            }
-            if let Some(fleet) = self.fleet.as_mut() {
-                let (h, domain) = (self.step, &self.domain);
-                fleet.advance(
-                    h,
-                    domain,
-                    &mut self.swarm,
-                    &self.inputs,
-                    |_| V::ZERO,
-                    |_| true,
-                    self.net.numbering(),
-                );
-            }
-            self.torn = cuts_short();
-            !self.torn
-        } else {
-            match (self.protocol.update(), self.integrator) {
-                (Update::Acceleration, Integrator::Rk4) => self.runge_kutta(),
-                // a model that sets velocities has its own update, whatever the integrator
-                (update, _) => self.explicit_update(update),
-            }
-        };
-        if taken {
-            self.steps += 1;
-            self.rebuild_net();
-        }
-    }
-
-    /// Whether an interrupt cut a step short after it had changed the state
-    /// ([`Simulation::step`]): the state is then between two steps, neither of which it is, and
-    /// the simulation takes no more steps.
-    #[must_use]
-    pub const fn is_torn(&self) -> bool {
-        self.torn
-    }
-
-    /// Builds the net of the current state; agents stored in space order are re-sorted every
-    /// [`RESORT_EVERY`] steps first, and agents in original order found scattered in memory are
-    /// sorted, when the protocol follows the numbering. (Agents once sorted wait for the next
-    /// re-sort even if still scattered, e.g. thousands in one cell: no sort at every step.)
-    fn rebuild_net(&mut self) {
-        let r = self.protocol.interaction_range();
-        let sorts =
-            self.protocol.follows_numbering() && self.protocol.interaction_graph().is_none();
-        let sorted = !self.net.numbering().is_identity();
-        if sorts && sorted && self.steps.is_multiple_of(RESORT_EVERY) {
-            self.sort_by_cell();
-        }
-        self.search
-            .build_in(&self.domain, &self.swarm.positions, r, &mut self.net);
-        if sorts && !sorted && self.net.is_scattered() {
-            self.sort_by_cell();
-            self.search
-                .build_in(&self.domain, &self.swarm.positions, r, &mut self.net);
-        }
-    }
-
-    /// Stores the agents in the order of the search's cells (agents with a non-finite position
-    /// last, in their storage order) and renumbers the nets, which must then be rebuilt.
-    fn sort_by_cell(&mut self) {
-        let q = &self.swarm.positions;
-        let r = self.protocol.interaction_range();
-        let cells = self.search.cell_order_in(&self.domain, q, r);
-        let completed: Vec<u32>;
-        let order = if cells.len() == q.len() {
-            cells
-        } else {
-            let lost = (0..q.len()).filter(|&i| !q[i].is_finite());
-            completed = cells
-                .iter()
-                .copied()
-                .chain(lost.map(|i| i as u32))
-                .collect();
-            &completed
-        };
-        move_agents(
-            &mut self.swarm,
-            &mut self.inputs,
-            self.conditions.as_deref_mut(),
-            self.fleet.as_deref_mut(),
-            |s| order[s] as usize,
-        );
-        self.net.permute(order);
-        if let Some(rk) = self.rk.as_mut() {
-            rk.net.share_numbering(&self.net);
-        }
-    }
-
-    /// One explicit step: symplectic Euler for an acceleration, or the model's own update
-    /// ([`advance`]); positions wrapped into a periodic box. Returns whether the step was taken
-    /// (not when an interrupt cut the inputs short: the state is then unchanged).
-    fn explicit_update(&mut self, update: Update) -> bool {
-        let (t, h) = (self.time(), self.step);
-        controls_in(
-            &self.protocol,
-            &self.domain,
-            t,
-            &self.swarm,
-            &self.net,
-            &mut self.inputs,
-        );
-        if cuts_short() {
-            return false;
-        }
-        let domain = self.domain;
-        let Swarm {
-            positions,
-            velocities,
-        } = &mut self.swarm;
-        let apply = |((q, p), &u): ((&mut V, &mut V), &V)| {
-            (*q, *p) = advance(update, &domain, h, *q, *p, u);
-        };
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            positions
-                .par_iter_mut()
-                .zip(velocities.par_iter_mut())
-                .zip(self.inputs.par_iter())
-                .with_min_len(4096)
-                .for_each(apply);
-        }
-        #[cfg(not(feature = "parallel"))]
-        positions
-            .iter_mut()
-            .zip(velocities.iter_mut())
-            .zip(&self.inputs)
-            .for_each(apply);
-        true
-    }
-
-    /// y ← y + (h/6)(k₁ + 2k₂ + 2k₃ + k₄) with y = (q, p) and k = (p, u(t, q, p)). Returns
-    /// whether the step was taken (not when an interrupt cut an evaluation of the inputs short:
-    /// y is then unchanged).
-    fn runge_kutta(&mut self) -> bool {
-        const WEIGHTS: [f64; 4] = [1.0, 2.0, 2.0, 1.0];
-        const NEXT_OFFSETS: [f64; 3] = [0.5, 0.5, 1.0];
-        let (t, h) = (self.time(), self.step);
-        let range = self.protocol.interaction_range();
-        let Some(rk) = self.rk.as_mut() else {
-            unreachable!("Runge–Kutta buffers exist for Integrator::Rk4");
-        };
-        let y = &mut self.swarm;
-        rk.sum_q.fill(V::ZERO);
-        rk.sum_p.fill(V::ZERO);
-        // stage 1 evaluates at y itself, whose net is already built
-        rk.stage.velocities.copy_from_slice(&y.velocities);
-        controls_in(
-            &self.protocol,
-            &self.domain,
-            t,
-            y,
-            &self.net,
-            &mut self.inputs,
-        );
-        for (stage, weight) in WEIGHTS.into_iter().enumerate() {
-            // here rk.stage.velocities holds p_s and self.inputs holds u_s
-            for i in 0..y.len() {
-                rk.sum_q[i] += rk.stage.velocities[i] * weight;
-                rk.sum_p[i] += self.inputs[i] * weight;
-            }
-            let Some(&offset) = NEXT_OFFSETS.get(stage) else {
-                break;
-            };
-            for i in 0..y.len() {
-                let (p_s, u_s) = (rk.stage.velocities[i], self.inputs[i]);
-                rk.stage.positions[i] = y.positions[i] + p_s * (offset * h);
-                rk.stage.velocities[i] = y.velocities[i] + u_s * (offset * h);
-            }
-            self.search
-                .build_in(&self.domain, &rk.stage.positions, range, &mut rk.net);
-            controls_in(
-                &self.protocol,
-                &self.domain,
-                t + offset * h,
-                &rk.stage,
-                &rk.net,
-                &mut self.inputs,
-            );
-        }
-        if cuts_short() {
-            return false;
-        }
-        for i in 0..y.len() {
-            y.positions[i] = self.domain.wrap(y.positions[i] + rk.sum_q[i] * (h / 6.0));
-            y.velocities[i] += rk.sum_p[i] * (h / 6.0);
-        }
-        true
-    }
-}
-
-/// Refuses a `vehicle` in a loop that cannot drive it: a protocol that sets velocities
-/// ([`Update::sets_velocity`]: it has no acceleration to command), or the `integrator` RK4 (a
-/// vehicle integrates its own dynamics at its inner step).
-///
-/// # Errors
-/// The field refused: `vehicle` or `integrator`.
-pub fn check_vehicle_loop(
-    sets_velocity: bool,
-    integrator: Integrator,
-    vehicle: &dyn VehicleKind,
-) -> Result<(), ParamError> {
-    if sets_velocity {
-        return Err(ParamError::new(
-            "vehicle",
-            vehicle.name(),
-            "needs a commanded acceleration, and this model sets its agents' velocities directly",
-            "use vehicle: PointMass for this model, or an acceleration protocol",
-        ));
-    }
-    if integrator == Integrator::Rk4 {
-        return Err(ParamError::new(
-            "integrator",
-            "Rk4",
-            "is not used with a vehicle, which integrates its own dynamics at its inner step",
-            "remove integrator (or write SymplecticEuler) with this vehicle",
-        ));
-    }
-    Ok(())
-}
-
-/// One agent's state after a step h of the loop's integrate stage, from its input u:
-/// symplectic Euler p ← p + h u, q ← q + h p for an acceleration, or the model's own update
-/// ([`Update`]); q wrapped into the box of a periodic `domain`.
-#[inline]
-#[must_use]
-pub fn advance<V: Vector>(update: Update, domain: &Domain<V>, h: f64, q: V, p: V, u: V) -> (V, V) {
-    match update {
-        Update::Acceleration => {
-            let p = p + u * h;
-            (domain.wrap(q + p * h), p)
-        }
-        Update::TurnThenMove => (domain.wrap(q + u * h), u),
-        Update::MoveThenTurn => (domain.wrap(q + p * h), u),
-    }
-}
-
-/// Every agent's input at time `t`: [`Protocol::controls`] of the state, or on a torus, for a
-/// protocol that does not measure in the domain itself, its [`LocalForm`] with every neighbour in
-/// the net at its image nearest the agent ([`Domain::image_near`]), in ascending index.
-pub(crate) fn controls_in<V: Vector, P: Protocol<V> + ?Sized>(
-    protocol: &P,
-    domain: &Domain<V>,
-    t: f64,
-    swarm: &Swarm<V>,
-    net: &ProximityNet,
-    inputs: &mut [V],
-) {
-    match protocol.local_form() {
-        Some(local) if domain.is_periodic() && !protocol.measures_in_domain() => {
-            local_controls(local, domain, t, swarm, net, inputs);
-        }
-        _ => protocol.controls(t, swarm, net, inputs),
-    }
-}
-
-/// u_i = local_input(t, own, heard) with the true states, neighbours at their nearest image,
-/// in the net's order (ascending original index), each agent named by its original index.
-fn local_controls<V: Vector>(
-    local: &dyn LocalForm<V>,
-    domain: &Domain<V>,
-    t: f64,
-    swarm: &Swarm<V>,
-    net: &ProximityNet,
-    inputs: &mut [V],
-) {
-    let (q, p) = (&swarm.positions, &swarm.velocities);
-    let numbering = net.numbering();
-    let perceived = |i: usize, position: V| Perceived {
-        agent: numbering.original(i) as u32,
-        position,
-        velocity: p[i],
-    };
-    // each worker's heard list, reused from agent to agent
-    map_agents_mut(inputs, Vec::new, |i, u, heard| {
-        // an interrupt that cuts the step short leaves the agents not yet begun
-        if cuts_short() {
-            return;
-        }
-        heard.clear();
-        heard.extend(
-            net.graph()
-                .neighbours(i)
-                .iter()
-                .map(|&j| perceived(j as usize, domain.image_near(q[i], q[j as usize]))),
-        );
-        *u = local.local_input(t, &perceived(i, q[i]), heard);
-    });
 }

@@ -1045,3 +1045,54 @@ fn hold_uses_the_last_value_received() {
     // 2^-k, 2 steps on average: the mean age is ½ · 2 h = h = 0.01 s
     assert!((age_hold - 0.01).abs() < 0.0005, "{age_hold}");
 }
+
+/// Under conditions the delivered acceleration a is held over the step, and `Integrator::Rk4`
+/// integrates that held input: RK4's four stages of ṗ = a give q + h p + ½ h² a and p + h a (to
+/// round-off). Bracketed on both sides: not symplectic Euler's q + h (p + h a), ½ h² a away, nor
+/// the ideal RK4, which re-evaluates the input at its stages.
+#[test]
+fn rk4_under_conditions_integrates_the_held_input() {
+    let h = 0.1;
+    let swarm = six_velocities();
+    let protocol = || Consensus::fixed(1.0, cycle(6), 1.0).expect("valid");
+    // an acceleration limit never reached: the input is delivered as commanded
+    let conditions = Conditions {
+        actuation: Some(Actuation {
+            max_acceleration: Some(1e9),
+            ..Actuation::default()
+        }),
+        ..Conditions::default()
+    };
+    let mut held = Simulation::new(protocol(), Integrator::Rk4, swarm.clone(), h)
+        .expect("valid")
+        .with_conditions(&conditions, 1)
+        .expect("valid");
+    held.step();
+    let mut u = vec![DVec2::ZERO; 6];
+    protocol().controls(0.0, &swarm, &ProximityNet::new(), &mut u);
+    let (q, p) = (&swarm.positions, &swarm.velocities);
+    let after = held.swarm();
+    for i in 0..6 {
+        // the four stages of RK4 for (q̇, ṗ) = (p, a), a held
+        let k = [
+            p[i],
+            p[i] + u[i] * (h / 2.0),
+            p[i] + u[i] * (h / 2.0),
+            p[i] + u[i] * h,
+        ];
+        let q_rk4 = q[i] + (k[0] + k[1] * 2.0 + k[2] * 2.0 + k[3]) * (h / 6.0);
+        let p_rk4 = p[i] + (u[i] + u[i] * 2.0 + u[i] * 2.0 + u[i]) * (h / 6.0);
+        assert_abs_diff_eq!(after.positions[i], q_rk4, epsilon = 1e-14);
+        assert_abs_diff_eq!(after.velocities[i], p_rk4, epsilon = 1e-14);
+        let q_euler = q[i] + (p[i] + u[i] * h) * h;
+        let gap = (after.positions[i] - q_euler).length();
+        assert_abs_diff_eq!(gap, 0.5 * h * h * u[i].length(), epsilon = 1e-14);
+    }
+    assert!(u.iter().any(|u| u.length() > 0.1), "a test with inputs");
+    let mut ideal = Simulation::new(protocol(), Integrator::Rk4, swarm, h).expect("valid");
+    ideal.step();
+    let gap = (0..6)
+        .map(|i| (ideal.swarm().positions[i] - after.positions[i]).length())
+        .fold(0.0, f64::max);
+    assert!(gap > 1e-6, "the ideal RK4 re-evaluates the input: {gap}");
+}

@@ -11,7 +11,6 @@ use flock_protocols::{
     TannerJadbabaiePappas, Vasarhelyi, Vicsek, random_connected_graph,
 };
 use flock_sim::Conditions;
-use flock_sim::conditions::stage::perception_field;
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;
@@ -251,7 +250,7 @@ impl Scenario {
 }
 
 /// Refuses a protocol with no [`LocalForm`](flock_protocols::LocalForm) under a perception
-/// condition ([`perception_field`]), naming the condition.
+/// condition ([`check_local_form`](flock_sim::checks::check_local_form)), naming the condition.
 ///
 /// # Errors
 /// The condition, why (the protocol needs the whole flock's state) and the fix.
@@ -259,12 +258,10 @@ pub fn check_local_form<V: Space>(
     conditions: &Conditions,
     protocol: &dyn Protocol<V>,
 ) -> Result<(), ScenarioError> {
-    match perception_field(conditions) {
-        Some(part) if protocol.local_form().is_none() => {
-            Err(crate::validate::no_local_form(part).into())
-        }
-        _ => Ok(()),
-    }
+    Ok(flock_sim::checks::check_local_form(
+        conditions,
+        protocol.local_form().is_some(),
+    )?)
 }
 
 /// A Tanner graph the law refuses.

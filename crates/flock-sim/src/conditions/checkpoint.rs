@@ -4,9 +4,11 @@
 
 use flock_graph::Numbering;
 use flock_math::Vector;
+use flock_math::stream::Streams;
 
 use super::links::{Held, Link};
 use super::stage::{Readings, Stage};
+use crate::permutation::permute_in_place;
 use flock_protocols::error::ParamError;
 
 /// One link kept by a receiver: the sender, the Gilbert–Elliott state (bad, step drawn) and
@@ -85,9 +87,9 @@ fn vectors<V: Vector>(field: &str, x: &[f64], len: usize) -> Result<Vec<V>, Para
 
 impl<V: Vector> Stage<V> {
     /// The state to checkpoint, agent by agent in original order (the agents stored as
-    /// `numbering` says).
+    /// `numbering` says), with the run's `inputs` (held between control updates).
     #[must_use]
-    pub fn state(&self, numbering: &Numbering) -> ConditionsState {
+    pub fn state(&self, numbering: &Numbering, inputs: &[V]) -> ConditionsState {
         // one row per agent, in original order
         let ordered = |x: &[V]| flat(&numbering.rows_in_original_order(x, 1));
         let noise = numbering.rows_in_original_order(&self.noise, 1);
@@ -119,7 +121,7 @@ impl<V: Vector> Stage<V> {
                         .collect()
                 })
                 .collect(),
-            inputs: ordered(&self.inputs),
+            inputs: ordered(inputs),
             delivered: ordered(&self.delivered),
             gust: if self.gusts_per_agent() {
                 ordered(&self.gust)
@@ -139,20 +141,30 @@ impl<V: Vector> Stage<V> {
     }
 
     /// Restores a checkpointed state (agents in original order) into this stage (built from the
-    /// same conditions) of agents stored as `numbering` says.
+    /// same conditions) and the run's `inputs`, of agents stored as `numbering` says.
     ///
     /// # Errors
     /// A state of another dimension, number of agents, delay or wind (field `conditions_state.…`).
-    pub fn restore(&mut self, s: ConditionsState, numbering: &Numbering) -> Result<(), ParamError> {
-        self.restore_as_stored(s)?;
-        if !numbering.is_identity() {
+    pub fn restore(
+        &mut self,
+        s: ConditionsState,
+        numbering: &Numbering,
+        inputs: &mut Vec<V>,
+    ) -> Result<(), ParamError> {
+        self.restore_as_stored(s, inputs)?;
+        if !numbering.is_identity() && self.started {
+            permute_in_place(inputs, |s| numbering.original(s));
             self.permute(|s| numbering.original(s));
         }
         Ok(())
     }
 
     /// [`Stage::restore`] into agents stored in original order.
-    fn restore_as_stored(&mut self, s: ConditionsState) -> Result<(), ParamError> {
+    fn restore_as_stored(
+        &mut self,
+        s: ConditionsState,
+        inputs: &mut Vec<V>,
+    ) -> Result<(), ParamError> {
         let n = self.failed.len();
         let within = |e: ParamError| e.within("conditions_state");
         let check_len = |field: &str, got: usize, want: usize| {
@@ -214,14 +226,14 @@ impl<V: Vector> Stage<V> {
             links.push(kept);
         }
         self.links = links;
-        self.inputs = vectors("inputs", &s.inputs, n).map_err(within)?;
+        *inputs = vectors("inputs", &s.inputs, n).map_err(within)?;
         if !self.delivered.is_empty() {
             self.delivered = vectors("delivered", &s.delivered, n).map_err(within)?;
         }
         self.gust = vectors("gust", &s.gust, self.gust.len()).map_err(within)?;
         self.failed = s.failed;
         self.started = s.started;
-        self.streams = flock_math::stream::Streams::new(s.seed);
+        self.streams = Streams::new(s.seed);
         let [
             links_lost,
             information_age,

@@ -3,10 +3,11 @@
 //!
 //! - [`Conditions`] is what a scenario says ([`config`]); every part is optional and off by
 //!   default, and with none set a [`Simulation`](crate::Simulation) runs the ideal loop.
-//! - [`Simulation::with_conditions`](crate::Simulation::with_conditions) runs them in one stage,
-//!   [`stage::Stage::step`]: fail ([`faults`]) → sense ([`noise`]) → communicate ([`history`],
-//!   [`links`]) → control (the protocol's [`LocalForm`](flock_protocols::LocalForm)) → actuate
-//!   ([`actuation`]) → disturb and integrate.
+//! - [`Simulation::with_conditions`](crate::Simulation::with_conditions) runs them in the one
+//!   step of every run ([`step`](crate::step)): fail ([`faults`]) → sense ([`noise`]) →
+//!   communicate ([`history`], [`links`]) → control (the protocol's
+//!   [`LocalForm`](flock_protocols::LocalForm)) → actuate ([`actuation`]) → disturb and
+//!   integrate; what they carry from step to step is a [`Stage`].
 //! - Every random draw is keyed by purpose, agent or link, and step ([`flock_math::stream`]), so a run is
 //!   bit-identical for any thread count and after a resume from a [`ConditionsState`]
 //!   ([`checkpoint`]).
@@ -28,3 +29,6 @@ pub use config::{
     Noise, SampledControl, Sensing, WhenLost, Wind,
 };
 pub use stage::{Stage, bytes_per_agent, delay_line_bytes_per_agent};
+
+// their earlier paths (`conditions::stage::…`); the checks are written once, in `checks`
+pub use crate::checks::{acceleration_field, check_vehicle, perception_field};
