@@ -42,9 +42,9 @@ pub enum Perception<'a, V> {
 /// net is `net`, through the conditions of `stage` (none: the truth). A protocol with no local
 /// form perceives the truth (conditions on perception are refused for it,
 /// [`check_local_form`](crate::checks::check_local_form)).
-pub(crate) fn communicate<'a, V: Vector, P: Protocol<V> + ?Sized>(
+pub(crate) fn communicate<'a, V: Vector>(
     stage: Option<&'a mut Stage<V>>,
-    protocol: &'a P,
+    protocol: &'a dyn Protocol<V>,
     domain: &'a Domain<V>,
     swarm: &'a Swarm<V>,
     net: &'a ProximityNet,

@@ -21,8 +21,8 @@ pub(crate) struct Received<V> {
 }
 
 /// The control stage at time `t`: every agent's input from its `perception`, into `inputs`.
-pub(crate) fn control<V: Vector, P: Protocol<V> + ?Sized>(
-    protocol: &P,
+pub(crate) fn control<V: Vector>(
+    protocol: &dyn Protocol<V>,
     t: f64,
     perception: Perception<'_, V>,
     inputs: &mut [V],
@@ -141,8 +141,8 @@ fn control_blocks<V: Vector>(
 /// Every agent's input at time `t`: [`Protocol::controls`] of the state, or on a torus, for a
 /// protocol that does not measure in the domain itself, its [`LocalForm`] with every neighbour in
 /// the net at its image nearest the agent ([`Domain::image_near`]), in ascending index.
-pub(crate) fn controls_in<V: Vector, P: Protocol<V> + ?Sized>(
-    protocol: &P,
+pub(crate) fn controls_in<V: Vector>(
+    protocol: &dyn Protocol<V>,
     domain: &Domain<V>,
     t: f64,
     swarm: &Swarm<V>,

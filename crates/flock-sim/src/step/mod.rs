@@ -48,6 +48,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             return;
         }
         let (k, t) = (self.steps, self.time());
+        // the stages take the protocol behind a reference to its trait: they are compiled once
+        // per dimension, not once per protocol (its own loops stay its own, monomorphic)
+        let protocol: &dyn Protocol<V> = &self.protocol;
         let numbering = self.net.numbering();
         let mut stage = self.conditions.as_deref_mut();
         if let Some(stage) = stage.as_deref_mut() {
@@ -57,13 +60,13 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         if stage.as_deref().is_none_or(|s| s.controls_at(k)) {
             let perception = communicate(
                 stage.as_deref_mut(),
-                &self.protocol,
+                protocol,
                 &self.domain,
                 &self.swarm,
                 &self.net,
                 k,
             );
-            let received = control(&self.protocol, t, perception, &mut self.inputs);
+            let received = control(protocol, t, perception, &mut self.inputs);
             if let Some(stage) = stage.as_deref_mut() {
                 stage.controlled(received, &mut self.inputs);
             }
