@@ -4,9 +4,9 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_metrics::{FlockMetrics, MetricParams};
 use flock_protocols::{
-    Algorithm2, AlphaInteraction, AlphaParams, GammaAgent, Integrator, NavigationalFeedback,
-    Protocol, Simulation, Swarm,
+    Algorithm2, AlphaInteraction, AlphaParams, GammaAgent, NavigationalFeedback, Protocol, Swarm,
 };
+use flock_sim::{Integrator, Simulation};
 use flocking::synthetic::lattice_swarm;
 use glam::{DVec2, DVec3};
 use std::hint::black_box;

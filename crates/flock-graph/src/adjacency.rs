@@ -9,7 +9,7 @@
 
 use crate::graph::Graph;
 use crate::net::ProximityNet;
-use crate::parallel::fill_indexed;
+use flock_math::parallel::fill_indexed;
 
 /// The 0/1 adjacency: a_ij = 1 for every edge of `graph`.
 ///

@@ -12,7 +12,7 @@ use flock_math::Vector;
 
 use crate::adjacency::binary_weights;
 use crate::graph::Graph;
-use crate::parallel::fill_indexed;
+use flock_math::parallel::fill_indexed;
 
 /// `out_i = (L̂z)_i = Σ_{j∈N_i} a_ij (z_i − z_j)` for every agent, in parallel with the `parallel`
 /// feature (each row summed in neighbour order: the result does not depend on it).

@@ -16,19 +16,16 @@
 //! - [`Components`]: connected components (flocks) and the density δ₀.
 //! - [`Numbering`]: agents stored out of their original order (sorted in space), with nets and
 //!   sums that keep the original order's bits.
-//! - [`interrupt`]: the process's Ctrl-C, which the long loops of a step check per block of work.
 //!
-//! Feature `parallel` (default): build nets and apply Laplacians on the rayon pool; results are
-//! bit-identical without it.
+//! Feature `parallel` (default, [`flock_math::parallel`]'s switch): build nets and apply Laplacians
+//! on the rayon pool; results are bit-identical without it.
 
 pub mod adjacency;
 pub mod components;
 pub mod graph;
-pub mod interrupt;
 pub mod laplacian;
 pub mod net;
 pub mod numbering;
-pub mod parallel;
 pub mod search;
 pub mod stress;
 

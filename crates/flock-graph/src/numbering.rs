@@ -13,7 +13,7 @@ use core::ops::Range;
 use core::sync::atomic::{AtomicU64, Ordering};
 use std::borrow::Cow;
 
-use crate::parallel::{chunked_fold, fill_indexed};
+use flock_math::parallel::{chunked_fold, fill_indexed};
 
 /// The original index of each stored agent and the storage index of each original one; the
 /// identity (storage index = original index) when empty.

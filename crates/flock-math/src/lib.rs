@@ -9,14 +9,21 @@
 //! - [`Potential`]: a pair ψ, φ = ψ′, implemented by [`UnevenSigmoid`] (2003 eq. 29),
 //!   [`BumpedAction`] (φ_α, ψ_α, φ_β, ψ_β of TAC 2006) and [`TannerPotential`].
 //! - [`GaussLegendre`], [`CumulativeIntegral`]: the quadrature behind ψ_α and ψ_β.
+//! - [`stream`]: keyed, counter-based random streams (Philox), on which the models' noise and the
+//!   real conditions both stand.
+//! - [`parallel`]: the one switch between rayon and serial loops (feature `parallel`, default), and
+//!   [`interrupt`]: the process's Ctrl-C, which the long loops of a step check per block of work.
 
 pub mod action;
 pub mod bump;
 pub mod domain;
+pub mod interrupt;
+pub mod parallel;
 pub mod potential;
 pub mod quadrature;
 pub mod sigma;
 pub mod sigmoid;
+pub mod stream;
 pub mod tanner;
 pub mod vector;
 

@@ -1,7 +1,7 @@
 //! The flocking metrics of TAC 2006, Section VIII.
 
-use flock_graph::parallel::join;
 use flock_graph::{Components, NeighbourSearch, Numbering, ProximityNet};
+use flock_math::parallel::join;
 use flock_math::{Domain, Vector, mean_of};
 
 /// What the metrics compare against.
@@ -120,7 +120,7 @@ impl FlockMetrics {
     ///
     /// A net built by [`NeighbourSearch`] from `q` has the identity
     /// numbering: `q` and `p` are then simply in the order of the agents. A simulation that
-    /// stores its agents otherwise measures them itself (`flock_protocols::Simulation::metrics`),
+    /// stores its agents otherwise measures them itself (`flock_sim::Simulation::metrics`),
     /// so that a state and a net of different orders never meet.
     ///
     /// # Example

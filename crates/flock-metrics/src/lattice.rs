@@ -26,8 +26,8 @@
 
 use core::fmt;
 
-use flock_graph::parallel::{map_chunks, threads};
 use flock_graph::{NeighbourSearch, ProximityNet};
+use flock_math::parallel::{map_chunks, threads};
 use flock_math::{Domain, Vector};
 
 /// The pair tests each count of [`LatticeSummary::measure`] may take whatever the net's size: the

@@ -1,8 +1,8 @@
 //! The α-α interaction of TAC 2006: gradient-based term and velocity consensus (eq. 23–24).
 
 use flock_graph::ProximityNet;
-use flock_graph::interrupt::cuts_short;
-use flock_graph::parallel::{
+use flock_math::interrupt::cuts_short;
+use flock_math::parallel::{
     fill_interruptible, for_each_chunk_mut, for_each_chunk_mut_with, threads,
 };
 use flock_math::{Bump, BumpedAction, Potential, SigmaNorm, UnevenSigmoid, Vector};
@@ -424,7 +424,7 @@ impl AlphaInteraction {
     /// most pairs are computed twice, as by [`AlphaInteraction::input`].
     ///
     /// For a net with a [`Numbering`](flock_graph::Numbering) other than the identity (agents
-    /// stored in space order by a [`Simulation`](crate::Simulation)), the lists are in ascending
+    /// stored in space order by a simulation (`flock_sim::Simulation`)), the lists are in ascending
     /// original index, not storage index, so the sweep's order does not apply. In 2D the agents
     /// are cut into chunks of 16,384 storage indices instead; a chunk computes each pair
     /// inside it once and keeps both directions' terms (the second negated) in a buffer aligned

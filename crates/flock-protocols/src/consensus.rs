@@ -2,8 +2,8 @@
 //! seed 000, Proposition 1, eq. 9), and the protocol of the delay and sampled-data theorems of
 //! consensus (Olfati-Saber & Murray, IEEE TAC 49(9), 2004).
 
-use flock_graph::parallel::fill_interruptible;
 use flock_graph::{Graph, ProximityNet};
+use flock_math::parallel::fill_interruptible;
 use flock_math::{Vector, mean_of};
 
 use crate::error::{ParamError, check};
@@ -20,19 +20,18 @@ use crate::{LocalForm, Perceived, Protocol, Swarm};
 ///
 /// # Example
 /// ```
-/// use flock_graph::Graph;
-/// use flock_protocols::{Consensus, Integrator, Simulation, Swarm};
+/// use flock_graph::{Graph, ProximityNet};
+/// use flock_protocols::{Consensus, Protocol, Swarm};
 /// use glam::DVec2;
 ///
-/// // a path of three agents: their velocities meet at the mean, (1, 0)
+/// // a path of three agents: u_i = −c Σ_{j∼i} (p_i − p_j) pulls each velocity towards its
+/// // neighbours' (run to the mean (1, 0) by flock-sim's test `consensus_meets_at_the_mean`)
 /// let graph = Graph::from_edges(3, &[(0, 1), (1, 2)])?;
 /// let p = vec![DVec2::new(3.0, 0.0), DVec2::ZERO, DVec2::ZERO];
 /// let swarm = Swarm::new(vec![DVec2::ZERO; 3], p);
-/// let mut sim = Simulation::new(Consensus::fixed(1.0, graph, 1.0)?, Integrator::Rk4, swarm, 0.05)?;
-/// for _ in 0..800 {
-///     sim.step();
-/// }
-/// assert!(sim.swarm().velocities.iter().all(|v| (*v - DVec2::X).length() < 1e-9));
+/// let mut u = vec![DVec2::ZERO; 3];
+/// Consensus::fixed(1.0, graph, 1.0)?.controls(0.0, &swarm, &ProximityNet::new(), &mut u);
+/// assert_eq!(u, vec![DVec2::new(-3.0, 0.0), DVec2::new(3.0, 0.0), DVec2::ZERO]);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]

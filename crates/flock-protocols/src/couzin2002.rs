@@ -4,13 +4,13 @@
 //! and angular noise.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_interruptible;
+use flock_math::parallel::fill_interruptible;
 use flock_math::{Domain, Vector};
 
-use crate::conditions::stream::{Purpose, Streams};
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
+use flock_math::stream::{Purpose, Streams};
 
 /// The parameters of the zone model, named as the paper names them. Defaults: r_r = 1,
 /// α = 270°, θ = 40° s⁻¹, s = 3 units s⁻¹, σ = 0.05 rad (with τ = 0.1 s, the scenario's step);

@@ -1,4 +1,7 @@
-//! Flocking protocols as implementations of one [`Protocol`] trait, and their time integration.
+//! Flocking protocols as implementations of one [`Protocol`] trait: each law computes u_i from
+//! what agent i perceives (its [`LocalForm`], over [`Perceived`] states) or from the whole state.
+//! The loop that runs them in time — the step, its real conditions, vehicles and integrators — is
+//! the crate `flock-sim`.
 //!
 //! - [`Algorithm1`], [`Algorithm2`], [`Algorithm3`]: Olfati-Saber, IEEE TAC 51(3) 2006, built on the
 //!   [`AlphaInteraction`] (eq. 23), the [`BetaInteraction`] with obstacles (eq. 67) and the
@@ -13,11 +16,6 @@
 //!   [`Boids`] (Reynolds 1987, as the ABM frameworks' benchmark declares it) and [`Couzin`]
 //!   (Couzin et al. 2002); the last three set velocities with their own [`Update`]. [`Vasarhelyi`]
 //!   (Vásárhelyi et al. 2018, the drones' model) tracks its desired velocity as an acceleration.
-//! - [`Simulation`]: fixed-step [`Integrator`]s (symplectic Euler by default, RK4) that rebuild the
-//!   proximity net at every evaluation, with the metrics, energy, diagnostics and health of the
-//!   state in the agents' original order.
-//! - [`Conditions`]: delay, loss, noise, sampled control, actuator limits, wind and faults, run
-//!   by [`Simulation::with_conditions`] in one stage ([`conditions`]).
 //! - [`Swarm`]: positions and velocities of n double integrators.
 //! - [`AlphaConfig`], [`BetaConfig`], [`AvoidanceGains`]: parameters as a scenario writes them,
 //!   with the papers' defaults; [`ParamError`] names a parameter outside its domain.
@@ -29,33 +27,27 @@
 pub mod alpha;
 #[cfg(feature = "obstacles")]
 pub mod beta;
-pub mod conditions;
 pub mod consensus;
 pub mod couzin2002;
 pub mod cucker_smale2007;
 pub mod error;
 pub mod gamma;
-pub mod health;
-pub mod integrator;
 pub mod olfati_saber2003;
 #[cfg(feature = "obstacles")]
 pub mod olfati_saber2003_tracking;
 pub mod olfati_saber2004;
 pub mod olfati_saber2004_reynolds;
 pub mod olfati_saber2006;
-mod permutation;
 pub mod protocol;
 pub mod reynolds1987;
 pub mod swarm;
 pub mod tanner2003;
 pub mod vasarhelyi2018;
-pub mod vehicle;
 pub mod vicsek1995;
 
 pub use alpha::{AlphaConfig, AlphaInteraction, AlphaParams};
 #[cfg(feature = "obstacles")]
 pub use beta::{BetaConfig, BetaInteraction, BetaParams};
-pub use conditions::{Conditions, ConditionsState};
 pub use consensus::Consensus;
 pub use couzin2002::{Blend, BlindCone, CollectiveState, Couzin, CouzinParams};
 pub use cucker_smale2007::{CuckerSmale, CuckerSmaleParams};
@@ -64,8 +56,6 @@ pub use gamma::{
     Feedback, GAMMA_POSITION_ERROR, GAMMA_VELOCITY_ERROR, GammaAgent, NavigationalFeedback,
     critical_damping,
 };
-pub use health::{AgentFault, Fault};
-pub use integrator::{Integrator, Observation, Simulation, advance, check_vehicle_loop};
 pub use olfati_saber2003::{
     AlphaAlpha, AlphaAlphaForm, AlphaAlphaParams, AvoidanceGains, Flocking2003, ObstacleParams,
     influence_map_lipschitz,
@@ -88,5 +78,4 @@ pub use tanner2003::{
     DisconnectedGraph, SplitMix64, TannerJadbabaiePappas, random_connected_graph,
 };
 pub use vasarhelyi2018::{Arena, ArenaShape, Vasarhelyi, VasarhelyiParams};
-pub use vehicle::{DynVehicle, Fleet, Vehicle, VehicleKind};
 pub use vicsek1995::{Vicsek, VicsekParams, planar};

@@ -27,7 +27,7 @@ use flock_obstacles::{BetaAgent, Obstacle, ObstacleError, Space};
 
 use crate::error::{ParamError, check};
 use crate::{LocalForm, NavigationalFeedback, Perceived, Protocol, Swarm};
-use flock_graph::parallel::fill_interruptible;
+use flock_math::parallel::fill_interruptible;
 
 /// Parameters of the 2003 (α, α) protocols.
 ///

@@ -25,7 +25,7 @@
 //! obstacles Σ_i u_i^{O_k} ≠ 0 and neither statement holds.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_interruptible;
+use flock_math::parallel::fill_interruptible;
 use flock_math::{Vector, sigma1_vec};
 use flock_obstacles::Space;
 

@@ -10,7 +10,7 @@ use crate::Swarm;
 /// in the proximity net, plus the energy function its stability theorem uses.
 ///
 /// The trait is object safe: a protocol chosen at run time is a `Box<dyn Protocol<V> + Send>`
-/// ([`DynProtocol`]), itself a protocol, so one [`Simulation`](crate::Simulation) type serves
+/// ([`DynProtocol`]), itself a protocol, so one simulation (`flock_sim::Simulation`) type serves
 /// every algorithm.
 pub trait Protocol<V: Vector>: Sync {
     /// The interaction range r that defines N_i = { j : ‖q_j − q_i‖ < r }.
@@ -44,7 +44,7 @@ pub trait Protocol<V: Vector>: Sync {
 
     /// Whether [`Protocol::controls`] and [`Protocol::energy`] read the net's stored distances
     /// ([`ProximityNet::distances`]); true unless a protocol says otherwise. When false, a
-    /// [`Simulation`](crate::Simulation) keeps its nets without them
+    /// simulation (`flock_sim::Simulation`) keeps its nets without them
     /// ([`ProximityNet::without_distances`]): 8 bytes less per directed edge.
     #[must_use]
     fn uses_net_distances(&self) -> bool {
@@ -54,7 +54,7 @@ pub trait Protocol<V: Vector>: Sync {
     /// Whether the protocol follows a net's [`Numbering`](flock_graph::Numbering): given the state
     /// stored in any order and the net built from it with its numbering, [`Protocol::controls`]
     /// gives each agent the bits it gets in original order, and [`Protocol::energy`] the same
-    /// bits. A [`Simulation`](crate::Simulation) then stores the agents in space order when
+    /// bits. A simulation (`flock_sim::Simulation`) then stores the agents in space order when
     /// they are numbered at random. False unless a protocol says otherwise (the protocols with
     /// sums over all agents in their controls, or a graph fixed by agent index, keep their order).
     #[must_use]
@@ -64,7 +64,7 @@ pub trait Protocol<V: Vector>: Sync {
 
     /// The fixed graph the protocol interacts on, node k agent k, for a protocol that does not
     /// follow the numbering (the Tanner law's neighbouring graph); `None` for the protocols of
-    /// the proximity net. A [`Simulation`](crate::Simulation) measures connectivity on it — C, C*
+    /// the proximity net. A simulation (`flock_sim::Simulation`) measures connectivity on it — C, C*
     /// and the components — instead of on the proximity net.
     #[must_use]
     fn interaction_graph(&self) -> Option<&Graph> {
@@ -105,7 +105,7 @@ pub trait Protocol<V: Vector>: Sync {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Update {
     /// A commanded acceleration of a double integrator q̇ = p, ṗ = u (TAC 2006 eq. 1), integrated
-    /// by the run's [`Integrator`](crate::Integrator).
+    /// by the run's integrator (`flock_sim::Integrator`).
     #[default]
     Acceleration,
     /// The agent's next velocity, set at once, and then the move with it: p ← u_i,

@@ -4,13 +4,13 @@
 //! (Agents.jl, MASON, NetLogo and Mesa implement it), whose rule and defaults this follows.
 
 use flock_graph::ProximityNet;
-use flock_graph::interrupt::{BLOCK, cuts_short};
+use flock_math::interrupt::{BLOCK, cuts_short};
 use flock_math::{Domain, Vector};
 
-use crate::conditions::stream::{Purpose, Streams};
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
+use flock_math::stream::{Purpose, Streams};
 
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
 /// for its "small" and "large" workloads but for `visual_distance`: 5 small, 15 large). A

@@ -8,7 +8,7 @@ use flock_graph::{Components, Graph, ProximityNet};
 use flock_math::{Potential, TannerPotential, Vector, mean};
 
 use crate::{LocalForm, Perceived, Protocol, Swarm};
-use flock_graph::parallel::fill_interruptible;
+use flock_math::parallel::fill_interruptible;
 
 /// The Tanner–Jadbabaie–Pappas law on a fixed connected neighbouring graph G (seed 001 eq. 5):
 ///

@@ -6,8 +6,8 @@
 //! authors' simulator robotsim (github.com/csviragh/robotsim) moves its point masses.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_interruptible;
 use flock_math::Vector;
+use flock_math::parallel::fill_interruptible;
 
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
@@ -251,19 +251,22 @@ pub fn braking_curve(r: f64, a: f64, p: f64) -> f64 {
 ///
 /// # Example
 /// ```
-/// use flock_protocols::{Arena, ArenaShape, Integrator, Simulation, Swarm, Vasarhelyi, VasarhelyiParams};
+/// use flock_graph::{NeighbourSearch, ProximityNet};
+/// use flock_math::Domain;
+/// use flock_protocols::{Arena, ArenaShape, Protocol, Swarm, Vasarhelyi, VasarhelyiParams};
 /// use glam::DVec2;
 ///
 /// let model = Vasarhelyi::<DVec2>::new(VasarhelyiParams::default())?; // a square of side 250 m
 /// assert_eq!(model.arena().shape, ArenaShape::Square);
 /// let q = vec![DVec2::ZERO, DVec2::new(10.0, 0.0)];
 /// let p = vec![DVec2::new(0.0, 6.0), DVec2::new(0.0, 6.0)];
-/// let mut sim = Simulation::new(model, Integrator::SymplecticEuler, Swarm::new(q, p), 0.01)?;
-/// for _ in 0..500 {
-///     sim.step();
-/// }
-/// let q = &sim.swarm().positions;
-/// assert!((q[1] - q[0]).length() > 15.0); // pushed apart towards r_0^rep = 25 m
+/// let mut net = ProximityNet::new();
+/// NeighbourSearch::new().build_in(&Domain::Open, &q, model.interaction_range(), &mut net);
+/// let mut u = vec![DVec2::ZERO; 2];
+/// model.controls(0.0, &Swarm::new(q, p), &net, &mut u);
+/// // pushed apart towards r_0^rep = 25 m (run apart by flock-sim's test
+/// // `vasarhelyi_pushes_a_close_pair_apart`)
+/// assert!(u[0].x < 0.0 && u[1].x > 0.0);
 /// # Ok::<(), flock_protocols::ParamError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]

@@ -3,13 +3,13 @@
 //! speed, the heading of the neighbours plus uniform angular noise.
 
 use flock_graph::ProximityNet;
-use flock_graph::parallel::fill_interruptible;
+use flock_math::parallel::fill_interruptible;
 use flock_math::{Domain, Vector};
 
-use crate::conditions::stream::{Purpose, Streams};
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
+use flock_math::stream::{Purpose, Streams};
 
 /// The parameters of the Vicsek model, as a scenario writes them (the paper's names; `eta` must
 /// be given, the others default to [`VicsekParams::with_eta`]'s).

@@ -4,13 +4,13 @@
 use flock_graph::Graph;
 use flock_math::{Bump, Domain, TannerPotential};
 use flock_obstacles::{ObstacleField, ObstacleSpec, Space};
-use flock_protocols::conditions::stage::perception_field;
 use flock_protocols::{
     Algorithm1, Algorithm2, Algorithm3, AlphaAlpha, AlphaAlphaParams, BallObstacle,
-    BetaInteraction, Boids, Conditions, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003,
-    GammaAgent, NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
+    BetaInteraction, Boids, Consensus, Couzin, CuckerSmale, DynProtocol, Flocking2003, GammaAgent,
+    NavigationalFeedback, ObstacleFlocking2003, ObstacleParams, ParamError, Protocol,
     TannerJadbabaiePappas, Vasarhelyi, Vicsek, random_connected_graph,
 };
+use flock_sim::Conditions;
 
 use crate::error::ScenarioError;
 use crate::initial::to_vector;
@@ -220,7 +220,7 @@ impl Scenario {
 }
 
 /// Refuses a protocol with no [`LocalForm`](flock_protocols::LocalForm) under a perception
-/// condition ([`perception_field`]), naming the condition.
+/// condition ([`check_local_form`](flock_sim::checks::check_local_form)), naming the condition.
 ///
 /// # Errors
 /// The condition, why (the protocol needs the whole flock's state) and the fix.
@@ -228,12 +228,10 @@ pub fn check_local_form<V: Space>(
     conditions: &Conditions,
     protocol: &dyn Protocol<V>,
 ) -> Result<(), ScenarioError> {
-    match perception_field(conditions) {
-        Some(part) if protocol.local_form().is_none() => {
-            Err(crate::validate::no_local_form(part).into())
-        }
-        _ => Ok(()),
-    }
+    Ok(flock_sim::checks::check_local_form(
+        conditions,
+        protocol.local_form().is_some(),
+    )?)
 }
 
 /// A Tanner graph the law refuses.

@@ -1,16 +1,16 @@
 //! [`NumericalError`]: a run's state blew up — the step, the agent, what is wrong with it
-//! ([`Simulation::check_health`](flock_protocols::Simulation::check_health)) and the likely cause,
+//! ([`Simulation::check_health`](flock_sim::Simulation::check_health)) and the likely cause,
 //! from the stable-step estimate ([`largest_stable_step`]).
 
 use std::fmt;
 
-use flock_protocols::AgentFault;
+use flock_sim::AgentFault;
 
 use crate::scenario::Scenario;
 use crate::stability::largest_stable_step;
 use crate::time::time_text;
 
-pub use flock_protocols::Fault;
+pub use flock_sim::Fault;
 
 /// A numerical blow-up: the step, the first agent (lowest index) at fault and the likely cause.
 #[derive(Clone, Debug, PartialEq)]

@@ -26,7 +26,7 @@
 //! - [`owned`]: the marker, the checks and the lock that keep flocking from removing or
 //!   overwriting anything it did not write.
 //! - [`synthetic`]: lattices of any size for benchmarks.
-//! - The member crates, re-exported: [`math`], [`graph`], [`protocols`], [`obstacles`],
+//! - The member crates, re-exported: [`math`], [`graph`], [`protocols`], [`sim`], [`obstacles`],
 //!   [`metrics`], and [`glam`]; [`prelude`] for a glob import.
 //!
 //! # Example
@@ -83,11 +83,22 @@ pub use validate::{MAX_AGENTS, MAX_STEPS};
 pub use verdict::{Verdict, VerdictKind};
 
 pub use flock_graph as graph;
-pub use flock_graph::interrupt;
 pub use flock_math as math;
+pub use flock_math::interrupt;
 pub use flock_metrics as metrics;
 pub use flock_obstacles as obstacles;
-pub use flock_protocols as protocols;
+pub use flock_sim as sim;
+
+/// The protocols' laws (crate flock-protocols) and, at the paths they had before the loop got a
+/// crate of its own, the loop's types (crate flock-sim, also [`sim`]).
+pub mod protocols {
+    pub use flock_protocols::*;
+    pub use flock_sim::{
+        AgentFault, Conditions, ConditionsState, DynVehicle, Fault, Fleet, Integrator, Observation,
+        Simulation, Vehicle, VehicleKind, advance, check_vehicle_loop, conditions, health,
+        simulation as integrator, vehicle,
+    };
+}
 pub use glam;
 pub use serde_json;
 

@@ -18,8 +18,8 @@
 
 use serde_json::Value;
 
-use flock_protocols::Conditions;
-use flock_protocols::conditions::{Delayed, FaultMode, Loss, Noise, WhenLost};
+use flock_sim::Conditions;
+use flock_sim::conditions::{Delayed, FaultMode, Loss, Noise, WhenLost};
 
 use crate::Scenario;
 use crate::error::ScenarioError;

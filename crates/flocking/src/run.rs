@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use flock_graph::Graph;
 use flock_metrics::{FlockMetrics, FlockingCriteria, LatticeSummary};
-use flock_protocols::Observation;
+use flock_sim::Observation;
 
 use crate::error::ScenarioError;
 use crate::health::NumericalError;

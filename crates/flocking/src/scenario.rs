@@ -13,7 +13,8 @@ use ron::extensions::Extensions;
 use serde::{Deserialize, Serialize};
 
 use flock_obstacles::ObstacleSpec;
-use flock_protocols::{AlphaConfig, Conditions, Integrator, critical_damping};
+use flock_protocols::{AlphaConfig, critical_damping};
+use flock_sim::{Conditions, Integrator};
 
 pub use crate::algorithm::{
     Algorithm, Algorithm2Params, Algorithm3Params, ConsensusParams, FixedGraph, Flocking2003Params,

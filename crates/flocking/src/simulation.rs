@@ -9,8 +9,9 @@ use flock_graph::Graph;
 use flock_metrics::{EDGE_TOLERANCE, FlockMetrics, LatticeSummary, MetricParams};
 use flock_obstacles::Space;
 use flock_protocols::check::MAX_VALUE;
-use flock_protocols::conditions::ConditionsState;
-use flock_protocols::{AgentFault, DynProtocol, Observation, ParamError, Simulation, Swarm};
+use flock_protocols::{DynProtocol, ParamError, Swarm};
+use flock_sim::conditions::ConditionsState;
+use flock_sim::{AgentFault, Observation, Simulation};
 use glam::{DVec2, DVec3};
 
 use crate::error::ScenarioError;
@@ -32,7 +33,7 @@ pub struct Start {
     /// The velocities, `dim` coordinates per agent.
     pub velocities: Vec<f64>,
     /// The state of the run's conditions (delay line, links, noise, lag, faults) as RON, empty
-    /// for an ideal run ([`flock_protocols::conditions::ConditionsState`]).
+    /// for an ideal run ([`flock_sim::conditions::ConditionsState`]).
     pub conditions: String,
     /// The vehicles' states ([`State::vehicle`]), empty for point masses.
     pub vehicle: Vec<f64>,
@@ -124,7 +125,7 @@ pub struct State<'a> {
     /// The velocities, as the positions.
     pub velocities: Cow<'a, [f64]>,
     /// The names of each agent's vehicle state beyond its reference point's position and
-    /// velocity ([`Vehicle::state_columns`](flock_protocols::Vehicle::state_columns)), empty
+    /// velocity ([`Vehicle::state_columns`](flock_sim::Vehicle::state_columns)), empty
     /// for point masses.
     pub vehicle_columns: &'static [&'static str],
     /// The vehicles' states: agent i's at `vehicle[i * k..(i + 1) * k]`, k the number of

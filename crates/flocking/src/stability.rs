@@ -54,12 +54,11 @@ use flock_graph::{
 use flock_math::{
     Bump, BumpedAction, Potential, SigmaNorm, TannerPotential, UnevenSigmoid, Vector,
 };
-use flock_protocols::conditions::Delayed;
+use flock_sim::conditions::Delayed;
 use glam::{DVec2, DVec3};
 
-use flock_protocols::{
-    AlphaAlpha, AlphaAlphaParams, Integrator, TannerJadbabaiePappas, critical_damping,
-};
+use flock_protocols::{AlphaAlpha, AlphaAlphaParams, TannerJadbabaiePappas, critical_damping};
+use flock_sim::Integrator;
 
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Flocking2003Params, Scenario};

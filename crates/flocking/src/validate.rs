@@ -171,7 +171,7 @@ impl Scenario {
         Ok(())
     }
 
-    /// The conditions' own domains ([`Conditions::validate`](flock_protocols::Conditions::validate),
+    /// The conditions' own domains ([`Conditions::validate`](flock_sim::Conditions::validate),
     /// whose delays and periods are whole numbers of a valid step), and a protocol able to compute
     /// u_i from one agent's perception when a condition makes agents perceive different worlds.
     fn validate_conditions(&self, problems: &mut Problems) {
@@ -181,10 +181,9 @@ impl Scenario {
         if self.validate_time().is_ok() {
             problems.check(self.conditions.validate(self.agents, self.dim, self.step));
         }
-        if let Some(part) = flock_protocols::conditions::stage::perception_field(&self.conditions)
-            && !self.algorithm.has_local_form()
+        if let Err(refusal) =
+            flock_sim::checks::check_local_form(&self.conditions, self.algorithm.has_local_form())
         {
-            let refusal = no_local_form(part);
             // issue 49: the cutoff is what gives Cucker–Smale a local form
             let refusal = if self.algorithm.couples_every_pair() {
                 ParamError {
@@ -197,17 +196,10 @@ impl Scenario {
             };
             problems.check(Err::<(), _>(refusal));
         }
-        if self.algorithm.sets_velocity()
-            && let Some(part) =
-                flock_protocols::conditions::stage::acceleration_field(&self.conditions)
-        {
-            problems.check(Err::<(), _>(ParamError::new(
-                part,
-                "set",
-                "acts on an acceleration, and this model sets its agents' velocities directly",
-                "remove this condition for this model (delay, loss, range, sensing noise, sampled control and faults apply)",
-            )));
-        }
+        problems.check(flock_sim::checks::check_acceleration_conditions(
+            self.algorithm.sets_velocity(),
+            &self.conditions,
+        ));
     }
 
     /// The vehicle in the scenario's dimension: its parameters, its inner step against the step,
@@ -218,9 +210,9 @@ impl Scenario {
             return Ok(());
         };
         let sets_velocity = self.algorithm.sets_velocity();
-        flock_protocols::check_vehicle_loop(sets_velocity, self.integrator, &*vehicle)?;
-        flock_protocols::vehicle::check_inner_step(&*vehicle, self.step)?;
-        flock_protocols::conditions::stage::check_vehicle(&self.conditions, &*vehicle)?;
+        flock_sim::checks::check_vehicle_loop(sets_velocity, self.integrator, &*vehicle)?;
+        flock_sim::vehicle::check_inner_step(&*vehicle, self.step)?;
+        flock_sim::checks::check_vehicle(&self.conditions, &*vehicle)?;
         Ok(())
     }
 
@@ -714,17 +706,4 @@ fn fastest_agent<V: Space>(velocities: impl Iterator<Item = V>) -> Option<(usize
         .map(|p| p.length())
         .enumerate()
         .reduce(|a, b| if b.1 > a.1 || b.1.is_nan() { b } else { a })
-}
-
-/// The refusal of a perception condition (`part`) for a protocol with no local form.
-pub(crate) fn no_local_form(part: &str) -> ParamError {
-    ParamError::new(
-        part,
-        "set",
-        "makes each agent perceive its own world (delayed, lost, noisy or missing neighbours), \
-         but this algorithm has no local form: it needs the whole flock's state (a centralised \
-         controller), which no agent perceives",
-        "remove this condition, or choose a distributed algorithm (Algorithm1-3, Flocking2003, \
-         Tanner, Consensus)",
-    )
 }

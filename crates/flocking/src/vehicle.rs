@@ -1,9 +1,9 @@
 //! A scenario's `vehicle`: what each agent is, `PointMass` (the double integrator of the papers,
-//! the default, not written) or a vehicle of [`flock_protocols::vehicle`] whose reference point
+//! the default, not written) or a vehicle of [`flock_sim::vehicle`] whose reference point
 //! follows the protocol's commanded acceleration (docs/vehicles.md).
 
-use flock_protocols::DynVehicle;
-use flock_protocols::vehicle::{
+use flock_sim::DynVehicle;
+use flock_sim::vehicle::{
     FixedWing, FixedWingParams, Quadrotor, QuadrotorParams, Unicycle, UnicycleParams,
 };
 use glam::{DVec2, DVec3};
@@ -87,7 +87,7 @@ impl VehicleSpec {
 }
 
 impl VehicleSpec {
-    /// The direction each vehicle points ([`Vehicle::heading`](flock_protocols::Vehicle::heading)),
+    /// The direction each vehicle points ([`Vehicle::heading`](flock_sim::Vehicle::heading)),
     /// `dim` numbers per agent, from the reference points' `velocities` (`dim` per agent) and the
     /// vehicles' `states`; `None` for point masses (they point along their velocity).
     #[must_use]
@@ -150,7 +150,7 @@ impl VehicleSpace for DVec3 {
 }
 
 /// A vehicle built from its parameters, boxed; their error inside `vehicle`.
-fn boxed<V: flock_math::Vector, T: flock_protocols::Vehicle<V> + 'static>(
+fn boxed<V: flock_math::Vector, T: flock_sim::Vehicle<V> + 'static>(
     vehicle: Result<T, flock_protocols::ParamError>,
 ) -> Result<Option<DynVehicle<V>>, ScenarioError> {
     match vehicle {

@@ -7,7 +7,7 @@ use flock_math::Vector;
 
 use crate::net::node_index;
 use crate::numbering::Numbering;
-use crate::parallel::fill_indexed;
+use flock_math::parallel::fill_indexed;
 
 /// Cells allowed per agent: a grid has at most `CELLS_PER_AGENT · n` cells.
 pub(crate) const CELLS_PER_AGENT: usize = 4;

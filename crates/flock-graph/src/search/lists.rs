@@ -14,8 +14,8 @@ use core::ops::Range;
 use flock_math::{Domain, Vector};
 
 use crate::net::squared_distance_in;
-use crate::parallel::{fill_indexed, for_each_indexed_mut, join};
 use crate::search::cells::NO_SLOT;
+use flock_math::parallel::{fill_indexed, for_each_indexed_mut, join};
 
 /// log₂ of the slots per block of work (any value gives the same net): 1,024 slots, a unit of
 /// rayon work with the `parallel` feature.

@@ -12,11 +12,11 @@ use flock_math::{Domain, Vector};
 
 use crate::net::{ProximityNet, in_range, range_squared, squared_distance};
 use crate::numbering::Numbering;
-use crate::parallel::{fill_indexed, map_chunks};
 use crate::search::cells::PAIR_CHUNK;
 use crate::search::lists::{BLOCK_SHIFT, Block, assemble, assemble_lists, listed, order_agents};
 use crate::search::open_grid::{Bounds, CandidateRows, CellGrid};
 use crate::search::skin::Skin;
+use flock_math::parallel::{fill_indexed, map_chunks};
 
 /// The open-space search: the grid, the lists of its last build in blocks of slots, and whether
 /// they may serve the next build. Its buffers are kept between calls.

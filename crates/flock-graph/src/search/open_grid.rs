@@ -12,10 +12,10 @@ use core::ops::Range;
 use flock_math::Vector;
 
 use crate::net::{in_range, squared_distance};
-use crate::parallel::map_chunks;
 use crate::search::cells::{
     CELLS_PER_AGENT, CellSort, MAX_CELLS, NO_SLOT, SlotCells, cell_coords, padded_side,
 };
+use flock_math::parallel::map_chunks;
 
 /// Agents per chunk of the parallel displacement check ([`CellGrid::moved_within`]).
 const MOVED_CHUNK: usize = 1 << 14;

@@ -15,10 +15,10 @@ use flock_math::{Domain, Vector, periodic_displacement};
 
 use crate::net::{ProximityNet, in_range, range_squared, squared_distance_in};
 use crate::numbering::Numbering;
-use crate::parallel::{fill_indexed, map_chunks};
 use crate::search::cells::PAIR_CHUNK;
 use crate::search::lists::{BLOCK_SHIFT, Block, assemble, assemble_lists, listed, order_agents};
 use crate::search::torus_grid::TorusGrid;
+use flock_math::parallel::{fill_indexed, map_chunks};
 
 /// The periodic search: the grid of the box and the lists of its last build in blocks of slots.
 /// Its buffers are kept between calls; every build is a full one (its models move a large part
