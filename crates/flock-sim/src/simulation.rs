@@ -1,6 +1,6 @@
 //! A run in time ([`Simulation`]): the swarm, its proximity net, the protocol, the integrator,
 //! and the run's conditions and vehicles; what it measures of its state. The step itself is
-//! [`step`](crate::step); where the agents are stored, [`storage`](crate::storage).
+//! [`step`](crate::step); where the agents are stored, the private module `storage`.
 
 use std::borrow::Cow;
 
@@ -328,7 +328,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// The simulation in `domain`: on a periodic box every agent is wrapped into the box after
     /// each step, the net holds the pairs within r by the minimum image, and a protocol that does
     /// not measure displacements in the domain itself ([`Protocol::measures_in_domain`]) computes
-    /// each agent's input from its [`LocalForm`] with every neighbour at its image nearest the
+    /// each agent's input from its [`LocalForm`](flock_protocols::LocalForm) with every neighbour at its image nearest the
     /// agent. Agents stored by cell are put back in original order to be wrapped, and sorted
     /// again by the cells of the torus when they are scattered. `Domain::Open` changes nothing.
     ///
@@ -444,7 +444,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     ///
     /// When no condition changes what agents perceive (no communication or sensing section, no
     /// silent or removed faults), inputs are [`Protocol::controls`] of the true state; otherwise
-    /// each agent's input is its protocol's [`LocalForm`] of what it perceives.
+    /// each agent's input is its protocol's [`LocalForm`](flock_protocols::LocalForm) of what it perceives.
     ///
     /// # Errors
     /// A parameter outside its domain ([`Conditions::validate`]), or a condition that changes

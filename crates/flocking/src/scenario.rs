@@ -4,7 +4,7 @@
 //! initial condition, the step, the duration and how often to record. Every parameter with a value in
 //! the papers defaults to it (d = 7, r = 1.2 d, ε = 0.1, a = b = 5, h = 0.2; TAC 2006 Section VIII):
 //! the defaults are those of the parameter types of `flock-protocols` ([`AlphaConfig`],
-//! [`BetaConfig`], [`AvoidanceGains`]), which the scenario composes.
+//! [`BetaConfig`](flock_protocols::BetaConfig), [`AvoidanceGains`](flock_protocols::AvoidanceGains)), which the scenario composes.
 
 use std::path::Path;
 use std::str::FromStr;

@@ -32,7 +32,7 @@ pub struct Readings {
 
 /// The conditions of a run and everything they carry from step to step, agent by agent in the
 /// order the simulation stores them (by cell when they were numbered at random: the net's
-/// [`Numbering`]). Every draw is keyed by original indices and every list is in ascending
+/// [`Numbering`](flock_graph::Numbering)). Every draw is keyed by original indices and every list is in ascending
 /// original index, so the bits do not depend on that order; each re-sort moves the state
 /// with the agents.
 #[derive(Debug)]

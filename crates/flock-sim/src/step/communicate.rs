@@ -7,7 +7,7 @@
 //! (+ jitter) in the delay line, lost by the loss model ([`links`](crate::conditions::links)),
 //! dropped or replaced by the last value received ([`Perception::Heard`]).
 //!
-//! What agents hear is formed block by block of receivers ([`Heard::block`]), each block a CSR
+//! What agents hear is formed block by block of receivers (`Heard::block`), each block a CSR
 //! of perceived states ([`Perceptions`]) that the control stage turns into inputs while it is
 //! still in cache; the perception of all agents is these blocks end to end.
 
@@ -60,7 +60,7 @@ pub(crate) fn communicate<'a, V: Vector>(
 }
 
 /// What the agents hear at step `k` through the conditions: the candidates, the delay line and
-/// the links, from which [`Heard::block`] forms each receiver's perception.
+/// the links, from which `Heard::block` forms each receiver's perception.
 pub struct Heard<'a, V> {
     stage: &'a Stage<V>,
     domain: &'a Domain<V>,

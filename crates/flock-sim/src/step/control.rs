@@ -1,7 +1,7 @@
 //! **Control**: every agent's input u_i from what it perceives ([`Perception`]): the protocol's
 //! [`Protocol::controls`] of the true state (on a torus, its [`LocalForm`] with each neighbour at
 //! its nearest image), or its [`LocalForm`] of what each agent heard, computed for
-//! [`CONTROL_BLOCK`] receivers at a time ([`LocalForm::local_inputs`]).
+//! `CONTROL_BLOCK` receivers at a time ([`LocalForm::local_inputs`]).
 
 use flock_graph::ProximityNet;
 use flock_math::interrupt::cuts_short;

@@ -1,5 +1,5 @@
 //! **Fail**: the agents whose failure time has come fail, each in the mode its faults give
-//! ([`faults`](crate::conditions::faults)): a failed agent moves and is heard, or not, as its mode
+//! ([`faults`]): a failed agent moves and is heard, or not, as its mode
 //! says, from this step on.
 
 use flock_graph::Numbering;

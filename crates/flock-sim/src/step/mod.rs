@@ -3,12 +3,12 @@
 //!
 //! | stage | reads | writes |
 //! | --- | --- | --- |
-//! | [fail](fail) | the faults, the step | the failed agents |
-//! | [sense](sense) | the true state, the sensor | the delay line's newest slot |
-//! | [communicate](communicate) | the delay line, the nets, the links | what each agent perceives ([`Perception`](communicate::Perception)) |
-//! | [control](control) | the perception, the protocol | the inputs u_i |
-//! | [actuate](actuate) | the inputs | the delivered accelerations |
-//! | [integrate](integrate) | the delivered inputs, the disturbance | the state (q, p), a vehicle's state |
+//! | [fail] | the faults, the step | the failed agents |
+//! | [sense] | the true state, the sensor | the delay line's newest slot |
+//! | [communicate] | the delay line, the nets, the links | what each agent perceives ([`communicate::Perception`]) |
+//! | [control] | the perception, the protocol | the inputs u_i |
+//! | [actuate] | the inputs | the delivered accelerations |
+//! | [integrate] | the delivered inputs, the disturbance | the state (q, p), a vehicle's state |
 //!
 //! A run without conditions is this loop with nothing to do in its stages: no agent fails, each
 //! perceives the true state and its net ([`Perception::Truth`](communicate::Perception::Truth)),
