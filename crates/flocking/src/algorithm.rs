@@ -12,8 +12,10 @@ use flock_protocols::{
     GammaAgent, VasarhelyiParams, VicsekParams,
 };
 
-use crate::scenario::Point;
 use crate::struct_variant::struct_variant_enum;
+
+/// A vector as a scenario writes it: a list of `dim` numbers (`[1.0, 2.0]`).
+pub type Point = Vec<f64>;
 
 struct_variant_enum! {
 /// The protocol of a scenario.

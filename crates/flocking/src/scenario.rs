@@ -18,7 +18,7 @@ use flock_sim::{Conditions, Integrator};
 
 pub use crate::algorithm::{
     Algorithm, Algorithm2Params, Algorithm3Params, ConsensusParams, FixedGraph, Flocking2003Params,
-    TannerGraph, TannerParams, Translation,
+    Point, TannerGraph, TannerParams, Translation,
 };
 use crate::error::ScenarioError;
 use crate::vehicle::VehicleSpec;
@@ -111,9 +111,6 @@ pub struct Scenario {
 
 /// The most snapshot times a scenario may ask for (a figure of three rows of four panels).
 pub const MAX_SNAPSHOTS: usize = 12;
-
-/// A vector as a scenario writes it: a list of `dim` numbers (`[1.0, 2.0]`).
-pub type Point = Vec<f64>;
 
 /// The arena side of the Vásárhelyi fixture and the default (250 m; see docs/models.md for its
 /// source).
