@@ -10,8 +10,8 @@
 
 use flock_protocols::ParamError;
 
-use crate::Integrator;
 use crate::conditions::{Conditions, FaultMode};
+use crate::integrator::Integrator;
 use crate::vehicle::VehicleKind;
 
 /// The field of a condition that acts on an acceleration (actuation limits and lag, wind,

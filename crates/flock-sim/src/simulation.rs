@@ -16,23 +16,25 @@ use crate::checks::{
 };
 use crate::conditions::{Conditions, ConditionsState, Stage};
 use crate::health::{AgentFault, first_fault};
-use crate::step::runge_kutta::RungeKuttaScratch;
-use crate::storage::empty_net;
+use crate::integrator::Integrator;
 use crate::vehicle::{DynVehicle, Fleet};
 
-/// The integration scheme.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Integrator {
-    /// Semi-implicit (symplectic) Euler: p ← p + h u(t, q, p), then q ← q + h p. First order,
-    /// one net per step, and free of the energy drift of explicit Euler.
-    #[default]
-    SymplecticEuler,
-    /// Classical fourth-order Runge–Kutta: four evaluations of u (four nets) per step. Under
-    /// [conditions](Simulation::with_conditions) the input is held over the step, and RK4 of the
-    /// held input a is its closed form q ← q + h p + ½ h² a, p ← p + h a (to round-off;
-    /// [`integrate`](crate::step::integrate)).
-    Rk4,
+/// Buffers of the Runge–Kutta stages, allocated once.
+#[derive(Debug)]
+pub(crate) struct RungeKuttaScratch<V> {
+    pub(crate) stage: Swarm<V>,
+    pub(crate) net: ProximityNet,
+    pub(crate) sum_q: Vec<V>,
+    pub(crate) sum_p: Vec<V>,
+}
+
+/// An empty net for `protocol`: without distances when it does not read them.
+pub(crate) fn empty_net<V: Vector, P: Protocol<V>>(protocol: &P) -> ProximityNet {
+    if protocol.uses_net_distances() {
+        ProximityNet::new()
+    } else {
+        ProximityNet::without_distances()
+    }
 }
 
 /// A protocol integrated in time from an initial swarm with a fixed step.

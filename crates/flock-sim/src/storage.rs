@@ -3,7 +3,6 @@
 //! neighbours are near in memory, re-sorted every [`RESORT_EVERY`] steps, every per-agent array
 //! of the run moving with its agent ([`Simulation::stored_by_cell`]).
 
-use flock_graph::ProximityNet;
 use flock_math::Vector;
 use flock_math::parallel::fill_indexed;
 use flock_protocols::{Protocol, Swarm};
@@ -11,6 +10,7 @@ use flock_protocols::{Protocol, Swarm};
 use crate::Simulation;
 use crate::conditions::Stage;
 use crate::permutation::permute_in_place;
+use crate::simulation::empty_net;
 use crate::vehicle::Fleet;
 
 /// Steps between two re-sorts of agents stored in space order.
@@ -43,15 +43,6 @@ fn move_agents<V: Vector>(
     }
     if let Some(fleet) = fleet {
         fleet.permute(from);
-    }
-}
-
-/// An empty net for `protocol`: without distances when it does not read them.
-pub(crate) fn empty_net<V: Vector, P: Protocol<V>>(protocol: &P) -> ProximityNet {
-    if protocol.uses_net_distances() {
-        ProximityNet::new()
-    } else {
-        ProximityNet::without_distances()
     }
 }
 

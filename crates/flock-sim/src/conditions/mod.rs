@@ -29,6 +29,3 @@ pub use config::{
     Noise, SampledControl, Sensing, WhenLost, Wind,
 };
 pub use stage::{Stage, bytes_per_agent, delay_line_bytes_per_agent};
-
-// their earlier paths (`conditions::stage::…`); the checks are written once, in `checks`
-pub use crate::checks::{acceleration_field, check_vehicle, perception_field};

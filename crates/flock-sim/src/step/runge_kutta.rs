@@ -3,22 +3,12 @@
 //! held over the step, and the integrate stage takes RK4's closed form: see
 //! [`integrate`](super::integrate).)
 
-use flock_graph::ProximityNet;
 use flock_math::Vector;
 use flock_math::interrupt::cuts_short;
-use flock_protocols::{Protocol, Swarm};
+use flock_protocols::Protocol;
 
 use crate::Simulation;
 use crate::step::control::controls_in;
-
-/// Buffers of the Runge–Kutta stages, allocated once.
-#[derive(Debug)]
-pub(crate) struct RungeKuttaScratch<V> {
-    pub(crate) stage: Swarm<V>,
-    pub(crate) net: ProximityNet,
-    pub(crate) sum_q: Vec<V>,
-    pub(crate) sum_p: Vec<V>,
-}
 
 impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// y ← y + (h/6)(k₁ + 2k₂ + 2k₃ + k₄) with y = (q, p) and k = (p, u(t, q, p)), k₁'s input
