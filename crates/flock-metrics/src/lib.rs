@@ -24,15 +24,17 @@ pub mod alpha_flocking;
 pub mod closest;
 pub mod defect;
 pub mod flocking;
+pub mod heading;
 pub mod lattice;
 pub mod obstacles;
 pub mod order;
 
 pub use flocking::{
     FlockMetrics, MetricParams, cohesion_radius, collisions, component_velocity_mismatch,
-    deviation_energy, milling, min_distance, nearest_neighbour_distances, polarisation,
-    relative_connectivity, velocity_mismatch,
+    deviation_energy, min_distance, nearest_neighbour_distances, relative_connectivity,
+    velocity_mismatch,
 };
+pub use heading::{milling, polarisation};
 pub use obstacles::ObstacleMetrics;
 
 pub use alpha_flocking::{Cohesion, FlockingCriteria, FlockingVerdict, Window};
