@@ -237,6 +237,10 @@ impl<V: Vector> LocalForm<V> for Algorithm2<V> {
             *u += self.navigation.input(own.position, own.velocity, reference);
         }
     }
+
+    fn reference(&self, t: f64) -> Option<(V, V)> {
+        Some(self.navigation.gamma.state(t))
+    }
 }
 
 /// u_i = u_i^α + u_i^γ + u_i^β (eq. 67) from agent i's perception; the β-agents are computed from
@@ -258,5 +262,18 @@ impl<V: Space> LocalForm<V> for Algorithm3<V> {
             let (q, p) = (own.position, own.velocity);
             *u = *u + self.flock.navigation.input(q, p, reference) + self.beta.input(q, p);
         }
+    }
+
+    fn reference(&self, t: f64) -> Option<(V, V)> {
+        Some(self.flock.navigation.gamma.state(t))
+    }
+
+    fn beta_agents(&self, own: &Perceived<V>, out: &mut Vec<(V, V)>) {
+        out.extend(
+            self.beta
+                .neighbours(own.position, own.velocity)
+                .into_iter()
+                .map(|(_, beta)| (beta.position, beta.velocity)),
+        );
     }
 }

@@ -160,6 +160,26 @@ pub trait LocalForm<V: Vector>: Sync {
             *u = self.local_input(t, own, heard);
         }
     }
+
+    /// Whether [`LocalForm::local_inputs`] takes every agent's perception in one call rather
+    /// than block by block: a controller outside the library (a Python function, a learned
+    /// policy), whose calls cost more than the work of a block. False by default.
+    #[must_use]
+    fn takes_all(&self) -> bool {
+        false
+    }
+
+    /// The state (q_r, p_r) at time `t` of the γ-agent the protocol tracks, known to every agent
+    /// (TAC 2006 eq. 25: f_i^γ reads it); `None` (the default) for a protocol without one.
+    #[must_use]
+    fn reference(&self, _t: f64) -> Option<(V, V)> {
+        None
+    }
+
+    /// The β-agents (q̂_ik, p̂_ik) that agent `own` senses from its perceived state (TAC 2006
+    /// § VII: the projections on the obstacles within r′), appended to `out` in obstacle order;
+    /// none (the default) for a protocol that does not avoid obstacles.
+    fn beta_agents(&self, _own: &Perceived<V>, _out: &mut Vec<(V, V)>) {}
 }
 
 /// What a block of receivers perceives: receiver r perceives itself as `owns[r]` and heard

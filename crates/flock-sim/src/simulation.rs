@@ -17,6 +17,8 @@ use crate::checks::{
 use crate::conditions::{Conditions, ConditionsState, Stage};
 use crate::health::{AgentFault, first_fault};
 use crate::integrator::Integrator;
+use crate::step::Sensed;
+use crate::step::perceive::Percepts;
 use crate::vehicle::{DynVehicle, Fleet};
 
 /// Buffers of the Runge–Kutta stages, allocated once.
@@ -102,6 +104,11 @@ pub struct Simulation<V, P> {
     pub(crate) fleet: Option<Box<Fleet<V>>>,
     /// Whether an interrupt cut a step short after it changed the state ([`Simulation::is_torn`]).
     pub(crate) torn: bool,
+    /// Every agent's perception, gathered for a controller that takes them all at once or for
+    /// [`Simulation::perceive`].
+    pub(crate) percepts: Percepts<V>,
+    /// The step begun by [`Simulation::perceive`], to be finished by [`Simulation::act`].
+    pub(crate) pending: Option<Sensed<V>>,
 }
 
 /// What [`Simulation::observe`] measures of a state.
@@ -164,6 +171,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             domain: Domain::Open,
             fleet: None,
             torn: false,
+            percepts: Percepts::default(),
+            pending: None,
         };
         simulation.rebuild_net();
         Ok(simulation)

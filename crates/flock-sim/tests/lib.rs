@@ -14,6 +14,7 @@ mod olfati_saber2003;
 mod olfati_saber2003_tracking;
 mod properties;
 mod reynolds_reading;
+mod split_step;
 mod storage_order;
 mod storage_order_models;
 mod tanner2003;

@@ -64,7 +64,7 @@ pub(crate) fn communicate<'a, V: Vector>(
 pub struct Heard<'a, V> {
     stage: &'a Stage<V>,
     domain: &'a Domain<V>,
-    swarm: &'a Swarm<V>,
+    pub(crate) swarm: &'a Swarm<V>,
     numbering: &'a Numbering,
     /// Whom each receiver may hear: its fixed graph, or the net of the communication range.
     candidates: &'a Graph,
@@ -117,9 +117,9 @@ impl core::ops::Add for Counts {
 /// the states each heard (`heard[ends[r − 1]..ends[r]]`) and their places in the block.
 #[derive(Default)]
 pub(crate) struct Block<V> {
-    owns: Vec<Perceived<V>>,
-    heard: Vec<Perceived<V>>,
-    ends: Vec<usize>,
+    pub(crate) owns: Vec<Perceived<V>>,
+    pub(crate) heard: Vec<Perceived<V>>,
+    pub(crate) ends: Vec<usize>,
     /// The place in the block of each receiver listed.
     pub(crate) receivers: Vec<usize>,
 }
@@ -207,7 +207,7 @@ impl<'a, V: Vector> Heard<'a, V> {
     }
 
     /// The original index of the agent stored at `j`.
-    fn original(&self, j: usize) -> u32 {
+    pub(crate) fn original(&self, j: usize) -> u32 {
         self.numbering.original(j) as u32
     }
 

@@ -12,30 +12,47 @@ use crate::agents::map_agents_mut;
 use crate::conditions::Stage;
 use crate::conditions::links::Link;
 use crate::step::communicate::{Counts, Perception, Scratch};
+use crate::step::perceive::Percepts;
 
 /// What the control stage gives back to the conditions of a run whose agents heard through
 /// them: the links the receivers keep, and the counts of the update.
+#[derive(Debug)]
 pub(crate) struct Received<V> {
     links: Vec<Vec<Link<V>>>,
     counts: Counts,
 }
 
-/// The control stage at time `t`: every agent's input from its `perception`, into `inputs`.
+impl<V> Received<V> {
+    /// The links the receivers keep and the counts of the update.
+    pub(crate) const fn new(links: Vec<Vec<Link<V>>>, counts: Counts) -> Self {
+        Self { links, counts }
+    }
+}
+
+/// The control stage at time `t`: every agent's input from its `perception`, into `inputs`; a
+/// protocol that [takes every perception at once](LocalForm::takes_all) is given them gathered
+/// in `percepts`.
 pub(crate) fn control<V: Vector>(
     protocol: &dyn Protocol<V>,
     t: f64,
     perception: Perception<'_, V>,
     inputs: &mut [V],
+    percepts: &mut Percepts<V>,
 ) -> Option<Received<V>> {
     match perception {
         Perception::Truth { domain, swarm, net } => {
-            controls_in(protocol, domain, t, swarm, net, inputs);
+            controls_in(protocol, domain, t, (swarm, net), inputs, percepts);
             None
         }
         Perception::Heard(mut heard) => {
             let Some(local) = protocol.local_form() else {
                 unreachable!("agents hear through the conditions for a protocol with a local form");
             };
+            if local.takes_all() {
+                let received = percepts.of_heard(*heard);
+                local.local_inputs(t, percepts.perceptions(), inputs);
+                return Some(received);
+            }
             let mut links = core::mem::take(&mut heard.links);
             let counts = control_blocks(inputs, &mut links, |start, inputs, links, w| {
                 let counts = heard.block(start, inputs.len(), links, &mut w.scratch);
@@ -84,7 +101,7 @@ struct Worker<V> {
 
 /// Receivers are controlled in blocks of this many consecutive agents, their inputs computed
 /// together ([`LocalForm::local_inputs`]: the pair terms of a block go through one batch).
-const CONTROL_BLOCK: usize = 64;
+pub(crate) const CONTROL_BLOCK: usize = 64;
 
 /// The counts of `f(start, inputs, links, scratch)` summed over the blocks of
 /// [`CONTROL_BLOCK`] receivers from `start`, `f` setting each receiver's input in `inputs`,
@@ -140,16 +157,22 @@ fn control_blocks<V: Vector>(
 
 /// Every agent's input at time `t`: [`Protocol::controls`] of the state, or on a torus, for a
 /// protocol that does not measure in the domain itself, its [`LocalForm`] with every neighbour in
-/// the net at its image nearest the agent ([`Domain::image_near`]), in ascending index.
+/// the net at its image nearest the agent ([`Domain::image_near`]), in ascending index; for a
+/// form that [takes every perception at once](LocalForm::takes_all), its inputs of the true
+/// perceptions gathered in `percepts`.
 pub(crate) fn controls_in<V: Vector>(
     protocol: &dyn Protocol<V>,
     domain: &Domain<V>,
     t: f64,
-    swarm: &Swarm<V>,
-    net: &ProximityNet,
+    (swarm, net): (&Swarm<V>, &ProximityNet),
     inputs: &mut [V],
+    percepts: &mut Percepts<V>,
 ) {
     match protocol.local_form() {
+        Some(local) if local.takes_all() => {
+            percepts.of_truth(domain, swarm, net, protocol.interaction_graph());
+            local.local_inputs(t, percepts.perceptions(), inputs);
+        }
         Some(local) if domain.is_periodic() && !protocol.measures_in_domain() => {
             local_controls(local, domain, t, swarm, net, inputs);
         }

@@ -47,9 +47,9 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
                 &self.protocol,
                 &self.domain,
                 t + offset * h,
-                &rk.stage,
-                &rk.net,
+                (&rk.stage, &rk.net),
                 &mut self.inputs,
+                &mut self.percepts,
             );
         }
         if cuts_short() {
