@@ -44,6 +44,8 @@
 pub mod algorithm;
 pub mod bench;
 pub mod build;
+pub mod controller;
+pub mod env;
 pub mod error;
 pub mod estimate;
 pub mod health;
@@ -51,6 +53,7 @@ pub mod initial;
 pub mod input;
 pub mod merging;
 pub mod overrides;
+pub mod perception;
 pub mod run;
 pub mod scenario;
 pub mod simulation;

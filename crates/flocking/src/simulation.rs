@@ -17,8 +17,10 @@ use glam::{DVec2, DVec3};
 use crate::error::ScenarioError;
 use crate::health::NumericalError;
 use crate::initial::{initial_swarm, to_vector};
+use crate::perception::Perception;
 use crate::scenario::Scenario;
 use crate::vehicle::VehicleSpace;
+use flock_sim::step::perceive::Percepts;
 
 /// The whole state of a run after some steps: what a checkpoint keeps so that the run can be
 /// resumed bit-identically (a simulation carries nothing else between steps).
@@ -232,6 +234,9 @@ trait Dynamic: Send {
     fn check_health(&self) -> Result<(), AgentFault>;
     fn conditions_state(&self) -> Option<ConditionsState>;
     fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError>;
+    fn perceive(&mut self, perception: &mut Perception) -> bool;
+    fn act(&mut self, inputs: &[f64]);
+    fn protocol_inputs(&mut self, out: &mut [f64]) -> bool;
 }
 
 /// The rows of vectors `V` (each `V::DIM` contiguous `f64`).
@@ -319,6 +324,50 @@ impl<V: Space + bytemuck::Pod> Dynamic for Simulation<V, DynProtocol<V>> {
 
     fn restore_conditions(&mut self, state: ConditionsState) -> Result<(), ParamError> {
         Simulation::restore_conditions(self, state)
+    }
+
+    fn perceive(&mut self, perception: &mut Perception) -> bool {
+        if Simulation::perceive(self).is_none() {
+            return false;
+        }
+        let t = self.time();
+        if let Some(all) = self.perceived() {
+            perception.fill(t, all.perceptions(), self.protocol().local_form());
+        }
+        true
+    }
+
+    fn act(&mut self, inputs: &[f64]) {
+        let stored: Vec<V> = match Simulation::perceive(self) {
+            Some(all) => all
+                .perceptions()
+                .owns
+                .iter()
+                .map(|own| {
+                    let i = own.agent as usize;
+                    to_vector(&inputs[i * V::DIM..(i + 1) * V::DIM])
+                })
+                .collect(),
+            None => Vec::new(),
+        };
+        Simulation::act(self, &stored);
+    }
+
+    fn protocol_inputs(&mut self, out: &mut [f64]) -> bool {
+        let Some(n) = self.perceived().map(Percepts::len) else {
+            return false;
+        };
+        let mut stored = vec![V::ZERO; n];
+        Simulation::protocol_inputs(self, &mut stored);
+        if let Some(all) = self.perceived() {
+            for (u, own) in stored.iter().zip(all.perceptions().owns) {
+                let i = own.agent as usize;
+                for (k, x) in out[i * V::DIM..(i + 1) * V::DIM].iter_mut().enumerate() {
+                    *x = u.coord(k);
+                }
+            }
+        }
+        true
     }
 }
 
@@ -601,6 +650,32 @@ impl DynSimulation {
     /// simulation is [torn](DynSimulation::is_torn) ([`Simulation::step`]).
     pub fn step(&mut self) {
         self.inner.step();
+    }
+
+    /// The first half of a step for a controller outside the loop (a policy, an environment's
+    /// agent): fail → sense → communicate, and what every agent perceives, into `perception`
+    /// ([`Simulation::perceive`]). False, `perception` untouched, at a step without a control
+    /// update (sampled control: the inputs are held) or when the simulation is torn.
+    pub fn perceive(&mut self, perception: &mut Perception) -> bool {
+        self.inner.perceive(perception)
+    }
+
+    /// The second half of the step [`DynSimulation::perceive`] began (begun here if it was
+    /// not): every agent's input from `inputs` (n rows of dim, original order; ignored at a step
+    /// without a control update), then actuate → integrate ([`Simulation::act`]).
+    ///
+    /// # Panics
+    /// When `inputs` holds fewer than n × dim numbers at a control update.
+    pub fn act(&mut self, inputs: &[f64]) {
+        self.inner.act(inputs);
+    }
+
+    /// What the scenario's protocol would command for the perceptions of
+    /// [`DynSimulation::perceive`], into `out` (n rows of dim, original order): the inputs a
+    /// [`DynSimulation::step`] applies, bit for bit ([`Simulation::protocol_inputs`]). False,
+    /// `out` untouched, when no perception is pending.
+    pub fn protocol_inputs(&mut self, out: &mut [f64]) -> bool {
+        self.inner.protocol_inputs(out)
     }
 
     /// Whether an interrupt cut a step short after it had changed the state: the state is then

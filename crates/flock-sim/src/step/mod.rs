@@ -133,6 +133,13 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             };
             self.pending = Some(sensed);
         }
+        self.perceived()
+    }
+
+    /// The perceptions of the step begun by [`Simulation::perceive`], if it has a control
+    /// update.
+    #[must_use]
+    pub fn perceived(&self) -> Option<&Percepts<V>> {
         match self.pending {
             Some(Sensed::Perceived { .. }) => Some(&self.percepts),
             _ => None,

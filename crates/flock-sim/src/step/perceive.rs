@@ -70,7 +70,7 @@ impl<V: Vector> Percepts<V> {
     /// The perceptions of the true state `swarm`: agent i's own state and those of its
     /// neighbours in `graph` (a fixed graph, node k agent k) or else in the net, each at its
     /// image nearest the agent, in ascending original index.
-    pub(crate) fn of_truth(
+    pub fn of_truth(
         &mut self,
         domain: &Domain<V>,
         swarm: &Swarm<V>,
