@@ -24,6 +24,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::errors::{exception, is_complex};
+use crate::local::{LocalPython, PyLocal};
+use flocking::controller::WithController;
 
 /// What `f` failed with, and the state (positions, velocities as rows, agents in original order)
 /// at the start of the step it failed in — `None` when that step began before the simulation was
@@ -50,21 +52,33 @@ pub struct PythonControls {
     /// Evaluations of u per step: 1 (symplectic Euler) or 4 (Runge–Kutta).
     evaluations: u64,
     failure: Arc<Mutex<Option<Failure>>>,
+    /// The local controller, when `f` is a `flocking.Local`.
+    local: Option<Arc<LocalPython>>,
 }
 
 impl PythonControls {
     /// The controls `f` for runs of `scenario` (its integrator tells which evaluations start a
-    /// step).
+    /// step): a function of the whole state, or a local controller `flocking.Local(g)`.
     #[must_use]
     pub fn new(f: Py<PyAny>, scenario: &Scenario) -> Self {
         let evaluations = match scenario.integrator {
             Integrator::SymplecticEuler => 1,
             Integrator::Rk4 => 4,
         };
+        let failure = Arc::new(Mutex::new(None));
+        let local = Python::attach(|py| {
+            f.bind(py).cast::<PyLocal>().ok().map(|local| {
+                Arc::new(LocalPython {
+                    f: local.get().f.clone_ref(py),
+                    failure: Arc::clone(&failure),
+                })
+            })
+        });
         Self {
             f: Arc::new(f),
             evaluations,
-            failure: Arc::new(Mutex::new(None)),
+            failure,
+            local,
         }
     }
 
@@ -77,6 +91,9 @@ impl PythonControls {
 
 impl MapProtocol for PythonControls {
     fn map<V: Space + bytemuck::Pod>(&self, protocol: DynProtocol<V>) -> DynProtocol<V> {
+        if let Some(local) = &self.local {
+            return WithController(Arc::clone(local)).map(protocol);
+        }
         Box::new(Controlled {
             inner: protocol,
             f: Arc::clone(&self.f),
@@ -145,66 +162,78 @@ impl<V: Space + bytemuck::Pod> Controlled<V> {
         let p = PyArray1::from_vec(py, rows(&swarm.velocities)).reshape([n, dim])?;
         let neighbours = PyNeighbours::of(py, net)?;
         let u = self.f.bind(py).call1((t, q, p, neighbours))?;
-        let expected = format!("({n}, {dim}) (n agents × dim)");
-        if is_complex(&u)? {
-            return Err(controls_error(
-                py,
-                format!(
-                    "controls returned complex numbers, not real accelerations of shape {expected}: \
-                     return `u.real` when the imaginary parts are zero"
-                ),
-                (n, dim),
-                None,
-            ));
-        }
-        let array = if u.is_none() {
-            None
-        } else {
-            u.extract::<PyArrayLikeDyn<'_, f64, AllowTypeChange>>().ok()
-        };
-        let Some(u) = array else {
-            let kind = u.get_type().name()?;
-            return Err(controls_error(
-                py,
-                format!("controls returned a {kind}, not an array of floats of shape {expected}"),
-                (n, dim),
-                None,
-            ));
-        };
-        let u = u.as_array();
-        if u.shape() != [n, dim] {
-            return Err(controls_error(
-                py,
-                format!(
-                    "controls returned an array of shape {}; expected {expected} at t = {t}",
-                    shape_text(u.shape())
-                ),
-                (n, dim),
-                Some(u.shape().to_vec()),
-            ));
-        }
-        if let Some(k) = u.iter().position(|x| !x.is_finite()) {
-            let i = k / dim;
-            let row: Vec<f64> = (0..dim).map(|c| u[[i, c]]).collect();
-            return Err(controls_error(
-                py,
-                format!(
-                    "controls returned an input that is not finite at t = {t}: u[{i}] = {row:?}; return finite numbers"
-                ),
-                (n, dim),
-                Some(vec![n, dim]),
-            ));
-        }
-        let out: &mut [f64] = bytemuck::cast_slice_mut(inputs);
-        for (o, &x) in out.iter_mut().zip(u.iter()) {
-            *o = x;
-        }
-        Ok(())
+        checked_inputs(py, &u, (n, dim), t, bytemuck::cast_slice_mut(inputs))
     }
 }
 
+/// `u`, what a controls function returned at time `t`, written into `out` when it is an array of
+/// n × dim finite real numbers; else a `flocking.ControlsError` naming the shapes (or the agent
+/// whose input is not finite).
+pub(crate) fn checked_inputs(
+    py: Python<'_>,
+    u: &Bound<'_, PyAny>,
+    (n, dim): (usize, usize),
+    t: f64,
+    out: &mut [f64],
+) -> PyResult<()> {
+    let expected = format!("({n}, {dim}) (n agents × dim)");
+    if is_complex(u)? {
+        return Err(controls_error(
+            py,
+            format!(
+                "controls returned complex numbers, not real accelerations of shape {expected}: \
+                 return `u.real` when the imaginary parts are zero"
+            ),
+            (n, dim),
+            None,
+        ));
+    }
+    let array = if u.is_none() {
+        None
+    } else {
+        u.extract::<PyArrayLikeDyn<'_, f64, AllowTypeChange>>().ok()
+    };
+    let Some(u) = array else {
+        let kind = u.get_type().name()?;
+        return Err(controls_error(
+            py,
+            format!("controls returned a {kind}, not an array of floats of shape {expected}"),
+            (n, dim),
+            None,
+        ));
+    };
+    let u = u.as_array();
+    if u.shape() != [n, dim] {
+        return Err(controls_error(
+            py,
+            format!(
+                "controls returned an array of shape {}; expected {expected} at t = {t}",
+                shape_text(u.shape())
+            ),
+            (n, dim),
+            Some(u.shape().to_vec()),
+        ));
+    }
+    if let Some(k) = u.iter().position(|x| !x.is_finite()) {
+        let i = k / dim;
+        let row: Vec<f64> = (0..dim).map(|c| u[[i, c]]).collect();
+        return Err(controls_error(
+            py,
+            format!(
+                "controls returned an input that is not finite at t = {t}: u[{i}] = {row:?}; return finite numbers"
+            ),
+            (n, dim),
+            Some(vec![n, dim]),
+        ));
+    }
+    for (o, &x) in out.iter_mut().zip(u.iter()) {
+        *o = x;
+    }
+    Ok(())
+}
+
 /// The slot's value, whatever a panicking holder left in it.
-fn lock<T>(slot: &Mutex<T>) -> MutexGuard<'_, T> {
+pub(crate) fn lock<T>(slot: &Mutex<T>) -> MutexGuard<'_, T> {
     slot.lock().unwrap_or_else(PoisonError::into_inner)
 }
 

@@ -6,7 +6,9 @@
 //!   explicit initial states.
 //! - [`run`]: `run`, `resume` and `read_run` — whole runs, in memory and in run directories.
 //! - [`simulation`]: `Simulation` — a run driven step by step.
-//! - [`controls`]: `controls=`, the inputs u_i computed by a Python function on the proximity net.
+//! - [`controls`]: `controls=`, the inputs u_i computed by a Python function on the proximity net;
+//!   [`local`]: `controls=Local(f)`, a local controller of what each agent perceives.
+//! - [`mod@env`]: `_VecEnv`, the engine of `flocking.env` (Gymnasium, PettingZoo).
 //! - [`sweep`]: the pieces of `flocking.sweep` — a run of a sweep in any worker process, the output
 //!   directory of `flocking sweep`.
 //! - [`player`]: the HTML player of a run held in memory (`Run.player()`).
@@ -19,8 +21,10 @@ use pyo3::prelude::*;
 
 pub mod bench;
 pub mod controls;
+pub mod env;
 pub mod errors;
 pub mod interrupt;
+pub mod local;
 pub mod player;
 pub mod progress;
 pub mod run;
@@ -34,6 +38,9 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<scenario::PyScenario>()?;
     module.add_class::<simulation::PySimulation>()?;
     module.add_class::<controls::PyNeighbours>()?;
+    module.add_class::<local::PyLocal>()?;
+    module.add_class::<env::PyVecEnv>()?;
+    module.add_class::<local::PyPerception>()?;
     module.add_class::<sweep::SweepLock>()?;
     module.add_class::<bench::PyBenchReport>()?;
     module.add_class::<bench::PyWorkloadReport>()?;

@@ -24,6 +24,7 @@ use crate::errors::{
     create_error, numerical_error, read_error, resume_error, run_directory_error, scenario_error,
 };
 use crate::interrupt::watched;
+use crate::local::PyLocal;
 use crate::progress::Progress;
 use crate::scenario::PyScenario;
 
@@ -661,9 +662,15 @@ fn controls_source(py: Python<'_>, f: &Py<PyAny>) -> String {
             None => qualname,
         })
     };
-    let name = named(f)
-        .or_else(|| named(f.get_type().as_any()))
-        .unwrap_or_else(|| "a callable".to_owned());
+    let name_of = |f: &Bound<'_, PyAny>| {
+        named(f)
+            .or_else(|| named(f.get_type().as_any()))
+            .unwrap_or_else(|| "a callable".to_owned())
+    };
+    let name = match f.cast::<PyLocal>() {
+        Ok(local) => format!("Local({})", name_of(local.get().f.bind(py))),
+        Err(_) => name_of(f),
+    };
     format!("Python controls={name}")
 }
 

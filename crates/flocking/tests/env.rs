@@ -37,7 +37,7 @@ fn run_and_rollout(scenario: &Scenario) -> (Vec<f64>, Vec<f64>) {
     let (n, dim, size) = (scenario.agents, scenario.dim, env.layout().size());
     let (mut obs, mut rewards, mut actions) =
         (vec![0.0; n * size], vec![0.0; n], vec![0.0; n * dim]);
-    env.reset(None, &mut obs).expect("reset");
+    env.reset(Some(scenario.seed), &mut obs).expect("reset");
     loop {
         env.protocol_actions(&mut actions);
         let outcome = env.step(&actions, &mut obs, &mut rewards).expect("a step")[0].clone();
@@ -248,7 +248,7 @@ fn an_ended_episode_resets_at_the_next_step_with_a_new_start() {
     let n = scenario.agents;
     let (mut obs, mut rewards) = (vec![0.0; n * env.layout().size()], vec![0.0; n]);
     let mut first = vec![0.0; obs.len()];
-    env.reset(None, &mut first).expect("reset");
+    env.reset(Some(5), &mut first).expect("reset");
     let actions = vec![0.0; n * 2];
     let ends: Vec<_> = (0..4)
         .map(|_| env.step(&actions, &mut obs, &mut rewards).expect("a step")[0].clone())
@@ -264,4 +264,6 @@ fn an_ended_episode_resets_at_the_next_step_with_a_new_start() {
     assert_eq!(sim.steps(), 0);
     env.reset(Some(5), &mut obs).expect("reset");
     assert_eq!(obs, first, "reset(seed) reproduces the first episode");
+    env.reset(None, &mut obs).expect("reset");
+    assert_ne!(obs, first, "reset() starts the next episode");
 }

@@ -234,20 +234,22 @@ impl VecEnv {
         &self.scenario
     }
 
-    /// Restarts every environment (environment k seeded `seed + k`, or its own seed when `seed`
-    /// is `None`, from its first episode) and writes their observations into `obs`
-    /// (num_envs × n × [`Layout::size`]).
+    /// Restarts every environment and writes their observations into `obs`
+    /// (num_envs × n × [`Layout::size`]): with a `seed`, environment k's first episode of seed
+    /// `seed + k` (the same bits at every reset with that seed); without, each environment's next
+    /// episode.
     ///
     /// # Errors
     /// A scenario that cannot be built with a seed (none that validated).
     pub fn reset(&mut self, seed: Option<u64>, obs: &mut [f64]) -> Result<(), ScenarioError> {
         let scenario = &self.scenario;
-        let seeds: Vec<u64> = match seed {
-            Some(seed) => seeds(seed, self.envs.len()).collect(),
-            None => self.envs.iter().map(|e| e.seed).collect(),
+        let starts: Vec<(u64, u64)> = match seed {
+            Some(seed) => seeds(seed, self.envs.len()).map(|s| (s, 0)).collect(),
+            None => self.envs.iter().map(|e| (e.seed, e.episode + 1)).collect(),
         };
-        let started: Vec<Result<(), ScenarioError>> =
-            map_envs(&mut self.envs, |k, env| env.start(scenario, seeds[k], 0));
+        let started: Vec<Result<(), ScenarioError>> = map_envs(&mut self.envs, |k, env| {
+            env.start(scenario, starts[k].0, starts[k].1)
+        });
         started.into_iter().collect::<Result<(), _>>()?;
         self.observe(obs);
         Ok(())
