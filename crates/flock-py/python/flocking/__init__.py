@@ -10,7 +10,11 @@ and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python
   ``energy``).
 - ``controls=f`` (of :func:`run`, :func:`resume`, :class:`Simulation` and :func:`sweep`): the
   inputs u_i computed by ``f(t, q, p, neighbours)`` in numpy on the proximity net
-  (:class:`Neighbours`), everything else from the scenario's algorithm.
+  (:class:`Neighbours`), everything else from the scenario's algorithm; ``controls=Local(g)``:
+  a local controller ``g(t, perception)`` of what every agent perceives (:class:`Perception`:
+  the delay, loss, range and noise of the scenario applied), under every condition and vehicle.
+- :mod:`flocking.env`: the scenario as Gymnasium and PettingZoo environments (many flocks stepped
+  together in Rust), the scenario's protocol as the baseline.
 - :func:`sweep`: a sweep file's runs, or a grid around a :class:`Scenario` defined in Python
   (``axes=``, ``seeds=``), on any ``concurrent.futures.Executor`` (a local process
   pool by default, a Dask cluster, Slurm through dask-jobqueue), into the ``runs.csv`` that
@@ -40,7 +44,16 @@ from ._errors import (
     ScenarioError,
     SimulationError,
 )
-from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__, bump
+from ._flocking import (
+    METRICS_HEADER,
+    Local,
+    Neighbours,
+    Perception,
+    Scenario,
+    Simulation,
+    __version__,
+    bump,
+)
 from ._run import Run, State, Trajectory, read_run, resume, run
 from ._sweep import SweepResult, sweep
 
@@ -48,9 +61,11 @@ __all__ = [
     "BenchReport",
     "ControlsError",
     "FlockError",
+    "Local",
     "METRICS_HEADER",
     "Neighbours",
     "NumericalError",
+    "Perception",
     "Run",
     "RunDirectoryError",
     "Scenario",

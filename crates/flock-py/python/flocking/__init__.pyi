@@ -71,6 +71,36 @@ class Neighbours:
         """The directed edges (i, j) as an (m, 2) array, in the order of ``indices``."""
     def __len__(self) -> int: ...
 
+class Perception:
+    """What every agent perceives at a control update (agents in original order), handed to a
+    ``Local`` controller: agent i measures itself at ``positions[i]``, ``velocities[i]`` and heard
+    ``neighbours[indptr[i]:indptr[i + 1]]`` at ``relative_positions`` q_j − q_i and
+    ``relative_velocities`` p_j − p_i of the same rows (``heard_by[k]`` heard entry k)."""
+
+    t: float
+    positions: npt.NDArray[np.float64]
+    velocities: npt.NDArray[np.float64]
+    indptr: npt.NDArray[np.int64]
+    neighbours: npt.NDArray[np.int64]
+    heard_by: npt.NDArray[np.int64]
+    relative_positions: npt.NDArray[np.float64]
+    relative_velocities: npt.NDArray[np.float64]
+    gamma_position: Optional[npt.NDArray[np.float64]]
+    gamma_velocity: Optional[npt.NDArray[np.float64]]
+    beta_indptr: npt.NDArray[np.int64]
+    beta_relative_positions: npt.NDArray[np.float64]
+    beta_relative_velocities: npt.NDArray[np.float64]
+    def __len__(self) -> int: ...
+
+class Local:
+    """``controls=Local(f)``: ``f(t, perception)`` returns every agent's input u (n × dim) from
+    what each perceives (:class:`Perception`), under every condition and vehicle."""
+
+    def __init__(self, f: Callable[[float, Perception], npt.ArrayLike]) -> None: ...
+    @property
+    def function(self) -> Callable[[float, Perception], npt.ArrayLike]: ...
+    def __call__(self, t: float, perception: Perception) -> npt.ArrayLike: ...
+
 class Scenario:
     """A flocking scenario, as a RON scenario file writes it (immutable: changes return copies)."""
 
