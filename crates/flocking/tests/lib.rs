@@ -4,6 +4,7 @@
 
 mod common;
 mod conditions;
+mod controller;
 mod env;
 mod fig7_squeeze;
 mod fixtures;
