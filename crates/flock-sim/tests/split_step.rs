@@ -77,8 +77,8 @@ fn simulation<V: Vector, P: Protocol<V>>(
 /// taking every perception at once, compared after every step.
 fn split_step_is_the_step<V: Vector>(conditions: &Conditions, domain: Domain<V>) {
     let protocol = following(V::from_fn(|k| if k == 0 { 1.0 } else { 0.0 }));
-    let mut whole = simulation(protocol.clone(), conditions, domain.clone());
-    let mut split = simulation(protocol.clone(), conditions, domain.clone());
+    let mut whole = simulation(protocol.clone(), conditions, domain);
+    let mut split = simulation(protocol.clone(), conditions, domain);
     let mut at_once = simulation(AllAtOnce(protocol), conditions, domain);
     let mut inputs = vec![V::ZERO; 300];
     let (mut perceived, mut held) = (0, 0);
@@ -128,7 +128,7 @@ fn the_split_step_is_the_step_on_a_torus() {
     let torus = Domain::Periodic {
         size: DVec2::splat(60.0),
     };
-    split_step_is_the_step::<DVec2>(&Conditions::default(), torus.clone());
+    split_step_is_the_step::<DVec2>(&Conditions::default(), torus);
     split_step_is_the_step::<DVec2>(&everything(), torus);
 }
 

@@ -369,8 +369,7 @@ impl Env {
         weights.of(
             scales,
             state.dim,
-            (&state.positions, &state.velocities),
-            &graph,
+            (&state.positions, &state.velocities, &graph),
             gamma,
             |i| failed.is_none_or(|f| !f[i]),
             rewards,

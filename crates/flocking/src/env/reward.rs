@@ -70,14 +70,13 @@ impl Scales {
 
 impl Reward {
     /// Every agent's reward into `out` (n), from the positions and velocities (n rows of `dim`,
-    /// original order), their `graph` and the γ-agent's (q_r, p_r) if any; agents that do not
+    /// original order) and their `graph`, and the γ-agent's position q_r if any; agents that do not
     /// move (`active` false) get 0.
     pub fn of(
         &self,
         scales: &Scales,
         dim: usize,
-        (q, p): (&[f64], &[f64]),
-        graph: &Graph,
+        (q, p, graph): (&[f64], &[f64], &Graph),
         gamma: Option<&[f64]>,
         active: impl Fn(usize) -> bool,
         out: &mut [f64],
