@@ -40,7 +40,15 @@ from ._errors import (
     ScenarioError,
     SimulationError,
 )
-from ._flocking import METRICS_HEADER, Neighbours, Scenario, Simulation, __version__, bump
+from ._flocking import (
+    METRICS_HEADER,
+    Neighbours,
+    Scenario,
+    Simulation,
+    __version__,
+    _render,
+    bump,
+)
 from ._run import Run, State, Trajectory, read_run, resume, run
 from ._sweep import SweepResult, sweep
 

@@ -56,7 +56,7 @@ mod tests {
     use crate::scene::drawable::Drawable;
     use crate::scene::frames::Frame;
     use crate::scene::framing::Framing;
-    use crate::snapshots::snapshot::{SnapshotOptions, snapshot_png};
+    use crate::snapshots::snapshot::{SnapshotOptions, grid_size, snapshot_png};
 
     const W: u32 = 640;
     const H: u32 = 480;
@@ -94,15 +94,23 @@ mod tests {
 
     #[test]
     fn the_buffer_is_the_snapshot_png_of_the_same_frame_bit_for_bit() {
-        let q = [DVec2::new(0.0, 0.0), DVec2::new(7.0, 0.0), DVec2::new(3.0, 6.0)];
+        let q = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(7.0, 0.0),
+            DVec2::new(3.0, 6.0),
+        ];
         let p = [DVec2::X, DVec2::Y, DVec2::new(1.0, 1.0)];
         let scene = Scene::new(2, 8.4)
+            .with_title("three agents")
             .with_frame(Frame::from_vectors(0.0, &q, &p))
             .with_frame(Frame::from_vectors(1.0, &q.map(|q| q + DVec2::X), &p))
             .with_obstacle(Drawable::ball(DVec2::new(4.0, -4.0), 1.5))
             .with_gamma(|t| DVec3::new(10.0 + t, 2.0, 0.0));
+        // the snapshot's one panel under the title band: the whole figure W × H
+        let band = grid_size((W, 0), 1, 1, &scene.title).1;
+        assert!(band > 0);
         let options = SnapshotOptions {
-            panel_size: (W, H),
+            panel_size: (W, H - band),
             columns: 1,
             ..SnapshotOptions::default()
         };
@@ -143,7 +151,11 @@ mod tests {
 
     #[test]
     fn a_3d_frame_fills_the_requested_size_under_its_view_title() {
-        let q = [DVec3::ZERO, DVec3::new(5.0, 2.0, 3.0), DVec3::new(-3.0, 4.0, 6.0)];
+        let q = [
+            DVec3::ZERO,
+            DVec3::new(5.0, 2.0, 3.0),
+            DVec3::new(-3.0, 4.0, 6.0),
+        ];
         let scene = Scene::new(3, 8.4).with_frame(Frame::from_vectors(0.0, &q, &[DVec3::X; 3]));
         let rgb = snapshot_rgb(&scene, 0, &PanelStyle::default(), W, H).unwrap();
         assert_eq!(rgb.len(), (H * W * 3) as usize);
