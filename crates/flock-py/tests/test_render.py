@@ -39,11 +39,16 @@ def test_an_image_of_the_requested_size_that_moves_with_the_state(path):
 
 
 def test_a_state_of_another_shape_is_refused_naming_the_array_and_both_shapes():
+    # the checks of Simulation's positions and velocities: ScenarioError, a ValueError
     scenario, q, p, t = state(FIG11)
-    with pytest.raises(ValueError, match=r"positions has shape \[100, 3\].*\(100, 2\)"):
+    with pytest.raises(flocking.ScenarioError, match=r"\(100, 3\).*\(100, 2\)") as refused:
         flocking._render(scenario, np.zeros((100, 3)), p, t)
-    with pytest.raises(ValueError, match=r"velocities has shape \[99, 2\].*\(100, 2\)"):
-        flocking._render(scenario, q, p[:99], t)
+    assert refused.value.field == "positions"
+    with pytest.raises(flocking.ScenarioError, match=r"\(2, 100\).*\(100, 2\).*transpose") as refused:
+        flocking._render(scenario, q, p.T, t)
+    assert refused.value.field == "velocities"
+    with pytest.raises(flocking.ScenarioError, match="complex"):
+        flocking._render(scenario, q + 0j, p, t)
     bad = q.copy()
     bad[7, 1] = np.nan
     with pytest.raises(ValueError, match=r"positions\[7, 1\] is NaN"):

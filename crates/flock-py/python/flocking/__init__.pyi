@@ -247,16 +247,17 @@ class Run:
 
 def _render(
     scenario: Scenario,
-    positions: npt.NDArray[np.float64],
-    velocities: npt.NDArray[np.float64],
+    positions: _Rows,
+    velocities: _Rows,
     t: float,
     width: int = 640,
     height: int = 480,
 ) -> npt.NDArray[np.uint8]:
     """The state (positions, velocities: (agents, dim), agents in original order) of a run of
     ``scenario`` at time ``t`` drawn as ``flocking plot`` draws a snapshot: an RGB image of shape
-    (height, width, 3), uint8; ``ValueError`` for another shape, a value that is not finite, or
-    a side outside 16–16384."""
+    (height, width, 3), uint8. :class:`ScenarioError` (a ``ValueError``) for an array of another
+    shape or of complex numbers, as :class:`Simulation`; ``ValueError`` for a value or ``t`` that
+    is not finite, or a side outside 16–16384."""
 
 def bump(x: npt.ArrayLike, h: float) -> npt.NDArray[np.float64]:
     """ρ_h(x) of TAC 2006 eq. 10 for every element of ``x``, with the bits of the built-in
