@@ -45,9 +45,6 @@ pub fn run_player_html(
             scenario.dim
         )));
     }
-    let lifted = |row: ArrayView1<'_, f64>| {
-        DVec3::new(row[0], row[1], if row.len() > 2 { row[2] } else { 0.0 })
-    };
     let mut scene = Scene::new(scenario.dim, scenario.range());
     scene.frames = (0..times.len())
         .map(|k| {
@@ -68,4 +65,10 @@ pub fn run_player_html(
     };
     py.detach(|| player_html(&scene, &options))
         .map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// A point or vector of a state array's row (length 2 or 3), lifted to 3D (z = 0 in 2D) as the
+/// figures hold it.
+pub(crate) fn lifted(row: ArrayView1<'_, f64>) -> DVec3 {
+    DVec3::new(row[0], row[1], if row.len() > 2 { row[2] } else { 0.0 })
 }

@@ -94,7 +94,7 @@ enum Stopped {
 /// The rows of an n × dim array, row by row.
 /// The `name` array (`positions` or `velocities`) in row order, checked to be exactly
 /// (`agents`, `dim`): a (dim, agents) array is refused, not read scrambled.
-fn rows(
+pub(crate) fn rows(
     array: &PyArrayLike2<'_, f64, AllowTypeChange>,
     name: &str,
     (agents, dim): (usize, usize),

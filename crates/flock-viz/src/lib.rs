@@ -13,7 +13,8 @@
 //! - [`Scene`], [`Frame`], [`Drawable`], [`View`], [`Framing`]: what is drawn and how it is
 //!   framed, independent of files.
 //! - [`snapshot_svg`], [`snapshot_png`]: agents, net and obstacles at chosen times
-//!   (TAC 2006 Figs. 10–17).
+//!   (TAC 2006 Figs. 10–17); [`snapshot_rgb`]: one frame as RGB pixels in memory (the
+//!   `render_mode="rgb_array"` of the Python environments).
 //! - [`views_svg`], [`views_png`]: one frame of a 3D run in four depth-cued views (oblique, top,
 //!   front, side).
 //! - [`metrics_svg`], [`metrics_png`]: C, R, Ẽ, K̃ against t (TAC 2006 Fig. 18), energy,
@@ -77,6 +78,7 @@ pub use scene::framing::Framing;
 pub use scene::projection::{View, lift};
 pub use snapshots::four_views::{four_views, views_png, views_svg};
 pub use snapshots::reynolds::{ReynoldsOptions, reynolds_png, reynolds_svg};
+pub use snapshots::rgb::snapshot_rgb;
 pub use snapshots::snapshot;
 pub use snapshots::snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
 pub use sweeps::phase;

@@ -52,6 +52,7 @@ from ._flocking import (
     Scenario,
     Simulation,
     __version__,
+    _render,
     bump,
 )
 from ._run import Run, State, Trajectory, read_run, resume, run

@@ -275,6 +275,20 @@ class Run:
         """The run in the self-contained canvas player of ``flocking plot``."""
     def _repr_html_(self) -> str: ...
 
+def _render(
+    scenario: Scenario,
+    positions: _Rows,
+    velocities: _Rows,
+    t: float,
+    width: int = 640,
+    height: int = 480,
+) -> npt.NDArray[np.uint8]:
+    """The state (positions, velocities: (agents, dim), agents in original order) of a run of
+    ``scenario`` at time ``t`` drawn as ``flocking plot`` draws a snapshot: an RGB image of shape
+    (height, width, 3), uint8. :class:`ScenarioError` (a ``ValueError``) for an array of another
+    shape or of complex numbers, as :class:`Simulation`; ``ValueError`` for a value or ``t`` that
+    is not finite, or a side outside 16–16384."""
+
 def bump(x: npt.ArrayLike, h: float) -> npt.NDArray[np.float64]:
     """ρ_h(x) of TAC 2006 eq. 10 for every element of ``x``, with the bits of the built-in
     protocols (for a ``controls`` function written in numpy); ``ValueError`` unless 0 < h < 1."""

@@ -92,13 +92,19 @@ pub fn animation_gif(scene: &Scene, options: &AnimationOptions) -> Result<Vec<u8
     Ok(out)
 }
 
-/// One frame of the animation: the title band and one snapshot panel.
-struct AnimationFrame<'a> {
-    framer: &'a Framer<'a>,
-    frame: usize,
-    panel: &'a PanelStyle,
-    title: &'a str,
-    size: (u32, u32),
+/// One frame of the animation, and of [`snapshot_rgb`](crate::snapshot_rgb): the title band and
+/// one snapshot panel, on an image of `size` pixels.
+pub(crate) struct AnimationFrame<'a> {
+    /// The scene's framer.
+    pub(crate) framer: &'a Framer<'a>,
+    /// The frame drawn (an index into the scene's frames).
+    pub(crate) frame: usize,
+    /// What the panel draws and how.
+    pub(crate) panel: &'a PanelStyle,
+    /// The figure's title ([`figure_title`]), in a band above the panel unless empty.
+    pub(crate) title: &'a str,
+    /// The image size in pixels (width, height).
+    pub(crate) size: (u32, u32),
 }
 
 impl Figure for AnimationFrame<'_> {

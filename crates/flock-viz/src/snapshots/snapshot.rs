@@ -4,7 +4,8 @@
 //! panel per time, each with equal axis scales and labelled axes. 3D runs are drawn as an
 //! orthographic projection ([`View`]); [`View::TOP`] gives the top view.
 //!
-//! - [`snapshot_svg`], [`snapshot_png`]: a figure of one panel per chosen frame.
+//! - [`snapshot_svg`], [`snapshot_png`]: a figure of one panel per chosen frame;
+//!   [`snapshot_rgb`](crate::snapshot_rgb) one frame as pixels in memory.
 //! - [`SnapshotOptions`]: panel size, view, framing, trails, edges, marker size, length unit.
 
 use glam::{DVec2, DVec3};
@@ -166,16 +167,7 @@ impl<'a> Snapshot<'a> {
         frames: &'a [usize],
         options: &'a SnapshotOptions,
     ) -> Result<Self, VizError> {
-        scene.validate()?;
-        if frames.is_empty() {
-            return Err(VizError::invalid("no frames chosen for the snapshot"));
-        }
-        if let Some(&k) = frames.iter().find(|&&k| k >= scene.frames.len()) {
-            return Err(VizError::invalid(format!(
-                "frame {k} chosen, but the scene has {} frames",
-                scene.frames.len()
-            )));
-        }
+        check_frames(scene, frames)?;
         let columns = options.columns.clamp(1, frames.len());
         let rows = frames.len().div_ceil(columns);
         Ok(Self {
@@ -190,6 +182,21 @@ impl<'a> Snapshot<'a> {
     fn title(&self) -> String {
         figure_title(self.scene, self.options.style.view)
     }
+}
+
+/// Checks that `scene` can be drawn and that `frames` chosen of it are some and all in range.
+pub(crate) fn check_frames(scene: &Scene, frames: &[usize]) -> Result<(), VizError> {
+    scene.validate()?;
+    if frames.is_empty() {
+        return Err(VizError::invalid("no frames chosen for the snapshot"));
+    }
+    if let Some(&k) = frames.iter().find(|&&k| k >= scene.frames.len()) {
+        return Err(VizError::invalid(format!(
+            "frame {k} chosen, but the scene has {} frames",
+            scene.frames.len()
+        )));
+    }
+    Ok(())
 }
 
 /// A figure's title: the scene's title, and for 3D runs the view.
