@@ -193,3 +193,20 @@ def test_ctrl_c_during_a_rollout_leaves_the_environment_usable():
                 raise KeyboardInterrupt
     obs, rewards, *_ = env.step(env.baseline_action())
     assert np.all(np.isfinite(obs)) and np.all(np.isfinite(rewards))
+
+
+def test_rgb_array_renders_the_flock_as_the_snapshots_do():
+    env = FlockEnv(fig11(0.5), render_mode="rgb_array")
+    check_env(env)  # with its render check
+    env.reset(seed=1)
+    first = env.render()
+    assert first.shape == (480, 640, 3) and first.dtype == np.uint8
+    for _ in range(30):
+        env.step(env.baseline_action())
+    assert not np.array_equal(env.render(), first)
+    vec = FlockVectorEnv(fig11(0.5), 2)
+    vec.reset(seed=1)
+    assert np.array_equal(vec.render(0), first)
+    assert not np.array_equal(vec.render(1), first), "flock 1 starts elsewhere"
+    with pytest.raises(ValueError, match="rgb_array"):
+        FlockEnv(fig11(0.5), render_mode="human")
