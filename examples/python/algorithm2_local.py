@@ -10,7 +10,8 @@ the γ-agent's (q_r, p_r):
     u_i = c₁^α Σ_j φ_α(‖q_j − q_i‖_σ) n_ij + c₂^α Σ_j a_ij(q) (p_j − p_i)
           − c₁ (q_i − q_r) − c₂ (p_i − p_r)
 
-The arithmetic is ``algorithm2_numpy.py``'s (the operations of flock-protocols, in their order);
+The arithmetic is ``algorithm2_numpy.py``'s, ``Algorithm2.inputs`` (the operations of
+flock-protocols, in their order);
 here the relative states come from the perception (``flocking.Perception``), which the scenario's
 conditions shaped, so the same function runs under every condition. Measured on x86-64: the bits
 of the built-in Algorithm 2, ideal and with delay + Gilbert–Elliott loss + sensing noise.
@@ -39,24 +40,14 @@ class LocalAlgorithm2(Algorithm2):
     """The inputs of TAC 2006 Algorithm 2 from every agent's perception: a ``Local`` controller."""
 
     def __call__(self, t, perception):
-        rows = perception.heard_by
-        dq, dp = perception.relative_positions, perception.relative_velocities
-        q, p = perception.positions, perception.velocities
-        d2 = dq[:, 0] * dq[:, 0]
-        for k in range(1, q.shape[1]):
-            d2 = d2 + dq[:, k] * dq[:, k]
-        root = np.sqrt(1.0 + self.epsilon * d2)
-        z, gradient_scale = d2 / (root + 1.0), 1.0 / root
-        rho = flocking.bump(z / self.r_alpha, self.h)
-        x = z - self.shift
-        phi = rho * (self.scale * (x / np.sqrt(1.0 + x * x)) + self.offset)
-        gradient = np.zeros_like(q)
-        consensus = np.zeros_like(q)
-        np.add.at(gradient, rows, dq * (phi * gradient_scale)[:, None])
-        np.add.at(consensus, rows, dp * rho[:, None])
-        u_alpha = gradient * self.c1_alpha + consensus * self.c2_alpha
-        q_r, p_r = perception.gamma_position, perception.gamma_velocity
-        return u_alpha + (-((q - q_r) * self.c1) - (p - p_r) * self.c2)
+        return self.inputs(
+            perception.positions,
+            perception.velocities,
+            perception.heard_by,
+            perception.relative_positions,
+            perception.relative_velocities,
+            (perception.gamma_position, perception.gamma_velocity),
+        )
 
 
 def scenario_with(conditions: dict, duration: float) -> flocking.Scenario:

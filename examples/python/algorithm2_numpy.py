@@ -66,7 +66,12 @@ class Algorithm2:
     def __call__(self, t, q, p, neighbours):
         rows = np.repeat(np.arange(len(q)), np.diff(neighbours.indptr))
         cols = neighbours.indices
-        dq = q[cols] - q[rows]
+        return self.inputs(q, p, rows, q[cols] - q[rows], p[cols] - p[rows],
+                           (self.q_r0 + self.p_r * t, self.p_r))
+
+    def inputs(self, q, p, rows, dq, dp, reference):
+        """u of every agent at (q, p), agent ``rows[k]`` having neighbour k at relative position
+        ``dq[k]`` and velocity ``dp[k]``, the γ-agent at ``reference`` = (q_r, p_r)."""
         d2 = dq[:, 0] * dq[:, 0]
         for k in range(1, q.shape[1]):
             d2 = d2 + dq[:, k] * dq[:, k]
@@ -78,10 +83,10 @@ class Algorithm2:
         gradient = np.zeros_like(q)
         consensus = np.zeros_like(q)
         np.add.at(gradient, rows, dq * (phi * gradient_scale)[:, None])
-        np.add.at(consensus, rows, (p[cols] - p[rows]) * rho[:, None])
+        np.add.at(consensus, rows, dp * rho[:, None])
         u_alpha = gradient * self.c1_alpha + consensus * self.c2_alpha
-        q_r = self.q_r0 + self.p_r * t
-        return u_alpha + (-((q - q_r) * self.c1) - (p - self.p_r) * self.c2)
+        q_r, p_r = reference
+        return u_alpha + (-((q - q_r) * self.c1) - (p - p_r) * self.c2)
 
 
 def compare(scenario: flocking.Scenario):
