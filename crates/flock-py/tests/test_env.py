@@ -210,3 +210,43 @@ def test_rgb_array_renders_the_flock_as_the_snapshots_do():
     assert not np.array_equal(vec.render(1), first), "flock 1 starts elsewhere"
     with pytest.raises(ValueError, match="rgb_array"):
         FlockEnv(fig11(0.5), render_mode="human")
+
+
+@pytest.mark.parametrize(
+    "fixture",
+    [
+        "unicycle_alg2_n50",
+        "crazyflie_alg2_3d_n50",
+        "alg3_3d_mixed_obstacles_n100",
+        "vicsek1995_fig2a_n400",
+        "boids_small_n200",
+        "tanner2003_fig3_fixed_n10",
+    ],
+)
+def test_every_model_and_vehicle_through_the_environment_is_its_run(fixture):
+    """Vehicles (a unicycle, a quadrotor), Algorithm 3's β-agents in 3D, the velocity models and a
+    fixed graph: the baseline through the environment gives ``flocking.run``'s final bits."""
+    scenario = flocking.Scenario.load(FIG11.parent / f"{fixture}.ron")
+    scenario = scenario.with_values({"duration": 12 * scenario.step})
+    q, p, _ = rollout_final(scenario)
+    run = flocking.run(scenario, trajectory=False)
+    assert np.array_equal(q, run.final.positions) and np.array_equal(p, run.final.velocities)
+
+
+def test_the_observation_holds_the_nearest_beta_agent_when_an_obstacle_is_near():
+    scenario = flocking.Scenario.load(FIG11.parent / "alg3_3d_mixed_obstacles_n100.ron")
+    env = FlockVectorEnv(scenario, 1)
+    obs, _ = env.reset(seed=scenario.seed)
+    start, length = env.layout["beta"]
+    mask = env.layout["beta_mask"][0]
+    for _ in range(3000):
+        if obs[0, :, mask].any():
+            break
+        obs, *_ = env.step(env.baseline_action())
+    near = obs[0, :, mask] == 1.0
+    assert near.any(), "the flock reaches an obstacle"
+    beta = obs[0, near, start : start + length]
+    # q̂ − q_i nonzero and within r′ (TAC 2006 § VII, r′ below the interaction range r = 1.2 d)
+    distances = np.linalg.norm(beta[:, :3], axis=1)
+    assert np.all(distances > 0) and np.all(distances < float(scenario.value("alpha.d")) * 1.2)
+    assert not obs[0, ~near, start : start + length].any(), "zeros without a β-agent"
