@@ -1,6 +1,8 @@
 //! Action functions cut off by a bump, φ(z) = ρ_h(z / R) · g(z), and their potentials: φ_α and φ_β
 //! of TAC 2006 (eq. 16 and 56).
 
+use std::sync::OnceLock;
+
 use crate::{Bump, CumulativeIntegral, Potential, UnevenSigmoid, sigma1};
 
 /// An action function φ(z) = ρ_h(z / R) (s σ₁(z − z₀) + o) and its potential ψ(z) = ∫_{z*}^z φ(s) ds.
@@ -27,7 +29,7 @@ use crate::{Bump, CumulativeIntegral, Potential, UnevenSigmoid, sigma1};
 /// assert_eq!(phi_alpha.potential(d_alpha), 0.0);
 /// assert!(phi_alpha.action(0.5 * d_alpha) < 0.0); // repulsive below d_α
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct BumpedAction {
     scale: f64,
     shift: f64,
@@ -35,12 +37,42 @@ pub struct BumpedAction {
     bump: Bump,
     range: f64,
     zero: f64,
-    /// ∫_{hR}^z φ on the cosine part.
-    table: CumulativeIntegral,
     /// ∫_0^{hR} φ, the whole flat part.
     flat: f64,
+    /// ψ's table, built at the first ψ asked for ([`Potential::potential`]: a run's energy): a
+    /// step needs φ alone, and the table is most of the cost of building a protocol (an
+    /// environment's reset builds one).
+    psi: OnceLock<PsiTable>,
+}
+
+/// What ψ reads beyond φ: ∫ φ on the cosine part, and where ψ is zero.
+#[derive(Clone, Debug)]
+struct PsiTable {
+    /// ∫_{hR}^z φ on the cosine part.
+    table: CumulativeIntegral,
     /// ∫_0^{z*} φ, so that ψ(z) = ∫_0^z φ − this.
     anchor: f64,
+}
+
+/// Two actions are equal when their parameters are: ψ's table is a function of them.
+impl PartialEq for BumpedAction {
+    fn eq(&self, other: &Self) -> bool {
+        (
+            self.scale,
+            self.shift,
+            self.offset,
+            self.bump,
+            self.range,
+            self.zero,
+        ) == (
+            other.scale,
+            other.shift,
+            other.offset,
+            other.bump,
+            other.range,
+            other.zero,
+        )
+    }
 }
 
 impl BumpedAction {
@@ -77,22 +109,27 @@ impl BumpedAction {
             bump,
             range,
             zero,
-            // the table and the constants need φ and φ′ of `this`: filled in below
-            table: CumulativeIntegral::new(|_| 0.0, |_| 0.0, 0.0, 0.0, 1.0),
             flat: 0.0,
-            anchor: 0.0,
+            psi: OnceLock::new(),
         };
         let flat_end = bump.h() * range;
         this.flat = this.profile_integral(flat_end) - this.profile_integral(0.0);
-        this.table = CumulativeIntegral::new(
-            |z| this.action(z),
-            |z| this.action_derivative(z),
-            flat_end,
-            range,
-            Self::TABLE_SPACING,
-        );
-        this.anchor = this.integral_from_origin(zero);
         this
+    }
+
+    /// ψ's table, built the first time.
+    fn psi(&self) -> &PsiTable {
+        self.psi.get_or_init(|| {
+            let table = CumulativeIntegral::new(
+                |z| self.action(z),
+                |z| self.action_derivative(z),
+                self.bump.h() * self.range,
+                self.range,
+                Self::TABLE_SPACING,
+            );
+            let anchor = self.integral_from_origin(&table, self.zero);
+            PsiTable { table, anchor }
+        })
     }
 
     /// The cut-off R: φ(z) = 0 for z ≥ R (r_α for φ_α, d_β for φ_β).
@@ -157,8 +194,8 @@ impl BumpedAction {
         self.scale * (1.0 + x * x).sqrt() + self.offset * z
     }
 
-    /// ∫_0^z φ (φ = 0 for z < 0, where ρ_h vanishes).
-    fn integral_from_origin(&self, z: f64) -> f64 {
+    /// ∫_0^z φ (φ = 0 for z < 0, where ρ_h vanishes), `table` the cosine part's.
+    fn integral_from_origin(&self, table: &CumulativeIntegral, z: f64) -> f64 {
         let flat_end = self.bump.h() * self.range;
         if z <= 0.0 {
             return 0.0;
@@ -166,7 +203,7 @@ impl BumpedAction {
         if z <= flat_end {
             self.profile_integral(z) - self.profile_integral(0.0)
         } else {
-            self.flat + self.table.integral_to(z)
+            self.flat + table.integral_to(z)
         }
     }
 }
@@ -178,7 +215,8 @@ impl Potential for BumpedAction {
     }
 
     fn potential(&self, z: f64) -> f64 {
-        self.integral_from_origin(z) - self.anchor
+        let psi = self.psi();
+        self.integral_from_origin(&psi.table, z) - psi.anchor
     }
 }
 
