@@ -239,6 +239,17 @@ fn bad_actions_are_refused_naming_the_environment_the_agent_and_the_coordinate()
     let nan = env.step(&actions, &mut obs, &mut rewards).unwrap_err();
     assert!(nan.message.contains("actions[1, 17, 1] = NaN"), "{nan}");
     assert!(VecEnv::new(&scenario, 0, 0, EnvOptions::default()).is_err());
+    // the ideal loop's RK4 would evaluate the protocol, not the policy, at its later stages
+    let rk4 = scenario
+        .with_values([("integrator", json!("Rk4"))])
+        .expect("RK4");
+    let refused = VecEnv::new(&rk4, 1, 0, EnvOptions::default()).unwrap_err();
+    assert_eq!(refused.field().as_deref(), Some("integrator"));
+    let held = Scenario {
+        conditions: ron::from_str(DELAY_LOSS_NOISE).expect("valid conditions"),
+        ..rk4
+    };
+    assert!(VecEnv::new(&held, 1, 0, EnvOptions::default()).is_ok());
 }
 
 #[test]

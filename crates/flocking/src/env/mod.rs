@@ -19,6 +19,8 @@ mod reward;
 pub use observation::Layout;
 pub use reward::{Reward, Scales};
 
+use flock_sim::Integrator;
+
 use crate::error::ScenarioError;
 use crate::perception::Perception;
 use crate::scenario::Scenario;
@@ -190,6 +192,19 @@ impl VecEnv {
             ));
         }
         scenario.validate()?;
+        if scenario.integrator == Integrator::Rk4
+            && scenario.conditions.is_ideal()
+            && scenario.vehicle.is_point_mass()
+        {
+            return Err(ScenarioError::invalid(
+                "integrator",
+                "Rk4",
+                "the ideal loop's RK4 evaluates the protocol again at its three later stages, \
+                 where a policy acts once per step",
+                "use integrator: SymplecticEuler (the papers' figures do), or a condition (the \
+                 input is then held over the step and RK4 integrates it)",
+            ));
+        }
         let envs = seeds(seed, num_envs)
             .map(|s| Env::new(scenario, s))
             .collect::<Result<Vec<_>, _>>()?;
