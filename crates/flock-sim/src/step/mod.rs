@@ -35,6 +35,8 @@ use flock_math::interrupt::cuts_short;
 use flock_protocols::Protocol;
 
 use crate::Simulation;
+#[cfg(doc)]
+use crate::Integrator;
 use communicate::communicate;
 use control::{Received, control, controls_in};
 use perceive::Percepts;
@@ -149,7 +151,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// The second half of a step begun by [`Simulation::perceive`] (begun here if it was not):
     /// every agent's input u_i from `inputs` (stored order, as the perceptions; ignored at a step
     /// without a control update, whose inputs are held), then **actuate → integrate**, exactly as
-    /// [`Simulation::step`] applies the protocol's.
+    /// [`Simulation::step`] applies the protocol's. (In the ideal loop with [`Integrator::Rk4`],
+    /// RK4's three later stages evaluate the protocol: `inputs` are its first stage's.)
     ///
     /// # Panics
     /// When `inputs` does not hold one input per agent at a control update.
