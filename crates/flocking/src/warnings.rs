@@ -12,6 +12,7 @@
 
 use std::fmt;
 
+use flock_protocols::GammaAgent;
 use glam::{DVec2, DVec3};
 
 use crate::merging::DenseStart;
@@ -68,12 +69,12 @@ impl Scenario {
             _ => "algorithm.gamma",
         };
         let (field, speed) = match gamma {
-            flock_protocols::GammaAgent::Static { .. } => return None,
-            flock_protocols::GammaAgent::ConstantVelocity { velocity, .. } => (
+            GammaAgent::Static { .. } => return None,
+            GammaAgent::ConstantVelocity { velocity, .. } => (
                 "velocity",
                 velocity.iter().map(|x| x * x).sum::<f64>().sqrt(),
             ),
-            flock_protocols::GammaAgent::Path { speed, .. } => ("speed", *speed),
+            GammaAgent::Path { speed, .. } => ("speed", *speed),
         };
         faster(speed, limit).then(|| Warning {
             field: format!("{prefix}.{field}"),
