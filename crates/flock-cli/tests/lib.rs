@@ -1,6 +1,6 @@
 //! Integration tests of `flock-cli`, one binary (see STYLE.md): the `flocking` binary's commands,
 //! errors and crash safety (kills, Ctrl-C, resume), the printed summary, `flocking bench`, `flocking plot`, `flocking figures`
-//! and the HTML player in a browser.
+//! the HTML player in a browser, and the warnings before a run.
 
 mod bench;
 mod browser;
@@ -17,3 +17,4 @@ mod plot;
 mod summary;
 mod sweep;
 mod trust;
+mod warnings;

@@ -181,8 +181,8 @@ impl PyScenario {
         Ok(dict)
     }
 
-    /// The warnings of `flocking validate` for this valid scenario (a step above the largest stable
-    /// step, agents starting at the same point).
+    /// The warnings `flocking validate` and `flocking run` print for this valid scenario
+    /// ([`flocking::Scenario::warnings`]), each naming the field and the fix.
     fn warnings(&self) -> Vec<String> {
         self.inner
             .warnings()

@@ -205,6 +205,29 @@ impl Algorithm {
         }
     }
 
+    /// The step of the model's paper, with its source, for the models whose rules are maps of
+    /// one step (their noise, turning and speed are per step, so another step is another
+    /// model): Vicsek et al. 1995's Δt = 1 (eq. 1, x_i(t + Δt) = x_i(t) + v_i(t) Δt), the
+    /// boids' step of 1 (the ABM frameworks' declaration moves a boid `speed` per step), Couzin
+    /// et al. 2002's τ = 0.1 s as the public reimplementations take it (jiwy2020's `dt = 0.1`;
+    /// the paper itself was not read, docs/models.md). `None` for the algorithms written as
+    /// differential equations.
+    #[must_use]
+    pub fn paper_step(&self) -> Option<(f64, &'static str)> {
+        match self {
+            Self::Vicsek(_) => Some((1.0, "Vicsek et al. 1995 take Δt = 1 (eq. 1)")),
+            Self::Boids(_) => Some((
+                1.0,
+                "the boids' declaration (ABMFrameworksComparison) moves a boid `speed` per step of 1",
+            )),
+            Self::Couzin(_) => Some((
+                0.1,
+                "Couzin et al. 2002's τ = 0.1 s as its reimplementations take it (jiwy2020 dt = 0.1)",
+            )),
+            _ => None,
+        }
+    }
+
     /// Whether the algorithm couples every pair of agents at every step, whatever their
     /// distance (Cucker–Smale without a cutoff): a step's work is n(n − 1)/2 pairs.
     #[must_use]

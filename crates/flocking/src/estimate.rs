@@ -338,7 +338,7 @@ impl Scenario {
 }
 
 /// The undirected edges of the start's net within r, `None` past [`START_COUNT_BUDGET`] tests.
-fn start_edges<V: Space>(scenario: &Scenario) -> Option<usize> {
+pub(crate) fn start_edges<V: Space>(scenario: &Scenario) -> Option<usize> {
     let q: Vec<V> = initial_positions(scenario).collect();
     NeighbourSearch::new().count_pairs_in(
         &scenario.domain(),

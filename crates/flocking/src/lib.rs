@@ -18,7 +18,8 @@
 //!   resumable), [`read_run`] reads it back.
 //! - [`verdict`]: the verdict a run gets, success as its model's papers measure it ([`Verdict`]:
 //!   TAC 2006 Definition 5, or the order states of the classic models).
-//! - [`stability`]: the largest stable step, and the warnings of a valid scenario;
+//! - [`warnings`]: the warnings of a valid scenario ([`Warning`]); [`stability`]: the largest
+//!   stable step;
 //!   [`NumericalError`]: a blow-up with its step, agent and likely cause; [`merging`]: agents
 //!   driven onto one point ([`Merge`], [`MergedAgents`]).
 //! - [`sweep`]: parameter sweeps and ensembles — a grid of values × seeds, one row of
@@ -66,24 +67,24 @@ pub mod time;
 mod validate;
 pub mod vehicle;
 pub mod verdict;
+pub mod warnings;
 pub mod workload;
 
 pub use build::check_local_form;
 pub use error::ScenarioError;
 pub use health::NumericalError;
-pub use merging::{Merge, MergedAgents};
+pub use merging::{DenseStart, Merge, MergeCause, MergedAgents};
 pub use run::{Record, Recorder, RunError, RunSummary, Start, resume, resume_with, run, run_from};
 pub use run_dir::{OutputOptions, RunDirectory, RunFiles, TrajectoryFormat, read_run};
 pub use scenario::{
     Algorithm, Cloud, FixedGraph, Initial, Point, Scenario, TannerGraph, Translation,
 };
 pub use simulation::{DynSimulation, MapProtocol, ScenarioProtocol, State};
-pub use stability::{
-    Warning, consensus_laplacian_max, largest_stable_step, velocity_consensus_delay_bound,
-};
+pub use stability::{consensus_laplacian_max, largest_stable_step, velocity_consensus_delay_bound};
 pub use storage::{owned, run_dir};
 pub use validate::{MAX_AGENTS, MAX_STEPS};
 pub use verdict::{Verdict, VerdictKind};
+pub use warnings::Warning;
 
 pub use flock_graph as graph;
 pub use flock_math as math;

@@ -9,7 +9,9 @@ use flock_sim::Observation;
 
 use crate::error::ScenarioError;
 use crate::health::NumericalError;
-use crate::merging::{MERGE_FRACTION, Merge, MergedAgents, closest_pair, merged_agents};
+use crate::merging::{
+    DenseStart, MERGE_FRACTION, Merge, MergeCause, MergedAgents, closest_pair, merged_agents,
+};
 use crate::scenario::Scenario;
 use crate::simulation::{DynSimulation, MapBoth, MapProtocol, ScenarioProtocol, State};
 use crate::verdict::{Verdict, VerdictKind};
@@ -411,6 +413,11 @@ fn record<R: Recorder + ?Sized>(
             pair,
             distance,
             tolerance,
+            cause: if sim.steps() == 0 {
+                MergeCause::Start(DenseStart::of(sim.scenario()))
+            } else {
+                MergeCause::Driven
+            },
         };
         recorder.merged(&merge);
         *first_merge = Some(merge);

@@ -1,5 +1,5 @@
-//! Warnings about a valid scenario that is likely to go wrong: a step too large for the stiffness
-//! of the potential, and agents that start at the same point.
+//! Warnings about a valid scenario that is likely to go wrong (part of [`Scenario::warnings`]): a
+//! step too large for the stiffness of the potential, and agents that start at the same point.
 //!
 //! # The step estimate
 //! Near any configuration the closed loop linearises to q̈ = −K q − Γ q̇, with K and Γ Laplacian-like
@@ -43,8 +43,6 @@
 //!   not among the seeds): in the eigenbasis of L each mode obeys ẋ = −c λ x(t − τ), whose roots
 //!   stay in the left half-plane iff c λ τ < π/2. The largest delay, τ + jitter, is checked.
 
-use std::fmt;
-
 use core::f64::consts::PI;
 
 use flock_graph::{
@@ -62,29 +60,7 @@ use flock_sim::Integrator;
 
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Flocking2003Params, Scenario};
-
-/// A valid scenario that is likely to go wrong, with the field, the value, why and the fix.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Warning {
-    /// The field, as a path.
-    pub field: String,
-    /// The value given.
-    pub value: String,
-    /// Why it is likely to go wrong.
-    pub why: String,
-    /// How to fix it.
-    pub fix: String,
-}
-
-impl fmt::Display for Warning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "warning: `{}` = {}: {}. Fix: {}.",
-            self.field, self.value, self.why, self.fix
-        )
-    }
-}
+use crate::warnings::Warning;
 
 /// Samples of (0, r] for the largest slope of a pair force.
 const SAMPLES: usize = 4000;
@@ -412,10 +388,10 @@ fn coincident_pair<V: Vector>(q: &[V], d: f64) -> Option<(usize, usize)> {
 }
 
 impl Scenario {
-    /// The warnings of a valid scenario: a step above the estimated stability limit
-    /// ([`largest_stable_step`]) and agents that start at the same point.
-    #[must_use]
-    pub fn warnings(&self) -> Vec<Warning> {
+    /// The stability warnings of a valid scenario ([`Scenario::warnings`] gives them all): a step
+    /// above the estimated stability limit ([`largest_stable_step`]), the conditions' and agents
+    /// that start at the same point.
+    pub(crate) fn stability_warnings(&self) -> Vec<Warning> {
         let mut warnings = Vec::new();
         let start = StartNet::of(self);
         if let Some(stable) = stable_step(self, || start.degree)

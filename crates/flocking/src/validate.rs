@@ -701,7 +701,7 @@ impl Scenario {
 
 /// The fastest of `velocities` (its index and speed), `None` for none; a speed that is not a
 /// number counts as the fastest.
-fn fastest_agent<V: Space>(velocities: impl Iterator<Item = V>) -> Option<(usize, f64)> {
+pub(crate) fn fastest_agent<V: Space>(velocities: impl Iterator<Item = V>) -> Option<(usize, f64)> {
     velocities
         .map(|p| p.length())
         .enumerate()

@@ -49,6 +49,23 @@ impl VehicleSpec {
         }
     }
 
+    /// The fastest the vehicle's reference point can go on a straight line, with the field
+    /// (relative to `vehicle`) that sets it: the unicycle's `max_speed`, or its
+    /// `max_wheel_speed` when lower (driving straight, both wheels turn at v); the fixed wing's
+    /// `max_airspeed`. `None` for point masses and the quadrotor, whose limits are its thrust
+    /// and tilt, not a speed.
+    #[must_use]
+    pub fn top_speed(&self) -> Option<(&'static str, f64)> {
+        match self {
+            Self::Unicycle(p) => Some(match (p.track_width, p.max_wheel_speed) {
+                (Some(_), Some(wheel)) if wheel < p.max_speed => ("max_wheel_speed", wheel),
+                _ => ("max_speed", p.max_speed),
+            }),
+            Self::FixedWing(p) => Some(("max_airspeed", p.max_airspeed)),
+            Self::PointMass | Self::Quadrotor(_) => None,
+        }
+    }
+
     /// The vehicle's inner step δ (s), `None` for point masses.
     #[must_use]
     pub const fn inner_step(&self) -> Option<f64> {

@@ -1,6 +1,6 @@
 //! Integration tests of the `flocking` library, one binary (see STYLE.md): scenario files, the
 //! papers' runs, the figures that had no fixture, the obstacle passes of TAC 2006 Fig. 14–17,
-//! snapshots and determinism of short runs, the columns of `docs/outputs.md`, agents stored by cell, and the errors of bad obstacles.
+//! snapshots and determinism of short runs, the columns of `docs/outputs.md`, agents stored by cell, the errors of bad obstacles, and the warnings before a run.
 
 mod common;
 mod conditions;
@@ -25,3 +25,4 @@ mod storage_order;
 mod sweep;
 mod topology;
 mod vehicles;
+mod warnings;

@@ -129,7 +129,11 @@ class Scenario:
         range, which scales memory and time above the α-lattice's (None when too dense to count,
         which :func:`run` refuses)."""
     def warnings(self) -> List[str]:
-        """The warnings of ``flocking validate`` for this scenario."""
+        """The warnings ``flocking validate`` and ``flocking run`` print for this scenario, each
+        naming the field and the fix: a step above the largest stable step, agents starting at
+        the same point, a γ-agent faster than the vehicle, initial velocities the vehicle clips,
+        a model of one step (Vicsek, boids, Couzin) at another step than its paper's, a start
+        denser than the α-lattice."""
     @property
     def name(self) -> str:
         """The scenario's name."""
