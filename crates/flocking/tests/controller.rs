@@ -78,7 +78,10 @@ fn a_controller_outside_the_library_follows_the_builtin_to_round_off() {
         .with_values([
             ("duration", json!(0.05)),
             ("agents", json!(20_000)),
-            ("initial.positions.Gaussian.std", json!(50.0 * 200f64.sqrt())),
+            (
+                "initial.positions.Gaussian.std",
+                json!(50.0 * 200f64.sqrt()),
+            ),
         ])
         .expect("a larger flock");
     let conditions = Scenario {

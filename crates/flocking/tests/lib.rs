@@ -24,4 +24,5 @@ mod stability;
 mod storage_order;
 mod sweep;
 mod topology;
+mod typed_mistakes;
 mod vehicles;
