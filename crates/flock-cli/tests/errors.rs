@@ -564,7 +564,7 @@ fn validate_accepts_a_valid_scenario_and_prints_it_resolved() {
     let output = flocking(tmp.path(), &["validate", &file]);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-    assert!(stdout.contains("valid"), "{stdout}");
+    assert!(stderr(&output).contains("tiny.ron: valid"), "{stdout}");
     assert!(
         stdout.contains("r: 8.4"),
         "the range is written out: {stdout}"
