@@ -39,6 +39,11 @@ enum Command {
         /// The output directory (default: `out/<scenario file stem>`).
         #[arg(long, conflicts_with = "resume")]
         out: Option<PathBuf>,
+        /// Change a value of the scenario before it is used: PATH a dotted parameter path as in
+        /// sweeps (`agents`, `algorithm.c1`, `vehicle.max_bank`), VALUE a JSON number, bool or
+        /// list, else RON text for the enums of the conditions (`Bernoulli(p: 0.1)`); repeatable.
+        #[arg(long = "set", value_name = "PATH=VALUE", value_parser = parse_set, conflicts_with = "resume")]
+        set: Vec<(String, serde_json::Value)>,
         /// Replace an existing output directory that flocking wrote (never one holding anything
         /// else, the working directory, its parents or a mount point).
         #[arg(long, conflicts_with = "resume")]
@@ -115,10 +120,16 @@ enum Command {
     /// Run a sweep file — a scenario over a grid of parameter values × seeds — into DIR/runs.csv,
     /// one row per run; or merge its shards, or plot its phase diagrams.
     Sweep(flock_cli::sweep::SweepArgs),
-    /// Check a scenario file and print it with every default filled in.
+    /// Check a scenario file and print it with every default filled in to standard output (a
+    /// scenario file that validates and runs as the original), its warnings to standard error.
     Validate {
         /// The scenario file (.ron).
         scenario: PathBuf,
+        /// Change a value of the scenario before it is used: PATH a dotted parameter path as in
+        /// sweeps (`agents`, `algorithm.c1`, `vehicle.max_bank`), VALUE a JSON number, bool or
+        /// list, else RON text for the enums of the conditions (`Bernoulli(p: 0.1)`); repeatable.
+        #[arg(long = "set", value_name = "PATH=VALUE", value_parser = parse_set)]
+        set: Vec<(String, serde_json::Value)>,
     },
     /// Time a synthetic scenario of n agents on an α-lattice and print agent-steps/s and memory.
     Bench {
@@ -331,13 +342,15 @@ fn dispatch(command: Command) -> ExitCode {
             }
         },
         Command::Sweep(args) => flock_cli::sweep::main(args, &WRITING),
-        Command::Validate { scenario } => match Scenario::load(&scenario) {
+        Command::Validate { scenario, set } => match load(&scenario, &set) {
             Ok(s) => {
-                outln!("{}: valid", scenario.display());
-                out!("{}", s.to_ron().unwrap_or_default());
+                errln!("{}: valid", scenario.display());
+                let resolved = s.clone().resolved();
+                out!("{}", resolved.to_ron().unwrap_or_default());
                 outln!();
                 let estimate = s.estimate_at_start(&Outputs::RUN);
-                if let Err(e) = flock_cli::resources::announce(&estimate, None, (false, false)) {
+                errln!("{estimate}");
+                if let Err(e) = flock_cli::resources::check(&estimate, None, (false, false)) {
                     errln!("warning: {e}");
                     // the stable step and the warnings build the initial net of every agent,
                     // which does not fit either (issue 27)
@@ -347,8 +360,8 @@ fn dispatch(command: Command) -> ExitCode {
                     return ExitCode::SUCCESS;
                 }
                 if let Some(stable) = flocking::largest_stable_step(&s) {
-                    outln!(
-                        "// step {} against the estimated largest stable step {stable:.3e}",
+                    errln!(
+                        "step {} against the estimated largest stable step {stable:.3e}",
                         s.step
                     );
                 }
@@ -357,14 +370,12 @@ fn dispatch(command: Command) -> ExitCode {
                 }
                 ExitCode::SUCCESS
             }
-            Err(e) => {
-                errln!("error: {e}");
-                ExitCode::from(INVALID)
-            }
+            Err(code) => code,
         },
         Command::Run {
             scenario,
             out,
+            set,
             force,
             resume,
             trajectory_format,
@@ -392,7 +403,7 @@ fn dispatch(command: Command) -> ExitCode {
                         format: trajectory_format,
                         checkpoint_every,
                     };
-                    create_directory(&scenario, &out, &options, no_resource_check)
+                    create_directory(&scenario, &set, &out, &options, no_resource_check)
                 }
                 (None, None) => unreachable!("clap requires a scenario unless --resume is given"),
             };
@@ -461,14 +472,12 @@ type Opened = (RunDirectory, DynSimulation, Option<Start>);
 /// fit (unless `unchecked`), builds its simulation and starts its output directory.
 fn create_directory(
     path: &Path,
+    set: &[(String, serde_json::Value)],
     out: &Path,
     options: &OutputOptions,
     unchecked: bool,
 ) -> Result<Opened, ExitCode> {
-    let scenario = Scenario::load(path).map_err(|e| {
-        errln!("error: {e}");
-        ExitCode::from(INVALID)
-    })?;
+    let scenario = load(path, set)?;
     let outputs = Outputs {
         trajectory_csv: Some(options.format == TrajectoryFormat::Csv),
         ..Outputs::RUN
@@ -512,6 +521,37 @@ fn create_directory(
         }
     })?;
     Ok((dir, sim, None))
+}
+
+/// The scenario file at `path` with the values of `--set` (path, value) changed, or the exit code
+/// 2 once its error is printed: the file's, at its line and column, or the change's, naming its
+/// path (and the paths there are).
+fn load(path: &Path, set: &[(String, serde_json::Value)]) -> Result<Scenario, ExitCode> {
+    let refuse = |message: String| {
+        errln!("error: {message}");
+        ExitCode::from(INVALID)
+    };
+    let scenario = Scenario::load(path).map_err(|e| refuse(e.to_string()))?;
+    if set.is_empty() {
+        return Ok(scenario);
+    }
+    scenario
+        .with_values(set.iter().cloned())
+        .map_err(|e| refuse(format!("--set: {e}")))
+}
+
+/// `--set PATH=VALUE`: VALUE read as JSON (a number, a bool, a list), else kept as text, which
+/// [`Scenario::with_values`] reads as RON at the enum paths of the conditions
+/// (`Bernoulli(p: 0.1)`), as Python's `with_values` does.
+fn parse_set(text: &str) -> Result<(String, serde_json::Value), String> {
+    let Some((path, value)) = text.split_once('=') else {
+        return Err(format!(
+            "{text:?}: write PATH=VALUE, e.g. `--set agents=20` or `--set conditions.communication.loss='Bernoulli(p: 0.1)'`"
+        ));
+    };
+    let value = serde_json::from_str(value.trim())
+        .unwrap_or_else(|_| serde_json::Value::String(value.trim().to_owned()));
+    Ok((path.trim().to_owned(), value))
 }
 
 /// Prints the estimate of `scenario` writing `outputs` into `out` and refuses it when it does not

@@ -38,9 +38,22 @@ pub fn parse_epsilon(text: &str) -> Result<f64, String> {
 pub fn announce(
     estimate: &Estimate,
     out: Option<&Path>,
-    (unchecked, sweep): (bool, bool),
+    flags: (bool, bool),
 ) -> Result<(), String> {
     outln!("{estimate}");
+    check(estimate, out, flags)
+}
+
+/// [`announce`] without the estimate's line: its warnings on stderr and, unless `unchecked`, the
+/// refusal of what does not fit (for `flocking validate`, whose stdout is the scenario alone).
+///
+/// # Errors
+/// As [`announce`].
+pub fn check(
+    estimate: &Estimate,
+    out: Option<&Path>,
+    (unchecked, sweep): (bool, bool),
+) -> Result<(), String> {
     let warnings = if sweep {
         estimate.sweep_warnings()
     } else {

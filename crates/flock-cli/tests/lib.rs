@@ -14,6 +14,7 @@ mod merging;
 mod names;
 mod pipes;
 mod plot;
+mod round_trip;
 mod summary;
 mod sweep;
 mod trust;

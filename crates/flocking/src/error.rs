@@ -60,26 +60,18 @@ pub enum ScenarioError {
 }
 
 impl ScenarioError {
-    /// A RON error in `text` at its position.
+    /// A RON error in `text` at its position, in the scenario's terms: the dotted path of the
+    /// field being read and, for a value of the wrong type, the type it takes with an example
+    /// ([`crate::typed_mistake`]).
     #[must_use]
     pub fn syntax(origin: &str, text: &str, error: &ron::error::SpannedError) -> Self {
-        let (line, col) = (error.span.start.line, error.span.start.col);
-        let message = crate::input::ron_message(&error.code);
-        // a missing field is found at the closing bracket, after the last field given; an
-        // unknown field at its own name, after the last value read (not the one it is in)
-        let field = (!matches!(
-            error.code,
-            ron::Error::MissingStructField { .. } | ron::Error::NoSuchStructField { .. }
-        ))
-        .then(|| enclosing_field(text, line, col))
-        .flatten()
-        .filter(|field| !message.contains(&format!("`{field}`")));
+        let reading = crate::typed_mistake::read(text, error);
         Self::Syntax {
             origin: origin.to_owned(),
-            line,
-            col,
-            message,
-            field,
+            line: reading.at.0,
+            col: reading.at.1,
+            message: reading.message,
+            field: reading.field,
         }
     }
 
@@ -203,8 +195,10 @@ impl fmt::Display for ScenarioError {
             } => {
                 write!(f, "{origin}:{line}:{col}: {message}")?;
                 match field {
-                    Some(field) => write!(f, " (in the value of `{field}`)"),
-                    None => Ok(()),
+                    Some(field) if !message.contains(&format!("`{field}`")) => {
+                        write!(f, " (in the value of `{field}`)")
+                    }
+                    _ => Ok(()),
                 }
             }
             Self::Obstacle(error) => write!(f, "{error}"),
@@ -236,38 +230,6 @@ impl fmt::Display for ScenarioError {
 }
 
 impl std::error::Error for ScenarioError {}
-
-/// The last `name:` (outside `//` comments) before 1-based `line`:`col` of `text`: the field whose
-/// value is being read.
-fn enclosing_field(text: &str, line: usize, col: usize) -> Option<String> {
-    let code = |l: &str| l.split("//").next().unwrap_or_default().to_owned();
-    let mut prefix: String = text
-        .lines()
-        .take(line.saturating_sub(1))
-        .flat_map(|l| [code(l), "\n".to_owned()])
-        .collect();
-    let last: String = text
-        .lines()
-        .nth(line.saturating_sub(1))?
-        .chars()
-        .take(col.saturating_sub(1))
-        .collect();
-    prefix.push_str(&code(&last));
-    let mut rest = prefix.as_str();
-    while let Some(colon) = rest.rfind(':') {
-        let before = rest[..colon].trim_end();
-        let start = before
-            .char_indices()
-            .rfind(|&(_, c)| !(c.is_alphanumeric() || c == '_'))
-            .map_or(0, |(k, c)| k + c.len_utf8());
-        let name = &before[start..];
-        if !name.is_empty() && !name.starts_with(|c: char| c.is_ascii_digit()) {
-            return Some(name.to_owned());
-        }
-        rest = &rest[..colon];
-    }
-    None
-}
 
 /// The 1-based line and column where the field `path` (`algorithm.gamma.position`,
 /// `obstacles[2].radius`) is written in RON `text`: each name looked up among the fields of the
@@ -306,14 +268,21 @@ pub fn locate(text: &str, path: &str) -> Option<(usize, usize)> {
     found
 }
 
-/// A token of RON text: an identifier or one punctuation character, with its line and column.
-struct Token {
-    text: String,
-    at: (usize, usize),
+/// A token of RON text: an identifier or number, a string, or one punctuation character, with
+/// its line and column and its place among the text's characters.
+pub(crate) struct Token {
+    /// The token as written (a string with its quotes).
+    pub text: String,
+    /// 1-based line and column of its first character.
+    pub at: (usize, usize),
+    /// The index of its first character.
+    pub offset: usize,
+    /// The index after its last character.
+    pub end: usize,
 }
 
-/// The identifiers, numbers and brackets of `chars`, without comments or strings.
-fn ron_tokens(chars: &[char]) -> Vec<Token> {
+/// The identifiers, numbers, strings and brackets of `chars`, without comments.
+pub(crate) fn ron_tokens(chars: &[char]) -> Vec<Token> {
     let (mut tokens, mut k, mut line, mut col) = (Vec::new(), 0, 1, 1);
     let advance = |k: &mut usize, line: &mut usize, col: &mut usize| {
         if chars[*k] == '\n' {
@@ -324,7 +293,7 @@ fn ron_tokens(chars: &[char]) -> Vec<Token> {
         *k += 1;
     };
     while k < chars.len() {
-        let (c, at) = (chars[k], (line, col));
+        let (c, at, start) = (chars[k], (line, col), k);
         if c == '/' && chars.get(k + 1) == Some(&'/') {
             while k < chars.len() && chars[k] != '\n' {
                 advance(&mut k, &mut line, &mut col);
@@ -350,8 +319,10 @@ fn ron_tokens(chars: &[char]) -> Vec<Token> {
                 advance(&mut k, &mut line, &mut col);
             }
             tokens.push(Token {
-                text: "\"".to_owned(),
+                text: chars[start..k].iter().collect(),
                 at,
+                offset: start,
+                end: k,
             });
         } else if c.is_alphanumeric() || c == '_' || c == '.' || c == '-' || c == '+' {
             let mut word = String::new();
@@ -361,12 +332,19 @@ fn ron_tokens(chars: &[char]) -> Vec<Token> {
                 word.push(chars[k]);
                 advance(&mut k, &mut line, &mut col);
             }
-            tokens.push(Token { text: word, at });
+            tokens.push(Token {
+                text: word,
+                at,
+                offset: start,
+                end: k,
+            });
         } else {
             if !c.is_whitespace() {
                 tokens.push(Token {
                     text: c.to_string(),
                     at,
+                    offset: start,
+                    end: k + 1,
                 });
             }
             advance(&mut k, &mut line, &mut col);
@@ -404,7 +382,7 @@ fn field_in(tokens: &[Token], from: usize, to: usize, name: &str) -> Option<usiz
 
 /// The token range of the value that starts at `from`: up to the comma or closing bracket that
 /// ends it.
-fn value_after(tokens: &[Token], from: usize, to: usize) -> (usize, usize) {
+pub(crate) fn value_after(tokens: &[Token], from: usize, to: usize) -> (usize, usize) {
     let mut depth = 0;
     let end = (from..to).find(|&k| {
         depth += depth_change(&tokens[k]);

@@ -64,6 +64,7 @@ mod struct_variant;
 pub mod sweep;
 pub mod synthetic;
 pub mod time;
+mod typed_mistake;
 mod validate;
 pub mod vehicle;
 pub mod verdict;

@@ -240,7 +240,8 @@ impl Scenario {
     #[must_use]
     pub fn resolved(mut self) -> Self {
         let d = self.alpha.d;
-        let r = self.range();
+        // the α-interaction's r, not the model's own range (Vicsek's r = 1 < d would not validate)
+        let r = self.alpha.range();
         self.alpha.r = Some(r);
         self.collision_distance = Some(self.collision_distance());
         match &mut self.algorithm {

@@ -29,10 +29,13 @@ fn every_fixture_parses_and_validates() {
         let resolved = scenario.clone().resolved();
         assert_eq!(
             resolved.alpha.r,
-            Some(scenario.range()),
+            Some(scenario.alpha.range()),
             "{}",
             path.display()
         );
+        assert_eq!(resolved.range(), scenario.range(), "{}", path.display());
+        // and it validates (issue 53: Vicsek's and the boids' r was written as alpha.r < d)
+        assert_eq!(resolved.validate(), Ok(()), "{}", path.display());
         assert_eq!(
             resolved.collision_distance,
             Some(scenario.collision_distance()),

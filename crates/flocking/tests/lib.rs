@@ -24,5 +24,6 @@ mod stability;
 mod storage_order;
 mod sweep;
 mod topology;
+mod typed_mistakes;
 mod vehicles;
 mod warnings;

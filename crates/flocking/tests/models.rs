@@ -451,7 +451,7 @@ fn models_read_and_write_as_struct_variants_holding_their_params() {
     );
     assert_eq!(
         error("Vicsek(eta: \"x\")"),
-        "<string>:1:52: Expected float (in the value of `eta`)"
+        "<string>:1:53: `algorithm.eta` = \"x\": expected a number, e.g. `eta: 1.0`"
     );
     assert!(
         error("Vasarhelyi(arena_side: -1.0)")
