@@ -34,9 +34,9 @@ use flock_math::Vector;
 use flock_math::interrupt::cuts_short;
 use flock_protocols::Protocol;
 
-use crate::Simulation;
 #[cfg(doc)]
 use crate::Integrator;
+use crate::Simulation;
 use communicate::communicate;
 use control::{Received, control, controls_in};
 use perceive::Percepts;
