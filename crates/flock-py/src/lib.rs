@@ -24,6 +24,7 @@ pub mod bench;
 pub mod controls;
 pub mod env;
 pub mod errors;
+pub mod inputs;
 pub mod interrupt;
 pub mod local;
 pub mod player;

@@ -12,7 +12,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::controls::{Failure, checked_inputs, lock};
+use crate::inputs::{Failure, checked_inputs, lock};
 
 /// `flocking.Local(f)`: marks `f(t, perception)` as a local controller for `controls=` — called
 /// once per control update with every agent's [`PyPerception`], it returns the inputs u as an

@@ -17,8 +17,7 @@ use crate::checks::{
 use crate::conditions::{Conditions, ConditionsState, Stage};
 use crate::health::{AgentFault, first_fault};
 use crate::integrator::Integrator;
-use crate::step::Sensed;
-use crate::step::perceive::Percepts;
+use crate::step::perceive::{Percepts, Sensed};
 use crate::vehicle::{DynVehicle, Fleet};
 
 /// Buffers of the Runge–Kutta stages, allocated once.

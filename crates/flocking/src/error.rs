@@ -60,21 +60,6 @@ pub enum ScenarioError {
 }
 
 impl ScenarioError {
-    /// A RON error in `text` at its position, in the scenario's terms: the dotted path of the
-    /// field being read and, for a value of the wrong type, the type it takes with an example
-    /// ([`crate::typed_mistake`]).
-    #[must_use]
-    pub fn syntax(origin: &str, text: &str, error: &ron::error::SpannedError) -> Self {
-        let reading = crate::typed_mistake::read(text, error);
-        Self::Syntax {
-            origin: origin.to_owned(),
-            line: reading.at.0,
-            col: reading.at.1,
-            message: reading.message,
-            field: reading.field,
-        }
-    }
-
     /// `field = value` is invalid because `why`; `fix` says what to write instead.
     #[must_use]
     pub fn invalid(

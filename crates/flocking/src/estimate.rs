@@ -31,10 +31,10 @@ use flock_graph::NeighbourSearch;
 use flock_obstacles::Space;
 use glam::{DVec2, DVec3};
 
-use crate::Scenario;
 use crate::initial::initial_positions;
-use crate::protocols::{Integrator, conditions};
+use crate::scenario::Scenario;
 use crate::vehicle::VehicleSpec;
+use flock_sim::{Integrator, conditions};
 
 /// The most threads (or sweep workers) per available core: more only adds switching.
 pub const THREADS_PER_CORE: usize = 4;

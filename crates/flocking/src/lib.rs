@@ -68,6 +68,7 @@ mod typed_mistake;
 mod validate;
 pub mod vehicle;
 pub mod verdict;
+pub mod warning;
 pub mod warnings;
 pub mod workload;
 
@@ -85,7 +86,7 @@ pub use stability::{consensus_laplacian_max, largest_stable_step, velocity_conse
 pub use storage::{owned, run_dir};
 pub use validate::{MAX_AGENTS, MAX_STEPS};
 pub use verdict::{Verdict, VerdictKind};
-pub use warnings::Warning;
+pub use warning::Warning;
 
 pub use flock_graph as graph;
 pub use flock_math as math;

@@ -60,7 +60,7 @@ use flock_sim::Integrator;
 
 use crate::initial::initial_swarm;
 use crate::scenario::{Algorithm, Flocking2003Params, Scenario};
-use crate::warnings::Warning;
+use crate::warning::Warning;
 
 /// Samples of (0, r] for the largest slope of a pair force.
 const SAMPLES: usize = 4000;

@@ -17,7 +17,7 @@ use flock_protocols::GammaAgent;
 use flock_sim::Integrator;
 use flock_sim::conditions::{Delayed, FaultMode, Loss, Noise, WhenLost};
 
-use crate::error::{Token, ron_tokens};
+use crate::error::{ScenarioError, Token, ron_tokens};
 use crate::scenario::{Algorithm, Cloud, DomainSpec, Point};
 use crate::vehicle::VehicleSpec;
 
@@ -459,5 +459,22 @@ pub(crate) fn read(text: &str, error: &SpannedError) -> Reading {
         at: token.at,
         message: format!("`{path}` = {value}: {sentence}"),
         field: Some(path),
+    }
+}
+
+impl ScenarioError {
+    /// A RON error in `text` at its position, in the scenario's terms: the dotted path of the
+    /// field being read and, for a value of the wrong type, the type it takes with an example
+    /// (found in the text by the module `typed_mistake`).
+    #[must_use]
+    pub fn syntax(origin: &str, text: &str, error: &ron::error::SpannedError) -> Self {
+        let reading = read(text, error);
+        Self::Syntax {
+            origin: origin.to_owned(),
+            line: reading.at.0,
+            col: reading.at.1,
+            message: reading.message,
+            field: reading.field,
+        }
     }
 }

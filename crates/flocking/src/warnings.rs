@@ -10,36 +10,12 @@
 //! - a start denser than the α-lattice ([`DenseStart`]), whose close pairs count as collisions
 //!   and merges that are the start's, not the gains'.
 
-use std::fmt;
-
 use flock_protocols::GammaAgent;
 use glam::{DVec2, DVec3};
 
 use crate::merging::DenseStart;
 use crate::scenario::{Algorithm, Scenario};
-
-/// A valid scenario that is likely to go wrong, with the field, the value, why and the fix.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Warning {
-    /// The field, as a path.
-    pub field: String,
-    /// The value given.
-    pub value: String,
-    /// Why it is likely to go wrong.
-    pub why: String,
-    /// How to fix it.
-    pub fix: String,
-}
-
-impl fmt::Display for Warning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "warning: `{}` = {}: {}. Fix: {}.",
-            self.field, self.value, self.why, self.fix
-        )
-    }
-}
+use crate::warning::Warning;
 
 impl Scenario {
     /// Every warning of a valid scenario (module documentation), each once.

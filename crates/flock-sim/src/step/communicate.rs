@@ -113,6 +113,25 @@ impl core::ops::Add for Counts {
     }
 }
 
+/// Receivers are controlled in blocks of this many consecutive agents, their inputs computed
+/// together ([`LocalForm::local_inputs`]: the pair terms of a block go through one batch).
+pub(crate) const CONTROL_BLOCK: usize = 64;
+
+/// What the control stage gives back to the conditions of a run whose agents heard through
+/// them: the links the receivers keep, and the counts of the update.
+#[derive(Debug)]
+pub(crate) struct Received<V> {
+    pub(crate) links: Vec<Vec<Link<V>>>,
+    pub(crate) counts: Counts,
+}
+
+impl<V> Received<V> {
+    /// The links the receivers keep and the counts of the update.
+    pub(crate) const fn new(links: Vec<Vec<Link<V>>>, counts: Counts) -> Self {
+        Self { links, counts }
+    }
+}
+
 /// The perceptions of a block of receivers, a CSR: the moving receivers' own perceived states,
 /// the states each heard (`heard[ends[r − 1]..ends[r]]`) and their places in the block.
 #[derive(Default)]

@@ -11,23 +11,8 @@ use flock_protocols::{LocalForm, Perceived, Protocol, Swarm};
 use crate::agents::map_agents_mut;
 use crate::conditions::Stage;
 use crate::conditions::links::Link;
-use crate::step::communicate::{Counts, Perception, Scratch};
+use crate::step::communicate::{CONTROL_BLOCK, Counts, Perception, Received, Scratch};
 use crate::step::perceive::Percepts;
-
-/// What the control stage gives back to the conditions of a run whose agents heard through
-/// them: the links the receivers keep, and the counts of the update.
-#[derive(Debug)]
-pub(crate) struct Received<V> {
-    links: Vec<Vec<Link<V>>>,
-    counts: Counts,
-}
-
-impl<V> Received<V> {
-    /// The links the receivers keep and the counts of the update.
-    pub(crate) const fn new(links: Vec<Vec<Link<V>>>, counts: Counts) -> Self {
-        Self { links, counts }
-    }
-}
 
 /// The control stage at time `t`: every agent's input from its `perception`, into `inputs`; a
 /// protocol that [takes every perception at once](LocalForm::takes_all) is given them gathered
@@ -64,7 +49,7 @@ pub(crate) fn control<V: Vector>(
                 }
                 counts
             });
-            Some(Received { links, counts })
+            Some(Received::new(links, counts))
         }
     }
 }
@@ -98,10 +83,6 @@ struct Worker<V> {
     scratch: Scratch<V>,
     out: Vec<V>,
 }
-
-/// Receivers are controlled in blocks of this many consecutive agents, their inputs computed
-/// together ([`LocalForm::local_inputs`]: the pair terms of a block go through one batch).
-pub(crate) const CONTROL_BLOCK: usize = 64;
 
 /// The counts of `f(start, inputs, links, scratch)` summed over the blocks of
 /// [`CONTROL_BLOCK`] receivers from `start`, `f` setting each receiver's input in `inputs`,

@@ -37,22 +37,10 @@ use flock_protocols::Protocol;
 #[cfg(doc)]
 use crate::Integrator;
 use crate::Simulation;
+use communicate::Received;
 use communicate::communicate;
-use control::{Received, control, controls_in};
-use perceive::Percepts;
-
-/// A step begun: fail and sense done, and, at a control update, what the agents perceive.
-#[derive(Debug)]
-pub(crate) enum Sensed<V> {
-    /// No control update at this step (sampled control): the inputs are held.
-    Held,
-    /// Every agent's perception is in the simulation's [`Percepts`]: the true state's (`truth`),
-    /// or what was heard through the conditions, whose links and counts `received` holds.
-    Perceived {
-        truth: bool,
-        received: Option<Received<V>>,
-    },
-}
+use control::{control, controls_in};
+use perceive::{Percepts, Sensed};
 
 impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// Advances the state by one step h: **fail → sense → communicate → control → actuate →

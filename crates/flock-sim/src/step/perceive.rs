@@ -13,8 +13,7 @@ use flock_graph::{Graph, ProximityNet};
 use flock_math::{Domain, Vector};
 use flock_protocols::{Perceived, Perceptions, Swarm};
 
-use crate::step::communicate::{Counts, Heard, Scratch};
-use crate::step::control::{CONTROL_BLOCK, Received};
+use crate::step::communicate::{CONTROL_BLOCK, Counts, Heard, Received, Scratch};
 
 /// What every agent perceives at a control update, agents as the simulation stores them
 /// (in original order unless its protocol follows the numbering; each [`Perceived::agent`] is
@@ -133,4 +132,17 @@ impl<V: Vector> Percepts<V> {
         }
         Received::new(links, counts)
     }
+}
+
+/// A step begun: fail and sense done, and, at a control update, what the agents perceive.
+#[derive(Debug)]
+pub(crate) enum Sensed<V> {
+    /// No control update at this step (sampled control): the inputs are held.
+    Held,
+    /// Every agent's perception is in the simulation's [`Percepts`]: the true state's (`truth`),
+    /// or what was heard through the conditions, whose links and counts `received` holds.
+    Perceived {
+        truth: bool,
+        received: Option<Received<V>>,
+    },
 }
