@@ -52,6 +52,7 @@ pub mod estimate;
 pub mod health;
 pub mod initial;
 pub mod input;
+pub mod machine;
 pub mod merging;
 pub mod overrides;
 pub mod perception;
