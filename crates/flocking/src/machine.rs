@@ -56,18 +56,9 @@ impl Resources {
 
 pub(crate) fn available_memory() -> Option<f64> {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
-    let available = meminfo.as_deref().and_then(|text| {
-        text.lines()
-            .find_map(|line| line.strip_prefix("MemAvailable:"))
-            .and_then(|rest| {
-                rest.trim()
-                    .trim_end_matches("kB")
-                    .trim()
-                    .parse::<f64>()
-                    .ok()
-            })
-            .map(|kb| kb * 1024.0)
-    });
+    let available = meminfo
+        .as_deref()
+        .and_then(|text| kilobytes(text, "MemAvailable:"));
     let read = |name: &str| -> Option<f64> {
         std::fs::read_to_string(Path::new("/sys/fs/cgroup").join(name))
             .ok()?
@@ -80,6 +71,18 @@ pub(crate) fn available_memory() -> Option<f64> {
         .into_iter()
         .flatten()
         .reduce(f64::min)
+}
+
+/// The bytes of the line `name  N kB` of a `/proc` file's `text`.
+fn kilobytes(text: &str, name: &str) -> Option<f64> {
+    let rest = text.lines().find_map(|line| line.strip_prefix(name))?;
+    let kb = rest
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse::<f64>()
+        .ok()?;
+    Some(kb * 1024.0)
 }
 
 /// The address space this process may still map when it is limited (`ulimit -v`, `RLIMIT_AS`
@@ -95,17 +98,7 @@ fn address_space_left() -> Option<f64> {
         .parse::<f64>()
         .ok()?;
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let used = status
-        .lines()
-        .find_map(|line| line.strip_prefix("VmSize:"))
-        .and_then(|rest| {
-            rest.trim()
-                .trim_end_matches("kB")
-                .trim()
-                .parse::<f64>()
-                .ok()
-        })
-        .map_or(0.0, |kb| kb * 1024.0);
+    let used = kilobytes(&status, "VmSize:").unwrap_or(0.0);
     Some((soft - used).max(0.0))
 }
 
