@@ -107,3 +107,16 @@ def test_messages_name_no_rust_types():
         scenario.with_values({"agent": 10})
     assert str(error.value).startswith("`agent`: no such parameter"), str(error.value)
     assert "no value read" not in str(error.value)
+
+
+def test_every_enum_is_set_as_ron_text_from_python():
+    """Issue 53: `{"vehicle": "Unicycle(())"}` failed while the conditions' enums worked."""
+    base = flocking.Scenario.load(FIG11)
+    robots = base.with_values({"vehicle": "Unicycle((max_speed: 0.3))", "algorithm.c1": 0.05})
+    assert robots.value("vehicle.max_speed") == 0.3
+    assert "Unicycle" in robots.to_ron()
+    vicsek = base.with_values({"algorithm": "Vicsek(eta: 0.3)"})
+    assert vicsek.value("algorithm.eta") == 0.3
+    with pytest.raises(flocking.ScenarioError) as refused:
+        base.with_values({"vehicle": "Bicycle(())"})
+    assert refused.value.field == "vehicle"

@@ -11,19 +11,22 @@
 //! (`conditions.communication.delay` is 0 on an ideal scenario), a field left unset in it (such as
 //! `conditions.communication.range`, or `conditions.control.rate` with no `control`) can be set,
 //! and a part that a change leaves at its default stays unwritten. An enum value is given whole:
-//! as a string of RON (`"Bernoulli(p: 0.1)"`, `"None"`) at the enum paths of the conditions
-//! (`communication.loss`, `communication.when_lost`, `communication.delayed`, `sensing.noise`,
-//! `faults.mode`), or anywhere in JSON's externally tagged form (`{"Bernoulli": {"p": 0.1}}`,
-//! the same map in a RON sweep file).
+//! as a string of RON (`"Bernoulli(p: 0.1)"`, `"None"`, `"Unicycle(())"`) at the enum paths of
+//! the conditions (`communication.loss`, `communication.when_lost`, `communication.delayed`,
+//! `sensing.noise`, `faults.mode`) and of the scenario (`vehicle`, `integrator`, `algorithm`,
+//! `domain`, `initial.positions`, `initial.velocities`), or anywhere in JSON's externally tagged
+//! form (`{"Bernoulli": {"p": 0.1}}`, the same map in a RON sweep file).
 
 use serde_json::Value;
 
-use flock_sim::Conditions;
 use flock_sim::conditions::{Delayed, FaultMode, Loss, Noise, WhenLost};
+use flock_sim::{Conditions, Integrator};
 
 use crate::Scenario;
 use crate::error::ScenarioError;
 use crate::input::MAX_NESTING;
+use crate::scenario::{Algorithm, Cloud, DomainSpec};
+use crate::vehicle::VehicleSpec;
 
 impl Scenario {
     /// The value at `path`, as JSON (numbers, strings, lists, and an enum as `{"Variant": …}`).
@@ -170,9 +173,10 @@ fn to_json<T: serde::Serialize>(value: &T) -> Value {
     serde_json::to_value(value).expect("conditions are plain data and serialize")
 }
 
-/// A string of RON text at a path of the conditions whose type is an enum (`"Bernoulli(p: 0.1)"`
-/// at `conditions.communication.loss`) as JSON tags that enum (`{"Bernoulli": {"p": 0.1}}`);
-/// any other value as it is.
+/// A string of RON text at a path whose type is an enum — of the conditions (`"Bernoulli(p: 0.1)"`
+/// at `conditions.communication.loss`), the vehicle (`"Unicycle(())"`), the integrator, the
+/// algorithm, the domain, the initial clouds — as JSON tags that enum
+/// (`{"Bernoulli": {"p": 0.1}}`); any other value as it is.
 fn tagged(path: &str, value: Value) -> Value {
     fn parse<T: serde::de::DeserializeOwned + serde::Serialize>(text: &str) -> Option<Value> {
         let parsed: T = crate::input::ron_options().from_str(text).ok()?;
@@ -187,6 +191,11 @@ fn tagged(path: &str, value: Value) -> Value {
         "conditions.communication.delayed" => parse::<Delayed>(text),
         "conditions.sensing.noise" => parse::<Noise>(text),
         "conditions.faults.mode" => parse::<FaultMode>(text),
+        "vehicle" => parse::<VehicleSpec>(text),
+        "integrator" => parse::<Integrator>(text),
+        "algorithm" => parse::<Algorithm>(text),
+        "domain" => parse::<DomainSpec>(text),
+        "initial.positions" | "initial.velocities" => parse::<Cloud>(text),
         _ => None,
     };
     parsed.unwrap_or(value)

@@ -104,3 +104,65 @@ fn bad_paths_and_values_are_refused_naming_the_field() {
     assert_eq!(field, "algorithm.c2");
     assert!(scenario.value("algorithm.c1.x").is_err());
 }
+
+/// Issue 53: every enum of the scenario is given whole as RON text, as those of the conditions
+/// are — the vehicle, the algorithm, the integrator, the domain, the initial clouds — and gives
+/// the scenario the RON file would; text that is not one of its variants is refused by name.
+#[test]
+fn every_enum_is_given_as_ron_text() {
+    let base = fixture("tac2006_fig11_alg2_n100");
+    let written = base.to_ron().expect("written");
+    let replaced = |text: &str, from: &str, to_end: &str, by: &str| {
+        let start = text.find(from).expect("the field");
+        let end = start + text[start..].find(to_end).expect("its end") + to_end.len();
+        text.replace(&text[start..end], by)
+    };
+    // the vehicle and an initial cloud
+    let robots = base
+        .with_values([
+            ("vehicle", json!("Unicycle(())")),
+            (
+                "initial.positions",
+                json!("Box(min: [-20.0, -20.0], max: [20.0, 20.0])"),
+            ),
+        ])
+        .expect("RON text of each enum");
+    let edited = written.replace(
+        "integrator: SymplecticEuler,",
+        "integrator: SymplecticEuler, vehicle: Unicycle(()),",
+    );
+    let edited = replaced(
+        &edited,
+        "positions: Gaussian(",
+        "),",
+        "positions: Box(min: [-20.0, -20.0], max: [20.0, 20.0]),",
+    );
+    assert_eq!(
+        robots,
+        Scenario::parse(&edited, "edited").expect("the edited file")
+    );
+    // the algorithm, the domain and the integrator
+    let vicsek = base
+        .with_values([
+            ("algorithm", json!("Vicsek(eta: 0.3)")),
+            ("integrator", json!("Rk4")),
+            ("domain", json!("Periodic(size: [60.0, 60.0])")),
+        ])
+        .expect("RON text of each enum");
+    let edited = replaced(
+        &written,
+        "algorithm:",
+        "alpha:",
+        "algorithm: Vicsek(eta: 0.3),\n    alpha:",
+    );
+    let edited = edited.replace(
+        "integrator: SymplecticEuler,",
+        "integrator: Rk4, domain: Periodic(size: [60.0, 60.0]),",
+    );
+    assert_eq!(
+        vicsek,
+        Scenario::parse(&edited, "edited").expect("the edited file")
+    );
+    let (field, message) = invalid_field(base.with_values([("vehicle", json!("Bicycle(())"))]));
+    assert_eq!(field, "vehicle", "{message}");
+}
