@@ -501,8 +501,11 @@ fn interrupted_message(
 fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
     let category = py.get_type::<PyUserWarning>();
     for warning in scenario.warnings() {
-        let message = std::ffi::CString::new(warning.to_string())
-            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        // Python prints the category, `UserWarning: `, before the message: not `warning: ` again
+        let text = warning.to_string();
+        let text = text.strip_prefix("warning: ").unwrap_or(&text);
+        let message =
+            std::ffi::CString::new(text).map_err(|e| PyValueError::new_err(e.to_string()))?;
         PyErr::warn(py, &category, &message, 2)?;
     }
     Ok(())

@@ -120,3 +120,16 @@ def test_every_enum_is_set_as_ron_text_from_python():
     with pytest.raises(flocking.ScenarioError) as refused:
         base.with_values({"vehicle": "Bicycle(())"})
     assert refused.value.field == "vehicle"
+
+
+def test_read_run_of_a_directory_that_is_not_a_run_says_so(tmp_path):
+    with pytest.raises(flocking.RunDirectoryError, match="not a run directory"):
+        flocking.read_run(tmp_path)
+
+
+def test_a_warning_says_warning_once(recwarn):
+    robots = flocking.Scenario.load(FIG11).with_values({"vehicle": "Unicycle(())", "duration": 0.05})
+    flocking.run(robots)
+    messages = [str(w.message) for w in recwarn.list if w.category is UserWarning]
+    assert messages and all(not m.startswith("warning:") for m in messages), messages
+    assert any(m.startswith("`algorithm.gamma.velocity`") for m in messages), messages

@@ -478,3 +478,25 @@ fn issue_51_a_run_interrupted_by_the_flocking_before_resumes_to_the_same_bytes()
         assert!(read(&resumed) == read(&whole), "{name} differs");
     }
 }
+
+/// Issue 53: reading a directory that is not a run says so, and what to give instead; a path
+/// that is no directory says that.
+#[test]
+fn a_directory_that_is_not_a_run_is_named_as_such() {
+    let dir = temp_dir("not-a-run");
+    let error = flocking::read_run(dir.path()).expect_err("no run there");
+    let text = error.to_string();
+    assert!(
+        text.contains("not a run directory: it holds no scenario.ron"),
+        "{text}"
+    );
+    assert!(
+        text.starts_with(&dir.path().display().to_string()),
+        "{text}"
+    );
+    let missing = flocking::read_run(&dir.path().join("nowhere")).expect_err("nothing there");
+    assert!(
+        missing.to_string().contains("no such directory"),
+        "{missing}"
+    );
+}

@@ -2,6 +2,7 @@
 //! or `trajectory.npy`) as arrays of times, positions and velocities, and the resolved
 //! `scenario.ron` ([`read_run`]). Errors name the file and, for a malformed line, the line.
 
+use std::io;
 use std::path::Path;
 
 pub use super::read_error::ReadError;
@@ -94,6 +95,18 @@ pub struct RunFiles {
 /// # Errors
 /// A file that is missing or malformed, named with its line, or a scenario that does not load.
 pub fn read_run(dir: &Path) -> Result<RunFiles, ReadError> {
+    if !dir.join("scenario.ron").is_file() {
+        let why = if dir.is_dir() {
+            "not a run directory: it holds no scenario.ron, which every directory `flocking run \
+             --out` writes holds (and its DIR.partial while it runs); give one of those"
+        } else {
+            "no such directory: give a directory `flocking run --out` wrote"
+        };
+        return Err(ReadError::io(
+            dir,
+            io::Error::new(io::ErrorKind::NotFound, why),
+        ));
+    }
     let scenario = Scenario::load(dir.join("scenario.ron")).map_err(ReadError::Scenario)?;
     let metrics = read_metrics(&dir.join("metrics.csv"))?;
     let csv = dir.join("trajectory.csv");
