@@ -8,7 +8,7 @@
 //! measures it and each neighbour's as it received it; in the ideal run, the true state.
 
 use flock_math::Vector;
-use flock_protocols::{LocalForm, Perceived, Perceptions};
+use flock_protocols::{LocalForm, Perceptions};
 
 /// What every agent perceives at time `t`, in compressed sparse rows, agents in original order.
 /// Agent i measures its own position and velocity as `positions[i·dim..(i+1)·dim]` and
@@ -73,7 +73,6 @@ impl Perception {
         for (s, own) in all.owns.iter().enumerate() {
             stored[own.agent as usize] = s;
         }
-        let lists: Vec<(&Perceived<V>, &[Perceived<V>])> = all.receivers().collect();
         self.dim = V::DIM;
         self.t = t;
         for rows in [
@@ -93,7 +92,8 @@ impl Perception {
         self.beta_indptr.push(0);
         let mut betas = Vec::new();
         for &s in &stored {
-            let (own, heard) = lists[s];
+            let own = &all.owns[s];
+            let heard = &all.heard[if s == 0 { 0 } else { all.ends[s - 1] }..all.ends[s]];
             push(&mut self.positions, own.position);
             push(&mut self.velocities, own.velocity);
             for j in heard {
