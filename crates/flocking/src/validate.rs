@@ -417,10 +417,15 @@ impl Scenario {
             }
             Algorithm::Tanner(p) => problems.check(self.validate_fixed_graph(&p.graph, true)),
             Algorithm::Consensus(p) => {
-                problems.check(positive("algorithm.gain", p.gain));
-                if let Some(graph) = &p.graph {
-                    problems.check(self.validate_fixed_graph(graph, false));
+                let graph = p
+                    .graph
+                    .as_ref()
+                    .map_or(Ok(()), |graph| self.validate_fixed_graph(graph, false));
+                if graph.is_ok() {
+                    // the gain: Consensus's constructor refuses it, named
+                    problems.check(self.protocol_builds());
                 }
+                problems.check(graph);
             }
             // the models: built, their constructor checks their parameters
             model => {
@@ -433,16 +438,19 @@ impl Scenario {
                         "use domain: Open (the default) and set the arena with arena_side",
                     ));
                 }
-                // the model's constructor checks its parameters, each named (the conditions it
-                // cannot take are refused above, once)
-                let built = match self.dim {
-                    2 => self.ideal_protocol::<DVec2>().map(|_| ()),
-                    _ => self.ideal_protocol::<DVec3>().map(|_| ()),
-                };
-                problems.check(built);
+                problems.check(self.protocol_builds());
             }
         }
         self.validate_domain(problems);
+    }
+
+    /// The protocol built: its constructor checks its parameters, each named (the conditions it
+    /// cannot take are refused above, once).
+    fn protocol_builds(&self) -> Result<(), ScenarioError> {
+        match self.dim {
+            2 => self.ideal_protocol::<DVec2>().map(|_| ()),
+            _ => self.ideal_protocol::<DVec3>().map(|_| ()),
+        }
     }
 
     /// A periodic box: one side per dimension, each positive and at least twice the interaction

@@ -212,3 +212,32 @@ fn messages_name_no_rust_types() {
     assert!(error.contains("(NaN, 0.0)"), "{error}");
     assert!(!error.contains("DVec"), "{error}");
 }
+
+/// Consensus's gain is refused once, by its constructor, named by its scenario path, on the
+/// proximity net and on a fixed graph; a broken fixed graph is reported before the gain.
+#[test]
+fn the_consensus_gain_is_refused_by_its_constructor_named() {
+    let base = fixture("consensus_cycle_n20");
+    for gain in [0.0, -1.0, f64::INFINITY] {
+        let error = base
+            .with_values([("algorithm.gain", serde_json::json!(gain))])
+            .expect_err("refused");
+        assert_eq!(error.field().as_deref(), Some("algorithm.gain"), "{gain}: {error}");
+        let proximity = base
+            .with_values([
+                ("algorithm.graph", serde_json::Value::Null),
+                ("algorithm.gain", serde_json::json!(gain)),
+            ])
+            .expect_err("refused");
+        assert_eq!(proximity.field().as_deref(), Some("algorithm.gain"), "{proximity}");
+    }
+    let ok = base.with_values([("algorithm.gain", serde_json::json!(0.5))]);
+    assert!(ok.is_ok(), "{ok:?}");
+    let broken = base
+        .with_values([("algorithm.graph", serde_json::json!("Edges([(0, 99)])"))])
+        .expect_err("an edge to an agent that does not exist");
+    assert!(
+        broken.field().as_deref().is_some_and(|f| f.starts_with("algorithm.graph")),
+        "{broken}"
+    );
+}
