@@ -133,6 +133,39 @@ impl<'a> Diagram<'a> {
                 r.label
             )));
         }
+        let categories = [
+            ("x", &options.x_categories, &xs),
+            ("y", &options.y_categories, &ys),
+        ];
+        for (axis, names, values) in categories {
+            if !names.is_empty()
+                && values
+                    .iter()
+                    .any(|&v| v.fract() != 0.0 || v < 0.0 || v >= names.len() as f64)
+            {
+                return Err(VizError::invalid(format!(
+                    "a categorical {axis} is the index of a category, 0 to {}",
+                    names.len() - 1
+                )));
+            }
+        }
+        if !options.x_categories.is_empty() && (options.log_x || options.bound.is_some()) {
+            return Err(VizError::invalid(
+                "a categorical x has neither a log scale nor a bound",
+            ));
+        }
+        let categorical = !options.x_categories.is_empty() || !options.y_categories.is_empty();
+        if categorical && !options.references.is_empty() {
+            return Err(VizError::invalid(
+                "references are drawn in the values of numeric axes, not beside categories",
+            ));
+        }
+        if options.log_colour && !(heatmap && lo > 0.0) {
+            return Err(VizError::invalid(format!(
+                "a log colour scale is for a heatmap of positive values; the least value of {metric} is {}",
+                format::tick(lo)
+            )));
+        }
         if let Some(bound) = &options.bound {
             let (first, last) = (xs[0], xs[xs.len() - 1]);
             if !(first..=last).contains(&bound.x) {
@@ -153,7 +186,6 @@ impl<'a> Diagram<'a> {
         })
     }
 
-    /// The means of a panel's cells.
     /// The means of a panel's cells.
     pub(super) fn means(cells: &Cells) -> Vec<Vec<Option<f64>>> {
         cells

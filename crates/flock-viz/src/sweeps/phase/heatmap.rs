@@ -4,7 +4,8 @@
 use plotters::coord::Shift;
 use plotters::element::{PathElement, Text};
 use plotters::prelude::{
-    ChartBuilder, DrawingArea, DrawingBackend, IntoSegmentedCoord, Rectangle, SegmentValue,
+    ChartBuilder, DrawingArea, DrawingBackend, IntoLogRange, IntoSegmentedCoord, Rectangle,
+    SegmentValue,
 };
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 use plotters::style::{Color, RGBColor};
@@ -18,12 +19,15 @@ use crate::error::VizError;
 use crate::snapshots::snapshot::text_style;
 
 impl Diagram<'_> {
-    /// The colour of `value` on the map from the least to the largest mean.
-    fn colour(&self, value: f64, (lo, hi): (f64, f64)) -> RGBColor {
-        let h = if hi > lo {
-            (value - lo) / (hi - lo)
-        } else {
+    /// The colour of `value` on the map from the least to the largest mean, linear or
+    /// ([`super::PhaseOptions::log_colour`]) in ln value.
+    pub(super) fn colour(&self, value: f64, (lo, hi): (f64, f64)) -> RGBColor {
+        let h = if hi <= lo {
             0.5
+        } else if self.options.log_colour {
+            (value / lo).ln() / (hi / lo).ln()
+        } else {
+            (value - lo) / (hi - lo)
         };
         ViridisRGB.get_color_normalized(h.clamp(0.0, 1.0), 0.0, 1.0)
     }
@@ -40,16 +44,27 @@ impl Diagram<'_> {
         let o = self.options;
         let means = Self::means(cells);
         let (nx, ny) = (self.xs.len() as i32, self.ys.len() as i32);
-        let label = |values: &[f64], v: &SegmentValue<i32>| match v {
-            SegmentValue::CenterOf(k) => values
-                .get(*k as usize)
-                .map_or_else(String::new, |&x| format::tick(x)),
+        // a category by its name, a number as a tick
+        let label = |values: &[f64], names: &[String], v: &SegmentValue<i32>| match v {
+            SegmentValue::CenterOf(k) => values.get(*k as usize).map_or_else(String::new, |&x| {
+                names
+                    .get(x as usize)
+                    .filter(|_| !names.is_empty())
+                    .cloned()
+                    .unwrap_or_else(|| format::tick(x))
+            }),
             _ => String::new(),
         };
         let mut chart = ChartBuilder::on(plot)
             .margin(12)
             .x_label_area_size(48)
-            .y_label_area_size(72)
+            // room for the longest category's name (about 7 pixels a character at 13 px)
+            .y_label_area_size(
+                o.y_categories
+                    .iter()
+                    .map(|name| 24 + 7 * name.chars().count() as u32)
+                    .fold(72, u32::max),
+            )
             .build_cartesian_2d((0..nx - 1).into_segmented(), (0..ny - 1).into_segmented())
             .map_err(VizError::draw)?;
         chart
@@ -59,8 +74,8 @@ impl Diagram<'_> {
             .y_desc(text.text(o.y_label.as_deref().unwrap_or_default()))
             .x_labels(self.xs.len())
             .y_labels(self.ys.len())
-            .x_label_formatter(&|v| label(&self.xs, v))
-            .y_label_formatter(&|v| label(&self.ys, v))
+            .x_label_formatter(&|v| label(&self.xs, &o.x_categories, v))
+            .y_label_formatter(&|v| label(&self.ys, &o.y_categories, v))
             .label_style(text_style(13))
             .axis_desc_style(text_style(14))
             .axis_style(style::rgb(INK))
@@ -139,8 +154,6 @@ impl Diagram<'_> {
         self.bound(&plot, column, text)
     }
 
-    /// The bound, if any, as a vertical line at the backend pixel column `column` across `plot`
-
     /// A vertical colour bar of the map from `lo` to `hi`, labelled with the metric.
     pub(super) fn colour_bar<DB: DrawingBackend>(
         &self,
@@ -153,11 +166,41 @@ impl Diagram<'_> {
         } else {
             (lo - 0.5, lo + 0.5)
         };
-        let mut chart = ChartBuilder::on(area)
+        let mut builder = ChartBuilder::on(area);
+        builder
             .margin_top(12)
             .margin_bottom(60)
             .margin_right(8)
-            .y_label_area_size(56)
+            .y_label_area_size(56);
+        const STEPS: usize = 64;
+        if self.options.log_colour && hi > lo {
+            // geometric steps on a log axis
+            let mut chart = builder
+                .build_cartesian_2d(0.0..1.0, (lo..hi).log_scale())
+                .map_err(VizError::draw)?;
+            chart
+                .configure_mesh()
+                .disable_mesh()
+                .disable_x_axis()
+                .y_desc(text.text(&self.options.metric))
+                .y_labels(6)
+                .y_label_formatter(&|v| format::tick(*v))
+                .label_style(text_style(12))
+                .axis_desc_style(text_style(13))
+                .axis_style(style::rgb(INK))
+                .draw()
+                .map_err(VizError::draw)?;
+            let at = |k: f64| lo * (hi / lo).powf(k / STEPS as f64);
+            return chart
+                .draw_series((0..STEPS).map(|k| {
+                    let (y0, y1) = (at(k as f64), at(k as f64 + 1.0));
+                    let colour = self.colour(at(k as f64 + 0.5), (lo, hi));
+                    Rectangle::new([(0.0, y0), (1.0, y1)], colour.filled())
+                }))
+                .map(|_| ())
+                .map_err(VizError::draw);
+        }
+        let mut chart = builder
             .build_cartesian_2d(0.0..1.0, lo_axis..hi_axis)
             .map_err(VizError::draw)?;
         chart
@@ -180,7 +223,6 @@ impl Diagram<'_> {
             .axis_style(style::rgb(INK))
             .draw()
             .map_err(VizError::draw)?;
-        const STEPS: usize = 64;
         let step = (hi_axis - lo_axis) / STEPS as f64;
         chart
             .draw_series((0..STEPS).map(|k| {

@@ -2,11 +2,12 @@
 //! of axes, with the references and the bound.
 
 use plotters::chart::MeshStyle;
+use plotters::chart::SeriesLabelPosition;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::element::{EmptyElement, PathElement, Text};
 use plotters::prelude::{
-    ChartBuilder, Circle, DrawingArea, DrawingBackend, IntoLogRange, LineSeries, Polygon,
+    ChartBuilder, Circle, DrawingArea, DrawingBackend, IntoLogRange, LineSeries, Polygon, Rectangle,
 };
 use plotters::style::Color;
 
@@ -33,22 +34,31 @@ fn marker(k: usize) -> Vec<(i32, i32)> {
     }
 }
 
-/// Draws the mesh of a line diagram: x labelled with the swept parameter, y with the metric,
-/// `labels` values along each, a light grid.
-fn line_mesh<X, Y, XT, YT, DB>(
-    mut mesh: MeshStyle<'_, '_, X, Y, DB>,
+/// Draws the mesh of a line diagram: x labelled with the swept parameter (a categorical x with
+/// its categories' names at 0, 1, …), y with the metric, `labels` values along each, a light
+/// grid.
+fn line_mesh<'b, X, Y, YT, DB>(
+    mut mesh: MeshStyle<'_, 'b, X, Y, DB>,
     o: &PhaseOptions,
     text: TextMode,
-    labels: usize,
+    (labels, category): (usize, &'b dyn Fn(&f64) -> String),
 ) -> Result<(), VizError>
 where
-    X: Ranged<ValueType = XT> + ValueFormatter<XT>,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
     DB: DrawingBackend,
 {
+    let names = &o.x_categories;
+    if !names.is_empty() {
+        mesh.x_label_formatter(category);
+    }
     mesh.x_desc(text.text(&o.x_label))
         .y_desc(text.text(&o.metric))
-        .x_labels(labels)
+        .x_labels(if names.is_empty() {
+            labels
+        } else {
+            names.len()
+        })
         .y_labels(labels)
         .label_style(text_style(13))
         .axis_desc_style(text_style(14))
@@ -57,6 +67,16 @@ where
         .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
         .draw()
         .map_err(VizError::draw)
+}
+
+/// The name of the category at `x` (0, 1, …), nothing between them.
+fn category(names: &[String], x: f64) -> String {
+    let k = x.round();
+    if (x - k).abs() < 1e-9 && k >= 0.0 {
+        names.get(k as usize).cloned().unwrap_or_default()
+    } else {
+        String::new()
+    }
 }
 
 impl Diagram<'_> {
@@ -122,14 +142,23 @@ impl Diagram<'_> {
         let y0 = reference_values().fold(self.range.0, f64::min);
         let y1 = reference_values().fold(self.range.1, f64::max);
         let pad = if y1 > y0 { 0.05 * (y1 - y0) } else { 0.5 };
-        let x_pad = if x1 > x0 { 0.02 * (x1 - x0) } else { 0.5 };
+        let categorical = !o.x_categories.is_empty();
+        let x_pad = match (categorical, x1 > x0) {
+            (true, _) | (false, false) => 0.5,
+            (false, true) => 0.02 * (x1 - x0),
+        };
         let mut chart = ChartBuilder::on(area)
             .margin(12)
             .x_label_area_size(48)
             .y_label_area_size(72)
             .build_cartesian_2d((x0 - x_pad)..(x1 + x_pad), (y0 - pad)..(y1 + pad))
             .map_err(VizError::draw)?;
-        line_mesh(chart.configure_mesh(), o, text, 11)?;
+        line_mesh(
+            chart.configure_mesh(),
+            o,
+            text,
+            (11, &|v| category(&o.x_categories, *v)),
+        )?;
         for (k, cells) in self.panels.iter().enumerate() {
             let colour = style::rgb(SERIES[k % SERIES.len()]);
             let means: Vec<(f64, f64)> = self
@@ -138,9 +167,12 @@ impl Diagram<'_> {
                 .zip(cells)
                 .filter_map(|(&x, column)| mean(&column[0]).map(|m| (x, m)))
                 .collect();
-            chart
-                .draw_series(LineSeries::new(means.clone(), colour.stroke_width(1)))
-                .map_err(VizError::draw)?;
+            // categories are not joined: there is nothing between them
+            if !categorical {
+                chart
+                    .draw_series(LineSeries::new(means.clone(), colour.stroke_width(1)))
+                    .map_err(VizError::draw)?;
+            }
             let shape = marker(k);
             let series = chart
                 .draw_series(means.iter().map(|&p| {
@@ -171,7 +203,7 @@ impl Diagram<'_> {
             .label_font(text_style(12))
             .background_style(style::rgb(style::BACKGROUND).mix(0.9))
             .border_style(style::rgb([0xE0, 0xE0, 0xE0]))
-            .position(plotters::chart::SeriesLabelPosition::UpperRight)
+            .position(SeriesLabelPosition::UpperRight)
             .draw()
             .map_err(VizError::draw)?;
         let plot = chart.plotting_area().strip_coord_spec();
@@ -201,11 +233,12 @@ impl Diagram<'_> {
                 (x, low, high)
             })
             .collect();
+        let categorical = !o.x_categories.is_empty();
         let (x0, x1) = (self.xs[0], self.xs[self.xs.len() - 1]);
-        let (x0, x1) = if x1 > x0 {
+        let (x0, x1) = if x1 > x0 && !categorical {
             (x0, x1)
         } else {
-            (x0 - 0.5, x0 + 0.5)
+            (x0 - 0.5, x1 + 0.5)
         };
         let (y0, y1) = self.range;
         let pad = if y1 > y0 { 0.05 * (y1 - y0) } else { 0.5 };
@@ -224,27 +257,87 @@ impl Diagram<'_> {
             .iter()
             .filter_map(|&(x, cell)| mean(cell).map(|m| (x, m)))
             .collect();
-        let mut outline: Vec<(f64, f64)> = band.iter().map(|&(x, lo, _)| (x, lo)).collect();
-        outline.extend(band.iter().rev().map(|&(x, _, hi)| (x, hi)));
+        // one band along the line, or a bar per category (nothing lies between them)
+        let outlines: Vec<Vec<(f64, f64)>> = if categorical {
+            let half = 0.2;
+            band.iter()
+                .map(|&(x, lo, hi)| {
+                    vec![
+                        (x - half, lo),
+                        (x + half, lo),
+                        (x + half, hi),
+                        (x - half, hi),
+                    ]
+                })
+                .collect()
+        } else {
+            let mut outline: Vec<(f64, f64)> = band.iter().map(|&(x, lo, _)| (x, lo)).collect();
+            outline.extend(band.iter().rev().map(|&(x, _, hi)| (x, hi)));
+            vec![outline]
+        };
+        let mean_lines: Vec<Vec<(f64, f64)>> = if categorical {
+            means
+                .iter()
+                .map(|&(x, m)| vec![(x - 0.3, m), (x + 0.3, m)])
+                .collect()
+        } else {
+            vec![means.clone()]
+        };
+        // the legend where the last mean leaves room: below it when it is high
+        let high = means
+            .last()
+            .is_some_and(|&(_, m)| m > 0.5 * (self.range.0 + self.range.1));
+        let corner = if high {
+            SeriesLabelPosition::LowerRight
+        } else {
+            SeriesLabelPosition::UpperRight
+        };
+
         macro_rules! draw {
             ($x:expr, $y:expr) => {{
                 let mut chart = builder.build_cartesian_2d($x, $y).map_err(VizError::draw)?;
-                line_mesh(chart.configure_mesh(), o, text, 8)?;
-                chart
-                    .draw_series([Polygon::new(outline.clone(), style::rgb(BAND).filled())])
-                    .map_err(VizError::draw)?;
-                chart
-                    .draw_series(LineSeries::new(
-                        means.clone(),
-                        style::rgb(CURVE).stroke_width(2),
-                    ))
-                    .map_err(VizError::draw)?;
+                line_mesh(
+                    chart.configure_mesh(),
+                    o,
+                    text,
+                    (8, &|v| category(&o.x_categories, *v)),
+                )?;
+                let band = style::rgb(BAND);
                 chart
                     .draw_series(
-                        points
+                        outlines
                             .iter()
-                            .map(|&p| Circle::new(p, 3, style::rgb(CURVE).filled())),
+                            .map(|outline| Polygon::new(outline.clone(), band.filled())),
                     )
+                    .map_err(VizError::draw)?
+                    .label(text.text(o.band.meaning()))
+                    .legend(move |(x, y)| {
+                        Rectangle::new([(x, y - 5), (x + 16, y + 5)], band.filled())
+                    });
+                let curve = style::rgb(CURVE);
+                chart
+                    .draw_series(
+                        mean_lines
+                            .iter()
+                            .map(|line| PathElement::new(line.clone(), curve.stroke_width(2))),
+                    )
+                    .map_err(VizError::draw)?
+                    .label(text.text("mean over the seeds"))
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 16, y)], curve.stroke_width(2))
+                    });
+                chart
+                    .draw_series(points.iter().map(|&p| Circle::new(p, 3, curve.filled())))
+                    .map_err(VizError::draw)?
+                    .label(text.text("a run"))
+                    .legend(move |(x, y)| Circle::new((x + 8, y), 3, curve.filled()));
+                chart
+                    .configure_series_labels()
+                    .label_font(text_style(12))
+                    .background_style(style::rgb(style::BACKGROUND).mix(0.9))
+                    .border_style(style::rgb([0xE0, 0xE0, 0xE0]))
+                    .position(corner)
+                    .draw()
                     .map_err(VizError::draw)?;
                 for (shape, reference) in self.references(Some(k)) {
                     let shape = marker(shape);

@@ -61,6 +61,17 @@ pub enum Band {
     Quantiles,
 }
 
+impl Band {
+    /// What the band shows, for the legend.
+    #[must_use]
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Self::MinMax => "min–max over the seeds",
+            Self::Quantiles => "25–75 % of the seeds",
+        }
+    }
+}
+
 /// How a phase diagram is drawn.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhaseOptions {
@@ -89,6 +100,15 @@ pub struct PhaseOptions {
     pub series: bool,
     /// Values from sources drawn beside the sweep's.
     pub references: Vec<Reference>,
+    /// The names of x's categories, in the sweep's order: when not empty, x is categorical (an
+    /// `algorithm`, a `vehicle`, a loss model), each point's x is the index of its category, and
+    /// the axis is labelled with the names (no log scale, no bound).
+    pub x_categories: Vec<String>,
+    /// The names of y's categories (a heatmap), as [`PhaseOptions::x_categories`].
+    pub y_categories: Vec<String>,
+    /// A logarithmic colour scale (a heatmap whose means are all positive): for a metric that
+    /// spans decades, such as a velocity mismatch.
+    pub log_colour: bool,
 }
 
 /// Values from a source drawn beside a sweep's: over a line diagram, its points as black markers
@@ -131,6 +151,9 @@ impl Default for PhaseOptions {
             bound: None,
             series: false,
             references: Vec::new(),
+            x_categories: Vec::new(),
+            y_categories: Vec::new(),
+            log_colour: false,
         }
     }
 }

@@ -26,16 +26,12 @@ pub fn phase_table(points: &[PhasePoint], options: &PhaseOptions) -> Result<Stri
     let diagram = Diagram::new(points, options)?;
     let mut table = String::from("panel,x,y,runs,mean,low,high\n");
     for (k, cells) in diagram.panels.iter().enumerate() {
-        let title = options.panels.get(k).map_or("", String::as_str);
-        let title = if title.contains([',', '"']) {
-            format!("\"{}\"", title.replace('"', "\"\""))
-        } else {
-            title.to_owned()
-        };
+        let title = field(options.panels.get(k).map_or("", String::as_str));
         for (&x, column) in diagram.xs.iter().zip(cells) {
+            let x = value(x, &options.x_categories);
             for (&y, cell) in diagram.ys.iter().zip(column) {
                 let y = if options.y_label.is_some() {
-                    y.to_string()
+                    value(y, &options.y_categories)
                 } else {
                     String::new()
                 };
@@ -51,4 +47,21 @@ pub fn phase_table(points: &[PhasePoint], options: &PhaseOptions) -> Result<Stri
         }
     }
     Ok(table)
+}
+
+/// A grid value: the name of its category, or the number.
+fn value(v: f64, categories: &[String]) -> String {
+    match categories.get(v as usize) {
+        Some(name) => field(name),
+        None => v.to_string(),
+    }
+}
+
+/// `text` as a CSV field: quoted where it holds a comma or a quote.
+fn field(text: &str) -> String {
+    if text.contains([',', '"']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_owned()
+    }
 }
