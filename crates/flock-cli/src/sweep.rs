@@ -7,15 +7,11 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 
 use clap::{Args, Subcommand, ValueEnum};
-use flock_viz::phase::{
-    Band, Bound, PhaseOptions, PhasePoint, Reference, phase_png, phase_svg, phase_table,
-};
+use flock_viz::phase::{Band, Bound};
+use flock_viz::{SweepPlot, SweepPlotError, plot_sweep};
 use flocking::estimate::Outputs;
-use flocking::owned::{self, DirError};
 use flocking::sweep::store::{self, RUNS_FILE, StoreError};
-use flocking::sweep::{
-    ExecuteOptions, ParameterLabel, RunRow, Shard, Sweep, execute, metric_label, share, value_field,
-};
+use flocking::sweep::{ExecuteOptions, RunRow, Shard, Sweep, execute, share};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// `flocking sweep SWEEP.ron --out DIR [--jobs N] [--keep-runs] [--shard i/N]`, or one of its
@@ -71,7 +67,8 @@ enum SweepAction {
     Plot {
         /// The sweep's output directory.
         dir: PathBuf,
-        /// The axis along x (a parameter path of the sweep).
+        /// The axis along x (a parameter path of the sweep; an axis of names, such as `algorithm`,
+        /// `vehicle` or a loss model, is drawn as categories in the sweep's order).
         #[arg(long)]
         x: String,
         /// The axis along y (a heatmap).
@@ -84,9 +81,9 @@ enum SweepAction {
         /// One panel per value of this axis, on shared scales.
         #[arg(long, value_name = "AXIS", conflicts_with = "series")]
         facet: Option<String>,
-        /// One series per value of this axis on one set of axes (a line diagram): a colour and a
-        /// marker each, with a legend.
-        #[arg(long, value_name = "AXIS")]
+        /// One series per value of this axis overlaid on one set of axes (a line diagram): a
+        /// colour and a marker each, with a legend.
+        #[arg(long, value_name = "AXIS", visible_alias = "overlay")]
         series: Option<String>,
         /// Values from a source drawn beside the sweep's: a CSV file (lines from `#` on are
         /// comments) with the header `series,label,x,y`, consecutive rows of the same series and label one reference — over
@@ -109,9 +106,12 @@ enum SweepAction {
         /// Logarithmic x axis.
         #[arg(long)]
         log_x: bool,
-        /// Logarithmic y axis.
+        /// Logarithmic y axis (a line diagram).
         #[arg(long)]
         log_y: bool,
+        /// Logarithmic colour scale (a heatmap of positive values).
+        #[arg(long)]
+        log_colour: bool,
         /// A theoretical bound on x (e.g. a stability bound of the swept delay), drawn as a
         /// labelled vertical line in every panel; it must lie within the x values drawn.
         #[arg(long, value_name = "X", allow_negative_numbers = true)]
@@ -189,29 +189,31 @@ pub fn main(args: SweepArgs, writing: &AtomicBool) -> ExitCode {
             band,
             log_x,
             log_y,
+            log_colour,
             bound,
             bound_label,
         }) => {
-            let request = PlotRequest {
+            let request = SweepPlot {
                 x,
                 y,
                 fixed,
-                panels: match (facet, series) {
-                    (Some(axis), _) => Some((axis, false)),
-                    (None, Some(axis)) => Some((axis, true)),
-                    (None, None) => None,
-                },
+                facet,
+                series,
                 reference,
                 metric,
-                band,
+                band: match band {
+                    BandArg::Minmax => Band::MinMax,
+                    BandArg::Quantiles => Band::Quantiles,
+                },
                 log_x,
                 log_y,
+                log_colour,
                 bound: bound.map(|x| Bound {
                     x,
                     label: bound_label,
                 }),
             };
-            plot(&dir, &request, out)
+            plot(&dir, &request, out.as_deref())
         }
         None => {
             let (Some(sweep), Some(out)) = (args.sweep, args.out) else {
@@ -354,443 +356,15 @@ fn merge(out: &Path, shards: &[PathBuf]) -> Result<(), Failure> {
     Ok(())
 }
 
-/// A value of runs.csv as a number: booleans as 1 or 0, empty as NaN.
-fn number(field: &str) -> Option<f64> {
-    match field {
-        "true" => Some(1.0),
-        "false" => Some(0.0),
-        "" => Some(f64::NAN),
-        other => other.parse().ok(),
-    }
-}
-
-/// What `flocking sweep plot` draws.
-struct PlotRequest {
-    x: String,
-    y: Option<String>,
-    fixed: Vec<(String, String)>,
-    /// The axis of the panels (`--facet`), or of the series (`--series`: true).
-    panels: Option<(String, bool)>,
-    reference: Option<PathBuf>,
-    metric: String,
-    band: BandArg,
-    log_x: bool,
-    log_y: bool,
-    bound: Option<Bound>,
-}
-
-/// An axis of the sweep as the plot uses it: its column of runs.csv, its values as runs.csv
-/// writes them (in the sweep's order) and its label.
-struct AxisColumn {
-    column: usize,
-    values: Vec<String>,
-    label: ParameterLabel,
-}
-
-impl AxisColumn {
-    /// "n = 50".
-    fn equals(&self, value: &str) -> String {
-        format!("{} = {}", self.label.short(), shown(value))
-    }
-
-    /// "n ∈ {25, 50, 100, 200}".
-    fn among(&self) -> String {
-        let values: Vec<String> = self.values.iter().map(|v| shown(v)).collect();
-        format!("{} ∈ {{{}}}", self.label.short(), values.join(", "))
-    }
-}
-
-/// A value for a title: as written, or to 3 significant digits when that is shorter
-/// (0.006324555320336759 is 0.00632).
-fn shown(field: &str) -> String {
-    if field.starts_with('{') || field.starts_with('[') {
-        // a whole value (an enum variant and its fields) as the scenario writes it
-        if let Ok(value) = flocking::serde_json::from_str::<flocking::serde_json::Value>(field) {
-            return as_scenario_writes(&value);
-        }
-    }
-    let Some(x) = field
-        .parse::<f64>()
-        .ok()
-        .filter(|x| x.is_finite() && *x != 0.0)
-    else {
-        return field.to_owned();
-    };
-    let decimals = (2 - x.abs().log10().floor() as i32).max(0) as usize;
-    let short = format!("{x:.decimals$}");
-    if short.len() < field.len() {
-        short
-    } else {
-        field.to_owned()
-    }
-}
-
-/// A value of `runs.csv` as a scenario file writes it: `{"Quadrotor":{"inner_step":0.001}}` is
-/// `Quadrotor(inner_step: 0.001)`, `{"Bernoulli":{"p":0.1}}` is `Bernoulli(p: 0.1)`.
-fn as_scenario_writes(value: &flocking::serde_json::Value) -> String {
-    use flocking::serde_json::{Map, Value};
-    let fields = |map: &Map<String, Value>| {
-        map.iter()
-            .map(|(name, v)| format!("{name}: {}", as_scenario_writes(v)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    match value {
-        Value::Object(map) if map.len() == 1 => {
-            let (variant, inner) = map.iter().next().expect("one entry");
-            match inner {
-                Value::Null => variant.clone(),
-                Value::Object(inner) => format!("{variant}({})", fields(inner)),
-                other => format!("{variant}({})", as_scenario_writes(other)),
-            }
-        }
-        Value::Object(map) => format!("({})", fields(map)),
-        Value::Array(items) => format!(
-            "[{}]",
-            items
-                .iter()
-                .map(as_scenario_writes)
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-        Value::String(text) => text.clone(),
-        other => other.to_string(),
-    }
-}
-
-/// "20 seeds", "1 seed".
-fn seeds(count: u64) -> String {
-    if count == 1 {
-        "1 seed".to_owned()
-    } else {
-        format!("{count} seeds")
-    }
-}
-
-fn plot(dir: &Path, request: &PlotRequest, out: Option<PathBuf>) -> Result<(), Failure> {
-    let sweep = store::read_sweep(dir)?;
-    let base = sweep
-        .base_scenario()
-        .map_err(|e| Failure::Usage(e.to_string()))?;
-    let path = dir.join(RUNS_FILE);
-    let mut reader =
-        csv::Reader::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let header = reader
-        .headers()
-        .map_err(|e| format!("{}: {e}", path.display()))?
-        .clone();
-    let column = |name: &str, what: &str| {
-        header.iter().position(|h| h == name).ok_or_else(|| {
-            Failure::Usage(format!(
-                "--{what} {name:?} is not a column of {}; it has {}",
-                path.display(),
-                header.iter().collect::<Vec<_>>().join(", ")
-            ))
-        })
-    };
-    let axis = |name: &str, what: &str| {
-        let Some(axis) = sweep.axes.iter().find(|a| a.path == name) else {
-            let axes: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
-            return Err(Failure::Usage(format!(
-                "--{what} {name:?} is not an axis of the sweep; its axes are {}",
-                axes.join(", ")
-            )));
-        };
-        Ok(AxisColumn {
-            column: column(name, what)?,
-            values: axis.values.expand().iter().map(value_field).collect(),
-            label: ParameterLabel::of(&base, name),
-        })
-    };
-    let (cx, cm) = (column(&request.x, "x")?, column(&request.metric, "metric")?);
-    // the measured columns lie between `seed` and `error`; the others are not metrics
-    let measured = match (
-        header.iter().position(|h| h == "seed"),
-        header.iter().position(|h| h == "error"),
-    ) {
-        (Some(seed), Some(error)) if seed < error => seed + 1..error,
-        _ => 0..header.len(),
-    };
-    if !measured.contains(&cm) {
-        return Err(Failure::Usage(format!(
-            "--metric {:?} is not a measured column of {}; the metrics are {}",
-            request.metric,
-            path.display(),
-            header
-                .iter()
-                .skip(measured.start)
-                .take(measured.len())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
-    }
-    let cy = request.y.as_deref().map(|y| column(y, "y")).transpose()?;
-    let mut shown_axes = vec![request.x.as_str()];
-    shown_axes.extend(request.y.as_deref());
-    let (facet, series) = match &request.panels {
-        Some((name, series)) => {
-            let what = if *series { "series" } else { "facet" };
-            if shown_axes.contains(&name.as_str()) {
-                return Err(Failure::Usage(format!(
-                    "--{what} {name} is drawn along an axis already; give another axis"
-                )));
-            }
-            if *series && cy.is_some() {
-                return Err(Failure::Usage(format!(
-                    "--series {name} draws lines on one set of axes; a heatmap (--y) takes --facet"
-                )));
-            }
-            (Some(axis(name, what)?), *series)
-        }
-        None => (None, false),
-    };
-    shown_axes.extend(request.panels.as_ref().map(|(name, _)| name.as_str()));
-    let mut fixed = Vec::new();
-    for (name, value) in &request.fixed {
-        if shown_axes.contains(&name.as_str())
-            || fixed
-                .iter()
-                .any(|(a, _): &(AxisColumn, String)| a.label.path == *name)
-        {
-            return Err(Failure::Usage(format!(
-                "--where {name}={value}: {name} is drawn or fixed already; fix another axis"
-            )));
-        }
-        let fixed_axis = axis(name, "where")?;
-        let same = |v: &String| {
-            v == value
-                || matches!((v.parse::<f64>(), value.parse::<f64>()), (Ok(a), Ok(b)) if a == b)
-        };
-        let Some(chosen) = fixed_axis.values.iter().find(|v| same(v)).cloned() else {
-            return Err(Failure::Usage(format!(
-                "--where {name}={value}: no run has {name} = {value}; its values are {}",
-                fixed_axis.values.join(", ")
-            )));
-        };
-        fixed.push((fixed_axis, chosen));
-    }
-    let pooled: Vec<AxisColumn> = sweep
-        .axes
-        .iter()
-        .filter(|a| {
-            !shown_axes.contains(&a.path.as_str())
-                && !fixed.iter().any(|(f, _)| f.label.path == a.path)
-        })
-        .map(|a| axis(&a.path, "x"))
-        .collect::<Result<_, _>>()?;
-
-    let mut points = Vec::new();
-    for (k, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| format!("{}: {e}", path.display()))?;
-        if fixed.iter().any(|(a, value)| record[a.column] != **value) {
-            continue;
-        }
-        let value = |c: usize, what: &str| {
-            number(&record[c]).ok_or_else(|| {
-                format!(
-                    "{} row {}: {what} {:?} is not a number",
-                    path.display(),
-                    k + 1,
-                    &record[c]
-                )
-            })
-        };
-        let panel = match &facet {
-            Some(a) => a
-                .values
-                .iter()
-                .position(|v| *v == record[a.column])
-                .ok_or_else(|| {
-                    format!(
-                        "{} row {}: {} {:?} is not a value of the sweep",
-                        path.display(),
-                        k + 1,
-                        a.label.path,
-                        &record[a.column]
-                    )
-                })?,
-            None => 0,
-        };
-        points.push(PhasePoint {
-            x: value(cx, "x")?,
-            y: cy.map(|c| value(c, "y")).transpose()?,
-            value: value(cm, "the metric")?,
-            panel,
-        });
-    }
-
-    let metric = metric_label(&request.metric);
-    let per_point = pooled
-        .iter()
-        .map(|a| a.values.len() as u64)
-        .product::<u64>()
-        * sweep.seeds;
-    let mut title = if pooled.is_empty() {
-        format!("{metric}: mean over {}", seeds(sweep.seeds))
-    } else {
-        let over: Vec<String> = pooled.iter().map(AxisColumn::among).collect();
-        format!(
-            "{metric}: mean over {per_point} runs pooled over {} × {}",
-            over.join(" × "),
-            seeds(sweep.seeds)
-        )
-    };
-    for (a, value) in &fixed {
-        title = format!("{title}, {}", a.equals(value));
-    }
-    if !pooled.is_empty() {
-        let names: Vec<&str> = pooled.iter().map(|a| a.label.path.as_str()).collect();
-        errln!(
-            "warning: each point pools {per_point} runs over {}: fix {} with --where {}=VALUE, or draw one panel per value with --facet {}",
-            names.join(", "),
-            if names.len() == 1 { "it" } else { "them" },
-            names[0],
-            names[0]
-        );
-    }
-    let label = |name: &str| ParameterLabel::of(&base, name).axis();
-    let options = PhaseOptions {
-        title,
-        x_label: label(&request.x),
-        y_label: request.y.as_deref().map(label),
-        metric: metric.to_owned(),
-        panels: facet
-            .as_ref()
-            .map_or_else(Vec::new, |a| a.values.iter().map(|v| a.equals(v)).collect()),
-        log_x: request.log_x,
-        log_y: request.log_y,
-        band: match request.band {
-            BandArg::Minmax => Band::MinMax,
-            BandArg::Quantiles => Band::Quantiles,
-        },
-        size: if facet.is_some() && !series {
-            FACET_PANEL
-        } else {
-            PhaseOptions::default().size
-        },
-        bound: request.bound.clone(),
-        series,
-        references: match &request.reference {
-            Some(file) => references(file, facet.as_ref())?,
-            None => Vec::new(),
-        },
-    };
-    let out = out.unwrap_or_else(|| dir.join(format!("{}.svg", request.metric)));
-    let bytes = match out.extension().and_then(|e| e.to_str()) {
-        Some("png") => phase_png(&points, &options),
-        Some("csv") => phase_table(&points, &options).map(String::into_bytes),
-        _ => phase_svg(&points, &options).map(String::into_bytes),
-    }
-    .map_err(|e| e.to_string())?;
-    // never over a file that flocking did not write
-    owned::write_file(&out, &bytes).map_err(|e| match e {
-        DirError::Io(e) => Failure::Failed(e.to_string()),
-        refused => Failure::Usage(refused.to_string()),
+/// Draws `flocking sweep plot`'s diagram ([`plot_sweep`]), its warnings on stderr.
+fn plot(dir: &Path, request: &SweepPlot, out: Option<&Path>) -> Result<(), Failure> {
+    let plotted = plot_sweep(dir, request, out).map_err(|e| match e {
+        SweepPlotError::Refused(message) => Failure::Usage(message),
+        SweepPlotError::Failed(message) => Failure::Failed(message),
     })?;
-    outln!("flocking sweep plot: {}", out.display());
+    for warning in &plotted.warnings {
+        errln!("warning: {warning}");
+    }
+    outln!("flocking sweep plot: {}", plotted.path.display());
     Ok(())
-}
-
-/// The references of `--reference FILE` (`series,label,x,y`), the series matched to the values
-/// of the panels' axis `panels`.
-fn references(file: &Path, panels: Option<&AxisColumn>) -> Result<Vec<Reference>, Failure> {
-    let at = |line: u64| format!("{} line {line}", file.display());
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .from_path(file)
-        .map_err(|e| Failure::Usage(format!("--reference {}: {e}", file.display())))?;
-    let header = reader
-        .headers()
-        .map_err(|e| Failure::Usage(format!("--reference {}: {e}", file.display())))?;
-    if header != vec!["series", "label", "x", "y"] {
-        return Err(Failure::Usage(format!(
-            "--reference {}: the header is {:?}; give series,label,x,y",
-            file.display(),
-            header.iter().collect::<Vec<_>>().join(",")
-        )));
-    }
-    let mut references: Vec<Reference> = Vec::new();
-    let mut last: Option<(String, String)> = None;
-    for record in reader.records() {
-        let record = record.map_err(|e| Failure::Usage(format!("--reference {e}")))?;
-        let line = record.position().map_or(0, csv::Position::line);
-        let number = |k: usize| {
-            record[k]
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| {
-                    Failure::Usage(format!(
-                        "{}: {:?} is not a finite number",
-                        at(line),
-                        &record[k]
-                    ))
-                })
-        };
-        let point = (number(2)?, number(3)?);
-        let key = (record[0].to_owned(), record[1].to_owned());
-        if last.as_ref() == Some(&key) {
-            references
-                .last_mut()
-                .expect("the last reference")
-                .points
-                .push(point);
-            continue;
-        }
-        let series = match (record[0].is_empty(), panels) {
-            (true, _) => None,
-            (false, Some(axis)) => Some(
-                axis.values
-                    .iter()
-                    .position(|v| {
-                        *v == record[0]
-                            || matches!((v.parse::<f64>(), record[0].parse::<f64>()), (Ok(a), Ok(b)) if a == b)
-                    })
-                    .ok_or_else(|| {
-                        Failure::Usage(format!(
-                            "{}: series {:?} is not a value of {}; its values are {}",
-                            at(line),
-                            &record[0],
-                            axis.label.path,
-                            axis.values.join(", ")
-                        ))
-                    })?,
-            ),
-            (false, None) => {
-                return Err(Failure::Usage(format!(
-                    "{}: a series ({:?}) needs --series or --facet",
-                    at(line),
-                    &record[0]
-                )));
-            }
-        };
-        references.push(Reference {
-            label: key.1.clone(),
-            series,
-            points: vec![point],
-        });
-        last = Some(key);
-    }
-    Ok(references)
-}
-
-/// The size of each panel of a faceted diagram.
-const FACET_PANEL: (u32, u32) = (560, 420);
-
-#[cfg(test)]
-mod tests {
-    use super::shown;
-
-    /// A panel's value as the scenario writes it: an enum variant with its fields, a bare one,
-    /// numbers shortened, text as it is.
-    #[test]
-    fn values_are_shown_as_the_scenario_writes_them() {
-        assert_eq!(
-            shown(r#"{"Quadrotor":{"inner_step":0.001}}"#),
-            "Quadrotor(inner_step: 0.001)"
-        );
-        assert_eq!(shown(r#"{"Bernoulli":{"p":0.1}}"#), "Bernoulli(p: 0.1)");
-        assert_eq!(shown("PointMass"), "PointMass");
-        assert_eq!(shown("0.123456789"), "0.123");
-    }
 }

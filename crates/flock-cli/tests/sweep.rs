@@ -227,8 +227,8 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
     );
     let map = fs::read_to_string(tmp.path().join("map.svg")).expect("map.svg");
     for text in [
-        "navigational gain c₁^γ (algorithm.c1)",
-        "navigational damping gain c₂^γ (algorithm.c2)",
+        "navigational gain c₁^γ",
+        "navigational damping gain c₂^γ",
         "fraction α-flocking: mean over 3 seeds",
     ] {
         assert!(map.contains(text), "{text} missing from the heatmap");
@@ -266,7 +266,7 @@ fn shards_merge_and_phase_diagrams_are_drawn() {
     );
     assert!(!bad.status.success());
     assert!(
-        stderr(&bad).contains("\"speed\" is not a column")
+        stderr(&bad).contains("\"speed\" is not a metric")
             && stderr(&bad).contains("cohesion_radius"),
         "{}",
         stderr(&bad)
@@ -561,7 +561,7 @@ fn plot_where_and_facet_draw_only_the_runs_they_name() {
     let fixed = fs::read_to_string(tmp.path().join("where.svg")).expect("svg");
     let title = format!("cohesion radius R: mean over {seeds} seeds, n = {}", ns[1]);
     assert!(fixed.contains(&title), "{title}");
-    assert!(fixed.contains("navigational gain c₁^γ (algorithm.c1)"));
+    assert!(fixed.contains("navigational gain c₁^γ"));
 }
 
 /// `--bound X --bound-label TEXT` draws one labelled vertical line in the bound's colour, on a
@@ -655,7 +655,7 @@ fn bad_where_and_facet_are_clear_errors() {
         let e = stderr(&output);
         assert_eq!(output.status.code(), Some(2), "{metric}: {e}");
         assert!(
-            e.contains("not a measured column") && e.contains("alpha_flock"),
+            e.contains("is not a metric") && e.contains("alpha_flock"),
             "{e}"
         );
     }
@@ -744,4 +744,89 @@ fn bad_series_and_references_are_clear_errors() {
     );
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(tmp.path().join("ok.svg").is_file());
+}
+
+/// Issue 53: an axis of names (here `vehicle`) is drawn as categories in the sweep's order, fixed
+/// by the name a title shows; a mistyped metric or axis is refused with the nearest names.
+#[test]
+fn categorical_axes_are_drawn_and_typos_get_the_nearest_name() {
+    let tmp = temp_dir("sweep_categories");
+    let sweep_dir = fixtures_dir().join("../docs/figures/sweeps/crazyflie_rate_delay");
+    let dir = sweep_dir.to_str().expect("UTF-8");
+    let table = sweep(
+        tmp.path(),
+        &[
+            "plot",
+            dir,
+            "--x",
+            "vehicle",
+            "--where",
+            "conditions.control.rate=100",
+            "--where",
+            "conditions.communication.delay=0.4",
+            "--metric",
+            "alpha_flock",
+            "--out",
+            "vehicle.csv",
+        ],
+    );
+    assert!(table.contains("vehicle.csv"), "{table}");
+    let table = fs::read_to_string(tmp.path().join("vehicle.csv")).expect("vehicle.csv");
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(rows[0], "panel,x,y,runs,mean,low,high");
+    assert!(
+        rows[1].starts_with(",Quadrotor(inner_step: 0.001),,3,"),
+        "{table}"
+    );
+    assert!(rows[2].starts_with(",PointMass,,3,"), "{table}");
+    assert_eq!(rows.len(), 3, "{table}");
+    // fixed by the name the figure shows
+    sweep(
+        tmp.path(),
+        &[
+            "plot",
+            dir,
+            "--x",
+            "conditions.communication.delay",
+            "--y",
+            "conditions.control.rate",
+            "--where",
+            "vehicle=Quadrotor(inner_step: 0.001)",
+            "--metric",
+            "velocity_mismatch",
+            "--log-colour",
+            "--out",
+            "quadrotor.svg",
+        ],
+    );
+    let map = fs::read_to_string(tmp.path().join("quadrotor.svg")).expect("quadrotor.svg");
+    assert!(map.contains("vehicle = Quadrotor(inner_step: 0.001)"));
+    for (flag, typo, nearest) in [
+        (
+            "--metric",
+            "velocity_mismatsh",
+            "did you mean velocity_mismatch?",
+        ),
+        ("--x", "vehicles", "did you mean vehicle?"),
+    ] {
+        let mut args = vec![
+            "sweep",
+            "plot",
+            dir,
+            "--x",
+            "vehicle",
+            "--metric",
+            "alpha_flock",
+        ];
+        let at = args.iter().position(|a| *a == flag).expect("flag") + 1;
+        args[at] = typo;
+        let bad = flocking(tmp.path(), &args);
+        assert_eq!(bad.status.code(), Some(2));
+        assert!(stderr(&bad).contains(nearest), "{}", stderr(&bad));
+    }
+    let far = flocking(
+        tmp.path(),
+        &["sweep", "plot", dir, "--x", "vehicle", "--metric", "zzz"],
+    );
+    assert!(!stderr(&far).contains("did you mean"), "{}", stderr(&far));
 }

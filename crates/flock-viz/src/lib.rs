@@ -26,7 +26,9 @@
 //! - [`function_svg`], [`function_png`]: the report's plots of ρ, ψ_α, φ_α and the pair
 //!   potential (CDS 03-006 Figs. 2, 4, 5), from the functions the simulations use.
 //! - [`player_html`]: the whole run as one self-contained HTML page with a canvas player.
-//! - [`phase_svg`], [`phase_png`], [`phase_table`]: the phase diagram of a parameter sweep (`flocking sweep plot`).
+//! - [`phase_svg`], [`phase_png`], [`phase_table`]: the phase diagram of a parameter sweep;
+//!   [`plot_sweep`]: a sweep directory's, as `flocking sweep plot` and Python's `SweepResult.plot`
+//!   draw it.
 //! - [`write_figures`]: all of them into a directory, as `flocking plot` writes them.
 //! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
 //! - [`index_html`]: the page of every fixture's figures that `flocking figures` writes, each beside
@@ -83,3 +85,4 @@ pub use snapshots::snapshot;
 pub use snapshots::snapshot::{PanelStyle, SnapshotOptions, snapshot_png, snapshot_svg};
 pub use sweeps::phase;
 pub use sweeps::phase::{Band, PhaseOptions, PhasePoint, phase_png, phase_svg, phase_table};
+pub use sweeps::plot::{Plotted, SweepPlot, SweepPlotError, plot_sweep};

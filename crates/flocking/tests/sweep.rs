@@ -527,27 +527,15 @@ fn labels_name_parameters_by_algorithm_and_columns_by_metric() {
     let base = alg3.base_scenario().expect("valid");
     let axis =
         |scenario: &flocking::Scenario, path: &str| ParameterLabel::of(scenario, path).axis();
-    assert_eq!(
-        axis(&base, "algorithm.beta.c1"),
-        "β gain c₁^β (algorithm.beta.c1)"
-    );
-    assert_eq!(
-        axis(&base, "algorithm.c1"),
-        "navigational gain c₁^γ (algorithm.c1)"
-    );
-    assert_eq!(
-        axis(&base, "obstacles.0.radius"),
-        "ball radius (obstacles.0.radius)"
-    );
+    assert_eq!(axis(&base, "algorithm.beta.c1"), "β gain c₁^β");
+    assert_eq!(axis(&base, "algorithm.c1"), "navigational gain c₁^γ");
+    assert_eq!(axis(&base, "obstacles.0.radius"), "ball radius (m)");
     assert_eq!(
         ParameterLabel::of(&base, "obstacles.0.radius").short(),
         "ball radius"
     );
     let sink = crate::common::fixture("tr2003_fig9_sink_n100");
-    assert_eq!(
-        axis(&sink, "algorithm.c1"),
-        "consensus gain c₁ (algorithm.c1)"
-    );
+    assert_eq!(axis(&sink, "algorithm.c1"), "consensus gain c₁");
     assert_eq!(axis(&sink, "no.such.path"), "no.such.path");
     assert_eq!(metric_label("alpha_flock"), "fraction α-flocking");
     assert_eq!(

@@ -1,0 +1,249 @@
+//! Series, references and bounds: where they are drawn and where they are refused.
+
+use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
+
+use super::grid::{self, cell_position};
+use super::*;
+use crate::draw::style;
+
+/// Two panels of a line: N = 40 and N = 400, two x each.
+fn two_series() -> Vec<PhasePoint> {
+    [(0, 1.0, 0.9), (0, 2.0, 0.6), (1, 1.0, 0.8), (1, 2.0, 0.3)]
+        .map(|(panel, x, value)| PhasePoint {
+            x,
+            y: None,
+            value,
+            panel,
+        })
+        .to_vec()
+}
+
+fn series_options(references: Vec<Reference>) -> PhaseOptions {
+    PhaseOptions {
+        panels: vec!["N = 40".into(), "N = 400".into()],
+        series: true,
+        references,
+        ..PhaseOptions::default()
+    }
+}
+
+/// Series share one set of axes: one legend entry per panel and per reference, each
+/// series in its colour and the references in black, drawn within the points' range even
+/// where they lie outside the sweep's values.
+#[test]
+fn series_and_references_share_one_set_of_axes() {
+    let reference = Reference {
+        label: "N = 40, paper".into(),
+        series: Some(0),
+        points: vec![(1.5, 0.05)],
+    };
+    let svg = phase_svg(&two_series(), &series_options(vec![reference])).unwrap();
+    for label in ["N = 40", "N = 400", "N = 40, paper"] {
+        assert!(
+            svg.contains(&format!("\n{label}\n</text>")),
+            "no legend entry {label}"
+        );
+    }
+    for colour in [SERIES[0], SERIES[1], style::INK] {
+        assert!(svg.contains(&style::hex(colour)), "no {colour:?}");
+    }
+    // one set of axes: the x label once
+    let without = phase_svg(&two_series(), &series_options(Vec::new())).unwrap();
+    assert!(!without.contains("paper"));
+    assert_ne!(svg, without);
+}
+
+/// A heatmap has no series, and a reference must belong to a drawn panel and be finite.
+#[test]
+fn series_and_references_are_refused_where_they_cannot_be_drawn() {
+    let heatmap: Vec<PhasePoint> = [(1.0, 1.0, 0.1), (2.0, 1.0, 0.2)]
+        .map(|(x, y, value)| PhasePoint {
+            x,
+            y: Some(y),
+            value,
+            panel: 0,
+        })
+        .to_vec();
+    let options = PhaseOptions {
+        y_label: Some("y".into()),
+        series: true,
+        ..PhaseOptions::default()
+    };
+    assert!(phase_svg(&heatmap, &options).is_err());
+    let stray = Reference {
+        label: "stray".into(),
+        series: Some(2),
+        points: vec![(1.0, 0.5)],
+    };
+    assert!(phase_svg(&two_series(), &series_options(vec![stray])).is_err());
+    let infinite = Reference {
+        label: "infinite".into(),
+        series: None,
+        points: vec![(1.0, f64::INFINITY)],
+    };
+    assert!(phase_svg(&two_series(), &series_options(vec![infinite])).is_err());
+}
+
+/// Over a heatmap a reference is a red line through its points, placed between the cells
+/// of the values around it, and changes the drawing.
+#[test]
+fn a_reference_over_a_heatmap_is_a_labelled_red_line() {
+    let points: Vec<PhasePoint> = [(0.0, 1.0), (0.0, 2.0), (1.0, 1.0), (1.0, 2.0)]
+        .map(|(x, y)| PhasePoint {
+            x,
+            y: Some(y),
+            value: x + y,
+            panel: 0,
+        })
+        .to_vec();
+    let options = |references| PhaseOptions {
+        y_label: Some("y".into()),
+        references,
+        ..PhaseOptions::default()
+    };
+    let border = Reference {
+        label: "border".into(),
+        series: None,
+        points: vec![(0.5, 1.0), (0.5, 2.0)],
+    };
+    let svg = phase_svg(&points, &options(vec![border])).unwrap();
+    assert!(svg.contains("\nborder\n</text>"));
+    assert!(svg.contains(&style::hex(BOUND)));
+    assert!(
+        !phase_svg(&points, &options(Vec::new()))
+            .unwrap()
+            .contains(&style::hex(BOUND))
+    );
+    assert_eq!(cell_position(&[0.0, 1.0, 3.0], 2.0, false), 1.5);
+    assert_eq!(cell_position(&[0.0, 1.0, 3.0], 4.0, false), 2.5);
+}
+
+/// Two categories along x, three seeds each: "PointMass" (0) and "Unicycle(())" (1).
+fn categorical_points() -> Vec<PhasePoint> {
+    [
+        (0.0, 0.2),
+        (0.0, 0.4),
+        (0.0, 0.9),
+        (1.0, 0.1),
+        (1.0, 0.3),
+        (1.0, f64::NAN),
+    ]
+    .map(|(x, value)| PhasePoint {
+        x,
+        y: None,
+        value,
+        panel: 0,
+    })
+    .to_vec()
+}
+
+fn categorical_options() -> PhaseOptions {
+    PhaseOptions {
+        x_label: "vehicle".into(),
+        metric: "m".into(),
+        x_categories: vec!["PointMass".into(), "Unicycle(x: 1, y: 2)".into()],
+        ..PhaseOptions::default()
+    }
+}
+
+/// A categorical x is labelled with its categories' names, in the given order; the table names
+/// them (quoted where they hold a comma); indices outside the categories, a log x and a bound
+/// are refused.
+#[test]
+fn categories_are_named_on_the_axis_and_in_the_table() {
+    let svg = phase_svg(&categorical_points(), &categorical_options()).unwrap();
+    for name in ["PointMass", "Unicycle(x: 1, y: 2)"] {
+        assert!(svg.contains(&format!("\n{name}\n</text>")), "no {name}");
+    }
+    let table = phase_table(&categorical_points(), &categorical_options()).unwrap();
+    assert_eq!(
+        table,
+        "panel,x,y,runs,mean,low,high\n,PointMass,,3,0.5,0.2,0.9\n,\"Unicycle(x: 1, y: 2)\",,2,0.2,0.1,0.3\n"
+    );
+    let mut stray = categorical_points();
+    stray[0].x = 2.0;
+    assert!(phase_svg(&stray, &categorical_options()).is_err());
+    for options in [
+        PhaseOptions {
+            log_x: true,
+            ..categorical_options()
+        },
+        PhaseOptions {
+            bound: Some(Bound {
+                x: 0.5,
+                label: "b".into(),
+            }),
+            ..categorical_options()
+        },
+    ] {
+        assert!(phase_svg(&categorical_points(), &options).is_err());
+    }
+}
+
+/// The band's meaning is in the legend of a line diagram, as the band drawn.
+#[test]
+fn the_legend_says_what_the_band_is() {
+    for (band, meaning, other) in [
+        (
+            Band::MinMax,
+            "min–max over the seeds",
+            "25–75 % of the seeds",
+        ),
+        (
+            Band::Quantiles,
+            "25–75 % of the seeds",
+            "min–max over the seeds",
+        ),
+    ] {
+        let options = PhaseOptions {
+            band,
+            ..PhaseOptions::default()
+        };
+        let svg = phase_svg(&two_series()[..2], &options).unwrap();
+        assert!(svg.contains(&format!("\n{meaning}\n</text>")), "{meaning}");
+        assert!(!svg.contains(other), "{other}");
+        assert!(svg.contains("\nmean over the seeds\n</text>"));
+    }
+}
+
+/// A log colour scale places the geometric mean of the least and largest means at mid-scale
+/// (the linear one their arithmetic mean), and is refused where a value is not positive.
+#[test]
+fn a_log_colour_scale_is_linear_in_ln_value() {
+    let heatmap = |values: [f64; 3]| -> Vec<PhasePoint> {
+        values
+            .iter()
+            .enumerate()
+            .map(|(k, &value)| PhasePoint {
+                x: k as f64,
+                y: Some(0.0),
+                value,
+                panel: 0,
+            })
+            .collect()
+    };
+    let options = |log_colour| PhaseOptions {
+        y_label: Some("y".into()),
+        log_colour,
+        ..PhaseOptions::default()
+    };
+    let points = heatmap([0.001, 0.1, 10.0]);
+    let options_log = options(true);
+    let diagram = grid::Diagram::new(&points, &options_log).unwrap();
+    let middle = ViridisRGB.get_color_normalized(0.5, 0.0, 1.0);
+    // within one level of the map's middle (0.5 is not exact in floating point)
+    let near = |c: plotters::style::RGBColor| {
+        [(c.0, middle.0), (c.1, middle.1), (c.2, middle.2)]
+            .iter()
+            .all(|&(a, b)| a.abs_diff(b) <= 1)
+    };
+    assert!(near(diagram.colour(0.1, (0.001, 10.0))));
+    let options_linear = options(false);
+    let linear = grid::Diagram::new(&points, &options_linear).unwrap();
+    assert!(near(linear.colour(5.0005, (0.001, 10.0))));
+    assert!(!near(linear.colour(0.1, (0.001, 10.0))));
+    let svg_log = phase_svg(&points, &options(true)).unwrap();
+    assert_ne!(svg_log, phase_svg(&points, &options(false)).unwrap());
+    let error = phase_svg(&heatmap([0.0, 0.1, 10.0]), &options(true)).unwrap_err();
+    assert!(error.to_string().contains("positive"), "{error}");
+}
