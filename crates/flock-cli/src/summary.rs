@@ -3,19 +3,8 @@
 use std::fmt;
 
 use flocking::metrics::{Closest, FlockMetrics};
+use flocking::run_dir::is_count_column;
 use flocking::{RunSummary, VerdictKind};
-
-/// The diagnostic columns that count agents (`docs/outputs.md`), besides the vehicles' limits
-/// (`at_…_limit`): printed as whole numbers.
-pub const COUNT_COLUMNS: [&str; 7] = [
-    "inside_obstacles",
-    "stress_towards",
-    "stress_away",
-    "stress_neutral",
-    "at_acceleration_limit",
-    "at_speed_limit",
-    "failed",
-];
 
 /// The units of the diagnostic columns that have one (`docs/outputs.md`); the others are ratios
 /// or counts.
@@ -41,9 +30,7 @@ pub const LABEL_WIDTH: usize = 27;
 /// value as [`measure`] with its unit (`gamma_position_error 0.03050 m`).
 #[must_use]
 pub fn diagnostic(name: &str, value: f64) -> String {
-    let counts =
-        COUNT_COLUMNS.contains(&name) || name.starts_with("at_") && name.ends_with("_limit");
-    if counts && value.fract() == 0.0 && value.abs() < 1e15 {
+    if is_count_column(name) && value.fract() == 0.0 && value.abs() < 1e15 {
         format!("{value:.0}")
     } else {
         let unit = UNITS
