@@ -274,6 +274,52 @@ function shownTime(text) {
   return [Number(m[1]), Number(m[2] || 0)];
 }
 
+/** The readout's rows as [label, value, unit] (`#readout`). */
+async function readoutRows(page) {
+  return page.$$eval('#readout tr', (rows) =>
+    rows.map((row) => Array.from(row.children).map((cell) => cell.textContent)),
+  );
+}
+
+/**
+ * The readout shows t and every measure of the data at frame k: the labels and units of
+ * `data.measures`, each value the frame's to 4 significant digits.
+ */
+async function checkReadout(page, data, k, what) {
+  const rows = await readoutRows(page);
+  check(rows.length === 1 + data.measures.length, `${what}: ${rows.length} readout rows for ${data.measures.length} measures`);
+  check(rows[0][0] === 'time t' && rows[0][2] === 's', `${what}: the first readout row is ${JSON.stringify(rows[0])}`);
+  const near = (text, x) => {
+    if (x === null) return text === '–';
+    const shown = Number(text);
+    return Number.isFinite(shown) && Math.abs(shown - x) <= 5e-4 * Math.max(Math.abs(x), 1e-300);
+  };
+  check(near(rows[0][1], data.t[k]), `${what}: the readout's t is ${rows[0][1]}, frame ${k} is at ${data.t[k]}`);
+  data.measures.forEach((m, j) => {
+    const [label, value, unit] = rows[j + 1];
+    check(label === m.label && unit === m.unit, `${what}: readout row ${j + 1} is ${JSON.stringify(rows[j + 1])}, expected ${m.label} (${m.unit})`);
+    check(near(value, m.v[k]), `${what}: ${m.label} reads ${value}, frame ${k} has ${m.v[k]}`);
+  });
+}
+
+/** The pixels near the `ink` colour (anti-aliased lines included) in the canvas's lower right corner (the 3D axis triad). */
+async function cornerInk(page, colours) {
+  return page.evaluate((ink) => {
+    const canvas = document.getElementById('canvas');
+    const copy = document.createElement('canvas');
+    copy.width = canvas.width;
+    copy.height = canvas.height;
+    const context = copy.getContext('2d', { willReadFrequently: true });
+    context.drawImage(canvas, 0, 0);
+    const px = context.getImageData(canvas.width - 96, canvas.height - 96, 96, 96).data;
+    let count = 0;
+    for (let o = 0; o < px.length; o += 4) {
+      if (Math.abs(px[o] - ink[0]) + Math.abs(px[o + 1] - ink[1]) + Math.abs(px[o + 2] - ink[2]) < 90) count++;
+    }
+    return count;
+  }, colours.ink);
+}
+
 function checkTime(data, seen, what) {
   const [t, failed] = shownTime(seen.time);
   check(
@@ -379,7 +425,9 @@ async function main() {
     // 1. The first frame as loaded.
     const first = await checkAgents(page, colour, data, size, 0, 0, 'first frame');
     checkTime(data, first, 'first frame');
-    summary.checks.first_frame = { agent_pixels: first.agentPixels, markers: first.blobs };
+    check(data.measures.length >= 10, `the readout holds ${data.measures.length} measures: the run's metrics are missing`);
+    await checkReadout(page, data, 0, 'first frame');
+    summary.checks.first_frame = { agent_pixels: first.agentPixels, markers: first.blobs, measures: data.measures.length };
 
     // 2. Play, then pause.
     check(!(await isPlaying(page)), '#play reads "Play" before playing');
@@ -407,11 +455,13 @@ async function main() {
     await scrubTo(page, last);
     const scrubbed = await checkAgents(page, colour, data, size, last, 0, `scrubbed to frame ${last}`);
     checkTime(data, scrubbed, 'scrubbed');
+    await checkReadout(page, data, last, `scrubbed to frame ${last}`);
     check(scrubbed.hash !== stillPaused.hash, 'scrubbing did not change the drawing');
     check(await page.evaluate(() => window.flockPlayer.frame()) === last, 'flockPlayer.frame() ≠ scrubbed frame');
     const mid = Math.floor(frames / 2);
     await scrubTo(page, mid);
     const middle = await checkAgents(page, colour, data, size, mid, 0, `scrubbed to frame ${mid}`);
+    await checkReadout(page, data, mid, `scrubbed to frame ${mid}`);
     check(middle.hash !== scrubbed.hash, 'frames differ but their drawings do not');
     noProblems('scrubbing');
     summary.checks.scrub = { frames: [last, mid] };
@@ -462,7 +512,11 @@ async function main() {
     noProblems('toggling the zoom');
     summary.checks.zoom = { bbox_unzoomed: withEdges.bbox, bbox_zoomed: zoomed.bbox, markers: zoomed.blobs };
 
-    // 7. 3D: the top view projects the agents on (x, y).
+    // 7. 3D: an axis triad in the lower right corner of each view (2D: none); the top view
+    // projects the agents on (x, y).
+    const triad = await cornerInk(page, colour);
+    check(data.dim === 3 ? triad >= 40 : triad < 40, `${triad} ink pixels in the lower right corner of a ${data.dim}D view`);
+    summary.checks.triad_ink = triad;
     if (data.dim === 3) {
       const names = data.views.map((v) => v.name);
       check(names.length === 2, `3D views: ${names.join(', ')}`);

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Parser, Subcommand};
+use flock_cli::summary::padded;
 use flock_cli::{Progress, Report, errln, out, outln};
 use flock_viz::{FigureOptions, plot_run_with};
 use flocking::bench::BenchError;
@@ -703,9 +704,9 @@ fn execute(
             );
             // judged on the whole metrics.csv, also after a resume
             if let Some(verdict) = &finished.verdict {
-                outln!("  {:<21} {verdict}", verdict.label());
+                outln!("  {} {verdict}", padded(verdict.label()));
             }
-            outln!("  outputs               {}", finished.path.display());
+            outln!("  {} {}", padded("outputs"), finished.path.display());
             return Ok(finished.path);
         }
         Err(error) => error,

@@ -635,7 +635,10 @@ fn issue_27_the_metrics_of_an_empty_flock_are_undefined() {
     let out = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     assert!(
-        out.contains("metrics               undefined: no agent is left"),
+        out.contains(&format!(
+            "{} undefined: no agent is left",
+            flock_cli::summary::padded("metrics")
+        )),
         "{out}"
     );
     assert!(!out.contains("connectivity C"), "{out}");

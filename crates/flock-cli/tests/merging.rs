@@ -108,7 +108,8 @@ fn merged_agents_are_warned_at_the_first_record_and_counted() {
     }
     let merged: Vec<usize> = sizes.values().copied().filter(|&s| s > 1).collect();
     let expected = format!(
-        "merged agents         {} agent(s) on {} point(s)",
+        "  {} {} agent(s) on {} point(s)   (closer than 10⁻³ d",
+        flock_cli::summary::padded("merged agents"),
         merged.iter().sum::<usize>(),
         merged.len()
     );

@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use flocking::metrics::{FlockMetrics, FlockingCriteria};
-use flocking::run_dir::{OutputOptions, RunDirectory, TIME, TrajectoryFormat, VERDICT_FILE};
+use flocking::run_dir::{
+    OutputOptions, RunDirectory, TIME, TrajectoryFormat, VERDICT_FILE, is_count_column,
+};
 use flocking::{DynSimulation, Record, Recorder, RunError, Scenario, ScenarioProtocol, Start};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyUserWarning, PyValueError};
@@ -260,10 +262,26 @@ fn set_vehicle(
     }
 }
 
-/// A column of `metrics.csv`: `collisions` and `components` count, the others are reals.
+/// A column of `metrics.csv`: the counts ([`is_count_column`]: `collisions`, `components`, the
+/// diagnostics' counts) are integers, the others reals.
 enum Column {
     Real(Vec<f64>),
     Integer(Vec<i64>),
+}
+
+impl Column {
+    /// The column `name` as Python gets it: a count column of whole numbers as integers (a real
+    /// column otherwise, NaN and ∞ included, as it is).
+    fn counted(self, name: &str) -> Self {
+        match self {
+            Self::Real(values)
+                if is_count_column(name) && values.iter().all(|x| x.fract() == 0.0) =>
+            {
+                Self::Integer(values.iter().map(|&x| x as i64).collect())
+            }
+            column => column,
+        }
+    }
 }
 
 /// The dict that `flocking.Run` wraps; `verdict` is the first line of `flocking.txt`.
@@ -285,7 +303,7 @@ fn result<'py>(
     )?;
     let metrics = PyDict::new(py);
     for (name, column) in columns {
-        match column {
+        match column.counted(&name) {
             Column::Real(values) => metrics.set_item(name, PyArray1::from_vec(py, values))?,
             Column::Integer(values) => metrics.set_item(name, PyArray1::from_vec(py, values))?,
         }
@@ -325,7 +343,7 @@ struct PyRecorder {
     dir: Option<RunDirectory>,
     /// H(0), for a checkpoint after `controls` failed: that of the first record, or the start's.
     initial_energy: Option<f64>,
-    /// The progress line, when asked.
+    /// The progress, told to a Python sink, when asked.
     progress: Option<Progress>,
 }
 
@@ -369,7 +387,7 @@ fn execute<'py>(
     start: Option<&Start>,
     dir: Option<RunDirectory>,
     keep_trajectory: bool,
-    (controls, progress): (Option<&PythonControls>, bool),
+    (controls, progress): (Option<&PythonControls>, Option<Py<PyAny>>),
 ) -> PyResult<(Memory, Option<PathBuf>, Option<String>)> {
     let scenario = &sim.scenario().clone();
     let t0 = start.map_or(0.0, |s| s.steps as f64 * scenario.step);
@@ -377,7 +395,7 @@ fn execute<'py>(
         memory: Memory::new(scenario, keep_trajectory),
         dir,
         initial_energy: start.map(|s| s.initial_energy),
-        progress: progress.then(|| Progress::new(t0, scenario.duration, scenario.step)),
+        progress: progress.map(|sink| Progress::new(sink, t0, scenario.duration, scenario.step)),
     };
     let initial_energy = recorder.initial_energy;
     let ((outcome, recorder), raised) = watched(py, move || {
@@ -396,7 +414,7 @@ fn execute<'py>(
         progress,
     } = recorder;
     if let Some(progress) = progress {
-        progress.clear();
+        progress.close();
     }
     let error = match outcome {
         Ok(verdict) => {
@@ -524,7 +542,7 @@ fn warn(py: Python<'_>, scenario: &Scenario) -> PyResult<()> {
 /// before the step it was called for, leaves `out` resumable with the same `controls`, and is
 /// raised again.
 #[pyfunction]
-#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false, controls = None, progress = false))]
+#[pyo3(signature = (scenario, out = None, *, trajectory = true, trajectory_format = "csv", checkpoint_every = 1000, force = false, controls = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -535,7 +553,7 @@ pub fn run<'py>(
     checkpoint_every: u64,
     force: bool,
     controls: Option<Py<PyAny>>,
-    progress: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let format = TrajectoryFormat::from_str(trajectory_format).map_err(PyValueError::new_err)?;
     let scenario = &scenario.inner;
@@ -596,13 +614,13 @@ pub fn run<'py>(
 /// run's), and returns the whole run read back from it. A run made with `controls` needs the same
 /// `controls` to continue as it would have.
 #[pyfunction]
-#[pyo3(signature = (dir, *, checkpoint_every = 1000, controls = None, progress = false))]
+#[pyo3(signature = (dir, *, checkpoint_every = 1000, controls = None, progress = None))]
 pub fn resume<'py>(
     py: Python<'py>,
     dir: PathBuf,
     checkpoint_every: u64,
     controls: Option<Py<PyAny>>,
-    progress: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let source = controls.as_ref().map(|f| controls_source(py, f));
     let (interrupted, scenario, start) =
@@ -702,15 +720,7 @@ pub fn read_run(py: Python<'_>, dir: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let columns = files
         .metrics
         .into_iter()
-        .map(|(name, values)| {
-            let column = if name == "collisions" || name == "components" {
-                // whole numbers, as written
-                Column::Integer(values.iter().map(|&x| x as i64).collect())
-            } else {
-                Column::Real(values)
-            };
-            (name, column)
-        })
+        .map(|(name, values)| (name, Column::Real(values)))
         .collect();
     let vehicle_columns = trajectory.vehicle_columns.clone();
     let vehicle = trajectory.vehicle;

@@ -77,7 +77,9 @@ def test_diagnostic_columns_follow_energy():
     names = list(result.metrics)
     assert names[: len(METRICS)] == METRICS
     for name in names[len(METRICS) :]:
-        assert result.metrics[name].dtype == np.float64
+        # the stress counts (ACC 2004 eq. 31) count agents: integers, as collisions and components
+        counts = name in ("stress_towards", "stress_away", "stress_neutral")
+        assert result.metrics[name].dtype == (np.int64 if counts else np.float64), name
 
 
 def test_simulation_shapes():

@@ -85,8 +85,8 @@ def test_to_xarray(fig11_run):
     attrs = data.attrs
     assert (attrs["name"], attrs["dim"], attrs["agents"], attrs["seed"]) == ("tac2006_fig11_alg2_n100", 2, 100, 11)
     assert (attrs["step"], attrs["duration"], attrs["algorithm"]) == (0.01, 0.9, "Algorithm2")
-    assert (attrs["alpha_d"], attrs["alpha_epsilon"], attrs["alpha_h"]) == (7.0, 0.1, 0.2)
-    assert attrs["alpha_r"] == pytest.approx(8.4)  # resolved: 1.2 d
+    assert (attrs["alpha.d"], attrs["alpha.epsilon"], attrs["alpha.h"]) == (7.0, 0.1, 0.2)
+    assert attrs["alpha.r"] == pytest.approx(8.4)  # resolved: 1.2 d
     assert flocking.Scenario.from_ron(attrs["scenario"]).to_ron() == run.scenario.to_ron() == attrs["scenario"]
     for value in attrs.values():
         assert isinstance(value, (str, int, float)) or all(isinstance(x, (int, float)) for x in value), value

@@ -1,8 +1,10 @@
 // The player of `flocking run --plot` (crates/flock-viz/src/player.rs embeds this file in the page):
 // draws one frame of the run data in <script id="flock-data"> on the canvas — agents as oriented
 // triangles (failed ones as crosses), the proximity net's edges (|q_j - q_i| < r; a fixed graph's
-// `edges` if the data has them), obstacles, the gamma-agent, a scale bar —
-// and plays, scrubs, zooms and (3D) switches views. Colours come from the data (`colours`).
+// `edges` if the data has them), obstacles, the gamma-agent, a scale bar, merged agents ringed with
+// their count, the x, y, z axis triad of a 3D view — and a readout of t and the run's measures at
+// the frame shown (`measures`); plays, scrubs, zooms and (3D) switches views. Colours come from the
+// data (`colours`).
 'use strict';
 (function () {
 const data = JSON.parse(document.getElementById('flock-data').textContent);
@@ -16,6 +18,7 @@ const edgesBox = document.getElementById('edges');
 const zoomBox = document.getElementById('zoom');
 const viewSelect = document.getElementById('view');
 const timeLabel = document.getElementById('time');
+const readout = document.getElementById('readout');
 const dim = data.dim;
 const frames = data.t.length;
 const r2 = data.range * data.range;
@@ -26,6 +29,44 @@ let lastStamp = null;
 
 function fmt(x) {
   return (Math.round(x * 100) / 100).toString();
+}
+
+// A measure as the readout prints it: 4 significant digits, the exponent form below 1e-3 and
+// from 1e5 on, '–' for a value that is not finite (null in the data).
+function sig(x) {
+  if (x === null || !isFinite(x)) return '–';
+  const a = Math.abs(x);
+  if (a === 0) return '0';
+  if (a < 1e-3 || a >= 1e5) return x.toExponential(3).replace('e+', 'e');
+  return x.toPrecision(4);
+}
+
+// The readout's rows, built once; their values are set per frame.
+const readoutCells = [];
+function buildReadout() {
+  if (!readout) return;
+  const row = (label, unit) => {
+    const tr = document.createElement('tr');
+    const th = document.createElement('th');
+    th.textContent = label;
+    const td = document.createElement('td');
+    const u = document.createElement('th');
+    u.textContent = unit;
+    tr.append(th, td, u);
+    readout.append(tr);
+    return td;
+  };
+  readoutCells.push(row('time t', 's'));
+  for (const m of data.measures) readoutCells.push(row(m.label, m.unit));
+}
+
+function updateReadout() {
+  if (!readout) return;
+  readoutCells[0].textContent = sig(data.t[current]);
+  data.measures.forEach((m, k) => {
+    const v = m.v[current];
+    readoutCells[k + 1].textContent = m.count && v !== null ? String(Math.round(v)) : sig(v);
+  });
 }
 
 // The proximity net: pairs i < j with |q_j - q_i|^2 < r^2, found on a grid of cells of side r.
@@ -97,6 +138,33 @@ function draw() {
   const Y = (y) => H - (oy + (y - y0) * s);
   ctx.fillStyle = COLOURS.background;
   ctx.fillRect(0, 0, W, H);
+
+  // 3D: the x, y, z axes as this view projects them, in the lower right corner, under the
+  // agents.
+  if (dim === 3) {
+    const ax = W - 48, ay = H - 48, A = 30;
+    ctx.save();
+    ctx.strokeStyle = COLOURS.ink;
+    ctx.fillStyle = COLOURS.ink;
+    ctx.lineWidth = 1.5;
+    ctx.font = '12px sans-serif';
+    ctx.textAlign = 'center';
+    ctx.textBaseline = 'middle';
+    ['x', 'y', 'z'].forEach((name, e) => {
+      const dx = view.u[e], dy = view.v[e];
+      ctx.beginPath();
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(ax + A * dx, ay - A * dy);
+      ctx.stroke();
+      // an axis seen end-on (top view's z) is a dot with its name beside it
+      const len = Math.hypot(dx, dy);
+      const lx = len > 0.2 ? ax + (A + 9) * dx / Math.max(len, 1) : ax + 9;
+      const ly = len > 0.2 ? ay - (A + 9) * dy / Math.max(len, 1) : ay + 9;
+      if (len <= 0.2) { ctx.beginPath(); ctx.arc(ax, ay, 2, 0, 2 * Math.PI); ctx.fill(); }
+      ctx.fillText(name, lx, ly);
+    });
+    ctx.restore();
+  }
 
   for (const o of view.obstacles) {
     ctx.beginPath();
@@ -178,6 +246,24 @@ function draw() {
     ctx.stroke();
   }
 
+  // Merged agents: one point however many markers, ringed and labelled with their count.
+  const merged = data.merged ? data.merged[current] : [];
+  ctx.save();
+  ctx.strokeStyle = COLOURS.ink;
+  ctx.fillStyle = COLOURS.ink;
+  ctx.lineWidth = 1.5;
+  ctx.font = 'bold 12px sans-serif';
+  for (let k = 0; k < merged.length; k += 2) {
+    if (q[merged[k] * dim] === null) continue;
+    const c = project(view, q, merged[k]);
+    const cx = X(c[0]), cy = Y(c[1]);
+    ctx.beginPath();
+    ctx.arc(cx, cy, L, 0, 2 * Math.PI);
+    ctx.stroke();
+    ctx.fillText(String(merged[k + 1]), cx + 0.8 * L, cy - 0.8 * L);
+  }
+  ctx.restore();
+
   // A scale bar of a round length, about a fifth of the window.
   const target = (x1 - x0) / 5;
   const pow = Math.pow(10, Math.floor(Math.log10(target)));
@@ -196,6 +282,7 @@ function draw() {
     (failed.size > 0 ? ', ' + failed.size + ' failed (×)' : '');
   scrub.value = String(current);
   canvas.dataset.frame = String(current);
+  updateReadout();
 }
 
 function show(k) {
@@ -238,6 +325,7 @@ scrub.addEventListener('input', () => show(Number(scrub.value)));
 edgesBox.addEventListener('change', draw);
 zoomBox.addEventListener('change', draw);
 if (viewSelect) viewSelect.addEventListener('change', draw);
+buildReadout();
 window.flockPlayer = { frames: frames, frame: () => current, show: show, play: () => setPlaying(true), pause: () => setPlaying(false) };
 draw();
 })();

@@ -160,7 +160,10 @@ pub fn write_figures(
         write("animation.gif", &animation_gif(scene, animation)?)?;
     }
     if let Some(player) = &options.player {
-        write("player.html", player_html(scene, player)?.as_bytes())?;
+        write(
+            "player.html",
+            player_html(scene, metrics, player)?.as_bytes(),
+        )?;
     }
     Ok(written)
 }

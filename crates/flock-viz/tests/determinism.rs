@@ -34,7 +34,7 @@ fn every_figure_is_byte_identical_when_drawn_twice() {
             metrics_svg(&metrics, &small_metrics).unwrap().into_bytes(),
             metrics_png(&metrics, &small_metrics).unwrap(),
             animation_gif(&scene, &anim).unwrap(),
-            player_html(&cube, &PlayerOptions::default())
+            player_html(&cube, None, &PlayerOptions::default())
                 .unwrap()
                 .into_bytes(),
         ]

@@ -143,7 +143,7 @@ pub fn temp_dir(name: &str) -> PathBuf {
 }
 
 /// A JSON value, as the player's data is checked.
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Json {
     Null,
     Bool(bool),

@@ -273,10 +273,16 @@ class Run:
     def to_pandas(self) -> Any:
         """The metrics as a pandas DataFrame (needs ``flocking[pandas]``)."""
     def to_xarray(self) -> Any:
-        """The run as an ``xarray.Dataset``: q, p over time × agent × axis, the metrics over time,
-        the scenario's parameters as attributes (needs ``flocking[xarray]``)."""
-    def player_html(self, *, max_frames: int = 500, size: int = 480) -> str:
-        """The run in the self-contained canvas player of ``flocking plot``."""
+        """The run as an ``xarray.Dataset``: q, p over time × agent × axis, the vehicle's state
+        over time × agent, the metrics over time (each with ``long_name`` and units, counts
+        int64), the scenario's parameters as attributes, each once (needs ``flocking[xarray]``)."""
+    def player_html(
+        self, *, max_frames: int = 500, size: int = 480, max_bytes: Optional[int] = None
+    ) -> str:
+        """The run in the self-contained canvas player of ``flocking plot``, with the readout of
+        its metrics; with ``max_bytes``, fewer frames (evenly spaced) when it would be larger."""
+    def player(self, *, max_frames: int = 500, size: int = 480, max_bytes: int = 1_000_000) -> Any:
+        """The player in an iframe for Jupyter, within ``max_bytes`` (1 MB by default)."""
     def _repr_html_(self) -> str: ...
 
 def _render(

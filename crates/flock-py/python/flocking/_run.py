@@ -62,13 +62,88 @@ UNITS: Dict[str, str] = {
     "failed": "1",
 }
 
-# The top-level fields of a scenario written into to_xarray()'s attributes, flattened.
+# The bytes of page that Run.player() embeds in a notebook at most.
+PLAYER_BUDGET = 1_000_000
+
+# What each column of metrics.csv measures (docs/outputs.md): to_xarray()'s ``long_name``. A
+# column not listed is named by itself.
+LONG_NAMES: Dict[str, str] = {
+    "connectivity": "connectivity C = rank(L)/(n - 1)",
+    "giant_component": "giant component C*: the largest group's share of the agents",
+    "cohesion_radius": "cohesion radius R = max_i |q_i - q_c|",
+    "deviation_energy": "deviation energy E~ = E/d^2 (TAC 2006 eq. 7)",
+    "velocity_mismatch": "velocity mismatch K~ = K/n, K = 1/2 sum_i |p_i - p_c|^2",
+    "min_distance": "least distance between two agents",
+    "collisions": "pairs closer than the collision distance",
+    "energy": "energy H of the algorithm's theorem (per unit mass)",
+    "polarisation": "polarisation |sum_i p_i/|p_i|| / n",
+    "milling": "milling |sum_i r_ic x p_i/|p_i|| / n",
+    "nearest_neighbour_mean": "mean distance to the nearest neighbour",
+    "nearest_neighbour_min": "least distance to the nearest neighbour",
+    "group_speed": "group speed |p_c|",
+    "components": "groups: connected components of the net",
+    "obstacle_clearance": "least signed distance to an obstacle",
+    "inside_obstacles": "agents inside obstacles",
+    "defect_factor": "defect factor mu = V + w |grad V|^2 (CDS 03-006 eq. 46)",
+    "normalised_defect_factor": "normalised defect factor mu_n (CDS 03-006 eq. 47)",
+    "structural_energy": "structural energy H_s = V + K_r (CDS 03-006 eq. 48)",
+    "translational_energy": "translational energy H_tr (CDS 03-006 eq. 49)",
+    "gamma_position_error": "distance |q_mean - q_r| of the flock's centre from the gamma-agent",
+    "gamma_velocity_error": "difference |p_mean - p_r| of the mean velocity from the gamma-agent's",
+    "stress_towards": "agents of positive local stress (ACC 2004 eq. 31)",
+    "stress_away": "agents of negative local stress (ACC 2004 eq. 31)",
+    "stress_neutral": "agents of zero local stress (ACC 2004 eq. 31)",
+    "velocity_disagreement": "velocity disagreement 1/2 sum_i |p_i - p_c|^2",
+    "min_linked_distance": "least distance over the fixed graph's edges",
+    "velocity_correlation": "velocity correlation phi_corr (Vasarhelyi et al. 2018)",
+    "speed_ratio": "mean speed over the flocking speed (Vasarhelyi et al. 2018)",
+    "collision_ratio": "collision ratio phi_coll (Vasarhelyi et al. 2018)",
+    "wall_violation": "mean distance outside the arena phi_wall (Vasarhelyi et al. 2018)",
+    "links_lost": "fraction of candidate links lost at the last control update",
+    "information_age": "mean age of the neighbour states used",
+    "at_acceleration_limit": "agents whose commanded acceleration was clipped",
+    "at_speed_limit": "agents whose speed was clipped",
+    "failed": "agents failed so far",
+    "at_turn_rate_limit": "robots at their turn-rate limit",
+    "at_wheel_limit": "robots at their wheel-speed limit",
+    "at_airspeed_limit": "aircraft at their airspeed limit",
+    "at_bank_limit": "aircraft at their bank limit",
+    "at_flight_path_limit": "aircraft at their flight-path limit",
+    "at_thrust_limit": "quadrotors whose rotor commands were shifted or clipped",
+    "at_tilt_limit": "quadrotors held at their tilt limit",
+    "acceleration_tracking_error": "mean |(p+ - p)/h - u_i|: the vehicles' tracking error",
+}
+
+# The vehicles' state variables (Trajectory.vehicle_columns, docs/outputs.md): (long name, unit).
+VEHICLE_STATE: Dict[str, Tuple[str, str]] = {
+    "heading": ("unicycle heading theta", "rad"),
+    "speed": ("unicycle forward speed v", "m s-1"),
+    "turn_rate": ("unicycle turn rate omega", "rad s-1"),
+    "airspeed": ("fixed-wing airspeed V", "m s-1"),
+    "course": ("fixed-wing course chi, from +x counter-clockwise", "rad"),
+    "bank": ("fixed-wing bank phi", "rad"),
+    "flight_path": ("fixed-wing flight-path angle gamma", "rad"),
+    "attitude_w": ("quadrotor attitude quaternion, w", "1"),
+    "attitude_x": ("quadrotor attitude quaternion, x", "1"),
+    "attitude_y": ("quadrotor attitude quaternion, y", "1"),
+    "attitude_z": ("quadrotor attitude quaternion, z", "1"),
+    "angular_velocity_x": ("quadrotor body angular velocity, x", "rad s-1"),
+    "angular_velocity_y": ("quadrotor body angular velocity, y", "rad s-1"),
+    "angular_velocity_z": ("quadrotor body angular velocity, z", "rad s-1"),
+    "rotor_speed_1": ("quadrotor rotor speed, front-left", "rad s-1"),
+    "rotor_speed_2": ("quadrotor rotor speed, rear-left", "rad s-1"),
+    "rotor_speed_3": ("quadrotor rotor speed, rear-right", "rad s-1"),
+    "rotor_speed_4": ("quadrotor rotor speed, front-right", "rad s-1"),
+}
+
+# The top-level fields of a scenario written into to_xarray()'s attributes, flattened (the α
+# parameters are written resolved, from Scenario.alpha).
 _SCENARIO_FIELDS = (
     "algorithm",
-    "alpha",
     "initial",
     "integrator",
     "collision_distance",
+    "vehicle",
     "obstacles",
     "conditions",
 )
@@ -82,6 +157,73 @@ def _show_progress(progress: Optional[bool]) -> bool:
         return bool(_sys.stderr is not None and _sys.stderr.isatty())
     except (AttributeError, ValueError):
         return False
+
+
+def _in_notebook() -> bool:
+    """Whether this runs in a Jupyter kernel (IPython already imported, with a kernel)."""
+    ipython = _sys.modules.get("IPython")
+    if ipython is None:
+        return False
+    try:
+        shell = ipython.get_ipython()
+    except AttributeError:
+        return False
+    return shell is not None and getattr(shell, "kernel", None) is not None
+
+
+class _TerminalProgress:
+    """A progress line on ``sys.stderr``, redrawn in place (``\\r``) and cleared at the end."""
+
+    def __init__(self) -> None:
+        self.width = 0
+
+    def update(self, line: str, fraction: float) -> None:
+        self.width = max(self.width, len(line))
+        _sys.stderr.write("\r" + line.ljust(self.width))
+        _sys.stderr.flush()
+
+    def close(self, line: str) -> None:
+        if self.width:
+            _sys.stderr.write("\r" + " " * self.width + "\r")
+            _sys.stderr.flush()
+
+
+class _NotebookProgress:
+    """In Jupyter: a progress bar and its line in one output, updated in place through an
+    ``IPython.display`` handle, and kept when done with the last line."""
+
+    def __init__(self) -> None:
+        display = _importlib.import_module("IPython.display")
+        self._html = display.HTML
+        self.fraction = 0.0
+        self.handle = display.display(self._html(self._bar("starting…", 0.0)), display_id=True)
+
+    @staticmethod
+    def _bar(line: str, fraction: float) -> str:
+        return (
+            f'<div style="font-family:monospace;font-size:12px"><progress max="1" value="{fraction:.3f}" '
+            f'style="width:16em;vertical-align:middle"></progress> {_html.escape(line)}</div>'
+        )
+
+    def update(self, line: str, fraction: float) -> None:
+        # the text bar of the terminal's line is the <progress> element here
+        text = line.split("] ", 1)[-1]
+        self.fraction = fraction
+        self.handle.update(self._html(self._bar(text, fraction)))
+
+    def close(self, line: str) -> None:
+        # the last line of a finished run says (100 %); an interrupted one keeps its last fraction
+        self.handle.update(self._html(self._bar(line, 1.0 if "(100 %)" in line else self.fraction)))
+
+
+def _progress_sink(progress: Optional[bool]) -> Optional[Any]:
+    """Where a run's or a sweep's progress goes: in Jupyter a bar kept when done (unless
+    ``progress=False``), elsewhere a line on ``sys.stderr`` when asked or when it is a terminal."""
+    if progress is False:
+        return None
+    if _in_notebook():
+        return _NotebookProgress()
+    return _TerminalProgress() if _show_progress(progress) else None
 
 
 def _flatten(prefix: str, value: Any, attrs: Dict[str, Any]) -> None:
@@ -220,7 +362,7 @@ class Run:
       ``giant_component``, ``cohesion_radius``, ``deviation_energy``, ``velocity_mismatch``,
       ``min_distance``, ``collisions`` (int64), ``energy``, ``polarisation``, ``milling``,
       ``nearest_neighbour_mean``, ``nearest_neighbour_min``, ``group_speed``, ``components``
-      (int64), then the protocol's diagnostics), one entry per recorded step.
+      (int64), then the protocol's diagnostics, its counts int64), one entry per recorded step.
     - ``trajectory``: the recorded states, or None when the run kept none (``trajectory=False``);
       recorded at the same instants as the metrics.
     - ``final``: the final state.
@@ -252,8 +394,9 @@ class Run:
         )
 
     def to_pandas(self) -> "pandas.DataFrame":
-        """The metrics as a pandas DataFrame, one row per recorded step (needs pandas:
-        ``pip install 'flocking[pandas]'``)."""
+        """The metrics as a pandas DataFrame, one row per recorded step, the counts
+        (``collisions``, ``components``, ``failed``, every ``at_…_limit``, …) as int64 (needs
+        pandas: ``pip install 'flocking[pandas]'``)."""
         pandas = _require("pandas", "pandas", "Run.to_pandas()")
         return pandas.DataFrame(self.metrics)
 
@@ -271,21 +414,31 @@ class Run:
           its metrics and its trajectory at the same instants (t = 0, every ``record_every``
           steps and the last step), so they share the one ``time`` dimension. (A run directory
           whose files disagree would give the metrics their own ``metrics_time``.)
-        - Attributes: the scenario's ``name``, ``dim``, ``agents``, ``seed``, ``step``,
-          ``duration``, ``record_every``, ``algorithm``, the resolved α parameters as
-          ``alpha_d``, ``alpha_r``, ``alpha_epsilon``, ``alpha_a``, ``alpha_b``, ``alpha_h``,
-          ``alpha_c1``, ``alpha_c2``; the rest of the scenario flattened by dotted path (the gains
-          ``algorithm.c1``, ``algorithm.c2``, …, ``algorithm`` the variant's name, likewise
-          ``initial.positions``, ``integrator``, ``collision_distance``, ``obstacles.0.radius``,
-          ``conditions.communication.delay``; booleans as 0/1); the full RON text as
-          ``scenario``, and ``verdict`` and ``path`` when the run has them.
+        - With a ``vehicle`` other than ``PointMass``, its state variables (``heading``,
+          ``speed``, ``turn_rate`` of a unicycle, …, ``Trajectory.vehicle_columns``) over
+          (time, agent), each with its ``long_name`` and unit.
+        - Every variable and coordinate has a ``long_name`` (what it measures,
+          ``docs/outputs.md``); the counts (``collisions``, ``components``, every
+          ``at_…_limit``, …) are int64.
+        - Attributes, each name once: the scenario's ``name``, ``dim``, ``agents``, ``seed``,
+          ``step``, ``duration``, ``record_every``; the rest of the scenario flattened by dotted
+          path (``algorithm`` the variant's name and its gains ``algorithm.c1``, …; the resolved
+          α parameters ``alpha.d``, ``alpha.r``, ``alpha.epsilon``, ``alpha.a``, ``alpha.b``,
+          ``alpha.h``, ``alpha.c1``, ``alpha.c2``; ``initial.positions``, ``integrator``,
+          ``collision_distance``, the vehicle and its parameters ``vehicle = "Unicycle"``,
+          ``vehicle.max_speed``, …, ``obstacles.0.radius``, ``conditions.communication.delay``;
+          booleans as 0/1); the full RON text as ``scenario``, and ``verdict`` and ``path``
+          when the run has them.
         """
         xarray = _require("xarray", "xarray", "Run.to_xarray()")
         scenario = self.scenario
         n, dim = self.final.positions.shape
         metrics = dict(self.metrics)
         times = metrics.pop("t")
-        coords: Dict[str, Any] = {"agent": _np.arange(n), "axis": ["x", "y", "z"][:dim]}
+        coords: Dict[str, Any] = {
+            "agent": ("agent", _np.arange(n), {"long_name": "agent index i"}),
+            "axis": ("axis", ["x", "y", "z"][:dim], {"long_name": "axis of space"}),
+        }
         data: Dict[str, Any] = {}
         trajectory = self.trajectory
         if trajectory is not None:
@@ -300,6 +453,14 @@ class Run:
                 trajectory.velocities,
                 {"long_name": "velocity p_i", "units": "m s-1"},
             )
+            if trajectory.vehicle is not None:
+                for k, column in enumerate(trajectory.vehicle_columns):
+                    long_name, units = VEHICLE_STATE.get(column, (column.replace("_", " "), "1"))
+                    data[column] = (
+                        ("time", "agent"),
+                        trajectory.vehicle[:, :, k],
+                        {"long_name": long_name, "units": units},
+                    )
             if trajectory.failed is not None:
                 data["agent_failed"] = (
                     ("time", "agent"),
@@ -310,7 +471,8 @@ class Run:
         metrics_time = "time" if same else "metrics_time"
         coords[metrics_time] = times
         for name, column in metrics.items():
-            data[name] = ((metrics_time,), column, {"units": UNITS.get(name, "1")})
+            long_name = LONG_NAMES.get(name, name.replace("_", " "))
+            data[name] = ((metrics_time,), column, {"long_name": long_name, "units": UNITS.get(name, "1")})
         algorithm = scenario.value("algorithm")
         attrs: Dict[str, Any] = {
             "name": scenario.name,
@@ -320,9 +482,7 @@ class Run:
             "step": scenario.step,
             "duration": scenario.duration,
             "record_every": scenario.record_every,
-            "algorithm": next(iter(algorithm)) if isinstance(algorithm, dict) else str(algorithm),
         }
-        attrs.update({f"alpha_{name}": value for name, value in scenario.alpha.items()})
         for field in _SCENARIO_FIELDS:
             try:
                 value = scenario.value(field)
@@ -330,6 +490,7 @@ class Run:
                 continue
             _flatten(field, value, attrs)
         attrs["algorithm"] = next(iter(algorithm)) if isinstance(algorithm, dict) else str(algorithm)
+        attrs.update({f"alpha.{name}": value for name, value in scenario.alpha.items()})
         attrs["scenario"] = scenario.to_ron()
         if self.verdict is not None:
             attrs["verdict"] = self.verdict
@@ -363,21 +524,36 @@ class Run:
             rows["verdict"] = self.verdict
         return rows
 
-    def player_html(self, *, max_frames: int = 500, size: int = 480) -> str:
-        """The run in the self-contained canvas player of ``flocking plot`` (``player.html``), at
-        most ``max_frames`` frames on a ``size`` × ``size`` canvas. Needs the trajectory."""
+    def player_html(self, *, max_frames: int = 500, size: int = 480, max_bytes: Optional[int] = None) -> str:
+        """The run in the self-contained canvas player of ``flocking plot`` (``player.html``),
+        with the readout of its metrics, at most ``max_frames`` frames on a ``size`` × ``size``
+        canvas; with ``max_bytes``, fewer frames when the page would be larger (evenly spaced,
+        first and last kept; the page says so). Needs the trajectory."""
         if self.trajectory is None:
             raise ValueError("the run kept no trajectory: run it with trajectory=True")
         t = self.trajectory
+        metrics = [(name, _np.asarray(column, dtype=float)) for name, column in self.metrics.items()]
         return _flocking.run_player_html(
-            self.scenario, t.times, t.positions, t.velocities, max_frames=max_frames, size=size
+            self.scenario,
+            t.times,
+            t.positions,
+            t.velocities,
+            metrics,
+            max_frames=max_frames,
+            size=size,
+            max_bytes=max_bytes,
         )
 
-    def player(self, *, max_frames: int = 500, size: int = 480) -> _Html:
-        """The HTML player of :meth:`player_html` in an iframe, for Jupyter to show (its size
-        grows with agents × frames: about 11 MB at n = 1,000 and 500 frames)."""
-        player = _html.escape(self.player_html(max_frames=max_frames, size=size), quote=True)
-        width, height = size + 80, size + 160
+    def player(self, *, max_frames: int = 500, size: int = 480, max_bytes: int = PLAYER_BUDGET) -> _Html:
+        """The HTML player of :meth:`player_html` in an iframe, for Jupyter to show, within
+        ``max_bytes`` (1 MB by default, :data:`PLAYER_BUDGET`, as a notebook keeps it in the
+        ``.ipynb``): a larger run shows fewer frames, evenly spaced, first and last kept, and the
+        player says how many under its canvas (200 agents × 501 frames: 198 frames, 0.96 MB of
+        2.4 MB)."""
+        player = _html.escape(
+            self.player_html(max_frames=max_frames, size=size, max_bytes=max_bytes), quote=True
+        )
+        width, height = size + 320, size + 180
         return _Html(
             f'<iframe srcdoc="{player}" style="width:{width}px;height:{height}px;border:none"></iframe>'
         )
@@ -429,9 +605,11 @@ def run(
 ) -> Run:
     """Runs ``scenario`` to its end: the bits of ``flocking run`` of the same scenario.
 
-    ``progress``: a line of the simulated time, steps/s and the time left on ``sys.stderr`` while
-    it runs; by default only when ``sys.stderr`` is a terminal (never in a notebook's captured
-    output or a pipe). ``False`` hides it, ``True`` draws it anywhere.
+    ``progress``: the simulated time, steps/s and the time left while it runs. In Jupyter (an
+    IPython kernel) a bar in the cell's output, updated in place and kept when done with the
+    run's last line (steps, wall time); elsewhere a line on ``sys.stderr``, redrawn and cleared at
+    the end, by default only when ``sys.stderr`` is a terminal (never in a pipe or a captured
+    stream). ``False`` hides it, ``True`` draws it anywhere.
 
     With ``out``, also writes its run directory as ``flocking run --out`` does, byte for byte
     (``trajectory_format`` ``"csv"`` or ``"npy"``; a checkpoint every ``checkpoint_every``
@@ -464,7 +642,7 @@ def run(
         checkpoint_every=checkpoint_every,
         force=force,
         controls=controls,
-        progress=_show_progress(progress),
+        progress=_progress_sink(progress),
     )
     return Run._from_dict(raw)
 
@@ -485,7 +663,7 @@ def resume(
             str(dir),
             checkpoint_every=checkpoint_every,
             controls=controls,
-            progress=_show_progress(progress),
+            progress=_progress_sink(progress),
         )
     )
 

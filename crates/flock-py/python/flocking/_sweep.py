@@ -8,7 +8,6 @@ import json as _json
 import math as _math
 import os as _os
 import re as _re
-import sys as _sys
 import time as _time
 from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Union
 
@@ -16,7 +15,7 @@ import numpy as _np
 
 from . import _flocking
 from ._flocking import Scenario
-from ._run import Controls, Path, _require, _show_progress
+from ._run import Controls, Path, _progress_sink, _require
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
@@ -136,11 +135,12 @@ def _grid_text(base: Scenario, axes: Mapping[str, Sequence[Any]], seeds: int, na
 
 
 class _SweepProgress:
-    """``runs done/total`` with runs/s and the time left on ``sys.stderr``, redrawn at most five
-    times a second and cleared at the end."""
+    """``runs done/total`` with runs/s and the time left, told to a progress sink (a line on a
+    terminal's ``sys.stderr``, or a bar in Jupyter kept when done: ``_run._progress_sink``) at
+    most five times a second."""
 
-    def __init__(self, done: int, total: int) -> None:
-        self.done, self.total, self.start, self.last, self.drawn = done, total, _time.monotonic(), 0.0, False
+    def __init__(self, done: int, total: int, sink: Any) -> None:
+        self.done, self.total, self.start, self.last, self.sink = done, total, _time.monotonic(), 0.0, sink
         self.first = done
 
     def advance(self) -> None:
@@ -153,14 +153,12 @@ class _SweepProgress:
         ran = self.done - self.first
         rate = ran / elapsed if elapsed > 0 else 0.0
         left = f"{(self.total - self.done) / rate:.0f} s left" if rate > 0 else "…"
-        _sys.stderr.write(f"\rsweep: {self.done}/{self.total} runs  {rate:.2f} runs/s  {left}   ")
-        _sys.stderr.flush()
-        self.drawn = True
+        self.sink.update(f"sweep: {self.done}/{self.total} runs  {rate:.2f} runs/s  {left}", self.done / self.total)
 
     def clear(self) -> None:
-        if self.drawn:
-            _sys.stderr.write("\r" + " " * 60 + "\r")
-            _sys.stderr.flush()
+        elapsed = _time.monotonic() - self.start
+        share = 100 * self.done / max(self.total, 1)
+        self.sink.close(f"sweep: {self.done}/{self.total} runs in {elapsed:.1f} s ({share:.0f} %)")
 
 
 def _sweep_run(text: str, index: int, controls: Optional[Controls] = None, check: bool = False):
@@ -211,8 +209,8 @@ def sweep(
     each grid point (default 1): the sweep file with that base inlined, the same runs and rows
     (``out/sweep.ron`` keeps it; ``name`` defaults to the base's).
 
-    ``progress``: a line of runs done, runs/s and the time left on ``sys.stderr``; by default
-    only when ``sys.stderr`` is a terminal.
+    ``progress``: runs done, runs/s and the time left: in Jupyter a bar kept when done, elsewhere a
+    line on ``sys.stderr``, by default only when ``sys.stderr`` is a terminal.
 
     Each run is one call of a worker function submitted to ``executor``: a local process pool
     with one worker per core by default; a Dask cluster with
@@ -274,7 +272,8 @@ def sweep(
         if executor is None:
             executor = _futures.ProcessPoolExecutor(max_workers=_os.cpu_count() or 1)
         futures = []
-        bar = _SweepProgress(count - len(pending), count) if _show_progress(progress) else None
+        sink = _progress_sink(progress)
+        bar = _SweepProgress(count - len(pending), count, sink) if sink is not None else None
         try:
             futures = [
                 executor.submit(_sweep_run, text, k, controls, check_on_worker) for k in pending

@@ -25,6 +25,7 @@ pub use read::{
 };
 pub use verdict::{VERDICT_FILE, judge_metrics_file, read_records, verdict_text};
 pub use write::{
-    CONTROLS_FILE, CreateError, Finished, INCOMPLETE_FILE, InterruptedRun, METRICS_HEADER,
-    OutputOptions, ResumeError, RunDirectory, TrajectoryFormat, partial_path,
+    CONTROLS_FILE, COUNT_COLUMNS, CreateError, Finished, INCOMPLETE_FILE, InterruptedRun,
+    METRICS_HEADER, OutputOptions, ResumeError, RunDirectory, TrajectoryFormat, is_count_column,
+    partial_path,
 };

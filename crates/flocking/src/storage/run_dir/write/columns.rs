@@ -16,6 +16,35 @@ use crate::storage::run_dir::read::{FAILED_COLUMN, trajectory_header_with};
 /// number of components; the protocol's diagnostics follow.
 pub const METRICS_HEADER: &str = "t,connectivity,giant_component,cohesion_radius,deviation_energy,velocity_mismatch,min_distance,collisions,energy,polarisation,milling,nearest_neighbour_mean,nearest_neighbour_min,group_speed,components";
 
+/// The columns of `metrics.csv` that count agents or pairs (`docs/outputs.md`), besides every
+/// vehicle limit `at_…_limit` ([`is_count_column`]).
+pub const COUNT_COLUMNS: [&str; 9] = [
+    "collisions",
+    "components",
+    "inside_obstacles",
+    "stress_towards",
+    "stress_away",
+    "stress_neutral",
+    "at_acceleration_limit",
+    "at_speed_limit",
+    "failed",
+];
+
+/// Whether the `metrics.csv` column `name` counts agents or pairs (whole numbers, printed as
+/// such): [`COUNT_COLUMNS`] and every `at_…_limit`.
+///
+/// # Example
+/// ```
+/// use flocking::run_dir::is_count_column;
+///
+/// assert!(is_count_column("collisions") && is_count_column("at_bank_limit"));
+/// assert!(!is_count_column("connectivity") && !is_count_column("links_lost"));
+/// ```
+#[must_use]
+pub fn is_count_column(name: &str) -> bool {
+    COUNT_COLUMNS.contains(&name) || name.starts_with("at_") && name.ends_with("_limit")
+}
+
 /// Whether the trajectory and `final.csv` of `scenario` mark each agent `failed`: its conditions
 /// have `faults` (issue 28; the column's sum at a record is `metrics.csv`'s `failed`).
 pub(super) fn marks_failed(scenario: &Scenario) -> bool {

@@ -43,7 +43,7 @@ mod record;
 mod resume;
 mod same_run;
 
-pub use columns::METRICS_HEADER;
+pub use columns::{COUNT_COLUMNS, METRICS_HEADER, is_count_column};
 pub use controls::CONTROLS_FILE;
 pub use directory::{Finished, RunDirectory, partial_path};
 pub use errors::{CreateError, ResumeError};
