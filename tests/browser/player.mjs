@@ -241,24 +241,15 @@ async function checkAgents(page, colours, data, size, k, v, what) {
   if (down > 0) {
     // each failed agent is a cross of the failed colour through its position
     const failed = agentPoints(data, size, k, v, true);
-    const crossed = await page.evaluate(
-      ({ colour, points }) => {
-        const canvas = document.getElementById('canvas');
-        const copy = document.createElement('canvas');
-        copy.width = canvas.width;
-        copy.height = canvas.height;
-        const context = copy.getContext('2d', { willReadFrequently: true });
-        context.drawImage(canvas, 0, 0);
-        return points.map(([i, cx, cy]) => {
-          const px = context.getImageData(Math.floor(cx) - 1, Math.floor(cy) - 1, 3, 3).data;
-          for (let o = 0; o < px.length; o += 4) {
-            if (px[o] === colour[0] && px[o + 1] === colour[1] && px[o + 2] === colour[2]) return -1;
-          }
-          return i;
-        }).filter((i) => i >= 0);
-      },
-      { colour: colours.failed, points: failed },
-    );
+    const crossed = [];
+    for (const [i, cx, cy] of failed) {
+      const px = await pixels(page, Math.floor(cx) - 1, Math.floor(cy) - 1, 3, 3);
+      let hit = false;
+      for (let o = 0; o < px.length; o += 4) {
+        hit ||= px[o] === colours.failed[0] && px[o + 1] === colours.failed[1] && px[o + 2] === colours.failed[2];
+      }
+      if (!hit) crossed.push(i);
+    }
     check(
       crossed.length === 0,
       `${what}: failed agents ${JSON.stringify(crossed.slice(0, 5))} have no cross at their position`,
@@ -302,22 +293,34 @@ async function checkReadout(page, data, k, what) {
   });
 }
 
-/** The pixels near the `ink` colour (anti-aliased lines included) in the canvas's lower right corner (the 3D axis triad). */
-async function cornerInk(page, colours) {
-  return page.evaluate((ink) => {
+/**
+ * The RGBA bytes of the canvas's w × h pixels from (x, y), read from a copy, so that the player's
+ * own canvas is never read back (Chromium warns when it is).
+ */
+async function pixels(page, x, y, w, h) {
+  return page.evaluate(([x, y, w, h]) => {
     const canvas = document.getElementById('canvas');
     const copy = document.createElement('canvas');
     copy.width = canvas.width;
     copy.height = canvas.height;
     const context = copy.getContext('2d', { willReadFrequently: true });
     context.drawImage(canvas, 0, 0);
-    const px = context.getImageData(canvas.width - 96, canvas.height - 96, 96, 96).data;
-    let count = 0;
-    for (let o = 0; o < px.length; o += 4) {
-      if (Math.abs(px[o] - ink[0]) + Math.abs(px[o + 1] - ink[1]) + Math.abs(px[o + 2] - ink[2]) < 90) count++;
-    }
-    return count;
-  }, colours.ink);
+    return Array.from(context.getImageData(x, y, w, h).data);
+  }, [x, y, w, h]);
+}
+
+/**
+ * The pixels near the `ink` colour (anti-aliased lines included) in the canvas's 96 × 96 lower
+ * right corner, where a 3D view draws its axis triad.
+ */
+async function cornerInk(page, colours, size) {
+  const px = await pixels(page, size[0] - 96, size[1] - 96, 96, 96);
+  const ink = colours.ink;
+  let count = 0;
+  for (let o = 0; o < px.length; o += 4) {
+    if (Math.abs(px[o] - ink[0]) + Math.abs(px[o + 1] - ink[1]) + Math.abs(px[o + 2] - ink[2]) < 90) count++;
+  }
+  return count;
 }
 
 function checkTime(data, seen, what) {
@@ -514,7 +517,7 @@ async function main() {
 
     // 7. 3D: an axis triad in the lower right corner of each view (2D: none); the top view
     // projects the agents on (x, y).
-    const triad = await cornerInk(page, colour);
+    const triad = await cornerInk(page, colour, size);
     check(data.dim === 3 ? triad >= 40 : triad < 40, `${triad} ink pixels in the lower right corner of a ${data.dim}D view`);
     summary.checks.triad_ink = triad;
     if (data.dim === 3) {
