@@ -215,7 +215,7 @@ pub fn figures(
             source,
         })?;
         for name in DROPPED_RUN_FILES {
-            owned::remove_file(&dir, &name).map_err(FiguresError::Dir)?;
+            owned::remove_file(&dir, name).map_err(FiguresError::Dir)?;
         }
         let images: Vec<String> = [
             "snapshots.png",
