@@ -516,8 +516,8 @@ mod tests {
     /// labelled tick at each end (issue 53 item 8): at least two, whatever the decade.
     #[test]
     fn a_log_panel_of_less_than_a_decade_has_two_ticks() {
-        use plotters::coord::ranged1d::Ranged;
         use plotters::coord::combinators::LogCoord;
+        use plotters::coord::ranged1d::Ranged;
         for a in -14..=6 {
             let lo = 2.0 * 10f64.powi(a);
             let range = fitted_range([lo, 1.5 * lo].into_iter(), true);
