@@ -2,13 +2,14 @@
 //!
 //! For each `*.ron` of the fixtures directory (sorted by name), [`figures()`] runs the scenario into
 //! `OUT/<fixture stem>/` (a [`RunDirectory`], replaced if present and flocking's: a directory
-//! there holding anything else is refused, untouched), draws its figures with [`plot_run`], then
-//! keeps only what the page and a reader need:
+//! there holding anything else is refused, untouched), draws its figures with
+//! [`plot_run_with`] (all but the GIF: the player shows the same motion), then keeps only what
+//! the page and a reader need:
 //!
 //! | kept | dropped |
 //! | --- | --- |
 //! | `scenario.ron`, `metrics.csv` (small, rerunnable, plottable) | `trajectory.csv`, `final.csv` (large, regenerable) |
-//! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/reynolds.{svg,png}` (the (α, α) fixtures), `figures/player.html` (unless `--no-player`) | `figures/animation.gif` (the largest file, and the player shows the same motion) |
+//! | `figures/snapshots*.{svg,png}`, `figures/metrics.{svg,png}`, `figures/reynolds.{svg,png}` (the (α, α) fixtures), `figures/player.html` (unless `--no-player`, which does not draw it) | |
 //!
 //! `OUT/index.html` is [`flock_viz::index_html`]'s page: per fixture its paper reference, the
 //! paper's caption and statements quoted beside our measures, its parameters (the paper's or
@@ -26,8 +27,8 @@ use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 
 use flock_viz::{
-    FUNCTIONS_DIR, FigureEntry, PlotError, ReportFunction, function_png, function_svg, index_html,
-    load_metrics, paper_reference, plot_run,
+    FUNCTIONS_DIR, FigureEntry, FigureOptions, Output, PlotError, ReportFunction, function_png,
+    function_svg, index_html, load_metrics, paper_reference, plot_run_with,
 };
 use flocking::owned::{self, DirError, DirLock, Kind};
 use flocking::run_dir::CreateError;
@@ -37,9 +38,6 @@ use crate::progress::Progress;
 
 /// The run files deleted once the figures are drawn.
 pub const DROPPED_RUN_FILES: [&str; 2] = ["trajectory.csv", "final.csv"];
-
-/// The figure files deleted once drawn.
-pub const DROPPED_FIGURES: [&str; 1] = ["animation.gif"];
 
 /// Why `flocking figures` stopped.
 #[derive(Debug)]
@@ -174,6 +172,14 @@ pub fn figures(
     // a gallery of an older flocking has no manifest: its files are recognised by name once
     owned::start_manifest(out, &own_files).map_err(FiguresError::Dir)?;
 
+    // the GIF is dropped (the player shows the same motion): not drawn at all
+    let options = FigureOptions {
+        outputs: [Output::Snapshots, Output::Metrics]
+            .into_iter()
+            .chain(player.then_some(Output::Player))
+            .collect(),
+        ..FigureOptions::default()
+    };
     let mut entries = Vec::with_capacity(paths.len());
     for path in &paths {
         let stem = path
@@ -204,18 +210,12 @@ pub fn figures(
             .into_inner()
             .finish()
             .map_err(|e| run_err(RunError::Record(e)))?;
-        plot_run(&dir).map_err(|source| FiguresError::Plot {
+        plot_run_with(&dir, &options).map_err(|source| FiguresError::Plot {
             fixture: stem.clone(),
             source,
         })?;
-        let figures = |name: &str| format!("{}/{name}", owned::FIGURES_DIR);
-        let dropped = DROPPED_RUN_FILES
-            .iter()
-            .map(|&name| name.to_owned())
-            .chain(DROPPED_FIGURES.iter().map(|name| figures(name)))
-            .chain((!player).then(|| figures("player.html")));
-        for name in dropped {
-            owned::remove_file(&dir, &name).map_err(FiguresError::Dir)?;
+        for name in DROPPED_RUN_FILES {
+            owned::remove_file(&dir, name).map_err(FiguresError::Dir)?;
         }
         let images: Vec<String> = [
             "snapshots.png",

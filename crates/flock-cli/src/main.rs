@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use clap::{Parser, Subcommand};
 use flock_cli::summary::padded;
 use flock_cli::{Progress, Report, errln, out, outln};
-use flock_viz::{FigureOptions, plot_run_with};
+use flock_viz::{FigureOptions, Output, plot_run_with};
 use flocking::bench::BenchError;
 use flocking::estimate::Outputs;
 use flocking::metrics::{Closest, FlockingCriteria};
@@ -73,6 +73,13 @@ enum Command {
         /// With --plot: colour each edge by the sign of its stress weight (as `flocking plot`).
         #[arg(long, requires = "plot")]
         stress_edges: bool,
+        /// With --plot: the figures to draw, some of snapshots, metrics, gif, player (as
+        /// `flocking plot --outputs`; default all).
+        #[arg(long, value_name = "LIST", requires = "plot", value_delimiter = ',')]
+        plot_outputs: Option<Vec<Output>>,
+        /// With --plot: the snapshot times in seconds, e.g. `0,5,10` (as `flocking plot --times`).
+        #[arg(long, value_name = "LIST", requires = "plot", value_delimiter = ',', value_parser = parse_time)]
+        plot_times: Option<Vec<f64>>,
         /// No progress bar (it is shown only on a terminal, for runs longer than about a second).
         #[arg(long)]
         quiet: bool,
@@ -117,6 +124,18 @@ enum Command {
         /// scenario's `snapshots`, else a tenth of the run.
         #[arg(long, value_name = "T")]
         reynolds_at: Option<f64>,
+        /// The figures to draw, separated by commas: some of snapshots (with the 3D views and
+        /// an (α, α) run's Reynolds reading), metrics, gif, player; default all.
+        #[arg(long, value_name = "LIST", value_delimiter = ',')]
+        outputs: Option<Vec<Output>>,
+        /// The snapshot times in seconds, separated by commas (`0,5,10`), each drawn at the record
+        /// nearest it; default the scenario's `snapshots`, else six even times. A time outside
+        /// the run is refused.
+        #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = parse_time)]
+        times: Option<Vec<f64>>,
+        /// No progress spinner (it is shown only on a terminal).
+        #[arg(long)]
+        quiet: bool,
     },
     /// Run a sweep file — a scenario over a grid of parameter values × seeds — into DIR/runs.csv,
     /// one row per run; or merge its shards, or plot its phase diagrams.
@@ -291,16 +310,19 @@ fn dispatch(command: Command) -> ExitCode {
             dir,
             stress_edges,
             reynolds_at,
+            outputs,
+            times,
+            quiet,
         } => {
-            if let Err(e) = check_plot_dir(&dir) {
+            if let Err(e) = flock_viz::plot::check_plot_dir(&dir) {
                 errln!("error: {e}");
                 return ExitCode::from(INVALID);
             }
             let options = FigureOptions {
                 reynolds_time: reynolds_at,
-                ..figure_options(stress_edges)
+                ..FigureOptions::plot(outputs, times, stress_edges)
             };
-            match plot_run_with(&dir, &options) {
+            match plot(&dir, &options, quiet) {
                 Ok(files) => {
                     outln!(
                         "{} figure file(s) in {}",
@@ -311,18 +333,10 @@ fn dispatch(command: Command) -> ExitCode {
                 }
                 Err(e) => {
                     errln!("error: {e}");
-                    match e {
-                        flock_viz::PlotError::Scenario(_) | flock_viz::PlotError::Dir(_) => {
-                            ExitCode::from(INVALID)
-                        }
-                        // a file flocking never writes through or over (`write_no_follow`'s
-                        // refusals: a link, a user's file, a user's `NAME.tmp`)
-                        flock_viz::PlotError::Viz(flock_viz::VizError::Io { source, .. })
-                            if source.kind() == std::io::ErrorKind::AlreadyExists =>
-                        {
-                            ExitCode::from(INVALID)
-                        }
-                        flock_viz::PlotError::Viz(_) => ExitCode::FAILURE,
+                    if e.is_refusal() {
+                        ExitCode::from(INVALID)
+                    } else {
+                        ExitCode::FAILURE
                     }
                 }
             }
@@ -385,6 +399,8 @@ fn dispatch(command: Command) -> ExitCode {
             no_resource_check,
             plot,
             stress_edges,
+            plot_outputs,
+            plot_times,
             quiet,
             epsilon1,
             epsilon2,
@@ -419,7 +435,11 @@ fn dispatch(command: Command) -> ExitCode {
             };
             let dir = dir.with_criteria(criteria);
             match execute(sim, dir, start.as_ref(), quiet, settle) {
-                Ok(out) if plot => match plot_run_with(&out, &figure_options(stress_edges)) {
+                Ok(out) if plot => match self::plot(
+                    &out,
+                    &FigureOptions::plot(plot_outputs, plot_times, stress_edges),
+                    quiet,
+                ) {
                     Ok(files) => {
                         outln!(
                             "  figures               {} file(s) in {}",
@@ -430,7 +450,12 @@ fn dispatch(command: Command) -> ExitCode {
                     }
                     Err(e) => {
                         errln!("error: the run is complete, but its figures failed: {e}");
-                        ExitCode::FAILURE
+                        errln!("draw them again with `flocking plot {}`", out.display());
+                        if e.is_refusal() {
+                            ExitCode::from(INVALID)
+                        } else {
+                            ExitCode::FAILURE
+                        }
                     }
                 },
                 Ok(_) => ExitCode::SUCCESS,
@@ -758,70 +783,35 @@ fn use_threads(threads: Option<usize>) -> Result<(), ExitCode> {
         })
 }
 
-/// Checks that `flocking plot DIR` may draw into `DIR/figures`: `DIR` is a complete run directory,
-/// and its `figures` is flocking's (`DIR` carries flocking's marker, and its manifest, when it has
-/// one, lists each figure present with its size and content) or does not exist yet, so that no
-/// file flocking did not write is replaced.
-fn check_plot_dir(dir: &Path) -> Result<(), String> {
-    if !dir.is_dir() {
-        return Err(format!(
-            "{} is not a directory; give a run directory written by `flocking run` (with its scenario.ron and metrics.csv)",
-            dir.display()
-        ));
-    }
-    for name in ["scenario.ron", "metrics.csv"] {
-        if !dir.join(name).is_file() {
-            let partial = flocking::run_dir::partial_path(dir);
-            let hint = if partial.is_dir() {
-                format!(
-                    "; the run is still in {} (finish it with `flocking run --resume {}`)",
-                    partial.display(),
-                    dir.display()
-                )
-            } else {
-                String::new()
-            };
-            return Err(format!(
-                "{} is not a complete run directory: it has no {name}{hint}",
-                dir.display()
-            ));
-        }
-    }
-    let figures = dir.join(flocking::owned::FIGURES_DIR);
-    let foreign = |entry: String| {
-        Err(flocking::owned::DirError::Foreign {
-            dir: dir.to_owned(),
-            entry,
-        }
-        .to_string())
-    };
-    let Ok(meta) = std::fs::symlink_metadata(&figures) else {
-        return Ok(());
-    };
-    if !flocking::owned::marked(dir, flocking::owned::Kind::Run) || !meta.is_dir() {
-        // a link (to a user's directory), a file, or figures of a directory without the marker
-        return foreign("figures".into());
-    }
-    // a figure's name that is a link or a directory is not one of flocking's files
-    for name in flocking::owned::RUN_FIGURES {
-        if std::fs::symlink_metadata(figures.join(name)).is_ok_and(|m| !m.is_file()) {
-            return foreign(format!("figures/{name}"));
-        }
-    }
-    // a figure the user saved over one of flocking's (issue 27: ownership by content)
-    let figures: Vec<String> = flocking::owned::RUN_FIGURES
-        .iter()
-        .map(|name| format!("{}/{name}", flocking::owned::FIGURES_DIR))
-        .collect();
-    flocking::owned::check_files(dir, &figures).map_err(|e| e.to_string())
+/// Draws the figures of the run in `dir` with `options`, a spinner on stderr while it does unless
+/// `quiet` or stderr is not a terminal.
+fn plot(
+    dir: &Path,
+    options: &FigureOptions,
+    quiet: bool,
+) -> Result<Vec<PathBuf>, flock_viz::PlotError> {
+    let _spinner = flock_cli::progress::Spinner::for_terminal(
+        &format!(
+            "drawing {}",
+            options
+                .outputs
+                .iter()
+                .map(|o| o.name())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        quiet,
+    );
+    plot_run_with(dir, options)
 }
 
-/// The figures' options: the defaults, with edges coloured by stress if asked.
-fn figure_options(stress_edges: bool) -> FigureOptions {
-    let mut options = FigureOptions::default();
-    options.snapshot.style.stress_edges = stress_edges;
-    if let Some(animation) = &mut options.animation {
-        animation.style.stress_edges = stress_edges;
+/// A time of `--times`: seconds, a finite number.
+fn parse_time(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() => Ok(t),
+        _ => Err(format!(
+            "{:?} is not a time: give seconds separated by commas, e.g. `0,5,10`",
+            text.trim()
+        )),
     }
-    options
 }

@@ -143,3 +143,34 @@ impl<R: Recorder> Recorder for Progress<R> {
         self.inner.merged(merge);
     }
 }
+
+/// A spinner on stderr while figures are drawn (`flocking plot`, `run --plot`): its message and
+/// the time elapsed, cleared when dropped; drawn only on a terminal and not `quiet`, and only
+/// after [`SHOW_AFTER`], so that quick plots print nothing.
+#[derive(Debug)]
+pub struct Spinner(Option<ProgressBar>);
+
+impl Spinner {
+    /// A spinner saying `message`, enabled when stderr is a terminal and not `quiet`.
+    #[must_use]
+    pub fn for_terminal(message: &str, quiet: bool) -> Self {
+        let enabled = !quiet && std::io::stderr().is_terminal();
+        Self(enabled.then(|| {
+            let bar = ProgressBar::new_spinner().with_message(message.to_owned());
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+            );
+            bar.enable_steady_tick(SHOW_AFTER);
+            bar
+        }))
+    }
+}
+
+impl Drop for Spinner {
+    fn drop(&mut self) {
+        if let Some(bar) = &self.0 {
+            bar.finish_and_clear();
+        }
+    }
+}

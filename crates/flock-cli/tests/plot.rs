@@ -2,7 +2,7 @@
 
 use std::fs;
 
-use crate::common::{flocking, stderr, temp_dir};
+use crate::common::{files, flocking, stderr, temp_dir};
 
 /// A short Algorithm 3 run in 2D with one ball in the way.
 const SCENARIO: &str = r#"Scenario(
@@ -258,4 +258,144 @@ fn a_users_tmp_beside_a_figure_is_kept_and_plot_refuses() {
     let drawn = flocking(tmp.path(), &["plot", "o"]);
     assert!(drawn.status.success(), "{}", stderr(&drawn));
     assert_eq!(fs::read(&moved).expect("kept"), b"mine\n");
+}
+
+/// `--outputs` draws the figures chosen and no other, the same bytes as when all are drawn; the
+/// default set is every output (`run --plot` as `plot --outputs snapshots,metrics,gif,player`);
+/// `--times` draws the snapshots at those times.
+#[test]
+fn plot_draws_the_outputs_and_times_chosen() {
+    let tmp = temp_dir("plot_outputs");
+    fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
+    let run = flocking(
+        tmp.path(),
+        &["run", "s.ron", "--out", "o", "--plot", "--quiet"],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let all = files(&tmp.path().join("o/figures"));
+    let names: Vec<&str> = all.keys().map(String::as_str).collect();
+    assert_eq!(
+        names,
+        [
+            "animation.gif",
+            "metrics.png",
+            "metrics.svg",
+            "player.html",
+            "snapshots.png",
+            "snapshots.svg"
+        ]
+    );
+    let every = flocking(
+        tmp.path(),
+        &[
+            "run",
+            "s.ron",
+            "--out",
+            "every",
+            "--plot",
+            "--quiet",
+            "--plot-outputs",
+            "snapshots,metrics,gif,player",
+        ],
+    );
+    assert!(every.status.success(), "{}", stderr(&every));
+    assert_eq!(files(&tmp.path().join("every/figures")), all);
+
+    let some = flocking(
+        tmp.path(),
+        &[
+            "run",
+            "s.ron",
+            "--out",
+            "some",
+            "--plot",
+            "--quiet",
+            "--plot-outputs",
+            "metrics,gif",
+        ],
+    );
+    assert!(some.status.success(), "{}", stderr(&some));
+    let drawn = files(&tmp.path().join("some/figures"));
+    let names: Vec<&str> = drawn.keys().map(String::as_str).collect();
+    assert_eq!(names, ["animation.gif", "metrics.png", "metrics.svg"]);
+    for (name, bytes) in &drawn {
+        assert_eq!(bytes, &all[name], "{name}");
+    }
+
+    let at = flocking(
+        tmp.path(),
+        &["plot", "some", "--outputs", "snapshots", "--times", "0,1"],
+    );
+    assert!(at.status.success(), "{}", stderr(&at));
+    let svg = fs::read_to_string(tmp.path().join("some/figures/snapshots.svg")).expect("svg");
+    assert!(
+        svg.contains("\nt = 1 s\n") && !svg.contains("t = 2"),
+        "two panels, at 0 and 1 s"
+    );
+
+    let wrong = flocking(tmp.path(), &["plot", "o", "--outputs", "snapshots,movie"]);
+    assert_eq!(wrong.status.code(), Some(2));
+    assert!(
+        stderr(&wrong).contains("\"movie\" is not a figure"),
+        "{}",
+        stderr(&wrong)
+    );
+}
+
+/// A snapshot time outside the run is refused, naming it and the run's span, before any figure
+/// is drawn (exit 2); `run --plot` keeps the run and says how to draw them again.
+#[test]
+fn a_snapshot_time_outside_the_run_is_refused() {
+    let tmp = temp_dir("plot_times");
+    fs::write(tmp.path().join("s.ron"), SCENARIO).expect("write the scenario");
+    let run = flocking(
+        tmp.path(),
+        &[
+            "run",
+            "s.ron",
+            "--out",
+            "o",
+            "--plot",
+            "--quiet",
+            "--plot-times",
+            "0,50",
+        ],
+    );
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    let message = stderr(&run);
+    assert!(
+        message.contains("snapshot time 50 s is outside the run, which spans 0 s to 2 s")
+            && message.contains("flocking plot o"),
+        "{message}"
+    );
+    assert!(
+        tmp.path().join("o/metrics.csv").is_file(),
+        "the run is kept"
+    );
+    assert!(!tmp.path().join("o/figures").exists(), "nothing drawn");
+    for times in ["-1", "2.5"] {
+        let plot = flocking(tmp.path(), &["plot", "o", &format!("--times={times}")]);
+        assert_eq!(plot.status.code(), Some(2), "{}", stderr(&plot));
+        assert!(
+            stderr(&plot).contains(&format!("snapshot time {times} s is outside")),
+            "{}",
+            stderr(&plot)
+        );
+    }
+    let plot = flocking(
+        tmp.path(),
+        &["plot", "o", "--times", "0,2", "--outputs", "snapshots"],
+    );
+    assert!(
+        plot.status.success(),
+        "the run's end is within it: {}",
+        stderr(&plot)
+    );
+    let bad = flocking(tmp.path(), &["plot", "o", "--times", "0,soon"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        stderr(&bad).contains("\"soon\" is not a time"),
+        "{}",
+        stderr(&bad)
+    );
 }

@@ -12,6 +12,7 @@
 //! - [`sweep`]: the pieces of `flocking.sweep` — a run of a sweep in any worker process, the output
 //!   directory of `flocking sweep`.
 //! - [`player`]: the HTML player of a run held in memory (`Run.player()`).
+//! - [`mod@plot`]: `flocking.plot` and `Run.plot`, the figures of `flocking plot`.
 //! - [`render`]: `_render`, one state as an RGB image (`render_mode="rgb_array"`).
 //! - [`progress`]: the progress line of `flocking.run` and `flocking.resume`.
 //! - [`mod@bench`]: `flocking.bench`, the engine of `flocking bench` with the same report.
@@ -28,6 +29,7 @@ pub mod inputs;
 pub mod interrupt;
 pub mod local;
 pub mod player;
+pub mod plot;
 pub mod progress;
 pub mod render;
 pub mod run;
@@ -53,6 +55,7 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(run::resume, module)?)?;
     module.add_function(wrap_pyfunction!(run::read_run, module)?)?;
     module.add_function(wrap_pyfunction!(player::run_player_html, module)?)?;
+    module.add_function(wrap_pyfunction!(plot::plot_run, module)?)?;
     module.add_function(wrap_pyfunction!(render::render, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_read, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_load, module)?)?;

@@ -14,6 +14,73 @@ use crate::scene::projection::View;
 use crate::snapshots::four_views::{views_png, views_svg};
 use crate::snapshots::snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
 
+/// A kind of figure of a run, as `flocking plot --outputs` and Python's `Run.plot(outputs=…)`
+/// name it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Output {
+    /// `snapshots.svg/png` (3D: `snapshots_top`, `views`), and an (α, α) run's `reynolds.svg/png`.
+    Snapshots,
+    /// `metrics.svg/png`, the metric curves.
+    Metrics,
+    /// `animation.gif`.
+    Gif,
+    /// `player.html`.
+    Player,
+}
+
+impl Output {
+    /// Every kind, in the order they are drawn: what `flocking plot` draws by default.
+    pub const ALL: [Self; 4] = [Self::Snapshots, Self::Metrics, Self::Gif, Self::Player];
+
+    /// The name a user gives: `snapshots`, `metrics`, `gif`, `player`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Snapshots => "snapshots",
+            Self::Metrics => "metrics",
+            Self::Gif => "gif",
+            Self::Player => "player",
+        }
+    }
+
+    /// A comma-separated list of names (`snapshots,gif`), each once.
+    ///
+    /// # Errors
+    /// A name that is not one of [`Output::ALL`]'s, or an empty list, naming the names there are.
+    pub fn parse_list(text: &str) -> Result<Vec<Self>, String> {
+        let mut outputs = Vec::new();
+        for name in text.split(',').map(str::trim) {
+            let output: Self = name.parse()?;
+            if !outputs.contains(&output) {
+                outputs.push(output);
+            }
+        }
+        Ok(outputs)
+    }
+}
+
+impl std::str::FromStr for Output {
+    type Err = String;
+
+    fn from_str(name: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|output| output.name() == name)
+            .ok_or_else(|| {
+                format!(
+                    "{name:?} is not a figure: give some of {}, separated by commas",
+                    Self::ALL.map(Self::name).join(", ")
+                )
+            })
+    }
+}
+
+impl std::fmt::Display for Output {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Which figures [`write_figures`] writes, and how.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FigureOptions {
@@ -27,10 +94,12 @@ pub struct FigureOptions {
     pub snapshot: SnapshotOptions,
     /// How the metric figure is drawn (its title defaults to the scene's).
     pub metrics: MetricsOptions,
-    /// The animated GIF, or `None` to skip it.
-    pub animation: Option<AnimationOptions>,
-    /// The HTML player, or `None` to skip it.
-    pub player: Option<PlayerOptions>,
+    /// Which figures are drawn (default [`Output::ALL`]).
+    pub outputs: Vec<Output>,
+    /// How the animated GIF is drawn.
+    pub animation: AnimationOptions,
+    /// How the HTML player is drawn.
+    pub player: PlayerOptions,
     /// The time (s) of the figure of ACC 2004's reading of an (α, α) run as Reynolds's rules
     /// (`reynolds.svg/png`, [`plot_run`](crate::plot_run) only), drawn at the record nearest it;
     /// `None`: [`crate::plot::reynolds_time`].
@@ -48,8 +117,9 @@ impl Default for FigureOptions {
             snapshot_times: None,
             snapshot: SnapshotOptions::default(),
             metrics: MetricsOptions::default(),
-            animation: Some(AnimationOptions::default()),
-            player: Some(PlayerOptions::default()),
+            outputs: Output::ALL.to_vec(),
+            animation: AnimationOptions::default(),
+            player: PlayerOptions::default(),
             reynolds_time: None,
             svg: true,
             png: true,
@@ -57,7 +127,34 @@ impl Default for FigureOptions {
     }
 }
 
-/// Writes the figures of a run into `dir` (created if needed) and returns the files written:
+impl FigureOptions {
+    /// The options of `flocking plot` and Python's `flocking.plot`: the `outputs` (default
+    /// [`Output::ALL`]), the snapshot `times` (default: the scenario's, else
+    /// [`snapshot_count`](Self::snapshot_count) even ones), and edges coloured by the sign of
+    /// their stress when `stress_edges`.
+    #[must_use]
+    pub fn plot(outputs: Option<Vec<Output>>, times: Option<Vec<f64>>, stress_edges: bool) -> Self {
+        let mut options = Self {
+            snapshot_times: times,
+            ..Self::default()
+        };
+        if let Some(outputs) = outputs {
+            options.outputs = outputs;
+        }
+        options.snapshot.style.stress_edges = stress_edges;
+        options.animation.style.stress_edges = stress_edges;
+        options
+    }
+
+    /// Whether `output` is drawn.
+    #[must_use]
+    pub fn draws(&self, output: Output) -> bool {
+        self.outputs.contains(&output)
+    }
+}
+
+/// Writes the figures of a run into `dir` (created if needed) and returns the files written, those
+/// of `options.outputs` among:
 ///
 /// | file | figure |
 /// | --- | --- |
@@ -110,6 +207,9 @@ pub fn write_figures(
     if scene.dim == 3 {
         views.push(("snapshots_top", View::TOP));
     }
+    if !options.draws(Output::Snapshots) {
+        views.clear();
+    }
     for (name, view) in views {
         let mut snapshot = options.snapshot.clone();
         snapshot.style.view = view;
@@ -127,7 +227,7 @@ pub fn write_figures(
         }
     }
 
-    if scene.dim == 3 {
+    if scene.dim == 3 && options.draws(Output::Snapshots) {
         let last = frames[frames.len() - 1];
         if options.svg {
             write(
@@ -140,7 +240,7 @@ pub fn write_figures(
         }
     }
 
-    if let Some(metrics) = metrics {
+    if let Some(metrics) = metrics.filter(|_| options.draws(Output::Metrics)) {
         let mut metrics_options = options.metrics.clone();
         if metrics_options.title.is_empty() && !scene.title.is_empty() {
             metrics_options.title = format!("{}: metrics", scene.title);
@@ -156,13 +256,13 @@ pub fn write_figures(
         }
     }
 
-    if let Some(animation) = &options.animation {
-        write("animation.gif", &animation_gif(scene, animation)?)?;
+    if options.draws(Output::Gif) {
+        write("animation.gif", &animation_gif(scene, &options.animation)?)?;
     }
-    if let Some(player) = &options.player {
+    if options.draws(Output::Player) {
         write(
             "player.html",
-            player_html(scene, metrics, player)?.as_bytes(),
+            player_html(scene, metrics, &options.player)?.as_bytes(),
         )?;
     }
     Ok(written)

@@ -29,7 +29,8 @@
 //! - [`phase_svg`], [`phase_png`], [`phase_table`]: the phase diagram of a parameter sweep;
 //!   [`plot_sweep`]: a sweep directory's, as `flocking sweep plot` and Python's `SweepResult.plot`
 //!   draw it.
-//! - [`write_figures`]: all of them into a directory, as `flocking plot` writes them.
+//! - [`write_figures`]: all of them (or the [`Output`]s chosen) into a directory, as `flocking plot`
+//!   writes them.
 //! - [`plot_run`]: the figures of a run directory, decorated from its `scenario.ron`.
 //! - [`index_html`]: the page of every fixture's figures that `flocking figures` writes, each beside
 //!   the paper's caption and statements ([`paper_figure`]) and its whole-run measures
@@ -37,13 +38,14 @@
 //!
 //! # Example
 //! ```
-//! use flock_viz::{FigureOptions, Frame, Scene, write_figures};
+//! use flock_viz::{FigureOptions, Frame, Output, Scene, write_figures};
 //! use glam::DVec2;
 //!
 //! let q = [DVec2::new(0.0, 0.0), DVec2::new(7.0, 0.0)];
 //! let scene = Scene::new(2, 8.4).with_frame(Frame::from_vectors(0.0, &q, &[DVec2::X; 2]));
 //! let dir = std::env::temp_dir().join(format!("flock-viz-doc-{}", std::process::id()));
-//! let options = FigureOptions { animation: None, png: false, ..FigureOptions::default() };
+//! let outputs = vec![Output::Snapshots, Output::Player];
+//! let options = FigureOptions { outputs, png: false, ..FigureOptions::default() };
 //! let written = write_figures(&scene, None, &dir, &options).unwrap();
 //! assert_eq!(written, [dir.join("snapshots.svg"), dir.join("player.html")]);
 //! # std::fs::remove_dir_all(&dir).unwrap();
@@ -67,7 +69,7 @@ pub use data::metric_series::Metrics;
 pub use data::run_data::{RunData, load_metrics, load_trajectory, load_trajectory_npy};
 pub use draw::style;
 pub use error::VizError;
-pub use figures::{FigureOptions, write_figures};
+pub use figures::{FigureOptions, Output, write_figures};
 pub use gallery::index::{FUNCTIONS_DIR, FigureEntry, function_image, index_html, paper_reference};
 pub use gallery::papers::{Measure, PaperFigure, Parameter, Source, Statement, paper_figure};
 pub use gallery::whole_run::{WholeRun, whole_run_rows};

@@ -14,7 +14,7 @@ use flocking::{Scenario, VerdictKind};
 use glam::{DMat2, DQuat, DVec2, DVec3};
 
 use crate::{
-    Drawable, FigureOptions, Frame, ReynoldsOptions, RunData, Scene, View, VizError, lift,
+    Drawable, FigureOptions, Frame, Output, ReynoldsOptions, RunData, Scene, View, VizError, lift,
     reynolds_png, reynolds_svg, write_figures,
 };
 
@@ -28,6 +28,30 @@ pub enum PlotError {
     /// The run directory is being written by another process (a run, a resume, another
     /// `plot`), or its lock could not be taken.
     Dir(flocking::owned::DirError),
+    /// A snapshot time asked for is not within the run.
+    Time {
+        /// The time asked for (s).
+        time: f64,
+        /// The run's first and last recorded times (s).
+        span: (f64, f64),
+    },
+}
+
+impl PlotError {
+    /// Whether the plot was refused as asked (exit code 2: an invalid scenario, a directory
+    /// another process writes, a time outside the run, a file flocking never writes through or
+    /// over) rather than failed while drawing (1).
+    #[must_use]
+    pub fn is_refusal(&self) -> bool {
+        match self {
+            Self::Scenario(_) | Self::Dir(_) | Self::Time { .. } => true,
+            // `write_no_follow`'s refusals: a link, a user's file, a user's `NAME.tmp`
+            Self::Viz(VizError::Io { source, .. }) => {
+                source.kind() == std::io::ErrorKind::AlreadyExists
+            }
+            Self::Viz(_) => false,
+        }
+    }
 }
 
 impl std::fmt::Display for PlotError {
@@ -36,6 +60,13 @@ impl std::fmt::Display for PlotError {
             Self::Scenario(e) => write!(f, "{e}"),
             Self::Viz(e) => write!(f, "{e}"),
             Self::Dir(e) => write!(f, "{e}; plot it once that process is done"),
+            Self::Time {
+                time,
+                span: (first, last),
+            } => write!(
+                f,
+                "snapshot time {time} s is outside the run, which spans {first} s to {last} s; give times within it"
+            ),
         }
     }
 }
@@ -55,18 +86,22 @@ pub fn plot_run(dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     plot_run_with(dir, &FigureOptions::default())
 }
 
-/// [`plot_run`] with `options` (a run on a fixed graph gets velocity arrows and dotted trails
+/// [`plot_run`] with `options` (the figures of `options.outputs`; a run on a fixed graph gets velocity arrows and dotted trails
 /// from the start whatever they say;
 /// the scenario's `snapshots` times, when it has them and `options` gives none).
 ///
 /// # Errors
-/// As [`plot_run`].
+/// As [`plot_run`]; [`PlotError::Time`] for a time of `options.snapshot_times` outside the run.
 pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>, PlotError> {
     let scenario = Scenario::load(dir.join("scenario.ron")).map_err(PlotError::Scenario)?;
     // one writer at a time: the figures and the manifest's record of them (issue 27)
     let _lock = flocking::owned::DirLock::acquire(dir).map_err(PlotError::Dir)?;
     let run = RunData::load(dir).map_err(PlotError::Viz)?;
     let scene = run_scene(&scenario, run.scene(scenario.range())).map_err(PlotError::Scenario)?;
+    check_times(
+        &scene,
+        options.snapshot_times.as_deref().unwrap_or_default(),
+    )?;
     let mut options = options.clone();
     if options.snapshot_times.is_none() {
         options.snapshot_times.clone_from(&scenario.snapshots);
@@ -86,7 +121,10 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
     let figures = dir.join("figures");
     let mut written =
         write_figures(&scene, Some(&run.metrics), &figures, &options).map_err(PlotError::Viz)?;
-    if let Some(alpha) = scenario.alpha_alpha() {
+    if let Some(alpha) = scenario
+        .alpha_alpha()
+        .filter(|_| options.draws(Output::Snapshots))
+    {
         let time = options
             .reynolds_time
             .unwrap_or_else(|| reynolds_time(&scenario, &scene));
@@ -118,6 +156,84 @@ pub fn plot_run_with(dir: &Path, options: &FigureOptions) -> Result<Vec<PathBuf>
         }
     }
     Ok(written)
+}
+
+/// Checks that `flocking plot DIR` (and Python's `flocking.plot`) may draw into `DIR/figures`:
+/// `DIR` is a complete run directory, and its `figures` is flocking's (`DIR` carries flocking's
+/// marker, and its manifest, when it has one, lists each figure present with its size and
+/// content) or does not exist yet, so that no file flocking did not write is replaced.
+///
+/// # Errors
+/// The message saying why not, and what to give instead.
+pub fn check_plot_dir(dir: &Path) -> Result<(), String> {
+    if !dir.is_dir() {
+        return Err(format!(
+            "{} is not a directory; give a run directory written by `flocking run` (with its scenario.ron and metrics.csv)",
+            dir.display()
+        ));
+    }
+    for name in ["scenario.ron", "metrics.csv"] {
+        if !dir.join(name).is_file() {
+            let partial = flocking::run_dir::partial_path(dir);
+            let hint = if partial.is_dir() {
+                format!(
+                    "; the run is still in {} (finish it with `flocking run --resume {}`)",
+                    partial.display(),
+                    dir.display()
+                )
+            } else {
+                String::new()
+            };
+            return Err(format!(
+                "{} is not a complete run directory: it has no {name}{hint}",
+                dir.display()
+            ));
+        }
+    }
+    let figures = dir.join(flocking::owned::FIGURES_DIR);
+    let foreign = |entry: String| {
+        Err(flocking::owned::DirError::Foreign {
+            dir: dir.to_owned(),
+            entry,
+        }
+        .to_string())
+    };
+    let Ok(meta) = std::fs::symlink_metadata(&figures) else {
+        return Ok(());
+    };
+    if !flocking::owned::marked(dir, flocking::owned::Kind::Run) || !meta.is_dir() {
+        // a link (to a user's directory), a file, or figures of a directory without the marker
+        return foreign("figures".into());
+    }
+    // a figure's name that is a link or a directory is not one of flocking's files
+    for name in flocking::owned::RUN_FIGURES {
+        if std::fs::symlink_metadata(figures.join(name)).is_ok_and(|m| !m.is_file()) {
+            return foreign(format!("figures/{name}"));
+        }
+    }
+    // a figure the user saved over one of flocking's (issue 27: ownership by content)
+    let figures: Vec<String> = flocking::owned::RUN_FIGURES
+        .iter()
+        .map(|name| format!("{}/{name}", flocking::owned::FIGURES_DIR))
+        .collect();
+    flocking::owned::check_files(dir, &figures).map_err(|e| e.to_string())
+}
+
+/// Refuses a snapshot time outside the recorded span of the run (or not a number).
+fn check_times(scene: &Scene, times: &[f64]) -> Result<(), PlotError> {
+    let (Some(first), Some(last)) = (scene.frames.first(), scene.frames.last()) else {
+        return Ok(());
+    };
+    let span = (first.t, last.t);
+    // a time written as the run's end (its duration) is the last record, up to rounding
+    let slack = 1e-9 * span.1.abs().max(1.0);
+    match times
+        .iter()
+        .find(|&&t| !(span.0 - slack..=span.1 + slack).contains(&t))
+    {
+        Some(&time) => Err(PlotError::Time { time, span }),
+        None => Ok(()),
+    }
 }
 
 /// How the models without an α-lattice (Vicsek, boids, Couzin, Cucker–Smale, Vásárhelyi) are

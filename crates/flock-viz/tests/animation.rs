@@ -1,6 +1,6 @@
 //! The animated GIF of a run.
 
-use flock_viz::{AnimationOptions, animation_frames, animation_gif};
+use flock_viz::{AnimationOptions, animation_frames, animation_gif, snapshot_rgb};
 
 use crate::support::{FRAMES, cube_scene, lattice_scene};
 
@@ -70,4 +70,38 @@ fn oversized_gifs_are_refused() {
         ..AnimationOptions::default()
     };
     assert!(animation_gif(&lattice_scene(), &options).is_err());
+}
+
+/// One palette for the whole animation ([`animation_gif`]'s): every decoded frame is its drawn
+/// frame ([`snapshot_rgb`]) within a few levels per channel on average, the background exact.
+#[test]
+fn each_frame_is_its_drawing_in_the_shared_palette() {
+    let scene = lattice_scene();
+    let options = small();
+    let (_, frames) = decode(&animation_gif(&scene, &options).unwrap());
+    for (k, (rgba, _)) in frames.iter().enumerate() {
+        let drawn = snapshot_rgb(&scene, k, &options.style, 200, 180).unwrap();
+        let error: u64 = rgba
+            .chunks_exact(4)
+            .zip(drawn.chunks_exact(3))
+            .map(|(a, b)| (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))).sum::<u64>())
+            .sum();
+        let mean = error as f64 / (3 * 200 * 180) as f64;
+        assert!(mean < 2.0, "frame {k}: mean error {mean} levels");
+        assert_eq!(&rgba[..3], &drawn[..3], "the background");
+    }
+}
+
+/// The frames are drawn and compressed in parallel: the same bytes on one thread as on four.
+#[test]
+fn the_gif_is_the_same_on_any_number_of_threads() {
+    let scene = lattice_scene();
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| animation_gif(&scene, &small()).unwrap())
+    };
+    assert_eq!(on(1), on(4));
 }

@@ -3,7 +3,8 @@
 use std::fs;
 
 use flock_viz::{
-    AnimationOptions, FigureOptions, MetricsOptions, PlayerOptions, SnapshotOptions, write_figures,
+    AnimationOptions, FigureOptions, MetricsOptions, Output, PlayerOptions, SnapshotOptions,
+    write_figures,
 };
 
 use crate::support::{cube_scene, flocking_metrics, lattice_scene, temp_dir};
@@ -20,11 +21,12 @@ fn small() -> FigureOptions {
             panel_size: (300, 180),
             ..MetricsOptions::default()
         },
-        animation: Some(AnimationOptions {
+        outputs: Output::ALL.to_vec(),
+        animation: AnimationOptions {
             size: (160, 160),
             ..AnimationOptions::default()
-        }),
-        player: Some(PlayerOptions::default()),
+        },
+        player: PlayerOptions::default(),
         reynolds_time: None,
         svg: true,
         png: true,
@@ -72,8 +74,7 @@ fn a_2d_run_gets_snapshots_metrics_animation_and_player() {
 fn a_3d_run_gets_a_top_view_too() {
     let dir = temp_dir("figures-3d");
     let options = FigureOptions {
-        animation: None,
-        player: None,
+        outputs: vec![Output::Snapshots],
         png: false,
         ..small()
     };
@@ -89,4 +90,71 @@ fn a_3d_run_gets_a_top_view_too() {
     let top = fs::read_to_string(dir.join("snapshots_top.svg")).unwrap();
     assert!(top.contains("top view"));
     fs::remove_dir_all(dir).unwrap();
+}
+
+/// Each choice of outputs writes its files and no other; those it writes are the bytes of the
+/// same files when every output is drawn.
+#[test]
+fn the_outputs_chosen_are_drawn_alone_and_the_same() {
+    let all_dir = temp_dir("figures-all");
+    let all = write_figures(
+        &cube_scene(),
+        Some(&flocking_metrics(false)),
+        &all_dir,
+        &small(),
+    )
+    .unwrap();
+    for (outputs, names) in [
+        (
+            vec![Output::Snapshots],
+            &[
+                "snapshots.svg",
+                "snapshots.png",
+                "snapshots_top.svg",
+                "snapshots_top.png",
+                "views.svg",
+                "views.png",
+            ][..],
+        ),
+        (vec![Output::Metrics], &["metrics.svg", "metrics.png"][..]),
+        (
+            vec![Output::Gif, Output::Player],
+            &["animation.gif", "player.html"][..],
+        ),
+    ] {
+        let dir = temp_dir("figures-some");
+        let options = FigureOptions { outputs, ..small() };
+        let written = write_figures(
+            &cube_scene(),
+            Some(&flocking_metrics(false)),
+            &dir,
+            &options,
+        )
+        .unwrap();
+        let expected: Vec<_> = names.iter().map(|name| dir.join(name)).collect();
+        assert_eq!(written, expected);
+        for name in names {
+            assert_eq!(
+                fs::read(dir.join(name)).unwrap(),
+                fs::read(all_dir.join(name)).unwrap(),
+                "{name}"
+            );
+        }
+        assert!(all.contains(&all_dir.join(names[0])));
+        fs::remove_dir_all(dir).unwrap();
+    }
+    fs::remove_dir_all(all_dir).unwrap();
+}
+
+#[test]
+fn outputs_are_named_as_the_command_line_names_them() {
+    assert_eq!(
+        Output::parse_list("gif, snapshots,gif"),
+        Ok(vec![Output::Gif, Output::Snapshots])
+    );
+    let error = Output::parse_list("snapshots,movie").unwrap_err();
+    assert!(
+        error.contains("\"movie\"") && error.contains("snapshots, metrics, gif, player"),
+        "{error}"
+    );
 }

@@ -5,7 +5,8 @@ and the Tanner-Jadbabaie-Pappas law and velocity consensus, in Rust, from Python
   parameter changed by its path (``with_values``), explicit initial states (``with_initial``).
 - :func:`run`: a whole run as numpy arrays (:class:`Run`: ``to_pandas``, ``to_xarray``, an HTML
   summary with a snapshot in Jupyter, ``player()``), a progress line in a terminal, and the run directory of ``flocking run --out`` when ``out`` is
-  given; :func:`resume` continues an interrupted one; :func:`read_run` reads any run directory.
+  given; :func:`resume` continues an interrupted one; :func:`read_run` reads any run directory;
+  :func:`plot` (and ``Run.plot``) draws a run directory's figures as ``flocking plot`` does.
 - :class:`Simulation`: a run driven step by step (``step``, ``q``, ``p``, ``t``, ``metrics``,
   ``energy``).
 - ``controls=f`` (of :func:`run`, :func:`resume`, :class:`Simulation` and :func:`sweep`): the
@@ -55,7 +56,7 @@ from ._flocking import (
     _render,
     bump,
 )
-from ._run import Run, State, Trajectory, read_run, resume, run
+from ._run import Run, State, Trajectory, plot, read_run, resume, run
 from ._sweep import SweepResult, sweep
 
 __all__ = [
@@ -79,6 +80,7 @@ __all__ = [
     "WorkloadReport",
     "bench",
     "bump",
+    "plot",
     "read_run",
     "resume",
     "run",

@@ -2,7 +2,7 @@
 
 import concurrent.futures
 from os import PathLike
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -283,6 +283,16 @@ class Run:
         its metrics; with ``max_bytes``, fewer frames (evenly spaced) when it would be larger."""
     def player(self, *, max_frames: int = 500, size: int = 480, max_bytes: int = 1_000_000) -> Any:
         """The player in an iframe for Jupyter, within ``max_bytes`` (1 MB by default)."""
+    def plot(
+        self,
+        dir: Optional[_Path] = None,
+        *,
+        outputs: Optional[Sequence[str]] = None,
+        times: Optional[Sequence[float]] = None,
+        stress_edges: bool = False,
+    ) -> List[str]:
+        """Draws the run's figures into ``dir/figures`` (``dir`` default :attr:`path`) as
+        ``flocking plot`` does (:func:`plot`); returns the files written."""
     def _repr_html_(self) -> str: ...
 
 def _render(
@@ -323,6 +333,17 @@ def resume(
 
 def read_run(dir: _Path) -> Run:
     """Reads a run directory (CSV or .npy trajectory)."""
+
+def plot(
+    dir: _Path,
+    *,
+    outputs: Optional[Sequence[str]] = None,
+    times: Optional[Sequence[float]] = None,
+    stress_edges: bool = False,
+) -> List[str]:
+    """Draws the figures of the run directory ``dir`` into ``dir/figures``, the files of
+    ``flocking plot dir`` byte for byte: ``outputs`` some of ``"snapshots"``, ``"metrics"``,
+    ``"gif"``, ``"player"`` (default all), ``times`` the snapshot times (s); returns the paths."""
 
 class SweepResult:
     """A finished sweep: its output directory and the columns of its ``runs.csv`` (int64, bool,

@@ -6,7 +6,7 @@ import html as _html
 import importlib as _importlib
 from os import PathLike as _PathLike
 import sys as _sys
-from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
@@ -544,6 +544,27 @@ class Run:
             max_bytes=max_bytes,
         )
 
+    def plot(
+        self,
+        dir: Optional[Path] = None,
+        *,
+        outputs: Optional[Sequence[str]] = None,
+        times: Optional[Sequence[float]] = None,
+        stress_edges: bool = False,
+    ) -> List[str]:
+        """Draws the run's figures into ``dir/figures`` as ``flocking plot dir`` does (:func:`plot`),
+        ``dir`` the run's directory (default :attr:`path`, that of ``flocking.run(..., out=dir)``
+        or :func:`read_run`); returns the files written."""
+        if dir is None:
+            dir = self.path
+        if dir is None:
+            raise ValueError(
+                "this run has no directory to draw from: run it with flocking.run(scenario, out=DIR) "
+                "(or read one with flocking.read_run(DIR)), then plot; run.player() shows a run held "
+                "only in memory"
+            )
+        return plot(dir, outputs=outputs, times=times, stress_edges=stress_edges)
+
     def player(self, *, max_frames: int = 500, size: int = 480, max_bytes: int = PLAYER_BUDGET) -> _Html:
         """The HTML player of :meth:`player_html` in an iframe, for Jupyter to show, within
         ``max_bytes`` (1 MB by default, :data:`PLAYER_BUDGET`, as a notebook keeps it in the
@@ -666,6 +687,33 @@ def resume(
             progress=_progress_sink(progress),
         )
     )
+
+
+def plot(
+    dir: Path,
+    *,
+    outputs: Optional[Sequence[str]] = None,
+    times: Optional[Sequence[float]] = None,
+    stress_edges: bool = False,
+) -> List[str]:
+    """Draws the figures of the run directory ``dir`` into ``dir/figures``, the files of
+    ``flocking plot dir`` byte for byte, by the same renderer (no CLI needed): ``outputs`` some of
+    ``"snapshots"``, ``"metrics"``, ``"gif"``, ``"player"`` (default all), ``times`` the snapshot
+    times in seconds (default the scenario's ``snapshots``, else six even times), ``stress_edges``
+    each edge coloured by the sign of its stress weight. Returns the paths written.
+
+    ``ValueError`` for an unknown output or a time outside the run (naming it and the run's
+    span); :class:`RunDirectoryError` for a directory that is not a complete run of flocking's,
+    holds figures flocking did not write, or is being written."""
+    if isinstance(outputs, str):
+        outputs = [outputs]
+    written = _flocking.plot_run(
+        str(dir),
+        outputs=None if outputs is None else list(outputs),
+        times=None if times is None else [float(t) for t in times],
+        stress_edges=stress_edges,
+    )
+    return [str(path) for path in written]
 
 
 def read_run(dir: Path) -> Run:

@@ -496,7 +496,9 @@ pub(crate) fn fitted_range(values: impl Iterator<Item = f64>, log: bool) -> Rang
     if log {
         let (a, b) = (lo.log10().floor(), hi.log10().ceil());
         let b = if a == b { b + 1.0 } else { b };
-        return 10f64.powf(a)..10f64.powf(b);
+        // a hair beyond the decades, so that plotters' ticks, found as powers of ten from the
+        // rounded logarithm of the ends, include both ends (1e-13..1e-12 had one tick)
+        return 10f64.powf(a) * (1.0 - 1e-9)..10f64.powf(b) * (1.0 + 1e-9);
     }
     if lo == hi {
         let pad = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
@@ -510,12 +512,27 @@ pub(crate) fn fitted_range(values: impl Iterator<Item = f64>, log: bool) -> Rang
 mod tests {
     use super::*;
 
+    /// A log panel whose values span less than a decade is widened to whole decades, and gets a
+    /// labelled tick at each end (issue 53 item 8): at least two, whatever the decade.
+    #[test]
+    fn a_log_panel_of_less_than_a_decade_has_two_ticks() {
+        use plotters::coord::combinators::LogCoord;
+        use plotters::coord::ranged1d::Ranged;
+        for a in -14..=6 {
+            let lo = 2.0 * 10f64.powi(a);
+            let range = fitted_range([lo, 1.5 * lo].into_iter(), true);
+            let coord: LogCoord<f64> = range.clone().log_scale().into();
+            let ticks = coord.key_points(4usize);
+            assert!(ticks.len() >= 2, "10^{a}: {range:?} has ticks {ticks:?}");
+        }
+    }
+
     #[test]
     fn ranges_fit_the_values() {
         assert_eq!(fitted_range([1.0, 3.0].into_iter(), false), 0.9..3.1);
         assert_eq!(fitted_range([2.0, 2.0].into_iter(), false), 1.8..2.2);
         assert_eq!(fitted_range([f64::NAN].into_iter(), false), 0.0..1.0);
         let r = fitted_range([0.0, 2e-9, 3e-2].into_iter(), true);
-        assert!((r.start - 1e-9).abs() < 1e-24 && (r.end - 0.1).abs() < 1e-15);
+        assert!((r.start - 1e-9).abs() < 1e-17 && (r.end - 0.1).abs() < 1e-9);
     }
 }

@@ -4,5 +4,6 @@
 pub mod font;
 pub(crate) mod format;
 pub(crate) mod geometry;
+pub(crate) mod palette;
 pub(crate) mod render;
 pub mod style;

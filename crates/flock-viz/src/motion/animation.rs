@@ -8,7 +8,9 @@
 use gif::{Encoder, Frame as GifFrame, Repeat};
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
+use rayon::prelude::*;
 
+use crate::draw::palette::Palette;
 use crate::draw::render::{self, Figure, TextMode};
 use crate::error::VizError;
 use crate::scene::frames::Scene;
@@ -39,6 +41,9 @@ impl Default for AnimationOptions {
     }
 }
 
+/// How many frames, spread over the animation, its palette is learned from.
+const PALETTE_SAMPLES: usize = 8;
+
 /// The frames of `scene` an animation with `options` shows (indices into `scene.frames`).
 #[must_use]
 pub fn animation_frames(scene: &Scene, options: &AnimationOptions) -> Vec<usize> {
@@ -64,29 +69,50 @@ pub fn animation_gif(scene: &Scene, options: &AnimationOptions) -> Result<Vec<u8
     let framer = Framer::new(scene, panel.view, panel.trail);
     let title = figure_title(scene, panel.view);
     let delay = u16::try_from(options.frame_delay_ms.div_ceil(10)).unwrap_or(u16::MAX);
-    let mut out = Vec::new();
-    {
-        let mut encoder = Encoder::new(&mut out, w16, h16, &[]).map_err(VizError::encode)?;
-        encoder
-            .set_repeat(Repeat::Infinite)
-            .map_err(VizError::encode)?;
-        for (k, &frame) in frames.iter().enumerate() {
-            let figure = AnimationFrame {
-                framer: &framer,
-                frame,
-                panel,
-                title: &title,
-                size: options.size,
-            };
-            let rgb = render::rgb(&figure)?;
-            let mut gif_frame = GifFrame::from_rgb_speed(w16, h16, &rgb, 10);
+    let figure = |frame: usize| AnimationFrame {
+        framer: &framer,
+        frame,
+        panel,
+        title: &title,
+        size: options.size,
+    };
+    // the palette of a few frames spread over the run: the first, the last and six between
+    let samples: Vec<usize> = (0..PALETTE_SAMPLES.min(frames.len()))
+        .map(|k| frames[k * (frames.len() - 1) / (PALETTE_SAMPLES - 1).max(1)])
+        .collect();
+    let samples = samples
+        .par_iter()
+        .map(|&frame| render::rgb(&figure(frame)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let palette = Palette::learn(&samples);
+    let encoded = frames
+        .par_iter()
+        .enumerate()
+        .map(|(k, &frame)| {
+            let rgb = render::rgb(&figure(frame))?;
+            let mut gif_frame =
+                GifFrame::from_indexed_pixels(w16, h16, palette.indices(&rgb), None);
             // Hold the last frame a little longer before the loop starts again.
             gif_frame.delay = if k + 1 == frames.len() {
                 delay.saturating_mul(10)
             } else {
                 delay
             };
-            encoder.write_frame(&gif_frame).map_err(VizError::encode)?;
+            gif_frame.make_lzw_pre_encoded();
+            Ok(gif_frame)
+        })
+        .collect::<Result<Vec<_>, VizError>>()?;
+    let mut out = Vec::new();
+    {
+        let mut encoder =
+            Encoder::new(&mut out, w16, h16, &palette.table()).map_err(VizError::encode)?;
+        encoder
+            .set_repeat(Repeat::Infinite)
+            .map_err(VizError::encode)?;
+        for gif_frame in &encoded {
+            encoder
+                .write_lzw_pre_encoded_frame(gif_frame)
+                .map_err(VizError::encode)?;
         }
     }
     Ok(out)

@@ -1,6 +1,6 @@
 //! [`Framing`]: which part of the plane a snapshot or an animation shows.
 
-use std::cell::OnceCell;
+use std::sync::OnceLock;
 
 use glam::{DVec2, DVec3};
 
@@ -36,9 +36,9 @@ pub(crate) struct Framer<'a> {
     scene: &'a Scene,
     view: View,
     trail: usize,
-    world: OnceCell<(DVec3, DVec3)>,
-    run_window: OnceCell<Rect>,
-    follow_size: OnceCell<DVec2>,
+    world: OnceLock<(DVec3, DVec3)>,
+    run_window: OnceLock<Rect>,
+    follow_size: OnceLock<DVec2>,
 }
 
 impl<'a> Framer<'a> {
@@ -47,9 +47,9 @@ impl<'a> Framer<'a> {
             scene,
             view,
             trail,
-            world: OnceCell::new(),
-            run_window: OnceCell::new(),
-            follow_size: OnceCell::new(),
+            world: OnceLock::new(),
+            run_window: OnceLock::new(),
+            follow_size: OnceLock::new(),
         }
     }
 
