@@ -56,7 +56,7 @@ from ._flocking import (
     bump,
 )
 from ._run import Run, State, Trajectory, read_run, resume, run
-from ._sweep import SweepResult, sweep
+from ._sweep import SweepResult, read_sweep, sweep
 
 __all__ = [
     "BenchReport",
@@ -80,6 +80,7 @@ __all__ = [
     "bench",
     "bump",
     "read_run",
+    "read_sweep",
     "resume",
     "run",
     "sweep",
