@@ -263,14 +263,14 @@ pub fn sweep_plot(
 /// One axis of a sweep as `SweepResult.to_xarray` names it: (path, long name, unit).
 type AxisName = (String, String, &'static str);
 
+/// What `SweepResult.to_xarray` names: the sweep's name, description and seeds, its axes, and
+/// the figure names of the columns asked for.
+type SweepNames = (String, String, u64, Vec<AxisName>, Vec<String>);
+
 /// `SweepResult.to_xarray`'s names: the sweep's name, description and seeds, its axes (path,
 /// name and symbol, unit) and the figure names of `columns` ([`flocking::sweep::metric_label`]).
 #[pyfunction]
-pub fn sweep_names(
-    py: Python<'_>,
-    dir: PathBuf,
-    columns: Vec<String>,
-) -> PyResult<(String, String, u64, Vec<AxisName>, Vec<String>)> {
+pub fn sweep_names(py: Python<'_>, dir: PathBuf, columns: Vec<String>) -> PyResult<SweepNames> {
     let sweep = store::read_sweep(&dir).map_err(|e| store_error(py, &e, &dir))?;
     let base = sweep.base_scenario().map_err(|e| sweep_error(py, &e))?;
     let axes = sweep
