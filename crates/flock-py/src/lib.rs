@@ -64,6 +64,8 @@ fn _flocking(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(sweep::sweep_prepare, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_write_row, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep_assemble, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_plot, module)?)?;
+    module.add_function(wrap_pyfunction!(sweep::sweep_names, module)?)?;
     module.add("METRICS_HEADER", flocking::run_dir::METRICS_HEADER)?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

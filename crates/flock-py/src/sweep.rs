@@ -193,3 +193,97 @@ pub fn sweep_assemble(py: Python<'_>, dir: PathBuf, text: &str) -> PyResult<usiz
     let sweep = Sweep::parse_checked(text, "<sweep>").map_err(|e| sweep_error(py, &e))?;
     store::assemble(&dir, &sweep).map_err(|e| store_error(py, &e, &dir))
 }
+
+/// The error of [`flock_viz::plot_sweep`] as Python's: a request the sweep cannot answer a
+/// `ValueError`, a failure to read or write an `OSError`, with the CLI's message.
+fn plot_error(error: flock_viz::SweepPlotError) -> PyErr {
+    match error {
+        flock_viz::SweepPlotError::Refused(message) => {
+            pyo3::exceptions::PyValueError::new_err(message)
+        }
+        flock_viz::SweepPlotError::Failed(message) => pyo3::exceptions::PyOSError::new_err(message),
+    }
+}
+
+/// `SweepResult.plot`: the diagram of `flocking sweep plot` drawn by the same code
+/// ([`flock_viz::plot_sweep`]) into `out`; `(path written, warnings)`.
+#[pyfunction]
+#[pyo3(signature = (dir, metric, x, y, fixed, facet, series, reference, band, log_x, log_y, log_colour, bound, bound_label, out))]
+#[allow(clippy::too_many_arguments)]
+pub fn sweep_plot(
+    py: Python<'_>,
+    dir: PathBuf,
+    metric: String,
+    x: String,
+    y: Option<String>,
+    fixed: Vec<(String, String)>,
+    facet: Option<String>,
+    series: Option<String>,
+    reference: Option<PathBuf>,
+    band: &str,
+    log_x: bool,
+    log_y: bool,
+    log_colour: bool,
+    bound: Option<f64>,
+    bound_label: String,
+    out: Option<PathBuf>,
+) -> PyResult<(PathBuf, Vec<String>)> {
+    let band = match band {
+        "minmax" => flock_viz::Band::MinMax,
+        "quantiles" => flock_viz::Band::Quantiles,
+        other => {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "band={other:?}: give \"minmax\" or \"quantiles\""
+            )));
+        }
+    };
+    let request = flock_viz::SweepPlot {
+        x,
+        y,
+        fixed,
+        facet,
+        series,
+        reference,
+        metric,
+        band,
+        log_x,
+        log_y,
+        log_colour,
+        bound: bound.map(|x| flock_viz::phase::Bound {
+            x,
+            label: bound_label,
+        }),
+    };
+    let plotted = py
+        .detach(|| flock_viz::plot_sweep(&dir, &request, out.as_deref()))
+        .map_err(plot_error)?;
+    Ok((plotted.path, plotted.warnings))
+}
+
+/// One axis of a sweep as `SweepResult.to_xarray` names it: (path, long name, unit).
+type AxisName = (String, String, &'static str);
+
+/// What `SweepResult.to_xarray` names: the sweep's name, description and seeds, its axes, and
+/// the figure names of the columns asked for.
+type SweepNames = (String, String, u64, Vec<AxisName>, Vec<String>);
+
+/// `SweepResult.to_xarray`'s names: the sweep's name, description and seeds, its axes (path,
+/// name and symbol, unit) and the figure names of `columns` ([`flocking::sweep::metric_label`]).
+#[pyfunction]
+pub fn sweep_names(py: Python<'_>, dir: PathBuf, columns: Vec<String>) -> PyResult<SweepNames> {
+    let sweep = store::read_sweep(&dir).map_err(|e| store_error(py, &e, &dir))?;
+    let base = sweep.base_scenario().map_err(|e| sweep_error(py, &e))?;
+    let axes = sweep
+        .axes
+        .iter()
+        .map(|axis| {
+            let label = flocking::sweep::ParameterLabel::of(&base, &axis.path);
+            (axis.path.clone(), label.name(), label.unit())
+        })
+        .collect();
+    let labels = columns
+        .iter()
+        .map(|c| flocking::sweep::metric_label(c).to_owned())
+        .collect();
+    Ok((sweep.name, sweep.description, sweep.seeds, axes, labels))
+}

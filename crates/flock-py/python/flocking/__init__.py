@@ -57,7 +57,7 @@ from ._flocking import (
     bump,
 )
 from ._run import Run, State, Trajectory, plot, read_run, resume, run
-from ._sweep import SweepResult, sweep
+from ._sweep import SweepResult, read_sweep, sweep
 
 __all__ = [
     "BenchReport",
@@ -82,6 +82,7 @@ __all__ = [
     "bump",
     "plot",
     "read_run",
+    "read_sweep",
     "resume",
     "run",
     "sweep",

@@ -2,7 +2,7 @@
 
 import concurrent.futures
 from os import PathLike
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -355,6 +355,32 @@ class SweepResult:
     def to_pandas(self) -> Any:
         """``runs.csv`` as a pandas DataFrame with the dtypes of ``columns`` (needs
         ``flocking[pandas]``)."""
+    def plot(
+        self,
+        metric: str,
+        x: str,
+        y: Optional[str] = None,
+        *,
+        where: Optional[Mapping[str, Any]] = None,
+        facet: Optional[str] = None,
+        series: Optional[str] = None,
+        reference: Optional[_Path] = None,
+        band: str = "minmax",
+        log_x: bool = False,
+        log_y: bool = False,
+        log_colour: bool = False,
+        bound: Optional[float] = None,
+        bound_label: str = "bound",
+        out: Optional[_Path] = None,
+    ) -> str:
+        """Draws what ``flocking sweep plot`` draws, byte for byte, into ``out`` (``.svg``,
+        ``.png`` or ``.csv``; default ``path/<metric>.svg``); returns the path written."""
+    def to_xarray(self) -> Any:
+        """The sweep as an ``xarray.Dataset``: dimensions the axes and ``seed``, the measured
+        columns as variables with ``long_name`` and ``units`` (needs ``flocking[xarray]``)."""
+
+def read_sweep(dir: _Path) -> SweepResult:
+    """Reads the output directory of a finished sweep (``flocking sweep`` or :func:`sweep`)."""
 
 def sweep(
     spec: _Path,

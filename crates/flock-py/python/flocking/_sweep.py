@@ -15,10 +15,11 @@ import numpy as _np
 
 from . import _flocking
 from ._flocking import Scenario
-from ._run import Controls, Path, _progress_sink, _require
+from ._run import UNITS, Controls, Path, _progress_sink, _require
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
+    import xarray
 
 # Columns of runs.csv that are text whatever they hold: the run's id and its error.
 _TEXT = ("id", "error")
@@ -92,6 +93,139 @@ class SweepResult:
             else:
                 data[name] = column
         return pandas.DataFrame(data)
+
+    def plot(
+        self,
+        metric: str,
+        x: str,
+        y: Optional[str] = None,
+        *,
+        where: Optional[Mapping[str, Any]] = None,
+        facet: Optional[str] = None,
+        series: Optional[str] = None,
+        reference: Optional[Path] = None,
+        band: str = "minmax",
+        log_x: bool = False,
+        log_y: bool = False,
+        log_colour: bool = False,
+        bound: Optional[float] = None,
+        bound_label: str = "bound",
+        out: Optional[Path] = None,
+    ) -> str:
+        """Draws what ``flocking sweep plot`` draws, through the same renderer, byte for byte:
+        ``metric`` (a column of ``runs.csv``) over the axis ``x`` — a line with its band over
+        the seeds, or with ``y`` a heatmap; an axis of names (``algorithm``, ``vehicle``, a loss
+        model) as categories. ``where`` fixes other axes (``{"agents": 50}``, values as
+        ``runs.csv`` writes them or as the figure shows them), ``facet`` draws one panel per
+        value of an axis, ``series`` (the overlay) one line per value on one set of axes;
+        ``reference`` a CSV file of a source's values; ``band`` ``"minmax"`` or ``"quantiles"``;
+        ``bound`` a labelled vertical line at that x. ``out`` is the file (``.svg``, ``.png``,
+        or ``.csv`` for the numbers drawn; default ``path/<metric>.svg``), never written over a
+        file flocking did not write. Returns the path written; the CLI's warnings (points pooled
+        over an axis neither drawn nor fixed) as ``UserWarning``. A metric or axis the sweep
+        does not have is a ``ValueError`` naming the nearest ones."""
+        fixed = [(str(k), v if isinstance(v, str) else _json.dumps(v)) for k, v in (where or {}).items()]
+        written, warnings = _flocking.sweep_plot(
+            _os.fspath(self.path),
+            metric,
+            x,
+            y,
+            fixed,
+            facet,
+            series,
+            None if reference is None else _os.fspath(reference),
+            band,
+            log_x,
+            log_y,
+            log_colour,
+            None if bound is None else float(bound),
+            bound_label,
+            None if out is None else _os.fspath(out),
+        )
+        import warnings as _warnings
+
+        for message in warnings:
+            _warnings.warn(message, UserWarning, stacklevel=2)
+        return _os.fspath(written)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The sweep as an ``xarray.Dataset`` (needs xarray: ``pip install 'flocking[xarray]'``).
+
+        - Dimensions: the sweep's axes, by path, in the sweep file's order, then ``seed``;
+          coordinates their values in the sweep's order (numbers, or text as ``runs.csv`` writes
+          it), each with its ``long_name`` ("communication delay τ") and ``units`` when it has
+          one (UDUNITS: ``s``, ``m``, ``m s-1``, ``Hz``).
+        - Variables: every measured column of ``runs.csv`` (between ``seed`` and ``error``) over
+          those dimensions, with ``long_name`` (the figures' name: "cohesion radius R") and
+          ``units`` ("1" for ratios and counts); ``id`` and ``error`` as text. A grid point
+          without a row (a shard not merged) is NaN (an int or bool column is then float).
+        - Attributes: the sweep's ``name``, ``description``, ``seeds`` and ``path``.
+        """
+        xarray = _require("xarray", "xarray", "SweepResult.to_xarray()")
+        header = list(self.columns)
+        name, description, seeds, axes, labels = _flocking.sweep_names(_os.fspath(self.path), header)
+        long_names = dict(zip(header, labels))
+        measured = header[header.index("seed") + 1 : header.index("error")]
+        dims = [path for path, _, _ in axes] + ["seed"]
+        coords: Dict[str, Any] = {}
+        places = []
+        for path, long_name, unit in axes:
+            column = self.columns[path]
+            values = list(dict.fromkeys(column.tolist()))
+            attrs = {"long_name": long_name}
+            if unit:
+                attrs["units"] = _UDUNITS.get(unit, unit)
+            coords[path] = (path, _np.array(values), attrs)
+            index = {v: k for k, v in enumerate(values)}
+            places.append(_np.array([index[v] for v in column.tolist()]))
+        coords["seed"] = ("seed", _np.arange(seeds), {"long_name": "seed"})
+        places.append(_np.asarray(self.columns["seed"], dtype=_np.int64))
+        shape = tuple(len(coords[d][1]) for d in dims)
+        full = len(self.columns["seed"]) == int(_np.prod(shape))
+        data: Dict[str, Any] = {}
+        for column_name in measured + ["id", "error"]:
+            column = self.columns[column_name]
+            text = column.dtype.kind in "US"
+            if full and not _np.ma.isMaskedArray(column):
+                grid = _np.empty(shape, dtype=column.dtype)
+            elif text:
+                grid = _np.full(shape, "", dtype=column.dtype)
+            else:
+                grid = _np.full(shape, _np.nan)
+                column = _np.ma.filled(_np.ma.asarray(column, dtype=float), _np.nan)
+            grid[tuple(places)] = column
+            attrs = {"long_name": long_names.get(column_name, column_name)}
+            if not text:
+                attrs["units"] = _sweep_unit(column_name)
+            data[column_name] = (dims, grid, attrs)
+        attrs = {"name": name, "description": description, "seeds": seeds, "path": _os.fspath(self.path)}
+        return xarray.Dataset(data, coords=coords, attrs=attrs)
+
+
+def read_sweep(dir: Path) -> SweepResult:
+    """Reads the output directory of a finished sweep, written by ``flocking sweep`` (merged, for
+    a sharded one) or :func:`sweep`: its ``runs.csv`` as a :class:`SweepResult`. A directory that
+    is not a sweep's is a ``RunDirectoryError``, as for the CLI; one whose ``runs.csv`` is not
+    assembled yet a ``FileNotFoundError`` saying how to finish it."""
+    path = _os.fspath(dir)
+    _flocking.sweep_names(path, [])  # refuses a directory that is not a sweep's
+    if not _os.path.isfile(_os.path.join(path, "runs.csv")):
+        raise FileNotFoundError(
+            f"{path} has no runs.csv: the sweep has not finished; run it again (flocking sweep SWEEP --out {path}) to finish and assemble it"
+        )
+    return SweepResult(path, _read_runs(path))
+
+
+# The parameter table's units (flocking::sweep::labels) in UDUNITS, as Run.to_xarray writes them.
+_UDUNITS = {"m/s": "m s-1", "m/s²": "m s-2"}
+
+
+def _sweep_unit(column: str) -> str:
+    """The unit of a measured column of ``runs.csv``: a metric's as in ``metrics.csv``, a settled
+    one as its metric's, ``connected_from`` a time; "1" for ratios, counts and fractions."""
+    if column == "connected_from":
+        return "s"
+    return UNITS.get(column.removeprefix("settled_"), "1")
 
 
 def _ron_value(value: Any) -> str:

@@ -163,17 +163,21 @@ impl ParameterLabel {
     /// gain c₁^γ", "agents n"); the path alone when unknown.
     #[must_use]
     pub fn axis(&self) -> String {
-        let Some((name, symbol, unit)) = self.known else {
-            return self.path.clone();
-        };
-        let mut label = name.to_owned();
-        if !symbol.is_empty() {
-            label = format!("{label} {symbol}");
+        match self.unit() {
+            "" => self.name(),
+            unit => format!("{} ({unit})", self.name()),
         }
-        if !unit.is_empty() {
-            label = format!("{label} ({unit})");
+    }
+
+    /// Its name and symbol, without the unit ("communication delay τ"; a dataset's
+    /// `long_name`); the path alone when unknown.
+    #[must_use]
+    pub fn name(&self) -> String {
+        match self.known {
+            None => self.path.clone(),
+            Some((name, "", _)) => name.to_owned(),
+            Some((name, symbol, _)) => format!("{name} {symbol}"),
         }
-        label
     }
 
     /// The unit of the parameter (SI: "s", "m", "m/s²"), empty for a pure number or an unknown

@@ -173,64 +173,60 @@ impl Diagram<'_> {
             .margin_right(8)
             .y_label_area_size(56);
         const STEPS: usize = 64;
-        if self.options.log_colour && hi > lo {
-            // geometric steps on a log axis
-            let mut chart = builder
-                .build_cartesian_2d(0.0..1.0, (lo..hi).log_scale())
-                .map_err(VizError::draw)?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
-                .disable_x_axis()
-                .y_desc(text.text(&self.options.metric))
-                .y_labels(6)
-                .y_label_formatter(&|v| format::tick(*v))
-                .label_style(text_style(12))
-                .axis_desc_style(text_style(13))
-                .axis_style(style::rgb(INK))
-                .draw()
-                .map_err(VizError::draw)?;
-            let at = |k: f64| lo * (hi / lo).powf(k / STEPS as f64);
-            return chart
-                .draw_series((0..STEPS).map(|k| {
-                    let (y0, y1) = (at(k as f64), at(k as f64 + 1.0));
-                    let colour = self.colour(at(k as f64 + 0.5), (lo, hi));
-                    Rectangle::new([(0.0, y0), (1.0, y1)], colour.filled())
-                }))
-                .map(|_| ())
-                .map_err(VizError::draw);
-        }
-        let mut chart = builder
-            .build_cartesian_2d(0.0..1.0, lo_axis..hi_axis)
-            .map_err(VizError::draw)?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_desc(text.text(&self.options.metric))
-            .y_labels(6)
-            .y_label_formatter(&|v| {
-                // a tick at round-off from 0 is 0
-                let v = if v.abs() <= 1e-9 * (hi_axis - lo_axis) {
-                    0.0
-                } else {
-                    *v
-                };
-                format::tick(v)
-            })
-            .label_style(text_style(12))
-            .axis_desc_style(text_style(13))
-            .axis_style(style::rgb(INK))
-            .draw()
-            .map_err(VizError::draw)?;
+        let log = self.options.log_colour && hi > lo;
         let step = (hi_axis - lo_axis) / STEPS as f64;
-        chart
-            .draw_series((0..STEPS).map(|k| {
-                let y0 = lo_axis + step * k as f64;
-                let colour = self.colour(y0 + 0.5 * step, (lo, hi));
-                Rectangle::new([(0.0, y0), (1.0, y0 + step)], colour.filled())
-            }))
-            .map_err(VizError::draw)?;
+        // the bar's steps (from, to, the colour at their middle): geometric on a log scale
+        let steps: Vec<(f64, f64, RGBColor)> = (0..STEPS)
+            .map(|k| {
+                let k = k as f64;
+                let (y0, y1, middle) = if log {
+                    let at = |t: f64| lo * (hi / lo).powf(t / STEPS as f64);
+                    (at(k), at(k + 1.0), at(k + 0.5))
+                } else {
+                    let y0 = lo_axis + step * k;
+                    (y0, y0 + step, y0 + 0.5 * step)
+                };
+                (y0, y1, self.colour(middle, (lo, hi)))
+            })
+            .collect();
+        // a tick at round-off from 0 is 0
+        let tick = |v: &f64| {
+            let v = if v.abs() <= 1e-9 * (hi_axis - lo_axis) {
+                0.0
+            } else {
+                *v
+            };
+            format::tick(v)
+        };
+        macro_rules! bar {
+            ($y:expr) => {{
+                let mut chart = builder
+                    .build_cartesian_2d(0.0..1.0, $y)
+                    .map_err(VizError::draw)?;
+                chart
+                    .configure_mesh()
+                    .disable_mesh()
+                    .disable_x_axis()
+                    .y_desc(text.text(&self.options.metric))
+                    .y_labels(6)
+                    .y_label_formatter(&tick)
+                    .label_style(text_style(12))
+                    .axis_desc_style(text_style(13))
+                    .axis_style(style::rgb(INK))
+                    .draw()
+                    .map_err(VizError::draw)?;
+                chart
+                    .draw_series(steps.iter().map(|&(y0, y1, colour)| {
+                        Rectangle::new([(0.0, y0), (1.0, y1)], colour.filled())
+                    }))
+                    .map_err(VizError::draw)?;
+            }};
+        }
+        if log {
+            bar!((lo..hi).log_scale());
+        } else {
+            bar!(lo_axis..hi_axis);
+        }
         Ok(())
     }
 }

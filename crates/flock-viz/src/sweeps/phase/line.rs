@@ -1,10 +1,9 @@
 //! A one-axis phase diagram: the mean and band of a panel, or every panel as a series on one set
 //! of axes, with the references and the bound.
 
-use plotters::chart::MeshStyle;
-use plotters::chart::SeriesLabelPosition;
-use plotters::coord::Shift;
+use plotters::chart::{ChartContext, MeshStyle, SeriesLabelPosition};
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
+use plotters::coord::{CoordTranslate, Shift};
 use plotters::element::{EmptyElement, PathElement, Text};
 use plotters::prelude::{
     ChartBuilder, Circle, DrawingArea, DrawingBackend, IntoLogRange, LineSeries, Polygon, Rectangle,
@@ -13,6 +12,7 @@ use plotters::style::Color;
 
 use super::grid::{Cells, Diagram, mean};
 use super::{BAND, BOUND, PhaseOptions, SERIES};
+use crate::draw::format;
 use crate::draw::render::TextMode;
 use crate::draw::style::{self, CURVE, INK};
 use crate::error::VizError;
@@ -37,7 +37,7 @@ fn marker(k: usize) -> Vec<(i32, i32)> {
 /// Draws the mesh of a line diagram: x labelled with the swept parameter (a categorical x with
 /// its categories' names at 0, 1, …), y with the metric, `labels` values along each, a light
 /// grid.
-fn line_mesh<'b, X, Y, YT, DB>(
+fn line_mesh<'b, X, Y, DB>(
     mut mesh: MeshStyle<'_, 'b, X, Y, DB>,
     o: &PhaseOptions,
     text: TextMode,
@@ -45,7 +45,7 @@ fn line_mesh<'b, X, Y, YT, DB>(
 ) -> Result<(), VizError>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
     DB: DrawingBackend,
 {
     let names = &o.x_categories;
@@ -60,6 +60,7 @@ where
             names.len()
         })
         .y_labels(labels)
+        .y_label_formatter(&|v| format::tick(*v))
         .label_style(text_style(13))
         .axis_desc_style(text_style(14))
         .axis_style(style::rgb(INK))
@@ -67,6 +68,46 @@ where
         .bold_line_style(style::rgb([0xE0, 0xE0, 0xE0]))
         .draw()
         .map_err(VizError::draw)
+}
+
+/// Draws the legend of `chart`'s labelled series at `corner`, over a light background.
+fn legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    corner: SeriesLabelPosition,
+) -> Result<(), VizError>
+where
+    DB: DrawingBackend + 'a,
+    CT: CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .label_font(text_style(12))
+        .background_style(style::rgb(style::BACKGROUND).mix(0.9))
+        .border_style(style::rgb([0xE0, 0xE0, 0xE0]))
+        .position(corner)
+        .draw()
+        .map_err(VizError::draw)
+}
+
+impl Diagram<'_> {
+    /// Where a line diagram's legend goes: at the lower right when the last mean `last` lies in
+    /// the upper half of the metric axis (in ln value on a log axis), else at the upper right.
+    fn corner(&self, last: Option<f64>) -> SeriesLabelPosition {
+        let (lo, hi) = self.range;
+        let log = self.options.log_y && lo > 0.0;
+        let high = last.is_some_and(|m| {
+            if log {
+                m * m > lo * hi
+            } else {
+                m > 0.5 * (lo + hi)
+            }
+        });
+        if high {
+            SeriesLabelPosition::LowerRight
+        } else {
+            SeriesLabelPosition::UpperRight
+        }
+    }
 }
 
 /// The name of the category at `x` (0, 1, …), nothing between them.
@@ -143,71 +184,85 @@ impl Diagram<'_> {
         let y1 = reference_values().fold(self.range.1, f64::max);
         let pad = if y1 > y0 { 0.05 * (y1 - y0) } else { 0.5 };
         let categorical = !o.x_categories.is_empty();
+        // the means at the last x, the legend placed where they leave room
+        let last = self.panels.iter().filter_map(|cells| {
+            let column = &cells[cells.len() - 1];
+            mean(&column[0])
+        });
+        let corner = self.corner(last.reduce(f64::max));
         let x_pad = match (categorical, x1 > x0) {
             (true, _) | (false, false) => 0.5,
             (false, true) => 0.02 * (x1 - x0),
         };
-        let mut chart = ChartBuilder::on(area)
+        let mut builder = ChartBuilder::on(area);
+        builder
             .margin(12)
             .x_label_area_size(48)
-            .y_label_area_size(72)
-            .build_cartesian_2d((x0 - x_pad)..(x1 + x_pad), (y0 - pad)..(y1 + pad))
-            .map_err(VizError::draw)?;
-        line_mesh(
-            chart.configure_mesh(),
-            o,
-            text,
-            (11, &|v| category(&o.x_categories, *v)),
-        )?;
-        for (k, cells) in self.panels.iter().enumerate() {
-            let colour = style::rgb(SERIES[k % SERIES.len()]);
-            let means: Vec<(f64, f64)> = self
-                .xs
-                .iter()
-                .zip(cells)
-                .filter_map(|(&x, column)| mean(&column[0]).map(|m| (x, m)))
-                .collect();
-            // categories are not joined: there is nothing between them
-            if !categorical {
-                chart
-                    .draw_series(LineSeries::new(means.clone(), colour.stroke_width(1)))
-                    .map_err(VizError::draw)?;
-            }
-            let shape = marker(k);
-            let series = chart
-                .draw_series(means.iter().map(|&p| {
-                    EmptyElement::at(p) + PathElement::new(shape.clone(), colour.stroke_width(2))
-                }))
-                .map_err(VizError::draw)?;
-            let label = o.panels.get(k).cloned().unwrap_or_default();
-            series.label(text.text(&label)).legend(move |(x, y)| {
-                EmptyElement::at((x + 8, y)) + PathElement::new(marker(k), colour.stroke_width(2))
-            });
+            .y_label_area_size(72);
+        macro_rules! draw {
+            ($x:expr, $y:expr) => {{
+                let mut chart = builder.build_cartesian_2d($x, $y).map_err(VizError::draw)?;
+                line_mesh(
+                    chart.configure_mesh(),
+                    o,
+                    text,
+                    (11, &|v| category(&o.x_categories, *v)),
+                )?;
+                for (k, cells) in self.panels.iter().enumerate() {
+                    let colour = style::rgb(SERIES[k % SERIES.len()]);
+                    let means: Vec<(f64, f64)> = self
+                        .xs
+                        .iter()
+                        .zip(cells)
+                        .filter_map(|(&x, column)| mean(&column[0]).map(|m| (x, m)))
+                        .collect();
+                    // categories are not joined: there is nothing between them
+                    if !categorical {
+                        chart
+                            .draw_series(LineSeries::new(means.clone(), colour.stroke_width(1)))
+                            .map_err(VizError::draw)?;
+                    }
+                    let shape = marker(k);
+                    let series = chart
+                        .draw_series(means.iter().map(|&p| {
+                            EmptyElement::at(p)
+                                + PathElement::new(shape.clone(), colour.stroke_width(2))
+                        }))
+                        .map_err(VizError::draw)?;
+                    let label = o.panels.get(k).cloned().unwrap_or_default();
+                    series.label(text.text(&label)).legend(move |(x, y)| {
+                        EmptyElement::at((x + 8, y))
+                            + PathElement::new(marker(k), colour.stroke_width(2))
+                    });
+                }
+                let ink = style::rgb(INK);
+                for (reference, (k, points)) in o.references.iter().zip(&references) {
+                    let shape = marker(*k);
+                    let k = *k;
+                    chart
+                        .draw_series(points.iter().map(|&p| {
+                            EmptyElement::at(p)
+                                + PathElement::new(shape.clone(), ink.stroke_width(1))
+                        }))
+                        .map_err(VizError::draw)?
+                        .label(text.text(&reference.label))
+                        .legend(move |(x, y)| {
+                            EmptyElement::at((x + 8, y))
+                                + PathElement::new(marker(k), ink.stroke_width(1))
+                        });
+                }
+                legend(&mut chart, corner)?;
+                let plot = chart.plotting_area().strip_coord_spec();
+                self.bound(&plot, |x| chart.backend_coord(&(x, y0)).0, text)
+            }};
         }
-        let ink = style::rgb(INK);
-        for (reference, (k, points)) in o.references.iter().zip(&references) {
-            let shape = marker(*k);
-            let k = *k;
-            chart
-                .draw_series(points.iter().map(|&p| {
-                    EmptyElement::at(p) + PathElement::new(shape.clone(), ink.stroke_width(1))
-                }))
-                .map_err(VizError::draw)?
-                .label(text.text(&reference.label))
-                .legend(move |(x, y)| {
-                    EmptyElement::at((x + 8, y)) + PathElement::new(marker(k), ink.stroke_width(1))
-                });
+        // log axes where asked and every value drawn is positive (as a line diagram's)
+        match (o.log_x && x0 > 0.0 && !categorical, o.log_y && y0 > 0.0) {
+            (false, false) => draw!((x0 - x_pad)..(x1 + x_pad), (y0 - pad)..(y1 + pad)),
+            (true, false) => draw!((x0..x1).log_scale(), (y0 - pad)..(y1 + pad)),
+            (false, true) => draw!((x0 - x_pad)..(x1 + x_pad), (y0..y1 * 1.05).log_scale()),
+            (true, true) => draw!((x0..x1).log_scale(), (y0..y1 * 1.05).log_scale()),
         }
-        chart
-            .configure_series_labels()
-            .label_font(text_style(12))
-            .background_style(style::rgb(style::BACKGROUND).mix(0.9))
-            .border_style(style::rgb([0xE0, 0xE0, 0xE0]))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(VizError::draw)?;
-        let plot = chart.plotting_area().strip_coord_spec();
-        self.bound(&plot, |x| chart.backend_coord(&(x, y0)).0, text)
     }
 
     /// The line and band of panel `k`, whose cells are `cells`, with its references.
@@ -283,15 +338,7 @@ impl Diagram<'_> {
         } else {
             vec![means.clone()]
         };
-        // the legend where the last mean leaves room: below it when it is high
-        let high = means
-            .last()
-            .is_some_and(|&(_, m)| m > 0.5 * (self.range.0 + self.range.1));
-        let corner = if high {
-            SeriesLabelPosition::LowerRight
-        } else {
-            SeriesLabelPosition::UpperRight
-        };
+        let corner = self.corner(means.last().map(|&(_, m)| m));
 
         macro_rules! draw {
             ($x:expr, $y:expr) => {{
@@ -331,14 +378,7 @@ impl Diagram<'_> {
                     .map_err(VizError::draw)?
                     .label(text.text("a run"))
                     .legend(move |(x, y)| Circle::new((x + 8, y), 3, curve.filled()));
-                chart
-                    .configure_series_labels()
-                    .label_font(text_style(12))
-                    .background_style(style::rgb(style::BACKGROUND).mix(0.9))
-                    .border_style(style::rgb([0xE0, 0xE0, 0xE0]))
-                    .position(corner)
-                    .draw()
-                    .map_err(VizError::draw)?;
+                legend(&mut chart, corner)?;
                 for (shape, reference) in self.references(Some(k)) {
                     let shape = marker(shape);
                     chart

@@ -3,16 +3,21 @@
 //!
 //! - Two axes: a heatmap, one cell per (x, y) grid value — the cells in the order of the sorted
 //!   values, labelled with them (so a logarithmic grid is evenly spaced) — coloured by the mean
-//!   over the seeds (viridis), with a colour bar; a cell without a finite value is grey.
+//!   over the seeds (viridis, linear or in ln value), with a colour bar; a cell without a finite
+//!   value is grey.
 //! - One axis: the mean against x (log x on request) inside a band — min to max, or the 25–75 %
-//!   quantiles — with a dot for every run.
+//!   quantiles — with a dot for every run, and a legend that says which band it is.
+//! - Categories ([`PhaseOptions::x_categories`], [`PhaseOptions::y_categories`]): an axis of
+//!   names (an algorithm, a vehicle, a loss model) in the sweep's order; along x each category
+//!   is a bar of its band with its mean, nothing joining two of them.
 //!
 //! - Panels (small multiples): one diagram per value of a third parameter, on a grid, with the
 //!   same axes and the same colour map in every panel, each titled ("n = 50").
 //!
 //! - Series: the panels drawn instead on one set of axes, a colour and a marker per panel (square,
 //!   plus, cross, triangle, diamond, as Vicsek et al. 1995 Fig. 2(a) marks its N), with a legend —
-//!   for comparisons across the panels' parameter (a finite-size comparison).
+//!   for comparisons across the panels' parameter (a finite-size comparison); log axes as a
+//!   line's.
 //!
 //! - [`Bound`]: a theoretical value of x (a stability bound) drawn as a labelled vertical line.
 //!

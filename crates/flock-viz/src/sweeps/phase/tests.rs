@@ -247,3 +247,40 @@ fn a_log_colour_scale_is_linear_in_ln_value() {
     let error = phase_svg(&heatmap([0.0, 0.1, 10.0]), &options(true)).unwrap_err();
     assert!(error.to_string().contains("positive"), "{error}");
 }
+
+/// The overlay (series) honours --log-x and --log-y where every value drawn is positive, and
+/// stays linear where one is not (as a line diagram does).
+#[test]
+fn series_take_log_axes_where_the_values_allow() {
+    let points = |first: f64| -> Vec<PhasePoint> {
+        [
+            (0, 0.01, first),
+            (0, 1.0, 0.5),
+            (1, 0.01, 0.01),
+            (1, 1.0, 5.0),
+        ]
+        .map(|(panel, x, value)| PhasePoint {
+            x,
+            y: None,
+            value,
+            panel,
+        })
+        .to_vec()
+    };
+    let options = |log_x, log_y| PhaseOptions {
+        log_x,
+        log_y,
+        ..series_options(Vec::new())
+    };
+    let linear = phase_svg(&points(0.001), &options(false, false)).unwrap();
+    for (log_x, log_y) in [(true, false), (false, true), (true, true)] {
+        let svg = phase_svg(&points(0.001), &options(log_x, log_y)).unwrap();
+        assert_ne!(svg, linear, "log_x {log_x}, log_y {log_y}");
+    }
+    // a zero metric: no log y
+    let zero = phase_svg(&points(0.0), &options(false, false)).unwrap();
+    assert_eq!(
+        phase_svg(&points(0.0), &options(false, true)).unwrap(),
+        zero
+    );
+}
