@@ -1,6 +1,5 @@
 //! [`RunData`]: what `flocking run --out DIR` wrote, read back: `metrics.csv` as [`Metrics`] and
-//! `trajectory.csv` as [`Frame`]s (formats in the workspace README, "What a run prints and
-//! writes").
+//! `trajectory.csv` as [`Frame`]s (formats in docs/outputs.md).
 
 use std::path::Path;
 
