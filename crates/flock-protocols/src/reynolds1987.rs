@@ -7,9 +7,12 @@ use flock_graph::ProximityNet;
 use flock_math::interrupt::{BLOCK, cuts_short};
 use flock_math::{Domain, Vector};
 
+mod flock;
+
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
+use flock::Flock;
 use flock_math::stream::{Purpose, Streams};
 
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
@@ -178,27 +181,50 @@ impl<V: Vector> Protocol<V> for Boids<V> {
     }
 
     /// The sequential sweep in the step's random order, each boid reading the others as they are
-    /// at its activation.
+    /// at its activation: on the torus found in the cells around it ([`Flock::in_cells`]), in open
+    /// space on the net; summed in ascending original index either way, so the bits are the same.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let s = self.params.speed;
-        let mut q = swarm.positions.clone();
-        let mut v: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
-        for (k, i) in self.activation_order(t, q.len()).into_iter().enumerate() {
+        let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
+        let sight = self.params.visual_distance * self.params.visual_distance;
+        let mut flock = match self.domain {
+            Domain::Periodic { size } => {
+                let reach = self.params.visual_distance + s * self.step;
+                Flock::in_cells(size, reach, &swarm.positions, &headings)
+            }
+            Domain::Open => Flock::in_order(&swarm.positions, headings),
+        };
+        let (mut keys, mut seen) = (Vec::new(), Vec::new());
+        for (k, i) in self
+            .activation_order(t, swarm.len())
+            .into_iter()
+            .enumerate()
+        {
             // one sequential sweep: checked for an interrupt every block of boids
             if k % BLOCK == 0 && cuts_short() {
                 return;
             }
             let i = i as usize;
-            let others = net
-                .graph()
-                .neighbours(i)
-                .iter()
-                .map(|&j| (q[j as usize], v[j as usize]));
-            let heading = self.turn(q[i], v[i], others);
+            let Some(slot) = flock.slot(i) else {
+                // a boid in no cell (a non-finite position) sees no one
+                let own = swarm.velocities[i] / s;
+                inputs[i] = self.turn(swarm.positions[i], own, core::iter::empty()) * s;
+                continue;
+            };
+            let others: &[u32] = match self.domain {
+                Domain::Periodic { .. } => {
+                    flock.in_sight(&self.domain, slot, sight, &mut keys, &mut seen);
+                    &seen
+                }
+                Domain::Open => net.graph().neighbours(i),
+            };
+            let (q, v) = (&flock.positions, &flock.headings);
+            let others = others.iter().map(|&j| (q[j as usize], v[j as usize]));
+            let heading = self.turn(q[slot], v[slot], others);
             let p = heading * s;
             inputs[i] = p;
-            v[i] = heading;
-            q[i] = self.domain.wrap(q[i] + p * self.step);
+            flock.headings[slot] = heading;
+            flock.positions[slot] = self.domain.wrap(flock.positions[slot] + p * self.step);
         }
     }
 
@@ -229,3 +255,6 @@ impl<V: Vector> LocalForm<V> for Boids<V> {
         self.turn(own.position, own.velocity / s, others) * s
     }
 }
+
+#[cfg(test)]
+mod tests;
