@@ -180,6 +180,11 @@ impl<V: Vector> Protocol<V> for Boids<V> {
         false
     }
 
+    /// On a torus the sweep finds who is in sight in its own cells.
+    fn controls_read_net(&self) -> bool {
+        !self.domain.is_periodic()
+    }
+
     /// The sequential sweep in the step's random order, each boid reading the others as they are
     /// at its activation: on the torus found in the cells around it ([`Flock::in_cells`]), in open
     /// space on the net; summed in ascending original index either way, so the bits are the same.
@@ -224,7 +229,8 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             let p = heading * s;
             inputs[i] = p;
             flock.headings[slot] = heading;
-            flock.positions[slot] = self.domain.wrap(flock.positions[slot] + p * self.step);
+            let moved = p * self.step;
+            flock.move_to(slot, moved, self.domain.wrap(flock.positions[slot] + moved));
         }
     }
 

@@ -26,6 +26,9 @@ pub(super) struct Flock<V> {
     pub(super) positions: Vec<V>,
     /// Unit heading of the bird in each slot.
     pub(super) headings: Vec<V>,
+    /// On the torus: the position of the bird in each slot as it moved from its cell, never
+    /// wrapped (it stays within s h of its cell), for the search's distances.
+    unwrapped: Vec<V>,
     /// Slot of each bird (original index), [`NO_SLOT`] for a bird in no cell.
     slot_of: Vec<u32>,
     /// On the torus: the grid; `None` in open space (slot k is bird k).
@@ -51,6 +54,7 @@ impl<V: Vector> Flock<V> {
             positions: positions.to_vec(),
             headings,
             slot_of: (0..positions.len() as u32).collect(),
+            unwrapped: Vec::new(),
             grid: None,
         }
     }
@@ -91,7 +95,9 @@ impl<V: Vector> Flock<V> {
             q[slot] = positions[i];
             v[slot] = headings[i];
         }
+        let domain = Domain::Periodic { size };
         Self {
+            unwrapped: q.iter().map(|&q| domain.wrap(q)).collect(),
             positions: q,
             headings: v,
             slot_of,
@@ -112,9 +118,22 @@ impl<V: Vector> Flock<V> {
         }
     }
 
+    /// Moves the bird in `slot` by `step` to `wrapped` (its position wrapped into the box).
+    pub(super) fn move_to(&mut self, slot: usize, step: V, wrapped: V) {
+        self.positions[slot] = wrapped;
+        if let Some(q) = self.unwrapped.get_mut(slot) {
+            *q += step;
+        }
+    }
+
     /// Into `out`, the slots of the birds other than the one in `slot` within `sight` (a squared
     /// distance, boundary included, minimum image) of it, in ascending original index — the order
-    /// of the proximity net's lists. Only on the torus (`keys` is scratch).
+    /// of the proximity net's lists — and perhaps a few more a rounding error beyond (which the
+    /// rule's own test of sight leaves out). Only on the torus (`keys` is scratch).
+    ///
+    /// The distance to a bird of a cell around is that of its unwrapped position shifted by the
+    /// period the cell is across the box's edge, when the grid has at least 3 cells along every
+    /// axis (each cell around then is one image); the minimum image otherwise.
     pub(super) fn in_sight(
         &self,
         domain: &Domain<V>,
@@ -126,40 +145,72 @@ impl<V: Vector> Flock<V> {
         let Some(grid) = &self.grid else {
             unreachable!("the grid's search is the torus's")
         };
-        let q = self.positions[slot];
+        let q = domain.wrap(self.positions[slot]);
+        let padded = sight * (1.0 + 1e-9);
         keys.clear();
         // the bird's own cell from where it is now (it may have left the one it is stored in)
         let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
-        let around = |axis: usize| -> ([usize; 3], usize) {
-            let (m, c) = (grid.cells[axis], c[axis]);
-            match m {
-                1 => ([0, 0, 0], 1),
-                2 => ([0, 1, 0], 2),
-                _ => ([(c + m - 1) % m, c, (c + 1) % m], 3),
+        let shifted = (0..V::DIM).all(|axis| grid.cells[axis] >= 3);
+        let mut push = |other: usize, d2: f64| {
+            if other != slot && d2 <= padded {
+                keys.push(u64::from(grid.bird[other]) << 32 | other as u64);
             }
         };
-        let (x, nx) = around(0);
-        let (y, ny) = around(1);
-        let (z, nz) = around(2);
-        for &cz in &z[..nz] {
-            for &cy in &y[..ny] {
-                for &cx in &x[..nx] {
-                    let cell = index(grid.cells, [cx, cy, cz]);
-                    let slots = grid.starts[cell] as usize..grid.starts[cell + 1] as usize;
-                    for other in slots {
-                        let d2 = domain
+        for (cell, shift) in grid.around(c) {
+            let slots = grid.starts[cell] as usize..grid.starts[cell + 1] as usize;
+            if shifted {
+                let origin = q - shift;
+                for (other, &u) in slots.clone().zip(&self.unwrapped[slots]) {
+                    push(other, (u - origin).length_squared());
+                }
+            } else {
+                for other in slots {
+                    push(
+                        other,
+                        domain
                             .displacement(q, self.positions[other])
-                            .length_squared();
-                        if other != slot && d2 <= sight {
-                            keys.push(u64::from(grid.bird[other]) << 32 | other as u64);
-                        }
-                    }
+                            .length_squared(),
+                    );
                 }
             }
         }
         keys.sort_unstable();
         out.clear();
         out.extend(keys.iter().map(|&key| key as u32));
+    }
+}
+
+impl<V: Vector> Grid<V> {
+    /// The cells around the cell at `c` (itself included), each once, with the shift of the
+    /// period that brings it next to `c` across the box's edge (zero along an axis of fewer than
+    /// 3 cells).
+    fn around(&self, c: [usize; 3]) -> impl Iterator<Item = (usize, V)> + '_ {
+        let along = move |axis: usize| -> ([(usize, f64); 3], usize) {
+            let (m, c) = (self.cells[axis], c[axis]);
+            let side = if axis < V::DIM {
+                self.size.coord(axis)
+            } else {
+                0.0
+            };
+            match m {
+                1 => ([(0, 0.0); 3], 1),
+                2 => ([(0, 0.0), (1, 0.0), (0, 0.0)], 2),
+                _ => {
+                    let below = if c == 0 { (m - 1, -side) } else { (c - 1, 0.0) };
+                    let above = if c + 1 == m { (0, side) } else { (c + 1, 0.0) };
+                    ([below, (c, 0.0), above], 3)
+                }
+            }
+        };
+        let (x, y, z) = (along(0), along(1), along(2));
+        z.0.into_iter().take(z.1).flat_map(move |(cz, sz)| {
+            y.0.into_iter().take(y.1).flat_map(move |(cy, sy)| {
+                x.0.into_iter().take(x.1).map(move |(cx, sx)| {
+                    let shift = V::from_fn(|axis| [sx, sy, sz][axis]);
+                    (index(self.cells, [cx, cy, cz]), shift)
+                })
+            })
+        })
     }
 }
 
