@@ -199,7 +199,7 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             }
             Domain::Open => Flock::in_order(&swarm.positions, headings),
         };
-        let (mut keys, mut seen) = (Vec::new(), Vec::new());
+        let (mut keys, mut runs, mut seen) = (Vec::new(), Vec::new(), Vec::new());
         for (k, i) in self
             .activation_order(t, swarm.len())
             .into_iter()
@@ -218,7 +218,8 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             };
             let others: &[u32] = match self.domain {
                 Domain::Periodic { .. } => {
-                    flock.in_sight(&self.domain, slot, sight, &mut keys, &mut seen);
+                    let scratch = (&mut keys, &mut runs);
+                    flock.in_sight(&self.domain, slot, sight, scratch, &mut seen);
                     &seen
                 }
                 Domain::Open => net.graph().neighbours(i),

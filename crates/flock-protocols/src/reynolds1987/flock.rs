@@ -10,6 +10,8 @@
 //! therefore built once a step and never updated during the sweep: a moved bird is rewritten in its
 //! own slot.
 
+use core::ops::Range;
+
 use flock_math::{Domain, Vector};
 
 /// Slot of a bird in no cell (a non-finite position): it sees no one and no one sees it, as in
@@ -129,7 +131,7 @@ impl<V: Vector> Flock<V> {
     /// Into `out`, the slots of the birds other than the one in `slot` within `sight` (a squared
     /// distance, boundary included, minimum image) of it, in ascending original index — the order
     /// of the proximity net's lists — and perhaps a few more a rounding error beyond (which the
-    /// rule's own test of sight leaves out). Only on the torus (`keys` is scratch).
+    /// rule's own test of sight leaves out). Only on the torus (`keys` and `runs` are scratch).
     ///
     /// The distance to a bird of a cell around is that of its unwrapped position shifted by the
     /// period the cell is across the box's edge, when the grid has at least 3 cells along every
@@ -139,7 +141,7 @@ impl<V: Vector> Flock<V> {
         domain: &Domain<V>,
         slot: usize,
         sight: f64,
-        keys: &mut Vec<u64>,
+        (keys, runs): (&mut Vec<u64>, &mut Vec<(Range<usize>, V)>),
         out: &mut Vec<u32>,
     ) {
         let Some(grid) = &self.grid else {
@@ -156,8 +158,8 @@ impl<V: Vector> Flock<V> {
                 keys.push(u64::from(grid.bird[other]) << 32 | other as u64);
             }
         };
-        for (cell, shift) in grid.around(c) {
-            let slots = grid.starts[cell] as usize..grid.starts[cell + 1] as usize;
+        grid.around(c, runs);
+        for (slots, shift) in runs.drain(..) {
             if shifted {
                 let origin = q - shift;
                 for (other, &u) in slots.clone().zip(&self.unwrapped[slots]) {
@@ -181,11 +183,12 @@ impl<V: Vector> Flock<V> {
 }
 
 impl<V: Vector> Grid<V> {
-    /// The cells around the cell at `c` (itself included), each once, with the shift of the
-    /// period that brings it next to `c` across the box's edge (zero along an axis of fewer than
-    /// 3 cells).
-    fn around(&self, c: [usize; 3]) -> impl Iterator<Item = (usize, V)> + '_ {
-        let along = move |axis: usize| -> ([(usize, f64); 3], usize) {
+    /// The slots of the cells around the cell at `c` (itself included), each cell once, with the
+    /// shift of the period that brings them next to `c` across the box's edge (zero along an axis
+    /// of fewer than 3 cells): into `out`, neighbouring cells along axis 0 with the same shift as
+    /// one run of slots.
+    fn around(&self, c: [usize; 3], out: &mut Vec<(Range<usize>, V)>) {
+        let along = |axis: usize| -> ([(usize, f64); 3], usize) {
             let (m, c) = (self.cells[axis], c[axis]);
             let side = if axis < V::DIM {
                 self.size.coord(axis)
@@ -203,14 +206,29 @@ impl<V: Vector> Grid<V> {
             }
         };
         let (x, y, z) = (along(0), along(1), along(2));
-        z.0.into_iter().take(z.1).flat_map(move |(cz, sz)| {
-            y.0.into_iter().take(y.1).flat_map(move |(cy, sy)| {
-                x.0.into_iter().take(x.1).map(move |(cx, sx)| {
-                    let shift = V::from_fn(|axis| [sx, sy, sz][axis]);
-                    (index(self.cells, [cx, cy, cz]), shift)
-                })
-            })
-        })
+        out.clear();
+        for &(cz, sz) in &z.0[..z.1] {
+            for &(cy, sy) in &y.0[..y.1] {
+                let mut run: Option<(Range<usize>, f64)> = None;
+                for &(cx, sx) in &x.0[..x.1] {
+                    let cell = index(self.cells, [cx, cy, cz]);
+                    let slots = self.starts[cell] as usize..self.starts[cell + 1] as usize;
+                    run = match run {
+                        Some((r, s)) if s == sx && r.end == slots.start => {
+                            Some((r.start..slots.end, s))
+                        }
+                        Some((r, s)) => {
+                            out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
+                            Some((slots, sx))
+                        }
+                        None => Some((slots, sx)),
+                    };
+                }
+                if let Some((r, s)) = run {
+                    out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
+                }
+            }
+        }
     }
 }
 
