@@ -138,35 +138,73 @@ impl<V: Vector> Boids<V> {
         order
     }
 
-    /// The new unit heading of a boid at `q` with heading `v` from its candidates `others`
-    /// (position, heading), those within sight counted.
-    fn turn(&self, q: V, v: V, others: impl Iterator<Item = (V, V)>) -> V {
+    /// The squared visual distance and the squared separation: the rule's two tests.
+    fn squared_distances(&self) -> (f64, f64) {
         let p = &self.params;
-        let (sight, apart) = (
+        (
             p.visual_distance * p.visual_distance,
             p.separation * p.separation,
-        );
-        let (mut cohere, mut separate, mut matching, mut count) = (V::ZERO, V::ZERO, V::ZERO, 0u32);
+        )
+    }
+
+    /// The new unit heading of a boid at `q` with heading `v` from its candidates `others`
+    /// (position, heading), those within sight counted in the order given.
+    fn turn(&self, q: V, v: V, others: impl Iterator<Item = (V, V)>) -> V {
+        let (sight, apart) = self.squared_distances();
+        let mut sums = Sums::ZERO;
         for (qj, vj) in others {
             let offset = self.domain.displacement(q, qj);
-            let d2 = offset.length_squared();
-            if d2 > sight {
-                continue;
-            }
-            count += 1;
-            cohere += offset;
-            if d2 < apart {
-                separate -= offset;
-            }
-            matching += vj;
+            sums.add_in_sight(offset, vj, sight, apart);
         }
-        let n = f64::from(count.max(1));
+        self.heading(v, &sums)
+    }
+
+    /// The new unit heading w / ‖w‖ of a boid with heading `v`, from the sums over the boids in
+    /// its sight.
+    fn heading(&self, v: V, sums: &Sums<V>) -> V {
+        let p = &self.params;
+        let n = f64::from(sums.count.max(1));
         let w = (v
-            + cohere / n * p.cohere_factor
-            + separate / n * p.separate_factor
-            + matching / n * p.match_factor)
+            + sums.cohere / n * p.cohere_factor
+            + sums.separate / n * p.separate_factor
+            + sums.matching / n * p.match_factor)
             / 2.0;
         w / w.length()
+    }
+}
+
+/// The rule's sums over the boids in sight: cohesion c, separation s, alignment m and their
+/// number N.
+#[derive(Clone, Copy, Debug)]
+struct Sums<V> {
+    cohere: V,
+    separate: V,
+    matching: V,
+    count: u32,
+}
+
+impl<V: Vector> Sums<V> {
+    const ZERO: Self = Self {
+        cohere: V::ZERO,
+        separate: V::ZERO,
+        matching: V::ZERO,
+        count: 0,
+    };
+
+    /// Counts a boid at `offset` with heading `vj` if it is within sight (`sight`, a squared
+    /// distance, boundary included), in the separation too if closer than `apart` (squared).
+    #[inline]
+    fn add_in_sight(&mut self, offset: V, vj: V, sight: f64, apart: f64) {
+        let d2 = offset.length_squared();
+        if d2 > sight {
+            return;
+        }
+        self.count += 1;
+        self.cohere += offset;
+        if d2 < apart {
+            self.separate -= offset;
+        }
+        self.matching += vj;
     }
 }
 
@@ -191,7 +229,6 @@ impl<V: Vector> Protocol<V> for Boids<V> {
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let s = self.params.speed;
         let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
-        let sight = self.params.visual_distance * self.params.visual_distance;
         let mut flock = match self.domain {
             Domain::Periodic { size } => {
                 let reach = self.params.visual_distance + s * self.step;
@@ -199,7 +236,8 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             }
             Domain::Open => Flock::in_order(&swarm.positions, headings),
         };
-        let (mut keys, mut runs, mut seen) = (Vec::new(), Vec::new(), Vec::new());
+        let distances = self.squared_distances();
+        let mut runs = Vec::new();
         for (k, i) in self
             .activation_order(t, swarm.len())
             .into_iter()
@@ -216,17 +254,18 @@ impl<V: Vector> Protocol<V> for Boids<V> {
                 inputs[i] = self.turn(swarm.positions[i], own, core::iter::empty()) * s;
                 continue;
             };
-            let others: &[u32] = match self.domain {
+            let heading = match self.domain {
                 Domain::Periodic { .. } => {
-                    let scratch = (&mut keys, &mut runs);
-                    flock.in_sight(&self.domain, slot, sight, scratch, &mut seen);
-                    &seen
+                    let sums = flock.sums_in_sight(&self.domain, slot, distances, &mut runs);
+                    self.heading(flock.headings[slot], &sums)
                 }
-                Domain::Open => net.graph().neighbours(i),
+                Domain::Open => {
+                    let (q, v) = (&flock.positions, &flock.headings);
+                    let others = net.graph().neighbours(i).iter();
+                    let others = others.map(|&j| (q[j as usize], v[j as usize]));
+                    self.turn(q[slot], v[slot], others)
+                }
             };
-            let (q, v) = (&flock.positions, &flock.headings);
-            let others = others.iter().map(|&j| (q[j as usize], v[j as usize]));
-            let heading = self.turn(q[slot], v[slot], others);
             let p = heading * s;
             inputs[i] = p;
             flock.headings[slot] = heading;

@@ -117,7 +117,13 @@ impl WorkloadReport {
     /// frameworks time them.
     #[must_use]
     pub fn median_with_building(&self) -> Duration {
-        median_of(self.times.iter().zip(&self.built).map(|(t, b)| *t + *b).collect())
+        median_of(
+            self.times
+                .iter()
+                .zip(&self.built)
+                .map(|(t, b)| *t + *b)
+                .collect(),
+        )
     }
 
     /// Agent-steps per second at the median.

@@ -14,6 +14,8 @@ use core::ops::Range;
 
 use flock_math::{Domain, Vector};
 
+use super::Sums;
+
 /// Slot of a bird in no cell (a non-finite position): it sees no one and no one sees it, as in
 /// the proximity net.
 const NO_SLOT: u32 = u32::MAX;
@@ -43,10 +45,9 @@ struct Grid<V> {
     size: V,
     /// Cells along each axis (1 beyond `V::DIM`).
     cells: [usize; 3],
-    /// The slots of cell c are `starts[c]..starts[c + 1]`.
+    /// The slots of cell c are `starts[c]..starts[c + 1]` (its birds in ascending original
+    /// index).
     starts: Vec<u32>,
-    /// Original index of the bird in each slot (ascending within a cell).
-    bird: Vec<u32>,
 }
 
 impl<V: Vector> Flock<V> {
@@ -84,7 +85,7 @@ impl<V: Vector> Flock<V> {
         }
         let placed = starts[total] as usize;
         let mut next = starts.clone();
-        let (mut slot_of, mut bird) = (vec![NO_SLOT; n], vec![0u32; placed]);
+        let mut slot_of = vec![NO_SLOT; n];
         let (mut q, mut v) = (vec![V::ZERO; placed], vec![V::ZERO; placed]);
         for (i, &c) in cell_of.iter().enumerate() {
             if c == NO_SLOT {
@@ -93,7 +94,6 @@ impl<V: Vector> Flock<V> {
             let slot = next[c as usize] as usize;
             next[c as usize] += 1;
             slot_of[i] = slot as u32;
-            bird[slot] = i as u32;
             q[slot] = positions[i];
             v[slot] = headings[i];
         }
@@ -107,7 +107,6 @@ impl<V: Vector> Flock<V> {
                 size,
                 cells,
                 starts,
-                bird,
             }),
         }
     }
@@ -128,57 +127,46 @@ impl<V: Vector> Flock<V> {
         }
     }
 
-    /// Into `out`, the slots of the birds other than the one in `slot` within `sight` (a squared
-    /// distance, boundary included, minimum image) of it, in ascending original index — the order
-    /// of the proximity net's lists — and perhaps a few more a rounding error beyond (which the
-    /// rule's own test of sight leaves out). Only on the torus (`keys` and `runs` are scratch).
+    /// The rule's sums over the birds other than the one in `slot` within sight of it (`sight`
+    /// and `apart` the squared visual distance and separation), summed cell by cell around it
+    /// (below, its own, above along each axis, axis 0 fastest) and within a cell in ascending
+    /// original index: an order of space, not of storage. Only on the torus (`runs` is scratch).
     ///
-    /// The distance to a bird of a cell around is that of its unwrapped position shifted by the
-    /// period the cell is across the box's edge, when the grid has at least 3 cells along every
-    /// axis (each cell around then is one image); the minimum image otherwise.
-    pub(super) fn in_sight(
+    /// The offset to a bird of a cell around is its unwrapped position less the bird's, shifted by
+    /// the period the cell is across the box's edge, when the grid has at least 3 cells along
+    /// every axis (each cell around then is one image; the offset is the minimum image to
+    /// round-off); the minimum image otherwise.
+    pub(super) fn sums_in_sight(
         &self,
         domain: &Domain<V>,
         slot: usize,
-        sight: f64,
-        (keys, runs): (&mut Vec<u64>, &mut Vec<(Range<usize>, V)>),
-        out: &mut Vec<u32>,
-    ) {
+        (sight, apart): (f64, f64),
+        runs: &mut Vec<(Range<usize>, V)>,
+    ) -> Sums<V> {
         let Some(grid) = &self.grid else {
             unreachable!("the grid's search is the torus's")
         };
         let q = domain.wrap(self.positions[slot]);
-        let padded = sight * (1.0 + 1e-9);
-        keys.clear();
         // the bird's own cell from where it is now (it may have left the one it is stored in)
         let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
         let shifted = (0..V::DIM).all(|axis| grid.cells[axis] >= 3);
-        let mut push = |other: usize, d2: f64| {
-            if other != slot && d2 <= padded {
-                keys.push(u64::from(grid.bird[other]) << 32 | other as u64);
-            }
-        };
+        let mut sums = Sums::ZERO;
         grid.around(c, runs);
         for (slots, shift) in runs.drain(..) {
-            if shifted {
-                let origin = q - shift;
-                for (other, &u) in slots.clone().zip(&self.unwrapped[slots]) {
-                    push(other, (u - origin).length_squared());
+            let origin = q - shift;
+            for other in slots {
+                if other == slot {
+                    continue;
                 }
-            } else {
-                for other in slots {
-                    push(
-                        other,
-                        domain
-                            .displacement(q, self.positions[other])
-                            .length_squared(),
-                    );
-                }
+                let offset = if shifted {
+                    self.unwrapped[other] - origin
+                } else {
+                    domain.displacement(q, self.positions[other])
+                };
+                sums.add_in_sight(offset, self.headings[other], sight, apart);
             }
         }
-        keys.sort_unstable();
-        out.clear();
-        out.extend(keys.iter().map(|&key| key as u32));
+        sums
     }
 }
 

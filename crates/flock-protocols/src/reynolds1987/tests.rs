@@ -1,4 +1,5 @@
-//! The sweep on the torus's cells against the sweep on the proximity net: the same bits.
+//! The sweep on the torus's cells against the sweep on the proximity net: the same boids in sight,
+//! the same updates to round-off (the cells sum in an order of space, the net in original index).
 
 use flock_graph::{NeighbourSearch, ProximityNet};
 use flock_math::{Domain, Vector};
@@ -31,8 +32,9 @@ fn on_the_net<V: Vector>(model: &Boids<V>, t: f64, swarm: &Swarm<V>) -> Vec<V> {
 }
 
 /// `n` boids uniform in [0, `spread`) per axis of the box of side `side`, at speed 1, one of them
-/// lost (non-finite) when `lost`, swept over 4 steps by the cells and by the net: bit for bit the
-/// same inputs.
+/// lost (non-finite) when `lost`, swept over 4 steps by the cells and by the net: the same inputs
+/// to round-off (an update differs by about f_c r / N ≳ 10⁻³ where one boid in sight is missed or
+/// one too many is counted).
 fn cells_equal_net<V: Vector>(
     n: usize,
     (side, spread): (f64, f64),
@@ -67,10 +69,8 @@ fn cells_equal_net<V: Vector>(
         model.controls(t, &swarm, &net, &mut inputs);
         let reference = on_the_net(&model, t, &swarm);
         for (i, (a, b)) in inputs.iter().zip(&reference).enumerate() {
-            for axis in 0..V::DIM {
-                let (a, b) = (a.coord(axis), b.coord(axis));
-                assert_eq!(a.to_bits(), b.to_bits(), "step {k}, boid {i}: {a} ≠ {b}");
-            }
+            let apart = (*a - *b).length();
+            assert!(apart <= 1e-12, "step {k}, boid {i}: {a:?} against {b:?}");
         }
         for (q, &p) in swarm.positions.iter_mut().zip(&inputs) {
             *q = model.domain.wrap(*q + p * h);
@@ -80,7 +80,7 @@ fn cells_equal_net<V: Vector>(
 }
 
 #[test]
-fn the_cells_find_who_the_net_finds_in_the_same_order() {
+fn the_cells_find_who_the_net_finds() {
     // 5 cells a side, in 2D and 3D
     cells_equal_net::<DVec2>(300, (20.0, 20.0), 3.0, false);
     cells_equal_net::<DVec3>(400, (20.0, 20.0), 3.0, false);
