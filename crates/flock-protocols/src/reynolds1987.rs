@@ -71,10 +71,15 @@ impl Default for BoidsParams {
 /// wrap its cohesion points the long way round; here every offset is the minimum image, as the
 /// declaration asks of the neighbour search.
 ///
-/// The proximity net is built at the visual distance plus 2 s h, the most two boids can close in
-/// a step, so that it holds every pair that comes within sight during the sweep; the metrics'
-/// connectivity is of that net. Under conditions that change what boids perceive (delay, loss,
-/// noise, faults), every boid turns on what it perceived at the start of the step (its
+/// On a torus the sweep finds who is in sight itself, in a grid of cells over the box sorted once
+/// a step (`flock::Flock::in_cells`), and sums cell by cell around the boid, within a cell in
+/// ascending original index: an order of space, the same whatever the storage order. In open
+/// space it reads the proximity net, in ascending original index. The net is built at the visual
+/// distance plus 2 s h, the most two boids can close in a step, so that it holds every pair that
+/// comes within sight during the sweep; the metrics' connectivity is of that net, which a
+/// simulation builds on a torus only when a measurement reads it
+/// ([`Protocol::controls_read_net`]). Under conditions that change what boids perceive (delay,
+/// loss, noise, faults), every boid turns on what it perceived at the start of the step (its
 /// [`LocalForm`]): the activation order then plays no part.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Boids<V> {
@@ -224,8 +229,8 @@ impl<V: Vector> Protocol<V> for Boids<V> {
     }
 
     /// The sequential sweep in the step's random order, each boid reading the others as they are
-    /// at its activation: on the torus found in the cells around it ([`Flock::in_cells`]), in open
-    /// space on the net; summed in ascending original index either way, so the bits are the same.
+    /// at its activation: on the torus in the cells around it (`flock::Flock::sums_in_sight`), in open
+    /// space on the net.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let s = self.params.speed;
         let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();

@@ -153,17 +153,24 @@ impl<V: Vector> Flock<V> {
         let mut sums = Sums::ZERO;
         grid.around(c, runs);
         for (slots, shift) in runs.drain(..) {
-            let origin = q - shift;
-            for other in slots {
-                if other == slot {
-                    continue;
-                }
-                let offset = if shifted {
-                    self.unwrapped[other] - origin
+            // the run without the bird itself: the slots before it and after it
+            let (before, after) = if slots.contains(&slot) {
+                (slots.start..slot, slot + 1..slots.end)
+            } else {
+                (slots, 0..0)
+            };
+            for others in [before, after] {
+                let headings = &self.headings[others.clone()];
+                if shifted {
+                    let origin = q - shift;
+                    for (&u, &v) in self.unwrapped[others].iter().zip(headings) {
+                        sums.add_in_sight(u - origin, v, sight, apart);
+                    }
                 } else {
-                    domain.displacement(q, self.positions[other])
-                };
-                sums.add_in_sight(offset, self.headings[other], sight, apart);
+                    for (&qj, &v) in self.positions[others].iter().zip(headings) {
+                        sums.add_in_sight(domain.displacement(q, qj), v, sight, apart);
+                    }
+                }
             }
         }
         sums
