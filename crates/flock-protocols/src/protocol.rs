@@ -51,6 +51,15 @@ pub trait Protocol<V: Vector>: Sync {
         true
     }
 
+    /// Whether [`Protocol::controls`] reads the net's graph; true unless a protocol says
+    /// otherwise. When false, a simulation (`flock_sim::Simulation`) without conditions or
+    /// vehicles does not rebuild its net after each step but when a measurement reads it: a
+    /// protocol that finds its neighbours itself (the boids on a torus) steps without it.
+    #[must_use]
+    fn controls_read_net(&self) -> bool {
+        true
+    }
+
     /// Whether the protocol follows a net's [`Numbering`](flock_graph::Numbering): given the state
     /// stored in any order and the net built from it with its numbering, [`Protocol::controls`]
     /// gives each agent the bits it gets in original order, and [`Protocol::energy`] the same
@@ -236,6 +245,10 @@ impl<V: Vector, P: Protocol<V> + ?Sized> Protocol<V> for Box<P> {
 
     fn uses_net_distances(&self) -> bool {
         (**self).uses_net_distances()
+    }
+
+    fn controls_read_net(&self) -> bool {
+        (**self).controls_read_net()
     }
 
     fn follows_numbering(&self) -> bool {

@@ -7,9 +7,12 @@ use flock_graph::ProximityNet;
 use flock_math::interrupt::{BLOCK, cuts_short};
 use flock_math::{Domain, Vector};
 
+mod flock;
+
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
+use flock::Flock;
 use flock_math::stream::{Purpose, Streams};
 
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
@@ -68,10 +71,15 @@ impl Default for BoidsParams {
 /// wrap its cohesion points the long way round; here every offset is the minimum image, as the
 /// declaration asks of the neighbour search.
 ///
-/// The proximity net is built at the visual distance plus 2 s h, the most two boids can close in
-/// a step, so that it holds every pair that comes within sight during the sweep; the metrics'
-/// connectivity is of that net. Under conditions that change what boids perceive (delay, loss,
-/// noise, faults), every boid turns on what it perceived at the start of the step (its
+/// On a torus the sweep finds who is in sight itself, in a grid of cells over the box sorted once
+/// a step (`flock::Flock::in_cells`), and sums cell by cell around the boid, within a cell in
+/// ascending original index: an order of space, the same whatever the storage order. In open
+/// space it reads the proximity net, in ascending original index. The net is built at the visual
+/// distance plus 2 s h, the most two boids can close in a step, so that it holds every pair that
+/// comes within sight during the sweep; the metrics' connectivity is of that net, which a
+/// simulation builds on a torus only when a measurement reads it
+/// ([`Protocol::controls_read_net`]). Under conditions that change what boids perceive (delay,
+/// loss, noise, faults), every boid turns on what it perceived at the start of the step (its
 /// [`LocalForm`]): the activation order then plays no part.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Boids<V> {
@@ -135,35 +143,73 @@ impl<V: Vector> Boids<V> {
         order
     }
 
-    /// The new unit heading of a boid at `q` with heading `v` from its candidates `others`
-    /// (position, heading), those within sight counted.
-    fn turn(&self, q: V, v: V, others: impl Iterator<Item = (V, V)>) -> V {
+    /// The squared visual distance and the squared separation: the rule's two tests.
+    fn squared_distances(&self) -> (f64, f64) {
         let p = &self.params;
-        let (sight, apart) = (
+        (
             p.visual_distance * p.visual_distance,
             p.separation * p.separation,
-        );
-        let (mut cohere, mut separate, mut matching, mut count) = (V::ZERO, V::ZERO, V::ZERO, 0u32);
+        )
+    }
+
+    /// The new unit heading of a boid at `q` with heading `v` from its candidates `others`
+    /// (position, heading), those within sight counted in the order given.
+    fn turn(&self, q: V, v: V, others: impl Iterator<Item = (V, V)>) -> V {
+        let (sight, apart) = self.squared_distances();
+        let mut sums = Sums::ZERO;
         for (qj, vj) in others {
             let offset = self.domain.displacement(q, qj);
-            let d2 = offset.length_squared();
-            if d2 > sight {
-                continue;
-            }
-            count += 1;
-            cohere += offset;
-            if d2 < apart {
-                separate -= offset;
-            }
-            matching += vj;
+            sums.add_in_sight(offset, vj, sight, apart);
         }
-        let n = f64::from(count.max(1));
+        self.heading(v, &sums)
+    }
+
+    /// The new unit heading w / ‖w‖ of a boid with heading `v`, from the sums over the boids in
+    /// its sight.
+    fn heading(&self, v: V, sums: &Sums<V>) -> V {
+        let p = &self.params;
+        let n = f64::from(sums.count.max(1));
         let w = (v
-            + cohere / n * p.cohere_factor
-            + separate / n * p.separate_factor
-            + matching / n * p.match_factor)
+            + sums.cohere / n * p.cohere_factor
+            + sums.separate / n * p.separate_factor
+            + sums.matching / n * p.match_factor)
             / 2.0;
         w / w.length()
+    }
+}
+
+/// The rule's sums over the boids in sight: cohesion c, separation s, alignment m and their
+/// number N.
+#[derive(Clone, Copy, Debug)]
+struct Sums<V> {
+    cohere: V,
+    separate: V,
+    matching: V,
+    count: u32,
+}
+
+impl<V: Vector> Sums<V> {
+    const ZERO: Self = Self {
+        cohere: V::ZERO,
+        separate: V::ZERO,
+        matching: V::ZERO,
+        count: 0,
+    };
+
+    /// Counts a boid at `offset` with heading `vj` if it is within sight (`sight`, a squared
+    /// distance, boundary included), in the separation too if closer than `apart` (squared).
+    #[inline]
+    fn add_in_sight(&mut self, offset: V, vj: V, sight: f64, apart: f64) {
+        let d2 = offset.length_squared();
+        if d2 > sight {
+            return;
+        }
+        self.count += 1;
+        self.cohere += offset;
+        if d2 < apart {
+            self.separate -= offset;
+        }
+        self.matching += vj;
     }
 }
 
@@ -177,28 +223,59 @@ impl<V: Vector> Protocol<V> for Boids<V> {
         false
     }
 
+    /// On a torus the sweep finds who is in sight in its own cells.
+    fn controls_read_net(&self) -> bool {
+        !self.domain.is_periodic()
+    }
+
     /// The sequential sweep in the step's random order, each boid reading the others as they are
-    /// at its activation.
+    /// at its activation: on the torus in the cells around it (`flock::Flock::sums_in_sight`), in open
+    /// space on the net.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let s = self.params.speed;
-        let mut q = swarm.positions.clone();
-        let mut v: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
-        for (k, i) in self.activation_order(t, q.len()).into_iter().enumerate() {
+        let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
+        let mut flock = match self.domain {
+            Domain::Periodic { size } => {
+                let reach = self.params.visual_distance + s * self.step;
+                Flock::in_cells(size, reach, &swarm.positions, &headings)
+            }
+            Domain::Open => Flock::in_order(&swarm.positions, headings),
+        };
+        let distances = self.squared_distances();
+        let mut runs = Vec::new();
+        for (k, i) in self
+            .activation_order(t, swarm.len())
+            .into_iter()
+            .enumerate()
+        {
             // one sequential sweep: checked for an interrupt every block of boids
             if k % BLOCK == 0 && cuts_short() {
                 return;
             }
             let i = i as usize;
-            let others = net
-                .graph()
-                .neighbours(i)
-                .iter()
-                .map(|&j| (q[j as usize], v[j as usize]));
-            let heading = self.turn(q[i], v[i], others);
+            let Some(slot) = flock.slot(i) else {
+                // a boid in no cell (a non-finite position) sees no one
+                let own = swarm.velocities[i] / s;
+                inputs[i] = self.turn(swarm.positions[i], own, core::iter::empty()) * s;
+                continue;
+            };
+            let heading = match self.domain {
+                Domain::Periodic { .. } => {
+                    let sums = flock.sums_in_sight(&self.domain, slot, distances, &mut runs);
+                    self.heading(flock.headings[slot], &sums)
+                }
+                Domain::Open => {
+                    let (q, v) = (&flock.positions, &flock.headings);
+                    let others = net.graph().neighbours(i).iter();
+                    let others = others.map(|&j| (q[j as usize], v[j as usize]));
+                    self.turn(q[slot], v[slot], others)
+                }
+            };
             let p = heading * s;
             inputs[i] = p;
-            v[i] = heading;
-            q[i] = self.domain.wrap(q[i] + p * self.step);
+            flock.headings[slot] = heading;
+            let moved = p * self.step;
+            flock.move_to(slot, moved, self.domain.wrap(flock.positions[slot] + moved));
         }
     }
 
@@ -229,3 +306,6 @@ impl<V: Vector> LocalForm<V> for Boids<V> {
         self.turn(own.position, own.velocity / s, others) * s
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -93,6 +93,9 @@ pub struct Simulation<V, P> {
     pub(crate) swarm: Swarm<V>,
     pub(crate) search: NeighbourSearch,
     pub(crate) net: ProximityNet,
+    /// Whether `net` is of an earlier state: after the steps of a protocol whose controls do not
+    /// read it ([`Simulation::current_net`]).
+    pub(crate) net_stale: bool,
     pub(crate) inputs: Vec<V>,
     pub(crate) rk: Option<RungeKuttaScratch<V>>,
     /// The real conditions of the run, `None` for the ideal run ([`Simulation::with_conditions`]).
@@ -158,6 +161,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         });
         let mut simulation = Self {
             net: empty_net(&protocol),
+            net_stale: false,
             protocol,
             integrator,
             step,
@@ -228,10 +232,23 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     #[must_use]
     pub fn graph(&self) -> Cow<'_, Graph> {
         let numbering = self.net.numbering();
-        if numbering.is_identity() {
-            return Cow::Borrowed(self.net.graph());
+        match self.current_net() {
+            Cow::Borrowed(net) if numbering.is_identity() => Cow::Borrowed(net.graph()),
+            net if numbering.is_identity() => Cow::Owned(net.graph().clone()),
+            net => Cow::Owned(net.graph().in_original_order(numbering)),
         }
-        Cow::Owned(self.net.graph().in_original_order(numbering))
+    }
+
+    /// The proximity net of the current state: the one kept, or, after steps of a protocol whose
+    /// controls do not read it ([`Protocol::controls_read_net`]), one built for this read.
+    pub(crate) fn current_net(&self) -> Cow<'_, ProximityNet> {
+        if !self.net_stale {
+            return Cow::Borrowed(&self.net);
+        }
+        let mut net = empty_net(&self.protocol);
+        let range = self.protocol.interaction_range();
+        NeighbourSearch::new().build_in(&self.domain, &self.swarm.positions, range, &mut net);
+        Cow::Owned(net)
     }
 
     /// Whether the agents are stored by cell (they were numbered at random; see [`Simulation`]).
@@ -247,6 +264,11 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// For a protocol with an [interaction graph](Protocol::interaction_graph), C, C* and the
     /// components are those of that graph; the other metrics are of the proximity net.
     pub fn metrics(&self, params: &MetricParams) -> FlockMetrics {
+        self.metrics_on(&self.current_net(), params)
+    }
+
+    /// [`Simulation::metrics`] of the current state's `net`.
+    fn metrics_on(&self, net: &ProximityNet, params: &MetricParams) -> FlockMetrics {
         if let Some(removed) = self.conditions.as_ref().and_then(|c| c.removed()) {
             return self.metrics_without(removed, params);
         }
@@ -254,7 +276,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             &self.domain,
             &self.swarm.positions,
             &self.swarm.velocities,
-            &self.net,
+            net,
             params,
         );
         match self.protocol.interaction_graph() {
@@ -268,13 +290,19 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// 3n − 6 and the crossing edges.
     #[must_use]
     pub fn lattice(&self, d: f64, tolerance: f64) -> LatticeSummary {
-        LatticeSummary::measure_in(&self.domain, &self.swarm.positions, &self.net, d, tolerance)
+        let net = self.current_net();
+        LatticeSummary::measure_in(&self.domain, &self.swarm.positions, &net, d, tolerance)
     }
 
     /// The protocol's energy at the current state.
     #[must_use]
     pub fn energy(&self) -> f64 {
-        self.protocol.energy(self.time(), &self.swarm, &self.net)
+        self.energy_on(&self.current_net())
+    }
+
+    /// [`Simulation::energy`] of the current state's `net`.
+    fn energy_on(&self, net: &ProximityNet) -> f64 {
+        self.protocol.energy(self.time(), &self.swarm, net)
     }
 
     /// The protocol's own diagnostics of the current state ([`Protocol::diagnostics`]).
@@ -284,9 +312,12 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// `information_age` (communication), `at_acceleration_limit`, `at_speed_limit` (actuation
     /// limits) and `failed` (faults).
     pub fn diagnostics(&self) -> Vec<(&'static str, f64)> {
-        let mut columns = self
-            .protocol
-            .diagnostics(self.time(), &self.swarm, &self.net);
+        self.diagnostics_on(&self.current_net())
+    }
+
+    /// [`Simulation::diagnostics`] of the current state's `net`.
+    fn diagnostics_on(&self, net: &ProximityNet) -> Vec<(&'static str, f64)> {
+        let mut columns = self.protocol.diagnostics(self.time(), &self.swarm, net);
         if let Some(stage) = &self.conditions {
             columns.extend(stage.diagnostics());
         }
@@ -300,11 +331,12 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// with the bits it has alone) and the diagnostics.
     #[must_use]
     pub fn observe(&self, params: &MetricParams) -> Observation {
-        let (metrics, energy) = join(|| self.metrics(params), || self.energy());
+        let net = self.current_net();
+        let (metrics, energy) = join(|| self.metrics_on(&net, params), || self.energy_on(&net));
         Observation {
             metrics,
             energy,
-            diagnostics: self.diagnostics(),
+            diagnostics: self.diagnostics_on(&net),
         }
     }
 
@@ -312,10 +344,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// net (of the [interaction graph](Protocol::interaction_graph), if any), per agent: ½ Σ_i ‖p_i − p̄_{c(i)}‖² / n (0 when every component moves rigidly).
     #[must_use]
     pub fn component_velocity_mismatch(&self) -> f64 {
-        let graph = self
-            .protocol
-            .interaction_graph()
-            .unwrap_or(self.net.graph());
+        let net = self.current_net();
+        let graph = self.protocol.interaction_graph().unwrap_or(net.graph());
         component_velocity_mismatch(
             &self.swarm.velocities,
             &Components::of(graph),

@@ -70,6 +70,7 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
     /// sorted, when the protocol follows the numbering. (Agents once sorted wait for the next
     /// re-sort even if still scattered, e.g. thousands in one cell: no sort at every step.)
     pub(crate) fn rebuild_net(&mut self) {
+        self.net_stale = false;
         let r = self.protocol.interaction_range();
         let sorts =
             self.protocol.follows_numbering() && self.protocol.interaction_graph().is_none();
@@ -83,6 +84,24 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             self.sort_by_cell();
             self.search
                 .build_in(&self.domain, &self.swarm.positions, r, &mut self.net);
+        }
+    }
+
+    /// Whether the net is rebuilt after each step: unless the protocol's controls do not read it
+    /// ([`Protocol::controls_read_net`]) and nothing else of the step does (no conditions, no
+    /// vehicles, no stages of RK4, agents in original order).
+    pub(crate) fn keeps_net(&self) -> bool {
+        self.protocol.controls_read_net()
+            || self.protocol.follows_numbering()
+            || self.conditions.is_some()
+            || self.fleet.is_some()
+            || self.rk.is_some()
+    }
+
+    /// Rebuilds a net left of an earlier state ([`Simulation::keeps_net`]).
+    pub(crate) fn refresh_net(&mut self) {
+        if self.net_stale {
+            self.rebuild_net();
         }
     }
 

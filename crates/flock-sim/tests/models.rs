@@ -397,6 +397,44 @@ fn boids_equal_the_declared_sequential_rule_2d_3d_open_and_periodic() {
     boids_agree::<DVec3>(None);
 }
 
+/// On a torus the boids step without the net (their sweep searches its own cells): what the
+/// simulation measures between steps is still of the net of the current state, and a step
+/// after a measurement has the bits of one without.
+#[test]
+fn boids_measure_the_net_of_the_current_state() {
+    let b = BoidsParams::default();
+    let (n, side, h) = (200, 60.0, 1.0);
+    let swarm = near_the_wrap::<DVec2>(n, side, b.speed, 3);
+    let model = Boids::new(b, h, 2, domain(Some(side))).unwrap();
+    let range = model.interaction_range();
+    let new = |model| {
+        Simulation::new(model, Integrator::SymplecticEuler, swarm.clone(), h)
+            .unwrap()
+            .with_domain(domain(Some(side)))
+            .unwrap()
+    };
+    let (mut measured, mut unmeasured) = (new(model.clone()), new(model));
+    let params = flock_metrics::MetricParams {
+        d: 5.0,
+        collision_distance: 1.0,
+    };
+    for _ in 0..5 {
+        measured.step();
+        unmeasured.step();
+        let mut net = flock_graph::ProximityNet::without_distances();
+        let now = measured.swarm();
+        let torus = domain(Some(side));
+        flock_graph::NeighbourSearch::new().build_in(&torus, &now.positions, range, &mut net);
+        assert!(net.graph().directed_edge_count() > 0);
+        assert_eq!(*measured.graph(), *net.graph());
+        let (q, p) = (&now.positions, &now.velocities);
+        let metrics = flock_metrics::FlockMetrics::measure_in(&torus, q, p, &net, &params);
+        assert_eq!(measured.observe(&params).metrics, metrics);
+        assert_eq!(measured.metrics(&params), metrics);
+    }
+    assert_eq!(measured.swarm(), unmeasured.swarm());
+}
+
 #[test]
 fn boids_order_is_a_permutation_drawn_anew_each_step() {
     let model = Boids::<DVec2>::new(BoidsParams::default(), 1.0, 1, Domain::Open).unwrap();

@@ -98,25 +98,32 @@ pub struct WorkloadReport {
     pub scenario: Scenario,
     /// The time of the scenario's steps for each seed 0, 1, …, in order.
     pub times: Vec<Duration>,
+    /// The time of building each seed's model (its random start and its net), in the same order:
+    /// the frameworks' own benchmarks time it with the steps.
+    pub built: Vec<Duration>,
     /// Worker threads of the rayon pool that ran them.
     pub threads: usize,
 }
 
 impl WorkloadReport {
-    /// The median time over the seeds (the mean of the two middle ones for an even count).
+    /// The median time of the steps over the seeds (the mean of the two middle ones for an even
+    /// count).
     #[must_use]
     pub fn median(&self) -> Duration {
-        let mut sorted = self.times.clone();
-        sorted.sort_unstable();
-        let n = sorted.len();
-        if n == 0 {
-            return Duration::ZERO;
-        }
-        if n % 2 == 1 {
-            sorted[n / 2]
-        } else {
-            (sorted[n / 2 - 1] + sorted[n / 2]) / 2
-        }
+        median_of(self.times.clone())
+    }
+
+    /// The median over the seeds of the time of building the model and taking its steps, as the
+    /// frameworks time them.
+    #[must_use]
+    pub fn median_with_building(&self) -> Duration {
+        median_of(
+            self.times
+                .iter()
+                .zip(&self.built)
+                .map(|(t, b)| *t + *b)
+                .collect(),
+        )
     }
 
     /// Agent-steps per second at the median.
@@ -127,7 +134,22 @@ impl WorkloadReport {
     }
 }
 
-/// One line: the scenario, the median, the least and most times, agent-steps/s and threads.
+/// The median of `times` (the mean of the two middle ones for an even count; zero for none).
+fn median_of(mut times: Vec<Duration>) -> Duration {
+    times.sort_unstable();
+    let n = times.len();
+    if n == 0 {
+        return Duration::ZERO;
+    }
+    if n % 2 == 1 {
+        times[n / 2]
+    } else {
+        (times[n / 2 - 1] + times[n / 2]) / 2
+    }
+}
+
+/// One line: the scenario, the median of the steps, the least and most times, agent-steps/s and
+/// threads, then the median with the model's building.
 impl fmt::Display for WorkloadReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = &self.scenario;
@@ -140,7 +162,7 @@ impl fmt::Display for WorkloadReport {
         let most = self.times.iter().max().copied().unwrap_or_default();
         write!(
             f,
-            "{}: {} {agents}, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s)",
+            "{}: {} {agents}, box {:?}, {} steps, {} seed(s): median {:.3} ms (least {:.3}, most {:.3}), {:.3e} agent-steps/s on {} thread(s); with building the model, median {:.3} ms",
             s.name,
             s.agents,
             s.box_size().unwrap_or_default(),
@@ -150,7 +172,8 @@ impl fmt::Display for WorkloadReport {
             ms(least),
             ms(most),
             self.agent_steps_per_second(),
-            self.threads
+            self.threads,
+            ms(self.median_with_building()),
         )
     }
 }
@@ -220,19 +243,21 @@ impl WorkloadConfig {
 }
 
 /// Times `scenario`'s steps (no metrics, no output: the model alone, as the frameworks time it)
-/// from seeds 0 to `seeds` − 1; building the start is not timed.
+/// from seeds 0 to `seeds` − 1, and apart from them the building of each seed's model.
 ///
 /// # Errors
 /// A scenario refused with a seed (or memory it cannot have), or the process's interrupt
 /// ([`crate::interrupt`]) between two steps.
 pub fn time_seeds(scenario: &Scenario, seeds: u64) -> Result<WorkloadReport, BenchError> {
-    let mut times = Vec::new();
+    let (mut times, mut built) = (Vec::new(), Vec::new());
     for seed in 0..seeds {
         let refused = |e: ScenarioError| BenchError::of_scenario(&e, &[]);
         let seeded = scenario
             .with_values([("seed", json!(seed))])
             .map_err(refused)?;
+        let building = Instant::now();
         let mut sim = DynSimulation::new(&seeded).map_err(refused)?;
+        built.push(building.elapsed());
         let start = Instant::now();
         for _ in 0..seeded.steps() {
             let before = sim.steps();
@@ -246,6 +271,7 @@ pub fn time_seeds(scenario: &Scenario, seeds: u64) -> Result<WorkloadReport, Ben
     Ok(WorkloadReport {
         scenario: scenario.clone(),
         times,
+        built,
         threads: rayon::current_num_threads(),
     })
 }
@@ -292,5 +318,11 @@ mod tests {
         assert_eq!(side, Some(vec![500.0, 500.0]));
         assert!("boids".parse::<Workload>().is_err());
         assert!(report.median() <= *report.times.iter().max().expect("three"));
+        assert_eq!(report.built.len(), 3);
+        assert!(report.median_with_building() > report.median(), "{report}");
+        // the median of an even count is the mean of the two middle ones
+        let ms = Duration::from_millis;
+        assert_eq!(median_of(vec![ms(4), ms(1), ms(2), ms(9)]), ms(3));
+        assert_eq!(median_of(Vec::new()), Duration::ZERO);
     }
 }

@@ -98,6 +98,8 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
             return None;
         }
         if self.pending.is_none() {
+            // the percepts are of the net
+            self.refresh_net();
             let sensed = if self.sense() {
                 let protocol: &dyn Protocol<V> = &self.protocol;
                 let perception = communicate(
@@ -221,7 +223,12 @@ impl<V: Vector, P: Protocol<V>> Simulation<V, P> {
         self.torn = taken && (self.conditions.is_some() || self.fleet.is_some()) && cuts_short();
         if taken && !self.torn {
             self.steps += 1;
-            self.rebuild_net();
+            if self.keeps_net() {
+                self.rebuild_net();
+            } else {
+                // built when a measurement reads it (Simulation::current_net)
+                self.net_stale = true;
+            }
         }
     }
 

@@ -1,0 +1,267 @@
+//! The boids of one sequential sweep, as the sweep reads and moves them: each bird's position and
+//! heading in a *slot*, and how a bird finds the others in sight — by the proximity net in open
+//! space, by a uniform grid of cells over the torus in a periodic box ([`Flock::in_cells`]).
+//!
+//! On the torus the birds are sorted by the cell they are in at the start of the step (a counting
+//! sort, ascending original index within a cell), so that the birds of neighbouring cells are
+//! neighbours in memory. A cell is at least the visual distance plus one move s h across: a bird
+//! moves at most s h in the sweep, so it stays within s h of the cell it is stored in, and every
+//! bird within sight of a point lies in the point's cell or the cells around it. The grid is
+//! therefore built once a step and never updated during the sweep: a moved bird is rewritten in its
+//! own slot.
+
+use core::ops::Range;
+
+use flock_math::{Domain, Vector};
+
+use super::Sums;
+
+/// Slot of a bird in no cell (a non-finite position): it sees no one and no one sees it, as in
+/// the proximity net.
+const NO_SLOT: u32 = u32::MAX;
+
+/// Cells allowed per bird (and a few more for tiny flocks): a grid over a sparse flock in a large
+/// box gets larger cells rather than empty ones.
+const CELLS_PER_BIRD: usize = 4;
+
+/// The birds of a sweep, stored by slot.
+pub(super) struct Flock<V> {
+    /// Position of the bird in each slot.
+    pub(super) positions: Vec<V>,
+    /// Unit heading of the bird in each slot.
+    pub(super) headings: Vec<V>,
+    /// On the torus: the position of the bird in each slot as it moved from its cell, never
+    /// wrapped (it stays within s h of its cell), for the search's distances.
+    unwrapped: Vec<V>,
+    /// Slot of each bird (original index), [`NO_SLOT`] for a bird in no cell.
+    slot_of: Vec<u32>,
+    /// On the torus: the grid; `None` in open space (slot k is bird k).
+    grid: Option<Grid<V>>,
+}
+
+/// A uniform grid over the periodic box, its cells numbered with axis 0 fastest.
+struct Grid<V> {
+    /// The sides of the box.
+    size: V,
+    /// Cells along each axis (1 beyond `V::DIM`).
+    cells: [usize; 3],
+    /// The slots of cell c are `starts[c]..starts[c + 1]` (its birds in ascending original
+    /// index).
+    starts: Vec<u32>,
+}
+
+impl<V: Vector> Flock<V> {
+    /// The birds in original order (slot k is bird k), for the search on the proximity net.
+    pub(super) fn in_order(positions: &[V], headings: Vec<V>) -> Self {
+        Self {
+            positions: positions.to_vec(),
+            headings,
+            slot_of: (0..positions.len() as u32).collect(),
+            unwrapped: Vec::new(),
+            grid: None,
+        }
+    }
+
+    /// The birds at `positions` with unit `headings` sorted by cell of a grid over the box of
+    /// sides `size`, each cell at least `reach` across (`reach` > 0).
+    pub(super) fn in_cells(size: V, reach: f64, positions: &[V], headings: &[V]) -> Self {
+        let n = positions.len();
+        let cells = cells_per_axis(size, reach, n);
+        let total: usize = cells.iter().product();
+        let cell_of: Vec<u32> = positions
+            .iter()
+            .map(|&q| match coords(size, cells, q) {
+                Some(c) => index(cells, c) as u32,
+                None => NO_SLOT,
+            })
+            .collect();
+        // counting sort: starts[c + 1] counts cell c, then the running sum
+        let mut starts = vec![0u32; total + 1];
+        for &c in cell_of.iter().filter(|&&c| c != NO_SLOT) {
+            starts[c as usize + 1] += 1;
+        }
+        for c in 0..total {
+            starts[c + 1] += starts[c];
+        }
+        let placed = starts[total] as usize;
+        let mut next = starts.clone();
+        let mut slot_of = vec![NO_SLOT; n];
+        let (mut q, mut v) = (vec![V::ZERO; placed], vec![V::ZERO; placed]);
+        for (i, &c) in cell_of.iter().enumerate() {
+            if c == NO_SLOT {
+                continue;
+            }
+            let slot = next[c as usize] as usize;
+            next[c as usize] += 1;
+            slot_of[i] = slot as u32;
+            q[slot] = positions[i];
+            v[slot] = headings[i];
+        }
+        let domain = Domain::Periodic { size };
+        Self {
+            unwrapped: q.iter().map(|&q| domain.wrap(q)).collect(),
+            positions: q,
+            headings: v,
+            slot_of,
+            grid: Some(Grid {
+                size,
+                cells,
+                starts,
+            }),
+        }
+    }
+
+    /// The slot of bird `i`, `None` for a bird in no cell.
+    pub(super) fn slot(&self, i: usize) -> Option<usize> {
+        match self.slot_of[i] {
+            NO_SLOT => None,
+            slot => Some(slot as usize),
+        }
+    }
+
+    /// Moves the bird in `slot` by `step` to `wrapped` (its position wrapped into the box).
+    pub(super) fn move_to(&mut self, slot: usize, step: V, wrapped: V) {
+        self.positions[slot] = wrapped;
+        if let Some(q) = self.unwrapped.get_mut(slot) {
+            *q += step;
+        }
+    }
+
+    /// The rule's sums over the birds other than the one in `slot` within sight of it (`sight`
+    /// and `apart` the squared visual distance and separation), summed cell by cell around it
+    /// (below, its own, above along each axis, axis 0 fastest) and within a cell in ascending
+    /// original index: an order of space, not of storage. Only on the torus (`runs` is scratch).
+    ///
+    /// The offset to a bird of a cell around is its unwrapped position less the bird's, shifted by
+    /// the period the cell is across the box's edge, when the grid has at least 3 cells along
+    /// every axis (each cell around then is one image; the offset is the minimum image to
+    /// round-off); the minimum image otherwise.
+    pub(super) fn sums_in_sight(
+        &self,
+        domain: &Domain<V>,
+        slot: usize,
+        (sight, apart): (f64, f64),
+        runs: &mut Vec<(Range<usize>, V)>,
+    ) -> Sums<V> {
+        let Some(grid) = &self.grid else {
+            unreachable!("the grid's search is the torus's")
+        };
+        let q = domain.wrap(self.positions[slot]);
+        // the bird's own cell from where it is now (it may have left the one it is stored in)
+        let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
+        let shifted = (0..V::DIM).all(|axis| grid.cells[axis] >= 3);
+        let mut sums = Sums::ZERO;
+        grid.around(c, runs);
+        for (slots, shift) in runs.drain(..) {
+            // the run without the bird itself: the slots before it and after it
+            let (before, after) = if slots.contains(&slot) {
+                (slots.start..slot, slot + 1..slots.end)
+            } else {
+                (slots, 0..0)
+            };
+            for others in [before, after] {
+                let headings = &self.headings[others.clone()];
+                if shifted {
+                    let origin = q - shift;
+                    for (&u, &v) in self.unwrapped[others].iter().zip(headings) {
+                        sums.add_in_sight(u - origin, v, sight, apart);
+                    }
+                } else {
+                    for (&qj, &v) in self.positions[others].iter().zip(headings) {
+                        sums.add_in_sight(domain.displacement(q, qj), v, sight, apart);
+                    }
+                }
+            }
+        }
+        sums
+    }
+}
+
+impl<V: Vector> Grid<V> {
+    /// The slots of the cells around the cell at `c` (itself included), each cell once, with the
+    /// shift of the period that brings them next to `c` across the box's edge (zero along an axis
+    /// of fewer than 3 cells): into `out`, neighbouring cells along axis 0 with the same shift as
+    /// one run of slots.
+    fn around(&self, c: [usize; 3], out: &mut Vec<(Range<usize>, V)>) {
+        let along = |axis: usize| -> ([(usize, f64); 3], usize) {
+            let (m, c) = (self.cells[axis], c[axis]);
+            let side = if axis < V::DIM {
+                self.size.coord(axis)
+            } else {
+                0.0
+            };
+            match m {
+                1 => ([(0, 0.0); 3], 1),
+                2 => ([(0, 0.0), (1, 0.0), (0, 0.0)], 2),
+                _ => {
+                    let below = if c == 0 { (m - 1, -side) } else { (c - 1, 0.0) };
+                    let above = if c + 1 == m { (0, side) } else { (c + 1, 0.0) };
+                    ([below, (c, 0.0), above], 3)
+                }
+            }
+        };
+        let (x, y, z) = (along(0), along(1), along(2));
+        out.clear();
+        for &(cz, sz) in &z.0[..z.1] {
+            for &(cy, sy) in &y.0[..y.1] {
+                let mut run: Option<(Range<usize>, f64)> = None;
+                for &(cx, sx) in &x.0[..x.1] {
+                    let cell = index(self.cells, [cx, cy, cz]);
+                    let slots = self.starts[cell] as usize..self.starts[cell + 1] as usize;
+                    run = match run {
+                        Some((r, s)) if s == sx && r.end == slots.start => {
+                            Some((r.start..slots.end, s))
+                        }
+                        Some((r, s)) => {
+                            out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
+                            Some((slots, sx))
+                        }
+                        None => Some((slots, sx)),
+                    };
+                }
+                if let Some((r, s)) = run {
+                    out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
+                }
+            }
+        }
+    }
+}
+
+/// Cells along each axis of a box of sides `size`: as many as fit with each at least `reach`
+/// across (at least one), halved along the most divided axis while there are more than
+/// [`CELLS_PER_BIRD`] per bird of `n`. Padded against rounding: a cell is a hair wider than
+/// `reach`.
+fn cells_per_axis<V: Vector>(size: V, reach: f64, n: usize) -> [usize; 3] {
+    let padded = reach * (1.0 + 1e-9);
+    let mut cells = [1; 3];
+    for (axis, m) in cells.iter_mut().enumerate().take(V::DIM) {
+        let fit = (size.coord(axis) / padded).floor();
+        *m = if fit >= 1.0 { fit.min(1e6) as usize } else { 1 };
+    }
+    let most = CELLS_PER_BIRD * n + 64;
+    while cells.iter().product::<usize>() > most {
+        let widest = (0..3).max_by_key(|&a| cells[a]).unwrap_or(0);
+        cells[widest] = cells[widest].div_ceil(2);
+    }
+    cells
+}
+
+/// The cell of a point at `q` on the torus of sides `size` (`None` for a non-finite point).
+fn coords<V: Vector>(size: V, cells: [usize; 3], q: V) -> Option<[usize; 3]> {
+    if !q.is_finite() {
+        return None;
+    }
+    let mut c = [0; 3];
+    for axis in 0..V::DIM {
+        let m = cells[axis] as f64;
+        let x = (q.coord(axis) / size.coord(axis) * m).floor().rem_euclid(m);
+        // x in [0, m] (m only by rounding of a point a hair below a whole period)
+        c[axis] = (x as usize).min(cells[axis] - 1);
+    }
+    Some(c)
+}
+
+/// The number of the cell at `c`, axis 0 fastest.
+fn index(cells: [usize; 3], c: [usize; 3]) -> usize {
+    c[0] + cells[0] * (c[1] + cells[1] * c[2])
+}
