@@ -325,8 +325,8 @@ fn dispatch(command: Command) -> ExitCode {
             match plot(&dir, &options, quiet) {
                 Ok(files) => {
                     outln!(
-                        "{} figure file(s) in {}",
-                        files.len(),
+                        "{} in {}",
+                        files_count(files.len()),
                         dir.join("figures").display()
                     );
                     ExitCode::SUCCESS
@@ -442,8 +442,9 @@ fn dispatch(command: Command) -> ExitCode {
                 ) {
                     Ok(files) => {
                         outln!(
-                            "  figures               {} file(s) in {}",
-                            files.len(),
+                            "  {} {} in {}",
+                            padded("figures"),
+                            files_count(files.len()),
                             out.join("figures").display()
                         );
                         ExitCode::SUCCESS
@@ -814,4 +815,9 @@ fn parse_time(text: &str) -> Result<f64, String> {
             text.trim()
         )),
     }
+}
+
+/// "1 file", "6 files": the figures a plot wrote.
+fn files_count(n: usize) -> String {
+    format!("{n} file{}", if n == 1 { "" } else { "s" })
 }

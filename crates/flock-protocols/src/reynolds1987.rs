@@ -7,12 +7,12 @@ use flock_graph::ProximityNet;
 use flock_math::interrupt::{BLOCK, cuts_short};
 use flock_math::{Domain, Vector};
 
-mod flock;
+mod birds;
 
 use crate::error::{ParamError, check};
 use crate::swarm::heading_mismatch;
 use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
-use flock::Flock;
+use birds::Birds;
 use flock_math::stream::{Purpose, Streams};
 
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
@@ -72,7 +72,7 @@ impl Default for BoidsParams {
 /// declaration asks of the neighbour search.
 ///
 /// On a torus the sweep finds who is in sight itself, in a grid of cells over the box sorted once
-/// a step (`flock::Flock::in_cells`), and sums cell by cell around the boid, within a cell in
+/// a step (`birds::Birds::in_cells`), and sums cell by cell around the boid, within a cell in
 /// ascending original index: an order of space, the same whatever the storage order. In open
 /// space it reads the proximity net, in ascending original index. The net is built at the visual
 /// distance plus 2 s h, the most two boids can close in a step, so that it holds every pair that
@@ -229,17 +229,17 @@ impl<V: Vector> Protocol<V> for Boids<V> {
     }
 
     /// The sequential sweep in the step's random order, each boid reading the others as they are
-    /// at its activation: on the torus in the cells around it (`flock::Flock::sums_in_sight`), in open
+    /// at its activation: on the torus in the cells around it (`birds::Birds::sums_in_sight`), in open
     /// space on the net.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let s = self.params.speed;
         let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
-        let mut flock = match self.domain {
+        let mut birds = match self.domain {
             Domain::Periodic { size } => {
                 let reach = self.params.visual_distance + s * self.step;
-                Flock::in_cells(size, reach, &swarm.positions, &headings)
+                Birds::in_cells(size, reach, &swarm.positions, &headings)
             }
-            Domain::Open => Flock::in_order(&swarm.positions, headings),
+            Domain::Open => Birds::in_order(&swarm.positions, headings),
         };
         let distances = self.squared_distances();
         let mut runs = Vec::new();
@@ -253,7 +253,7 @@ impl<V: Vector> Protocol<V> for Boids<V> {
                 return;
             }
             let i = i as usize;
-            let Some(slot) = flock.slot(i) else {
+            let Some(slot) = birds.slot(i) else {
                 // a boid in no cell (a non-finite position) sees no one
                 let own = swarm.velocities[i] / s;
                 inputs[i] = self.turn(swarm.positions[i], own, core::iter::empty()) * s;
@@ -261,11 +261,11 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             };
             let heading = match self.domain {
                 Domain::Periodic { .. } => {
-                    let sums = flock.sums_in_sight(&self.domain, slot, distances, &mut runs);
-                    self.heading(flock.headings[slot], &sums)
+                    let sums = birds.sums_in_sight(&self.domain, slot, distances, &mut runs);
+                    self.heading(birds.headings[slot], &sums)
                 }
                 Domain::Open => {
-                    let (q, v) = (&flock.positions, &flock.headings);
+                    let (q, v) = (&birds.positions, &birds.headings);
                     let others = net.graph().neighbours(i).iter();
                     let others = others.map(|&j| (q[j as usize], v[j as usize]));
                     self.turn(q[slot], v[slot], others)
@@ -273,9 +273,9 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             };
             let p = heading * s;
             inputs[i] = p;
-            flock.headings[slot] = heading;
+            birds.headings[slot] = heading;
             let moved = p * self.step;
-            flock.move_to(slot, moved, self.domain.wrap(flock.positions[slot] + moved));
+            birds.move_to(slot, moved, self.domain.wrap(birds.positions[slot] + moved));
         }
     }
 

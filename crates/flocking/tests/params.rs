@@ -222,14 +222,22 @@ fn the_consensus_gain_is_refused_by_its_constructor_named() {
         let error = base
             .with_values([("algorithm.gain", serde_json::json!(gain))])
             .expect_err("refused");
-        assert_eq!(error.field().as_deref(), Some("algorithm.gain"), "{gain}: {error}");
+        assert_eq!(
+            error.field().as_deref(),
+            Some("algorithm.gain"),
+            "{gain}: {error}"
+        );
         let proximity = base
             .with_values([
                 ("algorithm.graph", serde_json::Value::Null),
                 ("algorithm.gain", serde_json::json!(gain)),
             ])
             .expect_err("refused");
-        assert_eq!(proximity.field().as_deref(), Some("algorithm.gain"), "{proximity}");
+        assert_eq!(
+            proximity.field().as_deref(),
+            Some("algorithm.gain"),
+            "{proximity}"
+        );
     }
     let ok = base.with_values([("algorithm.gain", serde_json::json!(0.5))]);
     assert!(ok.is_ok(), "{ok:?}");
@@ -237,7 +245,10 @@ fn the_consensus_gain_is_refused_by_its_constructor_named() {
         .with_values([("algorithm.graph", serde_json::json!("Edges([(0, 99)])"))])
         .expect_err("an edge to an agent that does not exist");
     assert!(
-        broken.field().as_deref().is_some_and(|f| f.starts_with("algorithm.graph")),
+        broken
+            .field()
+            .as_deref()
+            .is_some_and(|f| f.starts_with("algorithm.graph")),
         "{broken}"
     );
 }

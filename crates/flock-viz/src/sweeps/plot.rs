@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use flocking::owned::{self, DirError};
 use flocking::sweep::store::{self, RUNS_FILE};
-use flocking::sweep::{ParameterLabel, metric_label, value_field};
+use flocking::sweep::{ParameterLabel, SEED_COLUMN as SEED, metric_label, value_field};
 
 use super::phase::{
     Band, Bound, PhaseOptions, PhasePoint, Reference, phase_png, phase_svg, phase_table,
@@ -233,25 +233,31 @@ fn draw_sweep(
             .position(|h| h == name)
             .ok_or_else(|| unknown(what, name, &names, (&among, "its columns")))
     };
+    // an axis of the sweep, or its seeds (numbers, drawn as such)
     let axis = |name: &str, what: &str| {
-        let Some(axis) = sweep.axes.iter().find(|a| a.path == name) else {
-            let axes: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
-            return Err(unknown(
-                what,
-                name,
-                &axes,
-                ("an axis of the sweep", "its axes"),
-            ));
+        let values = match sweep.axes.iter().find(|a| a.path == name) {
+            Some(axis) => axis.values.expand().iter().map(value_field).collect(),
+            None if name == SEED => Vec::new(),
+            None => {
+                let mut axes: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
+                axes.push(SEED);
+                return Err(unknown(
+                    what,
+                    name,
+                    &axes,
+                    ("an axis of the sweep", "its axes"),
+                ));
+            }
         };
         Ok(AxisColumn {
             column: column(name, what)?,
-            values: axis.values.expand().iter().map(value_field).collect(),
+            values,
             label: ParameterLabel::of(&base, name),
         })
     };
     // the measured columns lie between `seed` and `error`; the others are not metrics
     let measured = match (
-        header.iter().position(|h| h == "seed"),
+        header.iter().position(|h| h == SEED),
         header.iter().position(|h| h == "error"),
     ) {
         (Some(seed), Some(error)) if seed < error => seed + 1..error,

@@ -51,7 +51,9 @@ use crate::error::ScenarioError;
 
 pub use execute::{ExecuteOptions, Executed, Shard, estimate, execute, share};
 pub use labels::ParameterLabel;
-pub use row::{Outcome, RunRow, header, metric_label, run_one, run_one_with, value_field};
+pub use row::{
+    Outcome, RunRow, SEED_COLUMN, header, metric_label, run_one, run_one_with, value_field,
+};
 
 /// The most runs a sweep may have (grid points × seeds): each run's scenario is checked before
 /// the first starts, and each leaves a row.
@@ -510,7 +512,7 @@ impl Sweep {
                     return invalid(format!("axes[{k}].path"), e.to_string());
                 }
             }
-            if axis.path == "seed" {
+            if axis.path == SEED_COLUMN {
                 // issue 27: else `run,id,seed,seed`, and N runs of N / seeds simulations
                 return invalid(
                     format!("axes[{k}].path"),

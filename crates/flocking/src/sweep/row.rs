@@ -268,12 +268,15 @@ pub fn value_field(value: &Value) -> String {
     }
 }
 
+/// The column of `runs.csv` that holds each run's seed, after the axes' columns.
+pub const SEED_COLUMN: &str = "seed";
+
 /// The header of `runs.csv` for the sweep's axes.
 #[must_use]
 pub fn header(sweep: &Sweep) -> Vec<String> {
     let mut header = vec!["run".to_owned(), "id".to_owned()];
     header.extend(sweep.axes.iter().map(|a| a.path.clone()));
-    header.push("seed".to_owned());
+    header.push(SEED_COLUMN.to_owned());
     header.extend(OUTCOME_COLUMNS.map(|(name, _)| name.to_owned()));
     header.push("error".to_owned());
     header

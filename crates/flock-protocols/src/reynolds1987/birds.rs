@@ -1,6 +1,6 @@
 //! The boids of one sequential sweep, as the sweep reads and moves them: each bird's position and
 //! heading in a *slot*, and how a bird finds the others in sight — by the proximity net in open
-//! space, by a uniform grid of cells over the torus in a periodic box ([`Flock::in_cells`]).
+//! space, by a uniform grid of cells over the torus in a periodic box ([`Birds::in_cells`]).
 //!
 //! On the torus the birds are sorted by the cell they are in at the start of the step (a counting
 //! sort, ascending original index within a cell), so that the birds of neighbouring cells are
@@ -25,7 +25,7 @@ const NO_SLOT: u32 = u32::MAX;
 const CELLS_PER_BIRD: usize = 4;
 
 /// The birds of a sweep, stored by slot.
-pub(super) struct Flock<V> {
+pub(super) struct Birds<V> {
     /// Position of the bird in each slot.
     pub(super) positions: Vec<V>,
     /// Unit heading of the bird in each slot.
@@ -50,7 +50,7 @@ struct Grid<V> {
     starts: Vec<u32>,
 }
 
-impl<V: Vector> Flock<V> {
+impl<V: Vector> Birds<V> {
     /// The birds in original order (slot k is bird k), for the search on the proximity net.
     pub(super) fn in_order(positions: &[V], headings: Vec<V>) -> Self {
         Self {
