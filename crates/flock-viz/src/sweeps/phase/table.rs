@@ -10,7 +10,7 @@ use crate::error::VizError;
 /// where it has none. Numbers are written as Rust prints them (shortest round trip).
 ///
 /// # Errors
-/// As [`phase_svg`].
+/// As [`phase_svg`](super::phase_svg).
 ///
 /// # Example
 /// ```
