@@ -2,6 +2,7 @@
 the Python results must equal bit for bit (``FLOCK_CLI``, set by ``scripts/test-python``)."""
 
 import os
+import signal
 import subprocess
 from pathlib import Path
 
@@ -14,6 +15,11 @@ ROOT = Path(__file__).resolve().parents[3]
 FIXTURES = Path(os.environ.get("FLOCK_FIXTURES", ROOT / "fixtures"))
 FIG11 = FIXTURES / "tac2006_fig11_alg2_n100.ron"
 OUTPUT_FILES = ["metrics.csv", "final.csv", "scenario.ron", "flocking.txt"]
+
+# The Ctrl-C tests need SIGINT to raise KeyboardInterrupt, here and in the Pythons they start: a
+# shell without job control starts a background job with SIGINT ignored, and Python then leaves it
+# ignored (a suite started so failed every Ctrl-C test and left their children running).
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def cli_path() -> Path:

@@ -156,12 +156,15 @@ def test_issue_27_ctrl_c_stops_a_sweep_at_once_and_keeps_its_rows(tmp_path):
     child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
     rows = out / "rows"
     deadline = time.time() + 120
-    while not (rows.is_dir() and len(list(rows.glob("*.csv"))) >= 2):
-        assert child.poll() is None and time.time() < deadline, "no row written"
-        time.sleep(0.05)
-    sent = time.time()
-    child.send_signal(signal.SIGINT)
-    stdout, _ = child.communicate(timeout=120)
+    try:
+        while not (rows.is_dir() and len(list(rows.glob("*.csv"))) >= 2):
+            assert child.poll() is None and time.time() < deadline, "no row written"
+            time.sleep(0.05)
+        sent = time.time()
+        child.send_signal(signal.SIGINT)
+        stdout, _ = child.communicate(timeout=120)
+    finally:
+        child.kill()  # not left running when the test fails (no-op once it exited)
     assert child.returncode == 130, stdout
     raised = float(stdout.split()[1])
     assert raised - sent < 1.0, f"KeyboardInterrupt {raised - sent:.2f} s after Ctrl-C"

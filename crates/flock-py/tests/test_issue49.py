@@ -146,11 +146,14 @@ def sigint(tmp_path, fixture, changes, work, setup="pass", after="pass"):
         text=True,
         cwd=tmp_path,
     )
-    assert child.stdout.readline().strip() == "started", child.stderr.read()
-    time.sleep(1.5)
-    sent = time.monotonic()
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=60)
+    try:
+        assert child.stdout.readline().strip() == "started", child.stderr.read()
+        time.sleep(1.5)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=60)
+    finally:
+        child.kill()  # a child that ignored the signal is not left running (no-op once it exited)
     assert child.returncode == 0, err
     lines = out.split("\n")
     assert lines[0].startswith("interrupted"), out + err
