@@ -167,6 +167,24 @@ impl PyWorkloadReport {
         self.0.median().as_secs_f64()
     }
 
+    /// Seconds of building each seed's model (its random start and its net), in the order of
+    /// `times`: the frameworks' own benchmarks time it with the steps.
+    #[getter]
+    fn build_times(&self) -> Vec<f64> {
+        self.0
+            .built
+            .iter()
+            .map(std::time::Duration::as_secs_f64)
+            .collect()
+    }
+
+    /// The median over the seeds of building the model and taking its steps (s), as the
+    /// frameworks time them.
+    #[getter]
+    fn median_seconds_with_building(&self) -> f64 {
+        self.0.median_with_building().as_secs_f64()
+    }
+
     /// Agent-steps per second at the median.
     #[getter]
     fn agent_steps_per_second(&self) -> f64 {

@@ -65,6 +65,11 @@ def test_a_workload_reports_its_seeds():
     assert isinstance(report, flocking.WorkloadReport)
     assert report.n == 200 and len(report.times) == 3 and report.threads == 1
     assert sorted(report.times)[1] == pytest.approx(report.median_seconds)
+    # building each seed's model, timed apart, and the frameworks' timing of both
+    assert len(report.build_times) == 3 and all(b > 0 for b in report.build_times)
+    both = sorted(t + b for t, b in zip(report.times, report.build_times))
+    assert report.median_seconds_with_building == pytest.approx(both[1])
+    assert report.median_seconds_with_building > report.median_seconds
     assert str(report).startswith("boids_small_n200: 200 birds, box [100.0, 100.0], 100 steps, 3 seed(s)")
 
 

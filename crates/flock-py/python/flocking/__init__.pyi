@@ -421,6 +421,8 @@ class WorkloadReport:
     n: int
     times: List[float]
     median_seconds: float
+    build_times: List[float]
+    median_seconds_with_building: float
     agent_steps_per_second: float
     threads: int
 
