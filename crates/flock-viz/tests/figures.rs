@@ -35,11 +35,12 @@ fn small() -> FigureOptions {
 
 #[test]
 fn a_2d_run_gets_snapshots_metrics_animation_and_player() {
-    let dir = temp_dir("figures-2d");
+    let dir_tmp = temp_dir("figures-2d");
+    let dir = dir_tmp.path();
     let written = write_figures(
         &lattice_scene(),
         Some(&flocking_metrics(false)),
-        &dir,
+        dir,
         &small(),
     )
     .unwrap();
@@ -67,18 +68,18 @@ fn a_2d_run_gets_snapshots_metrics_animation_and_player() {
     }
     let metrics = fs::read_to_string(dir.join("metrics.svg")).unwrap();
     assert!(metrics.contains("synthetic lattice: metrics"));
-    fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
 fn a_3d_run_gets_a_top_view_too() {
-    let dir = temp_dir("figures-3d");
+    let dir_tmp = temp_dir("figures-3d");
+    let dir = dir_tmp.path();
     let options = FigureOptions {
         outputs: vec![Output::Snapshots],
         png: false,
         ..small()
     };
-    let written = write_figures(&cube_scene(), None, &dir, &options).unwrap();
+    let written = write_figures(&cube_scene(), None, dir, &options).unwrap();
     assert_eq!(
         written,
         [
@@ -89,18 +90,18 @@ fn a_3d_run_gets_a_top_view_too() {
     );
     let top = fs::read_to_string(dir.join("snapshots_top.svg")).unwrap();
     assert!(top.contains("top view"));
-    fs::remove_dir_all(dir).unwrap();
 }
 
 /// Each choice of outputs writes its files and no other; those it writes are the bytes of the
 /// same files when every output is drawn.
 #[test]
 fn the_outputs_chosen_are_drawn_alone_and_the_same() {
-    let all_dir = temp_dir("figures-all");
+    let all_dir_tmp = temp_dir("figures-all");
+    let all_dir = all_dir_tmp.path();
     let all = write_figures(
         &cube_scene(),
         Some(&flocking_metrics(false)),
-        &all_dir,
+        all_dir,
         &small(),
     )
     .unwrap();
@@ -122,15 +123,11 @@ fn the_outputs_chosen_are_drawn_alone_and_the_same() {
             &["animation.gif", "player.html"][..],
         ),
     ] {
-        let dir = temp_dir("figures-some");
+        let dir_tmp = temp_dir("figures-some");
+        let dir = dir_tmp.path();
         let options = FigureOptions { outputs, ..small() };
-        let written = write_figures(
-            &cube_scene(),
-            Some(&flocking_metrics(false)),
-            &dir,
-            &options,
-        )
-        .unwrap();
+        let written =
+            write_figures(&cube_scene(), Some(&flocking_metrics(false)), dir, &options).unwrap();
         let expected: Vec<_> = names.iter().map(|name| dir.join(name)).collect();
         assert_eq!(written, expected);
         for name in names {
@@ -141,9 +138,7 @@ fn the_outputs_chosen_are_drawn_alone_and_the_same() {
             );
         }
         assert!(all.contains(&all_dir.join(names[0])));
-        fs::remove_dir_all(dir).unwrap();
     }
-    fs::remove_dir_all(all_dir).unwrap();
 }
 
 #[test]

@@ -57,9 +57,10 @@ t,id,x,y,vx,vy,failed
 
 #[test]
 fn a_2d_run_reads_back() {
-    let dir = temp_dir("run-2d");
-    write_run(&dir, METRICS, TRAJECTORY_2D);
-    let run = RunData::load(&dir).unwrap();
+    let dir_tmp = temp_dir("run-2d");
+    let dir = dir_tmp.path();
+    write_run(dir, METRICS, TRAJECTORY_2D);
+    let run = RunData::load(dir).unwrap();
     assert_eq!(run.dim, 2);
     assert_eq!(run.metrics.len(), 2);
     assert_eq!(run.metrics.time(), &[0.0, 0.2]);
@@ -81,12 +82,12 @@ fn a_2d_run_reads_back() {
     let scene = run.scene(12.0);
     assert_eq!((scene.dim, scene.range, scene.frames.len()), (2, 12.0, 2));
     assert_eq!(scene.edges(0), [(0, 1), (1, 2)]);
-    fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
 fn a_3d_trajectory_reads_back() {
-    let dir = temp_dir("run-3d");
+    let dir_tmp = temp_dir("run-3d");
+    let dir = dir_tmp.path();
     let path = dir.join("trajectory.csv");
     fs::write(
         &path,
@@ -97,19 +98,17 @@ fn a_3d_trajectory_reads_back() {
     assert_eq!(dim, 3);
     assert_eq!(frames[0].positions[0], DVec3::new(1.0, 2.0, 3.0));
     assert_eq!(frames[0].velocities[0], DVec3::new(4.0, 5.0, 6.0));
-    fs::remove_dir_all(dir).unwrap();
 }
 
 /// The message of the error of loading `trajectory` (with good metrics), with the directory
 /// replaced by `DIR`.
 fn trajectory_error(name: &str, trajectory: &str) -> String {
-    let dir = temp_dir(name);
-    write_run(&dir, METRICS, trajectory);
-    let e = RunData::load(&dir).unwrap_err();
+    let dir_tmp = temp_dir(name);
+    let dir = dir_tmp.path();
+    write_run(dir, METRICS, trajectory);
+    let e = RunData::load(dir).unwrap_err();
     assert!(matches!(e, VizError::Parse { .. }), "{e:?}");
-    let message = e.to_string().replace(&dir.display().to_string(), "DIR");
-    fs::remove_dir_all(dir).unwrap();
-    message
+    e.to_string().replace(&dir.display().to_string(), "DIR")
 }
 
 #[test]
@@ -154,7 +153,8 @@ fn malformed_lines_are_named_by_file_and_line() {
 
 #[test]
 fn malformed_metrics_are_named_by_file_and_line() {
-    let dir = temp_dir("bad-metrics");
+    let dir_tmp = temp_dir("bad-metrics");
+    let dir = dir_tmp.path();
     let path = dir.join("metrics.csv");
     fs::write(&path, "t,connectivity\n0,1\n0.2\n").unwrap();
     let message = load_metrics(&path).unwrap_err().to_string();
@@ -171,14 +171,13 @@ fn malformed_metrics_are_named_by_file_and_line() {
         message.contains("metrics.csv:1: the header has no \"t\" column"),
         "{message}"
     );
-    fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
 fn a_missing_file_is_named() {
-    let dir = temp_dir("missing");
-    let e = RunData::load(&dir).unwrap_err();
+    let dir_tmp = temp_dir("missing");
+    let dir = dir_tmp.path();
+    let e = RunData::load(dir).unwrap_err();
     assert!(matches!(e, VizError::Io { ref path, .. } if path.ends_with("metrics.csv")));
     assert!(e.to_string().contains("metrics.csv"));
-    fs::remove_dir_all(dir).unwrap();
 }

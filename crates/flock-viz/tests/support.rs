@@ -1,7 +1,5 @@
 //! Shared fixtures: a small synthetic run, SVG counting, a hash, a JSON checker, temp dirs.
 
-use std::path::PathBuf;
-
 use flock_viz::snapshot::DEPTH_FADE;
 use flock_viz::style::{self, AGENT, BACKGROUND};
 use flock_viz::{Drawable, Frame, Metrics, Scene};
@@ -134,12 +132,13 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
     })
 }
 
-/// A fresh empty directory for a test.
-pub fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("flock-viz-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh empty directory for a test, of a name no other holds, created and removed (when
+/// dropped) by tempfile alone: a test removes nothing by path.
+pub fn temp_dir(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("flock-viz-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// A JSON value, as the player's data is checked.
