@@ -146,7 +146,8 @@ fn each_frame_is_the_changed_rectangle_and_shows_the_whole_drawing() {
             .collect()
     };
     let nearest = |p: &[u8]| {
-        let distance = |c: &[u8; 3]| -> u32 { (0..3).map(|k| u32::from(c[k].abs_diff(p[k])).pow(2)).sum() };
+        let distance =
+            |c: &[u8; 3]| -> u32 { (0..3).map(|k| u32::from(c[k].abs_diff(p[k])).pow(2)).sum() };
         *palette
             .iter()
             .enumerate()

@@ -48,7 +48,10 @@ impl Palette {
                 colours: exact.into_iter().collect(),
             };
         }
-        let rgba: Vec<u8> = drawn.iter().flat_map(|p| [p[0], p[1], p[2], u8::MAX]).collect();
+        let rgba: Vec<u8> = drawn
+            .iter()
+            .flat_map(|p| [p[0], p[1], p[2], u8::MAX])
+            .collect();
         let network = NeuQuant::new(SAMPLE_FACTOR, 255, &rgba);
         let learned = network.color_map_rgb();
         Self {

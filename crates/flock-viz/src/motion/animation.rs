@@ -12,7 +12,7 @@ use plotters::prelude::{DrawingArea, DrawingBackend};
 use rayon::prelude::*;
 
 use crate::draw::palette::Palette;
-use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::render::{self, Figure};
 use crate::draw::style::BACKGROUND;
 use crate::error::VizError;
 use crate::scene::frames::Scene;
@@ -179,7 +179,13 @@ impl Changed {
                 return None;
             }
             let first = old.iter().zip(new).position(|(a, b)| a != b)?;
-            let last = row - 1 - old.iter().rev().zip(new.iter().rev()).position(|(a, b)| a != b)?;
+            let last = row
+                - 1
+                - old
+                    .iter()
+                    .rev()
+                    .zip(new.iter().rev())
+                    .position(|(a, b)| a != b)?;
             Some((first / 3, last / 3))
         };
         let spans: Vec<(usize, (usize, usize))> =
@@ -234,12 +240,8 @@ impl Figure for AnimationFrame<'_> {
         self.size
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body = below_title(root, self.title, text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body = below_title(root, self.title)?;
         draw_panel(
             &body,
             self.framer,

@@ -13,7 +13,6 @@ use plotters::style::{Color, RGBColor};
 use super::grid::{Cells, Diagram, cell_position};
 use super::{BOUND, EMPTY_CELL};
 use crate::draw::format;
-use crate::draw::render::TextMode;
 use crate::draw::style::{self, INK};
 use crate::error::VizError;
 use crate::snapshots::snapshot::text_style;
@@ -39,7 +38,6 @@ impl Diagram<'_> {
         plot: &DrawingArea<DB, Shift>,
         cells: &Cells,
         range: (f64, f64),
-        text: TextMode,
     ) -> Result<(), VizError> {
         let o = self.options;
         let means = Self::means(cells);
@@ -70,8 +68,8 @@ impl Diagram<'_> {
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(text.text(&o.x_label))
-            .y_desc(text.text(o.y_label.as_deref().unwrap_or_default()))
+            .x_desc(&o.x_label)
+            .y_desc(o.y_label.as_deref().unwrap_or_default())
             .x_labels(self.xs.len())
             .y_labels(self.ys.len())
             .x_label_formatter(&|v| label(&self.xs, &o.x_categories, v))
@@ -142,16 +140,15 @@ impl Diagram<'_> {
                 let count = vertices.len() as i32;
                 let x = vertices.iter().map(|p| p.0).sum::<i32>() / count;
                 let y = vertices.iter().map(|p| p.1).sum::<i32>() / count;
-                let label = text.text(&reference.label);
                 plot.draw(&Text::new(
-                    label,
+                    reference.label.as_str(),
                     (x - 20, y - 6),
                     text_style(12).color(&ink),
                 ))
                 .map_err(VizError::draw)?;
             }
         }
-        self.bound(&plot, column, text)
+        self.bound(&plot, column)
     }
 
     /// A vertical colour bar of the map from `lo` to `hi`, labelled with the metric.
@@ -159,7 +156,6 @@ impl Diagram<'_> {
         &self,
         area: &DrawingArea<DB, Shift>,
         (lo, hi): (f64, f64),
-        text: TextMode,
     ) -> Result<(), VizError> {
         let (lo_axis, hi_axis) = if hi > lo {
             (lo, hi)
@@ -207,7 +203,7 @@ impl Diagram<'_> {
                     .configure_mesh()
                     .disable_mesh()
                     .disable_x_axis()
-                    .y_desc(text.text(&self.options.metric))
+                    .y_desc(&self.options.metric)
                     .y_labels(6)
                     .y_label_formatter(&tick)
                     .label_style(text_style(12))
