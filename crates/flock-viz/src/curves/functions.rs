@@ -202,11 +202,10 @@ impl Figure for FunctionFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
         let body = below_title(root, self.title)?;
         for (area, c) in body.split_evenly((1, 2)).iter().zip(&self.curves) {
-            let (title, x_desc, y_desc) = (c.title, c.x_desc, c.y_desc);
             let curves = Curves {
-                title: &title,
-                x_desc: &x_desc,
-                y_desc: &y_desc,
+                title: c.title,
+                x_desc: c.x_desc,
+                y_desc: c.y_desc,
                 t: &c.x,
                 values: &c.y,
                 secondary: None,

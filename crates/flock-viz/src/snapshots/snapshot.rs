@@ -250,11 +250,8 @@ pub(crate) fn below_title<DB: DrawingBackend>(
         return Ok(root.clone());
     }
     let (top, body) = root.split_vertically(TITLE_BAND);
-    top.titled(
-        &title,
-        (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)),
-    )
-    .map_err(VizError::draw)?;
+    top.titled(title, (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)))
+        .map_err(VizError::draw)?;
     Ok(body)
 }
 

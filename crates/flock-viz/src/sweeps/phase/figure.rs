@@ -64,9 +64,7 @@ impl Figure for Diagram<'_> {
         let areas = grid.split_evenly(self.grid());
         for (k, (cells, area)) in self.panels.iter().zip(&areas).enumerate() {
             let area = match self.options.panels.get(k) {
-                Some(title) => area
-                    .titled(&title, text_style(16))
-                    .map_err(VizError::draw)?,
+                Some(title) => area.titled(title, text_style(16)).map_err(VizError::draw)?,
                 None => area.clone(),
             };
             if heatmap {
