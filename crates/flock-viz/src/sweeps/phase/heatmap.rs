@@ -6,6 +6,7 @@ use plotters::coord::ranged1d::Ranged;
 use plotters::element::{PathElement, Text};
 use plotters::prelude::{ChartBuilder, DrawingArea, DrawingBackend, IntoLogRange, Rectangle};
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{Color, RGBColor, TextStyle};
 
 use super::cells::CellAxis;
@@ -105,7 +106,8 @@ impl Diagram<'_> {
             .draw()
             .map_err(VizError::draw)?;
         let small = self.xs.len() <= 12 && self.ys.len() <= 12;
-        let value_font = text_style(12);
+        // centred in its cell
+        let value_font = text_style(12).pos(Pos::new(HPos::Center, VPos::Center));
         for (i, column) in means.iter().enumerate() {
             for (j, m) in column.iter().enumerate() {
                 let corners = [
