@@ -258,6 +258,50 @@ async function checkAgents(page, colours, data, size, k, v, what) {
   return seen;
 }
 
+/** The radius of a merged point's ring, in canvas pixels (player.js's marker size `L`). */
+const RING_PX = 10;
+
+/**
+ * Checks frame k's merged points (agents closer than 10⁻³ d, `data.merged`: first agent and
+ * count): each is ringed in ink at its position, with ink where its count is written (up right of
+ * the ring); returns how many there are.
+ */
+async function checkMerged(page, colours, data, size, k, v, what) {
+  const merged = data.merged ? data.merged[k] : [];
+  const view = data.views[v];
+  const ink = colours.ink;
+  const near = (px, o) => Math.abs(px[o] - ink[0]) + Math.abs(px[o + 1] - ink[1]) + Math.abs(px[o + 2] - ink[2]) < 90;
+  for (let m = 0; m < merged.length; m += 2) {
+    const [agent, count] = [merged[m], merged[m + 1]];
+    check(count >= 2, `${what}: a merged point of ${count} agent`);
+    const c = project(data, view, data.q[k], agent);
+    if (!c) continue;
+    const [cx, cy] = toCanvas(view, size, c);
+    // the ring: ink within a pixel of the circle at 48 angles
+    const box = 2 * RING_PX + 6;
+    const x0 = Math.floor(cx) - RING_PX - 3;
+    const y0 = Math.floor(cy) - RING_PX - 3;
+    const px = await pixels(page, x0, y0, box, box);
+    let onRing = 0;
+    for (let a = 0; a < 48; a++) {
+      const x = Math.round(cx + RING_PX * Math.cos((a * Math.PI) / 24)) - x0;
+      const y = Math.round(cy + RING_PX * Math.sin((a * Math.PI) / 24)) - y0;
+      let hit = false;
+      for (let dy = -1; dy <= 1; dy++) {
+        for (let dx = -1; dx <= 1; dx++) hit ||= near(px, 4 * ((y + dy) * box + x + dx));
+      }
+      if (hit) onRing++;
+    }
+    check(onRing >= 40, `${what}: the ${count} agents merged at agent ${agent} (${cx.toFixed(1)}, ${cy.toFixed(1)}) have ink on ${onRing} of 48 points of their ring`);
+    // the count, written from (cx + 0.8 L, cy − 0.8 L) up and to the right
+    const label = await pixels(page, Math.floor(cx + 0.8 * RING_PX), Math.floor(cy - 0.8 * RING_PX) - 11, 8 * String(count).length + 2, 12);
+    let inked = 0;
+    for (let o = 0; o < label.length; o += 4) if (near(label, o)) inked++;
+    check(inked >= 6, `${what}: no count beside the ring of the agents merged at agent ${agent} (${inked} ink pixels)`);
+  }
+  return merged.length / 2;
+}
+
 /** The time in `t = 1.2 s` (the #time label) and the failed agents of `t = 1.2 s, 3 failed (×)`. */
 function shownTime(text) {
   const m = /^t = (-?[0-9.e+-]+) s(?:, ([0-9]+) failed \(×\))?$/.exec(text);
@@ -431,6 +475,7 @@ async function main() {
     check(data.measures.length >= 10, `the readout holds ${data.measures.length} measures: the run's metrics are missing`);
     await checkReadout(page, data, 0, 'first frame');
     summary.checks.first_frame = { agent_pixels: first.agentPixels, markers: first.blobs, measures: data.measures.length };
+    const mergedFirst = await checkMerged(page, colour, data, size, 0, 0, 'first frame');
 
     // 2. Play, then pause.
     check(!(await isPlaying(page)), '#play reads "Play" before playing');
@@ -468,6 +513,10 @@ async function main() {
     check(middle.hash !== scrubbed.hash, 'frames differ but their drawings do not');
     noProblems('scrubbing');
     summary.checks.scrub = { frames: [last, mid] };
+    const mergedMiddle = await checkMerged(page, colour, data, size, mid, 0, `scrubbed to frame ${mid}`);
+    await scrubTo(page, last);
+    const mergedLast = await checkMerged(page, colour, data, size, last, 0, `scrubbed to frame ${last}`);
+    summary.checks.merged_points = [mergedFirst, mergedMiddle, mergedLast];
 
     // 4. Speed: the simulated time played per second follows #speed.
     // Frames are data.t apart, so a rate is measured to within a frame's time per window.

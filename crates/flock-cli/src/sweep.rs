@@ -103,10 +103,10 @@ enum SweepAction {
         /// The band of a line: min-max or the 25–75 % quantiles.
         #[arg(long, default_value = "minmax")]
         band: BandArg,
-        /// Logarithmic x axis.
+        /// Logarithmic x axis (when every x drawn is positive).
         #[arg(long)]
         log_x: bool,
-        /// Logarithmic y axis (a line diagram).
+        /// Logarithmic y axis: a line diagram's metric, a heatmap's y (when every value is positive).
         #[arg(long)]
         log_y: bool,
         /// Logarithmic colour scale (a heatmap of positive values).

@@ -1,7 +1,7 @@
 //! The HTML player in a real browser: short runs of TAC 2006 Figs. 11 (2D) and 13 (3D) plotted by
 //! `flocking run --plot`, their `player.html` driven in headless Chromium by `tests/browser/player.mjs`
-//! (no console errors, agents drawn where the data puts them, play/pause, scrub, speed, edges, zoom
-//! and the 3D view selector). The screenshots are kept in `target/browser-artifacts/`.
+//! (no console errors, agents drawn where the data puts them, merged agents ringed with their
+//! count, play/pause, scrub, speed, edges, zoom and the 3D view selector). The screenshots are kept in `target/browser-artifacts/`.
 //!
 //! Needs `/usr/bin/chromium` (or `$FLOCK_CHROMIUM`), `node` and `npm ci --prefix tests/browser`,
 //! so the tests are `#[ignore]`d: `scripts/test` counts them as ignored, and `.ci/run` (which
@@ -62,8 +62,8 @@ fn missing_tools() -> Vec<String> {
 
 /// Plots a short run of `fixtures/{name}.ron`, with the scenario values `changes`, and checks its
 /// player in headless Chromium (`mode` is `2d` or `3d`), keeping the screenshot as
-/// `target/browser-artifacts/{artefact}`.
-fn check_player(name: &str, changes: &[(&str, Value)], mode: &str, artefact: &str) {
+/// `target/browser-artifacts/{artefact}`; returns the script's JSON summary.
+fn check_player(name: &str, changes: &[(&str, Value)], mode: &str, artefact: &str) -> Value {
     let missing = missing_tools();
     if !missing.is_empty() {
         panic!(
@@ -124,6 +124,9 @@ fn check_player(name: &str, changes: &[(&str, Value)], mode: &str, artefact: &st
         "the {mode} player passed in Chromium in {seconds:.1} s; screenshot: {}",
         screenshot.display()
     );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let summary = &stdout[stdout.find('{').expect("a JSON summary")..];
+    flocking::serde_json::from_str(summary).expect("the summary is JSON")
 }
 
 #[test]
@@ -151,4 +154,34 @@ fn player_with_failed_agents_works_in_headless_chromium() {
 #[ignore = "needs headless Chromium, node and playwright-core; .ci/run runs it with --ignored (docs/figures.md)"]
 fn player_3d_works_in_headless_chromium() {
     check_player("tac2006_fig13_alg2_3d_n50", &[], "3d", "player-3d.png");
+}
+
+/// Agents that start at the same point with the same velocity feel the same forces (the σ-norm
+/// gradient between them vanishes) and stay merged: agents 55 and 56, and 77, 78 and 79, of
+/// Fig. 11's hundred on a 7 m grid, all moving as the γ-agent does. The page rings each merged point and writes its
+/// count beside it, in every frame checked.
+#[test]
+#[ignore = "needs headless Chromium, node and playwright-core; .ci/run runs it with --ignored (docs/figures.md)"]
+fn player_rings_merged_agents_in_headless_chromium() {
+    let grid = |k: usize| vec![7.0 * (k % 10) as f64, 7.0 * (k / 10) as f64];
+    let twin = |k: usize| match k {
+        56 => 55,
+        78 | 79 => 77,
+        k => k,
+    };
+    let positions: Vec<Vec<f64>> = (0..100).map(|k| grid(twin(k))).collect();
+    let velocities = vec![vec![1.0, 0.5]; 100];
+    let initial =
+        json!({"positions": {"Explicit": positions}, "velocities": {"Explicit": velocities}});
+    let summary = check_player(
+        "tac2006_fig11_alg2_n100",
+        &[("initial", initial)],
+        "2d",
+        "player-merged.png",
+    );
+    assert_eq!(
+        summary["checks"]["merged_points"],
+        json!([2, 2, 2]),
+        "two merged points in the first, middle and last frames: {summary}"
+    );
 }

@@ -4,19 +4,41 @@ use flock_viz::{AnimationOptions, animation_frames, animation_gif, snapshot_rgb}
 
 use crate::support::{FRAMES, cube_scene, lattice_scene};
 
-/// A frame of a decoded GIF: its RGBA pixels and its delay in hundredths of a second.
+/// A frame of a decoded GIF: its RGBA pixels, the whole image as shown once it is drawn over
+/// the frames before, and its delay in hundredths of a second.
 type DecodedFrame = (Vec<u8>, u16);
 
-/// Decodes a GIF: its size and its frames.
-fn decode(bytes: &[u8]) -> ((u16, u16), Vec<DecodedFrame>) {
+/// A decoded GIF: its size, its frames as shown, and each frame's rectangle (left, top, width,
+/// height).
+type Decoded = ((u16, u16), Vec<DecodedFrame>, Vec<(u16, u16, u16, u16)>);
+
+/// Decodes a GIF, drawing each frame's rectangle over the image before (disposal "keep", the
+/// only one the animation uses).
+fn decode_with_rectangles(bytes: &[u8]) -> Decoded {
     let mut options = gif::DecodeOptions::new();
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options.read_info(bytes).unwrap();
     let size = (decoder.width(), decoder.height());
-    let mut frames = Vec::new();
+    let width = usize::from(size.0);
+    let mut canvas = vec![0u8; 4 * width * usize::from(size.1)];
+    let (mut frames, mut rectangles) = (Vec::new(), Vec::new());
     while let Some(frame) = decoder.read_next_frame().unwrap() {
-        frames.push((frame.buffer.to_vec(), frame.delay));
+        assert_eq!(frame.dispose, gif::DisposalMethod::Keep);
+        let (left, top) = (usize::from(frame.left), usize::from(frame.top));
+        let span = 4 * usize::from(frame.width);
+        for (y, row) in frame.buffer.chunks_exact(span).enumerate() {
+            let start = 4 * ((top + y) * width + left);
+            canvas[start..start + span].copy_from_slice(row);
+        }
+        frames.push((canvas.clone(), frame.delay));
+        rectangles.push((frame.left, frame.top, frame.width, frame.height));
     }
+    (size, frames, rectangles)
+}
+
+/// Decodes a GIF: its size and its frames as shown.
+fn decode(bytes: &[u8]) -> ((u16, u16), Vec<DecodedFrame>) {
+    let (size, frames, _) = decode_with_rectangles(bytes);
     (size, frames)
 }
 
@@ -104,4 +126,45 @@ fn the_gif_is_the_same_on_any_number_of_threads() {
             .install(|| animation_gif(&scene, &small()).unwrap())
     };
     assert_eq!(on(1), on(4));
+}
+
+/// Each frame after the first is only the rectangle that changed, and the picture shown is every
+/// drawn frame ([`snapshot_rgb`]) exactly, each pixel in its nearest colour of the GIF's palette
+/// (squared RGB distance, the first of equals).
+#[test]
+fn each_frame_is_the_changed_rectangle_and_shows_the_whole_drawing() {
+    let scene = lattice_scene();
+    let options = small();
+    let gif = animation_gif(&scene, &options).unwrap();
+    let palette: Vec<[u8; 3]> = {
+        let decoder = gif::DecodeOptions::new().read_info(&gif[..]).unwrap();
+        decoder
+            .global_palette()
+            .unwrap()
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect()
+    };
+    let nearest = |p: &[u8]| {
+        let distance =
+            |c: &[u8; 3]| -> u32 { (0..3).map(|k| u32::from(c[k].abs_diff(p[k])).pow(2)).sum() };
+        *palette
+            .iter()
+            .enumerate()
+            .min_by_key(|&(k, c)| (distance(c), k))
+            .unwrap()
+            .1
+    };
+    let (_, frames, rectangles) = decode_with_rectangles(&gif);
+    assert_eq!(rectangles[0], (0, 0, 200, 180), "the first frame is whole");
+    assert!(
+        rectangles[1..].iter().all(|r| *r != (0, 0, 200, 180)),
+        "every later frame is a part of the image: {rectangles:?}"
+    );
+    for (k, (rgba, _)) in frames.iter().enumerate() {
+        let drawn = snapshot_rgb(&scene, k, &options.style, 200, 180).unwrap();
+        for (pixel, (shown, drawn)) in rgba.chunks_exact(4).zip(drawn.chunks_exact(3)).enumerate() {
+            assert_eq!(shown[..3], nearest(drawn), "frame {k}, pixel {pixel}");
+        }
+    }
 }

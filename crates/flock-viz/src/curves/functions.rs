@@ -18,7 +18,7 @@ use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
 use crate::curves::metric_curves::{Curves, fitted_range};
-use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::render::{self, Figure};
 use crate::error::VizError;
 use crate::snapshots::snapshot::{below_title, grid_size};
 
@@ -199,19 +199,13 @@ impl Figure for FunctionFigure {
         (w.max(1100), h)
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body = below_title(root, self.title, text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body = below_title(root, self.title)?;
         for (area, c) in body.split_evenly((1, 2)).iter().zip(&self.curves) {
-            let (title, x_desc, y_desc) =
-                (text.text(c.title), text.text(c.x_desc), text.text(c.y_desc));
             let curves = Curves {
-                title: &title,
-                x_desc: &x_desc,
-                y_desc: &y_desc,
+                title: c.title,
+                x_desc: c.x_desc,
+                y_desc: c.y_desc,
                 t: &c.x,
                 values: &c.y,
                 secondary: None,

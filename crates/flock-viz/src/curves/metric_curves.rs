@@ -26,7 +26,7 @@ use flocking::VerdictKind;
 
 use crate::data::metric_series::Metrics;
 use crate::draw::format;
-use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::render::{self, Figure};
 use crate::draw::style::{self, CURVE, CURVE_SECONDARY, GRID, INK};
 use crate::error::VizError;
 use crate::snapshots::snapshot::{below_title, grid_size, text_style};
@@ -308,15 +308,11 @@ impl Figure for MetricsFigure<'_> {
         )
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body = below_title(root, &self.options.title, text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body = below_title(root, &self.options.title)?;
         let areas = body.split_evenly((self.rows, self.columns));
         for (area, panel) in areas.iter().zip(&self.panels) {
-            self.draw_panel(area, panel, text)?;
+            self.draw_panel(area, panel)?;
         }
         Ok(())
     }
@@ -327,7 +323,6 @@ impl MetricsFigure<'_> {
         &self,
         area: &DrawingArea<DB, Shift>,
         panel: &Panel,
-        text: TextMode,
     ) -> Result<(), VizError> {
         let t = self.metrics.time();
         let values = self.metrics.column(panel.column).unwrap_or_default();
@@ -335,18 +330,15 @@ impl MetricsFigure<'_> {
             Some((self.metrics.column(column)?, label, primary))
         });
         let t_range = fitted_range(t.iter().copied(), false);
-        let y_desc = text.text(
-            &panel
-                .y_desc
-                .replace("{L}", &self.options.length_unit)
-                .replace("{T}", &self.options.time_unit),
-        );
-        let x_desc = text.text(&format!("t ({})", self.options.time_unit));
-        let title = text.text(panel.title);
-        let primary_label = secondary.map(|(_, _, primary)| text.text(primary));
-        let secondary = secondary.map(|(values, label, _)| (values, text.text(label)));
+        let y_desc = panel
+            .y_desc
+            .replace("{L}", &self.options.length_unit)
+            .replace("{T}", &self.options.time_unit);
+        let x_desc = format!("t ({})", self.options.time_unit);
+        let primary_label = secondary.map(|(_, _, primary)| primary);
+        let secondary = secondary.map(|(values, label, _)| (values, label));
         let curves = Curves {
-            title: &title,
+            title: panel.title,
             x_desc: &x_desc,
             y_desc: &y_desc,
             t,
@@ -381,9 +373,9 @@ pub(crate) struct Curves<'a> {
     pub(crate) y_desc: &'a str,
     pub(crate) t: &'a [f64],
     pub(crate) values: &'a [f64],
-    pub(crate) secondary: Option<(&'a [f64], String)>,
+    pub(crate) secondary: Option<(&'a [f64], &'a str)>,
     /// The legend of the first column, when there is a second.
-    pub(crate) primary_label: Option<String>,
+    pub(crate) primary_label: Option<&'a str>,
     pub(crate) log: bool,
 }
 
@@ -433,7 +425,7 @@ impl Curves<'_> {
                     .draw_series(LineSeries::new(run, colour.stroke_width(2)))
                     .map_err(VizError::draw)?;
                 if first {
-                    series.label(label.as_str()).legend(move |(x, y)| {
+                    series.label(*label).legend(move |(x, y)| {
                         PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
                     });
                     first = false;
@@ -446,7 +438,7 @@ impl Curves<'_> {
                 .draw_series(LineSeries::new(run, colour.stroke_width(2)))
                 .map_err(VizError::draw)?;
             if let (0, Some(label)) = (k, &self.primary_label) {
-                series.label(label.as_str()).legend(move |(x, y)| {
+                series.label(*label).legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
                 });
             }

@@ -4,6 +4,7 @@
 pub mod font;
 pub(crate) mod format;
 pub(crate) mod geometry;
+pub(crate) mod marks;
 pub(crate) mod palette;
 pub(crate) mod render;
 pub mod style;

@@ -8,7 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
 use crate::draw::format;
-use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::render::{self, Figure};
 use crate::error::VizError;
 use crate::scene::frames::Scene;
 use crate::scene::framing::Framer;
@@ -108,12 +108,8 @@ impl Figure for Views<'_> {
         grid_size(self.options.panel_size, 2, 2, &self.title())
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body: DrawingArea<DB, Shift> = below_title(root, &self.title(), text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body: DrawingArea<DB, Shift> = below_title(root, &self.title())?;
         let style = &self.options.style;
         for (panel, view) in body.split_evenly((2, 2)).iter().zip(four_views(style.view)) {
             let framer = Framer::new(self.scene, view, style.trail);

@@ -28,7 +28,7 @@ use plotters::style::Color;
 
 use crate::draw::format;
 use crate::draw::geometry::Rect;
-use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::render::{self, Figure};
 use crate::draw::style::{
     self, ATTRACTION, EDGE, MOTION_PLANNING, NEUTRAL, REPULSION, VELOCITY_MATCHING,
 };
@@ -157,12 +157,8 @@ impl Figure for ReynoldsFigure<'_> {
         grid_size(self.options.panel_size, 2, 1, &self.title())
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body = below_title(root, &self.title(), text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body = below_title(root, &self.title())?;
         let panels = body.split_evenly((1, 2));
         let framer = Framer::new(self.scene, self.options.view, 0);
         let unit = self.options.length_unit.as_str();
@@ -229,7 +225,7 @@ impl Figure for ReynoldsFigure<'_> {
                 marks.edges(chart)?;
                 marks.arrows(chart, &terms, true)?;
                 marks.agents(chart, &colours)?;
-                marks.legend(chart, &legend, text)
+                marks.legend(chart, &legend)
             },
         )?;
         let rules_title = "Reynolds's rules: cohesion, separation, alignment";
@@ -278,7 +274,7 @@ impl Figure for ReynoldsFigure<'_> {
                 marks.edges(chart)?;
                 marks.arrows(chart, &rules, false)?;
                 marks.agents(chart, &vec![style::AGENT; self.readings.len()])?;
-                marks.legend(chart, &legend, text)
+                marks.legend(chart, &legend)
             },
         )
     }
@@ -373,7 +369,6 @@ impl Marks<'_> {
         &self,
         chart: &mut Chart<'_, DB>,
         entries: &[(String, [u8; 3])],
-        text: TextMode,
     ) -> Result<(), VizError> {
         let left = self.window.min.x + 8.0 * self.per_pixel;
         // a white box behind the lines, so that the flock does not hide them
@@ -407,7 +402,7 @@ impl Marks<'_> {
             let ink = style::rgb(*colour);
             chart
                 .draw_series([Text::new(
-                    text.text(label),
+                    label.clone(),
                     (left, top),
                     text_style(13).color(&ink),
                 )])

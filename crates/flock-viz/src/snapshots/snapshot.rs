@@ -20,7 +20,7 @@ use plotters::style::{Color, IntoFont, ShapeStyle, TextStyle};
 use crate::draw::font::FONT_FAMILY;
 use crate::draw::format;
 use crate::draw::geometry::{Rect, circle_polygon, clip_polygon, clip_polyline, clip_segment};
-use crate::draw::render::{self, Figure, TextMode};
+use crate::draw::render::{self, Figure};
 use crate::draw::style::{
     self, AGENT, ATTRACTION, BACKGROUND, EDGE, FAILED, GAMMA, INK, NEAR_EDGE, OBSTACLE,
     OBSTACLE_OUTLINE, PERIODIC_BOX, REPULSION, TRAIL, VELOCITY, WALL_PLANE,
@@ -219,12 +219,8 @@ impl Figure for Snapshot<'_> {
         )
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body = below_title(root, &self.title(), text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body = below_title(root, &self.title())?;
         let panels = body.split_evenly((self.rows, self.columns));
         let style = &self.options.style;
         let framer = Framer::new(self.scene, style.view, style.trail);
@@ -249,17 +245,13 @@ pub(crate) fn grid_size(panel: (u32, u32), columns: usize, rows: usize, title: &
 pub(crate) fn below_title<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
-    text: TextMode,
 ) -> Result<DrawingArea<DB, Shift>, VizError> {
     if title.is_empty() {
         return Ok(root.clone());
     }
     let (top, body) = root.split_vertically(TITLE_BAND);
-    top.titled(
-        &text.text(title),
-        (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)),
-    )
-    .map_err(VizError::draw)?;
+    top.titled(title, (FONT_FAMILY, 20).into_font().color(&style::rgb(INK)))
+        .map_err(VizError::draw)?;
     Ok(body)
 }
 

@@ -5,7 +5,7 @@ use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
 
 use super::grid::Diagram;
-use crate::draw::render::{Figure, TextMode};
+use crate::draw::render::Figure;
 use crate::error::VizError;
 use crate::snapshots::snapshot::{below_title, text_style};
 
@@ -38,12 +38,8 @@ impl Figure for Diagram<'_> {
         (width * columns as u32 + bar, height * rows as u32)
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        text: TextMode,
-    ) -> Result<(), VizError> {
-        let body = below_title(root, &self.options.title, text)?;
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), VizError> {
+        let body = below_title(root, &self.options.title)?;
         let heatmap = self.options.y_label.is_some();
         let range = self
             .panels
@@ -57,26 +53,24 @@ impl Figure for Diagram<'_> {
         let grid = if heatmap {
             let (grid, bar) =
                 body.split_horizontally(body.dim_in_pixel().0.saturating_sub(COLOUR_BAR));
-            self.colour_bar(&bar, range, text)?;
+            self.colour_bar(&bar, range)?;
             grid
         } else {
             body
         };
         if self.options.series {
-            return self.series(&grid, text);
+            return self.series(&grid);
         }
         let areas = grid.split_evenly(self.grid());
         for (k, (cells, area)) in self.panels.iter().zip(&areas).enumerate() {
             let area = match self.options.panels.get(k) {
-                Some(title) => area
-                    .titled(&text.text(title), text_style(16))
-                    .map_err(VizError::draw)?,
+                Some(title) => area.titled(title, text_style(16)).map_err(VizError::draw)?,
                 None => area.clone(),
             };
             if heatmap {
-                self.heatmap(&area, cells, range, text)?;
+                self.heatmap(&area, cells, range)?;
             } else {
-                self.line(&area, k, cells, text)?;
+                self.line(&area, k, cells)?;
             }
         }
         Ok(())

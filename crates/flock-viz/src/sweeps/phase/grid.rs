@@ -43,25 +43,6 @@ fn index(values: &[f64], x: f64) -> usize {
         .expect("a value of the grid")
 }
 
-/// Where `x` falls among the cells of the sorted grid values `values`, in cells from the first
-/// cell's centre: between the two values around it (or beyond the first or last two, extended),
-/// linearly in x, or in ln x with `log` and positive values.
-pub(super) fn cell_position(values: &[f64], x: f64, log: bool) -> f64 {
-    if values.len() == 1 {
-        return 0.0;
-    }
-    let above = values
-        .partition_point(|&v| v < x)
-        .clamp(1, values.len() - 1);
-    let (a, b) = (values[above - 1], values[above]);
-    let t = if log && a > 0.0 {
-        (x / a).ln() / (b / a).ln()
-    } else {
-        (x - a) / (b - a)
-    };
-    (above - 1) as f64 + t
-}
-
 /// The q-quantile of sorted values (linear between order statistics).
 fn quantile(sorted: &[f64], q: f64) -> f64 {
     let position = q * (sorted.len() - 1) as f64;
@@ -148,6 +129,9 @@ impl<'a> Diagram<'a> {
                     names.len() - 1
                 )));
             }
+        }
+        if heatmap && !options.y_categories.is_empty() && options.log_y {
+            return Err(VizError::invalid("a categorical y has no log scale"));
         }
         if !options.x_categories.is_empty() && (options.log_x || options.bound.is_some()) {
             return Err(VizError::invalid(

@@ -2,18 +2,17 @@
 //! bound drawn over it.
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::Ranged;
 use plotters::element::{PathElement, Text};
-use plotters::prelude::{
-    ChartBuilder, DrawingArea, DrawingBackend, IntoLogRange, IntoSegmentedCoord, Rectangle,
-    SegmentValue,
-};
+use plotters::prelude::{ChartBuilder, DrawingArea, DrawingBackend, IntoLogRange, Rectangle};
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
-use plotters::style::{Color, RGBColor};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::{Color, RGBColor, TextStyle};
 
-use super::grid::{Cells, Diagram, cell_position};
+use super::cells::CellAxis;
+use super::grid::{Cells, Diagram};
 use super::{BOUND, EMPTY_CELL};
 use crate::draw::format;
-use crate::draw::render::TextMode;
 use crate::draw::style::{self, INK};
 use crate::error::VizError;
 use crate::snapshots::snapshot::text_style;
@@ -39,22 +38,26 @@ impl Diagram<'_> {
         plot: &DrawingArea<DB, Shift>,
         cells: &Cells,
         range: (f64, f64),
-        text: TextMode,
     ) -> Result<(), VizError> {
         let o = self.options;
         let means = Self::means(cells);
-        let (nx, ny) = (self.xs.len() as i32, self.ys.len() as i32);
+        let xa = CellAxis::new(&self.xs, !o.x_categories.is_empty(), o.log_x);
+        let ya = CellAxis::new(&self.ys, !o.y_categories.is_empty(), o.log_y);
         // a category by its name, a number as a tick
-        let label = |values: &[f64], names: &[String], v: &SegmentValue<i32>| match v {
-            SegmentValue::CenterOf(k) => values.get(*k as usize).map_or_else(String::new, |&x| {
-                names
-                    .get(x as usize)
-                    .filter(|_| !names.is_empty())
-                    .cloned()
-                    .unwrap_or_else(|| format::tick(x))
-            }),
-            _ => String::new(),
+        let name = |values: &[f64], names: &[String], k: usize| {
+            let x = values[k];
+            names
+                .get(x as usize)
+                .filter(|_| !names.is_empty())
+                .cloned()
+                .unwrap_or_else(|| format::tick(x))
         };
+        let x_names: Vec<String> = (0..self.xs.len())
+            .map(|k| name(&self.xs, &o.x_categories, k))
+            .collect();
+        let y_names: Vec<String> = (0..self.ys.len())
+            .map(|k| name(&self.ys, &o.y_categories, k))
+            .collect();
         let mut chart = ChartBuilder::on(plot)
             .margin(12)
             .x_label_area_size(48)
@@ -65,65 +68,86 @@ impl Diagram<'_> {
                     .map(|name| 24 + 7 * name.chars().count() as u32)
                     .fold(72, u32::max),
             )
-            .build_cartesian_2d((0..nx - 1).into_segmented(), (0..ny - 1).into_segmented())
+            .build_cartesian_2d(xa.clone(), ya.clone())
             .map_err(VizError::draw)?;
+        // the labels that fit where the values crowd (the dense end of an uneven axis): each at
+        // its cell's centre, shown when clear of the last one shown
+        let size = |text: &str, font: &TextStyle| plot.estimate_text_size(text, font);
+        let label_font = text_style(13);
+        let (y_start, x_start) = (ya.range().start, xa.range().start);
+        let mut x_shown = Vec::with_capacity(x_names.len());
+        for (name, &u) in x_names.iter().zip(&xa.centres) {
+            let width = size(name, &label_font).map_err(VizError::draw)?.0;
+            x_shown.push((chart.backend_coord(&(u, y_start)).0, width));
+        }
+        let mut y_shown = Vec::with_capacity(y_names.len());
+        for (name, &u) in y_names.iter().zip(&ya.centres) {
+            let height = size(name, &label_font).map_err(VizError::draw)?.1;
+            y_shown.push((chart.backend_coord(&(x_start, u)).1, height));
+        }
+        let (x_shown, y_shown) = (clear_of_each_other(&x_shown), clear_of_each_other(&y_shown));
+        let label = |axis: &CellAxis, names: &[String], shown: &[bool], u: &f64| {
+            axis.cell_at(*u)
+                .filter(|&k| shown[k])
+                .map_or_else(String::new, |k| names[k].clone())
+        };
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(text.text(&o.x_label))
-            .y_desc(text.text(o.y_label.as_deref().unwrap_or_default()))
+            .x_desc(&o.x_label)
+            .y_desc(o.y_label.as_deref().unwrap_or_default())
             .x_labels(self.xs.len())
             .y_labels(self.ys.len())
-            .x_label_formatter(&|v| label(&self.xs, &o.x_categories, v))
-            .y_label_formatter(&|v| label(&self.ys, &o.y_categories, v))
-            .label_style(text_style(13))
+            .x_label_formatter(&|u| label(&xa, &x_names, &x_shown, u))
+            .y_label_formatter(&|u| label(&ya, &y_names, &y_shown, u))
+            .label_style(label_font.clone())
             .axis_desc_style(text_style(14))
             .axis_style(style::rgb(INK))
             .draw()
             .map_err(VizError::draw)?;
         let small = self.xs.len() <= 12 && self.ys.len() <= 12;
+        // centred in its cell
+        let value_font = text_style(12).pos(Pos::new(HPos::Center, VPos::Center));
         for (i, column) in means.iter().enumerate() {
             for (j, m) in column.iter().enumerate() {
-                let (i, j) = (i as i32, j as i32);
                 let corners = [
-                    (SegmentValue::Exact(i), SegmentValue::Exact(j)),
-                    (SegmentValue::Exact(i + 1), SegmentValue::Exact(j + 1)),
+                    (xa.edges[i], ya.edges[j]),
+                    (xa.edges[i + 1], ya.edges[j + 1]),
                 ];
                 let fill = m.map_or(style::rgb(EMPTY_CELL), |m| self.colour(m, range));
                 chart
                     .draw_series([Rectangle::new(corners, fill.filled())])
                     .map_err(VizError::draw)?;
-                if let (Some(m), true) = (m, small) {
-                    let ink = if self.colour(*m, range).0 < 120 {
-                        style::rgb([0xFF, 0xFF, 0xFF])
-                    } else {
-                        style::rgb(INK)
-                    };
-                    let position = (SegmentValue::CenterOf(i), SegmentValue::CenterOf(j));
-                    chart
-                        .draw_series([Text::new(
-                            format::significant(*m, 3),
-                            position,
-                            text_style(12).color(&ink),
-                        )])
-                        .map_err(VizError::draw)?;
+                let Some(m) = m.filter(|_| small) else {
+                    continue;
+                };
+                // the mean written in its cell, where it fits
+                let text = format::significant(m, 3);
+                let (w, h) = size(&text, &value_font).map_err(VizError::draw)?;
+                let (a, b) = (
+                    chart.backend_coord(&corners[0]),
+                    chart.backend_coord(&corners[1]),
+                );
+                if (b.0 - a.0).unsigned_abs() < w + 4 || (b.1 - a.1).unsigned_abs() < h + 2 {
+                    continue;
                 }
+                let ink = if self.colour(m, range).0 < 120 {
+                    style::rgb([0xFF, 0xFF, 0xFF])
+                } else {
+                    style::rgb(INK)
+                };
+                chart
+                    .draw_series([Text::new(
+                        text,
+                        (xa.centres[i], ya.centres[j]),
+                        value_font.color(&ink),
+                    )])
+                    .map_err(VizError::draw)?;
             }
         }
-        let pixel =
-            |i: i32, j: i32| chart.backend_coord(&(SegmentValue::Exact(i), SegmentValue::Exact(j)));
-        let (left, width) = (pixel(0, 0).0, pixel(1, 0).0 - pixel(0, 0).0);
-        let (bottom, height) = (pixel(0, 0).1, pixel(0, 1).1 - pixel(0, 0).1);
-        // within the grid's outer cell edges: a line beyond them runs along the edge
-        let within = |at: f64, count: usize| at.clamp(-0.5, count as f64 - 0.5) + 0.5;
-        let column = |x: f64| {
-            let at = within(cell_position(&self.xs, x, o.log_x), self.xs.len());
-            left + (at * f64::from(width)).round() as i32
-        };
-        let row = |y: f64| {
-            let at = within(cell_position(&self.ys, y, false), self.ys.len());
-            bottom + (at * f64::from(height)).round() as i32
-        };
+        // the pixel of a value on each axis (a line beyond the outer cell edges runs along them)
+        let column = |x: f64| chart.backend_coord(&(xa.at(x), ya.range().start)).0;
+        let row = |y: f64| chart.backend_coord(&(xa.range().start, ya.at(y))).1;
         let plot = chart.plotting_area().strip_coord_spec();
         let (x0, y0) = plot.get_base_pixel();
         let ink = style::rgb(BOUND);
@@ -142,16 +166,15 @@ impl Diagram<'_> {
                 let count = vertices.len() as i32;
                 let x = vertices.iter().map(|p| p.0).sum::<i32>() / count;
                 let y = vertices.iter().map(|p| p.1).sum::<i32>() / count;
-                let label = text.text(&reference.label);
                 plot.draw(&Text::new(
-                    label,
+                    reference.label.as_str(),
                     (x - 20, y - 6),
                     text_style(12).color(&ink),
                 ))
                 .map_err(VizError::draw)?;
             }
         }
-        self.bound(&plot, column, text)
+        self.bound(&plot, column)
     }
 
     /// A vertical colour bar of the map from `lo` to `hi`, labelled with the metric.
@@ -159,7 +182,6 @@ impl Diagram<'_> {
         &self,
         area: &DrawingArea<DB, Shift>,
         (lo, hi): (f64, f64),
-        text: TextMode,
     ) -> Result<(), VizError> {
         let (lo_axis, hi_axis) = if hi > lo {
             (lo, hi)
@@ -207,7 +229,7 @@ impl Diagram<'_> {
                     .configure_mesh()
                     .disable_mesh()
                     .disable_x_axis()
-                    .y_desc(text.text(&self.options.metric))
+                    .y_desc(&self.options.metric)
                     .y_labels(6)
                     .y_label_formatter(&tick)
                     .label_style(text_style(12))
@@ -229,4 +251,22 @@ impl Diagram<'_> {
         }
         Ok(())
     }
+}
+
+/// Which of the labels at `(pixel, size)` along an axis, in order, to show: the first, then each
+/// whose half size and the last shown's, plus 4 pixels, fit between them.
+pub(super) fn clear_of_each_other(labels: &[(i32, u32)]) -> Vec<bool> {
+    let mut last: Option<(i32, u32)> = None;
+    labels
+        .iter()
+        .map(|&(at, size)| {
+            let clear = last.is_none_or(|(before, before_size)| {
+                at.abs_diff(before) >= (size + before_size) / 2 + 4
+            });
+            if clear {
+                last = Some((at, size));
+            }
+            clear
+        })
+        .collect()
 }

@@ -13,7 +13,6 @@ use plotters::style::Color;
 use super::grid::{Cells, Diagram, mean};
 use super::{BAND, BOUND, PhaseOptions, SERIES};
 use crate::draw::format;
-use crate::draw::render::TextMode;
 use crate::draw::style::{self, CURVE, INK};
 use crate::error::VizError;
 use crate::snapshots::snapshot::text_style;
@@ -40,7 +39,6 @@ fn marker(k: usize) -> Vec<(i32, i32)> {
 fn line_mesh<'b, X, Y, DB>(
     mut mesh: MeshStyle<'_, 'b, X, Y, DB>,
     o: &PhaseOptions,
-    text: TextMode,
     (labels, category): (usize, &'b dyn Fn(&f64) -> String),
 ) -> Result<(), VizError>
 where
@@ -52,8 +50,8 @@ where
     if !names.is_empty() {
         mesh.x_label_formatter(category);
     }
-    mesh.x_desc(text.text(&o.x_label))
-        .y_desc(text.text(&o.metric))
+    mesh.x_desc(&o.x_label)
+        .y_desc(&o.metric)
         .x_labels(if names.is_empty() {
             labels
         } else {
@@ -127,7 +125,6 @@ impl Diagram<'_> {
         &self,
         plot: &DrawingArea<DB, Shift>,
         column: impl FnOnce(f64) -> i32,
-        text: TextMode,
     ) -> Result<(), VizError> {
         let Some(bound) = &self.options.bound else {
             return Ok(());
@@ -140,9 +137,9 @@ impl Diagram<'_> {
             ink.stroke_width(2),
         ))
         .map_err(VizError::draw)?;
-        let (label, font) = (text.text(&bound.label), text_style(13).color(&ink));
+        let (label, font) = (bound.label.as_str(), text_style(13).color(&ink));
         let wide = plot
-            .estimate_text_size(&label, &font)
+            .estimate_text_size(label, &font)
             .map_err(VizError::draw)?
             .0 as i32;
         // right of the line, or left of it where the plot ends first
@@ -170,7 +167,6 @@ impl Diagram<'_> {
     pub(super) fn series<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
-        text: TextMode,
     ) -> Result<(), VizError> {
         let o = self.options;
         let (x0, x1) = (self.xs[0], self.xs[self.xs.len() - 1]);
@@ -205,7 +201,6 @@ impl Diagram<'_> {
                 line_mesh(
                     chart.configure_mesh(),
                     o,
-                    text,
                     (11, &|v| category(&o.x_categories, *v)),
                 )?;
                 for (k, cells) in self.panels.iter().enumerate() {
@@ -230,7 +225,7 @@ impl Diagram<'_> {
                         }))
                         .map_err(VizError::draw)?;
                     let label = o.panels.get(k).cloned().unwrap_or_default();
-                    series.label(text.text(&label)).legend(move |(x, y)| {
+                    series.label(&label).legend(move |(x, y)| {
                         EmptyElement::at((x + 8, y))
                             + PathElement::new(marker(k), colour.stroke_width(2))
                     });
@@ -245,7 +240,7 @@ impl Diagram<'_> {
                                 + PathElement::new(shape.clone(), ink.stroke_width(1))
                         }))
                         .map_err(VizError::draw)?
-                        .label(text.text(&reference.label))
+                        .label(&reference.label)
                         .legend(move |(x, y)| {
                             EmptyElement::at((x + 8, y))
                                 + PathElement::new(marker(k), ink.stroke_width(1))
@@ -253,7 +248,7 @@ impl Diagram<'_> {
                 }
                 legend(&mut chart, corner)?;
                 let plot = chart.plotting_area().strip_coord_spec();
-                self.bound(&plot, |x| chart.backend_coord(&(x, y0)).0, text)
+                self.bound(&plot, |x| chart.backend_coord(&(x, y0)).0)
             }};
         }
         // log axes where asked and every value drawn is positive (as a line diagram's)
@@ -271,7 +266,6 @@ impl Diagram<'_> {
         area: &DrawingArea<DB, Shift>,
         k: usize,
         cells: &Cells,
-        text: TextMode,
     ) -> Result<(), VizError> {
         let o = self.options;
         let rows: Vec<(f64, &Vec<f64>)> = self
@@ -346,7 +340,6 @@ impl Diagram<'_> {
                 line_mesh(
                     chart.configure_mesh(),
                     o,
-                    text,
                     (8, &|v| category(&o.x_categories, *v)),
                 )?;
                 let band = style::rgb(BAND);
@@ -357,7 +350,7 @@ impl Diagram<'_> {
                             .map(|outline| Polygon::new(outline.clone(), band.filled())),
                     )
                     .map_err(VizError::draw)?
-                    .label(text.text(o.band.meaning()))
+                    .label(o.band.meaning())
                     .legend(move |(x, y)| {
                         Rectangle::new([(x, y - 5), (x + 16, y + 5)], band.filled())
                     });
@@ -369,14 +362,14 @@ impl Diagram<'_> {
                             .map(|line| PathElement::new(line.clone(), curve.stroke_width(2))),
                     )
                     .map_err(VizError::draw)?
-                    .label(text.text("mean over the seeds"))
+                    .label("mean over the seeds")
                     .legend(move |(x, y)| {
                         PathElement::new(vec![(x, y), (x + 16, y)], curve.stroke_width(2))
                     });
                 chart
                     .draw_series(points.iter().map(|&p| Circle::new(p, 3, curve.filled())))
                     .map_err(VizError::draw)?
-                    .label(text.text("a run"))
+                    .label("a run")
                     .legend(move |(x, y)| Circle::new((x + 8, y), 3, curve.filled()));
                 legend(&mut chart, corner)?;
                 for (shape, reference) in self.references(Some(k)) {
@@ -389,11 +382,9 @@ impl Diagram<'_> {
                         .map_err(VizError::draw)?;
                 }
                 let plot = chart.plotting_area().strip_coord_spec();
-                self.bound(
-                    &plot,
-                    |x| chart.backend_coord(&(x, y0.max(f64::MIN_POSITIVE))).0,
-                    text,
-                )?;
+                self.bound(&plot, |x| {
+                    chart.backend_coord(&(x, y0.max(f64::MIN_POSITIVE))).0
+                })?;
             }};
         }
         let positive = y0 > 0.0;

@@ -1,10 +1,11 @@
 //! Phase diagrams of parameter sweeps (`flocking sweep plot`): a metric over one or two swept
 //! parameters, each point of the grid summarised over its seeds.
 //!
-//! - Two axes: a heatmap, one cell per (x, y) grid value — the cells in the order of the sorted
-//!   values, labelled with them (so a logarithmic grid is evenly spaced) — coloured by the mean
-//!   over the seeds (viridis, linear or in ln value), with a colour bar; a cell without a finite
-//!   value is grey.
+//! - Two axes: a heatmap, one cell per (x, y) grid value, coloured by the mean over the seeds
+//!   (viridis, linear or in ln value), with a colour bar; a cell without a finite value is grey.
+//!   A numeric axis is the value axis (ln value with a log scale): each cell is centred on its
+//!   value and spans halfway to its neighbours, so unevenly spaced values (0, 0.01, 0.1, 0.5)
+//!   have cells of uneven widths, and a logarithmic grid on a log axis even ones.
 //! - One axis: the mean against x (log x on request) inside a band — min to max, or the 25–75 %
 //!   quantiles — with a dot for every run, and a legend that says which band it is.
 //! - Categories ([`PhaseOptions::x_categories`], [`PhaseOptions::y_categories`]): an axis of
@@ -28,6 +29,7 @@
 //!
 //! NaN values (failed runs, empty fields) are left out of means, bands and dots.
 
+mod cells;
 mod figure;
 mod grid;
 mod heatmap;
@@ -90,9 +92,10 @@ pub struct PhaseOptions {
     pub metric: String,
     /// The titles of the panels, in order; empty for a single untitled diagram.
     pub panels: Vec<String>,
-    /// Logarithmic x axis (one-axis diagrams; a heatmap's cells are evenly spaced anyway).
+    /// Logarithmic x axis (when every x is positive).
     pub log_x: bool,
-    /// Logarithmic metric axis (one-axis diagrams).
+    /// Logarithmic y axis: the metric of a one-axis diagram, a heatmap's y (when every y is
+    /// positive).
     pub log_y: bool,
     /// The band of a one-axis diagram.
     pub band: Band,
@@ -131,8 +134,7 @@ pub struct Reference {
 }
 
 /// A labelled value of x, such as a stability bound τ* of the swept delay, drawn as a vertical
-/// line. In a heatmap, whose cells are evenly spaced, it is placed between the centres of the two
-/// cells around it, linearly in x (logarithmically with [`PhaseOptions::log_x`] and x > 0).
+/// line at its value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bound {
     /// The value of x, within the grid's x values.

@@ -2,7 +2,8 @@
 
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 
-use super::grid::{self, cell_position};
+use super::cells::CellAxis;
+use super::grid;
 use super::*;
 use crate::draw::style;
 
@@ -114,8 +115,6 @@ fn a_reference_over_a_heatmap_is_a_labelled_red_line() {
             .unwrap()
             .contains(&style::hex(BOUND))
     );
-    assert_eq!(cell_position(&[0.0, 1.0, 3.0], 2.0, false), 1.5);
-    assert_eq!(cell_position(&[0.0, 1.0, 3.0], 4.0, false), 2.5);
 }
 
 /// Two categories along x, three seeds each: "PointMass" (0) and "Unicycle(())" (1).
@@ -282,5 +281,105 @@ fn series_take_log_axes_where_the_values_allow() {
     assert_eq!(
         phase_svg(&points(0.0), &options(false, true)).unwrap(),
         zero
+    );
+}
+
+/// A numeric axis's cells are centred on their values and meet halfway between them (in ln
+/// value on a log axis), the outer ones as wide beyond their value as towards their neighbour; a
+/// categorical axis has equal cells.
+#[test]
+fn heatmap_cells_span_halfway_to_their_neighbours() {
+    let axis = CellAxis::new(&[0.0, 0.01, 0.1, 0.5], false, false);
+    assert_eq!(axis.centres, [0.0, 0.01, 0.1, 0.5]);
+    let expected = [-0.005, 0.005, 0.055, 0.3, 0.7];
+    for (edge, expected) in axis.edges.iter().zip(expected) {
+        approx::assert_relative_eq!(*edge, expected, epsilon = 1e-12);
+    }
+    // on a log axis, at the geometric means: a decade grid has equal cells
+    let log = CellAxis::new(&[1.0, 10.0, 100.0], false, true);
+    let decade = 10f64.ln();
+    for (k, edge) in log.edges.iter().enumerate() {
+        approx::assert_relative_eq!(*edge, (k as f64 - 0.5) * decade, epsilon = 1e-12);
+    }
+    approx::assert_relative_eq!(log.at(10f64.sqrt()), 0.5 * decade, epsilon = 1e-12);
+    assert_eq!(
+        log.at(1e9),
+        log.edges[3],
+        "beyond the last cell: at its edge"
+    );
+    // a log scale needs positive values; categories are their indices
+    assert_eq!(
+        CellAxis::new(&[0.0, 1.0], false, true).edges,
+        [-0.5, 0.5, 1.5]
+    );
+    let categories = CellAxis::new(&[0.0, 2.0, 3.0], true, false);
+    assert_eq!(categories.centres, [0.0, 1.0, 2.0]);
+    assert_eq!(categories.edges, [-0.5, 0.5, 1.5, 2.5]);
+    assert_eq!(CellAxis::new(&[4.0], false, false).edges, [3.5, 4.5]);
+}
+
+/// The drawn heatmap of x = 0, 0.01, 0.1, 0.5: each cell's rectangle spans from the midpoint
+/// with its left neighbour to the midpoint with its right one, on a linear value axis.
+#[test]
+fn uneven_values_are_drawn_as_cells_of_uneven_widths() {
+    let xs = [0.0, 0.01, 0.1, 0.5];
+    let points: Vec<PhasePoint> = xs
+        .iter()
+        .enumerate()
+        .map(|(k, &x)| PhasePoint {
+            x,
+            y: Some(1.0),
+            value: k as f64,
+            panel: 0,
+        })
+        .collect();
+    let options = PhaseOptions {
+        y_label: Some("y".into()),
+        ..PhaseOptions::default()
+    };
+    let svg = phase_svg(&points, &options).unwrap();
+    let diagram = grid::Diagram::new(&points, &options).unwrap();
+    let number = |rect: &str, name: &str| -> f64 {
+        let start = rect.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        rect[start..].split('"').next().unwrap().parse().unwrap()
+    };
+    // each cell's rectangle: the tallest of its colour (the colour bar's steps are short)
+    let cells: Vec<(f64, f64)> = (0..xs.len())
+        .map(|k| {
+            let c = diagram.colour(k as f64, diagram.range);
+            let fill = format!("fill=\"{}\"", style::hex([c.0, c.1, c.2]));
+            let rect = svg
+                .split("<rect")
+                .filter(|r| r.contains(&fill))
+                .max_by(|a, b| number(a, "height").total_cmp(&number(b, "height")))
+                .unwrap_or_else(|| panic!("no cell of {fill}"));
+            (number(rect, "x"), number(rect, "width"))
+        })
+        .collect();
+    let edges = CellAxis::new(&xs, false, false).edges;
+    let (left, width) = (cells[0].0, cells.iter().map(|c| c.1).sum::<f64>());
+    let pixel = |u: f64| left + width * (u - edges[0]) / (edges[4] - edges[0]);
+    for (k, &(x, w)) in cells.iter().enumerate() {
+        assert!(
+            (x - pixel(edges[k])).abs() <= 1.5 && (x + w - pixel(edges[k + 1])).abs() <= 1.5,
+            "cell {k} drawn over {x}..{}, its edges at {:.1}..{:.1}",
+            x + w,
+            pixel(edges[k]),
+            pixel(edges[k + 1])
+        );
+    }
+    assert!(
+        cells[3].1 > 30.0 * cells[0].1,
+        "0.5's cell 40 times 0's: {cells:?}"
+    );
+}
+
+/// Where an uneven axis crowds its values, a label is shown only clear of the last one shown.
+#[test]
+fn crowded_labels_are_thinned() {
+    let labels = [(0, 20), (10, 20), (30, 20), (60, 20), (83, 20)];
+    assert_eq!(
+        super::heatmap::clear_of_each_other(&labels),
+        [true, false, true, true, false]
     );
 }
