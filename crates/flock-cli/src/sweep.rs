@@ -112,6 +112,11 @@ enum SweepAction {
         /// Logarithmic colour scale (a heatmap of positive values).
         #[arg(long)]
         log_colour: bool,
+        /// A heatmap's numeric axes in equal cells, in the order of their values (each cell is
+        /// otherwise at its value): for values crowded at one end that include 0, such as delays
+        /// 0, 0.01, …, 0.8, which --log-x cannot spread.
+        #[arg(long)]
+        even_cells: bool,
         /// A theoretical bound on x (e.g. a stability bound of the swept delay), drawn as a
         /// labelled vertical line in every panel; it must lie within the x values drawn.
         #[arg(long, value_name = "X", allow_negative_numbers = true)]
@@ -190,6 +195,7 @@ pub fn main(args: SweepArgs, writing: &AtomicBool) -> ExitCode {
             log_x,
             log_y,
             log_colour,
+            even_cells,
             bound,
             bound_label,
         }) => {
@@ -208,6 +214,7 @@ pub fn main(args: SweepArgs, writing: &AtomicBool) -> ExitCode {
                 log_x,
                 log_y,
                 log_colour,
+                even_cells,
                 bound: bound.map(|x| Bound {
                     x,
                     label: bound_label,

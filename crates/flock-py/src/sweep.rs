@@ -208,7 +208,7 @@ fn plot_error(error: flock_viz::SweepPlotError) -> PyErr {
 /// `SweepResult.plot`: the diagram of `flocking sweep plot` drawn by the same code
 /// ([`flock_viz::plot_sweep`]) into `out`; `(path written, warnings)`.
 #[pyfunction]
-#[pyo3(signature = (dir, metric, x, y, fixed, facet, series, reference, band, log_x, log_y, log_colour, bound, bound_label, out))]
+#[pyo3(signature = (dir, metric, x, y, fixed, facet, series, reference, band, log_x, log_y, log_colour, even_cells, bound, bound_label, out))]
 #[allow(clippy::too_many_arguments)]
 pub fn sweep_plot(
     py: Python<'_>,
@@ -224,6 +224,7 @@ pub fn sweep_plot(
     log_x: bool,
     log_y: bool,
     log_colour: bool,
+    even_cells: bool,
     bound: Option<f64>,
     bound_label: String,
     out: Option<PathBuf>,
@@ -249,6 +250,7 @@ pub fn sweep_plot(
         log_x,
         log_y,
         log_colour,
+        even_cells,
         bound: bound.map(|x| flock_viz::phase::Bound {
             x,
             label: bound_label,

@@ -369,6 +369,7 @@ class SweepResult:
         log_x: bool = False,
         log_y: bool = False,
         log_colour: bool = False,
+        even_cells: bool = False,
         bound: Optional[float] = None,
         bound_label: str = "bound",
         out: Optional[_Path] = None,

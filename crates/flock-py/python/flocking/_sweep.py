@@ -108,6 +108,7 @@ class SweepResult:
         log_x: bool = False,
         log_y: bool = False,
         log_colour: bool = False,
+        even_cells: bool = False,
         bound: Optional[float] = None,
         bound_label: str = "bound",
         out: Optional[Path] = None,
@@ -119,7 +120,8 @@ class SweepResult:
         ``runs.csv`` writes them or as the figure shows them), ``facet`` draws one panel per
         value of an axis, ``series`` (the overlay) one line per value on one set of axes;
         ``reference`` a CSV file of a source's values; ``band`` ``"minmax"`` or ``"quantiles"``;
-        ``bound`` a labelled vertical line at that x. ``out`` is the file (``.svg``, ``.png``,
+        ``even_cells`` a heatmap's numeric axes in equal cells, in the order of their values
+        (each cell is otherwise at its value); ``bound`` a labelled vertical line at that x. ``out`` is the file (``.svg``, ``.png``,
         or ``.csv`` for the numbers drawn; default ``path/<metric>.svg``), never written over a
         file flocking did not write. Returns the path written; the CLI's warnings (points pooled
         over an axis neither drawn nor fixed) as ``UserWarning``. A metric or axis the sweep
@@ -138,6 +140,7 @@ class SweepResult:
             log_x,
             log_y,
             log_colour,
+            even_cells,
             None if bound is None else float(bound),
             bound_label,
             None if out is None else _os.fspath(out),

@@ -40,6 +40,8 @@ pub struct SweepPlot {
     pub log_y: bool,
     /// Logarithmic colour scale (a heatmap).
     pub log_colour: bool,
+    /// A heatmap's numeric axes in equal cells, in order ([`PhaseOptions::even_cells`]).
+    pub even_cells: bool,
     /// A theoretical bound on x drawn as a labelled vertical line.
     pub bound: Option<Bound>,
 }
@@ -440,6 +442,7 @@ fn draw_sweep(
         x_categories: x.categories(),
         y_categories: y.as_ref().map_or_else(Vec::new, AxisColumn::categories),
         log_colour: request.log_colour,
+        even_cells: request.even_cells,
     };
     let out = out.map_or_else(
         || dir.join(format!("{}.svg", request.metric)),

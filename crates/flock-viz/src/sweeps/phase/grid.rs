@@ -138,6 +138,16 @@ impl<'a> Diagram<'a> {
                 "a categorical x has neither a log scale nor a bound",
             ));
         }
+        if options.even_cells && !heatmap {
+            return Err(VizError::invalid(
+                "even cells are for a heatmap (give y); a line diagram draws x at its values",
+            ));
+        }
+        if options.even_cells && (options.log_x || options.log_y) {
+            return Err(VizError::invalid(
+                "even cells space the values evenly already: give either even cells or a log axis",
+            ));
+        }
         let categorical = !options.x_categories.is_empty() || !options.y_categories.is_empty();
         if categorical && !options.references.is_empty() {
             return Err(VizError::invalid(

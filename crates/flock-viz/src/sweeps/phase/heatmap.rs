@@ -9,7 +9,7 @@ use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{Color, RGBColor, TextStyle};
 
-use super::cells::CellAxis;
+use super::cells::{CellAxis, Layout};
 use super::grid::{Cells, Diagram};
 use super::{BOUND, EMPTY_CELL};
 use crate::draw::format;
@@ -41,8 +41,13 @@ impl Diagram<'_> {
     ) -> Result<(), VizError> {
         let o = self.options;
         let means = Self::means(cells);
-        let xa = CellAxis::new(&self.xs, !o.x_categories.is_empty(), o.log_x);
-        let ya = CellAxis::new(&self.ys, !o.y_categories.is_empty(), o.log_y);
+        let layout = |categories: &[String], log: bool| match () {
+            _ if !categories.is_empty() => Layout::Categories,
+            _ if o.even_cells => Layout::Even,
+            _ => Layout::Values { log },
+        };
+        let xa = CellAxis::new(&self.xs, layout(&o.x_categories, o.log_x));
+        let ya = CellAxis::new(&self.ys, layout(&o.y_categories, o.log_y));
         // a category by its name, a number as a tick
         let name = |values: &[f64], names: &[String], k: usize| {
             let x = values[k];

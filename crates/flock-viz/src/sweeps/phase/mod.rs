@@ -117,6 +117,10 @@ pub struct PhaseOptions {
     /// A logarithmic colour scale (a heatmap whose means are all positive): for a metric that
     /// spans decades, such as a velocity mismatch.
     pub log_colour: bool,
+    /// A heatmap's numeric axes in equal cells, in the order of their values, rather than each
+    /// cell at its value: for values that crowd at one end and include 0 (delays 0, 0.01, …,
+    /// 0.8), which a log axis cannot spread.
+    pub even_cells: bool,
 }
 
 /// Values from a source drawn beside a sweep's: over a line diagram, its points as black markers
@@ -161,6 +165,7 @@ impl Default for PhaseOptions {
             x_categories: Vec::new(),
             y_categories: Vec::new(),
             log_colour: false,
+            even_cells: false,
         }
     }
 }

@@ -2,7 +2,7 @@
 
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 
-use super::cells::CellAxis;
+use super::cells::{CellAxis, Layout};
 use super::grid;
 use super::*;
 use crate::draw::style;
@@ -289,14 +289,14 @@ fn series_take_log_axes_where_the_values_allow() {
 /// categorical axis has equal cells.
 #[test]
 fn heatmap_cells_span_halfway_to_their_neighbours() {
-    let axis = CellAxis::new(&[0.0, 0.01, 0.1, 0.5], false, false);
+    let axis = CellAxis::new(&[0.0, 0.01, 0.1, 0.5], Layout::Values { log: false });
     assert_eq!(axis.centres, [0.0, 0.01, 0.1, 0.5]);
     let expected = [-0.005, 0.005, 0.055, 0.3, 0.7];
     for (edge, expected) in axis.edges.iter().zip(expected) {
         approx::assert_relative_eq!(*edge, expected, epsilon = 1e-12);
     }
     // on a log axis, at the geometric means: a decade grid has equal cells
-    let log = CellAxis::new(&[1.0, 10.0, 100.0], false, true);
+    let log = CellAxis::new(&[1.0, 10.0, 100.0], Layout::Values { log: true });
     let decade = 10f64.ln();
     for (k, edge) in log.edges.iter().enumerate() {
         approx::assert_relative_eq!(*edge, (k as f64 - 0.5) * decade, epsilon = 1e-12);
@@ -309,20 +309,41 @@ fn heatmap_cells_span_halfway_to_their_neighbours() {
     );
     // a log scale needs positive values; categories are their indices
     assert_eq!(
-        CellAxis::new(&[0.0, 1.0], false, true).edges,
+        CellAxis::new(&[0.0, 1.0], Layout::Values { log: true }).edges,
         [-0.5, 0.5, 1.5]
     );
-    let categories = CellAxis::new(&[0.0, 2.0, 3.0], true, false);
+    let categories = CellAxis::new(&[0.0, 2.0, 3.0], Layout::Categories);
     assert_eq!(categories.centres, [0.0, 1.0, 2.0]);
     assert_eq!(categories.edges, [-0.5, 0.5, 1.5, 2.5]);
-    assert_eq!(CellAxis::new(&[4.0], false, false).edges, [3.5, 4.5]);
+    assert_eq!(
+        CellAxis::new(&[4.0], Layout::Values { log: false }).edges,
+        [3.5, 4.5]
+    );
 }
 
-/// The drawn heatmap of x = 0, 0.01, 0.1, 0.5: each cell's rectangle spans from the midpoint
-/// with its left neighbour to the midpoint with its right one, on a linear value axis.
+/// Even cells: the values in equal cells at their indices, a value between two of the grid's
+/// placed between their cells in proportion, one beyond the grid at the outer edge.
 #[test]
-fn uneven_values_are_drawn_as_cells_of_uneven_widths() {
-    let xs = [0.0, 0.01, 0.1, 0.5];
+fn even_cells_are_equal_and_place_values_between_them_in_proportion() {
+    let axis = CellAxis::new(&[0.0, 0.01, 0.1, 0.8], Layout::Even);
+    assert_eq!(axis.centres, [0.0, 1.0, 2.0, 3.0]);
+    assert_eq!(axis.edges, [-0.5, 0.5, 1.5, 2.5, 3.5]);
+    assert_eq!(axis.at(0.01), 1.0);
+    approx::assert_relative_eq!(axis.at(0.45), 2.5, epsilon = 1e-12);
+    approx::assert_relative_eq!(axis.at(0.687), 2.0 + 0.587 / 0.7, epsilon = 1e-12);
+    assert_eq!(axis.at(0.8), 3.0);
+    assert_eq!(axis.at(5.0), 3.5, "beyond the last value: the outer edge");
+    assert_eq!(
+        axis.at(-1.0),
+        -0.5,
+        "before the first value: the outer edge"
+    );
+    assert_eq!(CellAxis::new(&[2.0], Layout::Even).at(2.0), 0.0);
+}
+
+/// The rectangles (left pixel, width) of the cells of a heatmap of one row over `xs`, cell k's
+/// mean k, drawn with `options`.
+fn drawn_cells(xs: &[f64], options: &PhaseOptions) -> Vec<(f64, f64)> {
     let points: Vec<PhasePoint> = xs
         .iter()
         .enumerate()
@@ -333,18 +354,14 @@ fn uneven_values_are_drawn_as_cells_of_uneven_widths() {
             panel: 0,
         })
         .collect();
-    let options = PhaseOptions {
-        y_label: Some("y".into()),
-        ..PhaseOptions::default()
-    };
-    let svg = phase_svg(&points, &options).unwrap();
-    let diagram = grid::Diagram::new(&points, &options).unwrap();
+    let svg = phase_svg(&points, options).unwrap();
+    let diagram = grid::Diagram::new(&points, options).unwrap();
     let number = |rect: &str, name: &str| -> f64 {
         let start = rect.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
         rect[start..].split('"').next().unwrap().parse().unwrap()
     };
     // each cell's rectangle: the tallest of its colour (the colour bar's steps are short)
-    let cells: Vec<(f64, f64)> = (0..xs.len())
+    (0..xs.len())
         .map(|k| {
             let c = diagram.colour(k as f64, diagram.range);
             let fill = format!("fill=\"{}\"", style::hex([c.0, c.1, c.2]));
@@ -355,8 +372,21 @@ fn uneven_values_are_drawn_as_cells_of_uneven_widths() {
                 .unwrap_or_else(|| panic!("no cell of {fill}"));
             (number(rect, "x"), number(rect, "width"))
         })
-        .collect();
-    let edges = CellAxis::new(&xs, false, false).edges;
+        .collect()
+}
+
+/// The drawn heatmap of x = 0, 0.01, 0.1, 0.5: each cell's rectangle spans from the midpoint
+/// with its left neighbour to the midpoint with its right one, on a linear value axis; with
+/// even cells, the four are equal.
+#[test]
+fn uneven_values_are_drawn_as_cells_of_uneven_widths() {
+    let xs = [0.0, 0.01, 0.1, 0.5];
+    let options = PhaseOptions {
+        y_label: Some("y".into()),
+        ..PhaseOptions::default()
+    };
+    let cells = drawn_cells(&xs, &options);
+    let edges = CellAxis::new(&xs, Layout::Values { log: false }).edges;
     let (left, width) = (cells[0].0, cells.iter().map(|c| c.1).sum::<f64>());
     let pixel = |u: f64| left + width * (u - edges[0]) / (edges[4] - edges[0]);
     for (k, &(x, w)) in cells.iter().enumerate() {
@@ -372,6 +402,59 @@ fn uneven_values_are_drawn_as_cells_of_uneven_widths() {
         cells[3].1 > 30.0 * cells[0].1,
         "0.5's cell 40 times 0's: {cells:?}"
     );
+    let even = drawn_cells(
+        &xs,
+        &PhaseOptions {
+            even_cells: true,
+            ..options
+        },
+    );
+    for (k, &(x, w)) in even.iter().enumerate() {
+        assert!(
+            (w - even[0].1).abs() <= 1.5 && (x - (even[0].0 + k as f64 * even[0].1)).abs() <= 3.0,
+            "even cells: {even:?}"
+        );
+    }
+}
+
+/// Even cells are for a heatmap's numeric axes and replace a log scale: asked of a line diagram
+/// or with a log axis, they are refused, naming why.
+#[test]
+fn even_cells_are_refused_where_they_mean_nothing() {
+    let point = |x: f64, y: Option<f64>| PhasePoint {
+        x,
+        y,
+        value: 1.0,
+        panel: 0,
+    };
+    let heatmap = [point(0.0, Some(1.0)), point(0.5, Some(2.0))];
+    let even = PhaseOptions {
+        y_label: Some("y".into()),
+        even_cells: true,
+        ..PhaseOptions::default()
+    };
+    assert!(phase_svg(&heatmap, &even).is_ok());
+    let logged = phase_svg(
+        &heatmap,
+        &PhaseOptions {
+            log_y: true,
+            ..even.clone()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        logged.contains("either even cells or a log axis"),
+        "{logged}"
+    );
+    let line_even = PhaseOptions {
+        even_cells: true,
+        ..PhaseOptions::default()
+    };
+    let line = phase_svg(&[point(0.0, None), point(0.5, None)], &line_even)
+        .unwrap_err()
+        .to_string();
+    assert!(line.contains("even cells are for a heatmap"), "{line}");
 }
 
 /// Where an uneven axis crowds its values, a label is shown only clear of the last one shown.
