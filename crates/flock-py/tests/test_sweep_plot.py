@@ -48,6 +48,8 @@ CASES = [
      dict(metric="min_distance", x=DELAY, series=LOSS, band="quantiles")),
     (["--x", DELAY, "--facet", LOSS, "--metric", "alpha_flock", "--bound", "0.02"],
      dict(metric="alpha_flock", x=DELAY, facet=LOSS, bound=0.02)),
+    (["--x", DELAY, "--y", LOSS, "--metric", "alpha_flock", "--even-cells", "--bound", "0.03"],
+     dict(metric="alpha_flock", x=DELAY, y=LOSS, even_cells=True, bound=0.03)),
 ]
 
 
