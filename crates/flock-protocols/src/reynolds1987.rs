@@ -239,7 +239,7 @@ impl<V: Vector> Protocol<V> for Boids<V> {
                 let reach = self.params.visual_distance + s * self.step;
                 Birds::in_cells(size, reach, &swarm.positions, &headings)
             }
-            Domain::Open => Birds::in_order(&swarm.positions, headings),
+            Domain::Open => Birds::in_order(&swarm.positions, &headings),
         };
         let distances = self.squared_distances();
         let mut runs = Vec::new();
@@ -262,20 +262,19 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             let heading = match self.domain {
                 Domain::Periodic { .. } => {
                     let sums = birds.sums_in_sight(&self.domain, slot, distances, &mut runs);
-                    self.heading(birds.headings[slot], &sums)
+                    self.heading(birds.slots[slot].v, &sums)
                 }
                 Domain::Open => {
-                    let (q, v) = (&birds.positions, &birds.headings);
+                    let slots = &birds.slots;
                     let others = net.graph().neighbours(i).iter();
-                    let others = others.map(|&j| (q[j as usize], v[j as usize]));
-                    self.turn(q[slot], v[slot], others)
+                    let others = others.map(|&j| (slots[j as usize].q, slots[j as usize].v));
+                    self.turn(slots[slot].q, slots[slot].v, others)
                 }
             };
             let p = heading * s;
             inputs[i] = p;
-            birds.headings[slot] = heading;
-            let moved = p * self.step;
-            birds.move_to(slot, moved, self.domain.wrap(birds.positions[slot] + moved));
+            birds.slots[slot].v = heading;
+            birds.move_by(&self.domain, slot, p * self.step);
         }
     }
 

@@ -1,6 +1,7 @@
 //! The boids of one sequential sweep, as the sweep reads and moves them: each bird's position and
-//! heading in a *slot*, and how a bird finds the others in sight — by the proximity net in open
-//! space, by a uniform grid of cells over the torus in a periodic box ([`Birds::in_cells`]).
+//! heading together in a *slot* ([`Bird`], one cache line or less), and how a bird finds the others
+//! in sight — by the proximity net in open space, by a uniform grid of cells over the torus in a
+//! periodic box ([`Birds::in_cells`]).
 //!
 //! On the torus the birds are sorted by the cell they are in at the start of the step (a counting
 //! sort, ascending original index within a cell), so that the birds of neighbouring cells are
@@ -24,15 +25,21 @@ const NO_SLOT: u32 = u32::MAX;
 /// box gets larger cells rather than empty ones.
 const CELLS_PER_BIRD: usize = 4;
 
+/// A bird as the sweep reads it: where the search sees it and its unit heading.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Bird<V> {
+    /// On a grid of at least 3 cells along every axis, its position as it moved from its cell,
+    /// never wrapped (it stays within s h of its cell), for the search's shifted offsets; otherwise
+    /// its position in the box.
+    pub(super) q: V,
+    /// Its unit heading.
+    pub(super) v: V,
+}
+
 /// The birds of a sweep, stored by slot.
 pub(super) struct Birds<V> {
-    /// Position of the bird in each slot.
-    pub(super) positions: Vec<V>,
-    /// Unit heading of the bird in each slot.
-    pub(super) headings: Vec<V>,
-    /// On the torus: the position of the bird in each slot as it moved from its cell, never
-    /// wrapped (it stays within s h of its cell), for the search's distances.
-    unwrapped: Vec<V>,
+    /// The bird in each slot.
+    pub(super) slots: Vec<Bird<V>>,
     /// Slot of each bird (original index), [`NO_SLOT`] for a bird in no cell.
     slot_of: Vec<u32>,
     /// On the torus: the grid; `None` in open space (slot k is bird k).
@@ -45,6 +52,9 @@ struct Grid<V> {
     size: V,
     /// Cells along each axis (1 beyond `V::DIM`).
     cells: [usize; 3],
+    /// At least 3 cells along every axis: each cell around a cell is one image of the box, and
+    /// the birds are searched unwrapped, with the shift of their cell.
+    shifted: bool,
     /// The slots of cell c are `starts[c]..starts[c + 1]` (its birds in ascending original
     /// index).
     starts: Vec<u32>,
@@ -52,12 +62,14 @@ struct Grid<V> {
 
 impl<V: Vector> Birds<V> {
     /// The birds in original order (slot k is bird k), for the search on the proximity net.
-    pub(super) fn in_order(positions: &[V], headings: Vec<V>) -> Self {
+    pub(super) fn in_order(positions: &[V], headings: &[V]) -> Self {
         Self {
-            positions: positions.to_vec(),
-            headings,
+            slots: positions
+                .iter()
+                .zip(headings)
+                .map(|(&q, &v)| Bird { q, v })
+                .collect(),
             slot_of: (0..positions.len() as u32).collect(),
-            unwrapped: Vec::new(),
             grid: None,
         }
     }
@@ -68,6 +80,7 @@ impl<V: Vector> Birds<V> {
         let n = positions.len();
         let cells = cells_per_axis(size, reach, n);
         let total: usize = cells.iter().product();
+        let shifted = (0..V::DIM).all(|axis| cells[axis] >= 3);
         let cell_of: Vec<u32> = positions
             .iter()
             .map(|&q| match coords(size, cells, q) {
@@ -86,7 +99,12 @@ impl<V: Vector> Birds<V> {
         let placed = starts[total] as usize;
         let mut next = starts.clone();
         let mut slot_of = vec![NO_SLOT; n];
-        let (mut q, mut v) = (vec![V::ZERO; placed], vec![V::ZERO; placed]);
+        let domain = Domain::Periodic { size };
+        let unplaced = Bird {
+            q: V::ZERO,
+            v: V::ZERO,
+        };
+        let mut slots = vec![unplaced; placed];
         for (i, &c) in cell_of.iter().enumerate() {
             if c == NO_SLOT {
                 continue;
@@ -94,18 +112,19 @@ impl<V: Vector> Birds<V> {
             let slot = next[c as usize] as usize;
             next[c as usize] += 1;
             slot_of[i] = slot as u32;
-            q[slot] = positions[i];
-            v[slot] = headings[i];
+            let q = positions[i];
+            slots[slot] = Bird {
+                q: if shifted { domain.wrap(q) } else { q },
+                v: headings[i],
+            };
         }
-        let domain = Domain::Periodic { size };
         Self {
-            unwrapped: q.iter().map(|&q| domain.wrap(q)).collect(),
-            positions: q,
-            headings: v,
+            slots,
             slot_of,
             grid: Some(Grid {
                 size,
                 cells,
+                shifted,
                 starts,
             }),
         }
@@ -119,12 +138,16 @@ impl<V: Vector> Birds<V> {
         }
     }
 
-    /// Moves the bird in `slot` by `step` to `wrapped` (its position wrapped into the box).
-    pub(super) fn move_to(&mut self, slot: usize, step: V, wrapped: V) {
-        self.positions[slot] = wrapped;
-        if let Some(q) = self.unwrapped.get_mut(slot) {
-            *q += step;
-        }
+    /// Moves the bird in `slot` by `step` (wrapped into the box unless the search reads it
+    /// unwrapped).
+    pub(super) fn move_by(&mut self, domain: &Domain<V>, slot: usize, step: V) {
+        let shifted = self.grid.as_ref().is_some_and(|grid| grid.shifted);
+        let q = &mut self.slots[slot].q;
+        *q = if shifted {
+            *q + step
+        } else {
+            domain.wrap(*q + step)
+        };
     }
 
     /// The rule's sums over the birds other than the one in `slot` within sight of it (`sight`
@@ -146,10 +169,14 @@ impl<V: Vector> Birds<V> {
         let Some(grid) = &self.grid else {
             unreachable!("the grid's search is the torus's")
         };
-        let q = domain.wrap(self.positions[slot]);
-        // the bird's own cell from where it is now (it may have left the one it is stored in)
+        // where the bird is at its activation (it has not moved yet this step: the cell it is
+        // stored in)
+        let q = if grid.shifted {
+            self.slots[slot].q
+        } else {
+            domain.wrap(self.slots[slot].q)
+        };
         let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
-        let shifted = (0..V::DIM).all(|axis| grid.cells[axis] >= 3);
         let mut sums = Sums::ZERO;
         grid.around(c, runs);
         for (slots, shift) in runs.drain(..) {
@@ -160,15 +187,13 @@ impl<V: Vector> Birds<V> {
                 (slots, 0..0)
             };
             for others in [before, after] {
-                let headings = &self.headings[others.clone()];
-                if shifted {
-                    let origin = q - shift;
-                    for (&u, &v) in self.unwrapped[others].iter().zip(headings) {
-                        sums.add_in_sight(u - origin, v, sight, apart);
-                    }
+                let others = &self.slots[others];
+                if grid.shifted {
+                    sums.add_all(others, q - shift, sight, apart);
                 } else {
-                    for (&qj, &v) in self.positions[others].iter().zip(headings) {
-                        sums.add_in_sight(domain.displacement(q, qj), v, sight, apart);
+                    for other in others {
+                        let offset = domain.displacement(q, other.q);
+                        sums.add_in_sight(offset, other.v, sight, apart);
                     }
                 }
             }
@@ -177,6 +202,36 @@ impl<V: Vector> Birds<V> {
     }
 }
 
+impl<V: Vector> Sums<V> {
+    /// Counts the birds `others` within sight of a bird at `origin` (their unwrapped positions less
+    /// `origin`, the bird's less its cell's shift), as [`Sums::add_in_sight`] counts each in turn,
+    /// bit for bit, without branching: a bird out of sight adds −0 (x + (−0) = x for every x,
+    /// signed zeros included) and takes +0 from the separation (x − (+0) = x).
+    #[inline]
+    fn add_all(&mut self, others: &[Bird<V>], origin: V, sight: f64, apart: f64) {
+        let out_of_sight = V::from_fn(|_| -0.0);
+        let select = |keep: bool, x: V, otherwise: V| {
+            V::from_fn(|axis| {
+                if keep {
+                    x.coord(axis)
+                } else {
+                    otherwise.coord(axis)
+                }
+            })
+        };
+        for other in others {
+            let offset = other.q - origin;
+            let d2 = offset.length_squared();
+            // as `add_in_sight`: a NaN distance is counted
+            let seen = !(d2 > sight);
+            let near = seen & (d2 < apart);
+            self.count += u32::from(seen);
+            self.cohere += select(seen, offset, out_of_sight);
+            self.separate -= select(near, offset, V::ZERO);
+            self.matching += select(seen, other.v, out_of_sight);
+        }
+    }
+}
 impl<V: Vector> Grid<V> {
     /// The slots of the cells around the cell at `c` (itself included), each cell once, with the
     /// shift of the period that brings them next to `c` across the box's edge (zero along an axis
@@ -254,9 +309,14 @@ fn coords<V: Vector>(size: V, cells: [usize; 3], q: V) -> Option<[usize; 3]> {
     let mut c = [0; 3];
     for axis in 0..V::DIM {
         let m = cells[axis] as f64;
-        let x = (q.coord(axis) / size.coord(axis) * m).floor().rem_euclid(m);
-        // x in [0, m] (m only by rounding of a point a hair below a whole period)
-        c[axis] = (x as usize).min(cells[axis] - 1);
+        let x = q.coord(axis) / size.coord(axis) * m;
+        c[axis] = if (0.0..m).contains(&x) {
+            // in the box: the floor is the truncation, the remainder the identity
+            x as usize
+        } else {
+            // x in [0, m] (m only by rounding of a point a hair below a whole period)
+            (x.floor().rem_euclid(m) as usize).min(cells[axis] - 1)
+        };
     }
     Some(c)
 }
