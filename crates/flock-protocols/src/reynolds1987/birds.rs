@@ -25,6 +25,16 @@ const NO_SLOT: u32 = u32::MAX;
 /// box gets larger cells rather than empty ones.
 const CELLS_PER_BIRD: usize = 4;
 
+/// How far ahead of the sweep [`Birds::read_ahead`] reads: the birds activated this many after the
+/// current one (and twice as many for their cells).
+const AHEAD: usize = 8;
+
+/// The size of the birds above which the sweep reads ahead (bytes): the order of a core's L2.
+const READ_AHEAD_FROM: usize = 1 << 19;
+
+/// The most runs of slots around a cell: its 3³ cells in 3D.
+const MOST_RUNS: usize = 27;
+
 /// A bird as the sweep reads it: where the search sees it and its unit heading.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Bird<V> {
@@ -44,6 +54,9 @@ pub(super) struct Birds<V> {
     slot_of: Vec<u32>,
     /// On the torus: the grid; `None` in open space (slot k is bird k).
     grid: Option<Grid<V>>,
+    /// On the torus: the cell each bird (original index) is stored in, [`NO_SLOT`] for none; empty
+    /// in open space.
+    cell_of: Vec<u32>,
 }
 
 /// A uniform grid over the periodic box, its cells numbered with axis 0 fastest.
@@ -71,6 +84,7 @@ impl<V: Vector> Birds<V> {
                 .collect(),
             slot_of: (0..positions.len() as u32).collect(),
             grid: None,
+            cell_of: Vec::new(),
         }
     }
 
@@ -127,7 +141,53 @@ impl<V: Vector> Birds<V> {
                 shifted,
                 starts,
             }),
+            cell_of,
         }
+    }
+
+    /// Whether the sweep reads its birds ahead ([`Birds::read_ahead`]): on the torus, when they
+    /// outgrow the core's own caches.
+    pub(super) fn reads_ahead(&self) -> bool {
+        self.grid.is_some() && self.slots.len() * size_of::<Bird<V>>() > READ_AHEAD_FROM
+    }
+
+    /// Reads ahead of the sweep at its `k`-th activation of `order`: the slot and cell of the bird
+    /// activated [`AHEAD`] after the next, and one word of each cache line of the cells around the
+    /// next [`AHEAD`]-th, so that their cache misses overlap the updates between (the sweep in a
+    /// random order over a flock larger than the caches otherwise waits on each in turn). What is
+    /// read changes nothing; it is returned to be kept (`core::hint::black_box`) so that it is
+    /// read.
+    pub(super) fn read_ahead(&self, order: &[u32], k: usize) -> u64 {
+        let Some(grid) = &self.grid else {
+            return 0;
+        };
+        let mut read = 0;
+        if let Some(&far) = order.get(k + 2 * AHEAD) {
+            let far = far as usize;
+            read ^= u64::from(self.slot_of[far] ^ self.cell_of[far]);
+        }
+        let Some(&near) = order.get(k + AHEAD) else {
+            return read;
+        };
+        let cell = self.cell_of[near as usize];
+        if cell == NO_SLOT {
+            return read;
+        }
+        let mut c = [0; 3];
+        let mut rest = cell as usize;
+        for (axis, c) in c.iter_mut().enumerate() {
+            *c = rest % grid.cells[axis];
+            rest /= grid.cells[axis];
+        }
+        let mut runs = [const { (0..0, V::ZERO) }; MOST_RUNS];
+        let count = grid.around(c, &mut runs);
+        let per_line = (64 / size_of::<Bird<V>>()).max(1);
+        for (slots, _) in runs.into_iter().take(count) {
+            for bird in self.slots[slots].iter().step_by(per_line) {
+                read ^= bird.q.coord(0).to_bits();
+            }
+        }
+        read
     }
 
     /// The slot of bird `i`, `None` for a bird in no cell.
@@ -153,7 +213,7 @@ impl<V: Vector> Birds<V> {
     /// The rule's sums over the birds other than the one in `slot` within sight of it (`sight`
     /// and `apart` the squared visual distance and separation), summed cell by cell around it
     /// (below, its own, above along each axis, axis 0 fastest) and within a cell in ascending
-    /// original index: an order of space, not of storage. Only on the torus (`runs` is scratch).
+    /// original index: an order of space, not of storage. Only on the torus.
     ///
     /// The offset to a bird of a cell around is its unwrapped position less the bird's, shifted by
     /// the period the cell is across the box's edge, when the grid has at least 3 cells along
@@ -164,7 +224,6 @@ impl<V: Vector> Birds<V> {
         domain: &Domain<V>,
         slot: usize,
         (sight, apart): (f64, f64),
-        runs: &mut Vec<(Range<usize>, V)>,
     ) -> Sums<V> {
         let Some(grid) = &self.grid else {
             unreachable!("the grid's search is the torus's")
@@ -178,8 +237,9 @@ impl<V: Vector> Birds<V> {
         };
         let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
         let mut sums = Sums::ZERO;
-        grid.around(c, runs);
-        for (slots, shift) in runs.drain(..) {
+        let mut runs = [const { (0..0, V::ZERO) }; MOST_RUNS];
+        let count = grid.around(c, &mut runs);
+        for (slots, shift) in runs.into_iter().take(count) {
             // the run without the bird itself: the slots before it and after it
             let (before, after) = if slots.contains(&slot) {
                 (slots.start..slot, slot + 1..slots.end)
@@ -233,11 +293,13 @@ impl<V: Vector> Sums<V> {
     }
 }
 impl<V: Vector> Grid<V> {
-    /// The slots of the cells around the cell at `c` (itself included), each cell once, with the
-    /// shift of the period that brings them next to `c` across the box's edge (zero along an axis
-    /// of fewer than 3 cells): into `out`, neighbouring cells along axis 0 with the same shift as
-    /// one run of slots.
-    fn around(&self, c: [usize; 3], out: &mut Vec<(Range<usize>, V)>) {
+    /// The slots of the cells around the cell at `c` (itself included), each cell once, below,
+    /// its own, above along each axis, axis 0 fastest, with the shift of the period that brings
+    /// them next to `c` across the box's edge (zero along an axis of fewer than 3 cells): into
+    /// `runs`, the three cells along axis 0 as one run of slots where none is across the edge;
+    /// their number.
+    #[inline]
+    fn around(&self, c: [usize; 3], runs: &mut [(Range<usize>, V); MOST_RUNS]) -> usize {
         let along = |axis: usize| -> ([(usize, f64); 3], usize) {
             let (m, c) = (self.cells[axis], c[axis]);
             let side = if axis < V::DIM {
@@ -255,30 +317,30 @@ impl<V: Vector> Grid<V> {
                 }
             }
         };
-        let (x, y, z) = (along(0), along(1), along(2));
-        out.clear();
+        let slots = |cell: usize, cells: usize| {
+            self.starts[cell] as usize..self.starts[cell + cells] as usize
+        };
+        let (mx, cx) = (self.cells[0], c[0]);
+        let x = along(0);
+        let (y, z) = (along(1), along(2));
+        let mut k = 0;
         for &(cz, sz) in &z.0[..z.1] {
             for &(cy, sy) in &y.0[..y.1] {
-                let mut run: Option<(Range<usize>, f64)> = None;
-                for &(cx, sx) in &x.0[..x.1] {
-                    let cell = index(self.cells, [cx, cy, cz]);
-                    let slots = self.starts[cell] as usize..self.starts[cell + 1] as usize;
-                    run = match run {
-                        Some((r, s)) if s == sx && r.end == slots.start => {
-                            Some((r.start..slots.end, s))
-                        }
-                        Some((r, s)) => {
-                            out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
-                            Some((slots, sx))
-                        }
-                        None => Some((slots, sx)),
-                    };
-                }
-                if let Some((r, s)) = run {
-                    out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
+                let row = index(self.cells, [0, cy, cz]);
+                let shift = |sx: f64| V::from_fn(|axis| [sx, sy, sz][axis]);
+                if mx >= 3 && (1..mx - 1).contains(&cx) {
+                    // the three cells along axis 0 are neighbours in memory, none across the edge
+                    runs[k] = (slots(row + cx - 1, 3), shift(0.0));
+                    k += 1;
+                } else {
+                    for &(cell, sx) in &x.0[..x.1] {
+                        runs[k] = (slots(row + cell, 1), shift(sx));
+                        k += 1;
+                    }
                 }
             }
         }
+        k
     }
 }
 

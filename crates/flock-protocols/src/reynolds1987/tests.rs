@@ -97,4 +97,7 @@ fn the_cells_find_who_the_net_finds() {
     // the workloads' densities: 200 in 100² at sight 5, 400 in 150² at sight 15
     cells_equal_net::<DVec2>(200, (100.0, 100.0), 5.0, false);
     cells_equal_net::<DVec2>(400, (150.0, 150.0), 15.0, false);
+    // a flock larger than a core's caches: the sweep reads ahead, the order drawn on a second
+    // thread
+    cells_equal_net::<DVec2>(20_000, (1000.0, 1000.0), 5.0, false);
 }
