@@ -32,9 +32,6 @@ const AHEAD: usize = 8;
 /// The size of the birds above which the sweep reads ahead (bytes): the order of a core's L2.
 const READ_AHEAD_FROM: usize = 1 << 19;
 
-/// The most runs of slots around a cell: its 3³ cells in 3D.
-const MOST_RUNS: usize = 27;
-
 /// A bird as the sweep reads it: where the search sees it and its unit heading.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Bird<V> {
@@ -179,14 +176,12 @@ impl<V: Vector> Birds<V> {
             *c = rest % grid.cells[axis];
             rest /= grid.cells[axis];
         }
-        let mut runs = [const { (0..0, V::ZERO) }; MOST_RUNS];
-        let count = grid.around(c, &mut runs);
         let per_line = (64 / size_of::<Bird<V>>()).max(1);
-        for (slots, _) in runs.into_iter().take(count) {
+        grid.around(c, |slots, _| {
             for bird in self.slots[slots].iter().step_by(per_line) {
                 read ^= bird.q.coord(0).to_bits();
             }
-        }
+        });
         read
     }
 
@@ -237,9 +232,7 @@ impl<V: Vector> Birds<V> {
         };
         let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
         let mut sums = Sums::ZERO;
-        let mut runs = [const { (0..0, V::ZERO) }; MOST_RUNS];
-        let count = grid.around(c, &mut runs);
-        for (slots, shift) in runs.into_iter().take(count) {
+        grid.around(c, |slots, shift| {
             // the run without the bird itself: the slots before it and after it
             let (before, after) = if slots.contains(&slot) {
                 (slots.start..slot, slot + 1..slots.end)
@@ -257,7 +250,7 @@ impl<V: Vector> Birds<V> {
                     }
                 }
             }
-        }
+        });
         sums
     }
 }
@@ -283,7 +276,7 @@ impl<V: Vector> Sums<V> {
             let offset = other.q - origin;
             let d2 = offset.length_squared();
             // as `add_in_sight`: a NaN distance is counted
-            let seen = !(d2 > sight);
+            let seen = d2 <= sight || d2.is_nan();
             let near = seen & (d2 < apart);
             self.count += u32::from(seen);
             self.cohere += select(seen, offset, out_of_sight);
@@ -292,14 +285,14 @@ impl<V: Vector> Sums<V> {
         }
     }
 }
+
 impl<V: Vector> Grid<V> {
-    /// The slots of the cells around the cell at `c` (itself included), each cell once, below,
-    /// its own, above along each axis, axis 0 fastest, with the shift of the period that brings
-    /// them next to `c` across the box's edge (zero along an axis of fewer than 3 cells): into
-    /// `runs`, the three cells along axis 0 as one run of slots where none is across the edge;
-    /// their number.
-    #[inline]
-    fn around(&self, c: [usize; 3], runs: &mut [(Range<usize>, V); MOST_RUNS]) -> usize {
+    /// Visits the slots of the cells around the cell at `c` (itself included), each cell once,
+    /// below, its own, above along each axis, axis 0 fastest, with the shift of the period that
+    /// brings them next to `c` across the box's edge (zero along an axis of fewer than 3 cells):
+    /// the three cells along axis 0 as one run of slots where none is across the edge.
+    #[inline(always)]
+    fn around(&self, c: [usize; 3], mut visit: impl FnMut(Range<usize>, V)) {
         let along = |axis: usize| -> ([(usize, f64); 3], usize) {
             let (m, c) = (self.cells[axis], c[axis]);
             let side = if axis < V::DIM {
@@ -317,30 +310,26 @@ impl<V: Vector> Grid<V> {
                 }
             }
         };
-        let slots = |cell: usize, cells: usize| {
-            self.starts[cell] as usize..self.starts[cell + cells] as usize
-        };
+        // along axis 0: (first cell, cells, shift) of each run
         let (mx, cx) = (self.cells[0], c[0]);
-        let x = along(0);
+        let x = if mx >= 3 && (1..mx - 1).contains(&cx) {
+            // the three cells are neighbours in memory, none across the edge
+            ([(cx - 1, 3, 0.0); 3], 1)
+        } else {
+            let (cells, count) = along(0);
+            (cells.map(|(cell, shift)| (cell, 1, shift)), count)
+        };
         let (y, z) = (along(1), along(2));
-        let mut k = 0;
         for &(cz, sz) in &z.0[..z.1] {
             for &(cy, sy) in &y.0[..y.1] {
                 let row = index(self.cells, [0, cy, cz]);
-                let shift = |sx: f64| V::from_fn(|axis| [sx, sy, sz][axis]);
-                if mx >= 3 && (1..mx - 1).contains(&cx) {
-                    // the three cells along axis 0 are neighbours in memory, none across the edge
-                    runs[k] = (slots(row + cx - 1, 3), shift(0.0));
-                    k += 1;
-                } else {
-                    for &(cell, sx) in &x.0[..x.1] {
-                        runs[k] = (slots(row + cell, 1), shift(sx));
-                        k += 1;
-                    }
+                for &(first, cells, sx) in &x.0[..x.1] {
+                    let slots = self.starts[row + first] as usize
+                        ..self.starts[row + first + cells] as usize;
+                    visit(slots, V::from_fn(|axis| [sx, sy, sz][axis]));
                 }
             }
         }
-        k
     }
 }
 
