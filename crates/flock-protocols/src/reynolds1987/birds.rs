@@ -261,7 +261,7 @@ impl<V: Vector> Sums<V> {
     /// bit for bit, without branching: a bird out of sight adds −0 (x + (−0) = x for every x,
     /// signed zeros included) and takes +0 from the separation (x − (+0) = x).
     #[inline]
-    fn add_all(&mut self, others: &[Bird<V>], origin: V, sight: f64, apart: f64) {
+    pub(super) fn add_all(&mut self, others: &[Bird<V>], origin: V, sight: f64, apart: f64) {
         let out_of_sight = V::from_fn(|_| -0.0);
         let select = |keep: bool, x: V, otherwise: V| {
             V::from_fn(|axis| {
