@@ -15,6 +15,10 @@ use crate::{LocalForm, Perceived, Protocol, Swarm, Update};
 use birds::Birds;
 use flock_math::stream::{Purpose, Streams};
 
+/// Birds from which the sweep draws its activation order on one thread while it sorts them on
+/// another.
+const JOINED_FROM: usize = 1 << 14;
+
 /// The parameters of the boids, named as the declaration names them, with its defaults (the same
 /// for its "small" and "large" workloads but for `visual_distance`: 5 small, 15 large). A
 /// scenario may leave out any of them.
@@ -233,24 +237,33 @@ impl<V: Vector> Protocol<V> for Boids<V> {
     /// space on the net.
     fn controls(&self, t: f64, swarm: &Swarm<V>, net: &ProximityNet, inputs: &mut [V]) {
         let s = self.params.speed;
-        let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
-        let mut birds = match self.domain {
-            Domain::Periodic { size } => {
-                let reach = self.params.visual_distance + s * self.step;
-                Birds::in_cells(size, reach, &swarm.positions, &headings)
+        let sorted = || {
+            let headings: Vec<V> = swarm.velocities.iter().map(|&p| p / s).collect();
+            match self.domain {
+                Domain::Periodic { size } => {
+                    let reach = self.params.visual_distance + s * self.step;
+                    Birds::in_cells(size, reach, &swarm.positions, &headings)
+                }
+                Domain::Open => Birds::in_order(&swarm.positions, &headings),
             }
-            Domain::Open => Birds::in_order(&swarm.positions, headings),
+        };
+        let drawn = || self.activation_order(t, swarm.len());
+        // the order drawn while the birds are sorted, on two threads for a large flock
+        let (order, mut birds) = if swarm.len() >= JOINED_FROM {
+            flock_math::parallel::join(drawn, sorted)
+        } else {
+            (drawn(), sorted())
         };
         let distances = self.squared_distances();
-        let mut runs = Vec::new();
-        for (k, i) in self
-            .activation_order(t, swarm.len())
-            .into_iter()
-            .enumerate()
-        {
+        let ahead = birds.reads_ahead();
+        let mut read = 0;
+        for (k, &i) in order.iter().enumerate() {
             // one sequential sweep: checked for an interrupt every block of boids
             if k % BLOCK == 0 && cuts_short() {
                 return;
+            }
+            if ahead {
+                read ^= birds.read_ahead(&order, k);
             }
             let i = i as usize;
             let Some(slot) = birds.slot(i) else {
@@ -261,22 +274,22 @@ impl<V: Vector> Protocol<V> for Boids<V> {
             };
             let heading = match self.domain {
                 Domain::Periodic { .. } => {
-                    let sums = birds.sums_in_sight(&self.domain, slot, distances, &mut runs);
-                    self.heading(birds.headings[slot], &sums)
+                    let sums = birds.sums_in_sight(&self.domain, slot, distances);
+                    self.heading(birds.slots[slot].v, &sums)
                 }
                 Domain::Open => {
-                    let (q, v) = (&birds.positions, &birds.headings);
+                    let slots = &birds.slots;
                     let others = net.graph().neighbours(i).iter();
-                    let others = others.map(|&j| (q[j as usize], v[j as usize]));
-                    self.turn(q[slot], v[slot], others)
+                    let others = others.map(|&j| (slots[j as usize].q, slots[j as usize].v));
+                    self.turn(slots[slot].q, slots[slot].v, others)
                 }
             };
             let p = heading * s;
             inputs[i] = p;
-            birds.headings[slot] = heading;
-            let moved = p * self.step;
-            birds.move_to(slot, moved, self.domain.wrap(birds.positions[slot] + moved));
+            birds.slots[slot].v = heading;
+            birds.move_by(&self.domain, slot, p * self.step);
         }
+        core::hint::black_box(read);
     }
 
     /// The heading mismatch n − ‖Σ_i p̂_i‖ (p̂_i = p_i/‖p_i‖): the model decreases no

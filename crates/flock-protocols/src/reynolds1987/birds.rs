@@ -1,6 +1,7 @@
 //! The boids of one sequential sweep, as the sweep reads and moves them: each bird's position and
-//! heading in a *slot*, and how a bird finds the others in sight — by the proximity net in open
-//! space, by a uniform grid of cells over the torus in a periodic box ([`Birds::in_cells`]).
+//! heading together in a *slot* ([`Bird`], one cache line or less), and how a bird finds the others
+//! in sight — by the proximity net in open space, by a uniform grid of cells over the torus in a
+//! periodic box ([`Birds::in_cells`]).
 //!
 //! On the torus the birds are sorted by the cell they are in at the start of the step (a counting
 //! sort, ascending original index within a cell), so that the birds of neighbouring cells are
@@ -24,19 +25,35 @@ const NO_SLOT: u32 = u32::MAX;
 /// box gets larger cells rather than empty ones.
 const CELLS_PER_BIRD: usize = 4;
 
+/// How far ahead of the sweep [`Birds::read_ahead`] reads: the birds activated this many after the
+/// current one (and twice as many for their cells).
+const AHEAD: usize = 8;
+
+/// The size of the birds above which the sweep reads ahead (bytes): the order of a core's L2.
+const READ_AHEAD_FROM: usize = 1 << 19;
+
+/// A bird as the sweep reads it: where the search sees it and its unit heading.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Bird<V> {
+    /// On a grid of at least 3 cells along every axis, its position as it moved from its cell,
+    /// never wrapped (it stays within s h of its cell), for the search's shifted offsets; otherwise
+    /// its position in the box.
+    pub(super) q: V,
+    /// Its unit heading.
+    pub(super) v: V,
+}
+
 /// The birds of a sweep, stored by slot.
 pub(super) struct Birds<V> {
-    /// Position of the bird in each slot.
-    pub(super) positions: Vec<V>,
-    /// Unit heading of the bird in each slot.
-    pub(super) headings: Vec<V>,
-    /// On the torus: the position of the bird in each slot as it moved from its cell, never
-    /// wrapped (it stays within s h of its cell), for the search's distances.
-    unwrapped: Vec<V>,
+    /// The bird in each slot.
+    pub(super) slots: Vec<Bird<V>>,
     /// Slot of each bird (original index), [`NO_SLOT`] for a bird in no cell.
     slot_of: Vec<u32>,
     /// On the torus: the grid; `None` in open space (slot k is bird k).
     grid: Option<Grid<V>>,
+    /// On the torus: the cell each bird (original index) is stored in, [`NO_SLOT`] for none; empty
+    /// in open space.
+    cell_of: Vec<u32>,
 }
 
 /// A uniform grid over the periodic box, its cells numbered with axis 0 fastest.
@@ -45,6 +62,9 @@ struct Grid<V> {
     size: V,
     /// Cells along each axis (1 beyond `V::DIM`).
     cells: [usize; 3],
+    /// At least 3 cells along every axis: each cell around a cell is one image of the box, and
+    /// the birds are searched unwrapped, with the shift of their cell.
+    shifted: bool,
     /// The slots of cell c are `starts[c]..starts[c + 1]` (its birds in ascending original
     /// index).
     starts: Vec<u32>,
@@ -52,13 +72,16 @@ struct Grid<V> {
 
 impl<V: Vector> Birds<V> {
     /// The birds in original order (slot k is bird k), for the search on the proximity net.
-    pub(super) fn in_order(positions: &[V], headings: Vec<V>) -> Self {
+    pub(super) fn in_order(positions: &[V], headings: &[V]) -> Self {
         Self {
-            positions: positions.to_vec(),
-            headings,
+            slots: positions
+                .iter()
+                .zip(headings)
+                .map(|(&q, &v)| Bird { q, v })
+                .collect(),
             slot_of: (0..positions.len() as u32).collect(),
-            unwrapped: Vec::new(),
             grid: None,
+            cell_of: Vec::new(),
         }
     }
 
@@ -68,6 +91,7 @@ impl<V: Vector> Birds<V> {
         let n = positions.len();
         let cells = cells_per_axis(size, reach, n);
         let total: usize = cells.iter().product();
+        let shifted = (0..V::DIM).all(|axis| cells[axis] >= 3);
         let cell_of: Vec<u32> = positions
             .iter()
             .map(|&q| match coords(size, cells, q) {
@@ -86,7 +110,12 @@ impl<V: Vector> Birds<V> {
         let placed = starts[total] as usize;
         let mut next = starts.clone();
         let mut slot_of = vec![NO_SLOT; n];
-        let (mut q, mut v) = (vec![V::ZERO; placed], vec![V::ZERO; placed]);
+        let domain = Domain::Periodic { size };
+        let unplaced = Bird {
+            q: V::ZERO,
+            v: V::ZERO,
+        };
+        let mut slots = vec![unplaced; placed];
         for (i, &c) in cell_of.iter().enumerate() {
             if c == NO_SLOT {
                 continue;
@@ -94,21 +123,66 @@ impl<V: Vector> Birds<V> {
             let slot = next[c as usize] as usize;
             next[c as usize] += 1;
             slot_of[i] = slot as u32;
-            q[slot] = positions[i];
-            v[slot] = headings[i];
+            let q = positions[i];
+            slots[slot] = Bird {
+                q: if shifted { domain.wrap(q) } else { q },
+                v: headings[i],
+            };
         }
-        let domain = Domain::Periodic { size };
         Self {
-            unwrapped: q.iter().map(|&q| domain.wrap(q)).collect(),
-            positions: q,
-            headings: v,
+            slots,
             slot_of,
             grid: Some(Grid {
                 size,
                 cells,
+                shifted,
                 starts,
             }),
+            cell_of,
         }
+    }
+
+    /// Whether the sweep reads its birds ahead ([`Birds::read_ahead`]): on the torus, when they
+    /// outgrow the core's own caches.
+    pub(super) fn reads_ahead(&self) -> bool {
+        self.grid.is_some() && self.slots.len() * size_of::<Bird<V>>() > READ_AHEAD_FROM
+    }
+
+    /// Reads ahead of the sweep at its `k`-th activation of `order`: the slot and cell of the bird
+    /// activated [`AHEAD`] after the next, and one word of each cache line of the cells around the
+    /// next [`AHEAD`]-th, so that their cache misses overlap the updates between (the sweep in a
+    /// random order over a flock larger than the caches otherwise waits on each in turn). What is
+    /// read changes nothing; it is returned to be kept (`core::hint::black_box`) so that it is
+    /// read.
+    pub(super) fn read_ahead(&self, order: &[u32], k: usize) -> u64 {
+        let Some(grid) = &self.grid else {
+            return 0;
+        };
+        let mut read = 0;
+        if let Some(&far) = order.get(k + 2 * AHEAD) {
+            let far = far as usize;
+            read ^= u64::from(self.slot_of[far] ^ self.cell_of[far]);
+        }
+        let Some(&near) = order.get(k + AHEAD) else {
+            return read;
+        };
+        let cell = self.cell_of[near as usize];
+        if cell == NO_SLOT {
+            return read;
+        }
+        let mut c = [0; 3];
+        let mut rest = cell as usize;
+        for (axis, c) in c.iter_mut().enumerate() {
+            *c = rest % grid.cells[axis];
+            rest /= grid.cells[axis];
+        }
+        let per_line = (64 / size_of::<Bird<V>>()).max(1);
+        grid.around(c, |slots, _| {
+            for bird in self.slots[slots].iter().step_by(per_line) {
+                read ^= bird.q.coord(0).to_bits();
+            }
+        });
+        read
     }
 
     /// The slot of bird `i`, `None` for a bird in no cell.
@@ -119,18 +193,22 @@ impl<V: Vector> Birds<V> {
         }
     }
 
-    /// Moves the bird in `slot` by `step` to `wrapped` (its position wrapped into the box).
-    pub(super) fn move_to(&mut self, slot: usize, step: V, wrapped: V) {
-        self.positions[slot] = wrapped;
-        if let Some(q) = self.unwrapped.get_mut(slot) {
-            *q += step;
-        }
+    /// Moves the bird in `slot` by `step` (wrapped into the box unless the search reads it
+    /// unwrapped).
+    pub(super) fn move_by(&mut self, domain: &Domain<V>, slot: usize, step: V) {
+        let shifted = self.grid.as_ref().is_some_and(|grid| grid.shifted);
+        let q = &mut self.slots[slot].q;
+        *q = if shifted {
+            *q + step
+        } else {
+            domain.wrap(*q + step)
+        };
     }
 
     /// The rule's sums over the birds other than the one in `slot` within sight of it (`sight`
     /// and `apart` the squared visual distance and separation), summed cell by cell around it
     /// (below, its own, above along each axis, axis 0 fastest) and within a cell in ascending
-    /// original index: an order of space, not of storage. Only on the torus (`runs` is scratch).
+    /// original index: an order of space, not of storage. Only on the torus.
     ///
     /// The offset to a bird of a cell around is its unwrapped position less the bird's, shifted by
     /// the period the cell is across the box's edge, when the grid has at least 3 cells along
@@ -141,18 +219,20 @@ impl<V: Vector> Birds<V> {
         domain: &Domain<V>,
         slot: usize,
         (sight, apart): (f64, f64),
-        runs: &mut Vec<(Range<usize>, V)>,
     ) -> Sums<V> {
         let Some(grid) = &self.grid else {
             unreachable!("the grid's search is the torus's")
         };
-        let q = domain.wrap(self.positions[slot]);
-        // the bird's own cell from where it is now (it may have left the one it is stored in)
+        // where the bird is at its activation (it has not moved yet this step: the cell it is
+        // stored in)
+        let q = if grid.shifted {
+            self.slots[slot].q
+        } else {
+            domain.wrap(self.slots[slot].q)
+        };
         let c = coords(grid.size, grid.cells, q).unwrap_or([0; 3]);
-        let shifted = (0..V::DIM).all(|axis| grid.cells[axis] >= 3);
         let mut sums = Sums::ZERO;
-        grid.around(c, runs);
-        for (slots, shift) in runs.drain(..) {
+        grid.around(c, |slots, shift| {
             // the run without the bird itself: the slots before it and after it
             let (before, after) = if slots.contains(&slot) {
                 (slots.start..slot, slot + 1..slots.end)
@@ -160,29 +240,59 @@ impl<V: Vector> Birds<V> {
                 (slots, 0..0)
             };
             for others in [before, after] {
-                let headings = &self.headings[others.clone()];
-                if shifted {
-                    let origin = q - shift;
-                    for (&u, &v) in self.unwrapped[others].iter().zip(headings) {
-                        sums.add_in_sight(u - origin, v, sight, apart);
-                    }
+                let others = &self.slots[others];
+                if grid.shifted {
+                    sums.add_all(others, q - shift, sight, apart);
                 } else {
-                    for (&qj, &v) in self.positions[others].iter().zip(headings) {
-                        sums.add_in_sight(domain.displacement(q, qj), v, sight, apart);
+                    for other in others {
+                        let offset = domain.displacement(q, other.q);
+                        sums.add_in_sight(offset, other.v, sight, apart);
                     }
                 }
             }
-        }
+        });
         sums
     }
 }
 
+impl<V: Vector> Sums<V> {
+    /// Counts the birds `others` within sight of a bird at `origin` (their unwrapped positions less
+    /// `origin`, the bird's less its cell's shift), as [`Sums::add_in_sight`] counts each in turn,
+    /// bit for bit, without branching: a bird out of sight adds −0 (x + (−0) = x for every x,
+    /// signed zeros included) and takes +0 from the separation (x − (+0) = x).
+    #[inline]
+    pub(super) fn add_all(&mut self, others: &[Bird<V>], origin: V, sight: f64, apart: f64) {
+        let out_of_sight = V::from_fn(|_| -0.0);
+        let select = |keep: bool, x: V, otherwise: V| {
+            V::from_fn(|axis| {
+                if keep {
+                    x.coord(axis)
+                } else {
+                    otherwise.coord(axis)
+                }
+            })
+        };
+        for other in others {
+            let offset = other.q - origin;
+            let d2 = offset.length_squared();
+            // as `add_in_sight`: a NaN distance is counted
+            let seen = d2 <= sight || d2.is_nan();
+            let near = seen & (d2 < apart);
+            self.count += u32::from(seen);
+            self.cohere += select(seen, offset, out_of_sight);
+            self.separate -= select(near, offset, V::ZERO);
+            self.matching += select(seen, other.v, out_of_sight);
+        }
+    }
+}
+
 impl<V: Vector> Grid<V> {
-    /// The slots of the cells around the cell at `c` (itself included), each cell once, with the
-    /// shift of the period that brings them next to `c` across the box's edge (zero along an axis
-    /// of fewer than 3 cells): into `out`, neighbouring cells along axis 0 with the same shift as
-    /// one run of slots.
-    fn around(&self, c: [usize; 3], out: &mut Vec<(Range<usize>, V)>) {
+    /// Visits the slots of the cells around the cell at `c` (itself included), each cell once,
+    /// below, its own, above along each axis, axis 0 fastest, with the shift of the period that
+    /// brings them next to `c` across the box's edge (zero along an axis of fewer than 3 cells):
+    /// the three cells along axis 0 as one run of slots where none is across the edge.
+    #[inline(always)]
+    fn around(&self, c: [usize; 3], mut visit: impl FnMut(Range<usize>, V)) {
         let along = |axis: usize| -> ([(usize, f64); 3], usize) {
             let (m, c) = (self.cells[axis], c[axis]);
             let side = if axis < V::DIM {
@@ -200,27 +310,23 @@ impl<V: Vector> Grid<V> {
                 }
             }
         };
-        let (x, y, z) = (along(0), along(1), along(2));
-        out.clear();
+        // along axis 0: (first cell, cells, shift) of each run
+        let (mx, cx) = (self.cells[0], c[0]);
+        let x = if mx >= 3 && (1..mx - 1).contains(&cx) {
+            // the three cells are neighbours in memory, none across the edge
+            ([(cx - 1, 3, 0.0); 3], 1)
+        } else {
+            let (cells, count) = along(0);
+            (cells.map(|(cell, shift)| (cell, 1, shift)), count)
+        };
+        let (y, z) = (along(1), along(2));
         for &(cz, sz) in &z.0[..z.1] {
             for &(cy, sy) in &y.0[..y.1] {
-                let mut run: Option<(Range<usize>, f64)> = None;
-                for &(cx, sx) in &x.0[..x.1] {
-                    let cell = index(self.cells, [cx, cy, cz]);
-                    let slots = self.starts[cell] as usize..self.starts[cell + 1] as usize;
-                    run = match run {
-                        Some((r, s)) if s == sx && r.end == slots.start => {
-                            Some((r.start..slots.end, s))
-                        }
-                        Some((r, s)) => {
-                            out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
-                            Some((slots, sx))
-                        }
-                        None => Some((slots, sx)),
-                    };
-                }
-                if let Some((r, s)) = run {
-                    out.push((r, V::from_fn(|axis| [s, sy, sz][axis])));
+                let row = index(self.cells, [0, cy, cz]);
+                for &(first, cells, sx) in &x.0[..x.1] {
+                    let slots = self.starts[row + first] as usize
+                        ..self.starts[row + first + cells] as usize;
+                    visit(slots, V::from_fn(|axis| [sx, sy, sz][axis]));
                 }
             }
         }
@@ -254,9 +360,14 @@ fn coords<V: Vector>(size: V, cells: [usize; 3], q: V) -> Option<[usize; 3]> {
     let mut c = [0; 3];
     for axis in 0..V::DIM {
         let m = cells[axis] as f64;
-        let x = (q.coord(axis) / size.coord(axis) * m).floor().rem_euclid(m);
-        // x in [0, m] (m only by rounding of a point a hair below a whole period)
-        c[axis] = (x as usize).min(cells[axis] - 1);
+        let x = q.coord(axis) / size.coord(axis) * m;
+        c[axis] = if (0.0..m).contains(&x) {
+            // in the box: the floor is the truncation, the remainder the identity
+            x as usize
+        } else {
+            // x in [0, m] (m only by rounding of a point a hair below a whole period)
+            (x.floor().rem_euclid(m) as usize).min(cells[axis] - 1)
+        };
     }
     Some(c)
 }

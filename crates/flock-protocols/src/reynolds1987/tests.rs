@@ -7,7 +7,8 @@ use glam::{DVec2, DVec3};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
-use super::{Boids, BoidsParams};
+use super::birds::Bird;
+use super::{Boids, BoidsParams, Sums};
 use crate::{Protocol, Swarm};
 
 /// The inputs of one sweep read on the net of the interaction range, as the sweep on the net
@@ -97,4 +98,64 @@ fn the_cells_find_who_the_net_finds() {
     // the workloads' densities: 200 in 100² at sight 5, 400 in 150² at sight 15
     cells_equal_net::<DVec2>(200, (100.0, 100.0), 5.0, false);
     cells_equal_net::<DVec2>(400, (150.0, 150.0), 15.0, false);
+    // a flock larger than a core's caches: the sweep reads ahead, the order drawn on a second
+    // thread
+    cells_equal_net::<DVec2>(20_000, (1000.0, 1000.0), 5.0, false);
+}
+
+/// The bits of a sum, NaN counted as one value.
+fn bits<V: Vector>(v: V) -> Vec<u64> {
+    (0..V::DIM)
+        .map(|axis| {
+            let x = v.coord(axis);
+            if x.is_nan() { u64::MAX } else { x.to_bits() }
+        })
+        .collect()
+}
+
+/// The sums over a run of birds without branches against the same birds counted one by one:
+/// the same bits, birds exactly at the visual distance and at the separation and lost (NaN)
+/// ones included.
+fn sums_without_branches<V: Vector>(seed: u64) {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let (sight, apart) = (25.0, 4.0);
+    for case in 0..500 {
+        // whole coordinates: the offsets below are exact
+        let origin = V::from_fn(|_| f64::from(rng.random_range(-50..50)));
+        let on_axis =
+            |length: f64, axis: usize| V::from_fn(|k| if k == axis { length } else { 0.0 });
+        let others: Vec<Bird<V>> = (0..rng.random_range(0..24))
+            .map(|k| {
+                let q = match k % 6 {
+                    // at the visual distance, at the separation (boundaries)
+                    0 => origin + on_axis(5.0, k % V::DIM),
+                    1 => origin - on_axis(2.0, k % V::DIM),
+                    2 if case % 9 == 0 => V::from_fn(|_| f64::NAN),
+                    _ => origin + V::from_fn(|_| rng.random_range(-8.0..8.0)),
+                };
+                let v = V::from_fn(|_| rng.random_range(-1.0..1.0)).normalize_or_zero();
+                Bird { q, v }
+            })
+            .collect();
+        let mut fast = Sums::ZERO;
+        fast.add_all(&others, origin, sight, apart);
+        let mut slow = Sums::ZERO;
+        for other in &others {
+            slow.add_in_sight(other.q - origin, other.v, sight, apart);
+        }
+        assert_eq!(fast.count, slow.count, "case {case}");
+        for (a, b) in [
+            (fast.cohere, slow.cohere),
+            (fast.separate, slow.separate),
+            (fast.matching, slow.matching),
+        ] {
+            assert_eq!(bits(a), bits(b), "case {case}: {a:?} against {b:?}");
+        }
+    }
+}
+
+#[test]
+fn the_sums_without_branches_have_the_bits_of_the_rule() {
+    sums_without_branches::<DVec2>(1);
+    sums_without_branches::<DVec3>(2);
 }
