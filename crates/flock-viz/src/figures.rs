@@ -14,6 +14,11 @@ use crate::scene::projection::View;
 use crate::snapshots::four_views::{views_png, views_svg};
 use crate::snapshots::snapshot::{SnapshotOptions, snapshot_png, snapshot_svg};
 
+use rayon::prelude::*;
+
+/// How one figure is drawn: its file's bytes.
+type Drawing<'a> = Box<dyn Fn() -> Result<Vec<u8>, VizError> + Send + Sync + 'a>;
+
 /// A kind of figure of a run, as `flocking plot --outputs` and Python's `Run.plot(outputs=…)`
 /// name it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -187,22 +192,12 @@ pub fn write_figures(
         path: dir.to_path_buf(),
         source,
     })?;
-    let mut written = Vec::new();
-    let mut write = |name: &str, bytes: &[u8]| -> Result<(), VizError> {
-        let path = dir.join(name);
-        // never through a link: a user's file it points to is left as it is
-        flocking::owned::write_no_follow(&path, bytes).map_err(|source| VizError::Io {
-            path: path.clone(),
-            source,
-        })?;
-        written.push(path);
-        Ok(())
-    };
-
     let frames = match &options.snapshot_times {
         Some(times) => scene.frames_nearest(times),
         None => scene.evenly_spaced_frames(options.snapshot_count.max(1)),
     };
+    // each figure: its file name and how to draw it, in the order they are written
+    let mut figures: Vec<(String, Drawing<'_>)> = Vec::new();
     let mut views = vec![("snapshots", options.snapshot.style.view)];
     if scene.dim == 3 {
         views.push(("snapshots_top", View::TOP));
@@ -213,57 +208,84 @@ pub fn write_figures(
     for (name, view) in views {
         let mut snapshot = options.snapshot.clone();
         snapshot.style.view = view;
+        let frames = frames.clone();
         if options.svg {
-            write(
-                &format!("{name}.svg"),
-                snapshot_svg(scene, &frames, &snapshot)?.as_bytes(),
-            )?;
+            let (snapshot, frames) = (snapshot.clone(), frames.clone());
+            figures.push((
+                format!("{name}.svg"),
+                Box::new(move || Ok(snapshot_svg(scene, &frames, &snapshot)?.into_bytes())),
+            ));
         }
         if options.png {
-            write(
-                &format!("{name}.png"),
-                &snapshot_png(scene, &frames, &snapshot)?,
-            )?;
+            figures.push((
+                format!("{name}.png"),
+                Box::new(move || snapshot_png(scene, &frames, &snapshot)),
+            ));
         }
     }
-
     if scene.dim == 3 && options.draws(Output::Snapshots) {
         let last = frames[frames.len() - 1];
+        let snapshot = &options.snapshot;
         if options.svg {
-            write(
-                "views.svg",
-                views_svg(scene, last, &options.snapshot)?.as_bytes(),
-            )?;
+            figures.push((
+                "views.svg".into(),
+                Box::new(move || Ok(views_svg(scene, last, snapshot)?.into_bytes())),
+            ));
         }
         if options.png {
-            write("views.png", &views_png(scene, last, &options.snapshot)?)?;
+            figures.push((
+                "views.png".into(),
+                Box::new(move || views_png(scene, last, snapshot)),
+            ));
         }
     }
-
     if let Some(metrics) = metrics.filter(|_| options.draws(Output::Metrics)) {
         let mut metrics_options = options.metrics.clone();
         if metrics_options.title.is_empty() && !scene.title.is_empty() {
             metrics_options.title = format!("{}: metrics", scene.title);
         }
         if options.svg {
-            write(
-                "metrics.svg",
-                metrics_svg(metrics, &metrics_options)?.as_bytes(),
-            )?;
+            let metrics_options = metrics_options.clone();
+            figures.push((
+                "metrics.svg".into(),
+                Box::new(move || Ok(metrics_svg(metrics, &metrics_options)?.into_bytes())),
+            ));
         }
         if options.png {
-            write("metrics.png", &metrics_png(metrics, &metrics_options)?)?;
+            figures.push((
+                "metrics.png".into(),
+                Box::new(move || metrics_png(metrics, &metrics_options)),
+            ));
         }
     }
-
     if options.draws(Output::Gif) {
-        write("animation.gif", &animation_gif(scene, &options.animation)?)?;
+        figures.push((
+            "animation.gif".into(),
+            Box::new(|| animation_gif(scene, &options.animation)),
+        ));
     }
     if options.draws(Output::Player) {
-        write(
-            "player.html",
-            player_html(scene, metrics, &options.player)?.as_bytes(),
-        )?;
+        figures.push((
+            "player.html".into(),
+            Box::new(|| Ok(player_html(scene, metrics, &options.player)?.into_bytes())),
+        ));
+    }
+
+    // drawn at once (each figure's bytes depend on nothing but its inputs), then written in
+    // order, none of them when one cannot be drawn
+    let drawn: Vec<Vec<u8>> = figures
+        .par_iter()
+        .map(|(_, draw)| draw())
+        .collect::<Result<_, _>>()?;
+    let mut written = Vec::with_capacity(figures.len());
+    for ((name, _), bytes) in figures.iter().zip(drawn) {
+        let path = dir.join(name);
+        // never through a link: a user's file it points to is left as it is
+        flocking::owned::write_no_follow(&path, &bytes).map_err(|source| VizError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        written.push(path);
     }
     Ok(written)
 }
