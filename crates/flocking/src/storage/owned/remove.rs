@@ -65,24 +65,35 @@ pub fn remove_own_files(dir: &Path, kind: Kind, names: &[&str]) -> Result<(), Di
         .map_err(|e| at(format_args!("flush {}", dir.display()))(e).into())
 }
 
-/// Removes the file `relative` of `dir` that flocking wrote (checked as [`check_files`]) and
-/// forgets it in the manifest; an absent file is fine.
+/// Removes the file `relative` of `dir` that flocking wrote and forgets it in the manifest: only
+/// from a directory carrying flocking's marker, only a plain relative name below it (not empty,
+/// no `.`, `..` or root), only a regular file the manifest lists with the content flocking wrote
+/// ([`check_files`]). Without a manifest nothing tells flocking's file from a user's, so nothing is
+/// removed. An absent file is fine (a removal cut short before the manifest forgot it finishes
+/// when called again).
 ///
 /// # Errors
-/// [`DirError::Changed`] (nothing removed), or an I/O error naming its path.
+/// [`DirError::Foreign`] or [`DirError::Changed`] (nothing removed), or an I/O error naming its
+/// path.
 pub fn remove_file(dir: &Path, relative: &str) -> Result<(), DirError> {
-    // only below a marked directory, and only a plain relative name (no `..`, no root)
-    let plain = Path::new(relative)
-        .components()
-        .all(|c| matches!(c, std::path::Component::Normal(_)));
+    let foreign = || DirError::Foreign {
+        dir: dir.to_owned(),
+        entry: relative.to_owned(),
+    };
+    let plain = !relative.is_empty()
+        && Path::new(relative)
+            .components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)));
     if !plain || !marked_by_flocking(dir) {
-        return Err(DirError::Foreign {
-            dir: dir.to_owned(),
-            entry: relative.to_owned(),
-        });
+        return Err(foreign());
+    }
+    let path = dir.join(relative);
+    let present = fs::symlink_metadata(&path).is_ok();
+    let manifest = Manifest::read(dir)?;
+    if present && !manifest.as_ref().is_some_and(|m| m.lists(relative)) {
+        return Err(foreign());
     }
     check_files(dir, &[relative])?;
-    let path = dir.join(relative);
     match fs::remove_file(&path) {
         Err(e) if e.kind() != io::ErrorKind::NotFound => {
             return Err(at(format_args!("remove {}", path.display()))(e).into());
@@ -90,7 +101,7 @@ pub fn remove_file(dir: &Path, relative: &str) -> Result<(), DirError> {
         _ => {}
     }
     // removed first, forgotten after: a file absent from the disk is never the user's
-    if let Some(mut manifest) = Manifest::read(dir)? {
+    if let Some(mut manifest) = manifest.filter(|m| m.lists(relative)) {
         manifest.forget(relative);
         manifest.write(dir)?;
     }
@@ -169,5 +180,59 @@ mod tests {
         }
         assert!(run.join("final.csv").is_file() && run.join(MANIFEST_FILE).is_file());
         assert!(dir.path().join("notes.txt").is_file());
+    }
+
+    /// In a marked directory, `remove_file` removes only a file its manifest lists with the
+    /// content flocking wrote: not one without a manifest, not an unlisted or changed one, not
+    /// an empty name or `.`; a removal repeated after it finished is fine, and the manifest forgets
+    /// the file.
+    #[test]
+    fn removals_need_the_manifest_to_list_the_file() {
+        use super::Manifest;
+        use crate::storage::owned::{DirError, Kind, mark, record_manifest, remove_file};
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let run = dir.path().join("run");
+        std::fs::create_dir(&run).expect("mkdir");
+        mark(&run, Kind::Run).expect("marked");
+        std::fs::write(run.join("final.csv"), "ours\n").expect("a file");
+        // no manifest: flocking cannot tell its file from a user's
+        assert!(matches!(
+            remove_file(&run, "final.csv"),
+            Err(DirError::Foreign { .. })
+        ));
+        assert!(run.join("final.csv").is_file());
+        for name in ["", "."] {
+            assert!(
+                matches!(remove_file(&run, name), Err(DirError::Foreign { .. })),
+                "{name:?}"
+            );
+        }
+        record_manifest(&run).expect("the manifest of what is there");
+        // a file the manifest does not list, and one changed since it was written, are kept
+        std::fs::write(run.join("trajectory.csv"), "mine\n").expect("a user's file");
+        assert!(matches!(
+            remove_file(&run, "trajectory.csv"),
+            Err(DirError::Foreign { .. })
+        ));
+        std::fs::write(run.join("final.csv"), "changed\n").expect("changed by the user");
+        assert!(matches!(
+            remove_file(&run, "final.csv"),
+            Err(DirError::Changed { .. })
+        ));
+        assert_eq!(
+            std::fs::read(run.join("final.csv")).expect("kept"),
+            b"changed\n"
+        );
+        assert_eq!(
+            std::fs::read(run.join("trajectory.csv")).expect("kept"),
+            b"mine\n"
+        );
+        // the file flocking wrote goes, and is forgotten; asked again, nothing happens
+        std::fs::write(run.join("final.csv"), "ours\n").expect("as written");
+        remove_file(&run, "final.csv").expect("removed");
+        assert!(!run.join("final.csv").exists());
+        let manifest = Manifest::read(&run).expect("read").expect("a manifest");
+        assert!(!manifest.lists("final.csv"));
+        remove_file(&run, "final.csv").expect("absent: nothing to do");
     }
 }
