@@ -196,8 +196,6 @@ pub fn write_figures(
         Some(times) => scene.frames_nearest(times),
         None => scene.evenly_spaced_frames(options.snapshot_count.max(1)),
     };
-    // each figure: its file name and how to draw it, in the order they are written
-    let mut figures: Vec<(String, Drawing<'_>)> = Vec::new();
     let mut views = vec![("snapshots", options.snapshot.style.view)];
     if scene.dim == 3 {
         views.push(("snapshots_top", View::TOP));
@@ -205,21 +203,28 @@ pub fn write_figures(
     if !options.draws(Output::Snapshots) {
         views.clear();
     }
-    for (name, view) in views {
-        let mut snapshot = options.snapshot.clone();
-        snapshot.style.view = view;
-        let frames = frames.clone();
+    let snapshots: Vec<(&str, SnapshotOptions)> = views
+        .into_iter()
+        .map(|(name, view)| {
+            let mut snapshot = options.snapshot.clone();
+            snapshot.style.view = view;
+            (name, snapshot)
+        })
+        .collect();
+    // each figure: its file name and how to draw it, in the order they are written
+    let mut figures: Vec<(String, Drawing<'_>)> = Vec::new();
+    for (name, snapshot) in &snapshots {
+        let frames = &frames;
         if options.svg {
-            let (snapshot, frames) = (snapshot.clone(), frames.clone());
             figures.push((
                 format!("{name}.svg"),
-                Box::new(move || Ok(snapshot_svg(scene, &frames, &snapshot)?.into_bytes())),
+                Box::new(move || Ok(snapshot_svg(scene, frames, snapshot)?.into_bytes())),
             ));
         }
         if options.png {
             figures.push((
                 format!("{name}.png"),
-                Box::new(move || snapshot_png(scene, &frames, &snapshot)),
+                Box::new(move || snapshot_png(scene, frames, snapshot)),
             ));
         }
     }

@@ -97,7 +97,7 @@ fn even_position(values: &[f64], x: f64) -> f64 {
     if x > values[n - 1] {
         return n as f64 - 0.5;
     }
-    let k = values.partition_point(|&v| v <= x) - 1;
+    let k = values.partition_point(|&v| v <= x).saturating_sub(1);
     if k == n - 1 {
         k as f64
     } else {
